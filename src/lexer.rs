@@ -1,0 +1,110 @@
+//! Lexer: STL source text to tokens with byte spans (logos).
+//!
+//! The lexer knows no mnemonics: words and numbers stay words and numbers, the parser gives them
+//! meaning per mnemonic set. Comments (`;` and `//`) and blanks are skipped; line ends are tokens
+//! because STL is line oriented.
+
+use logos::Logos;
+
+#[derive(Logos, Debug, Clone, Copy, PartialEq, Eq)]
+#[logos(skip r"[ \t\f\x0B]+")]
+#[logos(skip(r";[^\n]*", allow_greedy = true))]
+#[logos(skip(r"//[^\n]*", allow_greedy = true))]
+pub enum TokenKind {
+    #[regex(r"\r?\n")]
+    Newline,
+    /// A name or mnemonic: `A`, `JU`, `PB`, `MOTOR`, `M001`.
+    #[regex(r"[A-Za-z_\u{C0}-\u{FF}][A-Za-z0-9_\u{C0}-\u{FF}]*")]
+    Word,
+    /// Digits, possibly followed by hex digits or letters (`00FF`, `050`).
+    #[regex(r"[0-9][0-9A-Za-z_]*")]
+    Number,
+    /// `=NAME`: a formal operand or a jump label inside an FB.
+    #[regex(r"=[A-Za-z_\u{C0}-\u{FF}][A-Za-z0-9_\u{C0}-\u{FF}]*")]
+    FormalRef,
+    /// A fixed-point comparison: `!=F`, `><F`, `>F`, `>=F`, `<F`, `<=F`.
+    #[regex(r"(!=|><|>=|<=|>|<)[Ff]")]
+    Compare,
+    /// Fixed-point addition or subtraction: `+F`, `-F`.
+    #[regex(r"[+\-][Ff]")]
+    AddSub,
+    /// A character string in quotes (`KS 'TEXT'`).
+    #[regex(r"'[^'\r\n]*'")]
+    Quoted,
+    #[token(":")]
+    Colon,
+    #[token(".")]
+    Dot,
+    #[token(",")]
+    Comma,
+    #[token("(")]
+    LParen,
+    #[token(")")]
+    RParen,
+    #[token("+")]
+    Plus,
+    #[token("-")]
+    Minus,
+    #[token("=")]
+    Equals,
+    /// A character no token starts with; reported by the lexer, skipped by the parser.
+    Invalid,
+}
+
+/// One token: its kind and where it stands in the file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Token {
+    pub kind: TokenKind,
+    pub start: u32,
+    pub end: u32,
+}
+
+impl Token {
+    pub fn text(self, source: &str) -> &str {
+        &source[self.start as usize..self.end as usize]
+    }
+
+    /// True when `next` starts right where this token ends (`A(`, `:F`).
+    pub fn touches(self, next: Token) -> bool {
+        self.end == next.start
+    }
+}
+
+/// Splits a whole file into tokens. Characters that start no token become [`TokenKind::Invalid`].
+pub fn lex(source: &str) -> Vec<Token> {
+    let mut lexer = TokenKind::lexer(source);
+    let mut tokens = Vec::with_capacity(source.len() / 3);
+    while let Some(result) = lexer.next() {
+        let span = lexer.span();
+        let kind = result.unwrap_or(TokenKind::Invalid);
+        tokens.push(Token { kind, start: span.start as u32, end: span.end as u32 });
+    }
+    tokens
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use TokenKind::*;
+
+    fn kinds(source: &str) -> Vec<TokenKind> {
+        lex(source).into_iter().map(|t| t.kind).collect()
+    }
+
+    #[test]
+    fn statement_with_bit_address_and_comment() {
+        assert_eq!(kinds("  :A  I 0.0 ; c\r\n"), [Colon, Word, Word, Number, Dot, Number, Newline]);
+    }
+
+    #[test]
+    fn formal_operands_comparisons_and_arithmetic() {
+        assert_eq!(kinds("JC =M001 // x"), [Word, FormalRef]);
+        assert_eq!(kinds("!=F >=F <F +F -F"), [Compare, Compare, Compare, AddSub, AddSub]);
+        assert_eq!(kinds("KF -100"), [Word, Minus, Number]);
+    }
+
+    #[test]
+    fn invalid_characters_become_tokens() {
+        assert_eq!(kinds("A § 1"), [Word, Invalid, Number]);
+    }
+}

@@ -1,0 +1,11 @@
+//! awl — a STEP 5 STL (AWL) interpreter with interrupt-aware execution.
+//!
+//! The stages, each in its own module: [`lexer`] → [`parser`] (AST in [`ast`]) → [`compiler`]
+//! (bytecode) → [`vm`] (executes) with the interrupt engine in [`vm::interrupts`] → [`trace`] and
+//! [`report`].
+
+pub mod ast;
+pub mod lexer;
+pub mod mnemonics;
+pub mod parser;
+pub mod source;

@@ -1,0 +1,162 @@
+//! Errors of the lexer and parser. Each variant has a stable code documented in `grammar/errors.md`.
+
+use miette::Diagnostic;
+use thiserror::Error;
+
+use crate::source::Span;
+
+#[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
+pub enum ParseError {
+    #[error("unexpected character `{found}`")]
+    #[diagnostic(
+        code(awl::lex::unexpected_character),
+        help("STL lines hold an optional label, an operation and an operand; comments start with `;` or `//`")
+    )]
+    UnexpectedCharacter {
+        found: String,
+        #[label("no token starts with this character")]
+        at: Span,
+    },
+
+    #[error("unknown operation `{word}`")]
+    #[diagnostic(code(awl::parse::unknown_operation))]
+    UnknownOperation {
+        word: String,
+        #[label("not an operation of the {set} set")]
+        at: Span,
+        set: &'static str,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("`{word}` is a {word_set} mnemonic, but this file uses {file_set} mnemonics")]
+    #[diagnostic(code(awl::parse::mixed_mnemonics))]
+    MixedMnemonics {
+        word: String,
+        word_set: &'static str,
+        file_set: &'static str,
+        #[label("{word_set} word")]
+        at: Span,
+        #[label("the file's set was decided by this word")]
+        decided_by: Option<Span>,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("unknown operand `{word}`")]
+    #[diagnostic(code(awl::parse::unknown_operand))]
+    UnknownOperand {
+        word: String,
+        #[label("not an operand of the {set} set")]
+        at: Span,
+        set: &'static str,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("`{op}` needs an operand")]
+    #[diagnostic(code(awl::parse::missing_operand))]
+    MissingOperand {
+        op: String,
+        #[label("operand expected after this")]
+        at: Span,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("unexpected {found}")]
+    #[diagnostic(code(awl::parse::unexpected_token))]
+    UnexpectedToken {
+        found: String,
+        #[label("expected {expected}")]
+        at: Span,
+        expected: String,
+    },
+
+    #[error("bad address for `{area}`")]
+    #[diagnostic(code(awl::parse::bad_address))]
+    BadAddress {
+        area: String,
+        #[label("{expected}")]
+        at: Span,
+        expected: String,
+    },
+
+    #[error("statement outside a block")]
+    #[diagnostic(
+        code(awl::parse::outside_block),
+        help("start a block with a header line such as `PB 3`, or remove what follows `BE`")
+    )]
+    OutsideBlock {
+        #[label("this line belongs to no block")]
+        at: Span,
+    },
+
+    #[error("block number {number} is out of range")]
+    #[diagnostic(code(awl::parse::block_number), help("block numbers run from 0 to 255"))]
+    BlockNumber {
+        number: String,
+        #[label("0…255 expected")]
+        at: Span,
+    },
+
+    #[error("bad {format} constant")]
+    #[diagnostic(code(awl::parse::bad_constant))]
+    BadConstant {
+        format: String,
+        #[label("{expected}")]
+        at: Span,
+        expected: String,
+    },
+
+    #[error("{format} constant out of range")]
+    #[diagnostic(code(awl::check::constant_range))]
+    ConstantRange {
+        format: String,
+        #[label("allowed: {range}")]
+        at: Span,
+        range: String,
+    },
+
+    #[error("bad parameter declaration")]
+    #[diagnostic(
+        code(awl::parse::bad_declaration),
+        help("write `DES :NAME KIND FORMAT`, e.g. `DES :EIN I BI`; kinds I Q D B T C, formats BI BY W or a constant format for D")
+    )]
+    BadDeclaration {
+        #[label("{reason}")]
+        at: Span,
+        reason: String,
+    },
+
+    #[error("bad data word")]
+    #[diagnostic(
+        code(awl::parse::bad_data_word),
+        help("data block lines look like `0: KF +100` (word number, colon, constant)")
+    )]
+    BadDataWord {
+        #[label("{reason}")]
+        at: Span,
+        reason: String,
+    },
+}
+
+impl ParseError {
+    pub fn span(&self) -> Span {
+        match self {
+            ParseError::UnexpectedCharacter { at, .. }
+            | ParseError::UnknownOperation { at, .. }
+            | ParseError::MixedMnemonics { at, .. }
+            | ParseError::UnknownOperand { at, .. }
+            | ParseError::MissingOperand { at, .. }
+            | ParseError::UnexpectedToken { at, .. }
+            | ParseError::BadAddress { at, .. }
+            | ParseError::OutsideBlock { at }
+            | ParseError::BlockNumber { at, .. }
+            | ParseError::BadConstant { at, .. }
+            | ParseError::ConstantRange { at, .. }
+            | ParseError::BadDeclaration { at, .. }
+            | ParseError::BadDataWord { at, .. } => *at,
+        }
+    }
+}

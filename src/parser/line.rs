@@ -1,0 +1,547 @@
+//! The grammar of one line (see `grammar/stl.ebnf`), as nom parsers over the line's tokens.
+
+use nom::Parser;
+use nom::branch::alt;
+use nom::combinator::opt;
+use nom::sequence::{pair, terminated};
+
+use crate::ast::{
+    Address, BlockId, CallParam, Constant, Name, Operand, ParamDecl, ParamFormat, Statement,
+};
+use crate::lexer::{Token, TokenKind};
+use crate::mnemonics::{self, Area, BlockKind, ConstFormat, OpCode, OpInfo, ParamKind};
+use crate::source::Span;
+
+use super::constant::parse_constant;
+use super::error::ParseError;
+use super::tokens::{
+    Context, LineError, LineResult, Tokens, decimal, end_of_line, keyword, kind, touching,
+};
+
+/// What one line holds.
+#[derive(Debug, Clone)]
+pub enum Line {
+    Header(BlockId),
+    /// `NAME :MOTOR`
+    Name(Name),
+    Declaration(ParamDecl),
+    DataWord { index: Option<u16>, constant: Constant, span: Span },
+    Param(CallParam),
+    Statement(Statement),
+}
+
+fn remaining_span(context: Context<'_>, tokens: &[Token]) -> Option<Span> {
+    Some(context.span_of(*tokens.first()?, *tokens.last()?))
+}
+
+/// `PB 3` or `PB3`.
+pub fn header<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, BlockId> {
+    move |input: Tokens<'a>| {
+        let (rest, word) = kind(TokenKind::Word, "a block header such as `PB 3`")(input)?;
+        let text = context.text(word);
+        if let Some(kind) = BlockKind::from_word(text) {
+            let (rest, number) = kind_number(context, rest)?;
+            let (rest, _) = end_of_line(rest)?;
+            return Ok((rest, BlockId { kind, number }));
+        }
+        let split = text.find(|c: char| c.is_ascii_digit()).unwrap_or(text.len());
+        let (kind_text, digits) = text.split_at(split);
+        match (BlockKind::from_word(kind_text), digits.parse::<u32>()) {
+            (Some(kind), Ok(number)) if !digits.is_empty() => {
+                let (rest, _) = end_of_line(rest)?;
+                let number = block_number(context, word, number)?;
+                Ok((rest, BlockId { kind, number }))
+            }
+            _ => Err(nom::Err::Error(LineError { at: Some(word), expected: "", diagnostic: None })),
+        }
+    }
+}
+
+fn kind_number<'a>(context: Context<'a>, input: Tokens<'a>) -> LineResult<'a, u8> {
+    match input.first() {
+        Some(token) if token.kind == TokenKind::Number => {
+            let value = context.text(token).parse::<u32>().unwrap_or(u32::MAX);
+            Ok((Tokens::new(&input.tokens[1..]), block_number(context, token, value)?))
+        }
+        _ => Err(nom::Err::Error(LineError {
+            at: input.first(),
+            expected: "a block number 0…255",
+            diagnostic: None,
+        })),
+    }
+}
+
+fn block_number(context: Context<'_>, token: Token, value: u32) -> Result<u8, nom::Err<LineError>> {
+    u8::try_from(value).map_err(|_| {
+        LineError::diagnostic(ParseError::BlockNumber {
+            number: context.text(token).to_string(),
+            at: context.span(token),
+        })
+    })
+}
+
+/// `NAME :MOTOR`
+pub fn name_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, Name> {
+    move |input: Tokens<'a>| {
+        let (rest, _) = keyword(context, &[mnemonics::NAME_WORD], "NAME")(input)?;
+        let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
+        let (rest, name) = kind(TokenKind::Word, "the block's name")(rest)?;
+        let (rest, _) = end_of_line(rest)?;
+        Ok((rest, Name { text: context.text(name).to_string(), span: context.span(name) }))
+    }
+}
+
+/// `DES :EIN I BI`
+pub fn declaration<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParamDecl> {
+    move |input: Tokens<'a>| {
+        let words = &[mnemonics::DECLARATION_EN, mnemonics::DECLARATION_DE];
+        let (rest, start) = keyword(context, words, "DES")(input)?;
+        let line_span = remaining_span(context, input.tokens).unwrap_or_default();
+        let bad = |reason: &str, at: Span| {
+            LineError::diagnostic(ParseError::BadDeclaration { at, reason: reason.to_string() })
+        };
+        let (rest, _) = kind(TokenKind::Colon, "`:`")(rest).map_err(|_| bad("`:` expected", line_span))?;
+        let (rest, name) =
+            kind(TokenKind::Word, "name")(rest).map_err(|_| bad("parameter name expected", line_span))?;
+        let (rest, kind_token) =
+            kind(TokenKind::Word, "kind")(rest).map_err(|_| bad("kind expected (I Q D B T C)", line_span))?;
+        let param_kind = mnemonics::param_kind(context.set, context.text(kind_token))
+            .ok_or_else(|| bad("unknown kind; I Q D B T C expected", context.span(kind_token)))?;
+        let (rest, format_token) = opt(kind(TokenKind::Word, "format")).parse(rest)?;
+        if let Some(extra) = rest.first() {
+            return Err(bad("end of line expected", context.span(extra)));
+        }
+        let format = match format_token {
+            Some(token) => Some(
+                param_format(context, token)
+                    .ok_or_else(|| bad("unknown format", context.span(token)))?,
+            ),
+            None => None,
+        };
+        let last = format_token.unwrap_or(kind_token);
+        let ok = match (param_kind, format) {
+            (ParamKind::Input | ParamKind::Output, Some(ParamFormat::Bit | ParamFormat::Byte | ParamFormat::Word)) => true,
+            (ParamKind::Data, Some(ParamFormat::Constant(_))) => true,
+            (ParamKind::Block | ParamKind::Timer | ParamKind::Counter, None) => true,
+            _ => false,
+        };
+        if !ok {
+            let reason = match param_kind {
+                ParamKind::Input | ParamKind::Output => "kinds I and Q take the format BI, BY or W",
+                ParamKind::Data => "kind D takes a constant format (KF, KH, KM, KY, KT, KC, KS, KG)",
+                _ => "kinds B, T and C take no format",
+            };
+            return Err(bad(reason, context.span_of(kind_token, last)));
+        }
+        Ok((
+            rest,
+            ParamDecl {
+                name: Name { text: context.text(name).to_string(), span: context.span(name) },
+                kind: param_kind,
+                format,
+                span: context.span_of(start, last),
+            },
+        ))
+    }
+}
+
+fn param_format(context: Context<'_>, token: Token) -> Option<ParamFormat> {
+    let text = context.text(token);
+    match text.to_ascii_uppercase().as_str() {
+        "BI" => Some(ParamFormat::Bit),
+        "BY" => Some(ParamFormat::Byte),
+        "W" => Some(ParamFormat::Word),
+        _ => mnemonics::constant_format(context.set, text).map(ParamFormat::Constant),
+    }
+}
+
+/// `0: KF +100`, `1: KH = 00FF`, or a constant alone (the next word).
+pub fn data_word<'a>(
+    context: Context<'a>,
+) -> impl Fn(Tokens<'a>) -> LineResult<'a, (Option<u16>, Constant, Span)> {
+    move |input: Tokens<'a>| {
+        let span = remaining_span(context, input.tokens).unwrap_or_default();
+        let (rest, index) =
+            opt(terminated(decimal(context, "word number"), kind(TokenKind::Colon, "`:`"))).parse(input)?;
+        let (rest, format_token) = kind(TokenKind::Word, "a constant format such as KF")(rest)?;
+        let Some(format) = mnemonics::constant_format(context.set, context.text(format_token)) else {
+            return Err(nom::Err::Error(LineError {
+                at: Some(format_token),
+                expected: "a constant format such as KF",
+                diagnostic: None,
+            }));
+        };
+        let (rest, _) = opt(kind(TokenKind::Equals, "`=`")).parse(rest)?;
+        let constant = parse_constant(context, format, format_token, rest.tokens)
+            .map_err(LineError::diagnostic)?;
+        Ok((Tokens::new(&[]), (index.map(|(value, _)| value), constant, span)))
+    }
+}
+
+/// `EIN :I 0.0` — an actual parameter after an FB call.
+pub fn param_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, CallParam> {
+    move |input: Tokens<'a>| {
+        let (rest, name) = kind(TokenKind::Word, "parameter name")(input)?;
+        let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
+        let (rest, (actual, actual_span)) = operand(context, None)(rest)?;
+        if actual == Operand::None || matches!(actual, Operand::Number(_)) {
+            return Err(nom::Err::Error(LineError { at: rest.first(), expected: "", diagnostic: None }));
+        }
+        let (rest, _) = end_of_line(rest)?;
+        let span = remaining_span(context, input.tokens).unwrap_or_default();
+        let name = Name { text: context.text(name).to_string(), span: context.span(name) };
+        Ok((rest, CallParam { name, actual, actual_span, span }))
+    }
+}
+
+/// `[LABEL :] [:] OPERATION [OPERAND]`
+pub fn statement<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, Statement> {
+    move |input: Tokens<'a>| {
+        let span = remaining_span(context, input.tokens).unwrap_or_default();
+        let (rest, label) = opt(terminated(
+            kind(TokenKind::Word, "label"),
+            kind(TokenKind::Colon, "`:`"),
+        ))
+        .parse(input)?;
+        let (rest, op) = alt((divide(context), preceded_colon(context), operation(context))).parse(rest)?;
+        let (rest, (operand, operand_span)) = match op.inline_operand.clone() {
+            Some(inline) => Ok((rest, inline)),
+            None => operand_for(context, op.info, op.last)(rest),
+        }?;
+        end_of_line(rest).map_err(|_| {
+            let extra = remaining_span(context, rest.tokens).unwrap_or_default();
+            LineError::diagnostic(ParseError::UnexpectedToken {
+                found: describe(context, rest.first()),
+                at: extra,
+                expected: "end of line".to_string(),
+            })
+        })?;
+        Ok((
+            Tokens::new(&[]),
+            Statement {
+                label: label.map(|token| Name {
+                    text: context.text(token).to_string(),
+                    span: context.span(token),
+                }),
+                op: op.info.op,
+                op_span: op.span,
+                operand,
+                operand_span,
+                call_params: Vec::new(),
+                span,
+            },
+        ))
+    }
+}
+
+pub fn describe(context: Context<'_>, token: Option<Token>) -> String {
+    match token {
+        None => "end of line".to_string(),
+        Some(token) if token.kind == TokenKind::Newline => "end of line".to_string(),
+        Some(token) => format!("`{}`", context.text(token)),
+    }
+}
+
+struct ParsedOp {
+    info: OpInfo,
+    span: Span,
+    last: Token,
+    inline_operand: Option<(Operand, Span)>,
+}
+
+/// `:F` written right after the leading colon of a PG listing, or alone.
+fn divide<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParsedOp> {
+    move |input: Tokens<'a>| {
+        let (rest, _) = opt(pair(kind(TokenKind::Colon, ":"), nom::combinator::peek(kind(TokenKind::Colon, ":"))))
+            .parse(input)?;
+        let (rest, colon) = kind(TokenKind::Colon, "`:F`")(rest)?;
+        let (rest, f) = touching(colon, TokenKind::Word, "`:F`")(rest)?;
+        if !context.text(f).eq_ignore_ascii_case("F") || !rest.is_empty() {
+            return Err(nom::Err::Error(LineError { at: Some(colon), expected: "", diagnostic: None }));
+        }
+        let info = *mnemonics::op_info(OpCode::DivFixed);
+        Ok((rest, ParsedOp { info, span: context.span_of(colon, f), last: f, inline_operand: None }))
+    }
+}
+
+/// The leading `:` of a PG listing before the operation.
+fn preceded_colon<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParsedOp> {
+    move |input: Tokens<'a>| {
+        let (rest, _) = kind(TokenKind::Colon, "`:`")(input)?;
+        operation(context)(rest)
+    }
+}
+
+fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParsedOp> {
+    move |input: Tokens<'a>| {
+        let Some(first) = input.first() else {
+            return Err(nom::Err::Error(LineError { at: None, expected: "an operation", diagnostic: None }));
+        };
+        let mut rest = Tokens::new(&input.tokens[1..]);
+        let mut last = first;
+        let mut inline_operand = None;
+        let word: String = match first.kind {
+            TokenKind::Word => {
+                let text = context.text(first).to_ascii_uppercase();
+                if let Ok((after, paren)) = touching(first, TokenKind::LParen, "(")(rest) {
+                    rest = after;
+                    last = paren;
+                    format!("{text}(")
+                } else if text == "X" || text == "XF" {
+                    if text == "X" {
+                        let (after, f) = keyword(context, &["F"], "`X F`")(rest)?;
+                        rest = after;
+                        last = f;
+                    }
+                    "X F".to_string()
+                } else {
+                    if let Ok((after, equals)) = touching(first, TokenKind::Equals, "=")(rest) {
+                        let (after, target) = kind(TokenKind::Word, "a label after `=`")(after)?;
+                        inline_operand = Some((
+                            Operand::Symbol(context.text(target).to_string()),
+                            context.span_of(equals, target),
+                        ));
+                        rest = after;
+                    }
+                    text
+                }
+            }
+            TokenKind::RParen => ")".to_string(),
+            TokenKind::Equals => "=".to_string(),
+            TokenKind::AddSub | TokenKind::Compare => context.text(first).to_ascii_uppercase(),
+            _ => {
+                return Err(nom::Err::Error(LineError {
+                    at: Some(first),
+                    expected: "an operation",
+                    diagnostic: None,
+                }));
+            }
+        };
+        let span = context.span_of(first, last);
+        match mnemonics::operation(context.set, &word) {
+            Some(info) => Ok((rest, ParsedOp { info, span, last, inline_operand })),
+            None => Err(nom::Err::Error(LineError {
+                at: Some(first),
+                expected: "an operation",
+                diagnostic: Some(ParseError::UnknownOperation {
+                    help: suggest_operation(context.set, &word),
+                    word,
+                    at: span,
+                    set: context.set.name(),
+                }),
+            })),
+        }
+    }
+}
+
+fn suggest_operation(set: mnemonics::MnemonicSet, word: &str) -> Option<String> {
+    let best = mnemonics::operation_words(set)
+        .map(|candidate| (strsim::damerau_levenshtein(word, candidate), candidate))
+        .filter(|(distance, candidate)| *distance <= 1 + usize::from(candidate.len() > 3))
+        .min_by_key(|(distance, _)| *distance)?;
+    Some(format!("did you mean `{}`?", best.1))
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Shape {
+    Nothing,
+    Number,
+    Optional,
+    Required,
+}
+
+fn shape(op: OpCode) -> Shape {
+    use OpCode::*;
+    match op {
+        AndBracket | OrBracket | CloseBracket | AddFixed | SubFixed | MulFixed | DivFixed | CmpEq
+        | CmpNe | CmpGt | CmpGe | CmpLt | CmpLe | BlockEnd | BlockEndConditional
+        | BlockEndUnconditional | Stop | AndWord | OrWord | XorWord | OnesComplement
+        | TwosComplement | Swap | DisableInterrupts | EnableInterrupts => Shape::Nothing,
+        Nop | Display | ShiftLeft | ShiftRight | Increment | Decrement => Shape::Number,
+        Or => Shape::Optional,
+        _ => Shape::Required,
+    }
+}
+
+fn operand_for<'a>(
+    context: Context<'a>,
+    info: OpInfo,
+    op_last: Token,
+) -> impl Fn(Tokens<'a>) -> LineResult<'a, (Operand, Span)> {
+    move |input: Tokens<'a>| {
+        let empty_span = Span { file: context.file, start: op_last.end, end: op_last.end };
+        let missing = || {
+            let example = match context.set {
+                mnemonics::MnemonicSet::English => (info.en, info.example_en),
+                mnemonics::MnemonicSet::German => (info.de, info.example_de),
+            };
+            LineError::diagnostic(ParseError::MissingOperand {
+                op: example.0.to_string(),
+                at: context.span(op_last),
+                help: (!example.1.is_empty()).then(|| format!("for example `{} {}`", example.0, example.1)),
+            })
+        };
+        match shape(info.op) {
+            Shape::Nothing => Ok((input, (Operand::None, empty_span))),
+            Shape::Number => match input.first() {
+                None if matches!(info.op, OpCode::Increment | OpCode::Decrement) => Err(missing()),
+                None => Err(missing()),
+                Some(token) if token.kind == TokenKind::Number => {
+                    let (rest, (value, token)) = decimal(context, "a number")(input).map_err(|_| {
+                        LineError::diagnostic(ParseError::UnexpectedToken {
+                            found: describe(context, Some(token)),
+                            at: context.span(token),
+                            expected: "a decimal number".to_string(),
+                        })
+                    })?;
+                    Ok((rest, (Operand::Number(value), context.span(token))))
+                }
+                Some(_) => operand(context, Some(info.op))(input),
+            },
+            Shape::Optional if input.is_empty() => Ok((input, (Operand::None, empty_span))),
+            Shape::Required if input.is_empty() => Err(missing()),
+            _ => operand(context, Some(info.op))(input),
+        }
+    }
+}
+
+/// An operand: `=NAME`, a number, a block (`PB 3`), an address (`I 0.0`, `FW 10`, `T 5`) or a
+/// constant (`KF +5`). Block words come first after block operations, since German `PB` is also
+/// the peripheral byte.
+pub fn operand<'a>(
+    context: Context<'a>,
+    op: Option<OpCode>,
+) -> impl Fn(Tokens<'a>) -> LineResult<'a, (Operand, Span)> {
+    move |input: Tokens<'a>| {
+        let Some(first) = input.first() else {
+            return Err(nom::Err::Error(LineError { at: None, expected: "an operand", diagnostic: None }));
+        };
+        let rest = Tokens::new(&input.tokens[1..]);
+        match first.kind {
+            TokenKind::FormalRef => {
+                let name = context.text(first)[1..].to_string();
+                Ok((rest, (Operand::Symbol(name), context.span(first))))
+            }
+            TokenKind::Number => {
+                let (rest, (value, token)) = decimal(context, "a number")(input)?;
+                Ok((rest, (Operand::Number(value), context.span(token))))
+            }
+            TokenKind::Word => word_operand(context, op, first, rest),
+            _ => Err(nom::Err::Error(LineError { at: Some(first), expected: "an operand", diagnostic: None })),
+        }
+        .map_err(|error| match error {
+            nom::Err::Error(LineError { diagnostic: None, at, .. }) if at == Some(first) => {
+                nom::Err::Error(LineError {
+                    at: Some(first),
+                    expected: "an operand",
+                    diagnostic: Some(unknown_operand(context, first)),
+                })
+            }
+            other => other,
+        })
+    }
+}
+
+fn unknown_operand(context: Context<'_>, token: Token) -> ParseError {
+    let word = context.text(token).to_string();
+    let known = mnemonics::AREAS
+        .iter()
+        .map(|info| match context.set {
+            mnemonics::MnemonicSet::English => info.en,
+            mnemonics::MnemonicSet::German => info.de,
+        })
+        .chain(BlockKind::ALL.iter().map(|kind| kind.name()));
+    let help = known
+        .map(|candidate| (strsim::damerau_levenshtein(&word.to_ascii_uppercase(), candidate), candidate))
+        .filter(|(distance, _)| *distance <= 1)
+        .min_by_key(|(distance, _)| *distance)
+        .map(|(_, candidate)| format!("did you mean `{candidate}`?"));
+    ParseError::UnknownOperand { word, at: context.span(token), set: context.set.name(), help }
+}
+
+fn word_operand<'a>(
+    context: Context<'a>,
+    op: Option<OpCode>,
+    word: Token,
+    rest: Tokens<'a>,
+) -> LineResult<'a, (Operand, Span)> {
+    let text = context.text(word);
+    let block_first = matches!(
+        op,
+        Some(OpCode::JumpUnconditional | OpCode::JumpConditional | OpCode::OpenDb | OpCode::GenerateDb)
+    );
+    let block = BlockKind::from_word(text);
+    let area = mnemonics::area(context.set, text);
+    match (block, area) {
+        (Some(kind), _) if block_first || area.is_none() => {
+            let number_token = rest.first().unwrap_or(word);
+            let (rest, number) = kind_number(context, rest).map_err(|error| match error {
+                nom::Err::Error(_) => LineError::diagnostic(ParseError::BadAddress {
+                    area: text.to_string(),
+                    at: context.span(word),
+                    expected: "a block number 0…255 must follow".to_string(),
+                }),
+                other => other,
+            })?;
+            let span = context.span_of(word, number_token);
+            Ok((rest, (Operand::Block(BlockId { kind, number }), span)))
+        }
+        (_, Some(area)) => address(context, area, word, rest),
+        _ => match mnemonics::constant_format(context.set, text) {
+            Some(format) => constant_operand(context, format, word, rest),
+            None => Err(nom::Err::Error(LineError { at: Some(word), expected: "an operand", diagnostic: None })),
+        },
+    }
+}
+
+fn constant_operand<'a>(
+    context: Context<'a>,
+    format: ConstFormat,
+    word: Token,
+    rest: Tokens<'a>,
+) -> LineResult<'a, (Operand, Span)> {
+    let (rest, _) = opt(kind(TokenKind::Equals, "=")).parse(rest)?;
+    let constant = parse_constant(context, format, word, rest.tokens).map_err(LineError::diagnostic)?;
+    let last = rest.tokens.last().copied().unwrap_or(word);
+    Ok((Tokens::new(&[]), (Operand::Constant(constant), context.span_of(word, last))))
+}
+
+fn address<'a>(
+    context: Context<'a>,
+    area: Area,
+    word: Token,
+    rest: Tokens<'a>,
+) -> LineResult<'a, (Operand, Span)> {
+    let area_text = context.text(word).to_uppercase();
+    let bad = |expected: &str, at: Span| {
+        LineError::diagnostic(ParseError::BadAddress {
+            area: area_text.clone(),
+            at,
+            expected: expected.to_string(),
+        })
+    };
+    let word_span = context.span(word);
+    if area.is_bit() {
+        let expected = "a bit address byte.bit, e.g. 4.1";
+        let (after, (index, index_token)) =
+            decimal(context, expected)(rest).map_err(|_| bad(expected, span_or(context, rest, word_span)))?;
+        let (after, dot) = kind(TokenKind::Dot, expected)(after)
+            .map_err(|_| bad(expected, context.span_of(word, index_token)))?;
+        let (after, (bit, bit_token)) =
+            decimal(context, expected)(after).map_err(|_| bad(expected, context.span_of(word, dot)))?;
+        let bit = u8::try_from(bit).unwrap_or(u8::MAX);
+        Ok((after, (Operand::Address(Address { area, index, bit }), context.span_of(word, bit_token))))
+    } else {
+        let expected = "a number, e.g. 10";
+        let (after, (index, token)) =
+            decimal(context, expected)(rest).map_err(|_| bad(expected, span_or(context, rest, word_span)))?;
+        if let Some(dot) = after.first().filter(|token| token.kind == TokenKind::Dot) {
+            return Err(bad("no bit number here: this operand is a byte, word or number", context.span(dot)));
+        }
+        Ok((after, (Operand::Address(Address { area, index, bit: 0 }), context.span_of(word, token))))
+    }
+}
+
+fn span_or(context: Context<'_>, rest: Tokens<'_>, fallback: Span) -> Span {
+    rest.first().map(|token| context.span(token)).unwrap_or(fallback)
+}

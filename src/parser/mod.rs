@@ -1,0 +1,335 @@
+//! Parser: a file's tokens to blocks of statements. Line oriented, with line-wise recovery: a bad
+//! line is reported and skipped, and parsing goes on with the next line.
+
+mod constant;
+pub mod error;
+pub mod line;
+pub mod tokens;
+
+pub use constant::{bcd, to_s5_float};
+pub use error::ParseError;
+
+use crate::ast::{Block, BlockBody, BlockId, DataWord, LogicBody, Operand, SourceUnit};
+use crate::lexer::{Token, TokenKind, lex};
+use crate::mnemonics::{self, MnemonicSet, OpCode, Position};
+use crate::source::{FileId, Span};
+
+use line::describe;
+use tokens::{Context, LineError, Tokens};
+
+/// The result of parsing one file: whatever blocks could be built, and every error found.
+#[derive(Debug)]
+pub struct ParsedFile {
+    pub unit: SourceUnit,
+    pub errors: Vec<ParseError>,
+}
+
+/// Parses one file. `forced` overrides the mnemonic set detected from the file's words.
+pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> ParsedFile {
+    let tokens = lex(source);
+    let lines: Vec<&[Token]> = tokens
+        .split(|token| token.kind == TokenKind::Newline)
+        .filter(|line| !line.is_empty())
+        .collect();
+    let detected = detect(source, &lines);
+    let set = forced.or(detected.map(|(set, _)| set)).unwrap_or(MnemonicSet::English);
+    let mut builder = Builder {
+        source,
+        file,
+        set,
+        decided_by: if forced.is_some() { None } else { detected.map(|(_, span)| Span { file, ..span }) },
+        blocks: Vec::new(),
+        current: None,
+        ended: false,
+        outside_reported: false,
+        next_data_word: 0,
+        foreign: None,
+        errors: Vec::new(),
+    };
+    for line in lines {
+        builder.line(line);
+    }
+    builder.finish()
+}
+
+/// Decides the mnemonic set from the words that only one set has in their position: the set with
+/// more such words wins; the span is its first word.
+fn detect(source: &str, lines: &[&[Token]]) -> Option<(MnemonicSet, Span)> {
+    let mut votes: [(usize, Option<Span>); 2] = [(0, None), (0, None)];
+    let mut vote = |set: MnemonicSet, token: Token| {
+        let slot = &mut votes[set as usize];
+        slot.0 += 1;
+        slot.1.get_or_insert(Span { file: 0, start: token.start, end: token.end });
+    };
+    for line in lines {
+        let words: Vec<Token> = strip_label(line).iter().copied().filter(|t| t.kind == TokenKind::Word).collect();
+        let Some(first) = words.first() else { continue };
+        let text = first.text(source);
+        if text.eq_ignore_ascii_case(mnemonics::DECLARATION_EN) {
+            vote(MnemonicSet::English, *first);
+            continue;
+        }
+        if text.eq_ignore_ascii_case(mnemonics::DECLARATION_DE) {
+            vote(MnemonicSet::German, *first);
+            continue;
+        }
+        if let Some(set) = mnemonics::evidence(Position::Operation, text) {
+            vote(set, *first);
+        }
+        if let Some(second) = words.get(1)
+            && let Some(set) = mnemonics::evidence(Position::Operand, second.text(source))
+        {
+            vote(set, *second);
+        }
+    }
+    let [english, german] = votes;
+    match (english, german) {
+        ((0, _), (0, _)) => None,
+        ((e, Some(span)), (g, _)) if e >= g => Some((MnemonicSet::English, span)),
+        (_, (_, Some(span))) => Some((MnemonicSet::German, span)),
+        _ => None,
+    }
+}
+
+/// The tokens after an optional `LABEL :` and the optional leading `:`.
+fn strip_label(line: &[Token]) -> &[Token] {
+    let line = match line {
+        [first, second, rest @ ..] if first.kind == TokenKind::Word && second.kind == TokenKind::Colon => rest,
+        _ => line,
+    };
+    match line {
+        [first, rest @ ..] if first.kind == TokenKind::Colon => rest,
+        _ => line,
+    }
+}
+
+struct Builder<'a> {
+    source: &'a str,
+    file: FileId,
+    set: MnemonicSet,
+    decided_by: Option<Span>,
+    blocks: Vec<Block>,
+    current: Option<Block>,
+    /// The current logic block has had its `BE`.
+    ended: bool,
+    outside_reported: bool,
+    next_data_word: u16,
+    /// The first word of the other mnemonic set.
+    foreign: Option<Span>,
+    errors: Vec<ParseError>,
+}
+
+/// Builds a line parser for a mnemonic set.
+type LineParser<'a, T> = Box<dyn Fn(Tokens<'a>) -> tokens::LineResult<'a, T> + 'a>;
+
+impl<'a> Builder<'a> {
+    fn context(&self, set: MnemonicSet) -> Context<'a> {
+        Context { source: self.source, file: self.file, set }
+    }
+
+    fn span_of(&self, line: &[Token]) -> Span {
+        let (first, last) = (line[0], line[line.len() - 1]);
+        Span { file: self.file, start: first.start, end: last.end }
+    }
+
+    fn line(&mut self, line: &'a [Token]) {
+        if let Some(invalid) = line.iter().find(|token| token.kind == TokenKind::Invalid) {
+            self.errors.push(ParseError::UnexpectedCharacter {
+                found: invalid.text(self.source).to_string(),
+                at: Span { file: self.file, start: invalid.start, end: invalid.end },
+            });
+            return;
+        }
+        match line::header(self.context(self.set))(Tokens::new(line)) {
+            Ok((_, id)) => return self.start_block(id, self.span_of(line)),
+            Err(nom::Err::Failure(LineError { diagnostic: Some(diagnostic), .. })) => {
+                return self.errors.push(diagnostic);
+            }
+            Err(_) => {}
+        }
+        let in_block = match &self.current {
+            Some(block) => matches!(block.body, BlockBody::Data(_)) || !self.ended,
+            None => false,
+        };
+        if !in_block {
+            if !self.outside_reported {
+                self.outside_reported = true;
+                self.errors.push(ParseError::OutsideBlock { at: self.span_of(line) });
+            }
+            return;
+        }
+        let result = if matches!(self.current.as_ref().map(|b| &b.body), Some(BlockBody::Data(_))) {
+            self.data_line(line)
+        } else {
+            self.logic_line(line)
+        };
+        if let Err(error) = result {
+            self.errors.push(error);
+        }
+    }
+
+    fn start_block(&mut self, id: BlockId, header: Span) {
+        self.finish_block();
+        let body = if id.kind.is_data() {
+            BlockBody::Data(Vec::new())
+        } else {
+            BlockBody::Logic(LogicBody::default())
+        };
+        self.current = Some(Block { id, header, body });
+        self.ended = false;
+        self.outside_reported = false;
+        self.next_data_word = 0;
+    }
+
+    fn finish_block(&mut self) {
+        if let Some(block) = self.current.take() {
+            self.blocks.push(block);
+        }
+    }
+
+    fn data_line(&mut self, line: &'a [Token]) -> Result<(), ParseError> {
+        let (index, constant, span) = self.parse(line, |context| Box::new(line::data_word(context)))?;
+        let index = index.unwrap_or(self.next_data_word);
+        self.next_data_word = index.saturating_add(1 + constant.extra_words.len() as u16);
+        if let Some(Block { body: BlockBody::Data(words), .. }) = &mut self.current {
+            words.push(DataWord { index, constant, span });
+        }
+        Ok(())
+    }
+
+    fn logic_line(&mut self, line: &'a [Token]) -> Result<(), ParseError> {
+        let Some(Block { id, body: BlockBody::Logic(body), .. }) = &self.current else {
+            return Ok(());
+        };
+        let input = Tokens::new(line);
+        let header_phase = id.kind.is_function() && body.statements.is_empty();
+        let after_fb_call = body.statements.last().is_some_and(|last| {
+            matches!(last.op, OpCode::JumpUnconditional | OpCode::JumpConditional)
+                && matches!(last.operand, Operand::Block(target) if target.kind.is_function())
+        });
+        let context = self.context(self.set);
+        if (header_phase || after_fb_call)
+            && let Ok((_, name)) = line::name_line(context)(input)
+        {
+            if header_phase {
+                self.logic_body().name = Some(name);
+            }
+            return Ok(());
+        }
+        if header_phase {
+            match line::declaration(context)(input) {
+                Ok((_, declaration)) => {
+                    self.logic_body().params.push(declaration);
+                    return Ok(());
+                }
+                Err(nom::Err::Failure(LineError { diagnostic: Some(diagnostic), .. })) => return Err(diagnostic),
+                Err(_) => {}
+            }
+        }
+        if after_fb_call && let Ok(param) = self.parse(line, |context| Box::new(line::param_line(context))) {
+            if let Some(last) = self.logic_body().statements.last_mut() {
+                last.call_params.push(param);
+            }
+            return Ok(());
+        }
+        let statement = self.parse(line, |context| Box::new(line::statement(context)))?;
+        if statement.op == OpCode::BlockEnd {
+            self.logic_body().end = Some(statement.op_span);
+            self.ended = true;
+        }
+        self.logic_body().statements.push(statement);
+        Ok(())
+    }
+
+    fn logic_body(&mut self) -> &mut LogicBody {
+        match &mut self.current {
+            Some(Block { body: BlockBody::Logic(body), .. }) => body,
+            _ => unreachable!("logic lines are parsed only inside logic blocks"),
+        }
+    }
+
+    /// Runs a line parser in the file's set and, when that fails, in the other set; success there
+    /// records the first foreign word instead of failing the line.
+    fn parse<T>(&mut self, line: &'a [Token], parser: impl Fn(Context<'a>) -> LineParser<'a, T>) -> Result<T, ParseError> {
+        let run = |set: MnemonicSet| -> Result<T, LineError> {
+            match parser(self.context(set))(Tokens::new(line)) {
+                Ok((rest, value)) if rest.is_empty() => Ok(value),
+                Ok((rest, _)) => Err(LineError { at: rest.first(), expected: "end of line", diagnostic: None }),
+                Err(nom::Err::Error(error) | nom::Err::Failure(error)) => Err(error),
+                Err(nom::Err::Incomplete(_)) => Err(LineError { at: None, expected: "more", diagnostic: None }),
+            }
+        };
+        match run(self.set) {
+            Ok(value) => Ok(value),
+            Err(error) => match run(self.set.other()) {
+                Ok(value) => {
+                    let at = self.error_span(&error, line);
+                    self.foreign.get_or_insert(at);
+                    Ok(value)
+                }
+                Err(_) => Err(self.to_diagnostic(error, line)),
+            },
+        }
+    }
+
+    fn error_span(&self, error: &LineError, line: &[Token]) -> Span {
+        match (&error.diagnostic, error.at) {
+            (Some(diagnostic), _) => diagnostic.span(),
+            (None, Some(token)) => Span { file: self.file, start: token.start, end: token.end },
+            (None, None) => {
+                let last = line[line.len() - 1];
+                Span { file: self.file, start: last.end, end: last.end }
+            }
+        }
+    }
+
+    fn to_diagnostic(&self, error: LineError, line: &[Token]) -> ParseError {
+        let at = self.error_span(&error, line);
+        match error.diagnostic {
+            Some(diagnostic) => diagnostic,
+            None => ParseError::UnexpectedToken {
+                found: describe(self.context(self.set), error.at),
+                at,
+                expected: if error.expected.is_empty() { "a statement".to_string() } else { error.expected.to_string() },
+            },
+        }
+    }
+
+    fn finish(mut self) -> ParsedFile {
+        self.finish_block();
+        if let Some(at) = self.foreign {
+            let word = self.source[at.start as usize..at.end as usize].to_string();
+            self.errors.push(ParseError::MixedMnemonics {
+                help: equivalent(self.set, &word),
+                word,
+                word_set: self.set.other().name(),
+                file_set: self.set.name(),
+                at,
+                decided_by: self.decided_by,
+            });
+        }
+        self.errors.sort_by_key(|error| error.span().start);
+        ParsedFile {
+            unit: SourceUnit { file: self.file, mnemonics: self.set, blocks: self.blocks },
+            errors: self.errors,
+        }
+    }
+}
+
+/// "the German word is `U`" for an English word, and the other way round.
+fn equivalent(file_set: MnemonicSet, word: &str) -> Option<String> {
+    let other = file_set.other();
+    let own = if let Some(info) = mnemonics::operation(other, word) {
+        mnemonics::op_word(file_set, info.op)
+    } else if let Some(area) = mnemonics::area(other, word) {
+        mnemonics::area_word(file_set, area)
+    } else {
+        return Some(format!("use {} mnemonics throughout the file, or pass `--mnemonics`", file_set.name()));
+    };
+    Some(format!("the {} word is `{own}`; a file uses one set throughout", file_set.name()))
+}
+
+/// Convenience for tests and tools: parse text as file 0.
+pub fn parse_text(source: &str) -> ParsedFile {
+    parse_file(0, source, None)
+}
