@@ -1,0 +1,204 @@
+//! The bytecode: one small `Copy` op per statement, operands decoded, jump targets resolved.
+//! Spans and execution times live in arrays parallel to the code, so ops stay at 8 bytes.
+
+use crate::mnemonics::{BlockKind, OpCode};
+
+/// A bit in the VM's flat image memory (PII, then PIQ, then flags).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ImageBit {
+    pub byte: u16,
+    pub bit: u8,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Logic {
+    And,
+    AndNot,
+    Or,
+    OrNot,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Write {
+    Assign,
+    Set,
+    Reset,
+}
+
+/// Bits that are not in the image memory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BitSource {
+    Data { word: u16, bit: u8 },
+    Timer(u16),
+    Counter(u16),
+}
+
+/// A bit for the unconditional set/reset and test operations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BitTarget {
+    Image(ImageBit),
+    Data { word: u16, bit: u8 },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Width {
+    Byte,
+    Word,
+    Double,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DataPart {
+    Left,
+    Right,
+    Word,
+    Double,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TimerKind {
+    Pulse,
+    ExtendedPulse,
+    OnDelay,
+    StoredOnDelay,
+    OffDelay,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Arith {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Comparison {
+    Eq,
+    Ne,
+    Gt,
+    Ge,
+    Lt,
+    Le,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JumpCondition {
+    Always,
+    Rlo,
+    Zero,
+    NotZero,
+    Positive,
+    Minus,
+    Overflow,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WordLogic {
+    And,
+    Or,
+    Xor,
+}
+
+/// Where `DO` takes the parameter of the next operation from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IndirectSource {
+    /// A flag word, as an image byte offset.
+    FlagWord(u16),
+    DataWord(u16),
+}
+
+/// No actual-parameter list.
+pub const NO_PARAMS: u16 = u16::MAX;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Op {
+    And(ImageBit),
+    AndNot(ImageBit),
+    Or(ImageBit),
+    OrNot(ImageBit),
+    Assign(ImageBit),
+    Set(ImageBit),
+    Reset(ImageBit),
+    LogicOther(Logic, BitSource),
+    WriteData { write: Write, word: u16, bit: u8 },
+    OrAlone,
+    AndBracket,
+    OrBracket,
+    CloseBracket,
+    LoadImage(Width, u16),
+    TransferImage(Width, u16),
+    LoadData(DataPart, u16),
+    TransferData(DataPart, u16),
+    LoadPeripheral { width: Width, byte: u16, extended: bool },
+    TransferPeripheral { width: Width, byte: u16, extended: bool },
+    LoadConstant(u32),
+    LoadTimer(u16),
+    LoadTimerCoded(u16),
+    LoadCounter(u16),
+    LoadCounterCoded(u16),
+    StartTimer(TimerKind, u16),
+    EnableTimer(u16),
+    ResetTimer(u16),
+    CountUp(u16),
+    CountDown(u16),
+    SetCounter(u16),
+    ResetCounter(u16),
+    EnableCounter(u16),
+    Arithmetic(Arith),
+    Compare(Comparison),
+    /// `JU`/`JC` to a block: its index in the program, and its actual-parameter list.
+    Call { block: u16, conditional: bool, params: u16 },
+    /// A call of a block that is not loaded: STOP when taken.
+    CallMissing { kind: BlockKind, number: u8, conditional: bool },
+    OpenDb(u8),
+    BlockEnd,
+    BlockEndConditional,
+    BlockEndUnconditional,
+    Nop,
+    Stop,
+    Jump(JumpCondition, u32),
+    WordLogic(WordLogic),
+    ShiftLeft(u8),
+    ShiftRight(u8),
+    OnesComplement,
+    TwosComplement,
+    Swap,
+    Increment(u8),
+    Decrement(u8),
+    /// `DO`: run the next op with its parameter taken from the source; `template` indexes the
+    /// program's indirect templates.
+    Indirect { source: IndirectSource, template: u16 },
+    SetUnconditional(BitTarget),
+    ResetUnconditional(BitTarget),
+    TestBit { negate: bool, target: BitTarget },
+    DisableInterrupts,
+    EnableInterrupts,
+    GenerateDb(u8),
+    /// An operation on a formal operand, resolved against the running FB's actual parameters.
+    Formal { op: OpCode, param: u8 },
+}
+
+impl Op {
+    /// Block changes: the interrupt points of normal mode.
+    pub fn is_block_change(self) -> bool {
+        matches!(
+            self,
+            Op::Call { .. }
+                | Op::CallMissing { .. }
+                | Op::BlockEnd
+                | Op::BlockEndConditional
+                | Op::BlockEndUnconditional
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ops_stay_small() {
+        assert_eq!(std::mem::size_of::<Op>(), 8);
+    }
+}

@@ -1,0 +1,67 @@
+//! Execution time of each op, from the CPU profile's timing table.
+
+use crate::profile::Timings;
+
+use super::bytecode::*;
+
+pub fn cost(op: Op, t: &Timings) -> u32 {
+    match op {
+        Op::And(_)
+        | Op::AndNot(_)
+        | Op::Or(_)
+        | Op::OrNot(_)
+        | Op::Assign(_)
+        | Op::Set(_)
+        | Op::Reset(_)
+        | Op::OrAlone
+        | Op::AndBracket
+        | Op::OrBracket
+        | Op::CloseBracket => t.bit_image,
+        Op::LogicOther(_, BitSource::Data { .. }) | Op::WriteData { .. } => t.bit_data,
+        Op::LogicOther(_, _) => t.bit_timer_counter,
+        Op::SetUnconditional(target) | Op::ResetUnconditional(target) | Op::TestBit { target, .. } => {
+            match target {
+                BitTarget::Image(_) => t.bit_image,
+                BitTarget::Data { .. } => t.bit_data,
+            }
+        }
+        Op::LoadImage(width, _) | Op::TransferImage(width, _) => match width {
+            Width::Byte => t.load_byte,
+            Width::Word => t.load_word,
+            Width::Double => t.load_double,
+        },
+        Op::LoadData(..) | Op::TransferData(..) => t.load_data,
+        Op::LoadPeripheral { .. } | Op::TransferPeripheral { .. } => t.load_peripheral,
+        Op::LoadConstant(_) => t.load_constant,
+        Op::LoadTimer(_)
+        | Op::LoadTimerCoded(_)
+        | Op::LoadCounter(_)
+        | Op::LoadCounterCoded(_)
+        | Op::StartTimer(..)
+        | Op::EnableTimer(_)
+        | Op::ResetTimer(_)
+        | Op::CountUp(_)
+        | Op::CountDown(_)
+        | Op::SetCounter(_)
+        | Op::ResetCounter(_)
+        | Op::EnableCounter(_) => t.timer_counter,
+        Op::Arithmetic(Arith::Add | Arith::Sub) => t.add_sub,
+        Op::Arithmetic(Arith::Mul) => t.multiply,
+        Op::Arithmetic(Arith::Div) => t.divide,
+        Op::Compare(_) => t.compare,
+        Op::Call { .. } | Op::CallMissing { .. } => t.block_call,
+        Op::BlockEnd | Op::BlockEndConditional | Op::BlockEndUnconditional => t.block_end,
+        Op::OpenDb(_) | Op::GenerateDb(_) => t.open_db,
+        Op::Jump(..) => t.jump,
+        Op::WordLogic(_) => t.word_logic,
+        Op::ShiftLeft(_)
+        | Op::ShiftRight(_)
+        | Op::OnesComplement
+        | Op::TwosComplement
+        | Op::Swap
+        | Op::Increment(_)
+        | Op::Decrement(_) => t.accumulator,
+        Op::Indirect { .. } => t.load_word + t.other,
+        Op::Nop | Op::Stop | Op::DisableInterrupts | Op::EnableInterrupts | Op::Formal { .. } => t.other,
+    }
+}

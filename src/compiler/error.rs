@@ -1,0 +1,196 @@
+//! Errors and warnings of the static checks. Each variant has a stable code documented in
+//! `grammar/errors.md`.
+
+use miette::Diagnostic;
+use thiserror::Error;
+
+use crate::source::Span;
+
+#[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
+pub enum CheckError {
+    #[error("{id} is defined twice")]
+    #[diagnostic(code(awl::check::duplicate_block), help("the first definition is at {first}; rename or remove one"))]
+    DuplicateBlock {
+        id: String,
+        #[label("second definition")]
+        at: Span,
+        first: String,
+    },
+
+    #[error("{id} has no `BE`")]
+    #[diagnostic(code(awl::check::missing_be), help("end every logic block with `BE`"))]
+    MissingBlockEnd {
+        id: String,
+        #[label("this block never ends")]
+        at: Span,
+    },
+
+    #[error("{id}: the {cpu} CPU has no {kind} blocks")]
+    #[diagnostic(code(awl::check::extended_block), help("FX and DX blocks need a CPU profile that has them, e.g. `--cpu sinumerik-840c`"))]
+    ExtendedBlock {
+        id: String,
+        kind: &'static str,
+        cpu: &'static str,
+        #[label("not available on this CPU")]
+        at: Span,
+    },
+
+    #[error("`{op}` is a supplementary operation, allowed in function blocks only")]
+    #[diagnostic(code(awl::check::supplementary_outside_fb), help("move this logic into an FB, or use a basic operation"))]
+    Supplementary {
+        op: String,
+        #[label("not allowed in {block}")]
+        at: Span,
+        block: String,
+    },
+
+    #[error("`{op}` cannot take this operand")]
+    #[diagnostic(code(awl::check::operand_not_allowed))]
+    OperandNotAllowed {
+        op: String,
+        #[label("not an operand of `{op}`")]
+        at: Span,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("{what} is out of range")]
+    #[diagnostic(code(awl::check::operand_range), help("the {cpu} profile allows {range}"))]
+    OperandRange {
+        what: String,
+        #[label("allowed: {range}")]
+        at: Span,
+        range: String,
+        cpu: &'static str,
+    },
+
+    #[error("`={name}` is neither a parameter of {block} nor a label in it")]
+    #[diagnostic(code(awl::check::undefined_symbol))]
+    UndefinedSymbol {
+        name: String,
+        block: String,
+        #[label("undefined")]
+        at: Span,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("formal operand `={name}` outside a function block")]
+    #[diagnostic(code(awl::check::formal_outside_fb), help("formal operands and jump labels exist only in FBs"))]
+    FormalOutsideFb {
+        name: String,
+        #[label("only FBs have parameters and labels")]
+        at: Span,
+    },
+
+    #[error("label `{name}` is defined twice")]
+    #[diagnostic(code(awl::check::duplicate_label), help("labels must be unique within a block"))]
+    DuplicateLabel {
+        name: String,
+        #[label("second definition")]
+        at: Span,
+        #[label("first definition")]
+        first: Span,
+    },
+
+    #[error("label `{name}` is longer than 4 characters")]
+    #[diagnostic(code(awl::check::label_too_long), help("STEP 5 labels have at most 4 characters, e.g. `M001`"))]
+    LabelTooLong {
+        name: String,
+        #[label("{length} characters")]
+        at: Span,
+        length: usize,
+    },
+
+    #[error("{fb} expects {expected} parameters, the call gives {found}")]
+    #[diagnostic(code(awl::check::param_count))]
+    ParamCount {
+        fb: String,
+        expected: usize,
+        found: usize,
+        #[label("call of {fb}")]
+        at: Span,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("parameter `{name}` of {fb} does not accept this operand")]
+    #[diagnostic(code(awl::check::param_mismatch))]
+    ParamMismatch {
+        name: String,
+        fb: String,
+        #[label("expected {expected}")]
+        at: Span,
+        expected: String,
+    },
+
+    #[error("{fb} has no parameter `{name}`")]
+    #[diagnostic(code(awl::check::unknown_param))]
+    UnknownParam {
+        name: String,
+        fb: String,
+        #[label("not declared in {fb}")]
+        at: Span,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("{id} is called but defined nowhere")]
+    #[diagnostic(
+        code(awl::check::undefined_block),
+        severity(Warning),
+        help("at run time this call is a STOP; add the block or load its file")
+    )]
+    UndefinedBlock {
+        id: String,
+        #[label("no such block")]
+        at: Span,
+    },
+
+    #[error("{id} is opened but defined nowhere")]
+    #[diagnostic(
+        code(awl::check::undefined_db),
+        severity(Warning),
+        help("at run time opening it is a STOP unless a `G DB` generates it first")
+    )]
+    UndefinedDb {
+        id: String,
+        #[label("no such data block")]
+        at: Span,
+    },
+
+    #[error("`{op}` must be followed by the operation it modifies")]
+    #[diagnostic(code(awl::check::indirect_target), help("`DO FW n` applies to the next operation, e.g. `L DW 0` or `A I 0.0`; its parameter is replaced by the word's value"))]
+    IndirectTarget {
+        op: String,
+        #[label("no operation with a parameter follows")]
+        at: Span,
+    },
+}
+
+impl CheckError {
+    pub fn span(&self) -> Span {
+        match self {
+            CheckError::DuplicateBlock { at, .. }
+            | CheckError::MissingBlockEnd { at, .. }
+            | CheckError::ExtendedBlock { at, .. }
+            | CheckError::Supplementary { at, .. }
+            | CheckError::OperandNotAllowed { at, .. }
+            | CheckError::OperandRange { at, .. }
+            | CheckError::UndefinedSymbol { at, .. }
+            | CheckError::FormalOutsideFb { at, .. }
+            | CheckError::DuplicateLabel { at, .. }
+            | CheckError::LabelTooLong { at, .. }
+            | CheckError::ParamCount { at, .. }
+            | CheckError::ParamMismatch { at, .. }
+            | CheckError::UnknownParam { at, .. }
+            | CheckError::UndefinedBlock { at, .. }
+            | CheckError::UndefinedDb { at, .. }
+            | CheckError::IndirectTarget { at, .. } => *at,
+        }
+    }
+
+    pub fn is_warning(&self) -> bool {
+        matches!(self, CheckError::UndefinedBlock { .. } | CheckError::UndefinedDb { .. })
+    }
+}

@@ -1,0 +1,417 @@
+//! Compiler: checked blocks of statements to per-block bytecode, with the static checks of the
+//! front end (operand ranges, labels, FB parameters, operation sets, block existence).
+
+pub mod bytecode;
+mod calls;
+pub mod cost;
+pub mod error;
+pub mod lower;
+mod ranges;
+
+use std::collections::HashMap;
+
+pub use bytecode::Op;
+pub use error::CheckError;
+pub use lower::{Layout, Resolved};
+
+use crate::ast::{Block, BlockBody, BlockId, LogicBody, Operand, ParamDecl, SourceUnit, Statement};
+use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
+use crate::profile::Profile;
+use crate::source::{SourceSet, Span};
+
+/// One compiled logic block.
+#[derive(Debug, Clone)]
+pub struct CompiledBlock {
+    pub id: BlockId,
+    pub header: Span,
+    pub mnemonics: MnemonicSet,
+    pub params: Vec<ParamDecl>,
+    pub code: Vec<Op>,
+    /// Where each op was written, parallel to `code`.
+    pub spans: Vec<Span>,
+    /// Execution time of each op in ns, parallel to `code`.
+    pub costs: Vec<u32>,
+}
+
+/// A data block's initial contents.
+#[derive(Debug, Clone)]
+pub struct DataBlockImage {
+    pub id: BlockId,
+    pub header: Span,
+    pub words: Vec<u16>,
+}
+
+/// A compiled program: everything the VM needs, nothing it must look up by name.
+#[derive(Debug, Clone)]
+pub struct Program {
+    pub profile: &'static Profile,
+    pub layout: Layout,
+    pub blocks: Vec<CompiledBlock>,
+    pub data_blocks: Vec<DataBlockImage>,
+    /// Actual parameters of each FB call, in declaration order.
+    pub param_lists: Vec<Vec<Resolved>>,
+    /// The operation after each `DO`, with its operand to be replaced at run time.
+    pub indirect_templates: Vec<(OpCode, Resolved)>,
+    index: HashMap<BlockId, u16>,
+}
+
+impl Program {
+    pub fn block_index(&self, id: BlockId) -> Option<u16> {
+        self.index.get(&id).copied()
+    }
+
+    pub fn block(&self, id: BlockId) -> Option<&CompiledBlock> {
+        self.block_index(id).map(|index| &self.blocks[usize::from(index)])
+    }
+
+    pub fn ob(&self, number: u8) -> Option<u16> {
+        self.block_index(BlockId { kind: BlockKind::Ob, number })
+    }
+}
+
+/// The compiled program and every error and warning found. The program is only fit to run when
+/// no error (as opposed to warning) was found.
+#[derive(Debug)]
+pub struct Compiled {
+    pub program: Program,
+    pub diagnostics: Vec<CheckError>,
+}
+
+impl Compiled {
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(|diagnostic| !diagnostic.is_warning())
+    }
+}
+
+pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Profile) -> Compiled {
+    let mut compiler = Compiler {
+        profile,
+        layout: Layout::new(&profile.sizes),
+        sources,
+        index: HashMap::new(),
+        data_numbers: Vec::new(),
+        generated_dbs: Vec::new(),
+        fb_params: HashMap::new(),
+        param_lists: Vec::new(),
+        templates: Vec::new(),
+        diagnostics: Vec::new(),
+    };
+    let (logic, data) = compiler.collect(units);
+    let blocks = logic.iter().map(|(block, set)| compiler.compile_block(block, *set)).collect();
+    let data_blocks = data.iter().map(|block| data_image(block)).collect();
+    compiler.diagnostics.sort_by_key(|diagnostic| {
+        let span = diagnostic.span();
+        (span.file, span.start)
+    });
+    Compiled {
+        program: Program {
+            profile,
+            layout: compiler.layout,
+            blocks,
+            data_blocks,
+            param_lists: compiler.param_lists,
+            indirect_templates: compiler.templates,
+            index: compiler.index,
+        },
+        diagnostics: compiler.diagnostics,
+    }
+}
+
+fn data_image(block: &Block) -> DataBlockImage {
+    let mut words = Vec::new();
+    if let BlockBody::Data(data) = &block.body {
+        for word in data {
+            let values = std::iter::once(word.constant.value).chain(word.constant.extra_words.iter().map(|w| u32::from(*w)));
+            let wide = matches!(word.constant.format, mnemonics::ConstFormat::DoubleHex | mnemonics::ConstFormat::Float);
+            let mut at = usize::from(word.index);
+            for value in values {
+                let parts: &[u16] = if wide { &[(value >> 16) as u16, value as u16] } else { &[value as u16] };
+                for part in parts {
+                    if words.len() <= at {
+                        words.resize(at + 1, 0);
+                    }
+                    words[at] = *part;
+                    at += 1;
+                }
+            }
+        }
+    }
+    DataBlockImage { id: block.id, header: block.header, words }
+}
+
+struct Compiler<'a> {
+    profile: &'static Profile,
+    layout: Layout,
+    sources: &'a SourceSet,
+    index: HashMap<BlockId, u16>,
+    data_numbers: Vec<BlockId>,
+    /// DBs that a `G DB` may create at run time.
+    generated_dbs: Vec<u8>,
+    fb_params: HashMap<BlockId, Vec<ParamDecl>>,
+    param_lists: Vec<Vec<Resolved>>,
+    templates: Vec<(OpCode, Resolved)>,
+    diagnostics: Vec<CheckError>,
+}
+
+impl<'a> Compiler<'a> {
+    fn where_is(&self, span: Span) -> String {
+        let file = self.sources.get(span.file);
+        format!("{}:{}", file.name, file.line_of(span.start))
+    }
+
+    /// Registers every block, reporting duplicates and blocks this CPU lacks.
+    fn collect<'u>(&mut self, units: &'u [SourceUnit]) -> (Vec<(&'u Block, MnemonicSet)>, Vec<&'u Block>) {
+        let mut first_seen: HashMap<BlockId, Span> = HashMap::new();
+        let mut logic = Vec::new();
+        let mut data = Vec::new();
+        for unit in units {
+            for block in &unit.blocks {
+                if let Some(first) = first_seen.get(&block.id) {
+                    self.diagnostics.push(CheckError::DuplicateBlock {
+                        id: block.id.to_string(),
+                        at: block.header,
+                        first: self.where_is(*first),
+                    });
+                    continue;
+                }
+                first_seen.insert(block.id, block.header);
+                if matches!(block.id.kind, BlockKind::Fx | BlockKind::Dx) && !self.profile.extended_blocks {
+                    self.diagnostics.push(CheckError::ExtendedBlock {
+                        id: block.id.to_string(),
+                        kind: block.id.kind.name(),
+                        cpu: self.profile.name,
+                        at: block.header,
+                    });
+                }
+                match &block.body {
+                    BlockBody::Logic(body) => {
+                        self.index.insert(block.id, logic.len() as u16);
+                        if block.id.kind.is_function() {
+                            self.fb_params.insert(block.id, body.params.clone());
+                        }
+                        for statement in &body.statements {
+                            if let (OpCode::GenerateDb, Operand::Block(id)) = (statement.op, &statement.operand) {
+                                self.generated_dbs.push(id.number);
+                            }
+                        }
+                        logic.push((block, unit.mnemonics));
+                    }
+                    BlockBody::Data(_) => {
+                        self.data_numbers.push(block.id);
+                        data.push(block);
+                    }
+                }
+            }
+        }
+        (logic, data)
+    }
+
+    fn compile_block(&mut self, block: &Block, set: MnemonicSet) -> CompiledBlock {
+        let BlockBody::Logic(body) = &block.body else { unreachable!("only logic blocks are compiled") };
+        if body.end.is_none() {
+            self.diagnostics.push(CheckError::MissingBlockEnd { id: block.id.to_string(), at: block.header });
+        }
+        let labels = self.labels(body);
+        let mut compiled = CompiledBlock {
+            id: block.id,
+            header: block.header,
+            mnemonics: set,
+            params: body.params.clone(),
+            code: Vec::with_capacity(body.statements.len()),
+            spans: Vec::with_capacity(body.statements.len()),
+            costs: Vec::with_capacity(body.statements.len()),
+        };
+        let context = BlockContext { id: block.id, set, params: &body.params, labels: &labels };
+        for (pc, statement) in body.statements.iter().enumerate() {
+            let (op, cost_op) = self.statement(&context, statement, body.statements.get(pc + 1)).unwrap_or((Op::Nop, Op::Nop));
+            compiled.code.push(op);
+            compiled.spans.push(statement.span);
+            compiled.costs.push(cost::cost(cost_op, &self.profile.timings));
+        }
+        compiled
+    }
+
+    fn labels(&mut self, body: &LogicBody) -> HashMap<String, (u32, Span)> {
+        let mut labels: HashMap<String, (u32, Span)> = HashMap::new();
+        for (pc, statement) in body.statements.iter().enumerate() {
+            let Some(label) = &statement.label else { continue };
+            let name = label.text.to_ascii_uppercase();
+            if name.chars().count() > 4 {
+                self.diagnostics.push(CheckError::LabelTooLong {
+                    name: label.text.clone(),
+                    at: label.span,
+                    length: label.text.chars().count(),
+                });
+            }
+            if let Some((_, first)) = labels.get(&name) {
+                self.diagnostics.push(CheckError::DuplicateLabel { name: label.text.clone(), at: label.span, first: *first });
+            } else {
+                labels.insert(name, (pc as u32, label.span));
+            }
+        }
+        labels
+    }
+
+    /// The op of one statement, and the op whose execution time it costs (they differ for
+    /// formal operands, which cost what the substituted operation costs).
+    fn statement(&mut self, context: &BlockContext<'_>, statement: &Statement, next: Option<&Statement>) -> Option<(Op, Op)> {
+        let info = mnemonics::op_info(statement.op);
+        let op_word = mnemonics::op_word(context.set, statement.op);
+        if info.supplementary && !context.id.kind.is_function() {
+            return self.fail(CheckError::Supplementary { op: op_word.to_string(), at: statement.op_span, block: context.id.to_string() });
+        }
+        let resolved = self.resolve(context, statement)?;
+        let params = match resolved {
+            Resolved::Block { kind, index: Some(_), .. } if kind.is_function() => {
+                let id = match statement.operand {
+                    Operand::Block(id) => id,
+                    _ => unreachable!("block operands resolve to blocks"),
+                };
+                self.call_params(context, statement, id)?
+            }
+            _ => bytecode::NO_PARAMS,
+        };
+        let Some(mut op) = lower::lower(statement.op, resolved, self.layout, params) else {
+            return self.fail(self.not_allowed(context, statement, resolved));
+        };
+        let mut cost_op = op;
+        if let Resolved::Formal(index) = resolved {
+            let decl = &context.params[usize::from(index)];
+            match calls::formal_op(statement.op, decl, self.layout) {
+                Some(substituted) => cost_op = substituted,
+                None => {
+                    return self.fail(CheckError::OperandNotAllowed {
+                        op: op_word.to_string(),
+                        at: statement.operand_span,
+                        help: Some(format!("parameter `{}` is of kind {}", decl.name.text, calls::describe_decl(decl, context.set))),
+                    });
+                }
+            }
+        }
+        if let Op::Indirect { source, .. } = op {
+            let template = self.indirect_template(context, statement, next)?;
+            op = Op::Indirect { source, template };
+        }
+        Some((op, cost_op))
+    }
+
+    fn fail<T>(&mut self, error: CheckError) -> Option<T> {
+        self.diagnostics.push(error);
+        None
+    }
+
+    fn indirect_template(&mut self, context: &BlockContext<'_>, statement: &Statement, next: Option<&Statement>) -> Option<u16> {
+        let op_word = mnemonics::op_word(context.set, statement.op).to_string();
+        let Some(next) = next else {
+            return self.fail(CheckError::IndirectTarget { op: op_word, at: statement.op_span });
+        };
+        let resolved = match next.operand {
+            Operand::Address(_) | Operand::Number(_) => self.resolve(context, next)?,
+            _ => return self.fail(CheckError::IndirectTarget { op: op_word, at: statement.op_span }),
+        };
+        self.templates.push((next.op, resolved));
+        Some((self.templates.len() - 1) as u16)
+    }
+
+    fn resolve(&mut self, context: &BlockContext<'_>, statement: &Statement) -> Option<Resolved> {
+        let at = statement.operand_span;
+        match &statement.operand {
+            Operand::None => Some(Resolved::None),
+            Operand::Number(value) => Some(Resolved::Number(*value)),
+            Operand::Constant(constant) => Some(Resolved::Constant(constant.value)),
+            Operand::Address(address) => {
+                if let Err(error) = ranges::check_address(*address, context.set, self.profile, at) {
+                    return self.fail(error);
+                }
+                Some(Resolved::Address(*address))
+            }
+            Operand::Block(id) => Some(self.resolve_block(statement.op, *id, at)),
+            Operand::Symbol(name) => self.resolve_symbol(context, statement, name),
+        }
+    }
+
+    fn resolve_block(&mut self, op: OpCode, id: BlockId, at: Span) -> Resolved {
+        let index = self.index.get(&id).copied();
+        let known_data = self.data_numbers.contains(&id) || self.generated_dbs.contains(&id.number);
+        match op {
+            OpCode::JumpUnconditional | OpCode::JumpConditional if index.is_none() && !id.kind.is_data() => {
+                self.diagnostics.push(CheckError::UndefinedBlock { id: id.to_string(), at });
+            }
+            OpCode::OpenDb if id.kind.is_data() && !known_data => {
+                self.diagnostics.push(CheckError::UndefinedDb { id: id.to_string(), at });
+            }
+            _ => {}
+        }
+        Resolved::Block { kind: id.kind, number: id.number, index }
+    }
+
+    fn resolve_symbol(&mut self, context: &BlockContext<'_>, statement: &Statement, name: &str) -> Option<Resolved> {
+        let at = statement.operand_span;
+        let is_label_jump = matches!(statement.op, OpCode::JumpUnconditional | OpCode::JumpConditional);
+        if !context.id.kind.is_function() {
+            if is_label_jump {
+                let op = format!("{} =", mnemonics::op_word(context.set, statement.op));
+                return self.fail(CheckError::Supplementary { op, at: statement.op_span, block: context.id.to_string() });
+            }
+            return self.fail(CheckError::FormalOutsideFb { name: name.to_string(), at });
+        }
+        if let Some(index) = context.params.iter().position(|param| param.name.text.eq_ignore_ascii_case(name)) {
+            return Some(Resolved::Formal(index as u8));
+        }
+        if let Some((pc, _)) = context.labels.get(&name.to_ascii_uppercase()) {
+            return Some(Resolved::Label(*pc));
+        }
+        let candidates = context.params.iter().map(|param| param.name.text.as_str()).chain(context.labels.keys().map(String::as_str));
+        let help = candidates
+            .map(|candidate| (strsim::damerau_levenshtein(&name.to_ascii_uppercase(), &candidate.to_ascii_uppercase()), candidate))
+            .filter(|(distance, _)| *distance <= 1)
+            .min_by_key(|(distance, _)| *distance)
+            .map(|(_, candidate)| format!("did you mean `={candidate}`?"));
+        self.fail(CheckError::UndefinedSymbol { name: name.to_string(), block: context.id.to_string(), at, help })
+    }
+
+    fn not_allowed(&self, context: &BlockContext<'_>, statement: &Statement, resolved: Resolved) -> CheckError {
+        let set = context.set;
+        let op_word = mnemonics::op_word(set, statement.op).to_string();
+        if let (Some(range), Resolved::Number(value)) = (ranges::number_range(statement.op), resolved) {
+            return CheckError::OperandRange {
+                what: format!("{op_word} {value}"),
+                at: statement.operand_span,
+                range: range.to_string(),
+                cpu: self.profile.name,
+            };
+        }
+        let label_jump = matches!(
+            statement.op,
+            OpCode::JumpZero | OpCode::JumpNotZero | OpCode::JumpPositive | OpCode::JumpMinus | OpCode::JumpOverflow
+        );
+        let (ju, jc) = (mnemonics::op_word(set, OpCode::JumpUnconditional), mnemonics::op_word(set, OpCode::JumpConditional));
+        let help = match (statement.op, resolved) {
+            (_, Resolved::Block { .. }) if label_jump => Some(format!(
+                "`{op_word}` jumps to a label in this FB (`{op_word} =M001`); to call a block use `{ju} PB 3`, or `{jc} PB 3` when the RLO is 1"
+            )),
+            (OpCode::JumpUnconditional | OpCode::JumpConditional, Resolved::Block { kind, .. }) if kind.is_data() => Some(format!(
+                "data blocks are opened, not called: `{} DB n`",
+                mnemonics::op_word(set, OpCode::OpenDb)
+            )),
+            (OpCode::OpenDb, Resolved::Block { .. }) => Some("only data blocks (DB, DX) can be opened".to_string()),
+            _ => {
+                let info = mnemonics::op_info(statement.op);
+                let example = match set {
+                    MnemonicSet::English => info.example_en,
+                    MnemonicSet::German => info.example_de,
+                };
+                (!example.is_empty()).then(|| format!("for example `{op_word} {example}`"))
+            }
+        };
+        CheckError::OperandNotAllowed { op: op_word, at: statement.operand_span, help }
+    }
+}
+
+/// What the checks of one statement need to know about its block.
+struct BlockContext<'b> {
+    id: BlockId,
+    set: MnemonicSet,
+    params: &'b [ParamDecl],
+    labels: &'b HashMap<String, (u32, Span)>,
+}

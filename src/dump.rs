@@ -1,0 +1,121 @@
+//! `awl dump`: each block's bytecode with source line numbers.
+
+use std::fmt::Write as _;
+
+use crate::compiler::bytecode::{BitSource, BitTarget, ImageBit, IndirectSource, Op, Width};
+use crate::compiler::{Layout, Program};
+use crate::source::SourceSet;
+
+/// `I 0`, `Q 4`, `F 10` for an image byte offset.
+fn image_byte(layout: Layout, byte: u16) -> String {
+    if byte >= layout.flag_base() {
+        format!("F {}", byte - layout.flag_base())
+    } else if byte >= layout.output_base() {
+        format!("Q {}", byte - layout.output_base())
+    } else {
+        format!("I {byte}")
+    }
+}
+
+/// `IW 2`, `FY 10`, `FD 4` for a sized image access.
+fn sized(layout: Layout, width: Width, byte: u16) -> String {
+    let plain = image_byte(layout, byte);
+    let (area, number) = plain.split_once(' ').unwrap_or(("I", "0"));
+    let suffix = match (area, width) {
+        ("F", Width::Byte) => "Y",
+        (_, Width::Byte) => "B",
+        (_, Width::Word) => "W",
+        (_, Width::Double) => "D",
+    };
+    format!("{area}{suffix} {number}")
+}
+
+fn image_bit(layout: Layout, bit: ImageBit) -> String {
+    format!("{}.{}", image_byte(layout, bit.byte), bit.bit)
+}
+
+fn bit_target(layout: Layout, target: BitTarget) -> String {
+    match target {
+        BitTarget::Image(bit) => image_bit(layout, bit),
+        BitTarget::Data { word, bit } => format!("D {word}.{bit}"),
+    }
+}
+
+/// A compact, readable form of one op.
+pub fn op_text(op: Op, program: &Program) -> String {
+    let layout = program.layout;
+    match op {
+        Op::And(bit) => format!("and {}", image_bit(layout, bit)),
+        Op::AndNot(bit) => format!("and-not {}", image_bit(layout, bit)),
+        Op::Or(bit) => format!("or {}", image_bit(layout, bit)),
+        Op::OrNot(bit) => format!("or-not {}", image_bit(layout, bit)),
+        Op::Assign(bit) => format!("assign {}", image_bit(layout, bit)),
+        Op::Set(bit) => format!("set {}", image_bit(layout, bit)),
+        Op::Reset(bit) => format!("reset {}", image_bit(layout, bit)),
+        Op::LogicOther(logic, source) => {
+            let source = match source {
+                BitSource::Data { word, bit } => format!("D {word}.{bit}"),
+                BitSource::Timer(n) => format!("T {n}"),
+                BitSource::Counter(n) => format!("C {n}"),
+            };
+            format!("{logic:?} {source}").to_lowercase()
+        }
+        Op::WriteData { write, word, bit } => format!("{write:?} D {word}.{bit}").to_lowercase(),
+        Op::LoadImage(width, byte) => format!("load {}", sized(layout, width, byte)),
+        Op::TransferImage(width, byte) => format!("transfer {}", sized(layout, width, byte)),
+        Op::LoadConstant(value) => format!("load-constant {value:#06X}"),
+        Op::Call { block, conditional, params } => {
+            let id = program.blocks[usize::from(block)].id;
+            let kind = if conditional { "call-if-rlo" } else { "call" };
+            if params == crate::compiler::bytecode::NO_PARAMS {
+                format!("{kind} {id}")
+            } else {
+                format!("{kind} {id} with {} parameters", program.param_lists[usize::from(params)].len())
+            }
+        }
+        Op::CallMissing { kind, number, .. } => format!("call-missing {} {number} (STOP)", kind.name()),
+        Op::Jump(condition, target) => format!("jump-{condition:?} -> {target}").to_lowercase(),
+        Op::Indirect { source, .. } => match source {
+            IndirectSource::FlagWord(byte) => format!("do {}", image_byte(layout, byte).replace("F ", "FW ")),
+            IndirectSource::DataWord(word) => format!("do DW {word}"),
+        },
+        Op::SetUnconditional(target) => format!("set-unconditional {}", bit_target(layout, target)),
+        Op::ResetUnconditional(target) => format!("reset-unconditional {}", bit_target(layout, target)),
+        Op::TestBit { negate, target } => {
+            format!("{} {}", if negate { "test-bit-not" } else { "test-bit" }, bit_target(layout, target))
+        }
+        Op::Formal { op, param } => format!("formal {op:?} param {param}").to_lowercase(),
+        other => format!("{other:?}").to_lowercase(),
+    }
+}
+
+/// The whole dump: a header line per block, then one line per op.
+pub fn dump(program: &Program, sources: &SourceSet) -> String {
+    let mut out = String::new();
+    for block in &program.blocks {
+        let file = sources.get(block.header.file);
+        let _ = writeln!(
+            out,
+            "{}  ({}:{}, {} ops)",
+            block.id,
+            file.name,
+            file.line_of(block.header.start),
+            block.code.len()
+        );
+        for (pc, (op, span)) in block.code.iter().zip(&block.spans).enumerate() {
+            let line = sources.line_of(*span);
+            let text = sources.get(span.file).slice(*span);
+            let _ = writeln!(out, "  {pc:>4}  line {line:>4}  {:<28} {}", text, op_text(*op, program));
+        }
+        out.push('\n');
+    }
+    for data in &program.data_blocks {
+        let file = sources.get(data.header.file);
+        let _ = writeln!(out, "{}  ({}:{}, {} words)", data.id, file.name, file.line_of(data.header.start), data.words.len());
+        for (index, word) in data.words.iter().enumerate() {
+            let _ = writeln!(out, "  DW {index:>4}  {word:#06X}  {}", *word as i16);
+        }
+        out.push('\n');
+    }
+    out
+}

@@ -1,0 +1,71 @@
+//! The whole front end in one call: read files, parse each, compile them together, and keep
+//! every diagnostic of every file.
+
+use std::path::{Path, PathBuf};
+
+use miette::Diagnostic;
+use thiserror::Error;
+
+use crate::compiler::{self, Compiled};
+use crate::diagnostics::SourceDiagnostic;
+use crate::mnemonics::MnemonicSet;
+use crate::parser;
+use crate::profile::Profile;
+use crate::source::{SourceFile, SourceSet};
+
+#[derive(Debug, Error, Diagnostic)]
+#[error("cannot read `{path}`: {reason}")]
+#[diagnostic(code(awl::cli::read_file), help("check the path; program files are plain text (.awl)"))]
+pub struct ReadError {
+    pub path: PathBuf,
+    pub reason: String,
+}
+
+/// The outcome of the front end.
+#[derive(Debug)]
+pub struct Frontend {
+    pub sources: SourceSet,
+    pub compiled: Compiled,
+    pub diagnostics: Vec<SourceDiagnostic>,
+}
+
+impl Frontend {
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(|diagnostic| !diagnostic.is_warning())
+    }
+}
+
+pub fn read_sources(paths: &[impl AsRef<Path>]) -> Result<SourceSet, ReadError> {
+    let mut sources = SourceSet::default();
+    for path in paths {
+        let path = path.as_ref();
+        let file = SourceFile::read(path).map_err(|error| ReadError { path: path.to_path_buf(), reason: error.to_string() })?;
+        sources.add(file);
+    }
+    Ok(sources)
+}
+
+/// Parses and compiles every file of the set.
+pub fn build(sources: SourceSet, forced: Option<MnemonicSet>, profile: &'static Profile) -> Frontend {
+    let mut diagnostics = Vec::new();
+    let mut units = Vec::with_capacity(sources.files.len());
+    for (id, file) in sources.files.iter().enumerate() {
+        let parsed = parser::parse_file(id as u16, &file.text, forced);
+        diagnostics.extend(parsed.errors.into_iter().map(SourceDiagnostic::Parse));
+        units.push(parsed.unit);
+    }
+    let compiled = compiler::compile(&units, &sources, profile);
+    diagnostics.extend(compiled.diagnostics.iter().cloned().map(SourceDiagnostic::Check));
+    diagnostics.sort_by_key(|diagnostic| {
+        let span = diagnostic.span();
+        (span.file, span.start)
+    });
+    Frontend { sources, compiled, diagnostics }
+}
+
+/// Parses and compiles source text held in memory (tests, benchmarks, fuzzing).
+pub fn build_text(name: &str, text: &str, profile: &'static Profile) -> Frontend {
+    let mut sources = SourceSet::default();
+    sources.add(SourceFile::new(name, text));
+    build(sources, None, profile)
+}
