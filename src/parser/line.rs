@@ -453,7 +453,7 @@ fn unknown_operand(context: Context<'_>, token: Token) -> ParseError {
         .chain(BlockKind::ALL.iter().map(|kind| kind.name()));
     let help = known
         .map(|candidate| (strsim::damerau_levenshtein(&word.to_ascii_uppercase(), candidate), candidate))
-        .filter(|(distance, _)| *distance <= 1)
+        .filter(|(distance, _)| *distance <= 1 && word.len() > 1)
         .min_by_key(|(distance, _)| *distance)
         .map(|(_, candidate)| format!("did you mean `{candidate}`?"));
     ParseError::UnknownOperand { word, at: context.span(token), set: context.set.name(), help }

@@ -188,7 +188,15 @@ impl<'a> Builder<'a> {
     }
 
     fn data_line(&mut self, line: &'a [Token]) -> Result<(), ParseError> {
-        let (index, constant, span) = self.parse(line, |context| Box::new(line::data_word(context)))?;
+        let (index, constant, span) = self
+            .parse(line, |context| Box::new(line::data_word(context)))
+            .map_err(|error| match error {
+                ParseError::UnexpectedToken { at, expected, .. } => ParseError::BadDataWord {
+                    at,
+                    reason: format!("expected {expected}"),
+                },
+                other => other,
+            })?;
         let index = index.unwrap_or(self.next_data_word);
         self.next_data_word = index.saturating_add(1 + constant.extra_words.len() as u16);
         if let Some(Block { body: BlockBody::Data(words), .. }) = &mut self.current {
