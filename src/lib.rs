@@ -16,3 +16,7 @@ pub mod frontend;
 pub mod dump;
 pub mod cli;
 pub mod report;
+pub mod trace;
+pub mod vm;
+pub mod scenario;
+pub mod runner;

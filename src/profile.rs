@@ -135,7 +135,7 @@ const SINUMERIK_840C_TIMES: Timings = Timings {
     other: 570,
     cycle_overhead: 400_000,
     data_cycle: 0,
-    process_image_per_byte: 1000,
+    process_image_per_byte: 100,
     source: "CPU 928B table (seed 000 PLC manual): bit operations on I/Q/F 0.57 µs, on D 3.4 µs; \
              L FY 0.81, L FW 0.94, L FD 1.6 µs; fixed-point arithmetic 0.94–10 µs. Block call/end, \
              timers, jumps and the 0.4 ms operating-system time are estimates.",
@@ -165,7 +165,7 @@ const S5_95F_TIMES: Timings = Timings {
     other: 1600,
     cycle_overhead: 1_000_000,
     data_cycle: 300_000,
-    process_image_per_byte: 5000,
+    process_image_per_byte: 500,
     source: "estimates of the S5-95 class (about 1.6 µs per bit operation); the seed gives the \
              rules, not the times. Interrupt data cycles 0.3 ms each.",
 };

@@ -1,8 +1,9 @@
-//! Human-readable reports: the CPU profile list.
+//! Human-readable reports: the CPU profile list and the run summary.
 
 use std::fmt::Write as _;
 
 use crate::profile::{self, InterruptPoints};
+
 
 fn micros(ns: u32) -> String {
     format!("{:.2} µs", f64::from(ns) / 1000.0)
@@ -61,5 +62,66 @@ pub fn cpus() -> String {
         }
         out.push('\n');
     }
+    out
+}
+
+/// `12.0` for 12 000 ns: microseconds with one decimal.
+fn us(ns: u64) -> String {
+    format!("{:.1}", ns as f64 / 1000.0)
+}
+
+/// The summary of `awl run`; it ends with the `cpu:` and `instructions:` lines of SPEC §2.
+pub fn summary(ran: &crate::runner::Ran) -> String {
+    let mut out = String::new();
+    let outcome = &ran.outcome;
+    let cpu = &ran.cpu;
+    let expectations = ran.expectations;
+    if expectations > 0 {
+        for mismatch in &ran.mismatches {
+            let _ = writeln!(out, "expect {}: expected {}, got {}", mismatch.name, mismatch.expected, mismatch.actual);
+        }
+        let _ = writeln!(out, "expectations: {} of {} met", expectations - ran.mismatches.len(), expectations);
+    }
+    let stretch = cpu.longest_stretch;
+    if stretch.ns > 0 {
+        let block = cpu.block_id(stretch.block);
+        let duration = format!("{:.3} ms", stretch.ns as f64 / 1e6);
+        match ran.points {
+            InterruptPoints::Block => {
+                let _ = writeln!(out, "longest block: {block}, {duration} (worst-case response in normal mode)");
+            }
+            InterruptPoints::Operation => {
+                let _ = writeln!(out, "longest operation: {block}, {duration} (worst-case response with operation points)");
+            }
+        }
+    }
+    for (ob, stats) in &cpu.engine.stats {
+        let latency = if stats.serviced > 0 {
+            format!(
+                "{}/{}/{} us",
+                us(stats.latency_min),
+                us(stats.latency_sum / stats.serviced),
+                us(stats.latency_max)
+            )
+        } else {
+            "-/-/- us".to_string()
+        };
+        let _ = writeln!(
+            out,
+            "OB {ob}: requested {}, serviced {}, lost {}, ignored {}, latency min/mean/max {latency}",
+            stats.requested, stats.serviced, stats.lost, stats.ignored
+        );
+    }
+    let simulated = outcome.clock_ns as f64 / 1e6;
+    let _ = writeln!(
+        out,
+        "cpu: {}   mode at end: {}   simulated: {simulated:.3} ms   cycles: {}",
+        cpu.profile.name,
+        outcome.mode.name(),
+        outcome.cycles
+    );
+    let wall = outcome.wall.as_secs_f64();
+    let rate = if wall > 0.0 { outcome.instructions as f64 / wall / 1e6 } else { 0.0 };
+    let _ = writeln!(out, "instructions: {}   wall: {wall:.4} s   rate: {rate:.1} M instr/s", outcome.instructions);
     out
 }

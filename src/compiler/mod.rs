@@ -13,6 +13,7 @@ use std::collections::HashMap;
 pub use bytecode::Op;
 pub use error::CheckError;
 pub use lower::{Layout, Resolved};
+pub use ranges::address_in_range;
 
 use crate::ast::{Block, BlockBody, BlockId, LogicBody, Operand, ParamDecl, SourceUnit, Statement};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};

@@ -1,0 +1,70 @@
+//! Errors in scenario files: each names the key, operand or OB, and points at its line.
+
+use miette::{Diagnostic, SourceSpan};
+use thiserror::Error;
+
+#[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
+pub enum ScenarioError {
+    #[error("cannot read scenario `{path}`: {reason}")]
+    #[diagnostic(code(awl::scenario::read), help("check the path of the scenario file"))]
+    Read { path: String, reason: String },
+
+    #[error("{message}")]
+    #[diagnostic(code(awl::scenario::syntax), help("see SPEC §3 for the keys a scenario has: program, cpu, mode, interrupt_points, run, watchdog, [ob13], [[hw_module]], [[event]], [expect]"))]
+    Syntax {
+        message: String,
+        #[label("here")]
+        at: Option<SourceSpan>,
+    },
+
+    #[error("unknown operand `{operand}`")]
+    #[diagnostic(code(awl::scenario::unknown_operand))]
+    UnknownOperand {
+        operand: String,
+        #[label("{reason}")]
+        at: SourceSpan,
+        reason: String,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("`{value}` does not fit `{operand}`")]
+    #[diagnostic(code(awl::scenario::bad_value))]
+    BadValue {
+        operand: String,
+        value: String,
+        #[label("allowed: {range}")]
+        at: SourceSpan,
+        range: String,
+    },
+
+    #[error("unknown OB `{ob}` for the {cpu} CPU")]
+    #[diagnostic(code(awl::scenario::unknown_ob))]
+    UnknownOb {
+        ob: String,
+        cpu: &'static str,
+        #[label("not an interrupt OB of this CPU")]
+        at: SourceSpan,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("bad duration `{text}`")]
+    #[diagnostic(code(awl::scenario::bad_duration), help("write a number and a unit: ns, us, ms or s, e.g. \"2.5ms\""))]
+    BadDuration {
+        text: String,
+        #[label("not a duration")]
+        at: SourceSpan,
+    },
+
+    #[error("{message}")]
+    #[diagnostic(code(awl::scenario::invalid))]
+    Invalid {
+        message: String,
+        #[label("{label}")]
+        at: SourceSpan,
+        label: String,
+        #[help]
+        help: Option<String>,
+    },
+}

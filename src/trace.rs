@@ -1,0 +1,199 @@
+//! The trace: one event per mode change, cycle, block change and interrupt, on simulated time.
+//! `jsonl` writes one JSON object per line (stable field names); `text` writes an indented
+//! timeline a person can follow.
+
+use std::io::Write;
+
+use serde::Serialize;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TraceFormat {
+    Jsonl,
+    Text,
+}
+
+/// The trace events of SPEC §7. Block names are written `"PB 3"`.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+#[serde(tag = "ev", rename_all = "snake_case")]
+pub enum Event {
+    Mode {
+        from: &'static str,
+        to: &'static str,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        cause: Option<&'static str>,
+    },
+    CycleStart {
+        cycle: u64,
+    },
+    CycleEnd {
+        cycle: u64,
+        cycle_time_ns: u64,
+    },
+    BlockCall {
+        from: String,
+        to: String,
+        depth: usize,
+    },
+    BlockEnd {
+        block: String,
+        depth: usize,
+    },
+    IrqRequest {
+        id: u64,
+        ob: u8,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        module: Option<u16>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        channel: Option<u16>,
+        /// The block running when the request came.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        block: Option<String>,
+        /// Its source line, where it can be told (operation points, or straight-line code).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        line: Option<u32>,
+    },
+    IrqService {
+        id: u64,
+        ob: u8,
+        latency_ns: u64,
+        point: &'static str,
+        /// The block the interrupted level was in.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        block: Option<String>,
+    },
+    IrqEnd {
+        id: u64,
+        ob: u8,
+    },
+    IrqLost {
+        id: u64,
+        ob: u8,
+        reason: String,
+    },
+    IrqIgnored {
+        id: u64,
+        ob: u8,
+        reason: String,
+    },
+    DataCycle {
+        kind: &'static str,
+        duration_ns: u64,
+    },
+    Stop {
+        cause: &'static str,
+        block: String,
+        line: u32,
+    },
+}
+
+#[derive(Serialize)]
+struct Record<'a> {
+    t_ns: u64,
+    #[serde(flatten)]
+    event: &'a Event,
+}
+
+/// Writes events when a trace was asked for; `enabled` is the one flag the loop tests.
+pub struct Tracer {
+    pub enabled: bool,
+    format: TraceFormat,
+    out: Option<Box<dyn Write>>,
+    error: Option<std::io::Error>,
+}
+
+impl Tracer {
+    pub fn off() -> Self {
+        Tracer { enabled: false, format: TraceFormat::Jsonl, out: None, error: None }
+    }
+
+    pub fn new(format: TraceFormat, out: Box<dyn Write>) -> Self {
+        Tracer { enabled: true, format, out: Some(out), error: None }
+    }
+
+    /// Records an event at simulated time `t_ns`; `indent` is the nesting for the text timeline.
+    pub fn emit(&mut self, t_ns: u64, indent: usize, event: Event) {
+        let Some(out) = self.out.as_mut() else { return };
+        let result = match self.format {
+            TraceFormat::Jsonl => serde_json::to_writer(&mut *out, &Record { t_ns, event: &event })
+                .map_err(std::io::Error::other)
+                .and_then(|()| out.write_all(b"\n")),
+            TraceFormat::Text => writeln!(out, "{:>12}  {}{}", format_ms(t_ns), "  ".repeat(indent), text(&event)),
+        };
+        if let Err(error) = result {
+            self.error.get_or_insert(error);
+            self.enabled = false;
+            self.out = None;
+        }
+    }
+
+    /// Flushes the output; the first write error, if any.
+    pub fn finish(&mut self) -> Result<(), std::io::Error> {
+        if let Some(out) = self.out.as_mut()
+            && let Err(error) = out.flush()
+        {
+            self.error.get_or_insert(error);
+        }
+        self.out = None;
+        self.enabled = false;
+        match self.error.take() {
+            Some(error) => Err(error),
+            None => Ok(()),
+        }
+    }
+}
+
+pub fn format_ms(ns: u64) -> String {
+    format!("{}.{:06} ms", ns / 1_000_000, ns % 1_000_000)
+}
+
+pub fn format_us(ns: u64) -> String {
+    format!("{}.{:03} µs", ns / 1000, ns % 1000)
+}
+
+fn text(event: &Event) -> String {
+    match event {
+        Event::Mode { from, to, cause } => match cause {
+            Some(cause) => format!("mode {from} → {to} (cause {cause})"),
+            None => format!("mode {from} → {to}"),
+        },
+        Event::CycleStart { cycle } => format!("── cycle {cycle} ──"),
+        Event::CycleEnd { cycle, cycle_time_ns } => format!("── cycle {cycle} end, cycle time {} ──", format_ms(*cycle_time_ns)),
+        Event::BlockCall { from, to, .. } => format!("{from} calls {to}"),
+        Event::BlockEnd { block, .. } => format!("{block} ends (BE)"),
+        Event::IrqRequest { id, ob, module, channel, block, line } => {
+            let source = match (module, channel) {
+                (Some(module), Some(channel)) => format!(" by module {module} channel {channel}"),
+                _ => String::new(),
+            };
+            let place = match (block, line) {
+                (Some(block), Some(line)) => format!(" while {block} runs line {line}"),
+                (Some(block), None) => format!(" while {block} runs"),
+                _ => " between cycles".to_string(),
+            };
+            format!("⚡ OB {ob} requested (#{id}){source}{place}")
+        }
+        Event::IrqService { id, ob, latency_ns, point, block } => {
+            let place = block.as_ref().map(|block| format!(" in {block}")).unwrap_or_default();
+            format!("▶ OB {ob} serviced (#{id}) at the {}{place}, latency {}", point.replace('_', " "), format_us(*latency_ns))
+        }
+        Event::IrqEnd { id, ob } => format!("◀ OB {ob} ends (#{id}), back to the interrupted level"),
+        Event::IrqLost { id, ob, reason } => format!("✗ OB {ob} request #{id} lost: {reason}"),
+        Event::IrqIgnored { id, ob, reason } => format!("✗ OB {ob} request #{id} ignored: {reason}"),
+        Event::DataCycle { kind, duration_ns } => format!("data cycle {}, {}", kind.replace('_', " "), format_us(*duration_ns)),
+        Event::Stop { cause, block, line } => format!("STOP {cause} in {block} line {line}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn jsonl_has_the_stable_field_names() {
+        let record = Record { t_ns: 1500, event: &Event::IrqService { id: 1, ob: 3, latency_ns: 20, point: "block_end", block: None } };
+        assert_eq!(
+            serde_json::to_string(&record).unwrap(),
+            r#"{"t_ns":1500,"ev":"irq_service","id":1,"ob":3,"latency_ns":20,"point":"block_end"}"#
+        );
+    }
+}

@@ -1,0 +1,178 @@
+//! Accumulator operations: fixed-point arithmetic and comparison on the low words of ACCU 1 and
+//! ACCU 2, word logic, shifts and complements, with the condition codes CC1/CC0 and OV.
+
+use crate::compiler::bytecode::{Arith, Comparison, WordLogic};
+
+use super::status::Status;
+
+fn low(accu: u32) -> i16 {
+    accu as u16 as i16
+}
+
+fn with_low(accu: u32, value: u16) -> u32 {
+    accu & 0xFFFF_0000 | u32::from(value)
+}
+
+/// `+F -F X F :F`: ACCU 1 := ACCU 2 op ACCU 1 (low words). Division by zero leaves ACCU 1 and
+/// sets CC1 CC0 = 1 1 and OV; an overflow keeps the wrapped result and sets OV and OS.
+pub fn arithmetic(op: Arith, accu1: &mut u32, accu2: u32, status: &mut Status) {
+    let (a, b) = (i32::from(low(accu2)), i32::from(low(*accu1)));
+    let exact = match op {
+        Arith::Add => a + b,
+        Arith::Sub => a - b,
+        Arith::Mul => a * b,
+        Arith::Div => {
+            if b == 0 {
+                status.cc1 = true;
+                status.cc0 = true;
+                status.ov = true;
+                status.os = true;
+                return;
+            }
+            a / b
+        }
+    };
+    let wrapped = exact as i16;
+    status.ov = i32::from(wrapped) != exact;
+    status.os |= status.ov;
+    status.set_cc_from(wrapped);
+    *accu1 = with_low(*accu1, wrapped as u16);
+}
+
+/// `!=F ><F >F >=F <F <=F`: ACCU 2 compared with ACCU 1 gives the RLO.
+pub fn compare(op: Comparison, accu1: u32, accu2: u32, status: &mut Status) {
+    let (a, b) = (low(accu2), low(accu1));
+    let result = match op {
+        Comparison::Eq => a == b,
+        Comparison::Ne => a != b,
+        Comparison::Gt => a > b,
+        Comparison::Ge => a >= b,
+        Comparison::Lt => a < b,
+        Comparison::Le => a <= b,
+    };
+    status.cc1 = a > b;
+    status.cc0 = a < b;
+    status.load(result);
+}
+
+/// `AW OW XOW`: CC1 = result not zero, CC0 = 0, OV = 0.
+pub fn word_logic(op: WordLogic, accu1: &mut u32, accu2: u32, status: &mut Status) {
+    let (a, b) = (*accu1 as u16, accu2 as u16);
+    let result = match op {
+        WordLogic::And => a & b,
+        WordLogic::Or => a | b,
+        WordLogic::Xor => a ^ b,
+    };
+    status.cc1 = result != 0;
+    status.cc0 = false;
+    status.ov = false;
+    *accu1 = with_low(*accu1, result);
+}
+
+/// `SLW n` / `SRW n`: CC1 = the last bit shifted out.
+pub fn shift(left: bool, n: u8, accu1: &mut u32, status: &mut Status) {
+    let word = *accu1 as u16;
+    if n == 0 {
+        return;
+    }
+    let n = u32::from(n);
+    let (result, last_out) = if left {
+        (word.checked_shl(n).unwrap_or(0), (word >> (16 - n)) & 1 == 1)
+    } else {
+        (word.checked_shr(n).unwrap_or(0), (word >> (n - 1)) & 1 == 1)
+    };
+    status.cc1 = last_out;
+    status.cc0 = false;
+    status.ov = false;
+    *accu1 = with_low(*accu1, result);
+}
+
+pub fn ones_complement(accu1: &mut u32) {
+    *accu1 = with_low(*accu1, !(*accu1 as u16));
+}
+
+/// `CSW`: two's complement; −32768 overflows.
+pub fn twos_complement(accu1: &mut u32, status: &mut Status) {
+    let value = low(*accu1);
+    let (result, overflow) = value.overflowing_neg();
+    status.ov = overflow;
+    status.os |= overflow;
+    status.set_cc_from(result);
+    *accu1 = with_low(*accu1, result as u16);
+}
+
+/// `I n` / `D n`: the low byte of ACCU 1, modulo 256.
+pub fn increment(accu1: &mut u32, delta: i16) {
+    let byte = (*accu1 as u8).wrapping_add(delta as u8);
+    *accu1 = *accu1 & 0xFFFF_FF00 | u32::from(byte);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn arith(op: Arith, a: i16, b: i16) -> (i16, Status) {
+        let mut accu1 = b as u16 as u32;
+        let mut status = Status::default();
+        arithmetic(op, &mut accu1, a as u16 as u32, &mut status);
+        (accu1 as u16 as i16, status)
+    }
+
+    #[test]
+    fn add_sets_condition_codes_and_overflow() {
+        let (sum, status) = arith(Arith::Add, 30000, 10000);
+        assert!(status.ov && status.os);
+        assert_eq!(sum, (40000i32 as i16));
+        assert!(status.cc0, "the wrapped result is negative");
+        let (sum, status) = arith(Arith::Add, -5, 5);
+        assert_eq!(sum, 0);
+        assert!(!status.cc1 && !status.cc0 && !status.ov);
+    }
+
+    #[test]
+    fn sub_mul_div() {
+        assert_eq!(arith(Arith::Sub, 5, 8).0, -3);
+        assert_eq!(arith(Arith::Mul, -300, 100).0, -30000);
+        assert!(arith(Arith::Mul, 300, 300).1.ov);
+        assert_eq!(arith(Arith::Div, 7, 2).0, 3);
+        assert_eq!(arith(Arith::Div, -7, 2).0, -3);
+        assert!(arith(Arith::Div, -32768, -1).1.ov);
+    }
+
+    #[test]
+    fn division_by_zero_keeps_accu_and_flags() {
+        let (result, status) = arith(Arith::Div, 100, 0);
+        assert_eq!(result, 0);
+        assert!(status.cc1 && status.cc0 && status.ov);
+    }
+
+    #[test]
+    fn compare_sets_rlo_and_codes() {
+        let mut status = Status::default();
+        compare(Comparison::Gt, 3, 5, &mut status);
+        assert!(status.rlo && status.cc1 && !status.cc0);
+        compare(Comparison::Le, 3, 5, &mut status);
+        assert!(!status.rlo);
+    }
+
+    #[test]
+    fn shifts_and_complements() {
+        let mut status = Status::default();
+        let mut accu = 0x8001;
+        shift(true, 1, &mut accu, &mut status);
+        assert_eq!(accu, 0x0002);
+        assert!(status.cc1);
+        shift(false, 2, &mut accu, &mut status);
+        assert_eq!(accu, 0);
+        assert!(status.cc1);
+        let mut accu = 0x00FF;
+        ones_complement(&mut accu);
+        assert_eq!(accu, 0xFF00);
+        let mut accu = 0x8000;
+        twos_complement(&mut accu, &mut status);
+        assert!(status.ov);
+        let mut accu = 0x12FF;
+        increment(&mut accu, 1);
+        assert_eq!(accu, 0x1200);
+    }
+}

@@ -1,0 +1,164 @@
+//! The modes and the cycle: STOP → STARTUP (startup OB) → RUN, then cycles of read PII, OB 1,
+//! write PIQ, operating-system time, and the cycle boundary, until the run's limit.
+
+use std::time::{Duration, Instant};
+
+use crate::profile::InterruptPoints;
+use crate::trace::Event;
+
+use super::stop::{Stop, StopCause};
+use super::{Cpu, Exit, IDLE, Mode, Point};
+
+/// How long a run goes on: a number of cycles, or simulated time (the run ends at the first
+/// cycle end at or after it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunLimit {
+    Cycles(u64),
+    Duration(u64),
+}
+
+/// What a run did.
+#[derive(Debug, Clone)]
+pub struct RunOutcome {
+    pub mode: Mode,
+    pub stop: Option<Stop>,
+    pub cycles: u64,
+    pub clock_ns: u64,
+    pub instructions: u64,
+    pub wall: Duration,
+}
+
+impl Cpu {
+    fn set_mode(&mut self, to: Mode, cause: Option<&'static str>) {
+        let from = self.mode;
+        self.mode = to;
+        if self.tracer.enabled {
+            self.tracer.emit(self.clock, 0, Event::Mode { from: from.name(), to: to.name(), cause });
+        }
+    }
+
+    /// Runs the current level until its bottom block ends; interrupt OBs entered on the way run
+    /// inside this loop.
+    fn run_level(&mut self) -> Result<(), Stop> {
+        let depth = self.levels.len();
+        let operation_points = self.engine.config.points == InterruptPoints::Operation;
+        loop {
+            match self.execute(operation_points) {
+                Exit::Point(point) => {
+                    self.at_point(point)?;
+                }
+                Exit::LevelEnd if self.levels.len() == depth => return Ok(()),
+                Exit::LevelEnd => {
+                    self.leave_interrupt();
+                    self.at_point(Point::BlockEnd)?;
+                }
+                Exit::Stop(stop) => return Err(stop),
+            }
+        }
+    }
+
+    /// The cycle boundary: pending interrupts run here, highest first, until none outranks
+    /// the cyclic level.
+    fn cycle_boundary(&mut self) -> Result<(), Stop> {
+        self.block = IDLE;
+        while self.at_point(Point::Cycle)? {
+            self.run_level()?;
+            self.leave_interrupt();
+        }
+        Ok(())
+    }
+
+    fn startup(&mut self) -> Result<(), Stop> {
+        self.set_mode(Mode::Startup, None);
+        self.cycle_started_at = self.clock;
+        self.update_attention();
+        let startup_ob = self.profile.startup_obs.iter().find_map(|ob| self.program.ob(*ob));
+        if let Some(block) = startup_ob {
+            self.enter_level(block);
+            self.last_point_at = self.clock;
+            self.run_level()?;
+        }
+        self.set_mode(Mode::Run, None);
+        self.start_engine_run();
+        Ok(())
+    }
+
+    fn process_image_cycle(&mut self, read: bool) {
+        let bytes = usize::from(self.program.layout.image_bytes);
+        let piq = usize::from(self.program.layout.output_base());
+        if read {
+            self.image[..bytes].copy_from_slice(&self.inputs[..bytes]);
+        } else {
+            self.outputs[..bytes].copy_from_slice(&self.image[piq..piq + bytes]);
+        }
+        let duration = u64::from(self.profile.timings.process_image_per_byte) * bytes as u64;
+        if self.tracer.enabled {
+            self.tracer.emit(self.clock, 1, Event::DataCycle { kind: "process_image", duration_ns: duration });
+        }
+        self.clock += duration;
+    }
+
+    fn one_cycle(&mut self) -> Result<(), Stop> {
+        let ob1 = self.program.ob(1);
+        self.cycle += 1;
+        if self.tracer.enabled {
+            self.tracer.emit(self.clock, 0, Event::CycleStart { cycle: self.cycle });
+        }
+        self.poll()?;
+        self.process_image_cycle(true);
+        if let Some(block) = ob1 {
+            self.enter_level(block);
+            self.last_point_at = self.clock;
+            self.update_attention();
+            self.run_level()?;
+        }
+        self.process_image_cycle(false);
+        self.clock += u64::from(self.profile.timings.cycle_overhead);
+        if let Some((block, pc)) = self.stop_requested.take() {
+            self.block = block;
+            return Err(self.stop(StopCause::Stp, pc, super::stop::StopDetail::None));
+        }
+        let cycle_time = self.clock - self.cycle_started_at;
+        if self.tracer.enabled {
+            self.tracer.emit(self.clock, 0, Event::CycleEnd { cycle: self.cycle, cycle_time_ns: cycle_time });
+        }
+        self.last_point_at = self.clock;
+        self.cycle_started_at = self.clock;
+        self.cycle_boundary()
+    }
+
+    fn limit_reached(&self, limit: RunLimit) -> bool {
+        match limit {
+            RunLimit::Cycles(cycles) => self.cycle >= cycles,
+            RunLimit::Duration(ns) => self.clock >= ns,
+        }
+    }
+
+    /// STOP → STARTUP → RUN, then cycles until the limit or a STOP.
+    pub fn run(&mut self, limit: RunLimit) -> RunOutcome {
+        let started = Instant::now();
+        let result = self.startup().and_then(|()| {
+            while !self.limit_reached(limit) {
+                self.one_cycle()?;
+            }
+            Ok(())
+        });
+        let stop = result.err();
+        if let Some(stop) = &stop {
+            self.set_mode(Mode::Stop, Some(stop.cause.code()));
+            if self.tracer.enabled {
+                let line = self.line_of(stop.block, stop.pc, &self.sources);
+                let block = self.block_id(stop.block).to_string();
+                self.tracer.emit(self.clock, 0, Event::Stop { cause: stop.cause.code(), block, line });
+            }
+        }
+        RunOutcome {
+            mode: self.mode,
+            stop,
+            cycles: self.cycle,
+            clock_ns: self.clock,
+            instructions: self.instructions,
+            wall: started.elapsed(),
+        }
+    }
+}

@@ -1,0 +1,552 @@
+//! The execution loop. It runs ops of the current level until a block change or an operation
+//! (in `operation` mode) finds `clock >= attention_at` — one comparison when nothing is due — or
+//! the level ends, or a fault stops the CPU. It allocates nothing and does no string work
+//! unless a trace is being written.
+
+use std::sync::Arc;
+
+use crate::ast::Address;
+use crate::compiler::bytecode::*;
+use crate::compiler::{Resolved, lower};
+
+use super::arith;
+use super::stop::{StopCause, StopDetail};
+use super::{Cpu, Exit, Frame, Point, Stretch};
+
+impl Cpu {
+    /// Runs the current level; `operation_points` makes every operation an interrupt point.
+    pub fn execute(&mut self, operation_points: bool) -> Exit {
+        if operation_points { self.run_loop::<true>() } else { self.run_loop::<false>() }
+    }
+
+    #[inline(always)]
+    fn image_bit(&self, bit: ImageBit) -> bool {
+        self.image[usize::from(bit.byte)] >> bit.bit & 1 != 0
+    }
+
+    #[inline(always)]
+    fn write_image_bit(&mut self, bit: ImageBit, value: bool) {
+        let byte = &mut self.image[usize::from(bit.byte)];
+        let mask = 1u8 << bit.bit;
+        if value { *byte |= mask } else { *byte &= !mask }
+    }
+
+    #[inline(always)]
+    fn load(&mut self, value: u32) {
+        self.accu2 = self.accu1;
+        self.accu1 = value;
+    }
+
+    fn read_image(&self, width: Width, byte: u16) -> u32 {
+        read_bytes(&self.image, usize::from(byte), width)
+    }
+
+    fn write_image(&mut self, width: Width, byte: u16, value: u32) {
+        write_bytes(&mut self.image, usize::from(byte), width, value);
+    }
+
+    /// Marks an interrupt point for the stretch measurement of the cyclic level.
+    #[inline(always)]
+    fn mark_point(&mut self, stretch_block: u16) {
+        if self.levels.is_empty() {
+            let stretch = self.clock - self.last_point_at;
+            if stretch > self.longest_stretch.ns {
+                self.longest_stretch = Stretch { ns: stretch, block: stretch_block };
+            }
+        }
+        self.last_point_at = self.clock;
+    }
+
+    fn run_loop<const OPERATION_POINTS: bool>(&mut self) -> Exit {
+        let program = Arc::clone(&self.program);
+        let mut block = &program.blocks[usize::from(self.block)];
+        let mut pc = self.pc as usize;
+        loop {
+            let Some(&fetched) = block.code.get(pc) else {
+                return Exit::Stop(self.stop(StopCause::Bcf, pc as u32, StopDetail::Text("the block has no BE".into())));
+            };
+            self.clock += u64::from(block.costs[pc]);
+            self.instructions += 1;
+            pc += 1;
+            let mut op = fetched;
+            'dispatch: loop {
+                match op {
+                    Op::And(bit) => {
+                        let value = self.image_bit(bit);
+                        self.status.and(value);
+                    }
+                    Op::AndNot(bit) => {
+                        let value = self.image_bit(bit);
+                        self.status.and(!value);
+                    }
+                    Op::Or(bit) => {
+                        let value = self.image_bit(bit);
+                        self.status.or(value);
+                    }
+                    Op::OrNot(bit) => {
+                        let value = self.image_bit(bit);
+                        self.status.or(!value);
+                    }
+                    Op::Assign(bit) => {
+                        self.write_image_bit(bit, self.status.rlo);
+                        self.status.end_string();
+                    }
+                    Op::Set(bit) => {
+                        if self.status.rlo {
+                            self.write_image_bit(bit, true);
+                        }
+                        self.status.end_string();
+                    }
+                    Op::Reset(bit) => {
+                        if self.status.rlo {
+                            self.write_image_bit(bit, false);
+                        }
+                        self.status.end_string();
+                    }
+                    Op::OrAlone => self.status.or_alone(),
+                    Op::AndBracket | Op::OrBracket => {
+                        if !self.status.open_bracket(op == Op::OrBracket, self.profile.bracket_depth) {
+                            let text = format!("more than {} nested brackets", self.profile.bracket_depth);
+                            return Exit::Stop(self.stop(StopCause::Bcf, pc as u32 - 1, StopDetail::Text(text)));
+                        }
+                    }
+                    Op::CloseBracket => {
+                        if !self.status.close_bracket() {
+                            let text = "`)` without an open bracket".to_string();
+                            return Exit::Stop(self.stop(StopCause::Bcf, pc as u32 - 1, StopDetail::Text(text)));
+                        }
+                    }
+                    Op::LoadImage(width, byte) => {
+                        let value = self.read_image(width, byte);
+                        self.load(value);
+                    }
+                    Op::TransferImage(width, byte) => self.write_image(width, byte, self.accu1),
+                    Op::LoadConstant(value) => self.load(value),
+                    Op::Arithmetic(kind) => arith::arithmetic(kind, &mut self.accu1, self.accu2, &mut self.status),
+                    Op::Compare(kind) => arith::compare(kind, self.accu1, self.accu2, &mut self.status),
+                    Op::Jump(condition, target) => {
+                        let status = self.status;
+                        let taken = match condition {
+                            JumpCondition::Always => true,
+                            JumpCondition::Rlo => status.rlo,
+                            JumpCondition::Zero => !status.cc1 && !status.cc0,
+                            JumpCondition::NotZero => status.cc1 != status.cc0,
+                            JumpCondition::Positive => status.cc1 && !status.cc0,
+                            JumpCondition::Minus => !status.cc1 && status.cc0,
+                            JumpCondition::Overflow => status.ov,
+                        };
+                        if matches!(condition, JumpCondition::Always | JumpCondition::Rlo) {
+                            self.status.after_jump();
+                        }
+                        if taken {
+                            let backward = (target as usize) < pc;
+                            pc = target as usize;
+                            if !OPERATION_POINTS && backward && self.clock >= self.attention_at {
+                                self.pc = pc as u32;
+                                return Exit::Point(Point::Loop);
+                            }
+                        }
+                    }
+                    Op::Call { block: target, conditional, params } => {
+                        if conditional && !self.status.rlo {
+                            self.status.after_jump();
+                            break 'dispatch;
+                        }
+                        self.status.after_jump();
+                        if self.depth() >= usize::from(self.profile.nesting_limit) {
+                            return Exit::Stop(self.stop(StopCause::Stueb, pc as u32 - 1, StopDetail::None));
+                        }
+                        self.frames.push(Frame { block: self.block, pc: pc as u32, open_db: self.open_db, params: self.params });
+                        let caller = self.block;
+                        self.block = target;
+                        self.params = params;
+                        block = &program.blocks[usize::from(target)];
+                        pc = 0;
+                        if self.tracer.enabled {
+                            self.trace_call(caller, target);
+                        }
+                        self.mark_point(caller);
+                        if self.clock >= self.attention_at {
+                            self.pc = 0;
+                            return Exit::Point(Point::BlockCall);
+                        }
+                    }
+                    Op::BlockEnd | Op::BlockEndUnconditional | Op::BlockEndConditional => {
+                        if op == Op::BlockEndConditional && !self.status.rlo {
+                            self.status.after_jump();
+                            break 'dispatch;
+                        }
+                        if op != Op::BlockEnd {
+                            self.status.after_jump();
+                        } else {
+                            self.status.end_string();
+                        }
+                        let ended = self.block;
+                        if self.tracer.enabled {
+                            self.trace_end(ended);
+                        }
+                        self.mark_point(ended);
+                        if self.frames.len() == self.level_base {
+                            self.pc = pc as u32;
+                            return Exit::LevelEnd;
+                        }
+                        let frame = self.frames.pop().expect("a frame above the level base");
+                        self.block = frame.block;
+                        self.open_db = frame.open_db;
+                        self.params = frame.params;
+                        block = &program.blocks[usize::from(frame.block)];
+                        pc = frame.pc as usize;
+                        if self.clock >= self.attention_at {
+                            self.pc = pc as u32;
+                            return Exit::Point(Point::BlockEnd);
+                        }
+                    }
+                    Op::Formal { op: code, param } => match self.formal(code, param) {
+                        Some(concrete) => {
+                            op = concrete;
+                            continue 'dispatch;
+                        }
+                        None => {
+                            let text = format!("formal parameter {} cannot be substituted here", param + 1);
+                            return Exit::Stop(self.stop(StopCause::Bcf, pc as u32 - 1, StopDetail::Text(text)));
+                        }
+                    },
+                    Op::Indirect { source, template } => {
+                        let value = match source {
+                            IndirectSource::FlagWord(byte) => self.read_image(Width::Word, byte),
+                            IndirectSource::DataWord(word) => match self.data_word(word) {
+                                Some(value) => u32::from(value),
+                                None => return Exit::Stop(self.data_fault(pc as u32 - 1, word)),
+                            },
+                        };
+                        let Some(concrete) = self.substitute(template, value as u16) else {
+                            let text = format!("DO parameter {value} gives no valid operand");
+                            return Exit::Stop(self.stop(StopCause::Bcf, pc as u32 - 1, StopDetail::Text(text)));
+                        };
+                        if let Some(cost) = block.costs.get(pc) {
+                            self.clock += u64::from(*cost);
+                            self.instructions += 1;
+                            pc += 1;
+                        }
+                        op = concrete;
+                        continue 'dispatch;
+                    }
+                    other => {
+                        if let Err((cause, detail)) = self.execute_other(other, pc as u32 - 1) {
+                            return Exit::Stop(self.stop(cause, pc as u32 - 1, detail));
+                        }
+                    }
+                }
+                break;
+            }
+            if OPERATION_POINTS && self.clock >= self.attention_at {
+                self.pc = pc as u32;
+                return Exit::Point(Point::Operation);
+            }
+        }
+    }
+
+    /// The op an operation on a formal operand amounts to with the running FB's actual.
+    fn formal(&self, code: crate::mnemonics::OpCode, param: u8) -> Option<Op> {
+        let actual = self.actual(param)?;
+        lower::lower(code, actual, self.program.layout, NO_PARAMS)
+    }
+
+    /// The op after `DO` with its parameter replaced by `value`: for bit operands the high byte
+    /// is the bit and the low byte the byte; otherwise the value is the number.
+    fn substitute(&self, template: u16, value: u16) -> Option<Op> {
+        let (code, operand) = *self.program.indirect_templates.get(usize::from(template))?;
+        let operand = match operand {
+            Resolved::Address(address) => {
+                let replaced = if address.area.is_bit() {
+                    Address { area: address.area, index: value & 0xFF, bit: (value >> 8) as u8 }
+                } else {
+                    Address { area: address.area, index: value, bit: 0 }
+                };
+                let fits = crate::compiler::address_in_range(replaced, self.profile);
+                fits.then_some(Resolved::Address(replaced))?
+            }
+            Resolved::Number(_) => Resolved::Number(value & 0xFF),
+            _ => return None,
+        };
+        lower::lower(code, operand, self.program.layout, NO_PARAMS)
+    }
+
+    pub(super) fn data_word(&self, word: u16) -> Option<u16> {
+        let db = self.data_blocks[usize::from(self.open_db?)].as_ref()?;
+        db.get(usize::from(word)).copied()
+    }
+
+    fn data_fault(&self, pc: u32, word: u16) -> super::stop::Stop {
+        let problem = match self.open_db {
+            None => format!("DW {word} accessed with no data block open"),
+            Some(db) => {
+                let length = self.data_blocks[usize::from(db)].as_ref().map_or(0, Vec::len);
+                format!("DW {word} is past the end of DB {db} ({length} words)")
+            }
+        };
+        self.stop(StopCause::LzfData, pc, StopDetail::Text(problem))
+    }
+
+    fn read_data(&self, part: DataPart, word: u16, pc: u32) -> Result<u32, (StopCause, StopDetail)> {
+        let fault = || {
+            let stop = self.data_fault(pc, word);
+            (stop.cause, stop.detail)
+        };
+        let value = u32::from(self.data_word(word).ok_or_else(fault)?);
+        Ok(match part {
+            DataPart::Left => value >> 8,
+            DataPart::Right => value & 0xFF,
+            DataPart::Word => value,
+            DataPart::Double => value << 16 | u32::from(self.data_word(word + 1).ok_or_else(fault)?),
+        })
+    }
+
+    fn write_data(&mut self, part: DataPart, word: u16, value: u32, pc: u32) -> Result<(), (StopCause, StopDetail)> {
+        let last = if part == DataPart::Double { word + 1 } else { word };
+        if self.data_word(last).is_none() {
+            let stop = self.data_fault(pc, last);
+            return Err((stop.cause, stop.detail));
+        }
+        let db = self.data_blocks[usize::from(self.open_db.unwrap_or(0))].as_mut().expect("checked above");
+        let slot = &mut db[usize::from(word)];
+        match part {
+            DataPart::Left => *slot = *slot & 0x00FF | (value as u16 & 0xFF) << 8,
+            DataPart::Right => *slot = *slot & 0xFF00 | value as u16 & 0xFF,
+            DataPart::Word => *slot = value as u16,
+            DataPart::Double => {
+                *slot = (value >> 16) as u16;
+                db[usize::from(word) + 1] = value as u16;
+            }
+        }
+        Ok(())
+    }
+
+    fn data_bit(&self, word: u16, bit: u8, pc: u32) -> Result<bool, (StopCause, StopDetail)> {
+        Ok(self.read_data(DataPart::Word, word, pc)? >> bit & 1 != 0)
+    }
+
+    fn write_data_bit(&mut self, word: u16, bit: u8, value: bool, pc: u32) -> Result<(), (StopCause, StopDetail)> {
+        let old = self.read_data(DataPart::Word, word, pc)?;
+        let mask = 1u32 << bit;
+        let new = if value { old | mask } else { old & !mask };
+        self.write_data(DataPart::Word, word, new, pc)
+    }
+
+    fn bit_target(&self, target: BitTarget, pc: u32) -> Result<bool, (StopCause, StopDetail)> {
+        match target {
+            BitTarget::Image(bit) => Ok(self.image_bit(bit)),
+            BitTarget::Data { word, bit } => self.data_bit(word, bit, pc),
+        }
+    }
+
+    fn write_bit_target(&mut self, target: BitTarget, value: bool, pc: u32) -> Result<(), (StopCause, StopDetail)> {
+        match target {
+            BitTarget::Image(bit) => {
+                self.write_image_bit(bit, value);
+                Ok(())
+            }
+            BitTarget::Data { word, bit } => self.write_data_bit(word, bit, value, pc),
+        }
+    }
+
+    /// The periphery a load or transfer reaches: S5-95F OB 13 uses the interrupt images.
+    fn read_periphery(&self, width: Width, byte: u16, extended: bool) -> u32 {
+        let source = if extended {
+            &self.extended_inputs
+        } else if self.engine.interrupt_images {
+            &self.interrupt_pii
+        } else {
+            &self.inputs
+        };
+        read_bytes(source, usize::from(byte), width)
+    }
+
+    fn write_periphery(&mut self, width: Width, byte: u16, value: u32, extended: bool) {
+        let at = usize::from(byte);
+        if extended {
+            write_bytes(&mut self.extended_outputs, at, width, value);
+            return;
+        }
+        let width_bytes = match width {
+            Width::Byte => 1,
+            Width::Word => 2,
+            Width::Double => 4,
+        };
+        if self.engine.interrupt_images {
+            write_bytes(&mut self.interrupt_piq, at, width, value);
+            self.interrupt_piq_written = true;
+            self.engine.mark_dirty(at, width_bytes);
+        } else {
+            write_bytes(&mut self.outputs, at, width, value);
+        }
+        // The normal PIQ follows a direct output to a digital module.
+        let image_bytes = usize::from(self.program.layout.image_bytes);
+        let piq = usize::from(self.program.layout.output_base());
+        if at + width_bytes <= image_bytes {
+            write_bytes(&mut self.image, piq + at, width, value);
+        }
+    }
+
+    /// The operations the loop does not handle inline.
+    #[inline(never)]
+    fn execute_other(&mut self, op: Op, pc: u32) -> Result<(), (StopCause, StopDetail)> {
+        let now = self.clock;
+        let rlo = self.status.rlo;
+        match op {
+            Op::LogicOther(logic, source) => {
+                let value = match source {
+                    BitSource::Data { word, bit } => self.data_bit(word, bit, pc)?,
+                    BitSource::Timer(n) => self.timers[usize::from(n)].bit(now),
+                    BitSource::Counter(n) => self.counters[usize::from(n)].bit(),
+                };
+                match logic {
+                    Logic::And => self.status.and(value),
+                    Logic::AndNot => self.status.and(!value),
+                    Logic::Or => self.status.or(value),
+                    Logic::OrNot => self.status.or(!value),
+                }
+            }
+            Op::WriteData { write, word, bit } => {
+                match write {
+                    Write::Assign => self.write_data_bit(word, bit, rlo, pc)?,
+                    Write::Set if rlo => self.write_data_bit(word, bit, true, pc)?,
+                    Write::Reset if rlo => self.write_data_bit(word, bit, false, pc)?,
+                    _ => {}
+                }
+                self.status.end_string();
+            }
+            Op::LoadData(part, word) => {
+                let value = self.read_data(part, word, pc)?;
+                self.load(value);
+            }
+            Op::TransferData(part, word) => self.write_data(part, word, self.accu1, pc)?,
+            Op::LoadPeripheral { width, byte, extended } => {
+                let value = self.read_periphery(width, byte, extended);
+                self.load(value);
+            }
+            Op::TransferPeripheral { width, byte, extended } => self.write_periphery(width, byte, self.accu1, extended),
+            Op::LoadTimer(n) => {
+                let timer = &mut self.timers[usize::from(n)];
+                timer.settle(now);
+                let value = u32::from(timer.value(now));
+                self.load(value);
+            }
+            Op::LoadTimerCoded(n) => {
+                let value = self.timers[usize::from(n)].coded(now);
+                self.load(value);
+            }
+            Op::LoadCounter(n) => {
+                let value = u32::from(self.counters[usize::from(n)].value);
+                self.load(value);
+            }
+            Op::LoadCounterCoded(n) => {
+                let value = self.counters[usize::from(n)].coded();
+                self.load(value);
+            }
+            Op::StartTimer(kind, n) => {
+                self.timers[usize::from(n)].start_op(kind, rlo, self.accu1, now);
+                self.status.end_string();
+            }
+            Op::EnableTimer(n) => {
+                self.timers[usize::from(n)].enable(rlo);
+                self.status.end_string();
+            }
+            Op::ResetTimer(n) => {
+                self.timers[usize::from(n)].reset(rlo);
+                self.status.end_string();
+            }
+            Op::CountUp(n) => {
+                self.counters[usize::from(n)].up(rlo);
+                self.status.end_string();
+            }
+            Op::CountDown(n) => {
+                self.counters[usize::from(n)].down(rlo);
+                self.status.end_string();
+            }
+            Op::SetCounter(n) => {
+                self.counters[usize::from(n)].set(rlo, self.accu1);
+                self.status.end_string();
+            }
+            Op::ResetCounter(n) => {
+                self.counters[usize::from(n)].reset(rlo);
+                self.status.end_string();
+            }
+            Op::EnableCounter(n) => {
+                self.counters[usize::from(n)].enable(rlo);
+                self.status.end_string();
+            }
+            Op::CallMissing { kind, number, conditional } => {
+                if !conditional || rlo {
+                    return Err((StopCause::LzfBlock, StopDetail::Text(format!("{} {number}", kind.name()))));
+                }
+                self.status.after_jump();
+            }
+            Op::OpenDb(number) => {
+                if self.data_blocks[usize::from(number)].is_none() {
+                    return Err((StopCause::LzfBlock, StopDetail::Text(format!("DB {number}"))));
+                }
+                self.open_db = Some(number);
+            }
+            Op::GenerateDb(number) => {
+                let words = self.accu1 as u16;
+                if words > self.profile.sizes.data_words {
+                    let text = format!("G DB {number} with {words} words: the CPU allows {}", self.profile.sizes.data_words);
+                    return Err((StopCause::LzfData, StopDetail::Text(text)));
+                }
+                let slot = &mut self.data_blocks[usize::from(number)];
+                if slot.is_none() {
+                    *slot = Some(vec![0; usize::from(words)]);
+                }
+            }
+            Op::Nop => {}
+            Op::Stop => {
+                self.stop_requested.get_or_insert((self.block, pc));
+            }
+            Op::WordLogic(kind) => arith::word_logic(kind, &mut self.accu1, self.accu2, &mut self.status),
+            Op::ShiftLeft(n) => arith::shift(true, n, &mut self.accu1, &mut self.status),
+            Op::ShiftRight(n) => arith::shift(false, n, &mut self.accu1, &mut self.status),
+            Op::OnesComplement => arith::ones_complement(&mut self.accu1),
+            Op::TwosComplement => arith::twos_complement(&mut self.accu1, &mut self.status),
+            Op::Swap => std::mem::swap(&mut self.accu1, &mut self.accu2),
+            Op::Increment(n) => arith::increment(&mut self.accu1, i16::from(n)),
+            Op::Decrement(n) => arith::increment(&mut self.accu1, -i16::from(n)),
+            Op::SetUnconditional(target) => self.write_bit_target(target, true, pc)?,
+            Op::ResetUnconditional(target) => self.write_bit_target(target, false, pc)?,
+            Op::TestBit { negate, target } => {
+                let value = self.bit_target(target, pc)?;
+                self.status.load(value != negate);
+            }
+            Op::DisableInterrupts => self.interrupts_enabled = false,
+            Op::EnableInterrupts => {
+                self.interrupts_enabled = true;
+                if self.engine.has_pending() {
+                    self.attention_at = 0;
+                }
+            }
+            handled_by_the_loop => unreachable!("{handled_by_the_loop:?} is executed inline"),
+        }
+        Ok(())
+    }
+}
+
+fn read_bytes(memory: &[u8], at: usize, width: Width) -> u32 {
+    match width {
+        Width::Byte => u32::from(memory[at]),
+        Width::Word => u32::from(u16::from_be_bytes([memory[at], memory[at + 1]])),
+        Width::Double => u32::from_be_bytes([memory[at], memory[at + 1], memory[at + 2], memory[at + 3]]),
+    }
+}
+
+fn write_bytes(memory: &mut [u8], at: usize, width: Width, value: u32) {
+    match width {
+        Width::Byte => memory[at] = value as u8,
+        Width::Word => memory[at..at + 2].copy_from_slice(&(value as u16).to_be_bytes()),
+        Width::Double => memory[at..at + 4].copy_from_slice(&value.to_be_bytes()),
+    }
+}
+
+/// Reads a process-image value of the given width (for scenario expectations and reports).
+pub fn read_memory(memory: &[u8], at: usize, width: Width) -> u32 {
+    read_bytes(memory, at, width)
+}

@@ -1,0 +1,583 @@
+//! The interrupt engine: pending requests, priorities, and where they are serviced.
+//!
+//! The execution loop reports interrupt points (block calls, block ends, every operation in
+//! `operation` mode) only when `clock >= attention_at`; the engine keeps `attention_at` at the
+//! next time something is due (a request, OB 13, the watchdog, an input change), or at 0 while
+//! a pending request outranks the running level. With nothing pending the loop pays one
+//! comparison per block change.
+//!
+//! The rules, and the seed each comes from:
+//! - seed 000 (SINUMERIK 840C, 5.3.1/5.3.2): in normal mode the cyclic program is interrupted
+//!   only at block changes; OB 2 and OB 5 are not processed in normal mode; simultaneous
+//!   requests are serviced by priority; after an interrupt OB ends, priorities are reassigned.
+//! - seed 002 (S5-95F): OB 13 at its interval with the interrupt PII read at its start and the
+//!   interrupt PIQ written after it if it was written; OB 13 due again before it finished is the
+//!   wake-up error (STOP WECK).
+//! - seed 001 (SPEED7): hardware interrupts per module and channel, acknowledged after the OB;
+//!   same-channel loss with diagnostic interrupt OB 82; other-channel hold; busy-OB hold; none
+//!   in STARTUP, loss at the transition to RUN; OB 85 for a missing OB, STOP without OB 85.
+
+use std::collections::BTreeMap;
+
+use crate::profile::{Family, InterruptPoints};
+use crate::trace::Event;
+
+use super::stop::{Stop, StopCause, StopDetail};
+use super::{Cpu, Mode, Point, SavedLevel};
+
+/// Something that happens at a simulated time, from the scenario.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Happening {
+    /// Process inputs change: (byte offset in the input modules, width in bytes or a bit).
+    SetInputs(Vec<InputChange>),
+    /// An S5 interrupt request for an interrupt OB.
+    Interrupt { ob: u8 },
+    /// A SPEED7 hardware interrupt event on a module's channel.
+    Hardware { module: u16, channel: u16, active_for_ns: u64 },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct InputChange {
+    pub target: InputTarget,
+    pub byte: u16,
+    pub bit: u8,
+    pub bytes: u8,
+    pub value: u32,
+}
+
+/// Which input modules an input change writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InputTarget {
+    Process,
+    Extended,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scheduled {
+    pub at_ns: u64,
+    pub what: Happening,
+}
+
+/// The engine's settings for one run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EngineConfig {
+    pub points: InterruptPoints,
+    /// SINUMERIK 840C special mode: OB 2 and OB 5 are processed.
+    pub special_mode: bool,
+    pub ob13_interval_ns: Option<u64>,
+    /// SPEED7: which OB a module's hardware interrupts start.
+    pub hw_modules: Vec<(u16, u8)>,
+    pub watchdog_ns: u64,
+}
+
+impl Default for EngineConfig {
+    fn default() -> Self {
+        EngineConfig {
+            points: InterruptPoints::Block,
+            special_mode: false,
+            ob13_interval_ns: None,
+            hw_modules: Vec::new(),
+            watchdog_ns: 150_000_000,
+        }
+    }
+}
+
+/// Counts and latencies of one interrupt OB.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ObStats {
+    pub requested: u64,
+    pub serviced: u64,
+    pub lost: u64,
+    pub ignored: u64,
+    pub latency_min: u64,
+    pub latency_max: u64,
+    pub latency_sum: u64,
+}
+
+/// Where a request came from, for acknowledgement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct HardwareSource {
+    pub module: u16,
+    pub channel: u16,
+    pub active_until: u64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Request {
+    pub id: u64,
+    pub ob: u8,
+    pub requested_at: u64,
+    pub hardware: Option<HardwareSource>,
+}
+
+/// An interrupt OB that is running (or interrupted by a higher one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Active {
+    pub request: Request,
+    pub priority: u8,
+}
+
+/// A hardware event held until an acknowledgement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Held {
+    request: Request,
+    /// The module whose acknowledgement releases it.
+    released_by: u16,
+}
+
+#[derive(Default)]
+pub struct Engine {
+    pub config: EngineConfig,
+    schedule: Vec<Scheduled>,
+    next: usize,
+    next_ob13_at: Option<u64>,
+    ob13_ended_at: u64,
+    pending: Vec<Request>,
+    pub active: Vec<Active>,
+    held: Vec<Held>,
+    /// SPEED7 modules between identification and acknowledgement: module → (channel, request id).
+    busy_modules: BTreeMap<u16, (u16, u64)>,
+    pub stats: BTreeMap<u8, ObStats>,
+    next_id: u64,
+    /// S5-95F: OB 13 runs, so PY/PW reach the interrupt images.
+    pub interrupt_images: bool,
+    interrupt_piq_dirty: Vec<bool>,
+    /// When RUN began (hardware interrupts before it are not produced).
+    run_started_at: Option<u64>,
+}
+
+impl Engine {
+    pub fn new(config: EngineConfig, mut schedule: Vec<Scheduled>) -> Self {
+        schedule.sort_by_key(|item| item.at_ns);
+        Engine { config, schedule, ..Engine::default() }
+    }
+
+    pub fn has_pending(&self) -> bool {
+        !self.pending.is_empty()
+    }
+
+    fn new_id(&mut self) -> u64 {
+        self.next_id += 1;
+        self.next_id
+    }
+
+    fn stats(&mut self, ob: u8) -> &mut ObStats {
+        self.stats.entry(ob).or_default()
+    }
+
+    fn record_latency(&mut self, ob: u8, latency: u64) {
+        let stats = self.stats(ob);
+        stats.latency_min = if stats.serviced == 0 { latency } else { stats.latency_min.min(latency) };
+        stats.latency_max = stats.latency_max.max(latency);
+        stats.latency_sum += latency;
+        stats.serviced += 1;
+    }
+
+    pub fn mark_dirty(&mut self, byte: usize, bytes: usize) {
+        if self.interrupt_piq_dirty.len() < byte + bytes {
+            self.interrupt_piq_dirty.resize(byte + bytes, false);
+        }
+        self.interrupt_piq_dirty[byte..byte + bytes].fill(true);
+    }
+
+    /// The next time the engine must look, apart from pending requests.
+    fn next_due(&self) -> u64 {
+        let scheduled = self.schedule.get(self.next).map_or(u64::MAX, |item| item.at_ns);
+        scheduled.min(self.next_ob13_at.unwrap_or(u64::MAX))
+    }
+}
+
+impl Cpu {
+    fn priority_of(&self, ob: u8) -> u8 {
+        self.profile.interrupt_ob(ob).map_or(0, |entry| entry.priority)
+    }
+
+    /// The priority of the running level: 0 for the cyclic and startup levels.
+    pub fn running_priority(&self) -> u8 {
+        self.engine.active.last().map_or(0, |active| active.priority)
+    }
+
+    fn emit(&mut self, t_ns: u64, event: Event) {
+        if self.tracer.enabled {
+            let indent = self.frames.len() + 2 * self.levels.len() + 1;
+            self.tracer.emit(t_ns, indent, event);
+        }
+    }
+
+    pub(super) fn trace_call(&mut self, from: u16, to: u16) {
+        let depth = self.depth();
+        let event = Event::BlockCall { from: self.block_id(from).to_string(), to: self.block_id(to).to_string(), depth };
+        let indent = self.frames.len() + 2 * self.levels.len();
+        self.tracer.emit(self.clock, indent, event);
+    }
+
+    pub(super) fn trace_end(&mut self, block: u16) {
+        let depth = self.depth();
+        let event = Event::BlockEnd { block: self.block_id(block).to_string(), depth };
+        let indent = self.frames.len() + 2 * self.levels.len() + 1;
+        self.tracer.emit(self.clock, indent, event);
+    }
+
+    /// Keeps `attention_at` at the next moment the engine has to look.
+    pub fn update_attention(&mut self) {
+        let serviceable = self.mode == Mode::Run
+            && self.interrupts_enabled
+            && self.engine.pending.iter().any(|request| self.priority_of(request.ob) > self.running_priority());
+        let watchdog = self.cycle_started_at.saturating_add(self.engine.config.watchdog_ns);
+        self.attention_at = if serviceable { 0 } else { self.engine.next_due().min(watchdog) };
+    }
+
+    pub fn start_engine_run(&mut self) {
+        self.engine.run_started_at = Some(self.clock);
+        if let Some(interval) = self.engine.config.ob13_interval_ns {
+            self.engine.next_ob13_at = Some(self.clock + interval);
+        }
+    }
+
+    /// Handles an interrupt point: takes in what is due, checks the watchdog, and services the
+    /// highest pending request that outranks the running level. Returns whether an OB was
+    /// entered.
+    pub fn at_point(&mut self, point: Point) -> Result<bool, Stop> {
+        self.poll()?;
+        let cycle_time = self.clock - self.cycle_started_at;
+        if self.mode != Mode::Stop && cycle_time > self.engine.config.watchdog_ns {
+            let detail = StopDetail::Cycle { cycle_ns: cycle_time, watchdog_ns: self.engine.config.watchdog_ns };
+            return Err(self.stop(StopCause::Zyk, self.pc.saturating_sub(1), detail));
+        }
+        let is_point = match self.engine.config.points {
+            InterruptPoints::Block => matches!(point, Point::BlockCall | Point::BlockEnd | Point::Cycle),
+            InterruptPoints::Operation => point != Point::Loop,
+        };
+        let mut entered = false;
+        if is_point && self.mode == Mode::Run && self.interrupts_enabled {
+            entered = self.service(point)?;
+        }
+        self.update_attention();
+        Ok(entered)
+    }
+
+    /// Takes in everything due by now, in time order.
+    pub(super) fn poll(&mut self) -> Result<(), Stop> {
+        loop {
+            let scheduled_at = self.engine.schedule.get(self.engine.next).map(|item| item.at_ns);
+            let ob13_at = self.engine.next_ob13_at;
+            let due = [scheduled_at, ob13_at].into_iter().flatten().filter(|at| *at <= self.clock).min();
+            let Some(at) = due else { return Ok(()) };
+            if ob13_at == Some(at) {
+                let interval = self.engine.config.ob13_interval_ns.unwrap_or(u64::MAX);
+                self.engine.next_ob13_at = Some(at.saturating_add(interval));
+                self.ob13_due(at)?;
+            } else {
+                let item = self.engine.schedule[self.engine.next].clone();
+                self.engine.next += 1;
+                self.happen(item)?;
+            }
+        }
+    }
+
+    fn happen(&mut self, item: Scheduled) -> Result<(), Stop> {
+        match item.what {
+            Happening::SetInputs(changes) => {
+                for change in changes {
+                    self.apply_input(change);
+                }
+                Ok(())
+            }
+            Happening::Interrupt { ob } => {
+                self.request(ob, item.at_ns, None);
+                Ok(())
+            }
+            Happening::Hardware { module, channel, active_for_ns } => {
+                let source = HardwareSource { module, channel, active_until: item.at_ns.saturating_add(active_for_ns) };
+                self.hardware_event(item.at_ns, source)
+            }
+        }
+    }
+
+    pub fn apply_input(&mut self, change: InputChange) {
+        let memory = match change.target {
+            InputTarget::Process => &mut self.inputs,
+            InputTarget::Extended => &mut self.extended_inputs,
+        };
+        let at = usize::from(change.byte);
+        if change.bytes == 0 {
+            let mask = 1u8 << change.bit;
+            if change.value != 0 { memory[at] |= mask } else { memory[at] &= !mask }
+        } else {
+            let bytes = change.value.to_be_bytes();
+            let count = usize::from(change.bytes);
+            memory[at..at + count].copy_from_slice(&bytes[4 - count..]);
+        }
+    }
+
+    /// Where the running level is, for the request event: the block, and the line when the
+    /// ops since the last interrupt point run straight (the request time falls in one of them).
+    fn place_of_request(&self, at: u64) -> (Option<String>, Option<u32>) {
+        if self.block == super::IDLE || self.mode != Mode::Run {
+            return (None, None);
+        }
+        let block = &self.program.blocks[usize::from(self.block)];
+        let mut t = self.clock;
+        let mut pc = self.pc as usize;
+        let straight = !block.code.iter().any(|op| matches!(op, crate::compiler::Op::Jump(..)));
+        let mut line = None;
+        if straight {
+            while pc > 0 {
+                pc -= 1;
+                let cost = u64::from(block.costs[pc]);
+                if t.saturating_sub(cost) <= at {
+                    line = Some(self.sources.line_of(block.spans[pc]));
+                    break;
+                }
+                t -= cost;
+            }
+        }
+        (Some(block.id.to_string()), line)
+    }
+
+    /// An interrupt request for an OB: ignored, lost, or pending.
+    fn request(&mut self, ob: u8, at: u64, hardware: Option<HardwareSource>) -> Option<u64> {
+        let id = self.engine.new_id();
+        self.engine.stats(ob).requested += 1;
+        let (block, line) = self.place_of_request(at);
+        let (module, channel) = hardware.map_or((None, None), |source| (Some(source.module), Some(source.channel)));
+        self.emit(at, Event::IrqRequest { id, ob, module, channel, block, line });
+        let ignored = if self.profile.family == Family::Sinumerik840c && !self.engine.config.special_mode && (ob == 2 || ob == 5) {
+            Some(format!("normal mode: OB {ob} is not processed, even when it exists (seed 000, 5.3.1)"))
+        } else if self.program.ob(ob).is_none() {
+            Some(format!("OB {ob} is not programmed"))
+        } else {
+            None
+        };
+        if let Some(reason) = ignored {
+            self.engine.stats(ob).ignored += 1;
+            self.emit(at, Event::IrqIgnored { id, ob, reason });
+            return None;
+        }
+        if self.engine.pending.iter().any(|request| request.ob == ob) {
+            self.engine.stats(ob).lost += 1;
+            let reason = format!("OB {ob} already has a pending request");
+            self.emit(at, Event::IrqLost { id, ob, reason });
+            return None;
+        }
+        self.engine.pending.push(super::interrupts::Request { id, ob, requested_at: at, hardware });
+        Some(id)
+    }
+
+    /// S5-95F: OB 13 is due. Due again while it runs, is pending, or ran past this moment: the
+    /// wake-up error (seed 002).
+    fn ob13_due(&mut self, at: u64) -> Result<(), Stop> {
+        if self.program.ob(13).is_none() || self.mode != Mode::Run {
+            return Ok(());
+        }
+        let running = self.engine.active.iter().any(|active| active.request.ob == 13);
+        let pending = self.engine.pending.iter().any(|request| request.ob == 13);
+        if running || pending || self.engine.ob13_ended_at > at {
+            return Err(self.stop(StopCause::Weck, self.pc.saturating_sub(1), StopDetail::Ob(13)));
+        }
+        self.request(13, at, None);
+        Ok(())
+    }
+
+    /// SPEED7: a hardware interrupt event on a module's channel (seed 001).
+    fn hardware_event(&mut self, at: u64, source: HardwareSource) -> Result<(), Stop> {
+        let Some(&(_, ob)) = self.engine.config.hw_modules.iter().find(|(module, _)| *module == source.module) else {
+            return Ok(());
+        };
+        let run_started = self.engine.run_started_at;
+        if self.mode != Mode::Run || run_started.is_none_or(|started| at < started) {
+            let id = self.engine.new_id();
+            self.engine.stats(ob).requested += 1;
+            let still_active = run_started.is_some_and(|started| source.active_until > started);
+            let event = if still_active {
+                self.engine.stats(ob).lost += 1;
+                Event::IrqLost { id, ob, reason: "hardware interrupt during the transition to RUN (seed 001)".into() }
+            } else {
+                self.engine.stats(ob).ignored += 1;
+                Event::IrqIgnored { id, ob, reason: "no hardware interrupt is produced in STARTUP (seed 001)".into() }
+            };
+            self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block: None, line: None });
+            self.emit(at, event);
+            return Ok(());
+        }
+        if let Some(&(channel, _)) = self.engine.busy_modules.get(&source.module) {
+            let id = self.engine.new_id();
+            self.engine.stats(ob).requested += 1;
+            let (block, line) = self.place_of_request(at);
+            self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block, line });
+            let request = Request { id, ob, requested_at: at, hardware: Some(source) };
+            if channel == source.channel {
+                self.engine.stats(ob).lost += 1;
+                let reason = "same channel between identification and acknowledgement (seed 001)".to_string();
+                self.emit(at, Event::IrqLost { id, ob, reason });
+                if self.program.ob(82).is_some() {
+                    self.request(82, at, None);
+                }
+            } else {
+                self.engine.held.push(Held { request, released_by: source.module });
+            }
+            return Ok(());
+        }
+        let ob_busy_for = self.engine.active.iter().map(|active| active.request).chain(self.engine.pending.iter().copied()).find_map(|request| {
+            (request.ob == ob).then_some(request.hardware).flatten().filter(|other| other.module != source.module)
+        });
+        if let Some(other) = ob_busy_for {
+            let id = self.engine.new_id();
+            self.engine.stats(ob).requested += 1;
+            let (block, line) = self.place_of_request(at);
+            self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block, line });
+            let request = Request { id, ob, requested_at: at, hardware: Some(source) };
+            self.engine.held.push(Held { request, released_by: other.module });
+            return Ok(());
+        }
+        self.identify(at, ob, source)
+    }
+
+    /// The OS identifies the module's OB: the OB is requested and the module is busy until the
+    /// acknowledgement; a missing OB calls OB 85 (the interrupt is acknowledged), and a missing
+    /// OB 85 stops the CPU.
+    fn identify(&mut self, at: u64, ob: u8, source: HardwareSource) -> Result<(), Stop> {
+        if self.program.ob(ob).is_none() {
+            let id = self.engine.new_id();
+            self.engine.stats(ob).requested += 1;
+            self.engine.stats(ob).ignored += 1;
+            let (block, line) = self.place_of_request(at);
+            self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block, line });
+            if self.program.ob(85).is_none() {
+                self.emit(at, Event::IrqIgnored { id, ob, reason: format!("OB {ob} is not programmed and OB 85 is missing (seed 001)") });
+                return Err(self.stop(StopCause::Ob85, self.pc.saturating_sub(1), StopDetail::Module { module: source.module, ob }));
+            }
+            self.emit(at, Event::IrqIgnored { id, ob, reason: format!("OB {ob} is not programmed: OB 85 is called, the interrupt acknowledged (seed 001)") });
+            self.request(85, at, None);
+            return Ok(());
+        }
+        if let Some(id) = self.request(ob, at, Some(source)) {
+            self.engine.busy_modules.insert(source.module, (source.channel, id));
+        }
+        Ok(())
+    }
+
+    /// Services the highest pending request above the running priority, if any.
+    fn service(&mut self, point: Point) -> Result<bool, Stop> {
+        let running = self.running_priority();
+        let best = self
+            .engine
+            .pending
+            .iter()
+            .enumerate()
+            .map(|(index, request)| (self.priority_of(request.ob), std::cmp::Reverse(request.requested_at), index))
+            .filter(|(priority, _, _)| *priority > running)
+            .max();
+        let Some((priority, _, index)) = best else { return Ok(false) };
+        let request = self.engine.pending.remove(index);
+        let latency = self.clock - request.requested_at;
+        self.engine.record_latency(request.ob, latency);
+        let idle = self.block == super::IDLE;
+        let interrupted = (!idle).then(|| self.block_id(self.block).to_string());
+        self.emit(self.clock, Event::IrqService {
+            id: request.id,
+            ob: request.ob,
+            latency_ns: latency,
+            point: point.name(),
+            block: interrupted,
+        });
+        self.levels.push(SavedLevel {
+            accu1: self.accu1,
+            accu2: self.accu2,
+            status: self.status,
+            open_db: self.open_db,
+            block: self.block,
+            pc: self.pc,
+            params: self.params,
+            level_base: self.level_base,
+            interrupts_enabled: self.interrupts_enabled,
+            idle,
+            last_point_at: self.last_point_at,
+        });
+        self.engine.active.push(Active { request, priority });
+        let block = self.program.ob(request.ob).expect("requests are only pending for programmed OBs");
+        self.enter_level(block);
+        if request.ob == 13 && self.profile.family == Family::S5_95f {
+            self.interrupt_input_cycle();
+        }
+        Ok(true)
+    }
+
+    /// S5-95F: at OB 13 start the input modules are read into the interrupt PII (seed 002).
+    fn interrupt_input_cycle(&mut self) {
+        let length = self.interrupt_pii.len();
+        self.interrupt_pii.copy_from_slice(&self.inputs[..length]);
+        let duration = u64::from(self.profile.timings.data_cycle);
+        self.emit(self.clock, Event::DataCycle { kind: "interrupt_input", duration_ns: duration });
+        self.clock += duration;
+        self.engine.interrupt_images = true;
+        self.interrupt_piq_written = false;
+        self.engine.interrupt_piq_dirty.clear();
+    }
+
+    /// S5-95F: after OB 13, the interrupt PIQ goes to the modules, only if it was written.
+    fn interrupt_output_cycle(&mut self) {
+        self.engine.interrupt_images = false;
+        if !self.interrupt_piq_written {
+            return;
+        }
+        let dirty = std::mem::take(&mut self.engine.interrupt_piq_dirty);
+        for (byte, written) in dirty.iter().enumerate() {
+            if *written {
+                self.outputs[byte] = self.interrupt_piq[byte];
+            }
+        }
+        self.interrupt_piq_written = false;
+        let duration = u64::from(self.profile.timings.data_cycle);
+        self.emit(self.clock, Event::DataCycle { kind: "interrupt_output", duration_ns: duration });
+        self.clock += duration;
+    }
+
+    /// The interrupt OB's level has ended: acknowledge, restore the interrupted level.
+    pub fn leave_interrupt(&mut self) {
+        let Some(active) = self.engine.active.pop() else { return };
+        let request = active.request;
+        self.emit(self.clock, Event::IrqEnd { id: request.id, ob: request.ob });
+        if request.ob == 13 && self.profile.family == Family::S5_95f {
+            self.interrupt_output_cycle();
+            self.engine.ob13_ended_at = self.clock;
+        }
+        let level = self.levels.pop().expect("an interrupt level has a saved level");
+        self.accu1 = level.accu1;
+        self.accu2 = level.accu2;
+        self.status = level.status;
+        self.open_db = level.open_db;
+        self.block = level.block;
+        self.pc = level.pc;
+        self.params = level.params;
+        self.level_base = level.level_base;
+        self.interrupts_enabled = level.interrupts_enabled;
+        self.last_point_at = self.clock;
+        if let Some(source) = request.hardware {
+            self.acknowledge(source.module);
+        }
+    }
+
+    /// SPEED7: the channel-specific acknowledgement after the OB has run; held events fire now
+    /// if still active, else they are lost (seed 001).
+    fn acknowledge(&mut self, module: u16) {
+        self.engine.busy_modules.remove(&module);
+        let (released, kept): (Vec<Held>, Vec<Held>) =
+            std::mem::take(&mut self.engine.held).into_iter().partition(|held| held.released_by == module);
+        self.engine.held = kept;
+        for held in released {
+            let request = held.request;
+            let source = request.hardware.expect("held requests are hardware interrupts");
+            if self.clock < source.active_until && !self.engine.busy_modules.contains_key(&source.module) {
+                self.engine.busy_modules.insert(source.module, (source.channel, request.id));
+                self.engine.pending.push(request);
+            } else if self.engine.busy_modules.contains_key(&source.module) {
+                self.engine.held.push(Held { request, released_by: source.module });
+            } else {
+                self.engine.stats(request.ob).lost += 1;
+                let reason = "no longer active at the acknowledgement (seed 001)".to_string();
+                self.emit(self.clock, Event::IrqLost { id: request.id, ob: request.ob, reason });
+            }
+        }
+    }
+}

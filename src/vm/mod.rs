@@ -1,0 +1,296 @@
+//! The virtual CPU: process images, flags, timers, counters, data blocks, accumulators, status
+//! and the block stack, executing the compiled program on simulated time.
+//!
+//! [`exec`] is the execution loop; [`cycle`] drives the modes and the cycle; [`interrupts`] is
+//! the engine that decides, at the interrupt points the loop reports, which OB runs.
+
+pub mod arith;
+pub mod counters;
+pub mod cycle;
+pub mod exec;
+pub mod interrupts;
+pub mod status;
+pub mod stop;
+pub mod timers;
+
+use std::sync::Arc;
+
+use crate::ast::BlockId;
+use crate::compiler::bytecode::NO_PARAMS;
+use crate::compiler::{Program, Resolved};
+use crate::profile::Profile;
+use crate::source::SourceSet;
+use crate::trace::Tracer;
+
+use counters::Counter;
+use interrupts::Engine;
+use status::Status;
+use stop::{StackEntry, Stop, StopCause, StopDetail};
+use timers::Timer;
+
+/// A return point on the block stack.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Frame {
+    pub block: u16,
+    pub pc: u32,
+    pub open_db: Option<u8>,
+    pub params: u16,
+}
+
+/// What an interrupted level had when an interrupt OB took over.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SavedLevel {
+    pub accu1: u32,
+    pub accu2: u32,
+    pub status: Status,
+    pub open_db: Option<u8>,
+    pub block: u16,
+    pub pc: u32,
+    pub params: u16,
+    pub level_base: usize,
+    pub interrupts_enabled: bool,
+    /// The level was between cycles (no block running).
+    pub idle: bool,
+    /// The cyclic level's last interrupt point, to resume the stretch measurement.
+    pub last_point_at: u64,
+}
+
+/// The operating mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Stop,
+    Startup,
+    Run,
+}
+
+impl Mode {
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Stop => "STOP",
+            Mode::Startup => "STARTUP",
+            Mode::Run => "RUN",
+        }
+    }
+}
+
+/// Why the execution loop handed control back.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Point {
+    BlockCall,
+    BlockEnd,
+    Operation,
+    Cycle,
+    /// A backward jump: no interrupt point, but the watchdog is checked.
+    Loop,
+}
+
+impl Point {
+    pub fn name(self) -> &'static str {
+        match self {
+            Point::BlockCall => "block_call",
+            Point::BlockEnd => "block_end",
+            Point::Operation => "operation",
+            Point::Cycle => "cycle",
+            Point::Loop => "loop",
+        }
+    }
+}
+
+pub enum Exit {
+    /// The level's bottom block executed its block end.
+    LevelEnd,
+    Point(Point),
+    Stop(Stop),
+}
+
+/// The longest stretch between two interrupt points on the cyclic level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Stretch {
+    pub ns: u64,
+    pub block: u16,
+}
+
+/// The block index that stands for "no block runs" (between cycles).
+pub const IDLE: u16 = u16::MAX;
+
+pub struct Cpu {
+    pub program: Arc<Program>,
+    /// For line numbers in traces and STOP reports.
+    pub sources: Arc<SourceSet>,
+    pub profile: &'static Profile,
+    /// PII, then PIQ, then the flags (see [`crate::compiler::Layout`]).
+    pub image: Vec<u8>,
+    /// The process inputs at the input modules.
+    pub inputs: Vec<u8>,
+    /// The process outputs at the output modules.
+    pub outputs: Vec<u8>,
+    pub extended_inputs: Vec<u8>,
+    pub extended_outputs: Vec<u8>,
+    /// S5-95F interrupt process images.
+    pub interrupt_pii: Vec<u8>,
+    pub interrupt_piq: Vec<u8>,
+    pub interrupt_piq_written: bool,
+    pub timers: Vec<Timer>,
+    pub counters: Vec<Counter>,
+    /// Data blocks by number.
+    pub data_blocks: Vec<Option<Vec<u16>>>,
+    pub accu1: u32,
+    pub accu2: u32,
+    pub status: Status,
+    pub open_db: Option<u8>,
+    pub block: u16,
+    pub pc: u32,
+    pub params: u16,
+    pub frames: Vec<Frame>,
+    pub level_base: usize,
+    pub levels: Vec<SavedLevel>,
+    pub interrupts_enabled: bool,
+    pub mode: Mode,
+    /// Simulated time in ns.
+    pub clock: u64,
+    /// The loop hands control to the engine at an interrupt point once `clock` reaches this.
+    pub attention_at: u64,
+    pub instructions: u64,
+    pub cycle: u64,
+    pub cycle_started_at: u64,
+    pub stop_requested: Option<(u16, u32)>,
+    pub last_point_at: u64,
+    pub longest_stretch: Stretch,
+    pub engine: Engine,
+    pub tracer: Tracer,
+}
+
+impl Cpu {
+    pub fn new(program: Arc<Program>, sources: Arc<SourceSet>) -> Self {
+        let profile = program.profile;
+        let sizes = profile.sizes;
+        let periphery = usize::from(sizes.peripheral_bytes);
+        let mut data_blocks = vec![None; 256];
+        for block in &program.data_blocks {
+            if block.id.kind == crate::mnemonics::BlockKind::Db {
+                data_blocks[usize::from(block.id.number)] = Some(block.words.clone());
+            }
+        }
+        let levels_capacity = profile.interrupt_obs.len() + 2;
+        Cpu {
+            image: vec![0; program.layout.total()],
+            inputs: vec![0; periphery],
+            outputs: vec![0; periphery],
+            extended_inputs: vec![0; periphery],
+            extended_outputs: vec![0; periphery],
+            interrupt_pii: vec![0; periphery],
+            interrupt_piq: vec![0; periphery],
+            interrupt_piq_written: false,
+            timers: vec![Timer::default(); usize::from(sizes.timers)],
+            counters: vec![Counter::default(); usize::from(sizes.counters)],
+            data_blocks,
+            accu1: 0,
+            accu2: 0,
+            status: Status::default(),
+            open_db: None,
+            block: 0,
+            pc: 0,
+            params: NO_PARAMS,
+            frames: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
+            level_base: 0,
+            levels: Vec::with_capacity(levels_capacity),
+            interrupts_enabled: true,
+            mode: Mode::Stop,
+            clock: 0,
+            attention_at: u64::MAX,
+            instructions: 0,
+            cycle: 0,
+            cycle_started_at: 0,
+            stop_requested: None,
+            last_point_at: 0,
+            longest_stretch: Stretch::default(),
+            engine: Engine::default(),
+            tracer: Tracer::off(),
+            profile,
+            program,
+            sources,
+        }
+    }
+
+    pub fn block_id(&self, index: u16) -> BlockId {
+        self.program.blocks[usize::from(index)].id
+    }
+
+    /// Source line of an op.
+    pub fn line_of(&self, block: u16, pc: u32, sources: &crate::source::SourceSet) -> u32 {
+        let block = &self.program.blocks[usize::from(block)];
+        match block.spans.get(pc as usize) {
+            Some(span) => sources.line_of(*span),
+            None => sources.line_of(block.header),
+        }
+    }
+
+    /// Nesting depth of the running level (1 = its bottom block).
+    pub fn depth(&self) -> usize {
+        self.frames.len() - self.level_base + 1
+    }
+
+    /// Starts a level at a block (OB 1, a startup OB, an interrupt OB).
+    pub fn enter_level(&mut self, block: u16) {
+        self.level_base = self.frames.len();
+        self.block = block;
+        self.pc = 0;
+        self.params = NO_PARAMS;
+        self.open_db = None;
+        self.status = Status::default();
+    }
+
+    /// The block stack, innermost first: the running block, then each return point.
+    /// Interrupted levels follow, each with its own return points.
+    pub fn block_stack(&self, pc: u32) -> Vec<(u16, u32)> {
+        let calls = |frames: &[Frame]| frames.iter().rev().map(|frame| (frame.block, frame.pc.saturating_sub(1))).collect::<Vec<_>>();
+        let mut stack = vec![(self.block, pc)];
+        let (mut base, mut top) = (self.level_base, self.frames.len());
+        stack.extend(calls(&self.frames[base..top]));
+        for level in self.levels.iter().rev() {
+            if level.idle {
+                break;
+            }
+            stack.push((level.block, level.pc));
+            top = base;
+            base = level.level_base;
+            stack.extend(calls(&self.frames[base..top]));
+        }
+        stack
+    }
+
+    /// A STOP at the running block's op `pc`, with the block stack. Between cycles it is placed
+    /// at the end of OB 1, where the cycle ended.
+    pub fn stop(&self, cause: StopCause, pc: u32, detail: StopDetail) -> Stop {
+        let (block, pc) = if self.block == IDLE {
+            let ob1 = self.program.ob(1).unwrap_or(0);
+            (ob1, self.program.blocks.get(usize::from(ob1)).map_or(0, |b| b.code.len().saturating_sub(1) as u32))
+        } else {
+            (self.block, pc)
+        };
+        let stack = if self.block == IDLE { vec![(block, pc)] } else { self.block_stack(pc) };
+        let stack = stack
+            .into_iter()
+            .map(|(block, pc)| StackEntry { block: self.block_id(block).to_string(), line: self.line_of(block, pc, &self.sources) })
+            .collect();
+        Stop { cause, block, pc, detail, stack }
+    }
+
+    /// Resolves an actual parameter of the running FB, following parameters passed on from the
+    /// calling FBs.
+    pub fn actual(&self, param: u8) -> Option<Resolved> {
+        let mut list = self.params;
+        let mut frames = self.frames[self.level_base..].iter().rev();
+        let mut index = param;
+        loop {
+            let actual = *self.program.param_lists.get(usize::from(list))?.get(usize::from(index))?;
+            match actual {
+                Resolved::Formal(outer) => {
+                    list = frames.next()?.params;
+                    index = outer;
+                }
+                other => return Some(other),
+            }
+        }
+    }
+}

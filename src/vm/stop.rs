@@ -1,0 +1,166 @@
+//! Why the CPU went to STOP, and the report a PLC engineer reads: the cause as the PG's ISTACK
+//! names it, the source line, and the block stack (BSTACK) with its return points.
+
+use miette::Diagnostic;
+use thiserror::Error;
+
+use crate::source::Span;
+
+/// STOP causes, named as in the CPU 928B interrupt stack (ISTACK).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopCause {
+    /// Cycle monitoring time exceeded.
+    Zyk,
+    /// Block stack overflow: nesting too deep.
+    Stueb,
+    /// Runtime error: a called block or opened data block is not loaded.
+    LzfBlock,
+    /// Runtime error: data word access with no DB open or past the DB's end.
+    LzfData,
+    /// Operation error: bracket stack overflow or underflow, or a substitution (DO, formal
+    /// operand) that gives no valid operation.
+    Bcf,
+    /// The STP operation.
+    Stp,
+    /// Wake-up error: a time-controlled OB due while it still runs or is pending.
+    Weck,
+    /// A hardware interrupt for a module without OB, and no OB 85.
+    Ob85,
+}
+
+impl StopCause {
+    /// The cause as the PG shows it (and as scenario files expect it).
+    pub fn code(self) -> &'static str {
+        match self {
+            StopCause::Zyk => "ZYK",
+            StopCause::Stueb => "STUEB",
+            StopCause::LzfBlock | StopCause::LzfData => "LZF",
+            StopCause::Bcf => "BCF",
+            StopCause::Stp => "STP",
+            StopCause::Weck => "WECK",
+            StopCause::Ob85 => "OB85",
+        }
+    }
+}
+
+/// One BSTACK entry: a block that was called, and where it continues.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StackEntry {
+    pub block: String,
+    pub line: u32,
+}
+
+/// The runtime STOP as a diagnostic.
+#[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
+pub enum StopError {
+    #[error("STOP ZYK: cycle time {cycle_ms} ms exceeded the watchdog ({watchdog_ms} ms) in {block}")]
+    #[diagnostic(code(awl::stop::zyk), help("{stack}\nshorten the cycle, or raise the watchdog in the scenario (`watchdog = \"300ms\"`)"))]
+    CycleTime {
+        cycle_ms: String,
+        watchdog_ms: String,
+        block: String,
+        #[label("running here when the watchdog expired")]
+        at: Span,
+        stack: String,
+    },
+
+    #[error("STOP STUEB: block nesting deeper than {limit} in {block}")]
+    #[diagnostic(code(awl::stop::stueb), help("{stack}\nthe CPU allows {limit} nested blocks; look for a block that calls itself"))]
+    Nesting {
+        limit: u16,
+        block: String,
+        #[label("this call exceeds the block stack")]
+        at: Span,
+        stack: String,
+    },
+
+    #[error("STOP LZF: {target} is not loaded")]
+    #[diagnostic(code(awl::stop::lzf_block), help("{stack}\nadd {target} to the program or load the file that holds it"))]
+    BlockNotLoaded {
+        target: String,
+        #[label("called or opened here")]
+        at: Span,
+        stack: String,
+    },
+
+    #[error("STOP LZF: {problem}")]
+    #[diagnostic(code(awl::stop::lzf_data), help("{stack}\nopen a data block long enough with `C DB n` before using DW/DL/DR/DD/D"))]
+    DataAccess {
+        problem: String,
+        #[label("data access here")]
+        at: Span,
+        stack: String,
+    },
+
+    #[error("STOP BCF: {problem}")]
+    #[diagnostic(code(awl::stop::bcf), help("{stack}"))]
+    Operation {
+        problem: String,
+        #[label("this operation")]
+        at: Span,
+        stack: String,
+    },
+
+    #[error("STOP STP: the program executed STP")]
+    #[diagnostic(code(awl::stop::stp), help("{stack}\nSTP sends the CPU to STOP at the end of the cycle"))]
+    StopOperation {
+        #[label("STP")]
+        at: Span,
+        stack: String,
+    },
+
+    #[error("STOP WECK: OB {ob} was due again before it had finished")]
+    #[diagnostic(code(awl::stop::weck), help("{stack}\nthe wake-up error of seed 002: lengthen the OB 13 interval, shorten OB 13, or reduce the interrupts that delay it"))]
+    WakeUp {
+        ob: u8,
+        #[label("running here when OB {ob} was due")]
+        at: Span,
+        stack: String,
+    },
+
+    #[error("STOP OB85: hardware interrupt of module {module} has no OB, and OB 85 is not programmed")]
+    #[diagnostic(code(awl::stop::ob85), help("{stack}\nprogram OB {ob} for the module, or OB 85 to handle the missing OB (seed 001)"))]
+    MissingOb85 {
+        module: u16,
+        ob: u8,
+        #[label("running here when the interrupt came")]
+        at: Span,
+        stack: String,
+    },
+}
+
+impl StopError {
+    pub fn span(&self) -> Span {
+        match self {
+            StopError::CycleTime { at, .. }
+            | StopError::Nesting { at, .. }
+            | StopError::BlockNotLoaded { at, .. }
+            | StopError::DataAccess { at, .. }
+            | StopError::Operation { at, .. }
+            | StopError::StopOperation { at, .. }
+            | StopError::WakeUp { at, .. }
+            | StopError::MissingOb85 { at, .. } => *at,
+        }
+    }
+}
+
+/// A STOP as the VM records it: cause and details, where, and the block stack.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stop {
+    pub cause: StopCause,
+    /// The block index and op index where it happened.
+    pub block: u16,
+    pub pc: u32,
+    pub detail: StopDetail,
+    pub stack: Vec<StackEntry>,
+}
+
+/// Cause-specific facts for the report.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StopDetail {
+    None,
+    Text(String),
+    Ob(u8),
+    Module { module: u16, ob: u8 },
+    Cycle { cycle_ns: u64, watchdog_ns: u64 },
+}
