@@ -61,8 +61,12 @@ pub fn op_text(op: Op, program: &Program) -> String {
             format!("{logic:?} {source}").to_lowercase()
         }
         Op::WriteData { write, word, bit } => format!("{write:?} D {word}.{bit}").to_lowercase(),
-        Op::LoadImage(width, byte) => format!("load {}", sized(layout, width, byte)),
-        Op::TransferImage(width, byte) => format!("transfer {}", sized(layout, width, byte)),
+        Op::LoadImageByte(byte) => format!("load {}", sized(layout, Width::Byte, byte)),
+        Op::LoadImageWord(byte) => format!("load {}", sized(layout, Width::Word, byte)),
+        Op::LoadImageDouble(byte) => format!("load {}", sized(layout, Width::Double, byte)),
+        Op::TransferImageByte(byte) => format!("transfer {}", sized(layout, Width::Byte, byte)),
+        Op::TransferImageWord(byte) => format!("transfer {}", sized(layout, Width::Word, byte)),
+        Op::TransferImageDouble(byte) => format!("transfer {}", sized(layout, Width::Double, byte)),
         Op::LoadConstant(value) => format!("load-constant {value:#06X}"),
         Op::Call { block, conditional, params } => {
             let id = program.blocks[usize::from(block)].id;

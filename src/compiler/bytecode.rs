@@ -126,8 +126,13 @@ pub enum Op {
     AndBracket,
     OrBracket,
     CloseBracket,
-    LoadImage(Width, u16),
-    TransferImage(Width, u16),
+    /// Loads and transfers of the image memory, one variant per width so the loop dispatches once.
+    LoadImageByte(u16),
+    LoadImageWord(u16),
+    LoadImageDouble(u16),
+    TransferImageByte(u16),
+    TransferImageWord(u16),
+    TransferImageDouble(u16),
     LoadData(DataPart, u16),
     TransferData(DataPart, u16),
     LoadPeripheral { width: Width, byte: u16, extended: bool },
@@ -180,6 +185,22 @@ pub enum Op {
 }
 
 impl Op {
+    pub fn load_image(width: Width, byte: u16) -> Op {
+        match width {
+            Width::Byte => Op::LoadImageByte(byte),
+            Width::Word => Op::LoadImageWord(byte),
+            Width::Double => Op::LoadImageDouble(byte),
+        }
+    }
+
+    pub fn transfer_image(width: Width, byte: u16) -> Op {
+        match width {
+            Width::Byte => Op::TransferImageByte(byte),
+            Width::Word => Op::TransferImageWord(byte),
+            Width::Double => Op::TransferImageDouble(byte),
+        }
+    }
+
     /// Block changes: the interrupt points of normal mode.
     pub fn is_block_change(self) -> bool {
         matches!(

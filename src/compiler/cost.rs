@@ -25,11 +25,9 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
                 BitTarget::Data { .. } => t.bit_data,
             }
         }
-        Op::LoadImage(width, _) | Op::TransferImage(width, _) => match width {
-            Width::Byte => t.load_byte,
-            Width::Word => t.load_word,
-            Width::Double => t.load_double,
-        },
+        Op::LoadImageByte(_) | Op::TransferImageByte(_) => t.load_byte,
+        Op::LoadImageWord(_) | Op::TransferImageWord(_) => t.load_word,
+        Op::LoadImageDouble(_) | Op::TransferImageDouble(_) => t.load_double,
         Op::LoadData(..) | Op::TransferData(..) => t.load_data,
         Op::LoadPeripheral { .. } | Op::TransferPeripheral { .. } => t.load_peripheral,
         Op::LoadConstant(_) => t.load_constant,

@@ -200,7 +200,7 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
             let load = op == Load;
             if let Some(width) = image_width(area) {
                 let byte = layout.image_byte(area, index)?;
-                if load { Op::LoadImage(width, byte) } else { Op::TransferImage(width, byte) }
+                if load { Op::load_image(width, byte) } else { Op::transfer_image(width, byte) }
             } else if let Some(part) = data_part(area) {
                 if load { Op::LoadData(part, index) } else { Op::TransferData(part, index) }
             } else if let Some((width, extended)) = peripheral(area) {

@@ -30,8 +30,16 @@ pub struct CompiledBlock {
     pub code: Vec<Op>,
     /// Where each op was written, parallel to `code`.
     pub spans: Vec<Span>,
-    /// Execution time of each op in ns, parallel to `code`.
-    pub costs: Vec<u32>,
+    /// Execution times as prefix sums: `elapsed[i]` is the time in ns of ops `0..i`, so the
+    /// time of any straight run of ops is one subtraction (`code.len() + 1` entries).
+    pub elapsed: Vec<u64>,
+}
+
+impl CompiledBlock {
+    /// The execution time of op `pc`.
+    pub fn cost(&self, pc: usize) -> u64 {
+        self.elapsed[pc + 1] - self.elapsed[pc]
+    }
 }
 
 /// A data block's initial contents.
@@ -220,14 +228,16 @@ impl<'a> Compiler<'a> {
             params: body.params.clone(),
             code: Vec::with_capacity(body.statements.len()),
             spans: Vec::with_capacity(body.statements.len()),
-            costs: Vec::with_capacity(body.statements.len()),
+            elapsed: Vec::with_capacity(body.statements.len() + 1),
         };
+        compiled.elapsed.push(0);
         let context = BlockContext { id: block.id, set, params: &body.params, labels: &labels };
         for (pc, statement) in body.statements.iter().enumerate() {
             let (op, cost_op) = self.statement(&context, statement, body.statements.get(pc + 1)).unwrap_or((Op::Nop, Op::Nop));
             compiled.code.push(op);
             compiled.spans.push(statement.span);
-            compiled.costs.push(cost::cost(cost_op, &self.profile.timings));
+            let before = *compiled.elapsed.last().expect("starts with 0");
+            compiled.elapsed.push(before + u64::from(cost::cost(cost_op, &self.profile.timings)));
         }
         compiled
     }

@@ -23,18 +23,15 @@ pub fn arithmetic(op: Arith, accu1: &mut u32, accu2: u32, status: &mut Status) {
         Arith::Mul => a * b,
         Arith::Div => {
             if b == 0 {
-                status.cc1 = true;
-                status.cc0 = true;
-                status.ov = true;
-                status.os = true;
+                status.set_condition(true, true);
+                status.set_overflow(true);
                 return;
             }
             a / b
         }
     };
     let wrapped = exact as i16;
-    status.ov = i32::from(wrapped) != exact;
-    status.os |= status.ov;
+    status.set_overflow(i32::from(wrapped) != exact);
     status.set_cc_from(wrapped);
     *accu1 = with_low(*accu1, wrapped as u16);
 }
@@ -50,8 +47,7 @@ pub fn compare(op: Comparison, accu1: u32, accu2: u32, status: &mut Status) {
         Comparison::Lt => a < b,
         Comparison::Le => a <= b,
     };
-    status.cc1 = a > b;
-    status.cc0 = a < b;
+    status.set_condition(a > b, a < b);
     status.load(result);
 }
 
@@ -63,9 +59,8 @@ pub fn word_logic(op: WordLogic, accu1: &mut u32, accu2: u32, status: &mut Statu
         WordLogic::Or => a | b,
         WordLogic::Xor => a ^ b,
     };
-    status.cc1 = result != 0;
-    status.cc0 = false;
-    status.ov = false;
+    status.set_condition(result != 0, false);
+    status.set_overflow(false);
     *accu1 = with_low(*accu1, result);
 }
 
@@ -81,9 +76,8 @@ pub fn shift(left: bool, n: u8, accu1: &mut u32, status: &mut Status) {
     } else {
         (word.checked_shr(n).unwrap_or(0), (word >> (n - 1)) & 1 == 1)
     };
-    status.cc1 = last_out;
-    status.cc0 = false;
-    status.ov = false;
+    status.set_condition(last_out, false);
+    status.set_overflow(false);
     *accu1 = with_low(*accu1, result);
 }
 
@@ -95,8 +89,7 @@ pub fn ones_complement(accu1: &mut u32) {
 pub fn twos_complement(accu1: &mut u32, status: &mut Status) {
     let value = low(*accu1);
     let (result, overflow) = value.overflowing_neg();
-    status.ov = overflow;
-    status.os |= overflow;
+    status.set_overflow(overflow);
     status.set_cc_from(result);
     *accu1 = with_low(*accu1, result as u16);
 }
@@ -121,12 +114,12 @@ mod tests {
     #[test]
     fn add_sets_condition_codes_and_overflow() {
         let (sum, status) = arith(Arith::Add, 30000, 10000);
-        assert!(status.ov && status.os);
+        assert!(status.ov() && status.os());
         assert_eq!(sum, (40000i32 as i16));
-        assert!(status.cc0, "the wrapped result is negative");
+        assert!(status.cc0(), "the wrapped result is negative");
         let (sum, status) = arith(Arith::Add, -5, 5);
         assert_eq!(sum, 0);
-        assert!(!status.cc1 && !status.cc0 && !status.ov);
+        assert!(!status.cc1() && !status.cc0() && !status.ov());
     }
 
     #[test]
@@ -143,16 +136,16 @@ mod tests {
     fn division_by_zero_keeps_accu_and_flags() {
         let (result, status) = arith(Arith::Div, 100, 0);
         assert_eq!(result, 0);
-        assert!(status.cc1 && status.cc0 && status.ov);
+        assert!(status.cc1() && status.cc0() && status.ov());
     }
 
     #[test]
     fn compare_sets_rlo_and_codes() {
         let mut status = Status::default();
         compare(Comparison::Gt, 3, 5, &mut status);
-        assert!(status.rlo && status.cc1 && !status.cc0);
+        assert!(status.rlo() && status.cc1() && !status.cc0());
         compare(Comparison::Le, 3, 5, &mut status);
-        assert!(!status.rlo);
+        assert!(!status.rlo());
     }
 
     #[test]
@@ -161,16 +154,16 @@ mod tests {
         let mut accu = 0x8001;
         shift(true, 1, &mut accu, &mut status);
         assert_eq!(accu, 0x0002);
-        assert!(status.cc1);
+        assert!(status.cc1());
         shift(false, 2, &mut accu, &mut status);
         assert_eq!(accu, 0);
-        assert!(status.cc1);
+        assert!(status.cc1());
         let mut accu = 0x00FF;
         ones_complement(&mut accu);
         assert_eq!(accu, 0xFF00);
         let mut accu = 0x8000;
         twos_complement(&mut accu, &mut status);
-        assert!(status.ov);
+        assert!(status.ov());
         let mut accu = 0x12FF;
         increment(&mut accu, 1);
         assert_eq!(accu, 0x1200);

@@ -31,219 +31,273 @@ impl Cpu {
         if value { *byte |= mask } else { *byte &= !mask }
     }
 
-    #[inline(always)]
     fn load(&mut self, value: u32) {
         self.accu2 = self.accu1;
         self.accu1 = value;
     }
 
+    #[inline(always)]
     fn read_image(&self, width: Width, byte: u16) -> u32 {
         read_bytes(&self.image, usize::from(byte), width)
     }
 
+    #[inline(always)]
     fn write_image(&mut self, width: Width, byte: u16, value: u32) {
         write_bytes(&mut self.image, usize::from(byte), width, value);
     }
 
     /// Marks an interrupt point for the stretch measurement of the cyclic level.
     #[inline(always)]
-    fn mark_point(&mut self, stretch_block: u16) {
+    fn mark_point(&mut self, clock: u64, stretch_block: u16) {
         if self.levels.is_empty() {
-            let stretch = self.clock - self.last_point_at;
+            let stretch = clock - self.last_point_at;
             if stretch > self.longest_stretch.ns {
                 self.longest_stretch = Stretch { ns: stretch, block: stretch_block };
             }
         }
-        self.last_point_at = self.clock;
+        self.last_point_at = clock;
+    }
+
+    /// The op that a formal operand or a `DO` stands for; `DO` also consumes the next op.
+    #[inline(never)]
+    fn concrete(&mut self, op: Op, pc: u32) -> Result<(Op, bool), super::stop::Stop> {
+        match op {
+            Op::Formal { op: code, param } => match self.formal(code, param) {
+                Some(concrete) => Ok((concrete, false)),
+                None => {
+                    let text = format!("formal parameter {} cannot be substituted here", param + 1);
+                    Err(self.stop(StopCause::Bcf, pc, StopDetail::Text(text)))
+                }
+            },
+            Op::Indirect { source, template } => {
+                let value = match source {
+                    IndirectSource::FlagWord(byte) => self.read_image(Width::Word, byte),
+                    IndirectSource::DataWord(word) => match self.data_word(word) {
+                        Some(value) => u32::from(value),
+                        None => return Err(self.data_fault(pc, word)),
+                    },
+                };
+                match self.substitute(template, value as u16) {
+                    Some(concrete) => Ok((concrete, true)),
+                    None => {
+                        let text = format!("DO parameter {value} gives no valid operand");
+                        Err(self.stop(StopCause::Bcf, pc, StopDetail::Text(text)))
+                    }
+                }
+            }
+            other => Ok((other, false)),
+        }
     }
 
     fn run_loop<const OPERATION_POINTS: bool>(&mut self) -> Exit {
         let program = Arc::clone(&self.program);
-        let mut block = &program.blocks[usize::from(self.block)];
+        let mut code: &[Op] = &program.blocks[usize::from(self.block)].code;
+        // Prefix sums of the op times: time is settled only when control moves or someone reads
+        // the clock, so straight code pays nothing per op for it. Slicing to `code.len() + 1`
+        // lets the fetch's bounds check cover `elapsed[pc]` too.
+        let mut elapsed: &[u64] = &program.blocks[usize::from(self.block)].elapsed[..=code.len()];
         let mut pc = self.pc as usize;
-        loop {
-            let Some(&fetched) = block.code.get(pc) else {
-                return Exit::Stop(self.stop(StopCause::Bcf, pc as u32, StopDetail::Text("the block has no BE".into())));
+        // The clock stood at `segment_clock` when the straight run of ops from `segment_start`
+        // began; `executed` counts the ops of the finished runs.
+        let mut segment_start = pc;
+        let mut segment_clock = self.clock;
+        let mut executed = 0u64;
+        let mut status = self.status;
+        let mut accu1 = self.accu1;
+        let mut accu2 = self.accu2;
+        macro_rules! now {
+            () => {
+                segment_clock + elapsed[pc] - elapsed[segment_start]
             };
-            self.clock += u64::from(block.costs[pc]);
-            self.instructions += 1;
+        }
+        // The registers live in locals; `sync!` hands them to `self` before anything else looks,
+        // `reload!` takes them back.
+        macro_rules! sync {
+            () => {
+                self.clock = now!();
+                self.status = status;
+                self.accu1 = accu1;
+                self.accu2 = accu2;
+            };
+        }
+        macro_rules! reload {
+            () => {
+                segment_clock = self.clock;
+                executed += (pc - segment_start) as u64;
+                segment_start = pc;
+                status = self.status;
+                accu1 = self.accu1;
+                accu2 = self.accu2;
+            };
+        }
+        // Ends the straight run at `pc` before control moves to `$to` in `$elapsed`.
+        macro_rules! move_to {
+            ($to:expr, $code:expr, $elapsed:expr) => {
+                segment_clock = now!();
+                executed += (pc - segment_start) as u64;
+                code = $code;
+                elapsed = $elapsed;
+                pc = $to;
+                segment_start = pc;
+            };
+        }
+        let exit = loop {
+            let Some(&fetched) = code.get(pc) else {
+                sync!();
+                break Exit::Stop(self.stop(StopCause::Bcf, pc as u32, StopDetail::Text("the block has no BE".into())));
+            };
             pc += 1;
             let mut op = fetched;
-            'dispatch: loop {
-                match op {
-                    Op::And(bit) => {
-                        let value = self.image_bit(bit);
-                        self.status.and(value);
-                    }
-                    Op::AndNot(bit) => {
-                        let value = self.image_bit(bit);
-                        self.status.and(!value);
-                    }
-                    Op::Or(bit) => {
-                        let value = self.image_bit(bit);
-                        self.status.or(value);
-                    }
-                    Op::OrNot(bit) => {
-                        let value = self.image_bit(bit);
-                        self.status.or(!value);
-                    }
-                    Op::Assign(bit) => {
-                        self.write_image_bit(bit, self.status.rlo);
-                        self.status.end_string();
-                    }
-                    Op::Set(bit) => {
-                        if self.status.rlo {
-                            self.write_image_bit(bit, true);
-                        }
-                        self.status.end_string();
-                    }
-                    Op::Reset(bit) => {
-                        if self.status.rlo {
-                            self.write_image_bit(bit, false);
-                        }
-                        self.status.end_string();
-                    }
-                    Op::OrAlone => self.status.or_alone(),
-                    Op::AndBracket | Op::OrBracket => {
-                        if !self.status.open_bracket(op == Op::OrBracket, self.profile.bracket_depth) {
-                            let text = format!("more than {} nested brackets", self.profile.bracket_depth);
-                            return Exit::Stop(self.stop(StopCause::Bcf, pc as u32 - 1, StopDetail::Text(text)));
-                        }
-                    }
-                    Op::CloseBracket => {
-                        if !self.status.close_bracket() {
-                            let text = "`)` without an open bracket".to_string();
-                            return Exit::Stop(self.stop(StopCause::Bcf, pc as u32 - 1, StopDetail::Text(text)));
-                        }
-                    }
-                    Op::LoadImage(width, byte) => {
-                        let value = self.read_image(width, byte);
-                        self.load(value);
-                    }
-                    Op::TransferImage(width, byte) => self.write_image(width, byte, self.accu1),
-                    Op::LoadConstant(value) => self.load(value),
-                    Op::Arithmetic(kind) => arith::arithmetic(kind, &mut self.accu1, self.accu2, &mut self.status),
-                    Op::Compare(kind) => arith::compare(kind, self.accu1, self.accu2, &mut self.status),
-                    Op::Jump(condition, target) => {
-                        let status = self.status;
-                        let taken = match condition {
-                            JumpCondition::Always => true,
-                            JumpCondition::Rlo => status.rlo,
-                            JumpCondition::Zero => !status.cc1 && !status.cc0,
-                            JumpCondition::NotZero => status.cc1 != status.cc0,
-                            JumpCondition::Positive => status.cc1 && !status.cc0,
-                            JumpCondition::Minus => !status.cc1 && status.cc0,
-                            JumpCondition::Overflow => status.ov,
-                        };
-                        if matches!(condition, JumpCondition::Always | JumpCondition::Rlo) {
-                            self.status.after_jump();
-                        }
-                        if taken {
-                            let backward = (target as usize) < pc;
-                            pc = target as usize;
-                            if !OPERATION_POINTS && backward && self.clock >= self.attention_at {
-                                self.pc = pc as u32;
-                                return Exit::Point(Point::Loop);
-                            }
-                        }
-                    }
-                    Op::Call { block: target, conditional, params } => {
-                        if conditional && !self.status.rlo {
-                            self.status.after_jump();
-                            break 'dispatch;
-                        }
-                        self.status.after_jump();
-                        if self.depth() >= usize::from(self.profile.nesting_limit) {
-                            return Exit::Stop(self.stop(StopCause::Stueb, pc as u32 - 1, StopDetail::None));
-                        }
-                        self.frames.push(Frame { block: self.block, pc: pc as u32, open_db: self.open_db, params: self.params });
-                        let caller = self.block;
-                        self.block = target;
-                        self.params = params;
-                        block = &program.blocks[usize::from(target)];
-                        pc = 0;
-                        if self.tracer.enabled {
-                            self.trace_call(caller, target);
-                        }
-                        self.mark_point(caller);
-                        if self.clock >= self.attention_at {
-                            self.pc = 0;
-                            return Exit::Point(Point::BlockCall);
-                        }
-                    }
-                    Op::BlockEnd | Op::BlockEndUnconditional | Op::BlockEndConditional => {
-                        if op == Op::BlockEndConditional && !self.status.rlo {
-                            self.status.after_jump();
-                            break 'dispatch;
-                        }
-                        if op != Op::BlockEnd {
-                            self.status.after_jump();
-                        } else {
-                            self.status.end_string();
-                        }
-                        let ended = self.block;
-                        if self.tracer.enabled {
-                            self.trace_end(ended);
-                        }
-                        self.mark_point(ended);
-                        if self.frames.len() == self.level_base {
-                            self.pc = pc as u32;
-                            return Exit::LevelEnd;
-                        }
-                        let frame = self.frames.pop().expect("a frame above the level base");
-                        self.block = frame.block;
-                        self.open_db = frame.open_db;
-                        self.params = frame.params;
-                        block = &program.blocks[usize::from(frame.block)];
-                        pc = frame.pc as usize;
-                        if self.clock >= self.attention_at {
-                            self.pc = pc as u32;
-                            return Exit::Point(Point::BlockEnd);
-                        }
-                    }
-                    Op::Formal { op: code, param } => match self.formal(code, param) {
-                        Some(concrete) => {
-                            op = concrete;
-                            continue 'dispatch;
-                        }
-                        None => {
-                            let text = format!("formal parameter {} cannot be substituted here", param + 1);
-                            return Exit::Stop(self.stop(StopCause::Bcf, pc as u32 - 1, StopDetail::Text(text)));
-                        }
-                    },
-                    Op::Indirect { source, template } => {
-                        let value = match source {
-                            IndirectSource::FlagWord(byte) => self.read_image(Width::Word, byte),
-                            IndirectSource::DataWord(word) => match self.data_word(word) {
-                                Some(value) => u32::from(value),
-                                None => return Exit::Stop(self.data_fault(pc as u32 - 1, word)),
-                            },
-                        };
-                        let Some(concrete) = self.substitute(template, value as u16) else {
-                            let text = format!("DO parameter {value} gives no valid operand");
-                            return Exit::Stop(self.stop(StopCause::Bcf, pc as u32 - 1, StopDetail::Text(text)));
-                        };
-                        if let Some(cost) = block.costs.get(pc) {
-                            self.clock += u64::from(*cost);
-                            self.instructions += 1;
+            if let Op::Formal { .. } | Op::Indirect { .. } = fetched {
+                sync!();
+                match self.concrete(fetched, pc as u32 - 1) {
+                    Ok((concrete, consumes_next)) => {
+                        if consumes_next && pc < code.len() {
                             pc += 1;
+                            self.clock = now!();
                         }
+                        reload!();
                         op = concrete;
-                        continue 'dispatch;
                     }
-                    other => {
-                        if let Err((cause, detail)) = self.execute_other(other, pc as u32 - 1) {
-                            return Exit::Stop(self.stop(cause, pc as u32 - 1, detail));
+                    Err(stop) => break Exit::Stop(stop),
+                }
+            }
+            match op {
+                Op::And(bit) => status.and(self.image_bit(bit)),
+                Op::AndNot(bit) => status.and(!self.image_bit(bit)),
+                Op::Or(bit) => status.or(self.image_bit(bit)),
+                Op::OrNot(bit) => status.or(!self.image_bit(bit)),
+                Op::Assign(bit) => {
+                    self.write_image_bit(bit, status.rlo());
+                    status.end_string();
+                }
+                Op::Set(bit) => {
+                    if status.rlo() {
+                        self.write_image_bit(bit, true);
+                    }
+                    status.end_string();
+                }
+                Op::Reset(bit) => {
+                    if status.rlo() {
+                        self.write_image_bit(bit, false);
+                    }
+                    status.end_string();
+                }
+                Op::OrAlone => status.or_alone(),
+                Op::LoadImageByte(byte) => {
+                    accu2 = accu1;
+                    accu1 = u32::from(self.image[usize::from(byte)]);
+                }
+                Op::LoadImageWord(byte) => {
+                    accu2 = accu1;
+                    accu1 = self.read_image(Width::Word, byte);
+                }
+                Op::LoadImageDouble(byte) => {
+                    accu2 = accu1;
+                    accu1 = self.read_image(Width::Double, byte);
+                }
+                Op::TransferImageByte(byte) => self.image[usize::from(byte)] = accu1 as u8,
+                Op::TransferImageWord(byte) => self.write_image(Width::Word, byte, accu1),
+                Op::TransferImageDouble(byte) => self.write_image(Width::Double, byte, accu1),
+                Op::LoadConstant(value) => {
+                    accu2 = accu1;
+                    accu1 = value;
+                }
+                Op::Arithmetic(kind) => arith::arithmetic(kind, &mut accu1, accu2, &mut status),
+                Op::Compare(kind) => arith::compare(kind, accu1, accu2, &mut status),
+                Op::Jump(condition, target) => {
+                    let taken = match condition {
+                        JumpCondition::Always => true,
+                        JumpCondition::Rlo => status.rlo(),
+                        JumpCondition::Zero => !status.cc1() && !status.cc0(),
+                        JumpCondition::NotZero => status.cc1() != status.cc0(),
+                        JumpCondition::Positive => status.cc1() && !status.cc0(),
+                        JumpCondition::Minus => !status.cc1() && status.cc0(),
+                        JumpCondition::Overflow => status.ov(),
+                    };
+                    if matches!(condition, JumpCondition::Always | JumpCondition::Rlo) {
+                        status.after_jump();
+                    }
+                    if taken {
+                        let backward = (target as usize) < pc;
+                        move_to!(target as usize, code, elapsed);
+                        if !OPERATION_POINTS && backward && segment_clock >= self.attention_at {
+                            break Exit::Point(Point::Loop);
                         }
                     }
                 }
-                break;
+                Op::Call { block: target, conditional, params } => {
+                    let taken = !conditional || status.rlo();
+                    status.after_jump();
+                    if !taken {
+                        continue;
+                    }
+                    if self.depth() >= usize::from(self.profile.nesting_limit) {
+                        sync!();
+                        break Exit::Stop(self.stop(StopCause::Stueb, pc as u32 - 1, StopDetail::None));
+                    }
+                    self.frames.push(Frame { block: self.block, pc: pc as u32, open_db: self.open_db, params: self.params });
+                    let caller = self.block;
+                    self.block = target;
+                    self.params = params;
+                    let callee = &program.blocks[usize::from(target)];
+                    move_to!(0, &callee.code, &callee.elapsed[..=callee.code.len()]);
+                    if self.tracer.enabled {
+                        self.clock = segment_clock;
+                        self.trace_call(caller, target);
+                    }
+                    self.mark_point(segment_clock, caller);
+                    if segment_clock >= self.attention_at {
+                        break Exit::Point(Point::BlockCall);
+                    }
+                }
+                Op::BlockEnd | Op::BlockEndUnconditional | Op::BlockEndConditional => {
+                    if op == Op::BlockEndConditional && !status.rlo() {
+                        status.after_jump();
+                        continue;
+                    }
+                    if op == Op::BlockEnd {
+                        status.end_string();
+                    } else {
+                        status.after_jump();
+                    }
+                    let ended = self.block;
+                    let clock = now!();
+                    if self.tracer.enabled {
+                        self.clock = clock;
+                        self.trace_end(ended);
+                    }
+                    self.mark_point(clock, ended);
+                    if self.frames.len() == self.level_base {
+                        break Exit::LevelEnd;
+                    }
+                    let frame = self.frames.pop().expect("a frame above the level base");
+                    self.block = frame.block;
+                    self.open_db = frame.open_db;
+                    self.params = frame.params;
+                    let caller = &program.blocks[usize::from(frame.block)];
+                    move_to!(frame.pc as usize, &caller.code, &caller.elapsed[..=caller.code.len()]);
+                    if segment_clock >= self.attention_at {
+                        break Exit::Point(Point::BlockEnd);
+                    }
+                }
+                other => {
+                    sync!();
+                    let result = self.execute_other(other, pc as u32 - 1);
+                    reload!();
+                    if let Err((cause, detail)) = result {
+                        break Exit::Stop(self.stop(cause, pc as u32 - 1, detail));
+                    }
+                }
             }
-            if OPERATION_POINTS && self.clock >= self.attention_at {
-                self.pc = pc as u32;
-                return Exit::Point(Point::Operation);
+            if OPERATION_POINTS && now!() >= self.attention_at {
+                break Exit::Point(Point::Operation);
             }
-        }
+        };
+        sync!();
+        self.pc = pc as u32;
+        self.instructions += executed + (pc - segment_start) as u64;
+        exit
     }
 
     /// The op an operation on a formal operand amounts to with the running FB's actual.
@@ -392,8 +446,18 @@ impl Cpu {
     #[inline(never)]
     fn execute_other(&mut self, op: Op, pc: u32) -> Result<(), (StopCause, StopDetail)> {
         let now = self.clock;
-        let rlo = self.status.rlo;
+        let rlo = self.status.rlo();
         match op {
+            Op::AndBracket | Op::OrBracket => {
+                if !self.brackets.open(&mut self.status, op == Op::OrBracket, self.profile.bracket_depth) {
+                    return Err((StopCause::Bcf, StopDetail::Text(format!("more than {} nested brackets", self.profile.bracket_depth))));
+                }
+            }
+            Op::CloseBracket => {
+                if !self.brackets.close(&mut self.status) {
+                    return Err((StopCause::Bcf, StopDetail::Text("`)` without an open bracket".into())));
+                }
+            }
             Op::LogicOther(logic, source) => {
                 let value = match source {
                     BitSource::Data { word, bit } => self.data_bit(word, bit, pc)?,
@@ -530,6 +594,7 @@ impl Cpu {
     }
 }
 
+#[inline(always)]
 fn read_bytes(memory: &[u8], at: usize, width: Width) -> u32 {
     match width {
         Width::Byte => u32::from(memory[at]),
@@ -538,6 +603,7 @@ fn read_bytes(memory: &[u8], at: usize, width: Width) -> u32 {
     }
 }
 
+#[inline(always)]
 fn write_bytes(memory: &mut [u8], at: usize, width: Width, value: u32) {
     match width {
         Width::Byte => memory[at] = value as u8,

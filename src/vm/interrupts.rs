@@ -324,7 +324,7 @@ impl Cpu {
         if straight {
             while pc > 0 {
                 pc -= 1;
-                let cost = u64::from(block.costs[pc]);
+                let cost = block.cost(pc);
                 if t.saturating_sub(cost) <= at {
                     line = Some(self.sources.line_of(block.spans[pc]));
                     break;
@@ -485,6 +485,7 @@ impl Cpu {
             accu1: self.accu1,
             accu2: self.accu2,
             status: self.status,
+            brackets: self.brackets,
             open_db: self.open_db,
             block: self.block,
             pc: self.pc,
@@ -546,6 +547,7 @@ impl Cpu {
         self.accu1 = level.accu1;
         self.accu2 = level.accu2;
         self.status = level.status;
+        self.brackets = level.brackets;
         self.open_db = level.open_db;
         self.block = level.block;
         self.pc = level.pc;

@@ -24,7 +24,7 @@ use crate::trace::Tracer;
 
 use counters::Counter;
 use interrupts::Engine;
-use status::Status;
+use status::{Brackets, Status};
 use stop::{StackEntry, Stop, StopCause, StopDetail};
 use timers::Timer;
 
@@ -43,6 +43,7 @@ pub struct SavedLevel {
     pub accu1: u32,
     pub accu2: u32,
     pub status: Status,
+    pub brackets: Brackets,
     pub open_db: Option<u8>,
     pub block: u16,
     pub pc: u32,
@@ -137,6 +138,7 @@ pub struct Cpu {
     pub accu1: u32,
     pub accu2: u32,
     pub status: Status,
+    pub brackets: Brackets,
     pub open_db: Option<u8>,
     pub block: u16,
     pub pc: u32,
@@ -187,6 +189,7 @@ impl Cpu {
             accu1: 0,
             accu2: 0,
             status: Status::default(),
+            brackets: Brackets::default(),
             open_db: None,
             block: 0,
             pc: 0,
@@ -238,6 +241,7 @@ impl Cpu {
         self.params = NO_PARAMS;
         self.open_db = None;
         self.status = Status::default();
+        self.brackets = Brackets::default();
     }
 
     /// The block stack, innermost first: the running block, then each return point.

@@ -1,114 +1,155 @@
-//! The status of a processing level: the RLO with its first-check and OR bits, the condition
-//! codes, and the bracket stack.
+//! The status of a processing level: the RLO with its first-check and OR bits and the condition
+//! codes, packed in one byte so the execution loop keeps it in a register; and the bracket stack.
 //!
 //! The RLO is the value of the logic string so far. `A`/`O` with an operand combine into it, the
 //! first operation of a string loads it (first check). `O` alone ORs AND functions: it keeps the
 //! string so far in the OR bit and starts a new AND function. `=`, `S`, `R` end the string but
 //! keep the RLO for further assignments.
 
-/// One open bracket: what was before it, and how its result combines.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Bracket {
-    pub rlo: bool,
-    pub first_check_done: bool,
-    pub or_bit: bool,
-    pub or: bool,
-}
-
-pub const MAX_BRACKETS: usize = 8;
+const RLO: u8 = 1;
+/// A logic string is in progress: the next `A`/`O` combines instead of loading.
+const FIRST_CHECK_DONE: u8 = 2;
+const OR_BIT: u8 = 4;
+const CC1: u8 = 8;
+const CC0: u8 = 16;
+const OV: u8 = 32;
+/// Overflow, stored until a jump on it.
+const OS: u8 = 64;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Status {
-    pub rlo: bool,
-    /// A logic string is in progress (the next `A`/`O` combines instead of loading).
-    pub first_check_done: bool,
-    pub or_bit: bool,
-    pub cc1: bool,
-    pub cc0: bool,
-    pub ov: bool,
-    /// Overflow, stored until a jump on it.
-    pub os: bool,
-    pub brackets: [Bracket; MAX_BRACKETS],
-    pub depth: u8,
+    bits: u8,
 }
 
 impl Status {
     #[inline(always)]
+    fn get(self, bit: u8) -> bool {
+        self.bits & bit != 0
+    }
+
+    #[inline(always)]
+    fn put(&mut self, bit: u8, value: bool) {
+        self.bits = self.bits & !bit | if value { bit } else { 0 };
+    }
+
+    pub fn rlo(self) -> bool {
+        self.get(RLO)
+    }
+    pub fn first_check_done(self) -> bool {
+        self.get(FIRST_CHECK_DONE)
+    }
+    pub fn cc1(self) -> bool {
+        self.get(CC1)
+    }
+    pub fn cc0(self) -> bool {
+        self.get(CC0)
+    }
+    pub fn ov(self) -> bool {
+        self.get(OV)
+    }
+    pub fn os(self) -> bool {
+        self.get(OS)
+    }
+
+    pub fn set_condition(&mut self, cc1: bool, cc0: bool) {
+        self.put(CC1, cc1);
+        self.put(CC0, cc0);
+    }
+
+    /// Sets OV, and OS with it.
+    pub fn set_overflow(&mut self, ov: bool) {
+        self.put(OV, ov);
+        if ov {
+            self.bits |= OS;
+        }
+    }
+
+    #[inline(always)]
     pub fn and(&mut self, value: bool) {
-        self.rlo = ((self.rlo | !self.first_check_done) & value) | self.or_bit;
-        self.first_check_done = true;
+        let combined = (self.get(RLO) | !self.get(FIRST_CHECK_DONE)) & value | self.get(OR_BIT);
+        self.bits = self.bits & !RLO | FIRST_CHECK_DONE | u8::from(combined);
     }
 
     #[inline(always)]
     pub fn or(&mut self, value: bool) {
-        let before = if self.first_check_done { self.rlo } else { self.or_bit };
-        self.rlo = before | value;
-        self.or_bit = false;
-        self.first_check_done = true;
+        let before = if self.get(FIRST_CHECK_DONE) { self.get(RLO) } else { self.get(OR_BIT) };
+        self.bits = self.bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | u8::from(before | value);
     }
 
     /// `O` without an operand: OR of AND functions.
     #[inline(always)]
     pub fn or_alone(&mut self) {
-        if self.first_check_done {
-            self.or_bit = self.rlo;
+        if self.get(FIRST_CHECK_DONE) {
+            self.put(OR_BIT, self.get(RLO));
         }
-        self.first_check_done = false;
+        self.bits &= !FIRST_CHECK_DONE;
     }
 
     /// `=`, `S`, `R` and the timer and counter operations end the logic string.
     #[inline(always)]
     pub fn end_string(&mut self) {
-        self.first_check_done = false;
-        self.or_bit = false;
+        self.bits &= !(FIRST_CHECK_DONE | OR_BIT);
     }
 
     /// An operation that forms the RLO on its own (comparison, bit test).
     #[inline(always)]
     pub fn load(&mut self, value: bool) {
-        self.rlo = value;
-        self.or_bit = false;
-        self.first_check_done = true;
+        self.bits = self.bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | u8::from(value);
     }
 
     /// After `JU`/`JC`, `BEC` and block ends the RLO is 1 and a new string starts.
     #[inline(always)]
     pub fn after_jump(&mut self) {
-        self.rlo = true;
-        self.end_string();
-    }
-
-    /// Opens a bracket; `false` when the bracket stack is full.
-    pub fn open_bracket(&mut self, or: bool, limit: u8) -> bool {
-        if self.depth >= limit.min(MAX_BRACKETS as u8) {
-            return false;
-        }
-        self.brackets[usize::from(self.depth)] =
-            Bracket { rlo: self.rlo, first_check_done: self.first_check_done, or_bit: self.or_bit, or };
-        self.depth += 1;
-        self.end_string();
-        true
-    }
-
-    /// Closes a bracket and combines its result; `false` when none is open.
-    pub fn close_bracket(&mut self) -> bool {
-        if self.depth == 0 {
-            return false;
-        }
-        self.depth -= 1;
-        let inner = self.rlo;
-        let outer = self.brackets[usize::from(self.depth)];
-        self.rlo = outer.rlo;
-        self.first_check_done = outer.first_check_done;
-        self.or_bit = outer.or_bit;
-        if outer.or { self.or(inner) } else { self.and(inner) }
-        true
+        self.bits = self.bits & !(FIRST_CHECK_DONE | OR_BIT) | RLO;
     }
 
     /// Condition codes from a 16-bit fixed-point result.
     pub fn set_cc_from(&mut self, result: i16) {
-        self.cc1 = result > 0;
-        self.cc0 = result < 0;
+        self.set_condition(result > 0, result < 0);
+    }
+}
+
+/// One open bracket: the status before it, and how its result combines.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Bracket {
+    pub status: Status,
+    pub or: bool,
+}
+
+pub const MAX_BRACKETS: usize = 8;
+
+/// The bracket stack of a processing level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Brackets {
+    stack: [Bracket; MAX_BRACKETS],
+    depth: u8,
+}
+
+impl Brackets {
+    /// Opens a bracket; `false` when the stack is full.
+    pub fn open(&mut self, status: &mut Status, or: bool, limit: u8) -> bool {
+        if self.depth >= limit.min(MAX_BRACKETS as u8) {
+            return false;
+        }
+        self.stack[usize::from(self.depth)] = Bracket { status: *status, or };
+        self.depth += 1;
+        status.end_string();
+        true
+    }
+
+    /// Closes a bracket and combines its result; `false` when none is open.
+    pub fn close(&mut self, status: &mut Status) -> bool {
+        if self.depth == 0 {
+            return false;
+        }
+        self.depth -= 1;
+        let inner = status.rlo();
+        let outer = self.stack[usize::from(self.depth)];
+        let codes = *status;
+        *status = outer.status;
+        status.set_condition(codes.cc1(), codes.cc0());
+        if outer.or { status.or(inner) } else { status.and(inner) }
+        true
     }
 }
 
@@ -118,6 +159,7 @@ mod tests {
 
     fn string(ops: &[(&str, bool)]) -> bool {
         let mut status = Status::default();
+        let mut brackets = Brackets::default();
         for (op, value) in ops {
             match *op {
                 "A" => status.and(*value),
@@ -125,14 +167,14 @@ mod tests {
                 "O" => status.or(*value),
                 "ON" => status.or(!value),
                 "O_" => status.or_alone(),
-                "A(" => assert!(status.open_bracket(false, 7)),
-                "O(" => assert!(status.open_bracket(true, 7)),
-                ")" => assert!(status.close_bracket()),
+                "A(" => assert!(brackets.open(&mut status, false, 7)),
+                "O(" => assert!(brackets.open(&mut status, true, 7)),
+                ")" => assert!(brackets.close(&mut status)),
                 "=" => status.end_string(),
                 _ => unreachable!(),
             }
         }
-        status.rlo
+        status.rlo()
     }
 
     #[test]
@@ -141,15 +183,22 @@ mod tests {
         status.and(true);
         status.end_string();
         status.and(false);
-        assert!(!status.rlo, "a new string starts after =");
+        assert!(!status.rlo(), "a new string starts after =");
         status.end_string();
         status.or(true);
-        assert!(status.rlo);
+        assert!(status.rlo());
+    }
+
+    #[test]
+    fn rlo_is_kept_for_further_assignments() {
+        let mut status = Status::default();
+        status.and(true);
+        status.end_string();
+        assert!(status.rlo(), "= Q 4.0 / = Q 4.1 both get the RLO");
     }
 
     #[test]
     fn or_alone_is_and_before_or() {
-        // a & b | c & d
         for bits in 0..16u8 {
             let [a, b, c, d] = [0, 1, 2, 3].map(|i| bits >> i & 1 == 1);
             let rlo = string(&[("A", a), ("A", b), ("O_", false), ("A", c), ("A", d)]);
@@ -158,8 +207,16 @@ mod tests {
     }
 
     #[test]
+    fn or_with_operand_combines_left_to_right() {
+        for bits in 0..8u8 {
+            let [a, b, c] = [0, 1, 2].map(|i| bits >> i & 1 == 1);
+            assert_eq!(string(&[("A", a), ("O", b), ("A", c)]), (a | b) & c);
+            assert_eq!(string(&[("ON", a), ("AN", b)]), !a & !b);
+        }
+    }
+
+    #[test]
     fn nested_brackets() {
-        // a & (b | (c & d))
         for bits in 0..16u8 {
             let [a, b, c, d] = [0, 1, 2, 3].map(|i| bits >> i & 1 == 1);
             let rlo = string(&[("A", a), ("A(", false), ("O", b), ("O(", false), ("A", c), ("A", d), (")", false), (")", false)]);
@@ -170,11 +227,11 @@ mod tests {
     #[test]
     fn bracket_stack_is_limited() {
         let mut status = Status::default();
+        let mut brackets = Brackets::default();
         for _ in 0..7 {
-            assert!(status.open_bracket(false, 7));
+            assert!(brackets.open(&mut status, false, 7));
         }
-        assert!(!status.open_bracket(false, 7));
-        let mut empty = Status::default();
-        assert!(!empty.close_bracket());
+        assert!(!brackets.open(&mut status, false, 7));
+        assert!(!Brackets::default().close(&mut status));
     }
 }
