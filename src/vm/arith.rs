@@ -126,10 +126,10 @@ mod tests {
     fn sub_mul_div() {
         assert_eq!(arith(Arith::Sub, 5, 8).0, -3);
         assert_eq!(arith(Arith::Mul, -300, 100).0, -30000);
-        assert!(arith(Arith::Mul, 300, 300).1.ov);
+        assert!(arith(Arith::Mul, 300, 300).1.ov());
         assert_eq!(arith(Arith::Div, 7, 2).0, 3);
         assert_eq!(arith(Arith::Div, -7, 2).0, -3);
-        assert!(arith(Arith::Div, -32768, -1).1.ov);
+        assert!(arith(Arith::Div, -32768, -1).1.ov());
     }
 
     #[test]
