@@ -57,7 +57,7 @@ pub enum Event {
         ob: u8,
         latency_ns: u64,
         point: &'static str,
-        /// The block the interrupted level was in.
+        /// The block of the interrupt point: the one that ended, was called, or ran the operation.
         #[serde(skip_serializing_if = "Option::is_none")]
         block: Option<String>,
     },
@@ -173,10 +173,16 @@ fn text(event: &Event) -> String {
             format!("⚡ OB {ob} requested (#{id}){source}{place}")
         }
         Event::IrqService { id, ob, latency_ns, point, block } => {
-            let place = block.as_ref().map(|block| format!(" in {block}")).unwrap_or_default();
-            format!("▶ OB {ob} serviced (#{id}) at the {}{place}, latency {}", point.replace('_', " "), format_us(*latency_ns))
+            let block = block.as_deref().unwrap_or("?");
+            let place = match *point {
+                "block_end" => format!("at the block end of {block}"),
+                "block_call" => format!("at the call of {block}"),
+                "operation" => format!("after an operation of {block}"),
+                _ => "at the cycle boundary".to_string(),
+            };
+            format!("▶ OB {ob} serviced (#{id}) {place}, latency {}", format_us(*latency_ns))
         }
-        Event::IrqEnd { id, ob } => format!("◀ OB {ob} ends (#{id}), back to the interrupted level"),
+        Event::IrqEnd { id, ob } => format!("◀ OB {ob} done (#{id}), back to the interrupted level"),
         Event::IrqLost { id, ob, reason } => format!("✗ OB {ob} request #{id} lost: {reason}"),
         Event::IrqIgnored { id, ob, reason } => format!("✗ OB {ob} request #{id} ignored: {reason}"),
         Event::DataCycle { kind, duration_ns } => format!("data cycle {}, {}", kind.replace('_', " "), format_us(*duration_ns)),

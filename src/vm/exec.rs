@@ -48,7 +48,8 @@ impl Cpu {
 
     /// Marks an interrupt point for the stretch measurement of the cyclic level.
     #[inline(always)]
-    fn mark_point(&mut self, clock: u64, stretch_block: u16) {
+    fn mark_point(&mut self, clock: u64, stretch_block: u16, end_pc: u32) {
+        self.last_stretch = super::LastStretch { block: stretch_block, end_pc, start_ns: self.last_point_at, end_ns: clock };
         if self.levels.is_empty() {
             let stretch = clock - self.last_point_at;
             if stretch > self.longest_stretch.ns {
@@ -238,16 +239,18 @@ impl Cpu {
                     }
                     self.frames.push(Frame { block: self.block, pc: pc as u32, open_db: self.open_db, params: self.params });
                     let caller = self.block;
+                    let call_pc = pc as u32 - 1;
                     self.block = target;
                     self.params = params;
                     let callee = &program.blocks[usize::from(target)];
                     move_to!(0, &callee.code, &callee.elapsed[..=callee.code.len()]);
+                    self.mark_point(segment_clock, caller, call_pc);
+                    let attention = segment_clock >= self.attention_at;
                     if self.tracer.enabled {
                         self.clock = segment_clock;
-                        self.trace_call(caller, target);
+                        self.trace_call(caller, target, attention);
                     }
-                    self.mark_point(segment_clock, caller);
-                    if segment_clock >= self.attention_at {
+                    if attention {
                         break Exit::Point(Point::BlockCall);
                     }
                 }
@@ -263,12 +266,13 @@ impl Cpu {
                     }
                     let ended = self.block;
                     let clock = now!();
+                    self.mark_point(clock, ended, pc as u32 - 1);
+                    let level_end = self.frames.len() == self.level_base;
                     if self.tracer.enabled {
                         self.clock = clock;
-                        self.trace_end(ended);
+                        self.trace_end(ended, !level_end && clock >= self.attention_at);
                     }
-                    self.mark_point(clock, ended);
-                    if self.frames.len() == self.level_base {
+                    if level_end {
                         break Exit::LevelEnd;
                     }
                     let frame = self.frames.pop().expect("a frame above the level base");

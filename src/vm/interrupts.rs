@@ -204,18 +204,35 @@ impl Cpu {
         }
     }
 
-    pub(super) fn trace_call(&mut self, from: u16, to: u16) {
+    /// Traces a block call; `defer` leaves it to the engine, which first logs the requests
+    /// that came before it.
+    pub(super) fn trace_call(&mut self, from: u16, to: u16, defer: bool) {
         let depth = self.depth();
         let event = Event::BlockCall { from: self.block_id(from).to_string(), to: self.block_id(to).to_string(), depth };
-        let indent = self.frames.len() + 2 * self.levels.len();
-        self.tracer.emit(self.clock, indent, event);
+        self.trace_block_event(event, defer, 0);
     }
 
-    pub(super) fn trace_end(&mut self, block: u16) {
+    pub(super) fn trace_end(&mut self, block: u16, defer: bool) {
         let depth = self.depth();
         let event = Event::BlockEnd { block: self.block_id(block).to_string(), depth };
-        let indent = self.frames.len() + 2 * self.levels.len() + 1;
-        self.tracer.emit(self.clock, indent, event);
+        self.trace_block_event(event, defer, 1);
+    }
+
+    fn trace_block_event(&mut self, event: Event, defer: bool, extra_indent: usize) {
+        if defer {
+            self.deferred_trace = Some(event);
+        } else {
+            let indent = self.frames.len() + 2 * self.levels.len() + extra_indent;
+            self.tracer.emit(self.clock, indent, event);
+        }
+    }
+
+    fn flush_deferred_trace(&mut self) {
+        if let Some(event) = self.deferred_trace.take() {
+            let extra = usize::from(matches!(event, Event::BlockEnd { .. }));
+            let indent = self.frames.len() + 2 * self.levels.len() + extra;
+            self.tracer.emit(self.clock, indent, event);
+        }
     }
 
     /// Keeps `attention_at` at the next moment the engine has to look.
@@ -238,7 +255,9 @@ impl Cpu {
     /// highest pending request that outranks the running level. Returns whether an OB was
     /// entered.
     pub fn at_point(&mut self, point: Point) -> Result<bool, Stop> {
-        self.poll()?;
+        let polled = self.poll();
+        self.flush_deferred_trace();
+        polled?;
         let cycle_time = self.clock - self.cycle_started_at;
         if self.mode != Mode::Stop && cycle_time > self.engine.config.watchdog_ns {
             let detail = StopDetail::Cycle { cycle_ns: cycle_time, watchdog_ns: self.engine.config.watchdog_ns };
@@ -310,29 +329,35 @@ impl Cpu {
         }
     }
 
-    /// Where the running level is, for the request event: the block, and the line when the
-    /// ops since the last interrupt point run straight (the request time falls in one of them).
+    /// Where the running level was when a request came at `at`: the block, and the line where
+    /// it can be told — the stretch since the last interrupt point runs straight through one
+    /// block (no label jumps), so walking back over the op times finds the op.
     fn place_of_request(&self, at: u64) -> (Option<String>, Option<u32>) {
-        if self.block == super::IDLE || self.mode != Mode::Run {
+        if self.mode != Mode::Run {
             return (None, None);
         }
-        let block = &self.program.blocks[usize::from(self.block)];
-        let mut t = self.clock;
-        let mut pc = self.pc as usize;
-        let straight = !block.code.iter().any(|op| matches!(op, crate::compiler::Op::Jump(..)));
-        let mut line = None;
-        if straight {
-            while pc > 0 {
-                pc -= 1;
-                let cost = block.cost(pc);
-                if t.saturating_sub(cost) <= at {
-                    line = Some(self.sources.line_of(block.spans[pc]));
-                    break;
-                }
-                t -= cost;
-            }
+        let stretch = self.last_stretch;
+        let (block, end_pc, end_ns) = if stretch.end_ns == self.clock && stretch.start_ns <= at {
+            (stretch.block, stretch.end_pc, stretch.end_ns)
+        } else if self.block != super::IDLE && self.engine.config.points == InterruptPoints::Operation {
+            (self.block, self.pc.saturating_sub(1), self.clock)
+        } else {
+            return (None, None);
+        };
+        let Some(code) = self.program.blocks.get(usize::from(block)) else { return (None, None) };
+        let name = Some(code.id.to_string());
+        if code.code.iter().any(|op| matches!(op, crate::compiler::Op::Jump(..))) {
+            return (name, None);
         }
-        (Some(block.id.to_string()), line)
+        let mut t = end_ns;
+        for pc in (0..=end_pc as usize).rev() {
+            let Some(cost) = code.elapsed.get(pc + 1).map(|_| code.cost(pc)) else { break };
+            if t.saturating_sub(cost) <= at {
+                return (name, Some(self.sources.line_of(code.spans[pc])));
+            }
+            t -= cost;
+        }
+        (name, None)
     }
 
     /// An interrupt request for an OB: ignored, lost, or pending.
@@ -473,7 +498,13 @@ impl Cpu {
         let latency = self.clock - request.requested_at;
         self.engine.record_latency(request.ob, latency);
         let idle = self.block == super::IDLE;
-        let interrupted = (!idle).then(|| self.block_id(self.block).to_string());
+        // The block the point belongs to: the one that ended, or was called, or ran the op.
+        let point_block = match point {
+            Point::BlockEnd => Some(self.last_stretch.block),
+            Point::Cycle => None,
+            _ => (!idle).then_some(self.block),
+        };
+        let interrupted = point_block.map(|block| self.block_id(block).to_string());
         self.emit(self.clock, Event::IrqService {
             id: request.id,
             ob: request.ob,

@@ -104,6 +104,14 @@ pub enum Exit {
     Stop(Stop),
 }
 
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LastStretch {
+    pub block: u16,
+    pub end_pc: u32,
+    pub start_ns: u64,
+    pub end_ns: u64,
+}
+
 /// The longest stretch between two interrupt points on the cyclic level.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Stretch {
@@ -157,6 +165,11 @@ pub struct Cpu {
     pub cycle_started_at: u64,
     pub stop_requested: Option<(u16, u32)>,
     pub last_point_at: u64,
+    /// The last stretch between interrupt points: its block, the op that ended it, and when it
+    /// began and ended.
+    pub last_stretch: LastStretch,
+    /// A block change the engine traces after the requests that came before it.
+    pub deferred_trace: Option<crate::trace::Event>,
     pub longest_stretch: Stretch,
     pub engine: Engine,
     pub tracer: Tracer,
@@ -206,6 +219,8 @@ impl Cpu {
             cycle_started_at: 0,
             stop_requested: None,
             last_point_at: 0,
+            last_stretch: LastStretch::default(),
+            deferred_trace: None,
             longest_stretch: Stretch::default(),
             engine: Engine::default(),
             tracer: Tracer::off(),

@@ -1,0 +1,66 @@
+//! Helpers shared by the integration tests: run STL text on a CPU and look at the result.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use awl::frontend;
+use awl::profile;
+use awl::runner::{self, NotRun, Ran, RunOptions};
+use awl::vm::Cpu;
+use awl::vm::cycle::{RunLimit, RunOutcome};
+use awl::vm::interrupts::{Engine, EngineConfig, Scheduled};
+
+/// Compiles `source` for `cpu` (it must be free of errors) and runs it.
+pub fn run_with(source: &str, cpu: &str, limit: RunLimit, config: EngineConfig, schedule: Vec<Scheduled>) -> (Cpu, RunOutcome) {
+    let profile = profile::find(cpu).expect("known profile");
+    let built = frontend::build_text("test.awl", source, profile);
+    assert!(!built.has_errors(), "{:#?}", built.diagnostics);
+    let mut cpu = Cpu::new(Arc::new(built.compiled.program.clone()), Arc::new(built.sources.clone()));
+    cpu.engine = Engine::new(config, schedule);
+    let outcome = cpu.run(limit);
+    (cpu, outcome)
+}
+
+/// One cycle on the default CPU.
+pub fn run_once(source: &str) -> (Cpu, RunOutcome) {
+    run_with(source, "sinumerik-840c", RunLimit::Cycles(1), EngineConfig::default(), Vec::new())
+}
+
+/// Flag word `n` as a signed number.
+pub fn fw(cpu: &Cpu, n: usize) -> i16 {
+    let base = 2 * usize::from(cpu.program.layout.image_bytes) + n;
+    i16::from_be_bytes([cpu.image[base], cpu.image[base + 1]])
+}
+
+pub fn fd(cpu: &Cpu, n: usize) -> u32 {
+    let base = 2 * usize::from(cpu.program.layout.image_bytes) + n;
+    u32::from_be_bytes([cpu.image[base], cpu.image[base + 1], cpu.image[base + 2], cpu.image[base + 3]])
+}
+
+pub fn flag(cpu: &Cpu, byte: usize, bit: u8) -> bool {
+    cpu.image[2 * usize::from(cpu.program.layout.image_bytes) + byte] >> bit & 1 == 1
+}
+
+pub fn output(cpu: &Cpu, byte: usize, bit: u8) -> bool {
+    cpu.image[usize::from(cpu.program.layout.image_bytes) + byte] >> bit & 1 == 1
+}
+
+/// Writes a program and a scenario under `target/test-scenarios/<name>/` and runs it as
+/// `awl run --scenario` would; paths are relative so rendered reports are stable.
+pub fn run_scenario(name: &str, program: &str, scenario: &str) -> Result<Ran, NotRun> {
+    let dir = PathBuf::from("target/test-scenarios").join(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("program.awl"), program).unwrap();
+    let path = dir.join("scenario.toml");
+    std::fs::write(&path, format!("program = [\"program.awl\"]\n{scenario}")).unwrap();
+    runner::run(&RunOptions { scenario: Some(path), ..RunOptions::default() })
+}
+
+pub fn ran(result: Result<Ran, NotRun>) -> Ran {
+    match result {
+        Ok(ran) => ran,
+        Err(NotRun::SourceErrors) => panic!("source errors"),
+        Err(NotRun::Failed(report)) => panic!("{report:?}"),
+    }
+}

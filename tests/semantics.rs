@@ -1,0 +1,216 @@
+//! The STEP 5 semantics of each operation, including the edge cases the manuals call out.
+
+mod common;
+
+use awl::vm::Mode;
+use awl::vm::stop::StopCause;
+use common::*;
+
+/// Wraps statements in an FB called from OB 1 (so supplementary operations are allowed).
+fn fb(body: &str) -> String {
+    format!("OB 1\n      JU FB 1\nNAME :T\n      BE\nFB 1\nNAME :T\n{body}\n      BE\nDB 5\n 0: KF +1\n 1: KH ABCD\n 2: KF -2\n 3: KF +0\n")
+}
+
+#[test]
+fn first_check_after_assignment_starts_a_new_string() {
+    let (cpu, _) = run_once(&fb("      A  F 0.0\n      =  F 1.0\n      AN F 0.0\n      =  F 1.1\n      =  F 1.2"));
+    assert!(!flag(&cpu, 1, 0));
+    assert!(flag(&cpu, 1, 1), "AN after = loads, it does not AND with the old RLO");
+    assert!(flag(&cpu, 1, 2), "the RLO stays for a second assignment");
+}
+
+#[test]
+fn or_without_operand_ors_and_functions() {
+    // F 0.0 = 1, F 0.1 = 0, F 0.2 = 1, F 0.3 = 1: 1&0 | 1&1 = 1; 1&0 | 1&0 = 0
+    let body = "      S  F 0.0\n      S  F 0.2\n      S  F 0.3\n      A  F 0.0\n      A  F 0.1\n      O\n      A  F 0.2\n      A  F 0.3\n      =  F 1.0\n      A  F 0.0\n      A  F 0.1\n      O\n      A  F 0.2\n      A  F 0.1\n      =  F 1.1";
+    let body = format!("      A  F 9.0\n      ON F 9.0\n{body}");
+    let (cpu, _) = run_once(&fb(&body));
+    assert!(flag(&cpu, 1, 0));
+    assert!(!flag(&cpu, 1, 1));
+}
+
+#[test]
+fn nested_brackets() {
+    // F 1.0 = F 0.0 & (F 0.1 | (F 0.2 & F 0.3)) with F 0.0, F 0.2, F 0.3 = 1
+    let body = "      ON F 9.0\n      S  F 0.0\n      S  F 0.2\n      S  F 0.3\n      A  F 0.0\n      A(\n      O  F 0.1\n      O(\n      A  F 0.2\n      A  F 0.3\n      )\n      )\n      =  F 1.0\n      A  F 0.0\n      A(\n      O  F 0.1\n      O(\n      A  F 0.2\n      A  F 0.1\n      )\n      )\n      =  F 1.1";
+    let (cpu, _) = run_once(&fb(body));
+    assert!(flag(&cpu, 1, 0));
+    assert!(!flag(&cpu, 1, 1));
+}
+
+#[test]
+fn eight_brackets_overflow_the_bracket_stack() {
+    let body = "      A(\n".repeat(8) + &"      )\n".repeat(8);
+    let (_, outcome) = run_once(&fb(&body));
+    assert_eq!(outcome.stop.unwrap().cause, StopCause::Bcf);
+}
+
+#[test]
+fn fixed_point_arithmetic_sets_overflow() {
+    let body = "      L  KF +30000\n      L  KF +10000\n      +F\n      T  FW 0\n      JO =OVF\n      L  KF +0\n      T  FW 2\n      BEU\nOVF  :L  KF +1\n      T  FW 2";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 0), 40000u16 as i16);
+    assert_eq!(fw(&cpu, 2), 1, "JO jumps on the overflow of +F");
+}
+
+#[test]
+fn sub_mul_div_work_on_accu_2_and_accu_1() {
+    let body = "      L  KF +7\n      L  KF +10\n      -F\n      T  FW 0\n      L  KF -6\n      L  KF +7\n      X  F\n      T  FW 2\n      L  KF +100\n      L  KF +7\n      :F\n      T  FW 4";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!((fw(&cpu, 0), fw(&cpu, 2), fw(&cpu, 4)), (-3, -42, 14));
+}
+
+#[test]
+fn division_by_zero_leaves_accu_1_and_sets_cc_11_and_ov() {
+    let body = "      L  KF +100\n      L  KF +0\n      :F\n      T  FW 0\n      JO =OVF\n      BEU\nOVF  :L  KF +9\n      T  FW 2";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 0), 0, "ACCU 1 still holds the divisor 0");
+    assert_eq!(fw(&cpu, 2), 9);
+}
+
+#[test]
+fn jumps_on_each_condition_code() {
+    // For each jump: a result that takes it and one that does not; FW n counts the taken ones.
+    let cases = [
+        ("JZ", "KF +5", "KF +5", "KF +5", "KF +4"),
+        ("JN", "KF +5", "KF +4", "KF +5", "KF +5"),
+        ("JP", "KF +5", "KF +4", "KF +4", "KF +5"),
+        ("JM", "KF +4", "KF +5", "KF +5", "KF +4"),
+    ];
+    for (jump, a1, b1, a2, b2) in cases {
+        let body = format!(
+            "      L  {a1}\n      L  {b1}\n      -F\n      {jump} =T1\n      BEU\nT1   :L  KF +1\n      T  FW 0\n      L  {a2}\n      L  {b2}\n      -F\n      {jump} =T2\n      BEU\nT2   :L  KF +1\n      T  FW 2"
+        );
+        let (cpu, _) = run_once(&fb(&body));
+        assert_eq!((fw(&cpu, 0), fw(&cpu, 2)), (1, 0), "{jump}");
+    }
+}
+
+#[test]
+fn comparisons_form_the_rlo() {
+    let body = "      L  KF -3\n      L  KF +2\n      <F\n      =  F 1.0\n      >F\n      =  F 1.1\n      !=F\n      =  F 1.2\n      ><F\n      =  F 1.3\n      <=F\n      =  F 1.4\n      >=F\n      =  F 1.5";
+    let (cpu, _) = run_once(&fb(body));
+    let bits: Vec<bool> = (0..6).map(|bit| flag(&cpu, 1, bit)).collect();
+    assert_eq!(bits, [true, false, false, true, true, false]);
+}
+
+#[test]
+fn load_and_transfer_every_memory_operand() {
+    let body = "      C  DB 5\n      L  DW 1\n      T  FW 0\n      L  DL 1\n      T  FY 2\n      L  DR 1\n      T  FY 3\n      L  DD 1\n      T  FD 4\n      L  KF +77\n      T  DW 3\n      L  DW 3\n      T  FW 8\n      L  FW 0\n      T  QW 2\n      L  QB 2\n      T  FY 10\n      L  KB 200\n      T  PY 5\n      L  KH 1234\n      T  OW 6";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 0) as u16, 0xABCD);
+    assert_eq!(fw(&cpu, 2) as u16, 0xABCD, "DL then DR");
+    assert_eq!(fd(&cpu, 4), 0xABCD_FFFE);
+    assert_eq!(fw(&cpu, 8), 77);
+    assert_eq!(cpu.image[2 * 128 + 10], 0xAB);
+    assert_eq!(cpu.outputs[5], 200, "T PY writes the output module directly");
+    assert_eq!(cpu.image[128 + 5], 200, "and the PIQ of a digital output");
+    assert_eq!(cpu.extended_outputs[6..8], [0x12, 0x34]);
+}
+
+#[test]
+fn every_constant_format_loads() {
+    let body = "      L  KB 255\n      T  FW 0\n      L  KF -1\n      T  FW 2\n      L  KM 0000000011110000\n      T  FW 4\n      L  KY 1,2\n      T  FW 6\n      L  KT 123.2\n      T  FW 8\n      L  KC 456\n      T  FW 10\n      L  KS 'AB'\n      T  FW 12\n      L  DH 12345678\n      T  FD 14\n      L  KG +5000000+01\n      T  FD 18";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 0), 255);
+    assert_eq!(fw(&cpu, 2), -1);
+    assert_eq!(fw(&cpu, 4), 0x00F0);
+    assert_eq!(fw(&cpu, 6), 0x0102);
+    assert_eq!(fw(&cpu, 8), 0x2123, "KT: base 2 in bits 12-13, BCD value");
+    assert_eq!(fw(&cpu, 10), 0x0456, "KC: BCD");
+    assert_eq!(fw(&cpu, 12), 0x4142);
+    assert_eq!(fd(&cpu, 14), 0x1234_5678);
+    assert_eq!(fd(&cpu, 18) >> 24, 3, "KG 5.0: exponent 3, mantissa 0.625");
+}
+
+#[test]
+fn accumulator_operations() {
+    let body = "      L  KF +1\n      L  KF +2\n      TAK\n      T  FW 0\n      L  KH 00FF\n      I  1\n      T  FW 2\n      L  KH 0100\n      D  1\n      T  FW 4\n      L  KH 0001\n      SLW 4\n      T  FW 6\n      SRW 2\n      T  FW 8\n      L  KH 0F0F\n      CFW\n      T  FW 10\n      L  KF +5\n      CSW\n      T  FW 12\n      L  KH 00FF\n      L  KH 0F0F\n      AW\n      T  FW 14\n      L  KH 00FF\n      L  KH 0F0F\n      OW\n      T  FW 16\n      L  KH 00FF\n      L  KH 0F0F\n      XOW\n      T  FW 18";
+    let (cpu, _) = run_once(&fb(body));
+    let words: Vec<u16> = (0..10).map(|i| fw(&cpu, 2 * i) as u16).collect();
+    assert_eq!(words, [1, 0x0000, 0x01FF, 0x0010, 0x0004, 0xF0F0, (-5i16) as u16, 0x000F, 0x0FFF, 0x0FF0]);
+}
+
+#[test]
+fn indirect_addressing_with_do() {
+    // DO FW 20 with FW 20 = 2 makes `L DW 0` load DW 2 (= -2); for a bit, high byte = bit.
+    let body = "      C  DB 5\n      L  KF +2\n      T  FW 20\n      DO FW 20\n      L  DW 0\n      T  FW 0\n      L  KH 0304\n      T  FW 22\n      DO FW 22\n      S  F 30.0";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 0), -2);
+    assert!(flag(&cpu, 4, 3), "S F 4.3 through DO");
+    assert!(!flag(&cpu, 30, 0), "the written operand is replaced");
+}
+
+#[test]
+fn bit_test_and_unconditional_set_and_reset() {
+    let body = "      C  DB 5\n      SU D 3.4\n      TB D 3.4\n      =  F 1.0\n      RU D 3.4\n      TBN D 3.4\n      =  F 1.1\n      SU F 2.2\n      TB F 2.2\n      =  F 1.2";
+    let (cpu, _) = run_once(&fb(body));
+    assert!(flag(&cpu, 1, 0) && flag(&cpu, 1, 1) && flag(&cpu, 1, 2));
+}
+
+#[test]
+fn counters_stay_within_0_and_999() {
+    let body = "      ON F 9.0\n      L  KC 999\n      S  C 1\n      CU C 1\n      L  C 1\n      T  FW 0\n      R  C 1\n      CD C 1\n      L  C 1\n      T  FW 2\n      A  C 1\n      =  F 4.0\n      ON F 9.0\n      L  KC 123\n      S  C 2\n      LC C 2\n      T  FW 6";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 0), 999);
+    assert_eq!(fw(&cpu, 2), 0);
+    assert!(!flag(&cpu, 4, 0), "a counter at 0 reads 0");
+    assert_eq!(fw(&cpu, 6), 0x0123);
+}
+
+#[test]
+fn open_data_block_is_restored_after_a_call() {
+    let source = "OB 1\n      C  DB 5\n      JU PB 2\n      L  DW 0\n      T  FW 0\n      BE\nPB 2\n      C  DB 6\n      L  DW 0\n      T  FW 2\n      BE\nDB 5\n 0: KF +55\nDB 6\n 0: KF +66\n";
+    let (cpu, _) = run_once(source);
+    assert_eq!((fw(&cpu, 0), fw(&cpu, 2)), (55, 66));
+}
+
+#[test]
+fn fb_parameters_of_every_kind() {
+    let source = "OB 1\n      JU FB 3\nNAME :ALL\nBIT  :F 0.1\nOUT  :F 0.2\nWORD :FW 10\nKON  :KF +42\nBLK  :PB 7\nTIM  :T 4\nCNT  :C 5\n      BE\n\
+FB 3\nNAME :ALL\nDES  :BIT  I BI\nDES  :OUT  Q BI\nDES  :WORD I W\nDES  :KON  D KF\nDES  :BLK  B\nDES  :TIM  T\nDES  :CNT  C\n      ON =BIT\n      =  =OUT\n      L  =KON\n      T  FW 20\n      L  =WORD\n      T  FW 22\n      JU =BLK\n      L  KT 010.2\n      ON =BIT\n      SE =TIM\n      A  =TIM\n      =  F 3.0\n      ON =BIT\n      CU =CNT\n      L  =CNT\n      T  FW 24\n      BE\nPB 7\n      L  KF +7\n      T  FW 26\n      BE\n";
+    let (cpu, _) = run_once(source);
+    assert!(flag(&cpu, 0, 2));
+    assert_eq!((fw(&cpu, 20), fw(&cpu, 22), fw(&cpu, 24), fw(&cpu, 26)), (42, 0, 1, 7));
+    assert!(flag(&cpu, 3, 0), "the extended pulse on T 4 runs");
+}
+
+#[test]
+fn stp_stops_at_the_end_of_the_cycle() {
+    let (cpu, outcome) = run_once("OB 1\n      STP\n      ON F 9.0\n      =  Q 4.0\n      BE\n");
+    assert_eq!(outcome.mode, Mode::Stop);
+    assert_eq!(outcome.stop.unwrap().cause, StopCause::Stp);
+    assert!(output(&cpu, 4, 0), "the rest of the cycle ran");
+}
+
+#[test]
+fn runtime_faults_stop_the_cpu() {
+    let cases = [
+        ("OB 1\n      JU PB 1\n      BE\nPB 1\n      JU PB 1\n      BE\n", StopCause::Stueb),
+        ("OB 1\n      JU PB 9\n      BE\n", StopCause::LzfBlock),
+        ("OB 1\n      L  DW 0\n      BE\n", StopCause::LzfData),
+        ("OB 1\n      C  DB 5\n      L  DW 7\n      BE\nDB 5\n 0: KF +1\n", StopCause::LzfData),
+        ("OB 1\n      )\n      BE\n", StopCause::Bcf),
+    ];
+    for (source, cause) in cases {
+        let (_, outcome) = run_once(source);
+        let stop = outcome.stop.unwrap_or_else(|| panic!("no STOP for {source}"));
+        assert_eq!(stop.cause, cause, "{source}");
+        assert!(!stop.stack.is_empty());
+    }
+}
+
+#[test]
+fn generated_data_blocks_can_be_used() {
+    let body = "      L  KF +10\n      G  DB 40\n      C  DB 40\n      L  KF +9\n      T  DW 9\n      L  DW 9\n      T  FW 0";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 0), 9);
+}
+
+#[test]
+fn watchdog_stops_an_endless_loop() {
+    let (_, outcome) = run_once(&fb("LOOP :JU =LOOP"));
+    let stop = outcome.stop.unwrap();
+    assert_eq!(stop.cause, StopCause::Zyk);
+    assert_eq!(stop.stack[0].block, "FB 1");
+}
