@@ -144,6 +144,8 @@ pub struct Engine {
     interrupt_piq_dirty: Vec<bool>,
     /// When RUN began (hardware interrupts before it are not produced).
     run_started_at: Option<u64>,
+    /// Hardware events of the STARTUP, judged at the transition to RUN.
+    startup_events: Vec<(u64, u8, HardwareSource)>,
 }
 
 impl Engine {
@@ -246,6 +248,9 @@ impl Cpu {
 
     pub fn start_engine_run(&mut self) {
         self.engine.run_started_at = Some(self.clock);
+        for (at, ob, source) in std::mem::take(&mut self.engine.startup_events) {
+            self.before_run_event(at, ob, source, self.clock);
+        }
         if let Some(interval) = self.engine.config.ob13_interval_ns {
             self.engine.next_ob13_at = Some(self.clock + interval);
         }
@@ -409,21 +414,16 @@ impl Cpu {
         let Some(&(_, ob)) = self.engine.config.hw_modules.iter().find(|(module, _)| *module == source.module) else {
             return Ok(());
         };
-        let run_started = self.engine.run_started_at;
-        if self.mode != Mode::Run || run_started.is_none_or(|started| at < started) {
-            let id = self.engine.new_id();
-            self.engine.stats(ob).requested += 1;
-            let still_active = run_started.is_some_and(|started| source.active_until > started);
-            let event = if still_active {
-                self.engine.stats(ob).lost += 1;
-                Event::IrqLost { id, ob, reason: "hardware interrupt during the transition to RUN (seed 001)".into() }
-            } else {
-                self.engine.stats(ob).ignored += 1;
-                Event::IrqIgnored { id, ob, reason: "no hardware interrupt is produced in STARTUP (seed 001)".into() }
-            };
-            self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block: None, line: None });
-            self.emit(at, event);
-            return Ok(());
+        match self.engine.run_started_at {
+            None => {
+                self.engine.startup_events.push((at, ob, source));
+                return Ok(());
+            }
+            Some(started) if at < started => {
+                self.before_run_event(at, ob, source, started);
+                return Ok(());
+            }
+            Some(_) => {}
         }
         if let Some(&(channel, _)) = self.engine.busy_modules.get(&source.module) {
             let id = self.engine.new_id();
@@ -456,6 +456,22 @@ impl Cpu {
             return Ok(());
         }
         self.identify(at, ob, source)
+    }
+
+    /// A hardware event from before RUN: none is produced in STARTUP, and one still active at
+    /// the transition to RUN is lost (seed 001).
+    fn before_run_event(&mut self, at: u64, ob: u8, source: HardwareSource, run_started: u64) {
+        let id = self.engine.new_id();
+        self.engine.stats(ob).requested += 1;
+        let event = if source.active_until > run_started {
+            self.engine.stats(ob).lost += 1;
+            Event::IrqLost { id, ob, reason: "hardware interrupt during the transition to RUN (seed 001)".into() }
+        } else {
+            self.engine.stats(ob).ignored += 1;
+            Event::IrqIgnored { id, ob, reason: "no hardware interrupt is produced in STARTUP (seed 001)".into() }
+        };
+        self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block: None, line: None });
+        self.emit(at.max(run_started.min(self.clock)), event);
     }
 
     /// The OS identifies the module's OB: the OB is requested and the module is busy until the

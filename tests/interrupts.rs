@@ -1,0 +1,357 @@
+//! One test per rule of each seed. Each names its seed and sentence; most read the jsonl trace.
+
+mod common;
+
+use awl::runner::{self, Ran, RunOptions};
+use common::*;
+use serde_json::Value;
+
+/// Runs a program and scenario (written under target/test-scenarios/<name>) with a jsonl trace.
+fn traced(name: &str, program: &str, scenario: &str) -> (Ran, Vec<Value>) {
+    let dir = std::path::PathBuf::from("target/test-scenarios").join(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("program.awl"), program).unwrap();
+    std::fs::write(dir.join("scenario.toml"), format!("program = [\"program.awl\"]\n{scenario}")).unwrap();
+    traced_scenario(&dir.join("scenario.toml"), &dir.join("trace.jsonl"))
+}
+
+fn traced_scenario(scenario: &std::path::Path, trace: &std::path::Path) -> (Ran, Vec<Value>) {
+    let options = RunOptions { scenario: Some(scenario.into()), trace: Some(trace.into()), ..RunOptions::default() };
+    let ran = ran(runner::run(&options));
+    let events = std::fs::read_to_string(trace).unwrap().lines().map(|line| serde_json::from_str(line).unwrap()).collect();
+    (ran, events)
+}
+
+/// A scenario of programs/, traced into a file of this test's own (`tag`).
+fn sample(name: &str, tag: &str) -> (Ran, Vec<Value>) {
+    let trace = std::path::PathBuf::from("target/test-scenarios").join(format!("{name}-{tag}.jsonl"));
+    std::fs::create_dir_all("target/test-scenarios").unwrap();
+    traced_scenario(&std::path::PathBuf::from(format!("programs/{name}.toml")), &trace)
+}
+
+fn of<'a>(events: &'a [Value], kind: &str) -> Vec<&'a Value> {
+    events.iter().filter(|event| event["ev"] == kind).collect()
+}
+
+fn services(events: &[Value]) -> Vec<(u64, String)> {
+    of(events, "irq_service").iter().map(|e| (e["ob"].as_u64().unwrap(), e["point"].as_str().unwrap().to_string())).collect()
+}
+
+fn expectations_met(ran: &Ran) {
+    assert!(ran.mismatches.is_empty(), "{:?}", ran.mismatches);
+}
+
+// ---- seed 000: SINUMERIK 840C PLC, 5.3.1 Normal mode and 5.3.2 Response time ----
+
+/// Seed 000: "In normal mode the cyclically processed program can only be interrupted at the
+/// block limits by interrupt-controlled processing."
+#[test]
+fn seed000_normal_mode_interrupts_only_at_block_limits() {
+    let (ran, events) = sample("fig5_2_interrupt", "1");
+    expectations_met(&ran);
+    assert_eq!(services(&events), [(3, "block_end".to_string())]);
+    let service = of(&events, "irq_service")[0];
+    let pb3_end = of(&events, "block_end").into_iter().find(|e| e["block"] == "PB 3").unwrap();
+    assert_eq!(service["t_ns"], pb3_end["t_ns"], "serviced exactly at PB 3's block end");
+}
+
+/// Seed 000: "Only when a change is made from one block to another - either by calling a new
+/// block or by returning to a higher-order block after a block end statement".
+#[test]
+fn seed000_both_kinds_of_block_change_are_interrupt_points() {
+    // OB 1's first op runs from 12.8 us; the request at 13 us comes before the call of PB 3.
+    let program = "OB 1\n      L  KF +1\n      L  KF +2\n      +F\n      JU PB 3\n      BE\nPB 3\n      L  KF +1\n      L  KF +2\n      X  F\n      BE\nOB 3\n      ON F 99.0\n      S  F 1.0\n      BE\n";
+    let (_, events) = traced("s000_call", program, "run = { cycles = 1 }\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 3\"\n");
+    assert_eq!(services(&events), [(3, "block_call".to_string())]);
+    let (_, events) = traced("s000_end", program, "run = { cycles = 1 }\n[[event]]\nat = \"24us\"\ninterrupt = \"OB 3\"\n");
+    assert_eq!(services(&events), [(3, "block_end".to_string())]);
+}
+
+/// Seed 000: "Organization blocks OB 2 and OB 5 cannot be called up in normal mode. If these
+/// blocks are available in the user program ... they are nevertheless not processed."
+#[test]
+fn seed000_ob2_and_ob5_are_ignored_in_normal_mode_and_run_in_special_mode() {
+    let (ran, events) = sample("ob2_ob5_normal", "2");
+    expectations_met(&ran);
+    let ignored: Vec<u64> = of(&events, "irq_ignored").iter().map(|e| e["ob"].as_u64().unwrap()).collect();
+    assert_eq!(ignored, [2, 5]);
+    assert!(of(&events, "irq_ignored")[0]["reason"].as_str().unwrap().contains("normal mode"));
+    let (ran, events) = sample("ob2_ob5_special", "3");
+    expectations_met(&ran);
+    assert!(of(&events, "irq_ignored").is_empty());
+    let order: Vec<u64> = services(&events).into_iter().map(|(ob, _)| ob).collect();
+    assert_eq!(order, [2, 3, 5], "OB 2 > OB 3 > OB 5");
+}
+
+/// Seed 000: "The maximum response time between an interrupt occurring and being serviced is
+/// therefore, in the worst case, the processing time of the longest block."
+#[test]
+fn seed000_latency_is_bounded_by_the_longest_block() {
+    let (ran, events) = sample("fig5_2_interrupt", "4");
+    let latency = of(&events, "irq_service")[0]["latency_ns"].as_u64().unwrap();
+    assert!(latency <= ran.cpu.longest_stretch.ns, "{latency} > {}", ran.cpu.longest_stretch.ns);
+    let summary = awl::report::summary(&ran);
+    assert!(summary.contains("longest block: PB 13"), "{summary}");
+}
+
+/// Seed 000: "If two alarms occur simultaneously, the response time for the interrupt
+/// increases for the interrupt with lower priority ... First ... the highest priority. Once
+/// [it] has been completed, the [one] with lower priority is then processed."
+#[test]
+fn seed000_simultaneous_interrupts_by_priority() {
+    let (ran, events) = sample("priorities", "5");
+    expectations_met(&ran);
+    let order: Vec<u64> = services(&events).into_iter().map(|(ob, _)| ob).collect();
+    assert_eq!(order, [3, 4]);
+    let ob3_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 3).unwrap()["t_ns"].as_u64().unwrap();
+    let ob4_service = of(&events, "irq_service").into_iter().find(|e| e["ob"] == 4).unwrap()["t_ns"].as_u64().unwrap();
+    assert_eq!(ob4_service, ob3_end, "OB 4 waits for OB 3 to finish");
+}
+
+/// Seed 000: "If several interrupts occur simultaneously, the interrupt with the lowest
+/// priority is only serviced when all higher-priority interrupts have been serviced."
+#[test]
+fn seed000_lowest_priority_last() {
+    let program = "OB 1\n      JU PB 1\n      BE\nPB 1\n      L  KF +1\n      BE\nOB 3\n      BE\nOB 4\n      BE\nOB 7\n      BE\n";
+    let scenario = "run = { cycles = 1 }\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 7\"\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 4\"\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 3\"\n";
+    let (_, events) = traced("s000_lowest", program, scenario);
+    let order: Vec<u64> = services(&events).into_iter().map(|(ob, _)| ob).collect();
+    assert_eq!(order, [3, 4, 7]);
+}
+
+/// Seed 000: "The priorities of an interrupt-controlled processing can be shifted if an
+/// interrupt occurs while an interrupt-controlled program is being processed. After
+/// completion of the servicing of the higher-priority interrupt, the priorities are
+/// reassigned".
+#[test]
+fn seed000_priorities_are_reassigned_after_an_interrupt_ob() {
+    let (ran, events) = sample("nested", "6");
+    expectations_met(&ran);
+    assert_eq!(services(&events), [(4, "block_end".to_string()), (3, "block_call".to_string())]);
+    // While OB 4 runs, OB 6 (lower than OB 4) and OB 3 (higher) arrive: OB 3 interrupts OB 4,
+    // OB 4 then finishes, and only then OB 6 runs.
+    let program = std::fs::read_to_string("programs/nested.awl").unwrap() + "OB 6\n      BE\n";
+    let scenario = "run = { cycles = 1 }\n[[event]]\nat = \"22us\"\ninterrupt = \"OB 4\"\n[[event]]\nat = \"46us\"\ninterrupt = \"OB 6\"\n[[event]]\nat = \"47us\"\ninterrupt = \"OB 3\"\n";
+    let (_, events) = traced("s000_reassigned", &program, scenario);
+    let order: Vec<u64> = services(&events).into_iter().map(|(ob, _)| ob).collect();
+    assert_eq!(order, [4, 3, 6]);
+    let ob4_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 4).unwrap()["t_ns"].as_u64().unwrap();
+    let ob6 = of(&events, "irq_service").into_iter().find(|e| e["ob"] == 6).unwrap()["t_ns"].as_u64().unwrap();
+    assert!(ob6 >= ob4_end);
+}
+
+/// SPEC §5: on entry the interrupted level's ACCU 1/2, RLO and status are saved and restored;
+/// flags are shared.
+#[test]
+fn interrupted_level_gets_its_accumulators_and_rlo_back() {
+    // OB 3 comes during `L KF +22` and runs at the call of PB 1; OB 1 then adds its own ACCUs.
+    let program = "OB 1\n      L  KF +11\n      L  KF +22\n      JU PB 1\n      +F\n      T  FW 0\n      BE\nPB 1\n      BE\nOB 3\n      L  KF +99\n      L  KF +98\n      ON I 0.0\n      =  F 6.0\n      BE\n";
+    let (ran, events) = traced("context", program, "run = { cycles = 1 }\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 3\"\n[expect]\n\"FW 0\" = 33\n\"F 6.0\" = 1\n");
+    expectations_met(&ran);
+    assert_eq!(services(&events).len(), 1);
+}
+
+/// SPEC §5: each interrupt OB holds at most one pending request; on the 840C a second one is
+/// lost.
+#[test]
+fn second_request_for_a_pending_ob_is_lost() {
+    let program = "OB 1\n      JU PB 1\n      BE\nPB 1\n      L  KF +1\n      L  KF +1\n      X  F\n      BE\nOB 3\n      BE\n";
+    let scenario = "run = { cycles = 1 }\n[[event]]\nat = \"20us\"\ninterrupt = \"OB 3\"\n[[event]]\nat = \"21us\"\ninterrupt = \"OB 3\"\n";
+    let (ran, events) = traced("lost", program, scenario);
+    assert_eq!(of(&events, "irq_lost").len(), 1);
+    let stats = ran.cpu.engine.stats[&3];
+    assert_eq!((stats.requested, stats.serviced, stats.lost), (2, 1, 1));
+}
+
+/// `IA` (disable interrupts) holds requests until `RA`.
+#[test]
+fn disabled_interrupts_wait_for_enable() {
+    let program = "OB 1\n      JU FB 1\nNAME :X\n      BE\nFB 1\nNAME :X\n      IA\n      JU PB 1\n      JU PB 1\n      RA\n      JU PB 2\n      BE\nPB 1\n      L  KF +1\n      BE\nPB 2\n      BE\nOB 3\n      BE\n";
+    let (_, events) = traced("disabled", program, "run = { cycles = 1 }\n[[event]]\nat = \"25us\"\ninterrupt = \"OB 3\"\n");
+    let service = of(&events, "irq_service")[0];
+    let pb2 = of(&events, "block_call").into_iter().find(|e| e["to"] == "PB 2").unwrap();
+    assert_eq!(service["t_ns"], pb2["t_ns"], "the first point after RA");
+}
+
+// ---- seed 002: S5-95F, OB 13 and the interrupt process images ----
+
+/// Seed 002: "When OB13 is called, the signals of the external input modules are read into
+/// the interrupt PII ... Before time-controlled program processing an interrupt input data
+/// cycle is carried out." And T PY writes "the interrupt PIQ" and "at the same time the
+/// normal PIQ".
+#[test]
+fn seed002_interrupt_pii_is_read_at_ob13_start_and_piq_written() {
+    let (ran, events) = sample("ob13_images", "7");
+    expectations_met(&ran);
+    let inputs = of(&events, "data_cycle").into_iter().filter(|e| e["kind"] == "interrupt_input").count();
+    assert_eq!(inputs, 2, "one interrupt input data cycle per OB 13");
+}
+
+/// Seed 002: "In OB13 the interrupt PII is read with the load operations L PY x": an input
+/// change while OB 13 runs is not seen by L PY in OB 13 (it reads the image taken at its
+/// start); outside OB 13 L PY reads the module directly.
+#[test]
+fn seed002_l_py_in_ob13_reads_the_image_outside_the_module() {
+    let program = "OB 1\n      L  PY 0\n      T  FY 60\n      BE\nOB 13\n      L  KF +1\n      L  KF +1\n      X  F\n      L  PY 0\n      T  FY 40\n      BE\n";
+    // OB 13 starts at 10 ms; the input changes 100 us later, during its multiplication.
+    let scenario = "cpu = \"s5-95f\"\nrun = { for = \"12ms\" }\n[ob13]\ninterval = \"10ms\"\n[[event]]\nat = \"10.35ms\"\nset = { \"IB 0\" = 7 }\n[expect]\n\"FY 40\" = 0\n\"FY 60\" = 7\n";
+    let (ran, _) = traced("s002_image", program, scenario);
+    expectations_met(&ran);
+}
+
+/// Seed 002: "The data transferred into the interrupt PIQ are output to the peripheral
+/// modules after OB13 has finished, in an interrupt output data cycle" ... "carried out only
+/// if the interrupt PIQ was written".
+#[test]
+fn seed002_interrupt_output_cycle_only_after_ob13_and_only_if_written() {
+    let (_, events) = sample("ob13_images", "8");
+    let outputs: Vec<&Value> = of(&events, "data_cycle").into_iter().filter(|e| e["kind"] == "interrupt_output").collect();
+    assert_eq!(outputs.len(), 2);
+    let ends: Vec<&Value> = of(&events, "irq_end");
+    for (output, end) in outputs.iter().zip(&ends) {
+        assert!(output["t_ns"].as_u64() >= end["t_ns"].as_u64(), "after OB 13 has finished");
+    }
+    let program = "OB 1\n      BE\nOB 13\n      L  PY 0\n      T  FY 40\n      BE\n";
+    let (_, events) = traced("s002_not_written", program, "cpu = \"s5-95f\"\nrun = { for = \"25ms\" }\n[ob13]\ninterval = \"10ms\"\n");
+    assert!(of(&events, "data_cycle").iter().all(|e| e["kind"] != "interrupt_output"));
+    assert_eq!(of(&events, "data_cycle").iter().filter(|e| e["kind"] == "interrupt_input").count(), 2);
+}
+
+/// Seed 002: "The response time of cyclic program processing is extended by the interrupt
+/// data cycle time": the cycle in which OB 13 runs is longer by its data cycles.
+#[test]
+fn seed002_data_cycles_lengthen_the_cycle() {
+    let (_, events) = sample("ob13_images", "9");
+    let times: Vec<u64> = of(&events, "cycle_end").iter().map(|e| e["cycle_time_ns"].as_u64().unwrap()).collect();
+    let shortest = *times.iter().min().unwrap();
+    let longest = *times.iter().max().unwrap();
+    assert!(longest >= shortest + 2 * 300_000, "two data cycles of 0.3 ms: {shortest} vs {longest}");
+}
+
+/// Seed 002: "Wake-up error ... (OB13 is called again before it has finished). On a wake-up
+/// error the S5-95F goes to STOP."
+#[test]
+fn seed002_wake_up_error_when_ob13_overruns() {
+    let (ran, events) = sample("weck", "10");
+    expectations_met(&ran);
+    let stop = of(&events, "stop")[0];
+    assert_eq!(stop["cause"], "WECK");
+    assert_eq!(stop["block"], "FB 13", "OB 13's FB was still running");
+}
+
+/// Seed 002: "The same error can occur if OB13 is frequently interrupted by interrupt calls."
+#[test]
+fn seed002_wake_up_error_when_interrupts_keep_ob13_from_finishing() {
+    let program = "OB 1\n      BE\nOB 13\n      JU PB 1\n      JU PB 1\n      JU PB 1\n      BE\nPB 1\n      BE\nOB 3\n      JU FB 3\nNAME :LONG\n      BE\nFB 3\nNAME :LONG\n      L  KF +500\n      T  FW 0\nM001 :L  FW 0\n      L  KF +1\n      -F\n      T  FW 0\n      JP =M001\n      BE\n";
+    let mut scenario = String::from("cpu = \"s5-95f\"\nrun = { for = \"40ms\" }\n[ob13]\ninterval = \"10ms\"\n");
+    for at in [10.4, 14.6, 18.8] {
+        scenario.push_str(&format!("[[event]]\nat = \"{at}ms\"\ninterrupt = \"OB 3\"\n"));
+    }
+    scenario.push_str("[expect]\nmode = \"STOP\"\nstop_cause = \"WECK\"\n");
+    let (ran, events) = traced("s002_interrupted", program, &scenario);
+    expectations_met(&ran);
+    assert!(services(&events).iter().filter(|(ob, _)| *ob == 3).count() >= 2, "OB 3 (above OB 13) interrupted OB 13");
+}
+
+// ---- seed 001: VIPA SPEED7, OB 40/OB 41 hardware interrupts ----
+
+const SPEED7_OBS: &str = "OB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n\
+OB 40\n      JU FB 1\nNAME :WORK\n      L  FW 40\n      L  KF +1\n      +F\n      T  FW 40\n      BE\n\
+OB 41\n      JU FB 1\nNAME :WORK\n      L  FW 41\n      L  KF +1\n      +F\n      T  FW 41\n      BE\n\
+FB 1\nNAME :WORK\n      L  KF +1000\n      T  FW 0\nM001 :L  FW 0\n      L  KF +1\n      -F\n      T  FW 0\n      JP =M001\n      BE\n\
+OB 82\n      L  FW 82\n      L  KF +1\n      +F\n      T  FW 82\n      BE\n";
+
+fn speed7(events: &[(&str, u16, u16, &str)], extra: &str) -> String {
+    let mut scenario = format!("cpu = \"speed7\"\nrun = {{ for = \"3ms\" }}\n[[hw_module]]\nmodule = 4\nob = 40\n[[hw_module]]\nmodule = 5\nob = 40\n[[hw_module]]\nmodule = 6\nob = 41\n{extra}");
+    for (at, module, channel, active) in events {
+        scenario.push_str(&format!("[[event]]\nat = \"{at}\"\nhw_interrupt = {{ module = {module}, channel = {channel}, active_for = \"{active}\" }}\n"));
+    }
+    scenario
+}
+
+/// Seed 001: "If this OB has a higher priority than the currently active priority class, it
+/// will be started": OB 41 (17) interrupts OB 40 (16), not the other way round. (The 1 ms
+/// event is taken at the cycle boundary at 1.026 ms; OB 40 then runs until 1.077 ms.)
+#[test]
+fn seed001_ob_starts_only_above_the_active_priority_class() {
+    let (_, events) = traced("s001_priority", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.05ms", 6, 1, "5us")], ""));
+    let order: Vec<u64> = services(&events).into_iter().map(|(ob, _)| ob).collect();
+    assert_eq!(order, [40, 41]);
+    let ob41_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 41).unwrap()["t_ns"].as_u64();
+    let ob40_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 40).unwrap()["t_ns"].as_u64();
+    assert!(ob41_end < ob40_end, "OB 41 ran inside OB 40");
+    let (_, events) = traced("s001_priority_low", SPEED7_OBS, &speed7(&[("1ms", 6, 1, "5us"), ("1.05ms", 4, 1, "5us")], ""));
+    let ob41_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 41).unwrap()["t_ns"].as_u64();
+    let ob40_service = of(&events, "irq_service").into_iter().find(|e| e["ob"] == 40).unwrap()["t_ns"].as_u64();
+    assert!(ob40_service >= ob41_end, "OB 40 waits for OB 41");
+}
+
+/// Seed 001: "The channel-specific acknowledgement is sent after this hardware interrupt OB
+/// has been executed": after OB 40 has run, the same channel triggers again.
+#[test]
+fn seed001_acknowledgement_after_the_ob() {
+    let (ran, events) = traced("s001_ack", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("2ms", 4, 1, "5us")], "[expect]\n\"FW 40\" = 2\n"));
+    expectations_met(&ran);
+    assert!(of(&events, "irq_lost").is_empty());
+}
+
+/// Seed 001: "If the event occurs on the channel that previously triggered the hardware
+/// interrupt, then the new interrupt is lost" and "the loss of the hardware interrupt is
+/// announced by means of a diagnostic interrupt".
+#[test]
+fn seed001_same_channel_loss_starts_ob82() {
+    let (ran, events) = sample("speed7_lost", "11");
+    expectations_met(&ran);
+    assert_eq!(of(&events, "irq_lost").len(), 1);
+    assert!(services(&events).iter().any(|(ob, _)| *ob == 82));
+}
+
+/// Seed 001: "If the event occurs on another channel of the same module ... This interrupt,
+/// however, is not lost, but is triggered if just active after the acknowledgement of the
+/// currently active hardware interrupt. Else it is lost."
+#[test]
+fn seed001_other_channel_is_held_until_acknowledgement() {
+    let (ran, _) = traced("s001_hold", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.01ms", 4, 2, "500us")], "[expect]\n\"FW 40\" = 2\n\"FW 82\" = 0\n"));
+    expectations_met(&ran);
+    let (ran, events) = traced("s001_hold_gone", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.01ms", 4, 2, "5us")], "[expect]\n\"FW 40\" = 1\n"));
+    expectations_met(&ran);
+    assert!(of(&events, "irq_lost")[0]["reason"].as_str().unwrap().contains("no longer active"));
+}
+
+/// Seed 001: "If a hardware interrupt is triggered and its OB is currently active due to a
+/// hardware interrupt from another module, the new request can be processed only if it is
+/// still active after acknowledgement."
+#[test]
+fn seed001_busy_ob_for_another_module() {
+    let (ran, _) = traced("s001_busy", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.01ms", 5, 1, "500us")], "[expect]\n\"FW 40\" = 2\n"));
+    expectations_met(&ran);
+    let (ran, events) = traced("s001_busy_gone", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.01ms", 5, 1, "5us")], "[expect]\n\"FW 40\" = 1\n"));
+    expectations_met(&ran);
+    assert_eq!(of(&events, "irq_lost").len(), 1);
+}
+
+/// Seed 001: "During STARTUP there is no hardware interrupt produced. ... Hardware interrupts
+/// during transition to RUN are lost."
+#[test]
+fn seed001_nothing_in_startup_and_loss_at_the_transition() {
+    let program = format!("{SPEED7_OBS}OB 100\n      JU FB 1\nNAME :WORK\n      JU FB 1\nNAME :WORK\n      BE\n");
+    // OB 100 runs about 100 us; one event ends during STARTUP, one is still active at RUN.
+    let (ran, events) = traced("s001_startup", &program, &speed7(&[("10us", 4, 1, "5us"), ("20us", 4, 2, "1ms")], "[expect]\n\"FW 40\" = 0\n"));
+    expectations_met(&ran);
+    assert_eq!(of(&events, "irq_ignored").len(), 1);
+    assert_eq!(of(&events, "irq_lost").len(), 1);
+    assert!(services(&events).is_empty());
+}
+
+/// Seed 001: "If a hardware interrupt is generated for which there is no hardware interrupt
+/// OB in the user program, OB 85 is called by the operating system. The hardware interrupt is
+/// acknowledged. If OB 85 has not been programmed, the CPU goes to STOP".
+#[test]
+fn seed001_missing_ob_calls_ob85_and_without_ob85_stops() {
+    let (ran, events) = sample("speed7_ob85", "12");
+    expectations_met(&ran);
+    assert_eq!(services(&events).iter().filter(|(ob, _)| *ob == 85).count(), 2, "acknowledged: the second event is not lost");
+    let (ran, events) = sample("speed7_stop", "13");
+    expectations_met(&ran);
+    assert_eq!(of(&events, "stop")[0]["cause"], "OB85");
+}
