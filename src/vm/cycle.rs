@@ -47,7 +47,15 @@ impl Cpu {
                 Exit::Point(point) => {
                     self.at_point(point)?;
                 }
-                Exit::LevelEnd if self.levels.len() == depth => return Ok(()),
+                Exit::LevelEnd if self.levels.len() == depth => {
+                    // OB 1's own block end is a block change too: pending interrupts run
+                    // before the operating system ends the cycle.
+                    if depth == 0 && self.mode == Mode::Run {
+                        self.block = IDLE;
+                        self.interrupts_between_levels(Point::BlockEnd)?;
+                    }
+                    return Ok(());
+                }
                 Exit::LevelEnd => {
                     self.leave_interrupt();
                     self.at_point(Point::BlockEnd)?;
@@ -61,7 +69,13 @@ impl Cpu {
     /// the cyclic level.
     fn cycle_boundary(&mut self) -> Result<(), Stop> {
         self.block = IDLE;
-        while self.at_point(Point::Cycle)? {
+        self.interrupts_between_levels(Point::Cycle)
+    }
+
+    /// With no block running, pending interrupts run one after the other, highest first,
+    /// until none outranks the cyclic level.
+    fn interrupts_between_levels(&mut self, point: Point) -> Result<(), Stop> {
+        while self.at_point(point)? {
             self.run_level()?;
             self.leave_interrupt();
         }

@@ -220,9 +220,11 @@ impl Cpu {
                         status.after_jump();
                     }
                     if taken {
+                        let jump_pc = pc as u32 - 1;
                         let backward = (target as usize) < pc;
                         move_to!(target as usize, code, elapsed);
                         if !OPERATION_POINTS && backward && segment_clock >= self.attention_at {
+                            self.last_op = (self.block, jump_pc);
                             break Exit::Point(Point::Loop);
                         }
                     }
@@ -251,6 +253,7 @@ impl Cpu {
                         self.trace_call(caller, target, attention);
                     }
                     if attention {
+                        self.last_op = (caller, call_pc);
                         break Exit::Point(Point::BlockCall);
                     }
                 }
@@ -282,6 +285,7 @@ impl Cpu {
                     let caller = &program.blocks[usize::from(frame.block)];
                     move_to!(frame.pc as usize, &caller.code, &caller.elapsed[..=caller.code.len()]);
                     if segment_clock >= self.attention_at {
+                        self.last_op = (ended, self.last_stretch.end_pc);
                         break Exit::Point(Point::BlockEnd);
                     }
                 }
@@ -295,6 +299,7 @@ impl Cpu {
                 }
             }
             if OPERATION_POINTS && now!() >= self.attention_at {
+                self.last_op = (self.block, pc as u32 - 1);
                 break Exit::Point(Point::Operation);
             }
         };

@@ -237,6 +237,27 @@ impl Cpu {
         }
     }
 
+    /// A STOP found by the engine, at the op that led to the interrupt point.
+    fn stop_at_last_op(&mut self, cause: StopCause, detail: StopDetail) -> Stop {
+        let (block, pc) = self.last_op;
+        if self.block == super::IDLE || block == self.block {
+            return self.stop(cause, pc, detail);
+        }
+        let mut stop = self.stop(cause, self.pc, detail);
+        let called = self.frames.len() > self.level_base && self.frames.last().is_some_and(|frame| frame.block == block);
+        if called {
+            // A block call: the running block is the callee; the call is the caller's entry.
+            stop.stack.remove(0);
+        } else {
+            // A block end: the block that ended is no longer on the stack.
+            let entry = super::stop::StackEntry { block: self.block_id(block).to_string(), line: self.line_of(block, pc, &self.sources) };
+            stop.stack.insert(0, entry);
+        }
+        stop.block = block;
+        stop.pc = pc;
+        stop
+    }
+
     /// Keeps `attention_at` at the next moment the engine has to look.
     pub fn update_attention(&mut self) {
         let serviceable = self.mode == Mode::Run
@@ -266,7 +287,7 @@ impl Cpu {
         let cycle_time = self.clock - self.cycle_started_at;
         if self.mode != Mode::Stop && cycle_time > self.engine.config.watchdog_ns {
             let detail = StopDetail::Cycle { cycle_ns: cycle_time, watchdog_ns: self.engine.config.watchdog_ns };
-            return Err(self.stop(StopCause::Zyk, self.pc.saturating_sub(1), detail));
+            return Err(self.stop_at_last_op(StopCause::Zyk, detail));
         }
         let is_point = match self.engine.config.points {
             InterruptPoints::Block => matches!(point, Point::BlockCall | Point::BlockEnd | Point::Cycle),
@@ -403,7 +424,7 @@ impl Cpu {
         let running = self.engine.active.iter().any(|active| active.request.ob == 13);
         let pending = self.engine.pending.iter().any(|request| request.ob == 13);
         if running || pending || self.engine.ob13_ended_at > at {
-            return Err(self.stop(StopCause::Weck, self.pc.saturating_sub(1), StopDetail::Ob(13)));
+            return Err(self.stop_at_last_op(StopCause::Weck, StopDetail::Ob(13)));
         }
         self.request(13, at, None);
         Ok(())
@@ -486,7 +507,7 @@ impl Cpu {
             self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block, line });
             if self.program.ob(85).is_none() {
                 self.emit(at, Event::IrqIgnored { id, ob, reason: format!("OB {ob} is not programmed and OB 85 is missing (seed 001)") });
-                return Err(self.stop(StopCause::Ob85, self.pc.saturating_sub(1), StopDetail::Module { module: source.module, ob }));
+                return Err(self.stop_at_last_op(StopCause::Ob85, StopDetail::Module { module: source.module, ob }));
             }
             self.emit(at, Event::IrqIgnored { id, ob, reason: format!("OB {ob} is not programmed: OB 85 is called, the interrupt acknowledged (seed 001)") });
             self.request(85, at, None);

@@ -168,6 +168,9 @@ pub struct Cpu {
     /// The last stretch between interrupt points: its block, the op that ended it, and when it
     /// began and ended.
     pub last_stretch: LastStretch,
+    /// The op that led to the last interrupt point (block, pc), where STOPs found there are
+    /// reported.
+    pub last_op: (u16, u32),
     /// A block change the engine traces after the requests that came before it.
     pub deferred_trace: Option<crate::trace::Event>,
     pub longest_stretch: Stretch,
@@ -221,6 +224,7 @@ impl Cpu {
             last_point_at: 0,
             last_stretch: LastStretch::default(),
             deferred_trace: None,
+            last_op: (0, 0),
             longest_stretch: Stretch::default(),
             engine: Engine::default(),
             tracer: Tracer::off(),
