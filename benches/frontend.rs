@@ -61,7 +61,11 @@ fn bench_front_end(c: &mut Criterion) {
     let source = generate(100_000);
     let lines = source.lines().count();
     let built = frontend::build_text("gen.awl", &source, cpu);
-    assert!(built.diagnostics.is_empty(), "{:?}", built.diagnostics.first());
+    assert!(
+        built.diagnostics.is_empty(),
+        "{:?}",
+        built.diagnostics.first()
+    );
     let mut group = c.benchmark_group("front_end");
     group.throughput(Throughput::Elements(lines as u64));
     group.sample_size(20);

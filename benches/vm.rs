@@ -1,1 +1,83 @@
-fn main() {}
+//! VM speed on programs/bench: a bit-logic and word-arithmetic loop, and block-call-heavy code.
+//! Each is measured as the bare execution loop ("vm_only": OB 1 run directly, no cycle, no
+//! engine) and through the full cycle with the interrupt engine on and nothing pending, with
+//! block and with operation interrupt points. Targets (release, one core): 400 M instr/s on
+//! the loop, 100 M instr/s on block calls.
+
+use std::sync::Arc;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+
+use awl::frontend;
+use awl::profile::{self, InterruptPoints};
+use awl::vm::cycle::RunLimit;
+use awl::vm::interrupts::{Engine, EngineConfig, Happening, Scheduled};
+use awl::vm::{Cpu, Exit};
+
+fn cpu_for(file: &str, points: InterruptPoints) -> Cpu {
+    let source = std::fs::read_to_string(file).unwrap() + "OB 3\n      BE\n";
+    let built = frontend::build_text(file, &source, profile::find("sinumerik-840c").unwrap());
+    assert!(!built.has_errors(), "{:?}", built.diagnostics);
+    let mut cpu = Cpu::new(
+        Arc::new(built.compiled.program.clone()),
+        Arc::new(built.sources.clone()),
+    );
+    // A request far in the future: the engine is armed, nothing is pending.
+    let far = vec![Scheduled {
+        at_ns: u64::MAX / 2,
+        what: Happening::Interrupt { ob: 3 },
+    }];
+    let config = EngineConfig {
+        points,
+        watchdog_ns: 10_000_000_000,
+        ..EngineConfig::default()
+    };
+    cpu.engine = Engine::new(config, far);
+    cpu
+}
+
+/// OB 1 once through the bare loop.
+fn ob1_only(cpu: &mut Cpu) {
+    let ob1 = cpu.program.ob(1).unwrap();
+    cpu.enter_level(ob1);
+    cpu.attention_at = u64::MAX;
+    while !matches!(cpu.execute(false), Exit::LevelEnd) {}
+}
+
+fn bench_program(c: &mut Criterion, name: &str, file: &str, cycles: u64) {
+    let mut probe = cpu_for(file, InterruptPoints::Block);
+    probe.run(RunLimit::Cycles(cycles));
+    let per_run = probe.instructions;
+    let mut group = c.benchmark_group(name);
+    group.throughput(Throughput::Elements(per_run));
+    group.sample_size(20);
+    group.bench_function("vm_only", |b| {
+        let mut cpu = cpu_for(file, InterruptPoints::Block);
+        b.iter(|| {
+            for _ in 0..cycles {
+                ob1_only(&mut cpu);
+            }
+        })
+    });
+    for (label, points) in [
+        ("engine_block_points", InterruptPoints::Block),
+        ("engine_operation_points", InterruptPoints::Operation),
+    ] {
+        group.bench_function(label, |b| {
+            let mut cpu = cpu_for(file, points);
+            b.iter(|| {
+                let limit = RunLimit::Cycles(cpu.cycle + cycles);
+                cpu.run(limit)
+            })
+        });
+    }
+    group.finish();
+}
+
+fn benches(c: &mut Criterion) {
+    bench_program(c, "logic_loop", "programs/bench/logic_loop.awl", 20);
+    bench_program(c, "calls", "programs/bench/calls.awl", 2000);
+}
+
+criterion_group!(vm, benches);
+criterion_main!(vm);

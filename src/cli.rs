@@ -14,7 +14,11 @@ use crate::trace::TraceFormat;
 use crate::vm::cycle::RunLimit;
 
 #[derive(Debug, Parser)]
-#[command(name = "awl", version, about = "Run STEP 5 STL (AWL) programs on a simulated S5 CPU with interrupts")]
+#[command(
+    name = "awl",
+    version,
+    about = "Run STEP 5 STL (AWL) programs on a simulated S5 CPU with interrupts"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -122,7 +126,8 @@ pub struct TestArgs {
 }
 
 fn parse_duration_arg(text: &str) -> Result<u64, String> {
-    crate::scenario::parse_duration(text).ok_or_else(|| format!("`{text}` is not a duration; write e.g. 250ms, 2s, 500us"))
+    crate::scenario::parse_duration(text)
+        .ok_or_else(|| format!("`{text}` is not a duration; write e.g. 250ms, 2s, 500us"))
 }
 
 pub const EXIT_OK: u8 = 0;
@@ -145,7 +150,8 @@ pub fn run(cli: Cli) -> ExitCode {
 }
 
 fn selected_profile(name: Option<&str>) -> &'static Profile {
-    name.and_then(profile::find).unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile exists"))
+    name.and_then(profile::find)
+        .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile exists"))
 }
 
 /// Runs the front end and prints its diagnostics; `None` when a file could not be read.
@@ -178,7 +184,9 @@ fn count_summary(built: &Frontend) -> String {
 }
 
 fn check(options: &SourceOptions) -> u8 {
-    let Some(built) = build(options, None) else { return EXIT_SOURCE_ERRORS };
+    let Some(built) = build(options, None) else {
+        return EXIT_SOURCE_ERRORS;
+    };
     let blocks = built.compiled.program.blocks.len() + built.compiled.program.data_blocks.len();
     if built.has_errors() {
         eprintln!("awl check: {}", count_summary(&built));
@@ -190,12 +198,17 @@ fn check(options: &SourceOptions) -> u8 {
 }
 
 fn dump(options: &SourceOptions) -> u8 {
-    let Some(built) = build(options, None) else { return EXIT_SOURCE_ERRORS };
+    let Some(built) = build(options, None) else {
+        return EXIT_SOURCE_ERRORS;
+    };
     if built.has_errors() {
         eprintln!("awl dump: {}", count_summary(&built));
         return EXIT_SOURCE_ERRORS;
     }
-    print!("{}", crate::dump::dump(&built.compiled.program, &built.sources));
+    print!(
+        "{}",
+        crate::dump::dump(&built.compiled.program, &built.sources)
+    );
     EXIT_OK
 }
 
@@ -204,7 +217,10 @@ fn run_options(args: &RunArgs) -> RunOptions {
         files: args.files.clone(),
         scenario: args.scenario.clone(),
         cpu: args.cpu.clone(),
-        limit: args.cycles.map(RunLimit::Cycles).or(args.duration.map(RunLimit::Duration)),
+        limit: args
+            .cycles
+            .map(RunLimit::Cycles)
+            .or(args.duration.map(RunLimit::Duration)),
         points: args.interrupt_points.map(|points| match points {
             Points::Block => InterruptPoints::Block,
             Points::Operation => InterruptPoints::Operation,
@@ -249,7 +265,10 @@ fn run_command(args: &RunArgs) -> u8 {
 fn test_command(args: &TestArgs) -> u8 {
     let (mut passed, mut failed) = (0, 0);
     for path in &args.scenarios {
-        let options = RunOptions { scenario: Some(path.clone()), ..RunOptions::default() };
+        let options = RunOptions {
+            scenario: Some(path.clone()),
+            ..RunOptions::default()
+        };
         let verdict = match runner::run(&options) {
             Ok(ran) if ran.mismatches.is_empty() => Ok(ran),
             Ok(ran) => Err(ran
@@ -267,7 +286,13 @@ fn test_command(args: &TestArgs) -> u8 {
         match verdict {
             Ok(ran) => {
                 passed += 1;
-                println!("PASS {}  ({} expectations, {} cycles, mode {})", path.display(), ran.expectations, ran.outcome.cycles, ran.outcome.mode.name());
+                println!(
+                    "PASS {}  ({} expectations, {} cycles, mode {})",
+                    path.display(),
+                    ran.expectations,
+                    ran.outcome.cycles,
+                    ran.outcome.mode.name()
+                );
             }
             Err(reason) => {
                 failed += 1;
@@ -276,5 +301,9 @@ fn test_command(args: &TestArgs) -> u8 {
         }
     }
     println!("{passed} passed, {failed} failed");
-    if failed == 0 { EXIT_OK } else { EXIT_EXPECTATION }
+    if failed == 0 {
+        EXIT_OK
+    } else {
+        EXIT_EXPECTATION
+    }
 }

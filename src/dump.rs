@@ -68,25 +68,42 @@ pub fn op_text(op: Op, program: &Program) -> String {
         Op::TransferImageWord(byte) => format!("transfer {}", sized(layout, Width::Word, byte)),
         Op::TransferImageDouble(byte) => format!("transfer {}", sized(layout, Width::Double, byte)),
         Op::LoadConstant(value) => format!("load-constant {value:#06X}"),
-        Op::Call { block, conditional, params } => {
+        Op::Call {
+            block,
+            conditional,
+            params,
+        } => {
             let id = program.blocks[usize::from(block)].id;
             let kind = if conditional { "call-if-rlo" } else { "call" };
             if params == crate::compiler::bytecode::NO_PARAMS {
                 format!("{kind} {id}")
             } else {
-                format!("{kind} {id} with {} parameters", program.param_lists[usize::from(params)].len())
+                format!(
+                    "{kind} {id} with {} parameters",
+                    program.param_lists[usize::from(params)].len()
+                )
             }
         }
-        Op::CallMissing { kind, number, .. } => format!("call-missing {} {number} (STOP)", kind.name()),
+        Op::CallMissing { kind, number, .. } => {
+            format!("call-missing {} {number} (STOP)", kind.name())
+        }
         Op::Jump(condition, target) => format!("jump-{condition:?} -> {target}").to_lowercase(),
         Op::Indirect { source, .. } => match source {
-            IndirectSource::FlagWord(byte) => format!("do {}", image_byte(layout, byte).replace("F ", "FW ")),
+            IndirectSource::FlagWord(byte) => {
+                format!("do {}", image_byte(layout, byte).replace("F ", "FW "))
+            }
             IndirectSource::DataWord(word) => format!("do DW {word}"),
         },
         Op::SetUnconditional(target) => format!("set-unconditional {}", bit_target(layout, target)),
-        Op::ResetUnconditional(target) => format!("reset-unconditional {}", bit_target(layout, target)),
+        Op::ResetUnconditional(target) => {
+            format!("reset-unconditional {}", bit_target(layout, target))
+        }
         Op::TestBit { negate, target } => {
-            format!("{} {}", if negate { "test-bit-not" } else { "test-bit" }, bit_target(layout, target))
+            format!(
+                "{} {}",
+                if negate { "test-bit-not" } else { "test-bit" },
+                bit_target(layout, target)
+            )
         }
         Op::Formal { op, param } => format!("formal {op:?} param {param}").to_lowercase(),
         other => format!("{other:?}").to_lowercase(),
@@ -109,13 +126,25 @@ pub fn dump(program: &Program, sources: &SourceSet) -> String {
         for (pc, (op, span)) in block.code.iter().zip(&block.spans).enumerate() {
             let line = sources.line_of(*span);
             let text = sources.get(span.file).slice(*span);
-            let _ = writeln!(out, "  {pc:>4}  line {line:>4}  {:<28} {}", text, op_text(*op, program));
+            let _ = writeln!(
+                out,
+                "  {pc:>4}  line {line:>4}  {:<28} {}",
+                text,
+                op_text(*op, program)
+            );
         }
         out.push('\n');
     }
     for data in &program.data_blocks {
         let file = sources.get(data.header.file);
-        let _ = writeln!(out, "{}  ({}:{}, {} words)", data.id, file.name, file.line_of(data.header.start), data.words.len());
+        let _ = writeln!(
+            out,
+            "{}  ({}:{}, {} words)",
+            data.id,
+            file.name,
+            file.line_of(data.header.start),
+            data.words.len()
+        );
         for (index, word) in data.words.iter().enumerate() {
             let _ = writeln!(out, "  DW {index:>4}  {word:#06X}  {}", *word as i16);
         }

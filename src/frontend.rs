@@ -15,7 +15,10 @@ use crate::source::{SourceFile, SourceSet};
 
 #[derive(Debug, Error, Diagnostic)]
 #[error("cannot read `{path}`: {reason}")]
-#[diagnostic(code(awl::cli::read_file), help("check the path; program files are plain text (.awl)"))]
+#[diagnostic(
+    code(awl::cli::read_file),
+    help("check the path; program files are plain text (.awl)")
+)]
 pub struct ReadError {
     pub path: PathBuf,
     pub reason: String,
@@ -31,7 +34,9 @@ pub struct Frontend {
 
 impl Frontend {
     pub fn has_errors(&self) -> bool {
-        self.diagnostics.iter().any(|diagnostic| !diagnostic.is_warning())
+        self.diagnostics
+            .iter()
+            .any(|diagnostic| !diagnostic.is_warning())
     }
 }
 
@@ -39,14 +44,21 @@ pub fn read_sources(paths: &[impl AsRef<Path>]) -> Result<SourceSet, ReadError> 
     let mut sources = SourceSet::default();
     for path in paths {
         let path = path.as_ref();
-        let file = SourceFile::read(path).map_err(|error| ReadError { path: path.to_path_buf(), reason: error.to_string() })?;
+        let file = SourceFile::read(path).map_err(|error| ReadError {
+            path: path.to_path_buf(),
+            reason: error.to_string(),
+        })?;
         sources.add(file);
     }
     Ok(sources)
 }
 
 /// Parses and compiles every file of the set.
-pub fn build(sources: SourceSet, forced: Option<MnemonicSet>, profile: &'static Profile) -> Frontend {
+pub fn build(
+    sources: SourceSet,
+    forced: Option<MnemonicSet>,
+    profile: &'static Profile,
+) -> Frontend {
     let mut diagnostics = Vec::new();
     let mut units = Vec::with_capacity(sources.files.len());
     for (id, file) in sources.files.iter().enumerate() {
@@ -55,12 +67,22 @@ pub fn build(sources: SourceSet, forced: Option<MnemonicSet>, profile: &'static 
         units.push(parsed.unit);
     }
     let compiled = compiler::compile(&units, &sources, profile);
-    diagnostics.extend(compiled.diagnostics.iter().cloned().map(SourceDiagnostic::Check));
+    diagnostics.extend(
+        compiled
+            .diagnostics
+            .iter()
+            .cloned()
+            .map(SourceDiagnostic::Check),
+    );
     diagnostics.sort_by_key(|diagnostic| {
         let span = diagnostic.span();
         (span.file, span.start)
     });
-    Frontend { sources, compiled, diagnostics }
+    Frontend {
+        sources,
+        compiled,
+        diagnostics,
+    }
 }
 
 /// Parses and compiles source text held in memory (tests, benchmarks, fuzzing).

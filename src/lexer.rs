@@ -8,9 +8,11 @@ use logos::Logos;
 
 #[derive(Logos, Debug, Clone, Copy, PartialEq, Eq)]
 #[logos(skip r"[ \t\f\x0B]+")]
-#[logos(skip(r";[^\n]*", allow_greedy = true))]
-#[logos(skip(r"//[^\n]*", allow_greedy = true))]
 pub enum TokenKind {
+    /// `; …` and `// …` to the end of the line.
+    #[regex(r";[^\n]*", logos::skip, allow_greedy = true)]
+    #[regex(r"//[^\n]*", logos::skip, allow_greedy = true)]
+    Comment,
     #[regex(r"\r?\n")]
     Newline,
     /// A name or mnemonic: `A`, `JU`, `PB`, `MOTOR`, `M001`.
@@ -77,7 +79,11 @@ pub fn lex(source: &str) -> Vec<Token> {
     while let Some(result) = lexer.next() {
         let span = lexer.span();
         let kind = result.unwrap_or(TokenKind::Invalid);
-        tokens.push(Token { kind, start: span.start as u32, end: span.end as u32 });
+        tokens.push(Token {
+            kind,
+            start: span.start as u32,
+            end: span.end as u32,
+        });
     }
     tokens
 }
@@ -93,13 +99,19 @@ mod tests {
 
     #[test]
     fn statement_with_bit_address_and_comment() {
-        assert_eq!(kinds("  :A  I 0.0 ; c\r\n"), [Colon, Word, Word, Number, Dot, Number, Newline]);
+        assert_eq!(
+            kinds("  :A  I 0.0 ; c\r\n"),
+            [Colon, Word, Word, Number, Dot, Number, Newline]
+        );
     }
 
     #[test]
     fn formal_operands_comparisons_and_arithmetic() {
         assert_eq!(kinds("JC =M001 // x"), [Word, FormalRef]);
-        assert_eq!(kinds("!=F >=F <F +F -F"), [Compare, Compare, Compare, AddSub, AddSub]);
+        assert_eq!(
+            kinds("!=F >=F <F +F -F"),
+            [Compare, Compare, Compare, AddSub, AddSub]
+        );
         assert_eq!(kinds("KF -100"), [Word, Minus, Number]);
     }
 

@@ -5,18 +5,18 @@
 //! [`report`].
 
 pub mod ast;
+pub mod cli;
+pub mod compiler;
+pub mod diagnostics;
+pub mod dump;
+pub mod frontend;
 pub mod lexer;
 pub mod mnemonics;
 pub mod parser;
-pub mod source;
-pub mod compiler;
 pub mod profile;
-pub mod diagnostics;
-pub mod frontend;
-pub mod dump;
-pub mod cli;
 pub mod report;
+pub mod runner;
+pub mod scenario;
+pub mod source;
 pub mod trace;
 pub mod vm;
-pub mod scenario;
-pub mod runner;

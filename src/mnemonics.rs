@@ -118,7 +118,15 @@ const fn basic(
     example_en: &'static str,
     example_de: &'static str,
 ) -> OpInfo {
-    OpInfo { op, en, de, supplementary: false, summary, example_en, example_de }
+    OpInfo {
+        op,
+        en,
+        de,
+        supplementary: false,
+        summary,
+        example_en,
+        example_de,
+    }
 }
 
 const fn supp(
@@ -129,75 +137,384 @@ const fn supp(
     example_en: &'static str,
     example_de: &'static str,
 ) -> OpInfo {
-    OpInfo { op, en, de, supplementary: true, summary, example_en, example_de }
+    OpInfo {
+        op,
+        en,
+        de,
+        supplementary: true,
+        summary,
+        example_en,
+        example_de,
+    }
 }
 
 use OpCode::*;
 
 pub static OPERATIONS: &[OpInfo] = &[
-    basic(And, "A", "U", "AND the operand into the RLO", "I 0.0", "E 0.0"),
-    basic(AndNot, "AN", "UN", "AND NOT the operand into the RLO", "F 10.0", "M 10.0"),
-    basic(Or, "O", "O", "OR the operand into the RLO; alone: OR of AND functions", "Q 4.0", "A 4.0"),
-    basic(OrNot, "ON", "ON", "OR NOT the operand into the RLO", "T 1", "T 1"),
+    basic(
+        And,
+        "A",
+        "U",
+        "AND the operand into the RLO",
+        "I 0.0",
+        "E 0.0",
+    ),
+    basic(
+        AndNot,
+        "AN",
+        "UN",
+        "AND NOT the operand into the RLO",
+        "F 10.0",
+        "M 10.0",
+    ),
+    basic(
+        Or,
+        "O",
+        "O",
+        "OR the operand into the RLO; alone: OR of AND functions",
+        "Q 4.0",
+        "A 4.0",
+    ),
+    basic(
+        OrNot,
+        "ON",
+        "ON",
+        "OR NOT the operand into the RLO",
+        "T 1",
+        "T 1",
+    ),
     basic(AndBracket, "A(", "U(", "open an AND bracket", "", ""),
     basic(OrBracket, "O(", "O(", "open an OR bracket", "", ""),
-    basic(CloseBracket, ")", ")", "close the bracket and combine", "", ""),
-    basic(Assign, "=", "=", "assign the RLO to the bit", "Q 4.1", "A 4.1"),
-    basic(Set, "S", "S", "set the bit (or load the counter) when the RLO is 1", "F 1.0", "M 1.0"),
-    basic(Reset, "R", "R", "reset the bit, timer or counter when the RLO is 1", "C 3", "Z 3"),
-    basic(Load, "L", "L", "load the operand into ACCU 1 (ACCU 1 moves to ACCU 2)", "FW 10", "MW 10"),
-    basic(Transfer, "T", "T", "transfer ACCU 1 to the operand", "QW 2", "AW 2"),
-    basic(LoadCoded, "LC", "LC", "load a timer or counter value in BCD", "T 5", "T 5"),
+    basic(
+        CloseBracket,
+        ")",
+        ")",
+        "close the bracket and combine",
+        "",
+        "",
+    ),
+    basic(
+        Assign,
+        "=",
+        "=",
+        "assign the RLO to the bit",
+        "Q 4.1",
+        "A 4.1",
+    ),
+    basic(
+        Set,
+        "S",
+        "S",
+        "set the bit (or load the counter) when the RLO is 1",
+        "F 1.0",
+        "M 1.0",
+    ),
+    basic(
+        Reset,
+        "R",
+        "R",
+        "reset the bit, timer or counter when the RLO is 1",
+        "C 3",
+        "Z 3",
+    ),
+    basic(
+        Load,
+        "L",
+        "L",
+        "load the operand into ACCU 1 (ACCU 1 moves to ACCU 2)",
+        "FW 10",
+        "MW 10",
+    ),
+    basic(
+        Transfer,
+        "T",
+        "T",
+        "transfer ACCU 1 to the operand",
+        "QW 2",
+        "AW 2",
+    ),
+    basic(
+        LoadCoded,
+        "LC",
+        "LC",
+        "load a timer or counter value in BCD",
+        "T 5",
+        "T 5",
+    ),
     basic(TimerPulse, "SP", "SI", "start a pulse timer", "T 1", "T 1"),
-    basic(TimerExtendedPulse, "SE", "SV", "start an extended pulse timer", "T 2", "T 2"),
-    basic(TimerOnDelay, "SD", "SE", "start an on-delay timer", "T 3", "T 3"),
-    basic(TimerStoredOnDelay, "SS", "SS", "start a stored on-delay timer", "T 4", "T 4"),
-    basic(TimerOffDelay, "SF", "SA", "start an off-delay timer", "T 5", "T 5"),
-    basic(Enable, "FR", "FR", "enable a timer or counter for a restart", "T 1", "T 1"),
+    basic(
+        TimerExtendedPulse,
+        "SE",
+        "SV",
+        "start an extended pulse timer",
+        "T 2",
+        "T 2",
+    ),
+    basic(
+        TimerOnDelay,
+        "SD",
+        "SE",
+        "start an on-delay timer",
+        "T 3",
+        "T 3",
+    ),
+    basic(
+        TimerStoredOnDelay,
+        "SS",
+        "SS",
+        "start a stored on-delay timer",
+        "T 4",
+        "T 4",
+    ),
+    basic(
+        TimerOffDelay,
+        "SF",
+        "SA",
+        "start an off-delay timer",
+        "T 5",
+        "T 5",
+    ),
+    basic(
+        Enable,
+        "FR",
+        "FR",
+        "enable a timer or counter for a restart",
+        "T 1",
+        "T 1",
+    ),
     basic(CountUp, "CU", "ZV", "count up", "C 1", "Z 1"),
     basic(CountDown, "CD", "ZR", "count down", "C 1", "Z 1"),
-    basic(AddFixed, "+F", "+F", "fixed-point add: ACCU 2 + ACCU 1", "", ""),
-    basic(SubFixed, "-F", "-F", "fixed-point subtract: ACCU 2 - ACCU 1", "", ""),
-    basic(MulFixed, "X F", "X F", "fixed-point multiply: ACCU 2 * ACCU 1", "", ""),
-    basic(DivFixed, ":F", ":F", "fixed-point divide: ACCU 2 / ACCU 1", "", ""),
+    basic(
+        AddFixed,
+        "+F",
+        "+F",
+        "fixed-point add: ACCU 2 + ACCU 1",
+        "",
+        "",
+    ),
+    basic(
+        SubFixed,
+        "-F",
+        "-F",
+        "fixed-point subtract: ACCU 2 - ACCU 1",
+        "",
+        "",
+    ),
+    basic(
+        MulFixed,
+        "X F",
+        "X F",
+        "fixed-point multiply: ACCU 2 * ACCU 1",
+        "",
+        "",
+    ),
+    basic(
+        DivFixed,
+        ":F",
+        ":F",
+        "fixed-point divide: ACCU 2 / ACCU 1",
+        "",
+        "",
+    ),
     basic(CmpEq, "!=F", "!=F", "compare ACCU 2 = ACCU 1", "", ""),
     basic(CmpNe, "><F", "><F", "compare ACCU 2 <> ACCU 1", "", ""),
     basic(CmpGt, ">F", ">F", "compare ACCU 2 > ACCU 1", "", ""),
     basic(CmpGe, ">=F", ">=F", "compare ACCU 2 >= ACCU 1", "", ""),
     basic(CmpLt, "<F", "<F", "compare ACCU 2 < ACCU 1", "", ""),
     basic(CmpLe, "<=F", "<=F", "compare ACCU 2 <= ACCU 1", "", ""),
-    basic(JumpUnconditional, "JU", "SPA", "call a block unconditionally", "PB 3", "PB 3"),
-    basic(JumpConditional, "JC", "SPB", "call a block when the RLO is 1", "FB 5", "FB 5"),
+    basic(
+        JumpUnconditional,
+        "JU",
+        "SPA",
+        "call a block unconditionally",
+        "PB 3",
+        "PB 3",
+    ),
+    basic(
+        JumpConditional,
+        "JC",
+        "SPB",
+        "call a block when the RLO is 1",
+        "FB 5",
+        "FB 5",
+    ),
     basic(OpenDb, "C", "A", "open a data block", "DB 10", "DB 10"),
     basic(BlockEnd, "BE", "BE", "block end", "", ""),
-    basic(BlockEndConditional, "BEC", "BEB", "block end when the RLO is 1", "", ""),
-    basic(BlockEndUnconditional, "BEU", "BEA", "block end unconditionally", "", ""),
+    basic(
+        BlockEndConditional,
+        "BEC",
+        "BEB",
+        "block end when the RLO is 1",
+        "",
+        "",
+    ),
+    basic(
+        BlockEndUnconditional,
+        "BEU",
+        "BEA",
+        "block end unconditionally",
+        "",
+        "",
+    ),
     basic(Nop, "NOP", "NOP", "no operation (NOP 0 / NOP 1)", "0", "0"),
-    basic(Display, "BLD", "BLD", "display construction for the programmer", "130", "130"),
-    basic(Stop, "STP", "STP", "go to STOP at the end of the cycle", "", ""),
-    supp(JumpZero, "JZ", "SPZ", "jump to the label when the result is zero", "=M001", "=M001"),
-    supp(JumpNotZero, "JN", "SPN", "jump to the label when the result is not zero", "=M001", "=M001"),
-    supp(JumpPositive, "JP", "SPP", "jump to the label when the result is positive", "=M001", "=M001"),
-    supp(JumpMinus, "JM", "SPM", "jump to the label when the result is negative", "=M001", "=M001"),
-    supp(JumpOverflow, "JO", "SPO", "jump to the label on overflow", "=M001", "=M001"),
+    basic(
+        Display,
+        "BLD",
+        "BLD",
+        "display construction for the programmer",
+        "130",
+        "130",
+    ),
+    basic(
+        Stop,
+        "STP",
+        "STP",
+        "go to STOP at the end of the cycle",
+        "",
+        "",
+    ),
+    supp(
+        JumpZero,
+        "JZ",
+        "SPZ",
+        "jump to the label when the result is zero",
+        "=M001",
+        "=M001",
+    ),
+    supp(
+        JumpNotZero,
+        "JN",
+        "SPN",
+        "jump to the label when the result is not zero",
+        "=M001",
+        "=M001",
+    ),
+    supp(
+        JumpPositive,
+        "JP",
+        "SPP",
+        "jump to the label when the result is positive",
+        "=M001",
+        "=M001",
+    ),
+    supp(
+        JumpMinus,
+        "JM",
+        "SPM",
+        "jump to the label when the result is negative",
+        "=M001",
+        "=M001",
+    ),
+    supp(
+        JumpOverflow,
+        "JO",
+        "SPO",
+        "jump to the label on overflow",
+        "=M001",
+        "=M001",
+    ),
     supp(AndWord, "AW", "UW", "AND word: ACCU 1 and ACCU 2", "", ""),
     supp(OrWord, "OW", "OW", "OR word: ACCU 1 or ACCU 2", "", ""),
     supp(XorWord, "XOW", "XOW", "exclusive OR word", "", ""),
-    supp(ShiftLeft, "SLW", "SLW", "shift ACCU 1 left by n bits", "3", "3"),
-    supp(ShiftRight, "SRW", "SRW", "shift ACCU 1 right by n bits", "3", "3"),
-    supp(OnesComplement, "CFW", "KEW", "one's complement of ACCU 1", "", ""),
-    supp(TwosComplement, "CSW", "KZW", "two's complement of ACCU 1", "", ""),
+    supp(
+        ShiftLeft,
+        "SLW",
+        "SLW",
+        "shift ACCU 1 left by n bits",
+        "3",
+        "3",
+    ),
+    supp(
+        ShiftRight,
+        "SRW",
+        "SRW",
+        "shift ACCU 1 right by n bits",
+        "3",
+        "3",
+    ),
+    supp(
+        OnesComplement,
+        "CFW",
+        "KEW",
+        "one's complement of ACCU 1",
+        "",
+        "",
+    ),
+    supp(
+        TwosComplement,
+        "CSW",
+        "KZW",
+        "two's complement of ACCU 1",
+        "",
+        "",
+    ),
     supp(Swap, "TAK", "TAK", "swap ACCU 1 and ACCU 2", "", ""),
     supp(Increment, "I", "I", "increment ACCU 1 by n", "1", "1"),
     supp(Decrement, "D", "D", "decrement ACCU 1 by n", "1", "1"),
-    supp(Indirect, "DO", "B", "process the next operation with the parameter in FW/DW", "FW 20", "MW 20"),
-    supp(SetUnconditional, "SU", "SU", "set the bit unconditionally", "D 1.0", "D 1.0"),
-    supp(ResetUnconditional, "RU", "RU", "reset the bit unconditionally", "D 1.0", "D 1.0"),
-    supp(TestBit, "TB", "P", "test the bit for 1 into the RLO", "D 1.0", "D 1.0"),
-    supp(TestBitNot, "TBN", "PN", "test the bit for 0 into the RLO", "D 1.0", "D 1.0"),
-    supp(DisableInterrupts, "IA", "AS", "disable interrupt servicing", "", ""),
-    supp(EnableInterrupts, "RA", "AF", "enable interrupt servicing", "", ""),
-    supp(GenerateDb, "G", "E", "generate a data block of ACCU 1 words", "DB 20", "DB 20"),
+    supp(
+        Indirect,
+        "DO",
+        "B",
+        "process the next operation with the parameter in FW/DW",
+        "FW 20",
+        "MW 20",
+    ),
+    supp(
+        SetUnconditional,
+        "SU",
+        "SU",
+        "set the bit unconditionally",
+        "D 1.0",
+        "D 1.0",
+    ),
+    supp(
+        ResetUnconditional,
+        "RU",
+        "RU",
+        "reset the bit unconditionally",
+        "D 1.0",
+        "D 1.0",
+    ),
+    supp(
+        TestBit,
+        "TB",
+        "P",
+        "test the bit for 1 into the RLO",
+        "D 1.0",
+        "D 1.0",
+    ),
+    supp(
+        TestBitNot,
+        "TBN",
+        "PN",
+        "test the bit for 0 into the RLO",
+        "D 1.0",
+        "D 1.0",
+    ),
+    supp(
+        DisableInterrupts,
+        "IA",
+        "AS",
+        "disable interrupt servicing",
+        "",
+        "",
+    ),
+    supp(
+        EnableInterrupts,
+        "RA",
+        "AF",
+        "enable interrupt servicing",
+        "",
+        "",
+    ),
+    supp(
+        GenerateDb,
+        "G",
+        "E",
+        "generate a data block of ACCU 1 words",
+        "DB 20",
+        "DB 20",
+    ),
 ];
 
 /// Operand areas.
@@ -229,7 +546,10 @@ pub enum Area {
 impl Area {
     /// Areas addressed as `byte.bit`.
     pub fn is_bit(self) -> bool {
-        matches!(self, Area::Input | Area::Output | Area::Flag | Area::DataBit)
+        matches!(
+            self,
+            Area::Input | Area::Output | Area::Flag | Area::DataBit
+        )
     }
 }
 
@@ -242,27 +562,132 @@ pub struct AreaInfo {
 }
 
 pub static AREAS: &[AreaInfo] = &[
-    AreaInfo { area: Area::Input, en: "I", de: "E", summary: "input bit n.m (PII)" },
-    AreaInfo { area: Area::Output, en: "Q", de: "A", summary: "output bit n.m (PIQ)" },
-    AreaInfo { area: Area::Flag, en: "F", de: "M", summary: "flag bit n.m" },
-    AreaInfo { area: Area::Timer, en: "T", de: "T", summary: "timer n" },
-    AreaInfo { area: Area::Counter, en: "C", de: "Z", summary: "counter n" },
-    AreaInfo { area: Area::DataBit, en: "D", de: "D", summary: "data bit n.m of the open DB" },
-    AreaInfo { area: Area::InputByte, en: "IB", de: "EB", summary: "input byte" },
-    AreaInfo { area: Area::InputWord, en: "IW", de: "EW", summary: "input word" },
-    AreaInfo { area: Area::OutputByte, en: "QB", de: "AB", summary: "output byte" },
-    AreaInfo { area: Area::OutputWord, en: "QW", de: "AW", summary: "output word" },
-    AreaInfo { area: Area::FlagByte, en: "FY", de: "MB", summary: "flag byte" },
-    AreaInfo { area: Area::FlagWord, en: "FW", de: "MW", summary: "flag word" },
-    AreaInfo { area: Area::FlagDouble, en: "FD", de: "MD", summary: "flag double word" },
-    AreaInfo { area: Area::DataLeft, en: "DL", de: "DL", summary: "data word, left (high) byte" },
-    AreaInfo { area: Area::DataRight, en: "DR", de: "DR", summary: "data word, right (low) byte" },
-    AreaInfo { area: Area::DataWord, en: "DW", de: "DW", summary: "data word" },
-    AreaInfo { area: Area::DataDouble, en: "DD", de: "DD", summary: "data double word" },
-    AreaInfo { area: Area::PeripheralByte, en: "PY", de: "PB", summary: "peripheral byte (direct)" },
-    AreaInfo { area: Area::PeripheralWord, en: "PW", de: "PW", summary: "peripheral word (direct)" },
-    AreaInfo { area: Area::ExtendedByte, en: "OY", de: "QB", summary: "extended peripheral byte" },
-    AreaInfo { area: Area::ExtendedWord, en: "OW", de: "QW", summary: "extended peripheral word" },
+    AreaInfo {
+        area: Area::Input,
+        en: "I",
+        de: "E",
+        summary: "input bit n.m (PII)",
+    },
+    AreaInfo {
+        area: Area::Output,
+        en: "Q",
+        de: "A",
+        summary: "output bit n.m (PIQ)",
+    },
+    AreaInfo {
+        area: Area::Flag,
+        en: "F",
+        de: "M",
+        summary: "flag bit n.m",
+    },
+    AreaInfo {
+        area: Area::Timer,
+        en: "T",
+        de: "T",
+        summary: "timer n",
+    },
+    AreaInfo {
+        area: Area::Counter,
+        en: "C",
+        de: "Z",
+        summary: "counter n",
+    },
+    AreaInfo {
+        area: Area::DataBit,
+        en: "D",
+        de: "D",
+        summary: "data bit n.m of the open DB",
+    },
+    AreaInfo {
+        area: Area::InputByte,
+        en: "IB",
+        de: "EB",
+        summary: "input byte",
+    },
+    AreaInfo {
+        area: Area::InputWord,
+        en: "IW",
+        de: "EW",
+        summary: "input word",
+    },
+    AreaInfo {
+        area: Area::OutputByte,
+        en: "QB",
+        de: "AB",
+        summary: "output byte",
+    },
+    AreaInfo {
+        area: Area::OutputWord,
+        en: "QW",
+        de: "AW",
+        summary: "output word",
+    },
+    AreaInfo {
+        area: Area::FlagByte,
+        en: "FY",
+        de: "MB",
+        summary: "flag byte",
+    },
+    AreaInfo {
+        area: Area::FlagWord,
+        en: "FW",
+        de: "MW",
+        summary: "flag word",
+    },
+    AreaInfo {
+        area: Area::FlagDouble,
+        en: "FD",
+        de: "MD",
+        summary: "flag double word",
+    },
+    AreaInfo {
+        area: Area::DataLeft,
+        en: "DL",
+        de: "DL",
+        summary: "data word, left (high) byte",
+    },
+    AreaInfo {
+        area: Area::DataRight,
+        en: "DR",
+        de: "DR",
+        summary: "data word, right (low) byte",
+    },
+    AreaInfo {
+        area: Area::DataWord,
+        en: "DW",
+        de: "DW",
+        summary: "data word",
+    },
+    AreaInfo {
+        area: Area::DataDouble,
+        en: "DD",
+        de: "DD",
+        summary: "data double word",
+    },
+    AreaInfo {
+        area: Area::PeripheralByte,
+        en: "PY",
+        de: "PB",
+        summary: "peripheral byte (direct)",
+    },
+    AreaInfo {
+        area: Area::PeripheralWord,
+        en: "PW",
+        de: "PW",
+        summary: "peripheral word (direct)",
+    },
+    AreaInfo {
+        area: Area::ExtendedByte,
+        en: "OY",
+        de: "QB",
+        summary: "extended peripheral byte",
+    },
+    AreaInfo {
+        area: Area::ExtendedWord,
+        en: "OW",
+        de: "QW",
+        summary: "extended peripheral word",
+    },
 ];
 
 /// Block types.
@@ -301,7 +726,9 @@ impl BlockKind {
     }
 
     pub fn from_word(word: &str) -> Option<Self> {
-        BlockKind::ALL.into_iter().find(|kind| kind.name().eq_ignore_ascii_case(word))
+        BlockKind::ALL
+            .into_iter()
+            .find(|kind| kind.name().eq_ignore_ascii_case(word))
     }
 
     pub fn is_data(self) -> bool {
@@ -339,7 +766,13 @@ pub struct ConstInfo {
 }
 
 pub static CONSTANTS: &[ConstInfo] = &[
-    ConstInfo { format: ConstFormat::Byte, en: "KB", de: "KB", summary: "byte 0…255", example: "10" },
+    ConstInfo {
+        format: ConstFormat::Byte,
+        en: "KB",
+        de: "KB",
+        summary: "byte 0…255",
+        example: "10",
+    },
     ConstInfo {
         format: ConstFormat::Fixed,
         en: "KF",
@@ -347,7 +780,13 @@ pub static CONSTANTS: &[ConstInfo] = &[
         summary: "fixed-point −32768…+32767",
         example: "-100",
     },
-    ConstInfo { format: ConstFormat::Hex, en: "KH", de: "KH", summary: "hex, 1…4 digits", example: "00FF" },
+    ConstInfo {
+        format: ConstFormat::Hex,
+        en: "KH",
+        de: "KH",
+        summary: "hex, 1…4 digits",
+        example: "00FF",
+    },
     ConstInfo {
         format: ConstFormat::BitPattern,
         en: "KM",
@@ -355,7 +794,13 @@ pub static CONSTANTS: &[ConstInfo] = &[
         summary: "bit pattern, up to 16 binary digits",
         example: "0000000011110000",
     },
-    ConstInfo { format: ConstFormat::TwoBytes, en: "KY", de: "KY", summary: "two bytes 0…255", example: "12,34" },
+    ConstInfo {
+        format: ConstFormat::TwoBytes,
+        en: "KY",
+        de: "KY",
+        summary: "two bytes 0…255",
+        example: "12,34",
+    },
     ConstInfo {
         format: ConstFormat::Time,
         en: "KT",
@@ -363,8 +808,20 @@ pub static CONSTANTS: &[ConstInfo] = &[
         summary: "time value 0…999 and base 0…3",
         example: "050.1",
     },
-    ConstInfo { format: ConstFormat::Count, en: "KC", de: "KZ", summary: "count 0…999", example: "500" },
-    ConstInfo { format: ConstFormat::Chars, en: "KS", de: "KS", summary: "characters", example: "'AB'" },
+    ConstInfo {
+        format: ConstFormat::Count,
+        en: "KC",
+        de: "KZ",
+        summary: "count 0…999",
+        example: "500",
+    },
+    ConstInfo {
+        format: ConstFormat::Chars,
+        en: "KS",
+        de: "KS",
+        summary: "characters",
+        example: "'AB'",
+    },
     ConstInfo {
         format: ConstFormat::Float,
         en: "KG",
@@ -400,12 +857,36 @@ pub struct ParamKindInfo {
 }
 
 pub static PARAM_KINDS: &[ParamKindInfo] = &[
-    ParamKindInfo { kind: ParamKind::Input, en: "I", de: "E" },
-    ParamKindInfo { kind: ParamKind::Output, en: "Q", de: "A" },
-    ParamKindInfo { kind: ParamKind::Data, en: "D", de: "D" },
-    ParamKindInfo { kind: ParamKind::Block, en: "B", de: "B" },
-    ParamKindInfo { kind: ParamKind::Timer, en: "T", de: "T" },
-    ParamKindInfo { kind: ParamKind::Counter, en: "C", de: "Z" },
+    ParamKindInfo {
+        kind: ParamKind::Input,
+        en: "I",
+        de: "E",
+    },
+    ParamKindInfo {
+        kind: ParamKind::Output,
+        en: "Q",
+        de: "A",
+    },
+    ParamKindInfo {
+        kind: ParamKind::Data,
+        en: "D",
+        de: "D",
+    },
+    ParamKindInfo {
+        kind: ParamKind::Block,
+        en: "B",
+        de: "B",
+    },
+    ParamKindInfo {
+        kind: ParamKind::Timer,
+        en: "T",
+        de: "T",
+    },
+    ParamKindInfo {
+        kind: ParamKind::Counter,
+        en: "C",
+        de: "Z",
+    },
 ];
 
 /// Words of the FB header: the FB's name line and its declaration lines.
@@ -441,7 +922,10 @@ fn fill<T: Copy, V: Copy>(
     for row in rows {
         let (en, de) = words(row);
         for (set, word) in [(MnemonicSet::English, en), (MnemonicSet::German, de)] {
-            map.insert((set, key(word).expect("table words are short ASCII")), value(row));
+            map.insert(
+                (set, key(word).expect("table words are short ASCII")),
+                value(row),
+            );
         }
     }
     map
@@ -474,7 +958,10 @@ pub fn param_kind(set: MnemonicSet, word: &str) -> Option<ParamKind> {
 }
 
 pub fn op_info(op: OpCode) -> &'static OpInfo {
-    OPERATIONS.iter().find(|info| info.op == op).expect("every op code has a table row")
+    OPERATIONS
+        .iter()
+        .find(|info| info.op == op)
+        .expect("every op code has a table row")
 }
 
 pub fn op_word(set: MnemonicSet, op: OpCode) -> &'static str {
@@ -486,7 +973,10 @@ pub fn op_word(set: MnemonicSet, op: OpCode) -> &'static str {
 }
 
 pub fn area_word(set: MnemonicSet, area: Area) -> &'static str {
-    let info = AREAS.iter().find(|info| info.area == area).expect("every area has a row");
+    let info = AREAS
+        .iter()
+        .find(|info| info.area == area)
+        .expect("every area has a row");
     match set {
         MnemonicSet::English => info.en,
         MnemonicSet::German => info.de,
@@ -531,14 +1021,26 @@ mod tests {
 
     #[test]
     fn sets_disagree_on_se() {
-        assert_eq!(operation(MnemonicSet::English, "se").unwrap().op, TimerExtendedPulse);
-        assert_eq!(operation(MnemonicSet::German, "SE").unwrap().op, TimerOnDelay);
+        assert_eq!(
+            operation(MnemonicSet::English, "se").unwrap().op,
+            TimerExtendedPulse
+        );
+        assert_eq!(
+            operation(MnemonicSet::German, "SE").unwrap().op,
+            TimerOnDelay
+        );
     }
 
     #[test]
     fn evidence_depends_on_position() {
-        assert_eq!(evidence(Position::Operation, "U"), Some(MnemonicSet::German));
-        assert_eq!(evidence(Position::Operation, "JU"), Some(MnemonicSet::English));
+        assert_eq!(
+            evidence(Position::Operation, "U"),
+            Some(MnemonicSet::German)
+        );
+        assert_eq!(
+            evidence(Position::Operation, "JU"),
+            Some(MnemonicSet::English)
+        );
         assert_eq!(evidence(Position::Operation, "A"), None);
         assert_eq!(evidence(Position::Operand, "A"), Some(MnemonicSet::German));
         assert_eq!(evidence(Position::Operand, "I"), Some(MnemonicSet::English));

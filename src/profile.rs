@@ -218,12 +218,36 @@ pub static PROFILES: &[Profile] = &[
         watchdog_ns: 150_000_000,
         startup_obs: &[21, 22],
         interrupt_obs: &[
-            InterruptOb { ob: 2, priority: 7, summary: "interrupt (special mode only)" },
-            InterruptOb { ob: 3, priority: 6, summary: "interrupt" },
-            InterruptOb { ob: 4, priority: 5, summary: "interrupt" },
-            InterruptOb { ob: 5, priority: 4, summary: "interrupt (special mode only)" },
-            InterruptOb { ob: 6, priority: 3, summary: "interrupt" },
-            InterruptOb { ob: 7, priority: 2, summary: "interrupt" },
+            InterruptOb {
+                ob: 2,
+                priority: 7,
+                summary: "interrupt (special mode only)",
+            },
+            InterruptOb {
+                ob: 3,
+                priority: 6,
+                summary: "interrupt",
+            },
+            InterruptOb {
+                ob: 4,
+                priority: 5,
+                summary: "interrupt",
+            },
+            InterruptOb {
+                ob: 5,
+                priority: 4,
+                summary: "interrupt (special mode only)",
+            },
+            InterruptOb {
+                ob: 6,
+                priority: 3,
+                summary: "interrupt",
+            },
+            InterruptOb {
+                ob: 7,
+                priority: 2,
+                summary: "interrupt",
+            },
         ],
         default_points: InterruptPoints::Block,
         extended_blocks: true,
@@ -259,8 +283,16 @@ pub static PROFILES: &[Profile] = &[
         watchdog_ns: 150_000_000,
         startup_obs: &[21, 22],
         interrupt_obs: &[
-            InterruptOb { ob: 3, priority: 3, summary: "process interrupt" },
-            InterruptOb { ob: 13, priority: 2, summary: "time-controlled at [ob13].interval" },
+            InterruptOb {
+                ob: 3,
+                priority: 3,
+                summary: "process interrupt",
+            },
+            InterruptOb {
+                ob: 13,
+                priority: 2,
+                summary: "time-controlled at [ob13].interval",
+            },
         ],
         default_points: InterruptPoints::Block,
         extended_blocks: false,
@@ -296,10 +328,26 @@ pub static PROFILES: &[Profile] = &[
         watchdog_ns: 150_000_000,
         startup_obs: &[100],
         interrupt_obs: &[
-            InterruptOb { ob: 82, priority: 26, summary: "diagnostic interrupt" },
-            InterruptOb { ob: 85, priority: 26, summary: "program execution error (no OB for a module)" },
-            InterruptOb { ob: 41, priority: 17, summary: "hardware interrupt" },
-            InterruptOb { ob: 40, priority: 16, summary: "hardware interrupt" },
+            InterruptOb {
+                ob: 82,
+                priority: 26,
+                summary: "diagnostic interrupt",
+            },
+            InterruptOb {
+                ob: 85,
+                priority: 26,
+                summary: "program execution error (no OB for a module)",
+            },
+            InterruptOb {
+                ob: 41,
+                priority: 17,
+                summary: "hardware interrupt",
+            },
+            InterruptOb {
+                ob: 40,
+                priority: 16,
+                summary: "hardware interrupt",
+            },
         ],
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
@@ -326,7 +374,9 @@ pub static PROFILES: &[Profile] = &[
 pub const DEFAULT_PROFILE: &str = "sinumerik-840c";
 
 pub fn find(name: &str) -> Option<&'static Profile> {
-    PROFILES.iter().find(|profile| profile.name.eq_ignore_ascii_case(name))
+    PROFILES
+        .iter()
+        .find(|profile| profile.name.eq_ignore_ascii_case(name))
 }
 
 pub fn names() -> Vec<&'static str> {

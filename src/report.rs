@@ -4,7 +4,6 @@ use std::fmt::Write as _;
 
 use crate::profile::{self, InterruptPoints};
 
-
 fn micros(ns: u32) -> String {
     format!("{:.2} µs", f64::from(ns) / 1000.0)
 }
@@ -19,10 +18,22 @@ pub fn cpus() -> String {
             out,
             "  interrupt points: {} by default{}",
             p.default_points.name(),
-            if p.default_points == InterruptPoints::Block { " (block calls, block ends, cycle boundary)" } else { " (after every operation)" }
+            if p.default_points == InterruptPoints::Block {
+                " (block calls, block ends, cycle boundary)"
+            } else {
+                " (after every operation)"
+            }
         );
-        let obs: Vec<String> = p.interrupt_obs.iter().map(|ob| format!("OB {} (priority {}, {})", ob.ob, ob.priority, ob.summary)).collect();
-        let _ = writeln!(out, "  interrupt OBs, highest priority first: {}; cyclic OB 1 lowest", obs.join(", "));
+        let obs: Vec<String> = p
+            .interrupt_obs
+            .iter()
+            .map(|ob| format!("OB {} (priority {}, {})", ob.ob, ob.priority, ob.summary))
+            .collect();
+        let _ = writeln!(
+            out,
+            "  interrupt OBs, highest priority first: {}; cyclic OB 1 lowest",
+            obs.join(", ")
+        );
         let startup: Vec<String> = p.startup_obs.iter().map(|ob| format!("OB {ob}")).collect();
         let _ = writeln!(out, "  startup OB: {}", startup.join(" / "));
         let s = &p.sizes;
@@ -78,9 +89,18 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
     let expectations = ran.expectations;
     if expectations > 0 {
         for mismatch in &ran.mismatches {
-            let _ = writeln!(out, "expect {}: expected {}, got {}", mismatch.name, mismatch.expected, mismatch.actual);
+            let _ = writeln!(
+                out,
+                "expect {}: expected {}, got {}",
+                mismatch.name, mismatch.expected, mismatch.actual
+            );
         }
-        let _ = writeln!(out, "expectations: {} of {} met", expectations - ran.mismatches.len(), expectations);
+        let _ = writeln!(
+            out,
+            "expectations: {} of {} met",
+            expectations - ran.mismatches.len(),
+            expectations
+        );
     }
     let stretch = cpu.longest_stretch;
     if stretch.ns > 0 {
@@ -88,23 +108,28 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
         let duration = format!("{:.3} ms", stretch.ns as f64 / 1e6);
         match ran.points {
             InterruptPoints::Block => {
-                let _ = writeln!(out, "longest block: {block}, {duration} (worst-case response in normal mode)");
+                let _ = writeln!(
+                    out,
+                    "longest block: {block}, {duration} (worst-case response in normal mode)"
+                );
             }
             InterruptPoints::Operation => {
-                let _ = writeln!(out, "longest operation: {block}, {duration} (worst-case response with operation points)");
+                let _ = writeln!(
+                    out,
+                    "longest operation: {block}, {duration} (worst-case response with operation points)"
+                );
             }
         }
     }
     for (ob, stats) in &cpu.engine.stats {
-        let latency = if stats.serviced > 0 {
-            format!(
+        let latency = match stats.latency_sum.checked_div(stats.serviced) {
+            Some(mean) => format!(
                 "{}/{}/{} us",
                 us(stats.latency_min),
-                us(stats.latency_sum / stats.serviced),
+                us(mean),
                 us(stats.latency_max)
-            )
-        } else {
-            "-/-/- us".to_string()
+            ),
+            None => "-/-/- us".to_string(),
         };
         let _ = writeln!(
             out,
@@ -121,7 +146,15 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
         outcome.cycles
     );
     let wall = outcome.wall.as_secs_f64();
-    let rate = if wall > 0.0 { outcome.instructions as f64 / wall / 1e6 } else { 0.0 };
-    let _ = writeln!(out, "instructions: {}   wall: {wall:.4} s   rate: {rate:.1} M instr/s", outcome.instructions);
+    let rate = if wall > 0.0 {
+        outcome.instructions as f64 / wall / 1e6
+    } else {
+        0.0
+    };
+    let _ = writeln!(
+        out,
+        "instructions: {}   wall: {wall:.4} s   rate: {rate:.1} M instr/s",
+        outcome.instructions
+    );
     out
 }

@@ -12,14 +12,14 @@ use crate::diagnostics;
 use crate::frontend::{self, Frontend};
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, InterruptPoints, Profile};
-use crate::scenario::expect::{self, Mismatch};
 use crate::scenario::Scenario;
+use crate::scenario::expect::{self, Mismatch};
 use crate::source::Span;
 use crate::trace::{TraceFormat, Tracer};
+use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
 use crate::vm::interrupts::{Engine, EngineConfig};
 use crate::vm::stop::{Stop, StopCause, StopDetail, StopError};
-use crate::vm::Cpu;
 
 /// The default run length when neither the command line nor the scenario gives one.
 pub const DEFAULT_RUN: RunLimit = RunLimit::Duration(1_000_000_000);
@@ -40,10 +40,16 @@ pub struct RunOptions {
 #[derive(Debug, Error, Diagnostic)]
 pub enum RunError {
     #[error("no program files")]
-    #[diagnostic(code(awl::cli::no_program), help("name .awl files, or a scenario with `program = [...]`"))]
+    #[diagnostic(
+        code(awl::cli::no_program),
+        help("name .awl files, or a scenario with `program = [...]`")
+    )]
     NoProgram,
     #[error("cannot write the trace to `{path}`: {reason}")]
-    #[diagnostic(code(awl::cli::trace_write), help("check that the directory exists and is writable"))]
+    #[diagnostic(
+        code(awl::cli::trace_write),
+        help("check that the directory exists and is writable")
+    )]
     TraceWrite { path: String, reason: String },
 }
 
@@ -71,7 +77,10 @@ fn open_trace(path: &PathBuf, format: TraceFormat) -> Result<Tracer, NotRun> {
         Box::new(BufWriter::new(std::io::stdout()))
     } else {
         let file = File::create(path).map_err(|error| {
-            NotRun::Failed(Report::new(RunError::TraceWrite { path: path.display().to_string(), reason: error.to_string() }))
+            NotRun::Failed(Report::new(RunError::TraceWrite {
+                path: path.display().to_string(),
+                reason: error.to_string(),
+            }))
         })?;
         Box::new(BufWriter::new(file))
     };
@@ -85,7 +94,10 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         None => None,
     };
     let files = if options.files.is_empty() {
-        scenario.as_ref().map(|s| s.programs.clone()).unwrap_or_default()
+        scenario
+            .as_ref()
+            .map(|s| s.programs.clone())
+            .unwrap_or_default()
     } else {
         options.files.clone()
     };
@@ -98,7 +110,8 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         .and_then(profile::find)
         .or(scenario.as_ref().and_then(|s| s.cpu))
         .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile"));
-    let sources = frontend::read_sources(&files).map_err(|error| NotRun::Failed(Report::new(error)))?;
+    let sources =
+        frontend::read_sources(&files).map_err(|error| NotRun::Failed(Report::new(error)))?;
     let built = frontend::build(sources, options.mnemonics, profile);
     for diagnostic in &built.diagnostics {
         eprintln!("{:?}", diagnostics::report(&built.sources, diagnostic));
@@ -108,46 +121,92 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
     }
     let program = Arc::new(built.compiled.program.clone());
     let set = options.mnemonics.unwrap_or_else(|| {
-        crate::parser::parse_file(0, &built.sources.get(0).text, None).unit.mnemonics
+        crate::parser::parse_file(0, &built.sources.get(0).text, None)
+            .unit
+            .mnemonics
     });
     let (schedule, expectations) = match &scenario {
         Some(scenario) => {
-            let schedule = scenario.schedule(&program, set).map_err(|error| NotRun::Failed(scenario.report(error)))?;
-            let expectations = scenario.expectations(&program, set).map_err(|error| NotRun::Failed(scenario.report(error)))?;
+            let schedule = scenario
+                .schedule(&program, set)
+                .map_err(|error| NotRun::Failed(scenario.report(error)))?;
+            let expectations = scenario
+                .expectations(&program, set)
+                .map_err(|error| NotRun::Failed(scenario.report(error)))?;
             (schedule, expectations)
         }
         None => (Vec::new(), Vec::new()),
     };
-    let points = options.points.or(scenario.as_ref().and_then(|s| s.points)).unwrap_or(profile.default_points);
+    let points = options
+        .points
+        .or(scenario.as_ref().and_then(|s| s.points))
+        .unwrap_or(profile.default_points);
     let config = EngineConfig {
         points,
-        special_mode: options.special_mode.or(scenario.as_ref().and_then(|s| s.special_mode)).unwrap_or(false),
+        special_mode: options
+            .special_mode
+            .or(scenario.as_ref().and_then(|s| s.special_mode))
+            .unwrap_or(false),
         ob13_interval_ns: scenario.as_ref().and_then(|s| s.ob13_interval_ns),
-        hw_modules: scenario.as_ref().map(|s| s.hw_modules.clone()).unwrap_or_default(),
-        watchdog_ns: scenario.as_ref().and_then(|s| s.watchdog_ns).unwrap_or(profile.watchdog_ns),
+        hw_modules: scenario
+            .as_ref()
+            .map(|s| s.hw_modules.clone())
+            .unwrap_or_default(),
+        watchdog_ns: scenario
+            .as_ref()
+            .and_then(|s| s.watchdog_ns)
+            .unwrap_or(profile.watchdog_ns),
     };
-    let limit = options.limit.or(scenario.as_ref().and_then(|s| s.limit)).unwrap_or(DEFAULT_RUN);
+    let limit = options
+        .limit
+        .or(scenario.as_ref().and_then(|s| s.limit))
+        .unwrap_or(DEFAULT_RUN);
     let sources = Arc::new(built.sources.clone());
     let mut cpu = Cpu::new(program, sources);
     cpu.engine = Engine::new(config, schedule);
-    let trace_to_stdout = options.trace.as_ref().is_some_and(|path| path.as_os_str() == "-");
+    let trace_to_stdout = options
+        .trace
+        .as_ref()
+        .is_some_and(|path| path.as_os_str() == "-");
     if let Some(path) = &options.trace {
         cpu.tracer = open_trace(path, options.trace_format.unwrap_or(TraceFormat::Jsonl))?;
     }
     let outcome = cpu.run(limit);
     if let Err(error) = cpu.tracer.finish() {
-        let path = options.trace.as_ref().map(|p| p.display().to_string()).unwrap_or_default();
-        return Err(NotRun::Failed(Report::new(RunError::TraceWrite { path, reason: error.to_string() })));
+        let path = options
+            .trace
+            .as_ref()
+            .map(|p| p.display().to_string())
+            .unwrap_or_default();
+        return Err(NotRun::Failed(Report::new(RunError::TraceWrite {
+            path,
+            reason: error.to_string(),
+        })));
     }
     let mismatches = expect::check(&cpu, &outcome, &expectations);
-    Ok(Ran { frontend: built, cpu, outcome, mismatches, expectations: expectations.len(), points, trace_to_stdout })
+    Ok(Ran {
+        frontend: built,
+        cpu,
+        outcome,
+        mismatches,
+        expectations: expectations.len(),
+        points,
+        trace_to_stdout,
+    })
 }
 
 fn stack_text(stop: &Stop) -> String {
     let mut text = String::from("BSTACK, innermost first:");
     for (index, entry) in stop.stack.iter().enumerate() {
-        let role = if index == 0 { "stopped here" } else { "return point" };
-        text.push_str(&format!("\n  {:<6} line {:<5} {role}", entry.block, entry.line));
+        let role = if index == 0 {
+            "stopped here"
+        } else {
+            "return point"
+        };
+        text.push_str(&format!(
+            "\n  {:<6} line {:<5} {role}",
+            entry.block, entry.line
+        ));
     }
     text
 }
@@ -156,7 +215,11 @@ fn stack_text(stop: &Stop) -> String {
 pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
     let program = &ran.cpu.program;
     let block = &program.blocks[usize::from(stop.block)];
-    let at: Span = block.spans.get(stop.pc as usize).copied().unwrap_or(block.header);
+    let at: Span = block
+        .spans
+        .get(stop.pc as usize)
+        .copied()
+        .unwrap_or(block.header);
     let stack = stack_text(stop);
     let name = block.id.to_string();
     let detail = match &stop.detail {
@@ -164,23 +227,62 @@ pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
         _ => String::new(),
     };
     let error = match (stop.cause, &stop.detail) {
-        (StopCause::Zyk, StopDetail::Cycle { cycle_ns, watchdog_ns }) => StopError::CycleTime {
+        (
+            StopCause::Zyk,
+            StopDetail::Cycle {
+                cycle_ns,
+                watchdog_ns,
+            },
+        ) => StopError::CycleTime {
             cycle_ms: format!("{:.3}", *cycle_ns as f64 / 1e6),
             watchdog_ms: format!("{:.3}", *watchdog_ns as f64 / 1e6),
             block: name,
             at,
             stack,
         },
-        (StopCause::Zyk, _) => StopError::CycleTime { cycle_ms: "?".into(), watchdog_ms: "?".into(), block: name, at, stack },
-        (StopCause::Stueb, _) => StopError::Nesting { limit: program.profile.nesting_limit, block: name, at, stack },
-        (StopCause::LzfBlock, _) => StopError::BlockNotLoaded { target: detail, at, stack },
-        (StopCause::LzfData, _) => StopError::DataAccess { problem: detail, at, stack },
-        (StopCause::Bcf, _) => StopError::Operation { problem: detail, at, stack },
+        (StopCause::Zyk, _) => StopError::CycleTime {
+            cycle_ms: "?".into(),
+            watchdog_ms: "?".into(),
+            block: name,
+            at,
+            stack,
+        },
+        (StopCause::Stueb, _) => StopError::Nesting {
+            limit: program.profile.nesting_limit,
+            block: name,
+            at,
+            stack,
+        },
+        (StopCause::LzfBlock, _) => StopError::BlockNotLoaded {
+            target: detail,
+            at,
+            stack,
+        },
+        (StopCause::LzfData, _) => StopError::DataAccess {
+            problem: detail,
+            at,
+            stack,
+        },
+        (StopCause::Bcf, _) => StopError::Operation {
+            problem: detail,
+            at,
+            stack,
+        },
         (StopCause::Stp, _) => StopError::StopOperation { at, stack },
         (StopCause::Weck, StopDetail::Ob(ob)) => StopError::WakeUp { ob: *ob, at, stack },
         (StopCause::Weck, _) => StopError::WakeUp { ob: 13, at, stack },
-        (StopCause::Ob85, StopDetail::Module { module, ob }) => StopError::MissingOb85 { module: *module, ob: *ob, at, stack },
-        (StopCause::Ob85, _) => StopError::MissingOb85 { module: 0, ob: 40, at, stack },
+        (StopCause::Ob85, StopDetail::Module { module, ob }) => StopError::MissingOb85 {
+            module: *module,
+            ob: *ob,
+            at,
+            stack,
+        },
+        (StopCause::Ob85, _) => StopError::MissingOb85 {
+            module: 0,
+            ob: 40,
+            at,
+            stack,
+        },
     };
     diagnostics::with_source(&ran.frontend.sources, at, error)
 }

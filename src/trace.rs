@@ -103,21 +103,43 @@ pub struct Tracer {
 
 impl Tracer {
     pub fn off() -> Self {
-        Tracer { enabled: false, format: TraceFormat::Jsonl, out: None, error: None }
+        Tracer {
+            enabled: false,
+            format: TraceFormat::Jsonl,
+            out: None,
+            error: None,
+        }
     }
 
     pub fn new(format: TraceFormat, out: Box<dyn Write>) -> Self {
-        Tracer { enabled: true, format, out: Some(out), error: None }
+        Tracer {
+            enabled: true,
+            format,
+            out: Some(out),
+            error: None,
+        }
     }
 
     /// Records an event at simulated time `t_ns`; `indent` is the nesting for the text timeline.
     pub fn emit(&mut self, t_ns: u64, indent: usize, event: Event) {
         let Some(out) = self.out.as_mut() else { return };
         let result = match self.format {
-            TraceFormat::Jsonl => serde_json::to_writer(&mut *out, &Record { t_ns, event: &event })
-                .map_err(std::io::Error::other)
-                .and_then(|()| out.write_all(b"\n")),
-            TraceFormat::Text => writeln!(out, "{:>12}  {}{}", format_ms(t_ns), "  ".repeat(indent), text(&event)),
+            TraceFormat::Jsonl => serde_json::to_writer(
+                &mut *out,
+                &Record {
+                    t_ns,
+                    event: &event,
+                },
+            )
+            .map_err(std::io::Error::other)
+            .and_then(|()| out.write_all(b"\n")),
+            TraceFormat::Text => writeln!(
+                out,
+                "{:>12}  {}{}",
+                format_ms(t_ns),
+                "  ".repeat(indent),
+                text(&event)
+            ),
         };
         if let Err(error) = result {
             self.error.get_or_insert(error);
@@ -157,10 +179,23 @@ fn text(event: &Event) -> String {
             None => format!("mode {from} → {to}"),
         },
         Event::CycleStart { cycle } => format!("── cycle {cycle} ──"),
-        Event::CycleEnd { cycle, cycle_time_ns } => format!("── cycle {cycle} end, cycle time {} ──", format_ms(*cycle_time_ns)),
+        Event::CycleEnd {
+            cycle,
+            cycle_time_ns,
+        } => format!(
+            "── cycle {cycle} end, cycle time {} ──",
+            format_ms(*cycle_time_ns)
+        ),
         Event::BlockCall { from, to, .. } => format!("{from} calls {to}"),
         Event::BlockEnd { block, .. } => format!("{block} ends (BE)"),
-        Event::IrqRequest { id, ob, module, channel, block, line } => {
+        Event::IrqRequest {
+            id,
+            ob,
+            module,
+            channel,
+            block,
+            line,
+        } => {
             let source = match (module, channel) {
                 (Some(module), Some(channel)) => format!(" by module {module} channel {channel}"),
                 _ => String::new(),
@@ -172,7 +207,13 @@ fn text(event: &Event) -> String {
             };
             format!("⚡ OB {ob} requested (#{id}){source}{place}")
         }
-        Event::IrqService { id, ob, latency_ns, point, block } => {
+        Event::IrqService {
+            id,
+            ob,
+            latency_ns,
+            point,
+            block,
+        } => {
             let block = block.as_deref().unwrap_or("?");
             let place = match *point {
                 "block_end" => format!("at the block end of {block}"),
@@ -180,12 +221,23 @@ fn text(event: &Event) -> String {
                 "operation" => format!("after an operation of {block}"),
                 _ => "at the cycle boundary".to_string(),
             };
-            format!("▶ OB {ob} serviced (#{id}) {place}, latency {}", format_us(*latency_ns))
+            format!(
+                "▶ OB {ob} serviced (#{id}) {place}, latency {}",
+                format_us(*latency_ns)
+            )
         }
-        Event::IrqEnd { id, ob } => format!("◀ OB {ob} done (#{id}), back to the interrupted level"),
+        Event::IrqEnd { id, ob } => {
+            format!("◀ OB {ob} done (#{id}), back to the interrupted level")
+        }
         Event::IrqLost { id, ob, reason } => format!("✗ OB {ob} request #{id} lost: {reason}"),
-        Event::IrqIgnored { id, ob, reason } => format!("✗ OB {ob} request #{id} ignored: {reason}"),
-        Event::DataCycle { kind, duration_ns } => format!("data cycle {}, {}", kind.replace('_', " "), format_us(*duration_ns)),
+        Event::IrqIgnored { id, ob, reason } => {
+            format!("✗ OB {ob} request #{id} ignored: {reason}")
+        }
+        Event::DataCycle { kind, duration_ns } => format!(
+            "data cycle {}, {}",
+            kind.replace('_', " "),
+            format_us(*duration_ns)
+        ),
         Event::Stop { cause, block, line } => format!("STOP {cause} in {block} line {line}"),
     }
 }
@@ -196,7 +248,16 @@ mod tests {
 
     #[test]
     fn jsonl_has_the_stable_field_names() {
-        let record = Record { t_ns: 1500, event: &Event::IrqService { id: 1, ob: 3, latency_ns: 20, point: "block_end", block: None } };
+        let record = Record {
+            t_ns: 1500,
+            event: &Event::IrqService {
+                id: 1,
+                ob: 3,
+                latency_ns: 20,
+                point: "block_end",
+                block: None,
+            },
+        };
         assert_eq!(
             serde_json::to_string(&record).unwrap(),
             r#"{"t_ns":1500,"ev":"irq_service","id":1,"ob":3,"latency_ns":20,"point":"block_end"}"#

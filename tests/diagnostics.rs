@@ -4,41 +4,161 @@ use awl::diagnostics::{render_plain, report};
 use awl::frontend;
 use awl::profile;
 
-const FB_WITH_TWO_PARAMS: &str = "FB 5\nNAME :MOTOR\nDES :EIN I BI\nDES :AUS Q BI\n      A =EIN\n      = =AUS\n      BE\n";
+const FB_WITH_TWO_PARAMS: &str =
+    "FB 5\nNAME :MOTOR\nDES :EIN I BI\nDES :AUS Q BI\n      A =EIN\n      = =AUS\n      BE\n";
 
 /// Each code with a small program that shows it.
 fn cases() -> Vec<(&'static str, &'static str, String)> {
-    let call = |params: &str| format!("PB 1\n      JU FB 5\nNAME :MOTOR\n{params}      BE\n{FB_WITH_TWO_PARAMS}");
+    let call = |params: &str| {
+        format!("PB 1\n      JU FB 5\nNAME :MOTOR\n{params}      BE\n{FB_WITH_TWO_PARAMS}")
+    };
     vec![
-        ("awl::lex::unexpected_character", "sinumerik-840c", "PB 1\n      A  § 1\n      BE\n".into()),
-        ("awl::parse::unknown_operation", "sinumerik-840c", "PB 1\n      JUU PB 2\n      BE\nPB 2\n      BE\n".into()),
-        ("awl::parse::mixed_mnemonics", "sinumerik-840c", "PB 1\n      A  I 0.0\n      AN F 1.0\n      U  E 0.1\n      =  Q 4.0\n      BE\n".into()),
-        ("awl::parse::unknown_operand", "sinumerik-840c", "PB 1\n      A  X 1.0\n      BE\n".into()),
-        ("awl::parse::missing_operand", "sinumerik-840c", "PB 1\n      JU\n      BE\n".into()),
-        ("awl::parse::unexpected_token", "sinumerik-840c", "PB 1\n      A I 0.0\n      BE 5\n".into()),
-        ("awl::parse::bad_address", "sinumerik-840c", "PB 1\n      A  I 4\n      BE\n".into()),
-        ("awl::parse::outside_block", "sinumerik-840c", "      A  I 0.0\nPB 1\n      BE\n".into()),
-        ("awl::parse::block_number", "sinumerik-840c", "PB 300\n      BE\n".into()),
-        ("awl::parse::bad_constant", "sinumerik-840c", "PB 1\n      L  KH 12345\n      BE\n".into()),
-        ("awl::parse::bad_declaration", "sinumerik-840c", "FB 1\nNAME :X\nDES  :Y I KF\n      BE\n".into()),
-        ("awl::parse::bad_data_word", "sinumerik-840c", "DB 1\n   0: KF +1\n   1: XX 5\n".into()),
-        ("awl::check::constant_range", "sinumerik-840c", "PB 1\n      L  KF 40000\n      BE\n".into()),
-        ("awl::check::operand_range", "sinumerik-840c", "PB 1\n      A  I 200.0\n      BE\n".into()),
-        ("awl::check::operand_not_allowed", "sinumerik-840c", "FB 1\nNAME :X\n      JP PB 3\n      BE\nPB 3\n      BE\n".into()),
-        ("awl::check::supplementary_outside_fb", "sinumerik-840c", "PB 1\n      L  FW 0\n      SLW 3\n      BE\n".into()),
-        ("awl::check::formal_outside_fb", "sinumerik-840c", "PB 1\n      A  =EIN\n      BE\n".into()),
-        ("awl::check::undefined_symbol", "sinumerik-840c", "FB 1\nNAME :X\n      JU =M002\nM001 :BE\n".into()),
-        ("awl::check::duplicate_label", "sinumerik-840c", "FB 1\nNAME :X\nM001 :NOP 0\nM001 :NOP 0\n      BE\n".into()),
-        ("awl::check::label_too_long", "sinumerik-840c", "FB 1\nNAME :X\nLOOP1 :NOP 0\n      BE\n".into()),
-        ("awl::check::duplicate_block", "sinumerik-840c", "PB 1\n      BE\nPB 1\n      BE\n".into()),
-        ("awl::check::missing_be", "sinumerik-840c", "PB 1\n      A  I 0.0\n      =  Q 4.0\n".into()),
-        ("awl::check::extended_block", "s5-95f", "FX 1\n      BE\n".into()),
-        ("awl::check::param_count", "sinumerik-840c", call("EIN  :I 0.0\n")),
-        ("awl::check::param_mismatch", "sinumerik-840c", call("EIN  :IW 2\nAUS  :Q 4.0\n")),
-        ("awl::check::unknown_param", "sinumerik-840c", call("EIN  :I 0.0\nAUX  :Q 4.0\n")),
-        ("awl::check::undefined_block", "sinumerik-840c", "PB 1\n      JU PB 9\n      BE\n".into()),
-        ("awl::check::undefined_db", "sinumerik-840c", "PB 1\n      C  DB 9\n      BE\n".into()),
-        ("awl::check::indirect_target", "sinumerik-840c", "FB 1\nNAME :X\n      DO FW 10\n      BE\n".into()),
+        (
+            "awl::lex::unexpected_character",
+            "sinumerik-840c",
+            "PB 1\n      A  § 1\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::unknown_operation",
+            "sinumerik-840c",
+            "PB 1\n      JUU PB 2\n      BE\nPB 2\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::mixed_mnemonics",
+            "sinumerik-840c",
+            "PB 1\n      A  I 0.0\n      AN F 1.0\n      U  E 0.1\n      =  Q 4.0\n      BE\n"
+                .into(),
+        ),
+        (
+            "awl::parse::unknown_operand",
+            "sinumerik-840c",
+            "PB 1\n      A  X 1.0\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::missing_operand",
+            "sinumerik-840c",
+            "PB 1\n      JU\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::unexpected_token",
+            "sinumerik-840c",
+            "PB 1\n      A I 0.0\n      BE 5\n".into(),
+        ),
+        (
+            "awl::parse::bad_address",
+            "sinumerik-840c",
+            "PB 1\n      A  I 4\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::outside_block",
+            "sinumerik-840c",
+            "      A  I 0.0\nPB 1\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::block_number",
+            "sinumerik-840c",
+            "PB 300\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::bad_constant",
+            "sinumerik-840c",
+            "PB 1\n      L  KH 12345\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::bad_declaration",
+            "sinumerik-840c",
+            "FB 1\nNAME :X\nDES  :Y I KF\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::bad_data_word",
+            "sinumerik-840c",
+            "DB 1\n   0: KF +1\n   1: XX 5\n".into(),
+        ),
+        (
+            "awl::check::constant_range",
+            "sinumerik-840c",
+            "PB 1\n      L  KF 40000\n      BE\n".into(),
+        ),
+        (
+            "awl::check::operand_range",
+            "sinumerik-840c",
+            "PB 1\n      A  I 200.0\n      BE\n".into(),
+        ),
+        (
+            "awl::check::operand_not_allowed",
+            "sinumerik-840c",
+            "FB 1\nNAME :X\n      JP PB 3\n      BE\nPB 3\n      BE\n".into(),
+        ),
+        (
+            "awl::check::supplementary_outside_fb",
+            "sinumerik-840c",
+            "PB 1\n      L  FW 0\n      SLW 3\n      BE\n".into(),
+        ),
+        (
+            "awl::check::formal_outside_fb",
+            "sinumerik-840c",
+            "PB 1\n      A  =EIN\n      BE\n".into(),
+        ),
+        (
+            "awl::check::undefined_symbol",
+            "sinumerik-840c",
+            "FB 1\nNAME :X\n      JU =M002\nM001 :BE\n".into(),
+        ),
+        (
+            "awl::check::duplicate_label",
+            "sinumerik-840c",
+            "FB 1\nNAME :X\nM001 :NOP 0\nM001 :NOP 0\n      BE\n".into(),
+        ),
+        (
+            "awl::check::label_too_long",
+            "sinumerik-840c",
+            "FB 1\nNAME :X\nLOOP1 :NOP 0\n      BE\n".into(),
+        ),
+        (
+            "awl::check::duplicate_block",
+            "sinumerik-840c",
+            "PB 1\n      BE\nPB 1\n      BE\n".into(),
+        ),
+        (
+            "awl::check::missing_be",
+            "sinumerik-840c",
+            "PB 1\n      A  I 0.0\n      =  Q 4.0\n".into(),
+        ),
+        (
+            "awl::check::extended_block",
+            "s5-95f",
+            "FX 1\n      BE\n".into(),
+        ),
+        (
+            "awl::check::param_count",
+            "sinumerik-840c",
+            call("EIN  :I 0.0\n"),
+        ),
+        (
+            "awl::check::param_mismatch",
+            "sinumerik-840c",
+            call("EIN  :IW 2\nAUS  :Q 4.0\n"),
+        ),
+        (
+            "awl::check::unknown_param",
+            "sinumerik-840c",
+            call("EIN  :I 0.0\nAUX  :Q 4.0\n"),
+        ),
+        (
+            "awl::check::undefined_block",
+            "sinumerik-840c",
+            "PB 1\n      JU PB 9\n      BE\n".into(),
+        ),
+        (
+            "awl::check::undefined_db",
+            "sinumerik-840c",
+            "PB 1\n      C  DB 9\n      BE\n".into(),
+        ),
+        (
+            "awl::check::indirect_target",
+            "sinumerik-840c",
+            "FB 1\nNAME :X\n      DO FW 10\n      BE\n".into(),
+        ),
     ]
 }
 
@@ -46,10 +166,16 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
 fn every_front_end_code_renders() {
     for (code, cpu, source) in cases() {
         let built = frontend::build_text("example.awl", &source, profile::find(cpu).unwrap());
-        let rendered: Vec<String> =
-            built.diagnostics.iter().map(|d| render_plain(&report(&built.sources, d))).collect();
+        let rendered: Vec<String> = built
+            .diagnostics
+            .iter()
+            .map(|d| render_plain(&report(&built.sources, d)))
+            .collect();
         let all = rendered.join("\n");
-        assert!(all.contains(code), "{code} not reported for:\n{source}\n---\n{all}");
+        assert!(
+            all.contains(code),
+            "{code} not reported for:\n{source}\n---\n{all}"
+        );
         insta::assert_snapshot!(code.replace("::", "__"), all, &source);
     }
 }
@@ -67,8 +193,14 @@ fn cli_read_error_renders() {
 fn cases_cover_the_front_end_codes() {
     let doc = std::fs::read_to_string("grammar/errors.md").unwrap();
     let covered: Vec<&str> = cases().iter().map(|(code, _, _)| *code).collect();
-    for code in doc.lines().filter_map(|line| line.strip_prefix("### ")).map(|line| line.split_whitespace().next().unwrap()) {
-        let front_end = code.starts_with("awl::lex") || code.starts_with("awl::parse") || code.starts_with("awl::check");
+    for code in doc
+        .lines()
+        .filter_map(|line| line.strip_prefix("### "))
+        .map(|line| line.split_whitespace().next().unwrap())
+    {
+        let front_end = code.starts_with("awl::lex")
+            || code.starts_with("awl::parse")
+            || code.starts_with("awl::check");
         if front_end {
             assert!(covered.contains(&code), "{code} has no snapshot case");
         }

@@ -14,27 +14,41 @@ fn program_with(set: MnemonicSet, op: &str, operand: &str) -> String {
         MnemonicSet::English => ("DES", "I"),
         MnemonicSet::German => ("BEZ", "E"),
     };
-    let tail = if op == "BE" { "" } else { "M001 :NOP 0\n      BE\n" };
+    let tail = if op == "BE" {
+        ""
+    } else {
+        "M001 :NOP 0\n      BE\n"
+    };
     format!("FB 1\nNAME :TEST\n{des} :X {input} BI\n      {op} {operand}\n{tail}{SUPPORT}")
 }
 
 /// The blocks the examples call and open.
 const SUPPORT: &str = "PB 3\n      BE\nFB 5\n      BE\nDB 10\n 0: KF +1\n";
 
-
 #[test]
 fn every_operation_parses_and_compiles_in_both_sets() {
     let cpu = profile::find("sinumerik-840c").unwrap();
     for info in OPERATIONS {
-        for (set, word, example) in
-            [(MnemonicSet::English, info.en, info.example_en), (MnemonicSet::German, info.de, info.example_de)]
-        {
+        for (set, word, example) in [
+            (MnemonicSet::English, info.en, info.example_en),
+            (MnemonicSet::German, info.de, info.example_de),
+        ] {
             let source = program_with(set, word, example);
             let mut sources = awl::source::SourceSet::default();
             sources.add(awl::source::SourceFile::new("op.awl", source.clone()));
             let built = frontend::build(sources, Some(set), cpu);
-            assert!(built.diagnostics.is_empty(), "{set:?} `{word} {example}`:\n{source}\n{:#?}", built.diagnostics);
-            let fb = built.compiled.program.blocks.iter().find(|b| b.id.kind == mnemonics::BlockKind::Fb).unwrap();
+            assert!(
+                built.diagnostics.is_empty(),
+                "{set:?} `{word} {example}`:\n{source}\n{:#?}",
+                built.diagnostics
+            );
+            let fb = built
+                .compiled
+                .program
+                .blocks
+                .iter()
+                .find(|b| b.id.kind == mnemonics::BlockKind::Fb)
+                .unwrap();
             let expected = if word == "BE" { 1 } else { 3 };
             assert_eq!(fb.code.len(), expected, "{word}: one op per statement");
         }
@@ -44,10 +58,21 @@ fn every_operation_parses_and_compiles_in_both_sets() {
 #[test]
 fn detection_picks_the_set_without_override() {
     let cpu = profile::find("sinumerik-840c").unwrap();
-    for info in OPERATIONS.iter().filter(|info| info.op != mnemonics::OpCode::BlockEnd) {
-        let german = format!("FB 1\nNAME :TEST\nBEZ :X E BI\n      U E 0.0\n      {} {}\nM001 :NOP 0\n      BE\n{SUPPORT}", info.de, info.example_de);
+    for info in OPERATIONS
+        .iter()
+        .filter(|info| info.op != mnemonics::OpCode::BlockEnd)
+    {
+        let german = format!(
+            "FB 1\nNAME :TEST\nBEZ :X E BI\n      U E 0.0\n      {} {}\nM001 :NOP 0\n      BE\n{SUPPORT}",
+            info.de, info.example_de
+        );
         let built = frontend::build_text("de.awl", &german, cpu);
-        assert!(built.diagnostics.is_empty(), "{}: {:#?}", info.de, built.diagnostics);
+        assert!(
+            built.diagnostics.is_empty(),
+            "{}: {:#?}",
+            info.de,
+            built.diagnostics
+        );
     }
 }
 
@@ -55,13 +80,26 @@ fn detection_picks_the_set_without_override() {
 fn every_mnemonic_is_in_the_table_doc() {
     let doc = read("grammar/mnemonics.md");
     for info in OPERATIONS {
-        assert!(doc.contains(&format!("| `{}` | `{}` |", info.en, info.de)), "{} / {} missing", info.en, info.de);
+        assert!(
+            doc.contains(&format!("| `{}` | `{}` |", info.en, info.de)),
+            "{} / {} missing",
+            info.en,
+            info.de
+        );
     }
     for area in mnemonics::AREAS {
-        assert!(doc.contains(&format!("| `{}` | `{}` |", area.en, area.de)), "{} missing", area.en);
+        assert!(
+            doc.contains(&format!("| `{}` | `{}` |", area.en, area.de)),
+            "{} missing",
+            area.en
+        );
     }
     for constant in mnemonics::CONSTANTS {
-        assert!(doc.contains(&format!("| `{}` | `{}` |", constant.en, constant.de)), "{} missing", constant.en);
+        assert!(
+            doc.contains(&format!("| `{}` | `{}` |", constant.en, constant.de)),
+            "{} missing",
+            constant.en
+        );
     }
 }
 
@@ -75,7 +113,10 @@ fn every_english_word_is_a_terminal_of_the_grammar() {
         .chain(mnemonics::CONSTANTS.iter().map(|constant| constant.en))
         .chain(mnemonics::BlockKind::ALL.iter().map(|kind| kind.name()));
     for word in words {
-        assert!(grammar.contains(&format!("\"{word}\"")), "\"{word}\" is not in grammar/stl.ebnf");
+        assert!(
+            grammar.contains(&format!("\"{word}\"")),
+            "\"{word}\" is not in grammar/stl.ebnf"
+        );
     }
 }
 
@@ -87,17 +128,26 @@ fn every_error_code_has_a_page() {
     for entry in walk("src") {
         let text = read(&entry);
         for piece in text.split("code(awl::").skip(1) {
-            let code: String = piece.chars().take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':').collect();
+            let code: String = piece
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
+                .collect();
             codes.push(format!("awl::{code}"));
         }
     }
     assert!(codes.len() > 20);
     for code in &codes {
-        assert!(doc.contains(&format!("### {code}")), "{code} has no page in grammar/errors.md");
+        assert!(
+            doc.contains(&format!("### {code}")),
+            "{code} has no page in grammar/errors.md"
+        );
     }
     for line in doc.lines().filter_map(|line| line.strip_prefix("### ")) {
         let code = line.split_whitespace().next().unwrap();
-        assert!(codes.iter().any(|known| known == code), "grammar/errors.md documents unknown code {code}");
+        assert!(
+            codes.iter().any(|known| known == code),
+            "grammar/errors.md documents unknown code {code}"
+        );
     }
 }
 

@@ -11,22 +11,38 @@ fn traced(name: &str, program: &str, scenario: &str) -> (Ran, Vec<Value>) {
     let dir = std::path::PathBuf::from("target/test-scenarios").join(name);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("program.awl"), program).unwrap();
-    std::fs::write(dir.join("scenario.toml"), format!("program = [\"program.awl\"]\n{scenario}")).unwrap();
+    std::fs::write(
+        dir.join("scenario.toml"),
+        format!("program = [\"program.awl\"]\n{scenario}"),
+    )
+    .unwrap();
     traced_scenario(&dir.join("scenario.toml"), &dir.join("trace.jsonl"))
 }
 
 fn traced_scenario(scenario: &std::path::Path, trace: &std::path::Path) -> (Ran, Vec<Value>) {
-    let options = RunOptions { scenario: Some(scenario.into()), trace: Some(trace.into()), ..RunOptions::default() };
+    let options = RunOptions {
+        scenario: Some(scenario.into()),
+        trace: Some(trace.into()),
+        ..RunOptions::default()
+    };
     let ran = ran(runner::run(&options));
-    let events = std::fs::read_to_string(trace).unwrap().lines().map(|line| serde_json::from_str(line).unwrap()).collect();
+    let events = std::fs::read_to_string(trace)
+        .unwrap()
+        .lines()
+        .map(|line| serde_json::from_str(line).unwrap())
+        .collect();
     (ran, events)
 }
 
 /// A scenario of programs/, traced into a file of this test's own (`tag`).
 fn sample(name: &str, tag: &str) -> (Ran, Vec<Value>) {
-    let trace = std::path::PathBuf::from("target/test-scenarios").join(format!("{name}-{tag}.jsonl"));
+    let trace =
+        std::path::PathBuf::from("target/test-scenarios").join(format!("{name}-{tag}.jsonl"));
     std::fs::create_dir_all("target/test-scenarios").unwrap();
-    traced_scenario(&std::path::PathBuf::from(format!("programs/{name}.toml")), &trace)
+    traced_scenario(
+        &std::path::PathBuf::from(format!("programs/{name}.toml")),
+        &trace,
+    )
 }
 
 fn of<'a>(events: &'a [Value], kind: &str) -> Vec<&'a Value> {
@@ -34,7 +50,15 @@ fn of<'a>(events: &'a [Value], kind: &str) -> Vec<&'a Value> {
 }
 
 fn services(events: &[Value]) -> Vec<(u64, String)> {
-    of(events, "irq_service").iter().map(|e| (e["ob"].as_u64().unwrap(), e["point"].as_str().unwrap().to_string())).collect()
+    of(events, "irq_service")
+        .iter()
+        .map(|e| {
+            (
+                e["ob"].as_u64().unwrap(),
+                e["point"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect()
 }
 
 fn expectations_met(ran: &Ran) {
@@ -51,8 +75,14 @@ fn seed000_normal_mode_interrupts_only_at_block_limits() {
     expectations_met(&ran);
     assert_eq!(services(&events), [(3, "block_end".to_string())]);
     let service = of(&events, "irq_service")[0];
-    let pb3_end = of(&events, "block_end").into_iter().find(|e| e["block"] == "PB 3").unwrap();
-    assert_eq!(service["t_ns"], pb3_end["t_ns"], "serviced exactly at PB 3's block end");
+    let pb3_end = of(&events, "block_end")
+        .into_iter()
+        .find(|e| e["block"] == "PB 3")
+        .unwrap();
+    assert_eq!(
+        service["t_ns"], pb3_end["t_ns"],
+        "serviced exactly at PB 3's block end"
+    );
 }
 
 /// Seed 000: "Only when a change is made from one block to another - either by calling a new
@@ -61,9 +91,17 @@ fn seed000_normal_mode_interrupts_only_at_block_limits() {
 fn seed000_both_kinds_of_block_change_are_interrupt_points() {
     // OB 1's first op runs from 12.8 us; the request at 13 us comes before the call of PB 3.
     let program = "OB 1\n      L  KF +1\n      L  KF +2\n      +F\n      JU PB 3\n      BE\nPB 3\n      L  KF +1\n      L  KF +2\n      X  F\n      BE\nOB 3\n      ON F 99.0\n      S  F 1.0\n      BE\n";
-    let (_, events) = traced("s000_call", program, "run = { cycles = 1 }\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 3\"\n");
+    let (_, events) = traced(
+        "s000_call",
+        program,
+        "run = { cycles = 1 }\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 3\"\n",
+    );
     assert_eq!(services(&events), [(3, "block_call".to_string())]);
-    let (_, events) = traced("s000_end", program, "run = { cycles = 1 }\n[[event]]\nat = \"24us\"\ninterrupt = \"OB 3\"\n");
+    let (_, events) = traced(
+        "s000_end",
+        program,
+        "run = { cycles = 1 }\n[[event]]\nat = \"24us\"\ninterrupt = \"OB 3\"\n",
+    );
     assert_eq!(services(&events), [(3, "block_end".to_string())]);
 }
 
@@ -73,9 +111,17 @@ fn seed000_both_kinds_of_block_change_are_interrupt_points() {
 fn seed000_ob2_and_ob5_are_ignored_in_normal_mode_and_run_in_special_mode() {
     let (ran, events) = sample("ob2_ob5_normal", "2");
     expectations_met(&ran);
-    let ignored: Vec<u64> = of(&events, "irq_ignored").iter().map(|e| e["ob"].as_u64().unwrap()).collect();
+    let ignored: Vec<u64> = of(&events, "irq_ignored")
+        .iter()
+        .map(|e| e["ob"].as_u64().unwrap())
+        .collect();
     assert_eq!(ignored, [2, 5]);
-    assert!(of(&events, "irq_ignored")[0]["reason"].as_str().unwrap().contains("normal mode"));
+    assert!(
+        of(&events, "irq_ignored")[0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("normal mode")
+    );
     let (ran, events) = sample("ob2_ob5_special", "3");
     expectations_met(&ran);
     assert!(of(&events, "irq_ignored").is_empty());
@@ -88,8 +134,14 @@ fn seed000_ob2_and_ob5_are_ignored_in_normal_mode_and_run_in_special_mode() {
 #[test]
 fn seed000_latency_is_bounded_by_the_longest_block() {
     let (ran, events) = sample("fig5_2_interrupt", "4");
-    let latency = of(&events, "irq_service")[0]["latency_ns"].as_u64().unwrap();
-    assert!(latency <= ran.cpu.longest_stretch.ns, "{latency} > {}", ran.cpu.longest_stretch.ns);
+    let latency = of(&events, "irq_service")[0]["latency_ns"]
+        .as_u64()
+        .unwrap();
+    assert!(
+        latency <= ran.cpu.longest_stretch.ns,
+        "{latency} > {}",
+        ran.cpu.longest_stretch.ns
+    );
     let summary = awl::report::summary(&ran);
     assert!(summary.contains("longest block: PB 13"), "{summary}");
 }
@@ -103,8 +155,18 @@ fn seed000_simultaneous_interrupts_by_priority() {
     expectations_met(&ran);
     let order: Vec<u64> = services(&events).into_iter().map(|(ob, _)| ob).collect();
     assert_eq!(order, [3, 4]);
-    let ob3_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 3).unwrap()["t_ns"].as_u64().unwrap();
-    let ob4_service = of(&events, "irq_service").into_iter().find(|e| e["ob"] == 4).unwrap()["t_ns"].as_u64().unwrap();
+    let ob3_end = of(&events, "irq_end")
+        .into_iter()
+        .find(|e| e["ob"] == 3)
+        .unwrap()["t_ns"]
+        .as_u64()
+        .unwrap();
+    let ob4_service = of(&events, "irq_service")
+        .into_iter()
+        .find(|e| e["ob"] == 4)
+        .unwrap()["t_ns"]
+        .as_u64()
+        .unwrap();
     assert_eq!(ob4_service, ob3_end, "OB 4 waits for OB 3 to finish");
 }
 
@@ -127,7 +189,10 @@ fn seed000_lowest_priority_last() {
 fn seed000_priorities_are_reassigned_after_an_interrupt_ob() {
     let (ran, events) = sample("nested", "6");
     expectations_met(&ran);
-    assert_eq!(services(&events), [(4, "block_end".to_string()), (3, "block_call".to_string())]);
+    assert_eq!(
+        services(&events),
+        [(4, "block_end".to_string()), (3, "block_call".to_string())]
+    );
     // While OB 4 runs, OB 6 (lower than OB 4) and OB 3 (higher) arrive: OB 3 interrupts OB 4,
     // OB 4 then finishes, and only then OB 6 runs.
     let program = std::fs::read_to_string("programs/nested.awl").unwrap() + "OB 6\n      BE\n";
@@ -135,8 +200,18 @@ fn seed000_priorities_are_reassigned_after_an_interrupt_ob() {
     let (_, events) = traced("s000_reassigned", &program, scenario);
     let order: Vec<u64> = services(&events).into_iter().map(|(ob, _)| ob).collect();
     assert_eq!(order, [4, 3, 6]);
-    let ob4_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 4).unwrap()["t_ns"].as_u64().unwrap();
-    let ob6 = of(&events, "irq_service").into_iter().find(|e| e["ob"] == 6).unwrap()["t_ns"].as_u64().unwrap();
+    let ob4_end = of(&events, "irq_end")
+        .into_iter()
+        .find(|e| e["ob"] == 4)
+        .unwrap()["t_ns"]
+        .as_u64()
+        .unwrap();
+    let ob6 = of(&events, "irq_service")
+        .into_iter()
+        .find(|e| e["ob"] == 6)
+        .unwrap()["t_ns"]
+        .as_u64()
+        .unwrap();
     assert!(ob6 >= ob4_end);
 }
 
@@ -146,7 +221,11 @@ fn seed000_priorities_are_reassigned_after_an_interrupt_ob() {
 fn interrupted_level_gets_its_accumulators_and_rlo_back() {
     // OB 3 comes during `L KF +22` and runs at the call of PB 1; OB 1 then adds its own ACCUs.
     let program = "OB 1\n      L  KF +11\n      L  KF +22\n      JU PB 1\n      +F\n      T  FW 0\n      BE\nPB 1\n      BE\nOB 3\n      L  KF +99\n      L  KF +98\n      ON I 0.0\n      =  F 6.0\n      BE\n";
-    let (ran, events) = traced("context", program, "run = { cycles = 1 }\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 3\"\n[expect]\n\"FW 0\" = 33\n\"F 6.0\" = 1\n");
+    let (ran, events) = traced(
+        "context",
+        program,
+        "run = { cycles = 1 }\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 3\"\n[expect]\n\"FW 0\" = 33\n\"F 6.0\" = 1\n",
+    );
     expectations_met(&ran);
     assert_eq!(services(&events).len(), 1);
 }
@@ -167,9 +246,16 @@ fn second_request_for_a_pending_ob_is_lost() {
 #[test]
 fn disabled_interrupts_wait_for_enable() {
     let program = "OB 1\n      JU FB 1\nNAME :X\n      BE\nFB 1\nNAME :X\n      IA\n      JU PB 1\n      JU PB 1\n      RA\n      JU PB 2\n      BE\nPB 1\n      L  KF +1\n      BE\nPB 2\n      BE\nOB 3\n      BE\n";
-    let (_, events) = traced("disabled", program, "run = { cycles = 1 }\n[[event]]\nat = \"25us\"\ninterrupt = \"OB 3\"\n");
+    let (_, events) = traced(
+        "disabled",
+        program,
+        "run = { cycles = 1 }\n[[event]]\nat = \"25us\"\ninterrupt = \"OB 3\"\n",
+    );
     let service = of(&events, "irq_service")[0];
-    let pb2 = of(&events, "block_call").into_iter().find(|e| e["to"] == "PB 2").unwrap();
+    let pb2 = of(&events, "block_call")
+        .into_iter()
+        .find(|e| e["to"] == "PB 2")
+        .unwrap();
     assert_eq!(service["t_ns"], pb2["t_ns"], "the first point after RA");
 }
 
@@ -183,7 +269,10 @@ fn disabled_interrupts_wait_for_enable() {
 fn seed002_interrupt_pii_is_read_at_ob13_start_and_piq_written() {
     let (ran, events) = sample("ob13_images", "7");
     expectations_met(&ran);
-    let inputs = of(&events, "data_cycle").into_iter().filter(|e| e["kind"] == "interrupt_input").count();
+    let inputs = of(&events, "data_cycle")
+        .into_iter()
+        .filter(|e| e["kind"] == "interrupt_input")
+        .count();
     assert_eq!(inputs, 2, "one interrupt input data cycle per OB 13");
 }
 
@@ -205,16 +294,36 @@ fn seed002_l_py_in_ob13_reads_the_image_outside_the_module() {
 #[test]
 fn seed002_interrupt_output_cycle_only_after_ob13_and_only_if_written() {
     let (_, events) = sample("ob13_images", "8");
-    let outputs: Vec<&Value> = of(&events, "data_cycle").into_iter().filter(|e| e["kind"] == "interrupt_output").collect();
+    let outputs: Vec<&Value> = of(&events, "data_cycle")
+        .into_iter()
+        .filter(|e| e["kind"] == "interrupt_output")
+        .collect();
     assert_eq!(outputs.len(), 2);
     let ends: Vec<&Value> = of(&events, "irq_end");
     for (output, end) in outputs.iter().zip(&ends) {
-        assert!(output["t_ns"].as_u64() >= end["t_ns"].as_u64(), "after OB 13 has finished");
+        assert!(
+            output["t_ns"].as_u64() >= end["t_ns"].as_u64(),
+            "after OB 13 has finished"
+        );
     }
     let program = "OB 1\n      BE\nOB 13\n      L  PY 0\n      T  FY 40\n      BE\n";
-    let (_, events) = traced("s002_not_written", program, "cpu = \"s5-95f\"\nrun = { for = \"25ms\" }\n[ob13]\ninterval = \"10ms\"\n");
-    assert!(of(&events, "data_cycle").iter().all(|e| e["kind"] != "interrupt_output"));
-    assert_eq!(of(&events, "data_cycle").iter().filter(|e| e["kind"] == "interrupt_input").count(), 2);
+    let (_, events) = traced(
+        "s002_not_written",
+        program,
+        "cpu = \"s5-95f\"\nrun = { for = \"25ms\" }\n[ob13]\ninterval = \"10ms\"\n",
+    );
+    assert!(
+        of(&events, "data_cycle")
+            .iter()
+            .all(|e| e["kind"] != "interrupt_output")
+    );
+    assert_eq!(
+        of(&events, "data_cycle")
+            .iter()
+            .filter(|e| e["kind"] == "interrupt_input")
+            .count(),
+        2
+    );
 }
 
 /// Seed 002: "The response time of cyclic program processing is extended by the interrupt
@@ -222,10 +331,16 @@ fn seed002_interrupt_output_cycle_only_after_ob13_and_only_if_written() {
 #[test]
 fn seed002_data_cycles_lengthen_the_cycle() {
     let (_, events) = sample("ob13_images", "9");
-    let times: Vec<u64> = of(&events, "cycle_end").iter().map(|e| e["cycle_time_ns"].as_u64().unwrap()).collect();
+    let times: Vec<u64> = of(&events, "cycle_end")
+        .iter()
+        .map(|e| e["cycle_time_ns"].as_u64().unwrap())
+        .collect();
     let shortest = *times.iter().min().unwrap();
     let longest = *times.iter().max().unwrap();
-    assert!(longest >= shortest + 2 * 300_000, "two data cycles of 0.3 ms: {shortest} vs {longest}");
+    assert!(
+        longest >= shortest + 2 * 300_000,
+        "two data cycles of 0.3 ms: {shortest} vs {longest}"
+    );
 }
 
 /// Seed 002: "Wake-up error ... (OB13 is called again before it has finished). On a wake-up
@@ -243,14 +358,20 @@ fn seed002_wake_up_error_when_ob13_overruns() {
 #[test]
 fn seed002_wake_up_error_when_interrupts_keep_ob13_from_finishing() {
     let program = "OB 1\n      BE\nOB 13\n      JU PB 1\n      JU PB 1\n      JU PB 1\n      BE\nPB 1\n      BE\nOB 3\n      JU FB 3\nNAME :LONG\n      BE\nFB 3\nNAME :LONG\n      L  KF +500\n      T  FW 0\nM001 :L  FW 0\n      L  KF +1\n      -F\n      T  FW 0\n      JP =M001\n      BE\n";
-    let mut scenario = String::from("cpu = \"s5-95f\"\nrun = { for = \"40ms\" }\n[ob13]\ninterval = \"10ms\"\n");
+    let mut scenario =
+        String::from("cpu = \"s5-95f\"\nrun = { for = \"40ms\" }\n[ob13]\ninterval = \"10ms\"\n");
     for at in [10.4, 14.6, 18.8] {
-        scenario.push_str(&format!("[[event]]\nat = \"{at}ms\"\ninterrupt = \"OB 3\"\n"));
+        scenario.push_str(&format!(
+            "[[event]]\nat = \"{at}ms\"\ninterrupt = \"OB 3\"\n"
+        ));
     }
     scenario.push_str("[expect]\nmode = \"STOP\"\nstop_cause = \"WECK\"\n");
     let (ran, events) = traced("s002_interrupted", program, &scenario);
     expectations_met(&ran);
-    assert!(services(&events).iter().filter(|(ob, _)| *ob == 3).count() >= 2, "OB 3 (above OB 13) interrupted OB 13");
+    assert!(
+        services(&events).iter().filter(|(ob, _)| *ob == 3).count() >= 2,
+        "OB 3 (above OB 13) interrupted OB 13"
+    );
 }
 
 // ---- seed 001: VIPA SPEED7, OB 40/OB 41 hardware interrupts ----
@@ -262,7 +383,9 @@ FB 1\nNAME :WORK\n      L  KF +1000\n      T  FW 0\nM001 :L  FW 0\n      L  KF +
 OB 82\n      L  FW 82\n      L  KF +1\n      +F\n      T  FW 82\n      BE\n";
 
 fn speed7(events: &[(&str, u16, u16, &str)], extra: &str) -> String {
-    let mut scenario = format!("cpu = \"speed7\"\nrun = {{ for = \"3ms\" }}\n[[hw_module]]\nmodule = 4\nob = 40\n[[hw_module]]\nmodule = 5\nob = 40\n[[hw_module]]\nmodule = 6\nob = 41\n{extra}");
+    let mut scenario = format!(
+        "cpu = \"speed7\"\nrun = {{ for = \"3ms\" }}\n[[hw_module]]\nmodule = 4\nob = 40\n[[hw_module]]\nmodule = 5\nob = 40\n[[hw_module]]\nmodule = 6\nob = 41\n{extra}"
+    );
     for (at, module, channel, active) in events {
         scenario.push_str(&format!("[[event]]\nat = \"{at}\"\nhw_interrupt = {{ module = {module}, channel = {channel}, active_for = \"{active}\" }}\n"));
     }
@@ -274,15 +397,39 @@ fn speed7(events: &[(&str, u16, u16, &str)], extra: &str) -> String {
 /// event is taken at the cycle boundary at 1.026 ms; OB 40 then runs until 1.077 ms.)
 #[test]
 fn seed001_ob_starts_only_above_the_active_priority_class() {
-    let (_, events) = traced("s001_priority", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.05ms", 6, 1, "5us")], ""));
+    let (_, events) = traced(
+        "s001_priority",
+        SPEED7_OBS,
+        &speed7(&[("1ms", 4, 1, "5us"), ("1.05ms", 6, 1, "5us")], ""),
+    );
     let order: Vec<u64> = services(&events).into_iter().map(|(ob, _)| ob).collect();
     assert_eq!(order, [40, 41]);
-    let ob41_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 41).unwrap()["t_ns"].as_u64();
-    let ob40_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 40).unwrap()["t_ns"].as_u64();
+    let ob41_end = of(&events, "irq_end")
+        .into_iter()
+        .find(|e| e["ob"] == 41)
+        .unwrap()["t_ns"]
+        .as_u64();
+    let ob40_end = of(&events, "irq_end")
+        .into_iter()
+        .find(|e| e["ob"] == 40)
+        .unwrap()["t_ns"]
+        .as_u64();
     assert!(ob41_end < ob40_end, "OB 41 ran inside OB 40");
-    let (_, events) = traced("s001_priority_low", SPEED7_OBS, &speed7(&[("1ms", 6, 1, "5us"), ("1.05ms", 4, 1, "5us")], ""));
-    let ob41_end = of(&events, "irq_end").into_iter().find(|e| e["ob"] == 41).unwrap()["t_ns"].as_u64();
-    let ob40_service = of(&events, "irq_service").into_iter().find(|e| e["ob"] == 40).unwrap()["t_ns"].as_u64();
+    let (_, events) = traced(
+        "s001_priority_low",
+        SPEED7_OBS,
+        &speed7(&[("1ms", 6, 1, "5us"), ("1.05ms", 4, 1, "5us")], ""),
+    );
+    let ob41_end = of(&events, "irq_end")
+        .into_iter()
+        .find(|e| e["ob"] == 41)
+        .unwrap()["t_ns"]
+        .as_u64();
+    let ob40_service = of(&events, "irq_service")
+        .into_iter()
+        .find(|e| e["ob"] == 40)
+        .unwrap()["t_ns"]
+        .as_u64();
     assert!(ob40_service >= ob41_end, "OB 40 waits for OB 41");
 }
 
@@ -290,7 +437,14 @@ fn seed001_ob_starts_only_above_the_active_priority_class() {
 /// has been executed": after OB 40 has run, the same channel triggers again.
 #[test]
 fn seed001_acknowledgement_after_the_ob() {
-    let (ran, events) = traced("s001_ack", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("2ms", 4, 1, "5us")], "[expect]\n\"FW 40\" = 2\n"));
+    let (ran, events) = traced(
+        "s001_ack",
+        SPEED7_OBS,
+        &speed7(
+            &[("1ms", 4, 1, "5us"), ("2ms", 4, 1, "5us")],
+            "[expect]\n\"FW 40\" = 2\n",
+        ),
+    );
     expectations_met(&ran);
     assert!(of(&events, "irq_lost").is_empty());
 }
@@ -311,11 +465,30 @@ fn seed001_same_channel_loss_starts_ob82() {
 /// currently active hardware interrupt. Else it is lost."
 #[test]
 fn seed001_other_channel_is_held_until_acknowledgement() {
-    let (ran, _) = traced("s001_hold", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.01ms", 4, 2, "500us")], "[expect]\n\"FW 40\" = 2\n\"FW 82\" = 0\n"));
+    let (ran, _) = traced(
+        "s001_hold",
+        SPEED7_OBS,
+        &speed7(
+            &[("1ms", 4, 1, "5us"), ("1.01ms", 4, 2, "500us")],
+            "[expect]\n\"FW 40\" = 2\n\"FW 82\" = 0\n",
+        ),
+    );
     expectations_met(&ran);
-    let (ran, events) = traced("s001_hold_gone", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.01ms", 4, 2, "5us")], "[expect]\n\"FW 40\" = 1\n"));
+    let (ran, events) = traced(
+        "s001_hold_gone",
+        SPEED7_OBS,
+        &speed7(
+            &[("1ms", 4, 1, "5us"), ("1.01ms", 4, 2, "5us")],
+            "[expect]\n\"FW 40\" = 1\n",
+        ),
+    );
     expectations_met(&ran);
-    assert!(of(&events, "irq_lost")[0]["reason"].as_str().unwrap().contains("no longer active"));
+    assert!(
+        of(&events, "irq_lost")[0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("no longer active")
+    );
 }
 
 /// Seed 001: "If a hardware interrupt is triggered and its OB is currently active due to a
@@ -323,9 +496,23 @@ fn seed001_other_channel_is_held_until_acknowledgement() {
 /// still active after acknowledgement."
 #[test]
 fn seed001_busy_ob_for_another_module() {
-    let (ran, _) = traced("s001_busy", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.01ms", 5, 1, "500us")], "[expect]\n\"FW 40\" = 2\n"));
+    let (ran, _) = traced(
+        "s001_busy",
+        SPEED7_OBS,
+        &speed7(
+            &[("1ms", 4, 1, "5us"), ("1.01ms", 5, 1, "500us")],
+            "[expect]\n\"FW 40\" = 2\n",
+        ),
+    );
     expectations_met(&ran);
-    let (ran, events) = traced("s001_busy_gone", SPEED7_OBS, &speed7(&[("1ms", 4, 1, "5us"), ("1.01ms", 5, 1, "5us")], "[expect]\n\"FW 40\" = 1\n"));
+    let (ran, events) = traced(
+        "s001_busy_gone",
+        SPEED7_OBS,
+        &speed7(
+            &[("1ms", 4, 1, "5us"), ("1.01ms", 5, 1, "5us")],
+            "[expect]\n\"FW 40\" = 1\n",
+        ),
+    );
     expectations_met(&ran);
     assert_eq!(of(&events, "irq_lost").len(), 1);
 }
@@ -334,9 +521,18 @@ fn seed001_busy_ob_for_another_module() {
 /// during transition to RUN are lost."
 #[test]
 fn seed001_nothing_in_startup_and_loss_at_the_transition() {
-    let program = format!("{SPEED7_OBS}OB 100\n      JU FB 1\nNAME :WORK\n      JU FB 1\nNAME :WORK\n      BE\n");
+    let program = format!(
+        "{SPEED7_OBS}OB 100\n      JU FB 1\nNAME :WORK\n      JU FB 1\nNAME :WORK\n      BE\n"
+    );
     // OB 100 runs about 100 us; one event ends during STARTUP, one is still active at RUN.
-    let (ran, events) = traced("s001_startup", &program, &speed7(&[("10us", 4, 1, "5us"), ("20us", 4, 2, "1ms")], "[expect]\n\"FW 40\" = 0\n"));
+    let (ran, events) = traced(
+        "s001_startup",
+        &program,
+        &speed7(
+            &[("10us", 4, 1, "5us"), ("20us", 4, 2, "1ms")],
+            "[expect]\n\"FW 40\" = 0\n",
+        ),
+    );
     expectations_met(&ran);
     assert_eq!(of(&events, "irq_ignored").len(), 1);
     assert_eq!(of(&events, "irq_lost").len(), 1);
@@ -350,7 +546,11 @@ fn seed001_nothing_in_startup_and_loss_at_the_transition() {
 fn seed001_missing_ob_calls_ob85_and_without_ob85_stops() {
     let (ran, events) = sample("speed7_ob85", "12");
     expectations_met(&ran);
-    assert_eq!(services(&events).iter().filter(|(ob, _)| *ob == 85).count(), 2, "acknowledged: the second event is not lost");
+    assert_eq!(
+        services(&events).iter().filter(|(ob, _)| *ob == 85).count(),
+        2,
+        "acknowledged: the second event is not lost"
+    );
     let (ran, events) = sample("speed7_stop", "13");
     expectations_met(&ran);
     assert_eq!(of(&events, "stop")[0]["cause"], "OB85");

@@ -28,7 +28,10 @@ impl Write for Buffer {
     }
 }
 
-const OPS: &[&str] = &["A  I 0.0", "AN F 1.0", "O  Q 4.0", "=  F 2.0", "L  FW 4", "L  KF +7", "T  FW 6", "X  F", ":F", "+F", ">F", "L  IW 2", "L  DW 1"];
+const OPS: &[&str] = &[
+    "A  I 0.0", "AN F 1.0", "O  Q 4.0", "=  F 2.0", "L  FW 4", "L  KF +7", "T  FW 6", "X  F", ":F",
+    "+F", ">F", "L  IW 2", "L  DW 1",
+];
 
 fn program(blocks: &[Vec<usize>]) -> String {
     let mut text = String::from("OB 1\n      C  DB 9\n");
@@ -50,19 +53,43 @@ fn run(source: &str, points: InterruptPoints, request_at: Option<u64>) -> (Vec<V
     let cpu_profile = profile::find("sinumerik-840c").unwrap();
     let built = frontend::build_text("p.awl", source, cpu_profile);
     assert!(!built.has_errors(), "{:?}", built.diagnostics);
-    let mut cpu = Cpu::new(Arc::new(built.compiled.program.clone()), Arc::new(built.sources.clone()));
-    let schedule = request_at.map(|at_ns| Scheduled { at_ns, what: Happening::Interrupt { ob: 3 } }).into_iter().collect();
-    cpu.engine = Engine::new(EngineConfig { points, ..EngineConfig::default() }, schedule);
+    let mut cpu = Cpu::new(
+        Arc::new(built.compiled.program.clone()),
+        Arc::new(built.sources.clone()),
+    );
+    let schedule = request_at
+        .map(|at_ns| Scheduled {
+            at_ns,
+            what: Happening::Interrupt { ob: 3 },
+        })
+        .into_iter()
+        .collect();
+    cpu.engine = Engine::new(
+        EngineConfig {
+            points,
+            ..EngineConfig::default()
+        },
+        schedule,
+    );
     let buffer = Buffer::default();
     cpu.tracer = Tracer::new(TraceFormat::Jsonl, Box::new(buffer.clone()));
     cpu.run(RunLimit::Cycles(1));
     cpu.tracer.finish().unwrap();
     let text = String::from_utf8(buffer.0.lock().unwrap().clone()).unwrap();
-    (text.lines().map(|line| serde_json::from_str(line).unwrap()).collect(), cpu)
+    (
+        text.lines()
+            .map(|line| serde_json::from_str(line).unwrap())
+            .collect(),
+        cpu,
+    )
 }
 
 fn times(events: &[Value], kinds: &[&str]) -> Vec<u64> {
-    events.iter().filter(|e| kinds.contains(&e["ev"].as_str().unwrap())).map(|e| e["t_ns"].as_u64().unwrap()).collect()
+    events
+        .iter()
+        .filter(|e| kinds.contains(&e["ev"].as_str().unwrap()))
+        .map(|e| e["t_ns"].as_u64().unwrap())
+        .collect()
 }
 
 proptest! {

@@ -16,22 +16,43 @@ fn files(dir: &str, extension: &str) -> Vec<std::path::PathBuf> {
 
 #[test]
 fn every_scenario_passes() {
-    let scenarios: Vec<_> = files("programs", "toml").into_iter().chain(files("programs/bench", "toml")).collect();
+    let scenarios: Vec<_> = files("programs", "toml")
+        .into_iter()
+        .chain(files("programs/bench", "toml"))
+        .collect();
     assert!(scenarios.len() >= 20);
     for scenario in scenarios {
-        let ran = common::ran(runner::run(&RunOptions { scenario: Some(scenario.clone()), ..RunOptions::default() }));
-        assert!(ran.expectations > 0, "{}: no expectations", scenario.display());
-        assert!(ran.mismatches.is_empty(), "{}: {:?}", scenario.display(), ran.mismatches);
+        let ran = common::ran(runner::run(&RunOptions {
+            scenario: Some(scenario.clone()),
+            ..RunOptions::default()
+        }));
+        assert!(
+            ran.expectations > 0,
+            "{}: no expectations",
+            scenario.display()
+        );
+        assert!(
+            ran.mismatches.is_empty(),
+            "{}: {:?}",
+            scenario.display(),
+            ran.mismatches
+        );
     }
 }
 
 #[test]
 fn every_program_has_a_scenario() {
     for dir in ["programs", "programs/bench"] {
-        let scenarios: String = files(dir, "toml").iter().map(|path| std::fs::read_to_string(path).unwrap()).collect();
+        let scenarios: String = files(dir, "toml")
+            .iter()
+            .map(|path| std::fs::read_to_string(path).unwrap())
+            .collect();
         for program in files(dir, "awl") {
             let name = program.file_name().unwrap().to_str().unwrap();
-            assert!(scenarios.contains(&format!("\"{name}\"")), "{name} has no scenario");
+            assert!(
+                scenarios.contains(&format!("\"{name}\"")),
+                "{name} has no scenario"
+            );
         }
     }
 }

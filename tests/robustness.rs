@@ -27,7 +27,10 @@ fn samples() -> Vec<Vec<u8>> {
         .filter(|path| path.extension().is_some_and(|ext| ext == "awl"))
         .collect();
     files.sort();
-    files.into_iter().map(|path| std::fs::read(path).unwrap()).collect()
+    files
+        .into_iter()
+        .map(|path| std::fs::read(path).unwrap())
+        .collect()
 }
 
 /// Characters STL is made of, so that noise often gets past the lexer.
@@ -44,7 +47,10 @@ enum Mutation {
 fn mutation() -> impl Strategy<Value = Mutation> {
     prop_oneof![
         (any::<usize>(), 1usize..8).prop_map(|(at, len)| Mutation::Delete(at, len)),
-        (any::<usize>(), prop::collection::vec(prop::sample::select(ALPHABET), 1..8))
+        (
+            any::<usize>(),
+            prop::collection::vec(prop::sample::select(ALPHABET), 1..8)
+        )
             .prop_map(|(at, bytes)| Mutation::Insert(at, bytes)),
         (any::<usize>(), any::<u8>()).prop_map(|(at, byte)| Mutation::Replace(at, byte)),
         any::<usize>().prop_map(Mutation::DuplicateLine),

@@ -8,21 +8,57 @@ use common::*;
 
 fn stop_rendering(name: &str, program: &str, scenario: &str) -> String {
     let ran = ran(run_scenario(name, program, scenario));
-    let stop = ran.outcome.stop.as_ref().unwrap_or_else(|| panic!("{name}: no STOP"));
+    let stop = ran
+        .outcome
+        .stop
+        .as_ref()
+        .unwrap_or_else(|| panic!("{name}: no STOP"));
     render_plain(&runner::stop_report(&ran, stop))
 }
 
 #[test]
 fn every_stop_cause_renders_with_line_and_block_stack() {
     let cases = [
-        ("awl::stop::zyk", "FB 1\nNAME :LOOP\nM001 :JU =M001\n      BE\nOB 1\n      JU FB 1\nNAME :LOOP\n      BE\n", "run = { cycles = 1 }\n"),
-        ("awl::stop::stueb", "OB 1\n      JU PB 1\n      BE\nPB 1\n      JU PB 2\n      BE\nPB 2\n      JU PB 1\n      BE\n", "cpu = \"s5-95f\"\nrun = { cycles = 1 }\n"),
-        ("awl::stop::lzf_block", "OB 1\n      JU PB 1\n      BE\nPB 1\n      A  I 0.0\n      JU PB 9\n      BE\n", "run = { cycles = 1 }\n"),
-        ("awl::stop::lzf_data", "OB 1\n      C  DB 5\n      L  DW 3\n      BE\nDB 5\n 0: KF +1\n", "run = { cycles = 1 }\n"),
-        ("awl::stop::bcf", "OB 1\n      A  I 0.0\n      )\n      BE\n", "run = { cycles = 1 }\n"),
-        ("awl::stop::stp", "OB 1\n      A  I 0.0\n      STP\n      BE\n", "run = { cycles = 5 }\n"),
-        ("awl::stop::weck", "OB 1\n      BE\nOB 13\n      JU FB 1\nNAME :WAIT\n      BE\nFB 1\nNAME :WAIT\n      L  KF +3000\n      T  FW 0\nM001 :L  FW 0\n      L  KF +1\n      -F\n      T  FW 0\n      JP =M001\n      BE\n", "cpu = \"s5-95f\"\nrun = { for = \"100ms\" }\n[ob13]\ninterval = \"10ms\"\n"),
-        ("awl::stop::ob85", "OB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n", "cpu = \"speed7\"\nrun = { for = \"10ms\" }\n[[hw_module]]\nmodule = 4\nob = 40\n[[event]]\nat = \"2ms\"\nhw_interrupt = { module = 4, channel = 1, active_for = \"1ms\" }\n"),
+        (
+            "awl::stop::zyk",
+            "FB 1\nNAME :LOOP\nM001 :JU =M001\n      BE\nOB 1\n      JU FB 1\nNAME :LOOP\n      BE\n",
+            "run = { cycles = 1 }\n",
+        ),
+        (
+            "awl::stop::stueb",
+            "OB 1\n      JU PB 1\n      BE\nPB 1\n      JU PB 2\n      BE\nPB 2\n      JU PB 1\n      BE\n",
+            "cpu = \"s5-95f\"\nrun = { cycles = 1 }\n",
+        ),
+        (
+            "awl::stop::lzf_block",
+            "OB 1\n      JU PB 1\n      BE\nPB 1\n      A  I 0.0\n      JU PB 9\n      BE\n",
+            "run = { cycles = 1 }\n",
+        ),
+        (
+            "awl::stop::lzf_data",
+            "OB 1\n      C  DB 5\n      L  DW 3\n      BE\nDB 5\n 0: KF +1\n",
+            "run = { cycles = 1 }\n",
+        ),
+        (
+            "awl::stop::bcf",
+            "OB 1\n      A  I 0.0\n      )\n      BE\n",
+            "run = { cycles = 1 }\n",
+        ),
+        (
+            "awl::stop::stp",
+            "OB 1\n      A  I 0.0\n      STP\n      BE\n",
+            "run = { cycles = 5 }\n",
+        ),
+        (
+            "awl::stop::weck",
+            "OB 1\n      BE\nOB 13\n      JU FB 1\nNAME :WAIT\n      BE\nFB 1\nNAME :WAIT\n      L  KF +3000\n      T  FW 0\nM001 :L  FW 0\n      L  KF +1\n      -F\n      T  FW 0\n      JP =M001\n      BE\n",
+            "cpu = \"s5-95f\"\nrun = { for = \"100ms\" }\n[ob13]\ninterval = \"10ms\"\n",
+        ),
+        (
+            "awl::stop::ob85",
+            "OB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n",
+            "cpu = \"speed7\"\nrun = { for = \"10ms\" }\n[[hw_module]]\nmodule = 4\nob = 40\n[[event]]\nat = \"2ms\"\nhw_interrupt = { module = 4, channel = 1, active_for = \"1ms\" }\n",
+        ),
     ];
     for (code, program, scenario) in cases {
         let rendered = stop_rendering(&code.replace("::", "_"), program, scenario);
@@ -44,12 +80,24 @@ fn scenario_error(name: &str, program: &str, scenario: &str) -> String {
 fn every_scenario_error_names_its_key_and_line() {
     let program = "OB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n";
     let cases = [
-        ("awl::scenario::syntax", "run = { cycles = 1 }\nwatchdgo = \"1s\"\n"),
-        ("awl::scenario::unknown_operand", "[expect]\n\"X 4.0\" = 1\n"),
+        (
+            "awl::scenario::syntax",
+            "run = { cycles = 1 }\nwatchdgo = \"1s\"\n",
+        ),
+        (
+            "awl::scenario::unknown_operand",
+            "[expect]\n\"X 4.0\" = 1\n",
+        ),
         ("awl::scenario::bad_value", "[expect]\n\"Q 4.0\" = 2\n"),
-        ("awl::scenario::unknown_ob", "[[event]]\nat = \"1ms\"\ninterrupt = \"OB 9\"\n"),
+        (
+            "awl::scenario::unknown_ob",
+            "[[event]]\nat = \"1ms\"\ninterrupt = \"OB 9\"\n",
+        ),
         ("awl::scenario::bad_duration", "run = { for = \"100\" }\n"),
-        ("awl::scenario::invalid", "cpu = \"s5-95f\"\nmode = \"special\"\n"),
+        (
+            "awl::scenario::invalid",
+            "cpu = \"s5-95f\"\nmode = \"special\"\n",
+        ),
     ];
     for (code, scenario) in cases {
         let rendered = scenario_error(&code.replace("::", "_"), program, scenario);
@@ -60,14 +108,26 @@ fn every_scenario_error_names_its_key_and_line() {
 
 #[test]
 fn set_accepts_inputs_only() {
-    let rendered = scenario_error("set_output", "OB 1\n      BE\n", "[[event]]\nat = \"1ms\"\nset = { \"Q 4.0\" = 1 }\n");
-    assert!(rendered.contains("`set` changes process inputs only"), "{rendered}");
+    let rendered = scenario_error(
+        "set_output",
+        "OB 1\n      BE\n",
+        "[[event]]\nat = \"1ms\"\nset = { \"Q 4.0\" = 1 }\n",
+    );
+    assert!(
+        rendered.contains("`set` changes process inputs only"),
+        "{rendered}"
+    );
 }
 
 #[test]
 fn unreadable_scenario_is_reported() {
-    let options = runner::RunOptions { scenario: Some("no/such/scenario.toml".into()), ..Default::default() };
-    let Err(NotRun::Failed(report)) = runner::run(&options) else { panic!("ran") };
+    let options = runner::RunOptions {
+        scenario: Some("no/such/scenario.toml".into()),
+        ..Default::default()
+    };
+    let Err(NotRun::Failed(report)) = runner::run(&options) else {
+        panic!("ran")
+    };
     assert!(render_plain(&report).contains("awl::scenario::read"));
 }
 
@@ -97,7 +157,9 @@ fn two_runs_give_byte_identical_traces() {
 fn on_delay_timer_edges_on_simulated_time() {
     let program = "OB 1\n      A  I 0.0\n      L  KT 010.1\n      SD T 1\n      A  T 1\n      =  Q 4.0\n      BE\n";
     for (run_for, expected) in [("1.09s", 0), ("1.11s", 1)] {
-        let scenario = format!("run = {{ for = \"{run_for}\" }}\n[[event]]\nat = \"100ms\"\nset = {{ \"I 0.0\" = 1 }}\n[expect]\n\"Q 4.0\" = {expected}\n");
+        let scenario = format!(
+            "run = {{ for = \"{run_for}\" }}\n[[event]]\nat = \"100ms\"\nset = {{ \"I 0.0\" = 1 }}\n[expect]\n\"Q 4.0\" = {expected}\n"
+        );
         let ran = ran(run_scenario("on_delay", program, &scenario));
         assert!(ran.mismatches.is_empty(), "{run_for}: {:?}", ran.mismatches);
     }

@@ -8,14 +8,21 @@ use common::*;
 
 /// Wraps statements in an FB called from OB 1 (so supplementary operations are allowed).
 fn fb(body: &str) -> String {
-    format!("OB 1\n      JU FB 1\nNAME :T\n      BE\nFB 1\nNAME :T\n{body}\n      BE\nDB 5\n 0: KF +1\n 1: KH ABCD\n 2: KF -2\n 3: KF +0\n")
+    format!(
+        "OB 1\n      JU FB 1\nNAME :T\n      BE\nFB 1\nNAME :T\n{body}\n      BE\nDB 5\n 0: KF +1\n 1: KH ABCD\n 2: KF -2\n 3: KF +0\n"
+    )
 }
 
 #[test]
 fn first_check_after_assignment_starts_a_new_string() {
-    let (cpu, _) = run_once(&fb("      A  F 0.0\n      =  F 1.0\n      AN F 0.0\n      =  F 1.1\n      =  F 1.2"));
+    let (cpu, _) = run_once(&fb(
+        "      A  F 0.0\n      =  F 1.0\n      AN F 0.0\n      =  F 1.1\n      =  F 1.2",
+    ));
     assert!(!flag(&cpu, 1, 0));
-    assert!(flag(&cpu, 1, 1), "AN after = loads, it does not AND with the old RLO");
+    assert!(
+        flag(&cpu, 1, 1),
+        "AN after = loads, it does not AND with the old RLO"
+    );
     assert!(flag(&cpu, 1, 2), "the RLO stays for a second assignment");
 }
 
@@ -103,7 +110,10 @@ fn load_and_transfer_every_memory_operand() {
     assert_eq!(fd(&cpu, 4), 0xABCD_FFFE);
     assert_eq!(fw(&cpu, 8), 77);
     assert_eq!(cpu.image[2 * 128 + 10], 0xAB);
-    assert_eq!(cpu.outputs[5], 200, "T PY writes the output module directly");
+    assert_eq!(
+        cpu.outputs[5], 200,
+        "T PY writes the output module directly"
+    );
     assert_eq!(cpu.image[128 + 5], 200, "and the PIQ of a digital output");
     assert_eq!(cpu.extended_outputs[6..8], [0x12, 0x34]);
 }
@@ -128,7 +138,21 @@ fn accumulator_operations() {
     let body = "      L  KF +1\n      L  KF +2\n      TAK\n      T  FW 0\n      L  KH 00FF\n      I  1\n      T  FW 2\n      L  KH 0100\n      D  1\n      T  FW 4\n      L  KH 0001\n      SLW 4\n      T  FW 6\n      SRW 2\n      T  FW 8\n      L  KH 0F0F\n      CFW\n      T  FW 10\n      L  KF +5\n      CSW\n      T  FW 12\n      L  KH 00FF\n      L  KH 0F0F\n      AW\n      T  FW 14\n      L  KH 00FF\n      L  KH 0F0F\n      OW\n      T  FW 16\n      L  KH 00FF\n      L  KH 0F0F\n      XOW\n      T  FW 18";
     let (cpu, _) = run_once(&fb(body));
     let words: Vec<u16> = (0..10).map(|i| fw(&cpu, 2 * i) as u16).collect();
-    assert_eq!(words, [1, 0x0000, 0x01FF, 0x0010, 0x0004, 0xF0F0, (-5i16) as u16, 0x000F, 0x0FFF, 0x0FF0]);
+    assert_eq!(
+        words,
+        [
+            1,
+            0x0000,
+            0x01FF,
+            0x0010,
+            0x0004,
+            0xF0F0,
+            (-5i16) as u16,
+            0x000F,
+            0x0FFF,
+            0x0FF0
+        ]
+    );
 }
 
 #[test]
@@ -171,7 +195,10 @@ fn fb_parameters_of_every_kind() {
 FB 3\nNAME :ALL\nDES  :BIT  I BI\nDES  :OUT  Q BI\nDES  :WORD I W\nDES  :KON  D KF\nDES  :BLK  B\nDES  :TIM  T\nDES  :CNT  C\n      ON =BIT\n      =  =OUT\n      L  =KON\n      T  FW 20\n      L  =WORD\n      T  FW 22\n      JU =BLK\n      L  KT 010.2\n      ON =BIT\n      SE =TIM\n      A  =TIM\n      =  F 3.0\n      ON =BIT\n      CU =CNT\n      L  =CNT\n      T  FW 24\n      BE\nPB 7\n      L  KF +7\n      T  FW 26\n      BE\n";
     let (cpu, _) = run_once(source);
     assert!(flag(&cpu, 0, 2));
-    assert_eq!((fw(&cpu, 20), fw(&cpu, 22), fw(&cpu, 24), fw(&cpu, 26)), (42, 0, 1, 7));
+    assert_eq!(
+        (fw(&cpu, 20), fw(&cpu, 22), fw(&cpu, 24), fw(&cpu, 26)),
+        (42, 0, 1, 7)
+    );
     assert!(flag(&cpu, 3, 0), "the extended pulse on T 4 runs");
 }
 
@@ -186,15 +213,23 @@ fn stp_stops_at_the_end_of_the_cycle() {
 #[test]
 fn runtime_faults_stop_the_cpu() {
     let cases = [
-        ("OB 1\n      JU PB 1\n      BE\nPB 1\n      JU PB 1\n      BE\n", StopCause::Stueb),
+        (
+            "OB 1\n      JU PB 1\n      BE\nPB 1\n      JU PB 1\n      BE\n",
+            StopCause::Stueb,
+        ),
         ("OB 1\n      JU PB 9\n      BE\n", StopCause::LzfBlock),
         ("OB 1\n      L  DW 0\n      BE\n", StopCause::LzfData),
-        ("OB 1\n      C  DB 5\n      L  DW 7\n      BE\nDB 5\n 0: KF +1\n", StopCause::LzfData),
+        (
+            "OB 1\n      C  DB 5\n      L  DW 7\n      BE\nDB 5\n 0: KF +1\n",
+            StopCause::LzfData,
+        ),
         ("OB 1\n      )\n      BE\n", StopCause::Bcf),
     ];
     for (source, cause) in cases {
         let (_, outcome) = run_once(source);
-        let stop = outcome.stop.unwrap_or_else(|| panic!("no STOP for {source}"));
+        let stop = outcome
+            .stop
+            .unwrap_or_else(|| panic!("no STOP for {source}"));
         assert_eq!(stop.cause, cause, "{source}");
         assert!(!stop.stack.is_empty());
     }

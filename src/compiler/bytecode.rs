@@ -121,7 +121,11 @@ pub enum Op {
     Set(ImageBit),
     Reset(ImageBit),
     LogicOther(Logic, BitSource),
-    WriteData { write: Write, word: u16, bit: u8 },
+    WriteData {
+        write: Write,
+        word: u16,
+        bit: u8,
+    },
     OrAlone,
     AndBracket,
     OrBracket,
@@ -135,8 +139,16 @@ pub enum Op {
     TransferImageDouble(u16),
     LoadData(DataPart, u16),
     TransferData(DataPart, u16),
-    LoadPeripheral { width: Width, byte: u16, extended: bool },
-    TransferPeripheral { width: Width, byte: u16, extended: bool },
+    LoadPeripheral {
+        width: Width,
+        byte: u16,
+        extended: bool,
+    },
+    TransferPeripheral {
+        width: Width,
+        byte: u16,
+        extended: bool,
+    },
     LoadConstant(u32),
     LoadTimer(u16),
     LoadTimerCoded(u16),
@@ -153,9 +165,17 @@ pub enum Op {
     Arithmetic(Arith),
     Compare(Comparison),
     /// `JU`/`JC` to a block: its index in the program, and its actual-parameter list.
-    Call { block: u16, conditional: bool, params: u16 },
+    Call {
+        block: u16,
+        conditional: bool,
+        params: u16,
+    },
     /// A call of a block that is not loaded: STOP when taken.
-    CallMissing { kind: BlockKind, number: u8, conditional: bool },
+    CallMissing {
+        kind: BlockKind,
+        number: u8,
+        conditional: bool,
+    },
     OpenDb(u8),
     BlockEnd,
     BlockEndConditional,
@@ -173,15 +193,24 @@ pub enum Op {
     Decrement(u8),
     /// `DO`: run the next op with its parameter taken from the source; `template` indexes the
     /// program's indirect templates.
-    Indirect { source: IndirectSource, template: u16 },
+    Indirect {
+        source: IndirectSource,
+        template: u16,
+    },
     SetUnconditional(BitTarget),
     ResetUnconditional(BitTarget),
-    TestBit { negate: bool, target: BitTarget },
+    TestBit {
+        negate: bool,
+        target: BitTarget,
+    },
     DisableInterrupts,
     EnableInterrupts,
     GenerateDb(u8),
     /// An operation on a formal operand, resolved against the running FB's actual parameters.
-    Formal { op: OpCode, param: u8 },
+    Formal {
+        op: OpCode,
+        param: u8,
+    },
 }
 
 impl Op {

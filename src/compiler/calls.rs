@@ -1,9 +1,9 @@
 //! FB calls: the actual parameters after `JU FB n` checked against the FB's declarations, and
 //! operations on formal operands checked against the parameter's kind and format.
 
+use crate::ast::BlockId;
 use crate::ast::{Address, Operand, ParamDecl, ParamFormat, Statement};
 use crate::mnemonics::{self, Area, BlockKind, MnemonicSet, OpCode, ParamKind};
-use crate::ast::BlockId;
 
 use super::bytecode::{self, Op};
 use super::error::CheckError;
@@ -12,7 +12,10 @@ use super::{BlockContext, Compiler};
 
 /// `I BI`, `D KF`, `T` — a declaration's kind and format as written in the file's set.
 pub fn describe_decl(decl: &ParamDecl, set: MnemonicSet) -> String {
-    let kind = mnemonics::PARAM_KINDS.iter().find(|info| info.kind == decl.kind).expect("every kind has a row");
+    let kind = mnemonics::PARAM_KINDS
+        .iter()
+        .find(|info| info.kind == decl.kind)
+        .expect("every kind has a row");
     let kind = match set {
         MnemonicSet::English => kind.en,
         MnemonicSet::German => kind.de,
@@ -23,28 +26,54 @@ pub fn describe_decl(decl: &ParamDecl, set: MnemonicSet) -> String {
         Some(ParamFormat::Byte) => format!("{kind} BY"),
         Some(ParamFormat::Word) => format!("{kind} W"),
         Some(ParamFormat::Constant(format)) => {
-            let info = mnemonics::CONSTANTS.iter().find(|info| info.format == format).expect("every format has a row");
-            format!("{kind} {}", if set == MnemonicSet::English { info.en } else { info.de })
+            let info = mnemonics::CONSTANTS
+                .iter()
+                .find(|info| info.format == format)
+                .expect("every format has a row");
+            format!(
+                "{kind} {}",
+                if set == MnemonicSet::English {
+                    info.en
+                } else {
+                    info.de
+                }
+            )
         }
     }
 }
 
 /// An operand standing for any actual of the declaration, for checks and execution times.
 fn representative(decl: &ParamDecl) -> Resolved {
-    let address = |area| Resolved::Address(Address { area, index: 0, bit: 0 });
+    let address = |area| {
+        Resolved::Address(Address {
+            area,
+            index: 0,
+            bit: 0,
+        })
+    };
     let input = decl.kind == ParamKind::Input;
     match (decl.kind, decl.format) {
-        (ParamKind::Input | ParamKind::Output, Some(ParamFormat::Byte)) => {
-            address(if input { Area::InputByte } else { Area::OutputByte })
+        (ParamKind::Input | ParamKind::Output, Some(ParamFormat::Byte)) => address(if input {
+            Area::InputByte
+        } else {
+            Area::OutputByte
+        }),
+        (ParamKind::Input | ParamKind::Output, Some(ParamFormat::Word)) => address(if input {
+            Area::InputWord
+        } else {
+            Area::OutputWord
+        }),
+        (ParamKind::Input | ParamKind::Output, _) => {
+            address(if input { Area::Input } else { Area::Output })
         }
-        (ParamKind::Input | ParamKind::Output, Some(ParamFormat::Word)) => {
-            address(if input { Area::InputWord } else { Area::OutputWord })
-        }
-        (ParamKind::Input | ParamKind::Output, _) => address(if input { Area::Input } else { Area::Output }),
         (ParamKind::Data, _) => Resolved::Constant(0),
         (ParamKind::Timer, _) => address(Area::Timer),
         (ParamKind::Counter, _) => address(Area::Counter),
-        (ParamKind::Block, _) => Resolved::Block { kind: BlockKind::Pb, number: 0, index: Some(0) },
+        (ParamKind::Block, _) => Resolved::Block {
+            kind: BlockKind::Pb,
+            number: 0,
+            index: Some(0),
+        },
     }
 }
 
@@ -53,9 +82,11 @@ fn representative(decl: &ParamDecl) -> Resolved {
 pub fn formal_op(op: OpCode, decl: &ParamDecl, layout: Layout) -> Option<Op> {
     if decl.kind == ParamKind::Block {
         return match op {
-            OpCode::JumpUnconditional | OpCode::JumpConditional => {
-                Some(Op::Call { block: 0, conditional: false, params: bytecode::NO_PARAMS })
-            }
+            OpCode::JumpUnconditional | OpCode::JumpConditional => Some(Op::Call {
+                block: 0,
+                conditional: false,
+                params: bytecode::NO_PARAMS,
+            }),
             OpCode::OpenDb => Some(Op::OpenDb(0)),
             _ => None,
         };
@@ -65,16 +96,39 @@ pub fn formal_op(op: OpCode, decl: &ParamDecl, layout: Layout) -> Option<Op> {
 
 fn accepts(decl: &ParamDecl, actual: &Operand) -> bool {
     match (decl.kind, decl.format, actual) {
-        (ParamKind::Input | ParamKind::Output, Some(ParamFormat::Bit), Operand::Address(address)) => address.area.is_bit(),
-        (ParamKind::Input | ParamKind::Output, Some(ParamFormat::Byte), Operand::Address(address)) => matches!(
+        (
+            ParamKind::Input | ParamKind::Output,
+            Some(ParamFormat::Bit),
+            Operand::Address(address),
+        ) => address.area.is_bit(),
+        (
+            ParamKind::Input | ParamKind::Output,
+            Some(ParamFormat::Byte),
+            Operand::Address(address),
+        ) => matches!(
             address.area,
-            Area::InputByte | Area::OutputByte | Area::FlagByte | Area::DataLeft | Area::DataRight | Area::PeripheralByte
+            Area::InputByte
+                | Area::OutputByte
+                | Area::FlagByte
+                | Area::DataLeft
+                | Area::DataRight
+                | Area::PeripheralByte
         ),
-        (ParamKind::Input | ParamKind::Output, Some(ParamFormat::Word), Operand::Address(address)) => matches!(
+        (
+            ParamKind::Input | ParamKind::Output,
+            Some(ParamFormat::Word),
+            Operand::Address(address),
+        ) => matches!(
             address.area,
-            Area::InputWord | Area::OutputWord | Area::FlagWord | Area::DataWord | Area::PeripheralWord
+            Area::InputWord
+                | Area::OutputWord
+                | Area::FlagWord
+                | Area::DataWord
+                | Area::PeripheralWord
         ),
-        (ParamKind::Data, Some(ParamFormat::Constant(format)), Operand::Constant(constant)) => constant.format == format,
+        (ParamKind::Data, Some(ParamFormat::Constant(format)), Operand::Constant(constant)) => {
+            constant.format == format
+        }
         (ParamKind::Timer, _, Operand::Address(address)) => address.area == Area::Timer,
         (ParamKind::Counter, _, Operand::Address(address)) => address.area == Area::Counter,
         (ParamKind::Block, _, Operand::Block(_)) => true,
@@ -84,33 +138,61 @@ fn accepts(decl: &ParamDecl, actual: &Operand) -> bool {
 
 impl Compiler<'_> {
     /// Checks and resolves the actual parameters of a call of `fb`; returns the list's index.
-    pub(super) fn call_params(&mut self, context: &BlockContext<'_>, statement: &Statement, fb: BlockId) -> Option<u16> {
+    pub(super) fn call_params(
+        &mut self,
+        context: &BlockContext<'_>,
+        statement: &Statement,
+        fb: BlockId,
+    ) -> Option<u16> {
         let decls = self.fb_params.get(&fb).cloned().unwrap_or_default();
         let given = &statement.call_params;
         let mut ok = true;
         for param in given {
-            if !decls.iter().any(|decl| decl.name.text.eq_ignore_ascii_case(&param.name.text)) {
+            if !decls
+                .iter()
+                .any(|decl| decl.name.text.eq_ignore_ascii_case(&param.name.text))
+            {
                 let help = decls
                     .iter()
-                    .map(|decl| (strsim::damerau_levenshtein(&decl.name.text.to_ascii_uppercase(), &param.name.text.to_ascii_uppercase()), decl))
+                    .map(|decl| {
+                        (
+                            strsim::damerau_levenshtein(
+                                &decl.name.text.to_ascii_uppercase(),
+                                &param.name.text.to_ascii_uppercase(),
+                            ),
+                            decl,
+                        )
+                    })
                     .filter(|(distance, _)| *distance <= 1)
                     .min_by_key(|(distance, _)| *distance)
                     .map(|(_, decl)| format!("did you mean `{}`?", decl.name.text))
                     .or_else(|| Some(format!("{fb} declares: {}", names(&decls))));
-                self.diagnostics.push(CheckError::UnknownParam { name: param.name.text.clone(), fb: fb.to_string(), at: param.name.span, help });
+                self.diagnostics.push(CheckError::UnknownParam {
+                    name: param.name.text.clone(),
+                    fb: fb.to_string(),
+                    at: param.name.span,
+                    help,
+                });
                 ok = false;
             }
         }
         let missing: Vec<&str> = decls
             .iter()
-            .filter(|decl| !given.iter().any(|param| param.name.text.eq_ignore_ascii_case(&decl.name.text)))
+            .filter(|decl| {
+                !given
+                    .iter()
+                    .any(|param| param.name.text.eq_ignore_ascii_case(&decl.name.text))
+            })
             .map(|decl| decl.name.text.as_str())
             .collect();
         if ok && (given.len() != decls.len() || !missing.is_empty()) {
             let help = if missing.is_empty() {
                 Some(format!("{fb} declares: {}", names(&decls)))
             } else {
-                Some(format!("missing: {}; write one line `NAME :operand` per parameter after the call", missing.join(", ")))
+                Some(format!(
+                    "missing: {}; write one line `NAME :operand` per parameter after the call",
+                    missing.join(", ")
+                ))
             };
             self.diagnostics.push(CheckError::ParamCount {
                 fb: fb.to_string(),
@@ -123,7 +205,12 @@ impl Compiler<'_> {
         }
         let mut list = Vec::with_capacity(decls.len());
         for decl in &decls {
-            let Some(param) = given.iter().find(|param| param.name.text.eq_ignore_ascii_case(&decl.name.text)) else { continue };
+            let Some(param) = given
+                .iter()
+                .find(|param| param.name.text.eq_ignore_ascii_case(&decl.name.text))
+            else {
+                continue;
+            };
             let expected = describe_decl(decl, context.set);
             let mismatch = |compiler: &mut Self| {
                 compiler.diagnostics.push(CheckError::ParamMismatch {
@@ -135,8 +222,15 @@ impl Compiler<'_> {
             };
             let resolved = match &param.actual {
                 Operand::Symbol(name) => {
-                    match context.params.iter().position(|own| own.name.text.eq_ignore_ascii_case(name)) {
-                        Some(index) if context.params[index].kind == decl.kind && context.params[index].format == decl.format => {
+                    match context
+                        .params
+                        .iter()
+                        .position(|own| own.name.text.eq_ignore_ascii_case(name))
+                    {
+                        Some(index)
+                            if context.params[index].kind == decl.kind
+                                && context.params[index].format == decl.format =>
+                        {
                             Resolved::Formal(index as u8)
                         }
                         _ => {
@@ -147,9 +241,17 @@ impl Compiler<'_> {
                     }
                 }
                 actual if accepts(decl, actual) => {
-                    let pseudo = Statement { operand: actual.clone(), operand_span: param.actual_span, ..statement.clone() };
+                    let pseudo = Statement {
+                        operand: actual.clone(),
+                        operand_span: param.actual_span,
+                        ..statement.clone()
+                    };
                     match &pseudo.operand {
-                        Operand::Block(id) => Resolved::Block { kind: id.kind, number: id.number, index: self.index.get(id).copied() },
+                        Operand::Block(id) => Resolved::Block {
+                            kind: id.kind,
+                            number: id.number,
+                            index: self.index.get(id).copied(),
+                        },
                         _ => match self.resolve(context, &pseudo) {
                             Some(resolved) => resolved,
                             None => {
@@ -179,5 +281,9 @@ fn names(decls: &[ParamDecl]) -> String {
     if decls.is_empty() {
         return "no parameters".to_string();
     }
-    decls.iter().map(|decl| decl.name.text.as_str()).collect::<Vec<_>>().join(", ")
+    decls
+        .iter()
+        .map(|decl| decl.name.text.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
 }

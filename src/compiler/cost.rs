@@ -19,12 +19,12 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         | Op::CloseBracket => t.bit_image,
         Op::LogicOther(_, BitSource::Data { .. }) | Op::WriteData { .. } => t.bit_data,
         Op::LogicOther(_, _) => t.bit_timer_counter,
-        Op::SetUnconditional(target) | Op::ResetUnconditional(target) | Op::TestBit { target, .. } => {
-            match target {
-                BitTarget::Image(_) => t.bit_image,
-                BitTarget::Data { .. } => t.bit_data,
-            }
-        }
+        Op::SetUnconditional(target)
+        | Op::ResetUnconditional(target)
+        | Op::TestBit { target, .. } => match target {
+            BitTarget::Image(_) => t.bit_image,
+            BitTarget::Data { .. } => t.bit_data,
+        },
         Op::LoadImageByte(_) | Op::TransferImageByte(_) => t.load_byte,
         Op::LoadImageWord(_) | Op::TransferImageWord(_) => t.load_word,
         Op::LoadImageDouble(_) | Op::TransferImageDouble(_) => t.load_double,
@@ -60,6 +60,8 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         | Op::Increment(_)
         | Op::Decrement(_) => t.accumulator,
         Op::Indirect { .. } => t.load_word + t.other,
-        Op::Nop | Op::Stop | Op::DisableInterrupts | Op::EnableInterrupts | Op::Formal { .. } => t.other,
+        Op::Nop | Op::Stop | Op::DisableInterrupts | Op::EnableInterrupts | Op::Formal { .. } => {
+            t.other
+        }
     }
 }

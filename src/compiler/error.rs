@@ -9,7 +9,10 @@ use crate::source::Span;
 #[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
 pub enum CheckError {
     #[error("{id} is defined twice")]
-    #[diagnostic(code(awl::check::duplicate_block), help("the first definition is at {first}; rename or remove one"))]
+    #[diagnostic(
+        code(awl::check::duplicate_block),
+        help("the first definition is at {first}; rename or remove one")
+    )]
     DuplicateBlock {
         id: String,
         #[label("second definition")]
@@ -26,7 +29,10 @@ pub enum CheckError {
     },
 
     #[error("{id}: the {cpu} CPU has no {kind} blocks")]
-    #[diagnostic(code(awl::check::extended_block), help("FX and DX blocks need a CPU profile that has them, e.g. `--cpu sinumerik-840c`"))]
+    #[diagnostic(
+        code(awl::check::extended_block),
+        help("FX and DX blocks need a CPU profile that has them, e.g. `--cpu sinumerik-840c`")
+    )]
     ExtendedBlock {
         id: String,
         kind: &'static str,
@@ -36,7 +42,10 @@ pub enum CheckError {
     },
 
     #[error("`{op}` is a supplementary operation, allowed in function blocks only")]
-    #[diagnostic(code(awl::check::supplementary_outside_fb), help("move this logic into an FB, or use a basic operation"))]
+    #[diagnostic(
+        code(awl::check::supplementary_outside_fb),
+        help("move this logic into an FB, or use a basic operation")
+    )]
     Supplementary {
         op: String,
         #[label("not allowed in {block}")]
@@ -55,7 +64,10 @@ pub enum CheckError {
     },
 
     #[error("{what} is out of range")]
-    #[diagnostic(code(awl::check::operand_range), help("the {cpu} profile allows {range}"))]
+    #[diagnostic(
+        code(awl::check::operand_range),
+        help("the {cpu} profile allows {range}")
+    )]
     OperandRange {
         what: String,
         #[label("allowed: {range}")]
@@ -76,7 +88,10 @@ pub enum CheckError {
     },
 
     #[error("formal operand `={name}` outside a function block")]
-    #[diagnostic(code(awl::check::formal_outside_fb), help("formal operands and jump labels exist only in FBs"))]
+    #[diagnostic(
+        code(awl::check::formal_outside_fb),
+        help("formal operands and jump labels exist only in FBs")
+    )]
     FormalOutsideFb {
         name: String,
         #[label("only FBs have parameters and labels")]
@@ -84,7 +99,10 @@ pub enum CheckError {
     },
 
     #[error("label `{name}` is defined twice")]
-    #[diagnostic(code(awl::check::duplicate_label), help("labels must be unique within a block"))]
+    #[diagnostic(
+        code(awl::check::duplicate_label),
+        help("labels must be unique within a block")
+    )]
     DuplicateLabel {
         name: String,
         #[label("second definition")]
@@ -94,7 +112,10 @@ pub enum CheckError {
     },
 
     #[error("label `{name}` is longer than 4 characters")]
-    #[diagnostic(code(awl::check::label_too_long), help("STEP 5 labels have at most 4 characters, e.g. `M001`"))]
+    #[diagnostic(
+        code(awl::check::label_too_long),
+        help("STEP 5 labels have at most 4 characters, e.g. `M001`")
+    )]
     LabelTooLong {
         name: String,
         #[label("{length} characters")]
@@ -160,7 +181,12 @@ pub enum CheckError {
     },
 
     #[error("`{op}` must be followed by the operation it modifies")]
-    #[diagnostic(code(awl::check::indirect_target), help("`DO FW n` applies to the next operation, e.g. `L DW 0` or `A I 0.0`; its parameter is replaced by the word's value"))]
+    #[diagnostic(
+        code(awl::check::indirect_target),
+        help(
+            "`DO FW n` applies to the next operation, e.g. `L DW 0` or `A I 0.0`; its parameter is replaced by the word's value"
+        )
+    )]
     IndirectTarget {
         op: String,
         #[label("no operation with a parameter follows")]
@@ -191,6 +217,9 @@ impl CheckError {
     }
 
     pub fn is_warning(&self) -> bool {
-        matches!(self, CheckError::UndefinedBlock { .. } | CheckError::UndefinedDb { .. })
+        matches!(
+            self,
+            CheckError::UndefinedBlock { .. } | CheckError::UndefinedDb { .. }
+        )
     }
 }

@@ -14,7 +14,11 @@ pub enum Resolved {
     Address(Address),
     Constant(u32),
     /// A block; `index` is its place in the program when it is loaded (logic blocks).
-    Block { kind: BlockKind, number: u8, index: Option<u16> },
+    Block {
+        kind: BlockKind,
+        number: u8,
+        index: Option<u16>,
+    },
     Label(u32),
     Number(u16),
     /// The n-th formal parameter of the running FB.
@@ -30,7 +34,10 @@ pub struct Layout {
 
 impl Layout {
     pub fn new(sizes: &Sizes) -> Self {
-        Layout { image_bytes: sizes.image_bytes, flag_bytes: sizes.flag_bytes }
+        Layout {
+            image_bytes: sizes.image_bytes,
+            flag_bytes: sizes.flag_bytes,
+        }
     }
 
     pub fn input_base(self) -> u16 {
@@ -62,13 +69,18 @@ impl Layout {
 }
 
 fn image_bit(layout: Layout, address: Address) -> Option<ImageBit> {
-    matches!(address.area, Area::Input | Area::Output | Area::Flag)
-        .then(|| ImageBit { byte: layout.image_byte(address.area, address.index).unwrap_or(0), bit: address.bit })
+    matches!(address.area, Area::Input | Area::Output | Area::Flag).then(|| ImageBit {
+        byte: layout.image_byte(address.area, address.index).unwrap_or(0),
+        bit: address.bit,
+    })
 }
 
 fn bit_target(layout: Layout, address: Address) -> Option<BitTarget> {
     match address.area {
-        Area::DataBit => Some(BitTarget::Data { word: address.index, bit: address.bit }),
+        Area::DataBit => Some(BitTarget::Data {
+            word: address.index,
+            bit: address.bit,
+        }),
         _ => image_bit(layout, address).map(BitTarget::Image),
     }
 }
@@ -161,7 +173,10 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
                 }
             } else {
                 let source = match address.area {
-                    Area::DataBit => BitSource::Data { word: address.index, bit: address.bit },
+                    Area::DataBit => BitSource::Data {
+                        word: address.index,
+                        bit: address.bit,
+                    },
                     Area::Timer => BitSource::Timer(address.index),
                     Area::Counter => BitSource::Counter(address.index),
                     _ => return None,
@@ -183,7 +198,11 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
                     Set => Write::Set,
                     _ => Write::Reset,
                 };
-                Op::WriteData { write, word: address.index, bit: address.bit }
+                Op::WriteData {
+                    write,
+                    word: address.index,
+                    bit: address.bit,
+                }
             }
             _ => {
                 let bit = image_bit(layout, address)?;
@@ -200,14 +219,30 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
             let load = op == Load;
             if let Some(width) = image_width(area) {
                 let byte = layout.image_byte(area, index)?;
-                if load { Op::load_image(width, byte) } else { Op::transfer_image(width, byte) }
+                if load {
+                    Op::load_image(width, byte)
+                } else {
+                    Op::transfer_image(width, byte)
+                }
             } else if let Some(part) = data_part(area) {
-                if load { Op::LoadData(part, index) } else { Op::TransferData(part, index) }
+                if load {
+                    Op::LoadData(part, index)
+                } else {
+                    Op::TransferData(part, index)
+                }
             } else if let Some((width, extended)) = peripheral(area) {
                 if load {
-                    Op::LoadPeripheral { width, byte: index, extended }
+                    Op::LoadPeripheral {
+                        width,
+                        byte: index,
+                        extended,
+                    }
                 } else {
-                    Op::TransferPeripheral { width, byte: index, extended }
+                    Op::TransferPeripheral {
+                        width,
+                        byte: index,
+                        extended,
+                    }
                 }
             } else {
                 match (load, area) {
@@ -222,11 +257,10 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
             Area::Counter => Op::LoadCounterCoded(index),
             _ => return None,
         },
-        (TimerPulse | TimerExtendedPulse | TimerOnDelay | TimerStoredOnDelay | TimerOffDelay, R::Address(_))
-            if area == Some(Area::Timer) =>
-        {
-            Op::StartTimer(timer_kind(op)?, index)
-        }
+        (
+            TimerPulse | TimerExtendedPulse | TimerOnDelay | TimerStoredOnDelay | TimerOffDelay,
+            R::Address(_),
+        ) if area == Some(Area::Timer) => Op::StartTimer(timer_kind(op)?, index),
         (Enable, R::Address(_)) => match area? {
             Area::Timer => Op::EnableTimer(index),
             Area::Counter => Op::EnableCounter(index),
@@ -244,17 +278,44 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
         (CmpGe, R::None) => Op::Compare(Comparison::Ge),
         (CmpLt, R::None) => Op::Compare(Comparison::Lt),
         (CmpLe, R::None) => Op::Compare(Comparison::Le),
-        (JumpUnconditional | JumpConditional, R::Block { kind, number, index })
-            if !kind.is_data() =>
-        {
+        (
+            JumpUnconditional | JumpConditional,
+            R::Block {
+                kind,
+                number,
+                index,
+            },
+        ) if !kind.is_data() => {
             let conditional = op == JumpConditional;
             match index {
-                Some(block) => Op::Call { block, conditional, params },
-                None => Op::CallMissing { kind, number, conditional },
+                Some(block) => Op::Call {
+                    block,
+                    conditional,
+                    params,
+                },
+                None => Op::CallMissing {
+                    kind,
+                    number,
+                    conditional,
+                },
             }
         }
-        (OpenDb, R::Block { kind: BlockKind::Db | BlockKind::Dx, number, .. }) => Op::OpenDb(number),
-        (GenerateDb, R::Block { kind: BlockKind::Db, number, .. }) => Op::GenerateDb(number),
+        (
+            OpenDb,
+            R::Block {
+                kind: BlockKind::Db | BlockKind::Dx,
+                number,
+                ..
+            },
+        ) => Op::OpenDb(number),
+        (
+            GenerateDb,
+            R::Block {
+                kind: BlockKind::Db,
+                number,
+                ..
+            },
+        ) => Op::GenerateDb(number),
         (BlockEnd, R::None) => Op::BlockEnd,
         (BlockEndConditional, R::None) => Op::BlockEndConditional,
         (BlockEndUnconditional, R::None) => Op::BlockEndUnconditional,
@@ -272,14 +333,30 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
         (Increment, R::Number(n)) if n <= 255 => Op::Increment(n as u8),
         (Decrement, R::Number(n)) if n <= 255 => Op::Decrement(n as u8),
         (Indirect, R::Address(_)) => match area? {
-            Area::FlagWord => Op::Indirect { source: IndirectSource::FlagWord(layout.image_byte(Area::FlagWord, index)?), template: 0 },
-            Area::DataWord => Op::Indirect { source: IndirectSource::DataWord(index), template: 0 },
+            Area::FlagWord => Op::Indirect {
+                source: IndirectSource::FlagWord(layout.image_byte(Area::FlagWord, index)?),
+                template: 0,
+            },
+            Area::DataWord => Op::Indirect {
+                source: IndirectSource::DataWord(index),
+                template: 0,
+            },
             _ => return None,
         },
-        (SetUnconditional, R::Address(address)) => Op::SetUnconditional(bit_target(layout, address)?),
-        (ResetUnconditional, R::Address(address)) => Op::ResetUnconditional(bit_target(layout, address)?),
-        (TestBit, R::Address(address)) => Op::TestBit { negate: false, target: bit_target(layout, address)? },
-        (TestBitNot, R::Address(address)) => Op::TestBit { negate: true, target: bit_target(layout, address)? },
+        (SetUnconditional, R::Address(address)) => {
+            Op::SetUnconditional(bit_target(layout, address)?)
+        }
+        (ResetUnconditional, R::Address(address)) => {
+            Op::ResetUnconditional(bit_target(layout, address)?)
+        }
+        (TestBit, R::Address(address)) => Op::TestBit {
+            negate: false,
+            target: bit_target(layout, address)?,
+        },
+        (TestBitNot, R::Address(address)) => Op::TestBit {
+            negate: true,
+            target: bit_target(layout, address)?,
+        },
         (DisableInterrupts, R::None) => Op::DisableInterrupts,
         (EnableInterrupts, R::None) => Op::EnableInterrupts,
         _ => return None,
@@ -291,9 +368,29 @@ fn formal_allowed(op: OpCode) -> bool {
     use OpCode::*;
     matches!(
         op,
-        And | AndNot | Or | OrNot | Assign | Set | Reset | Load | Transfer | LoadCoded | TimerPulse
-            | TimerExtendedPulse | TimerOnDelay | TimerStoredOnDelay | TimerOffDelay | Enable
-            | CountUp | CountDown | JumpUnconditional | JumpConditional | OpenDb
-            | SetUnconditional | ResetUnconditional | TestBit | TestBitNot
+        And | AndNot
+            | Or
+            | OrNot
+            | Assign
+            | Set
+            | Reset
+            | Load
+            | Transfer
+            | LoadCoded
+            | TimerPulse
+            | TimerExtendedPulse
+            | TimerOnDelay
+            | TimerStoredOnDelay
+            | TimerOffDelay
+            | Enable
+            | CountUp
+            | CountDown
+            | JumpUnconditional
+            | JumpConditional
+            | OpenDb
+            | SetUnconditional
+            | ResetUnconditional
+            | TestBit
+            | TestBitNot
     )
 }

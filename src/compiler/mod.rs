@@ -70,11 +70,15 @@ impl Program {
     }
 
     pub fn block(&self, id: BlockId) -> Option<&CompiledBlock> {
-        self.block_index(id).map(|index| &self.blocks[usize::from(index)])
+        self.block_index(id)
+            .map(|index| &self.blocks[usize::from(index)])
     }
 
     pub fn ob(&self, number: u8) -> Option<u16> {
-        self.block_index(BlockId { kind: BlockKind::Ob, number })
+        self.block_index(BlockId {
+            kind: BlockKind::Ob,
+            number,
+        })
     }
 }
 
@@ -88,7 +92,9 @@ pub struct Compiled {
 
 impl Compiled {
     pub fn has_errors(&self) -> bool {
-        self.diagnostics.iter().any(|diagnostic| !diagnostic.is_warning())
+        self.diagnostics
+            .iter()
+            .any(|diagnostic| !diagnostic.is_warning())
     }
 }
 
@@ -106,7 +112,10 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
         diagnostics: Vec::new(),
     };
     let (logic, data) = compiler.collect(units);
-    let blocks = logic.iter().map(|(block, set)| compiler.compile_block(block, *set)).collect();
+    let blocks = logic
+        .iter()
+        .map(|(block, set)| compiler.compile_block(block, *set))
+        .collect();
     let data_blocks = data.iter().map(|block| data_image(block)).collect();
     compiler.diagnostics.sort_by_key(|diagnostic| {
         let span = diagnostic.span();
@@ -130,11 +139,19 @@ fn data_image(block: &Block) -> DataBlockImage {
     let mut words = Vec::new();
     if let BlockBody::Data(data) = &block.body {
         for word in data {
-            let values = std::iter::once(word.constant.value).chain(word.constant.extra_words.iter().map(|w| u32::from(*w)));
-            let wide = matches!(word.constant.format, mnemonics::ConstFormat::DoubleHex | mnemonics::ConstFormat::Float);
+            let values = std::iter::once(word.constant.value)
+                .chain(word.constant.extra_words.iter().map(|w| u32::from(*w)));
+            let wide = matches!(
+                word.constant.format,
+                mnemonics::ConstFormat::DoubleHex | mnemonics::ConstFormat::Float
+            );
             let mut at = usize::from(word.index);
             for value in values {
-                let parts: &[u16] = if wide { &[(value >> 16) as u16, value as u16] } else { &[value as u16] };
+                let parts: &[u16] = if wide {
+                    &[(value >> 16) as u16, value as u16]
+                } else {
+                    &[value as u16]
+                };
                 for part in parts {
                     if words.len() <= at {
                         words.resize(at + 1, 0);
@@ -145,7 +162,11 @@ fn data_image(block: &Block) -> DataBlockImage {
             }
         }
     }
-    DataBlockImage { id: block.id, header: block.header, words }
+    DataBlockImage {
+        id: block.id,
+        header: block.header,
+        words,
+    }
 }
 
 struct Compiler<'a> {
@@ -169,7 +190,10 @@ impl<'a> Compiler<'a> {
     }
 
     /// Registers every block, reporting duplicates and blocks this CPU lacks.
-    fn collect<'u>(&mut self, units: &'u [SourceUnit]) -> (Vec<(&'u Block, MnemonicSet)>, Vec<&'u Block>) {
+    fn collect<'u>(
+        &mut self,
+        units: &'u [SourceUnit],
+    ) -> (Vec<(&'u Block, MnemonicSet)>, Vec<&'u Block>) {
         let mut first_seen: HashMap<BlockId, Span> = HashMap::new();
         let mut logic = Vec::new();
         let mut data = Vec::new();
@@ -184,7 +208,9 @@ impl<'a> Compiler<'a> {
                     continue;
                 }
                 first_seen.insert(block.id, block.header);
-                if matches!(block.id.kind, BlockKind::Fx | BlockKind::Dx) && !self.profile.extended_blocks {
+                if matches!(block.id.kind, BlockKind::Fx | BlockKind::Dx)
+                    && !self.profile.extended_blocks
+                {
                     self.diagnostics.push(CheckError::ExtendedBlock {
                         id: block.id.to_string(),
                         kind: block.id.kind.name(),
@@ -199,7 +225,9 @@ impl<'a> Compiler<'a> {
                             self.fb_params.insert(block.id, body.params.clone());
                         }
                         for statement in &body.statements {
-                            if let (OpCode::GenerateDb, Operand::Block(id)) = (statement.op, &statement.operand) {
+                            if let (OpCode::GenerateDb, Operand::Block(id)) =
+                                (statement.op, &statement.operand)
+                            {
                                 self.generated_dbs.push(id.number);
                             }
                         }
@@ -216,9 +244,14 @@ impl<'a> Compiler<'a> {
     }
 
     fn compile_block(&mut self, block: &Block, set: MnemonicSet) -> CompiledBlock {
-        let BlockBody::Logic(body) = &block.body else { unreachable!("only logic blocks are compiled") };
+        let BlockBody::Logic(body) = &block.body else {
+            unreachable!("only logic blocks are compiled")
+        };
         if body.end.is_none() {
-            self.diagnostics.push(CheckError::MissingBlockEnd { id: block.id.to_string(), at: block.header });
+            self.diagnostics.push(CheckError::MissingBlockEnd {
+                id: block.id.to_string(),
+                at: block.header,
+            });
         }
         let labels = self.labels(body);
         let mut compiled = CompiledBlock {
@@ -231,13 +264,22 @@ impl<'a> Compiler<'a> {
             elapsed: Vec::with_capacity(body.statements.len() + 1),
         };
         compiled.elapsed.push(0);
-        let context = BlockContext { id: block.id, set, params: &body.params, labels: &labels };
+        let context = BlockContext {
+            id: block.id,
+            set,
+            params: &body.params,
+            labels: &labels,
+        };
         for (pc, statement) in body.statements.iter().enumerate() {
-            let (op, cost_op) = self.statement(&context, statement, body.statements.get(pc + 1)).unwrap_or((Op::Nop, Op::Nop));
+            let (op, cost_op) = self
+                .statement(&context, statement, body.statements.get(pc + 1))
+                .unwrap_or((Op::Nop, Op::Nop));
             compiled.code.push(op);
             compiled.spans.push(statement.span);
             let before = *compiled.elapsed.last().expect("starts with 0");
-            compiled.elapsed.push(before + u64::from(cost::cost(cost_op, &self.profile.timings)));
+            compiled
+                .elapsed
+                .push(before + u64::from(cost::cost(cost_op, &self.profile.timings)));
         }
         compiled
     }
@@ -245,7 +287,9 @@ impl<'a> Compiler<'a> {
     fn labels(&mut self, body: &LogicBody) -> HashMap<String, (u32, Span)> {
         let mut labels: HashMap<String, (u32, Span)> = HashMap::new();
         for (pc, statement) in body.statements.iter().enumerate() {
-            let Some(label) = &statement.label else { continue };
+            let Some(label) = &statement.label else {
+                continue;
+            };
             let name = label.text.to_ascii_uppercase();
             if name.chars().count() > 4 {
                 self.diagnostics.push(CheckError::LabelTooLong {
@@ -255,7 +299,11 @@ impl<'a> Compiler<'a> {
                 });
             }
             if let Some((_, first)) = labels.get(&name) {
-                self.diagnostics.push(CheckError::DuplicateLabel { name: label.text.clone(), at: label.span, first: *first });
+                self.diagnostics.push(CheckError::DuplicateLabel {
+                    name: label.text.clone(),
+                    at: label.span,
+                    first: *first,
+                });
             } else {
                 labels.insert(name, (pc as u32, label.span));
             }
@@ -265,15 +313,28 @@ impl<'a> Compiler<'a> {
 
     /// The op of one statement, and the op whose execution time it costs (they differ for
     /// formal operands, which cost what the substituted operation costs).
-    fn statement(&mut self, context: &BlockContext<'_>, statement: &Statement, next: Option<&Statement>) -> Option<(Op, Op)> {
+    fn statement(
+        &mut self,
+        context: &BlockContext<'_>,
+        statement: &Statement,
+        next: Option<&Statement>,
+    ) -> Option<(Op, Op)> {
         let info = mnemonics::op_info(statement.op);
         let op_word = mnemonics::op_word(context.set, statement.op);
         if info.supplementary && !context.id.kind.is_function() {
-            return self.fail(CheckError::Supplementary { op: op_word.to_string(), at: statement.op_span, block: context.id.to_string() });
+            return self.fail(CheckError::Supplementary {
+                op: op_word.to_string(),
+                at: statement.op_span,
+                block: context.id.to_string(),
+            });
         }
         let resolved = self.resolve(context, statement)?;
         let params = match resolved {
-            Resolved::Block { kind, index: Some(_), .. } if kind.is_function() => {
+            Resolved::Block {
+                kind,
+                index: Some(_),
+                ..
+            } if kind.is_function() => {
                 let id = match statement.operand {
                     Operand::Block(id) => id,
                     _ => unreachable!("block operands resolve to blocks"),
@@ -294,7 +355,11 @@ impl<'a> Compiler<'a> {
                     return self.fail(CheckError::OperandNotAllowed {
                         op: op_word.to_string(),
                         at: statement.operand_span,
-                        help: Some(format!("parameter `{}` is of kind {}", decl.name.text, calls::describe_decl(decl, context.set))),
+                        help: Some(format!(
+                            "parameter `{}` is of kind {}",
+                            decl.name.text,
+                            calls::describe_decl(decl, context.set)
+                        )),
                     });
                 }
             }
@@ -311,14 +376,27 @@ impl<'a> Compiler<'a> {
         None
     }
 
-    fn indirect_template(&mut self, context: &BlockContext<'_>, statement: &Statement, next: Option<&Statement>) -> Option<u16> {
+    fn indirect_template(
+        &mut self,
+        context: &BlockContext<'_>,
+        statement: &Statement,
+        next: Option<&Statement>,
+    ) -> Option<u16> {
         let op_word = mnemonics::op_word(context.set, statement.op).to_string();
         let Some(next) = next else {
-            return self.fail(CheckError::IndirectTarget { op: op_word, at: statement.op_span });
+            return self.fail(CheckError::IndirectTarget {
+                op: op_word,
+                at: statement.op_span,
+            });
         };
         let resolved = match next.operand {
             Operand::Address(_) | Operand::Number(_) => self.resolve(context, next)?,
-            _ => return self.fail(CheckError::IndirectTarget { op: op_word, at: statement.op_span }),
+            _ => {
+                return self.fail(CheckError::IndirectTarget {
+                    op: op_word,
+                    at: statement.op_span,
+                });
+            }
         };
         self.templates.push((next.op, resolved));
         Some((self.templates.len() - 1) as u16)
@@ -345,46 +423,101 @@ impl<'a> Compiler<'a> {
         let index = self.index.get(&id).copied();
         let known_data = self.data_numbers.contains(&id) || self.generated_dbs.contains(&id.number);
         match op {
-            OpCode::JumpUnconditional | OpCode::JumpConditional if index.is_none() && !id.kind.is_data() => {
-                self.diagnostics.push(CheckError::UndefinedBlock { id: id.to_string(), at });
+            OpCode::JumpUnconditional | OpCode::JumpConditional
+                if index.is_none() && !id.kind.is_data() =>
+            {
+                self.diagnostics.push(CheckError::UndefinedBlock {
+                    id: id.to_string(),
+                    at,
+                });
             }
             OpCode::OpenDb if id.kind.is_data() && !known_data => {
-                self.diagnostics.push(CheckError::UndefinedDb { id: id.to_string(), at });
+                self.diagnostics.push(CheckError::UndefinedDb {
+                    id: id.to_string(),
+                    at,
+                });
             }
             _ => {}
         }
-        Resolved::Block { kind: id.kind, number: id.number, index }
+        Resolved::Block {
+            kind: id.kind,
+            number: id.number,
+            index,
+        }
     }
 
-    fn resolve_symbol(&mut self, context: &BlockContext<'_>, statement: &Statement, name: &str) -> Option<Resolved> {
+    fn resolve_symbol(
+        &mut self,
+        context: &BlockContext<'_>,
+        statement: &Statement,
+        name: &str,
+    ) -> Option<Resolved> {
         let at = statement.operand_span;
-        let is_label_jump = matches!(statement.op, OpCode::JumpUnconditional | OpCode::JumpConditional);
+        let is_label_jump = matches!(
+            statement.op,
+            OpCode::JumpUnconditional | OpCode::JumpConditional
+        );
         if !context.id.kind.is_function() {
             if is_label_jump {
                 let op = format!("{} =", mnemonics::op_word(context.set, statement.op));
-                return self.fail(CheckError::Supplementary { op, at: statement.op_span, block: context.id.to_string() });
+                return self.fail(CheckError::Supplementary {
+                    op,
+                    at: statement.op_span,
+                    block: context.id.to_string(),
+                });
             }
-            return self.fail(CheckError::FormalOutsideFb { name: name.to_string(), at });
+            return self.fail(CheckError::FormalOutsideFb {
+                name: name.to_string(),
+                at,
+            });
         }
-        if let Some(index) = context.params.iter().position(|param| param.name.text.eq_ignore_ascii_case(name)) {
+        if let Some(index) = context
+            .params
+            .iter()
+            .position(|param| param.name.text.eq_ignore_ascii_case(name))
+        {
             return Some(Resolved::Formal(index as u8));
         }
         if let Some((pc, _)) = context.labels.get(&name.to_ascii_uppercase()) {
             return Some(Resolved::Label(*pc));
         }
-        let candidates = context.params.iter().map(|param| param.name.text.as_str()).chain(context.labels.keys().map(String::as_str));
+        let candidates = context
+            .params
+            .iter()
+            .map(|param| param.name.text.as_str())
+            .chain(context.labels.keys().map(String::as_str));
         let help = candidates
-            .map(|candidate| (strsim::damerau_levenshtein(&name.to_ascii_uppercase(), &candidate.to_ascii_uppercase()), candidate))
+            .map(|candidate| {
+                (
+                    strsim::damerau_levenshtein(
+                        &name.to_ascii_uppercase(),
+                        &candidate.to_ascii_uppercase(),
+                    ),
+                    candidate,
+                )
+            })
             .filter(|(distance, _)| *distance <= 1)
             .min_by_key(|(distance, _)| *distance)
             .map(|(_, candidate)| format!("did you mean `={candidate}`?"));
-        self.fail(CheckError::UndefinedSymbol { name: name.to_string(), block: context.id.to_string(), at, help })
+        self.fail(CheckError::UndefinedSymbol {
+            name: name.to_string(),
+            block: context.id.to_string(),
+            at,
+            help,
+        })
     }
 
-    fn not_allowed(&self, context: &BlockContext<'_>, statement: &Statement, resolved: Resolved) -> CheckError {
+    fn not_allowed(
+        &self,
+        context: &BlockContext<'_>,
+        statement: &Statement,
+        resolved: Resolved,
+    ) -> CheckError {
         let set = context.set;
         let op_word = mnemonics::op_word(set, statement.op).to_string();
-        if let (Some(range), Resolved::Number(value)) = (ranges::number_range(statement.op), resolved) {
+        if let (Some(range), Resolved::Number(value)) =
+            (ranges::number_range(statement.op), resolved)
+        {
             return CheckError::OperandRange {
                 what: format!("{op_word} {value}"),
                 at: statement.operand_span,
@@ -394,18 +527,31 @@ impl<'a> Compiler<'a> {
         }
         let label_jump = matches!(
             statement.op,
-            OpCode::JumpZero | OpCode::JumpNotZero | OpCode::JumpPositive | OpCode::JumpMinus | OpCode::JumpOverflow
+            OpCode::JumpZero
+                | OpCode::JumpNotZero
+                | OpCode::JumpPositive
+                | OpCode::JumpMinus
+                | OpCode::JumpOverflow
         );
-        let (ju, jc) = (mnemonics::op_word(set, OpCode::JumpUnconditional), mnemonics::op_word(set, OpCode::JumpConditional));
+        let (ju, jc) = (
+            mnemonics::op_word(set, OpCode::JumpUnconditional),
+            mnemonics::op_word(set, OpCode::JumpConditional),
+        );
         let help = match (statement.op, resolved) {
             (_, Resolved::Block { .. }) if label_jump => Some(format!(
                 "`{op_word}` jumps to a label in this FB (`{op_word} =M001`); to call a block use `{ju} PB 3`, or `{jc} PB 3` when the RLO is 1"
             )),
-            (OpCode::JumpUnconditional | OpCode::JumpConditional, Resolved::Block { kind, .. }) if kind.is_data() => Some(format!(
-                "data blocks are opened, not called: `{} DB n`",
-                mnemonics::op_word(set, OpCode::OpenDb)
-            )),
-            (OpCode::OpenDb, Resolved::Block { .. }) => Some("only data blocks (DB, DX) can be opened".to_string()),
+            (OpCode::JumpUnconditional | OpCode::JumpConditional, Resolved::Block { kind, .. })
+                if kind.is_data() =>
+            {
+                Some(format!(
+                    "data blocks are opened, not called: `{} DB n`",
+                    mnemonics::op_word(set, OpCode::OpenDb)
+                ))
+            }
+            (OpCode::OpenDb, Resolved::Block { .. }) => {
+                Some("only data blocks (DB, DX) can be opened".to_string())
+            }
             _ => {
                 let info = mnemonics::op_info(statement.op);
                 let example = match set {
@@ -415,7 +561,11 @@ impl<'a> Compiler<'a> {
                 (!example.is_empty()).then(|| format!("for example `{op_word} {example}`"))
             }
         };
-        CheckError::OperandNotAllowed { op: op_word, at: statement.operand_span, help }
+        CheckError::OperandNotAllowed {
+            op: op_word,
+            at: statement.operand_span,
+            help,
+        }
     }
 }
 

@@ -66,5 +66,6 @@ pub fn number_range(op: OpCode) -> Option<&'static str> {
 /// Whether an address is within the CPU's ranges (for operands formed at run time by `DO`).
 pub fn address_in_range(address: Address, profile: &Profile) -> bool {
     let max_bit = if address.area == Area::DataBit { 15 } else { 7 };
-    address.index <= limit(address.area, profile) && (!address.area.is_bit() || address.bit <= max_bit)
+    address.index <= limit(address.area, profile)
+        && (!address.area.is_bit() || address.bit <= max_bit)
 }

@@ -32,7 +32,13 @@ pub fn parse_constant(
     };
     let texts: Vec<&str> = tokens.iter().map(|token| context.text(*token)).collect();
     let kinds: Vec<TokenKind> = tokens.iter().map(|token| token.kind).collect();
-    let word = |value: u32| Ok(Constant { format, value, extra_words: Vec::new() });
+    let word = |value: u32| {
+        Ok(Constant {
+            format,
+            value,
+            extra_words: Vec::new(),
+        })
+    };
     use TokenKind::{Comma, Dot, Minus, Number, Plus, Quoted, Word};
     match format {
         ConstFormat::Byte => match kinds.as_slice() {
@@ -58,7 +64,9 @@ pub fn parse_constant(
                 Err(out_of_range("−32768…+32767"))
             }
         }
-        ConstFormat::Hex => hex(&texts, &kinds, 4).map_or_else(|| Err(bad("1 to 4 hex digits")), word),
+        ConstFormat::Hex => {
+            hex(&texts, &kinds, 4).map_or_else(|| Err(bad("1 to 4 hex digits")), word)
+        }
         ConstFormat::DoubleHex => {
             hex(&texts, &kinds, 8).map_or_else(|| Err(bad("1 to 8 hex digits")), word)
         }
@@ -77,8 +85,12 @@ pub fn parse_constant(
         }
         ConstFormat::TwoBytes => match kinds.as_slice() {
             [Number, Comma, Number] => {
-                let high = texts[0].parse::<u32>().map_err(|_| bad("two bytes, e.g. 12,34"))?;
-                let low = texts[2].parse::<u32>().map_err(|_| bad("two bytes, e.g. 12,34"))?;
+                let high = texts[0]
+                    .parse::<u32>()
+                    .map_err(|_| bad("two bytes, e.g. 12,34"))?;
+                let low = texts[2]
+                    .parse::<u32>()
+                    .map_err(|_| bad("two bytes, e.g. 12,34"))?;
                 if high > 255 || low > 255 {
                     Err(out_of_range("0…255 for each byte"))
                 } else {
@@ -89,8 +101,12 @@ pub fn parse_constant(
         },
         ConstFormat::Time => match kinds.as_slice() {
             [Number, Dot, Number] => {
-                let value = texts[0].parse::<u32>().map_err(|_| bad("value.base, e.g. 050.1"))?;
-                let base = texts[2].parse::<u32>().map_err(|_| bad("value.base, e.g. 050.1"))?;
+                let value = texts[0]
+                    .parse::<u32>()
+                    .map_err(|_| bad("value.base, e.g. 050.1"))?;
+                let base = texts[2]
+                    .parse::<u32>()
+                    .map_err(|_| bad("value.base, e.g. 050.1"))?;
                 if value > 999 {
                     Err(out_of_range("time value 0…999"))
                 } else if base > 3 {
@@ -120,7 +136,11 @@ pub fn parse_constant(
         }
         ConstFormat::Float => float(&texts, &kinds)
             .ok_or_else(|| bad("±mantissa±exponent, e.g. +1234567+02 (0.1234567 × 10²)"))
-            .map(|value| Constant { format, value, extra_words: Vec::new() }),
+            .map(|value| Constant {
+                format,
+                value,
+                extra_words: Vec::new(),
+            }),
     }
 }
 
@@ -135,18 +155,27 @@ fn hex(texts: &[&str], kinds: &[TokenKind], max_digits: usize) -> Option<u32> {
 
 /// Binary-coded decimal of a value 0…999.
 pub fn bcd(value: u32) -> u32 {
-    (value / 100) << 8 | (value / 10 % 10) << 4 | value % 10
+    ((value / 100) << 8) | ((value / 10 % 10) << 4) | (value % 10)
 }
 
 /// Packs characters two to a data word; the first word is the constant's value.
 fn chars(text: &str) -> Option<Constant> {
-    let bytes: Vec<u8> = text.chars().map(|c| u8::try_from(u32::from(c)).ok()).collect::<Option<_>>()?;
+    let bytes: Vec<u8> = text
+        .chars()
+        .map(|c| u8::try_from(u32::from(c)).ok())
+        .collect::<Option<_>>()?;
     if bytes.is_empty() {
         return None;
     }
-    let mut words = bytes.chunks(2).map(|pair| u16::from(pair[0]) << 8 | u16::from(*pair.get(1).unwrap_or(&b' ')));
+    let mut words = bytes
+        .chunks(2)
+        .map(|pair| u16::from(pair[0]) << 8 | u16::from(*pair.get(1).unwrap_or(&b' ')));
     let first = words.next()?;
-    Some(Constant { format: ConstFormat::Chars, value: u32::from(first), extra_words: words.collect() })
+    Some(Constant {
+        format: ConstFormat::Chars,
+        value: u32::from(first),
+        extra_words: words.collect(),
+    })
 }
 
 /// `+1234567+02` means 0.1234567 × 10^2. The S5 format holds an 8-bit two's-complement exponent

@@ -10,7 +10,9 @@ pub enum ParseError {
     #[error("unexpected character `{found}`")]
     #[diagnostic(
         code(awl::lex::unexpected_character),
-        help("STL lines hold an optional label, an operation and an operand; comments start with `;` or `//`")
+        help(
+            "STL lines hold an optional label, an operation and an operand; comments start with `;` or `//`"
+        )
     )]
     UnexpectedCharacter {
         found: String,
@@ -93,7 +95,10 @@ pub enum ParseError {
     },
 
     #[error("block number {number} is out of range")]
-    #[diagnostic(code(awl::parse::block_number), help("block numbers run from 0 to 255"))]
+    #[diagnostic(
+        code(awl::parse::block_number),
+        help("block numbers run from 0 to 255")
+    )]
     BlockNumber {
         number: String,
         #[label("0…255 expected")]
@@ -121,7 +126,9 @@ pub enum ParseError {
     #[error("bad parameter declaration")]
     #[diagnostic(
         code(awl::parse::bad_declaration),
-        help("write `DES :NAME KIND FORMAT`, e.g. `DES :EIN I BI`; kinds I Q D B T C, formats BI BY W or a constant format for D")
+        help(
+            "write `DES :NAME KIND FORMAT`, e.g. `DES :EIN I BI`; kinds I Q D B T C, formats BI BY W or a constant format for D"
+        )
     )]
     BadDeclaration {
         #[label("{reason}")]

@@ -25,7 +25,11 @@ pub enum Line {
     /// `NAME :MOTOR`
     Name(Name),
     Declaration(ParamDecl),
-    DataWord { index: Option<u16>, constant: Constant, span: Span },
+    DataWord {
+        index: Option<u16>,
+        constant: Constant,
+        span: Span,
+    },
     Param(CallParam),
     Statement(Statement),
 }
@@ -44,7 +48,9 @@ pub fn header<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a,
             let (rest, _) = end_of_line(rest)?;
             return Ok((rest, BlockId { kind, number }));
         }
-        let split = text.find(|c: char| c.is_ascii_digit()).unwrap_or(text.len());
+        let split = text
+            .find(|c: char| c.is_ascii_digit())
+            .unwrap_or(text.len());
         let (kind_text, digits) = text.split_at(split);
         match (BlockKind::from_word(kind_text), digits.parse::<u32>()) {
             (Some(kind), Ok(number)) if !digits.is_empty() => {
@@ -52,7 +58,11 @@ pub fn header<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a,
                 let number = block_number(context, word, number)?;
                 Ok((rest, BlockId { kind, number }))
             }
-            _ => Err(nom::Err::Error(LineError { at: Some(word), expected: "", diagnostic: None })),
+            _ => Err(nom::Err::Error(LineError {
+                at: Some(word),
+                expected: "",
+                diagnostic: None,
+            })),
         }
     }
 }
@@ -61,7 +71,10 @@ fn kind_number<'a>(context: Context<'a>, input: Tokens<'a>) -> LineResult<'a, u8
     match input.first() {
         Some(token) if token.kind == TokenKind::Number => {
             let value = context.text(token).parse::<u32>().unwrap_or(u32::MAX);
-            Ok((Tokens::new(&input.tokens[1..]), block_number(context, token, value)?))
+            Ok((
+                Tokens::new(&input.tokens[1..]),
+                block_number(context, token, value)?,
+            ))
         }
         _ => Err(nom::Err::Error(LineError {
             at: input.first(),
@@ -87,7 +100,13 @@ pub fn name_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<
         let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
         let (rest, name) = kind(TokenKind::Word, "the block's name")(rest)?;
         let (rest, _) = end_of_line(rest)?;
-        Ok((rest, Name { text: context.text(name).to_string(), span: context.span(name) }))
+        Ok((
+            rest,
+            Name {
+                text: context.text(name).to_string(),
+                span: context.span(name),
+            },
+        ))
     }
 }
 
@@ -98,15 +117,24 @@ pub fn declaration<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResul
         let (rest, start) = keyword(context, words, "DES")(input)?;
         let line_span = remaining_span(context, input.tokens).unwrap_or_default();
         let bad = |reason: &str, at: Span| {
-            LineError::diagnostic(ParseError::BadDeclaration { at, reason: reason.to_string() })
+            LineError::diagnostic(ParseError::BadDeclaration {
+                at,
+                reason: reason.to_string(),
+            })
         };
-        let (rest, _) = kind(TokenKind::Colon, "`:`")(rest).map_err(|_| bad("`:` expected", line_span))?;
-        let (rest, name) =
-            kind(TokenKind::Word, "name")(rest).map_err(|_| bad("parameter name expected", line_span))?;
-        let (rest, kind_token) =
-            kind(TokenKind::Word, "kind")(rest).map_err(|_| bad("kind expected (I Q D B T C)", line_span))?;
-        let param_kind = mnemonics::param_kind(context.set, context.text(kind_token))
-            .ok_or_else(|| bad("unknown kind; I Q D B T C expected", context.span(kind_token)))?;
+        let (rest, _) =
+            kind(TokenKind::Colon, "`:`")(rest).map_err(|_| bad("`:` expected", line_span))?;
+        let (rest, name) = kind(TokenKind::Word, "name")(rest)
+            .map_err(|_| bad("parameter name expected", line_span))?;
+        let (rest, kind_token) = kind(TokenKind::Word, "kind")(rest)
+            .map_err(|_| bad("kind expected (I Q D B T C)", line_span))?;
+        let param_kind =
+            mnemonics::param_kind(context.set, context.text(kind_token)).ok_or_else(|| {
+                bad(
+                    "unknown kind; I Q D B T C expected",
+                    context.span(kind_token),
+                )
+            })?;
         let (rest, format_token) = opt(kind(TokenKind::Word, "format")).parse(rest)?;
         if let Some(extra) = rest.first() {
             return Err(bad("end of line expected", context.span(extra)));
@@ -119,16 +147,23 @@ pub fn declaration<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResul
             None => None,
         };
         let last = format_token.unwrap_or(kind_token);
-        let ok = match (param_kind, format) {
-            (ParamKind::Input | ParamKind::Output, Some(ParamFormat::Bit | ParamFormat::Byte | ParamFormat::Word)) => true,
-            (ParamKind::Data, Some(ParamFormat::Constant(_))) => true,
-            (ParamKind::Block | ParamKind::Timer | ParamKind::Counter, None) => true,
-            _ => false,
-        };
+        let ok = matches!(
+            (param_kind, format),
+            (
+                ParamKind::Input | ParamKind::Output,
+                Some(ParamFormat::Bit | ParamFormat::Byte | ParamFormat::Word),
+            ) | (ParamKind::Data, Some(ParamFormat::Constant(_)))
+                | (
+                    ParamKind::Block | ParamKind::Timer | ParamKind::Counter,
+                    None
+                )
+        );
         if !ok {
             let reason = match param_kind {
                 ParamKind::Input | ParamKind::Output => "kinds I and Q take the format BI, BY or W",
-                ParamKind::Data => "kind D takes a constant format (KF, KH, KM, KY, KT, KC, KS, KG)",
+                ParamKind::Data => {
+                    "kind D takes a constant format (KF, KH, KM, KY, KT, KC, KS, KG)"
+                }
                 _ => "kinds B, T and C take no format",
             };
             return Err(bad(reason, context.span_of(kind_token, last)));
@@ -136,7 +171,10 @@ pub fn declaration<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResul
         Ok((
             rest,
             ParamDecl {
-                name: Name { text: context.text(name).to_string(), span: context.span(name) },
+                name: Name {
+                    text: context.text(name).to_string(),
+                    span: context.span(name),
+                },
                 kind: param_kind,
                 format,
                 span: context.span_of(start, last),
@@ -161,10 +199,14 @@ pub fn data_word<'a>(
 ) -> impl Fn(Tokens<'a>) -> LineResult<'a, (Option<u16>, Constant, Span)> {
     move |input: Tokens<'a>| {
         let span = remaining_span(context, input.tokens).unwrap_or_default();
-        let (rest, index) =
-            opt(terminated(decimal(context, "word number"), kind(TokenKind::Colon, "`:`"))).parse(input)?;
+        let (rest, index) = opt(terminated(
+            decimal(context, "word number"),
+            kind(TokenKind::Colon, "`:`"),
+        ))
+        .parse(input)?;
         let (rest, format_token) = kind(TokenKind::Word, "a constant format such as KF")(rest)?;
-        let Some(format) = mnemonics::constant_format(context.set, context.text(format_token)) else {
+        let Some(format) = mnemonics::constant_format(context.set, context.text(format_token))
+        else {
             return Err(nom::Err::Error(LineError {
                 at: Some(format_token),
                 expected: "a constant format such as KF",
@@ -174,7 +216,10 @@ pub fn data_word<'a>(
         let (rest, _) = opt(kind(TokenKind::Equals, "`=`")).parse(rest)?;
         let constant = parse_constant(context, format, format_token, rest.tokens)
             .map_err(LineError::diagnostic)?;
-        Ok((Tokens::new(&[]), (index.map(|(value, _)| value), constant, span)))
+        Ok((
+            Tokens::new(&[]),
+            (index.map(|(value, _)| value), constant, span),
+        ))
     }
 }
 
@@ -185,12 +230,27 @@ pub fn param_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult
         let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
         let (rest, (actual, actual_span)) = operand(context, None)(rest)?;
         if actual == Operand::None || matches!(actual, Operand::Number(_)) {
-            return Err(nom::Err::Error(LineError { at: rest.first(), expected: "", diagnostic: None }));
+            return Err(nom::Err::Error(LineError {
+                at: rest.first(),
+                expected: "",
+                diagnostic: None,
+            }));
         }
         let (rest, _) = end_of_line(rest)?;
         let span = remaining_span(context, input.tokens).unwrap_or_default();
-        let name = Name { text: context.text(name).to_string(), span: context.span(name) };
-        Ok((rest, CallParam { name, actual, actual_span, span }))
+        let name = Name {
+            text: context.text(name).to_string(),
+            span: context.span(name),
+        };
+        Ok((
+            rest,
+            CallParam {
+                name,
+                actual,
+                actual_span,
+                span,
+            },
+        ))
     }
 }
 
@@ -203,7 +263,8 @@ pub fn statement<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<
             kind(TokenKind::Colon, "`:`"),
         ))
         .parse(input)?;
-        let (rest, op) = alt((divide(context), preceded_colon(context), operation(context))).parse(rest)?;
+        let (rest, op) =
+            alt((divide(context), preceded_colon(context), operation(context))).parse(rest)?;
         let (rest, (operand, operand_span)) = match op.inline_operand.clone() {
             Some(inline) => Ok((rest, inline)),
             None => operand_for(context, op.info, op.last)(rest),
@@ -252,15 +313,30 @@ struct ParsedOp {
 /// `:F` written right after the leading colon of a PG listing, or alone.
 fn divide<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParsedOp> {
     move |input: Tokens<'a>| {
-        let (rest, _) = opt(pair(kind(TokenKind::Colon, ":"), nom::combinator::peek(kind(TokenKind::Colon, ":"))))
-            .parse(input)?;
+        let (rest, _) = opt(pair(
+            kind(TokenKind::Colon, ":"),
+            nom::combinator::peek(kind(TokenKind::Colon, ":")),
+        ))
+        .parse(input)?;
         let (rest, colon) = kind(TokenKind::Colon, "`:F`")(rest)?;
         let (rest, f) = touching(colon, TokenKind::Word, "`:F`")(rest)?;
         if !context.text(f).eq_ignore_ascii_case("F") || !rest.is_empty() {
-            return Err(nom::Err::Error(LineError { at: Some(colon), expected: "", diagnostic: None }));
+            return Err(nom::Err::Error(LineError {
+                at: Some(colon),
+                expected: "",
+                diagnostic: None,
+            }));
         }
         let info = *mnemonics::op_info(OpCode::DivFixed);
-        Ok((rest, ParsedOp { info, span: context.span_of(colon, f), last: f, inline_operand: None }))
+        Ok((
+            rest,
+            ParsedOp {
+                info,
+                span: context.span_of(colon, f),
+                last: f,
+                inline_operand: None,
+            },
+        ))
     }
 }
 
@@ -275,7 +351,11 @@ fn preceded_colon<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult
 fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParsedOp> {
     move |input: Tokens<'a>| {
         let Some(first) = input.first() else {
-            return Err(nom::Err::Error(LineError { at: None, expected: "an operation", diagnostic: None }));
+            return Err(nom::Err::Error(LineError {
+                at: None,
+                expected: "an operation",
+                diagnostic: None,
+            }));
         };
         let mut rest = Tokens::new(&input.tokens[1..]);
         let mut last = first;
@@ -319,16 +399,24 @@ fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, 
         };
         let span = context.span_of(first, last);
         match mnemonics::operation(context.set, &word) {
-            Some(info) => Ok((rest, ParsedOp { info, span, last, inline_operand })),
+            Some(info) => Ok((
+                rest,
+                ParsedOp {
+                    info,
+                    span,
+                    last,
+                    inline_operand,
+                },
+            )),
             None => Err(nom::Err::Error(LineError {
                 at: Some(first),
                 expected: "an operation",
-                diagnostic: Some(ParseError::UnknownOperation {
+                diagnostic: Some(Box::new(ParseError::UnknownOperation {
                     help: suggest_operation(context.set, &word),
                     word,
                     at: span,
                     set: context.set.name(),
-                }),
+                })),
             })),
         }
     }
@@ -353,10 +441,31 @@ enum Shape {
 fn shape(op: OpCode) -> Shape {
     use OpCode::*;
     match op {
-        AndBracket | OrBracket | CloseBracket | AddFixed | SubFixed | MulFixed | DivFixed | CmpEq
-        | CmpNe | CmpGt | CmpGe | CmpLt | CmpLe | BlockEnd | BlockEndConditional
-        | BlockEndUnconditional | Stop | AndWord | OrWord | XorWord | OnesComplement
-        | TwosComplement | Swap | DisableInterrupts | EnableInterrupts => Shape::Nothing,
+        AndBracket
+        | OrBracket
+        | CloseBracket
+        | AddFixed
+        | SubFixed
+        | MulFixed
+        | DivFixed
+        | CmpEq
+        | CmpNe
+        | CmpGt
+        | CmpGe
+        | CmpLt
+        | CmpLe
+        | BlockEnd
+        | BlockEndConditional
+        | BlockEndUnconditional
+        | Stop
+        | AndWord
+        | OrWord
+        | XorWord
+        | OnesComplement
+        | TwosComplement
+        | Swap
+        | DisableInterrupts
+        | EnableInterrupts => Shape::Nothing,
         Nop | Display | ShiftLeft | ShiftRight | Increment | Decrement => Shape::Number,
         Or => Shape::Optional,
         _ => Shape::Required,
@@ -369,7 +478,11 @@ fn operand_for<'a>(
     op_last: Token,
 ) -> impl Fn(Tokens<'a>) -> LineResult<'a, (Operand, Span)> {
     move |input: Tokens<'a>| {
-        let empty_span = Span { file: context.file, start: op_last.end, end: op_last.end };
+        let empty_span = Span {
+            file: context.file,
+            start: op_last.end,
+            end: op_last.end,
+        };
         let missing = || {
             let example = match context.set {
                 mnemonics::MnemonicSet::English => (info.en, info.example_en),
@@ -378,7 +491,8 @@ fn operand_for<'a>(
             LineError::diagnostic(ParseError::MissingOperand {
                 op: example.0.to_string(),
                 at: context.span(op_last),
-                help: (!example.1.is_empty()).then(|| format!("for example `{} {}`", example.0, example.1)),
+                help: (!example.1.is_empty())
+                    .then(|| format!("for example `{} {}`", example.0, example.1)),
             })
         };
         match shape(info.op) {
@@ -387,13 +501,14 @@ fn operand_for<'a>(
                 None if matches!(info.op, OpCode::Increment | OpCode::Decrement) => Err(missing()),
                 None => Err(missing()),
                 Some(token) if token.kind == TokenKind::Number => {
-                    let (rest, (value, token)) = decimal(context, "a number")(input).map_err(|_| {
-                        LineError::diagnostic(ParseError::UnexpectedToken {
-                            found: describe(context, Some(token)),
-                            at: context.span(token),
-                            expected: "a decimal number".to_string(),
-                        })
-                    })?;
+                    let (rest, (value, token)) =
+                        decimal(context, "a number")(input).map_err(|_| {
+                            LineError::diagnostic(ParseError::UnexpectedToken {
+                                found: describe(context, Some(token)),
+                                at: context.span(token),
+                                expected: "a decimal number".to_string(),
+                            })
+                        })?;
                     Ok((rest, (Operand::Number(value), context.span(token))))
                 }
                 Some(_) => operand(context, Some(info.op))(input),
@@ -414,7 +529,11 @@ pub fn operand<'a>(
 ) -> impl Fn(Tokens<'a>) -> LineResult<'a, (Operand, Span)> {
     move |input: Tokens<'a>| {
         let Some(first) = input.first() else {
-            return Err(nom::Err::Error(LineError { at: None, expected: "an operand", diagnostic: None }));
+            return Err(nom::Err::Error(LineError {
+                at: None,
+                expected: "an operand",
+                diagnostic: None,
+            }));
         };
         let rest = Tokens::new(&input.tokens[1..]);
         match first.kind {
@@ -427,16 +546,22 @@ pub fn operand<'a>(
                 Ok((rest, (Operand::Number(value), context.span(token))))
             }
             TokenKind::Word => word_operand(context, op, first, rest),
-            _ => Err(nom::Err::Error(LineError { at: Some(first), expected: "an operand", diagnostic: None })),
+            _ => Err(nom::Err::Error(LineError {
+                at: Some(first),
+                expected: "an operand",
+                diagnostic: None,
+            })),
         }
         .map_err(|error| match error {
-            nom::Err::Error(LineError { diagnostic: None, at, .. }) if at == Some(first) => {
-                nom::Err::Error(LineError {
-                    at: Some(first),
-                    expected: "an operand",
-                    diagnostic: Some(unknown_operand(context, first)),
-                })
-            }
+            nom::Err::Error(LineError {
+                diagnostic: None,
+                at,
+                ..
+            }) if at == Some(first) => nom::Err::Error(LineError {
+                at: Some(first),
+                expected: "an operand",
+                diagnostic: Some(Box::new(unknown_operand(context, first))),
+            }),
             other => other,
         })
     }
@@ -452,11 +577,21 @@ fn unknown_operand(context: Context<'_>, token: Token) -> ParseError {
         })
         .chain(BlockKind::ALL.iter().map(|kind| kind.name()));
     let help = known
-        .map(|candidate| (strsim::damerau_levenshtein(&word.to_ascii_uppercase(), candidate), candidate))
+        .map(|candidate| {
+            (
+                strsim::damerau_levenshtein(&word.to_ascii_uppercase(), candidate),
+                candidate,
+            )
+        })
         .filter(|(distance, _)| *distance <= 1 && word.len() > 1)
         .min_by_key(|(distance, _)| *distance)
         .map(|(_, candidate)| format!("did you mean `{candidate}`?"));
-    ParseError::UnknownOperand { word, at: context.span(token), set: context.set.name(), help }
+    ParseError::UnknownOperand {
+        word,
+        at: context.span(token),
+        set: context.set.name(),
+        help,
+    }
 }
 
 fn word_operand<'a>(
@@ -468,7 +603,12 @@ fn word_operand<'a>(
     let text = context.text(word);
     let block_first = matches!(
         op,
-        Some(OpCode::JumpUnconditional | OpCode::JumpConditional | OpCode::OpenDb | OpCode::GenerateDb)
+        Some(
+            OpCode::JumpUnconditional
+                | OpCode::JumpConditional
+                | OpCode::OpenDb
+                | OpCode::GenerateDb
+        )
     );
     let block = BlockKind::from_word(text);
     let area = mnemonics::area(context.set, text);
@@ -489,7 +629,11 @@ fn word_operand<'a>(
         (_, Some(area)) => address(context, area, word, rest),
         _ => match mnemonics::constant_format(context.set, text) {
             Some(format) => constant_operand(context, format, word, rest),
-            None => Err(nom::Err::Error(LineError { at: Some(word), expected: "an operand", diagnostic: None })),
+            None => Err(nom::Err::Error(LineError {
+                at: Some(word),
+                expected: "an operand",
+                diagnostic: None,
+            })),
         },
     }
 }
@@ -501,9 +645,13 @@ fn constant_operand<'a>(
     rest: Tokens<'a>,
 ) -> LineResult<'a, (Operand, Span)> {
     let (rest, _) = opt(kind(TokenKind::Equals, "=")).parse(rest)?;
-    let constant = parse_constant(context, format, word, rest.tokens).map_err(LineError::diagnostic)?;
+    let constant =
+        parse_constant(context, format, word, rest.tokens).map_err(LineError::diagnostic)?;
     let last = rest.tokens.last().copied().unwrap_or(word);
-    Ok((Tokens::new(&[]), (Operand::Constant(constant), context.span_of(word, last))))
+    Ok((
+        Tokens::new(&[]),
+        (Operand::Constant(constant), context.span_of(word, last)),
+    ))
 }
 
 fn address<'a>(
@@ -523,25 +671,46 @@ fn address<'a>(
     let word_span = context.span(word);
     if area.is_bit() {
         let expected = "a bit address byte.bit, e.g. 4.1";
-        let (after, (index, index_token)) =
-            decimal(context, expected)(rest).map_err(|_| bad(expected, span_or(context, rest, word_span)))?;
+        let (after, (index, index_token)) = decimal(context, expected)(rest)
+            .map_err(|_| bad(expected, span_or(context, rest, word_span)))?;
         let (after, dot) = kind(TokenKind::Dot, expected)(after)
             .map_err(|_| bad(expected, context.span_of(word, index_token)))?;
-        let (after, (bit, bit_token)) =
-            decimal(context, expected)(after).map_err(|_| bad(expected, context.span_of(word, dot)))?;
+        let (after, (bit, bit_token)) = decimal(context, expected)(after)
+            .map_err(|_| bad(expected, context.span_of(word, dot)))?;
         let bit = u8::try_from(bit).unwrap_or(u8::MAX);
-        Ok((after, (Operand::Address(Address { area, index, bit }), context.span_of(word, bit_token))))
+        Ok((
+            after,
+            (
+                Operand::Address(Address { area, index, bit }),
+                context.span_of(word, bit_token),
+            ),
+        ))
     } else {
         let expected = "a number, e.g. 10";
-        let (after, (index, token)) =
-            decimal(context, expected)(rest).map_err(|_| bad(expected, span_or(context, rest, word_span)))?;
+        let (after, (index, token)) = decimal(context, expected)(rest)
+            .map_err(|_| bad(expected, span_or(context, rest, word_span)))?;
         if let Some(dot) = after.first().filter(|token| token.kind == TokenKind::Dot) {
-            return Err(bad("no bit number here: this operand is a byte, word or number", context.span(dot)));
+            return Err(bad(
+                "no bit number here: this operand is a byte, word or number",
+                context.span(dot),
+            ));
         }
-        Ok((after, (Operand::Address(Address { area, index, bit: 0 }), context.span_of(word, token))))
+        Ok((
+            after,
+            (
+                Operand::Address(Address {
+                    area,
+                    index,
+                    bit: 0,
+                }),
+                context.span_of(word, token),
+            ),
+        ))
     }
 }
 
 fn span_or(context: Context<'_>, rest: Tokens<'_>, fallback: Span) -> Span {
-    rest.first().map(|token| context.span(token)).unwrap_or(fallback)
+    rest.first()
+        .map(|token| context.span(token))
+        .unwrap_or(fallback)
 }

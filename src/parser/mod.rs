@@ -32,12 +32,18 @@ pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> Pa
         .filter(|line| !line.is_empty())
         .collect();
     let detected = detect(source, &lines);
-    let set = forced.or(detected.map(|(set, _)| set)).unwrap_or(MnemonicSet::English);
+    let set = forced
+        .or(detected.map(|(set, _)| set))
+        .unwrap_or(MnemonicSet::English);
     let mut builder = Builder {
         source,
         file,
         set,
-        decided_by: if forced.is_some() { None } else { detected.map(|(_, span)| Span { file, ..span }) },
+        decided_by: if forced.is_some() {
+            None
+        } else {
+            detected.map(|(_, span)| Span { file, ..span })
+        },
         blocks: Vec::new(),
         current: None,
         ended: false,
@@ -59,10 +65,18 @@ fn detect(source: &str, lines: &[&[Token]]) -> Option<(MnemonicSet, Span)> {
     let mut vote = |set: MnemonicSet, token: Token| {
         let slot = &mut votes[set as usize];
         slot.0 += 1;
-        slot.1.get_or_insert(Span { file: 0, start: token.start, end: token.end });
+        slot.1.get_or_insert(Span {
+            file: 0,
+            start: token.start,
+            end: token.end,
+        });
     };
     for line in lines {
-        let words: Vec<Token> = strip_label(line).iter().copied().filter(|t| t.kind == TokenKind::Word).collect();
+        let words: Vec<Token> = strip_label(line)
+            .iter()
+            .copied()
+            .filter(|t| t.kind == TokenKind::Word)
+            .collect();
         let Some(first) = words.first() else { continue };
         let text = first.text(source);
         if text.eq_ignore_ascii_case(mnemonics::DECLARATION_EN) {
@@ -94,7 +108,11 @@ fn detect(source: &str, lines: &[&[Token]]) -> Option<(MnemonicSet, Span)> {
 /// The tokens after an optional `LABEL :` and the optional leading `:`.
 fn strip_label(line: &[Token]) -> &[Token] {
     let line = match line {
-        [first, second, rest @ ..] if first.kind == TokenKind::Word && second.kind == TokenKind::Colon => rest,
+        [first, second, rest @ ..]
+            if first.kind == TokenKind::Word && second.kind == TokenKind::Colon =>
+        {
+            rest
+        }
         _ => line,
     };
     match line {
@@ -124,26 +142,41 @@ type LineParser<'a, T> = Box<dyn Fn(Tokens<'a>) -> tokens::LineResult<'a, T> + '
 
 impl<'a> Builder<'a> {
     fn context(&self, set: MnemonicSet) -> Context<'a> {
-        Context { source: self.source, file: self.file, set }
+        Context {
+            source: self.source,
+            file: self.file,
+            set,
+        }
     }
 
     fn span_of(&self, line: &[Token]) -> Span {
         let (first, last) = (line[0], line[line.len() - 1]);
-        Span { file: self.file, start: first.start, end: last.end }
+        Span {
+            file: self.file,
+            start: first.start,
+            end: last.end,
+        }
     }
 
     fn line(&mut self, line: &'a [Token]) {
         if let Some(invalid) = line.iter().find(|token| token.kind == TokenKind::Invalid) {
             self.errors.push(ParseError::UnexpectedCharacter {
                 found: invalid.text(self.source).to_string(),
-                at: Span { file: self.file, start: invalid.start, end: invalid.end },
+                at: Span {
+                    file: self.file,
+                    start: invalid.start,
+                    end: invalid.end,
+                },
             });
             return;
         }
         match line::header(self.context(self.set))(Tokens::new(line)) {
             Ok((_, id)) => return self.start_block(id, self.span_of(line)),
-            Err(nom::Err::Failure(LineError { diagnostic: Some(diagnostic), .. })) => {
-                return self.errors.push(diagnostic);
+            Err(nom::Err::Failure(LineError {
+                diagnostic: Some(diagnostic),
+                ..
+            })) => {
+                return self.errors.push(*diagnostic);
             }
             Err(_) => {}
         }
@@ -154,11 +187,16 @@ impl<'a> Builder<'a> {
         if !in_block {
             if !self.outside_reported {
                 self.outside_reported = true;
-                self.errors.push(ParseError::OutsideBlock { at: self.span_of(line) });
+                self.errors.push(ParseError::OutsideBlock {
+                    at: self.span_of(line),
+                });
             }
             return;
         }
-        let result = if matches!(self.current.as_ref().map(|b| &b.body), Some(BlockBody::Data(_))) {
+        let result = if matches!(
+            self.current.as_ref().map(|b| &b.body),
+            Some(BlockBody::Data(_))
+        ) {
             self.data_line(line)
         } else {
             self.logic_line(line)
@@ -199,14 +237,27 @@ impl<'a> Builder<'a> {
             })?;
         let index = index.unwrap_or(self.next_data_word);
         self.next_data_word = index.saturating_add(1 + constant.extra_words.len() as u16);
-        if let Some(Block { body: BlockBody::Data(words), .. }) = &mut self.current {
-            words.push(DataWord { index, constant, span });
+        if let Some(Block {
+            body: BlockBody::Data(words),
+            ..
+        }) = &mut self.current
+        {
+            words.push(DataWord {
+                index,
+                constant,
+                span,
+            });
         }
         Ok(())
     }
 
     fn logic_line(&mut self, line: &'a [Token]) -> Result<(), ParseError> {
-        let Some(Block { id, body: BlockBody::Logic(body), .. }) = &self.current else {
+        let Some(Block {
+            id,
+            body: BlockBody::Logic(body),
+            ..
+        }) = &self.current
+        else {
             return Ok(());
         };
         let input = Tokens::new(line);
@@ -230,11 +281,16 @@ impl<'a> Builder<'a> {
                     self.logic_body().params.push(declaration);
                     return Ok(());
                 }
-                Err(nom::Err::Failure(LineError { diagnostic: Some(diagnostic), .. })) => return Err(diagnostic),
+                Err(nom::Err::Failure(LineError {
+                    diagnostic: Some(diagnostic),
+                    ..
+                })) => return Err(*diagnostic),
                 Err(_) => {}
             }
         }
-        if after_fb_call && let Ok(param) = self.parse(line, |context| Box::new(line::param_line(context))) {
+        if after_fb_call
+            && let Ok(param) = self.parse(line, |context| Box::new(line::param_line(context)))
+        {
             if let Some(last) = self.logic_body().statements.last_mut() {
                 last.call_params.push(param);
             }
@@ -251,20 +307,35 @@ impl<'a> Builder<'a> {
 
     fn logic_body(&mut self) -> &mut LogicBody {
         match &mut self.current {
-            Some(Block { body: BlockBody::Logic(body), .. }) => body,
+            Some(Block {
+                body: BlockBody::Logic(body),
+                ..
+            }) => body,
             _ => unreachable!("logic lines are parsed only inside logic blocks"),
         }
     }
 
     /// Runs a line parser in the file's set and, when that fails, in the other set; success there
     /// records the first foreign word instead of failing the line.
-    fn parse<T>(&mut self, line: &'a [Token], parser: impl Fn(Context<'a>) -> LineParser<'a, T>) -> Result<T, ParseError> {
+    fn parse<T>(
+        &mut self,
+        line: &'a [Token],
+        parser: impl Fn(Context<'a>) -> LineParser<'a, T>,
+    ) -> Result<T, ParseError> {
         let run = |set: MnemonicSet| -> Result<T, LineError> {
             match parser(self.context(set))(Tokens::new(line)) {
                 Ok((rest, value)) if rest.is_empty() => Ok(value),
-                Ok((rest, _)) => Err(LineError { at: rest.first(), expected: "end of line", diagnostic: None }),
+                Ok((rest, _)) => Err(LineError {
+                    at: rest.first(),
+                    expected: "end of line",
+                    diagnostic: None,
+                }),
                 Err(nom::Err::Error(error) | nom::Err::Failure(error)) => Err(error),
-                Err(nom::Err::Incomplete(_)) => Err(LineError { at: None, expected: "more", diagnostic: None }),
+                Err(nom::Err::Incomplete(_)) => Err(LineError {
+                    at: None,
+                    expected: "more",
+                    diagnostic: None,
+                }),
             }
         };
         match run(self.set) {
@@ -283,10 +354,18 @@ impl<'a> Builder<'a> {
     fn error_span(&self, error: &LineError, line: &[Token]) -> Span {
         match (&error.diagnostic, error.at) {
             (Some(diagnostic), _) => diagnostic.span(),
-            (None, Some(token)) => Span { file: self.file, start: token.start, end: token.end },
+            (None, Some(token)) => Span {
+                file: self.file,
+                start: token.start,
+                end: token.end,
+            },
             (None, None) => {
                 let last = line[line.len() - 1];
-                Span { file: self.file, start: last.end, end: last.end }
+                Span {
+                    file: self.file,
+                    start: last.end,
+                    end: last.end,
+                }
             }
         }
     }
@@ -294,11 +373,15 @@ impl<'a> Builder<'a> {
     fn to_diagnostic(&self, error: LineError, line: &[Token]) -> ParseError {
         let at = self.error_span(&error, line);
         match error.diagnostic {
-            Some(diagnostic) => diagnostic,
+            Some(diagnostic) => *diagnostic,
             None => ParseError::UnexpectedToken {
                 found: describe(self.context(self.set), error.at),
                 at,
-                expected: if error.expected.is_empty() { "a statement".to_string() } else { error.expected.to_string() },
+                expected: if error.expected.is_empty() {
+                    "a statement".to_string()
+                } else {
+                    error.expected.to_string()
+                },
             },
         }
     }
@@ -318,7 +401,11 @@ impl<'a> Builder<'a> {
         }
         self.errors.sort_by_key(|error| error.span().start);
         ParsedFile {
-            unit: SourceUnit { file: self.file, mnemonics: self.set, blocks: self.blocks },
+            unit: SourceUnit {
+                file: self.file,
+                mnemonics: self.set,
+                blocks: self.blocks,
+            },
             errors: self.errors,
         }
     }
@@ -332,9 +419,15 @@ fn equivalent(file_set: MnemonicSet, word: &str) -> Option<String> {
     } else if let Some(area) = mnemonics::area(other, word) {
         mnemonics::area_word(file_set, area)
     } else {
-        return Some(format!("use {} mnemonics throughout the file, or pass `--mnemonics`", file_set.name()));
+        return Some(format!(
+            "use {} mnemonics throughout the file, or pass `--mnemonics`",
+            file_set.name()
+        ));
     };
-    Some(format!("the {} word is `{own}`; a file uses one set throughout", file_set.name()))
+    Some(format!(
+        "the {} word is `{own}`; a file uses one set throughout",
+        file_set.name()
+    ))
 }
 
 /// Convenience for tests and tools: parse text as file 0.

@@ -39,11 +39,15 @@ impl<'a> nom::Input for Tokens<'a> {
     }
 
     fn take(&self, index: usize) -> Self {
-        Tokens { tokens: &self.tokens[..index] }
+        Tokens {
+            tokens: &self.tokens[..index],
+        }
     }
 
     fn take_from(&self, index: usize) -> Self {
-        Tokens { tokens: &self.tokens[index..] }
+        Tokens {
+            tokens: &self.tokens[index..],
+        }
     }
 
     fn take_split(&self, index: usize) -> (Self, Self) {
@@ -81,18 +85,26 @@ pub struct LineError {
     /// The token the parser stopped at; `None` at the end of the line.
     pub at: Option<Token>,
     pub expected: &'static str,
-    pub diagnostic: Option<ParseError>,
+    pub diagnostic: Option<Box<ParseError>>,
 }
 
 impl LineError {
     pub fn diagnostic(diagnostic: ParseError) -> nom::Err<LineError> {
-        nom::Err::Failure(LineError { at: None, expected: "", diagnostic: Some(diagnostic) })
+        nom::Err::Failure(LineError {
+            at: None,
+            expected: "",
+            diagnostic: Some(Box::new(diagnostic)),
+        })
     }
 }
 
 impl<'a> nom::error::ParseError<Tokens<'a>> for LineError {
     fn from_error_kind(input: Tokens<'a>, _kind: ErrorKind) -> Self {
-        LineError { at: input.first(), expected: "", diagnostic: None }
+        LineError {
+            at: input.first(),
+            expected: "",
+            diagnostic: None,
+        }
     }
 
     fn append(_input: Tokens<'a>, _kind: ErrorKind, other: Self) -> Self {
@@ -116,21 +128,36 @@ impl<'a> Context<'a> {
     }
 
     pub fn span(&self, token: Token) -> Span {
-        Span { file: self.file, start: token.start, end: token.end }
+        Span {
+            file: self.file,
+            start: token.start,
+            end: token.end,
+        }
     }
 
     /// The span from `first` to `last`, inclusive.
     pub fn span_of(&self, first: Token, last: Token) -> Span {
-        Span { file: self.file, start: first.start, end: last.end }
+        Span {
+            file: self.file,
+            start: first.start,
+            end: last.end,
+        }
     }
 }
 
 fn fail<'a>(input: Tokens<'a>, expected: &'static str) -> nom::Err<LineError> {
-    nom::Err::Error(LineError { at: input.first(), expected, diagnostic: None })
+    nom::Err::Error(LineError {
+        at: input.first(),
+        expected,
+        diagnostic: None,
+    })
 }
 
 /// One token of the given kind.
-pub fn kind<'a>(wanted: TokenKind, expected: &'static str) -> impl Fn(Tokens<'a>) -> LineResult<'a, Token> {
+pub fn kind<'a>(
+    wanted: TokenKind,
+    expected: &'static str,
+) -> impl Fn(Tokens<'a>) -> LineResult<'a, Token> {
     move |input: Tokens<'a>| match input.first() {
         Some(token) if token.kind == wanted => Ok((Tokens::new(&input.tokens[1..]), token)),
         _ => Err(fail(input, expected)),
@@ -160,7 +187,9 @@ pub fn keyword<'a>(
     move |input: Tokens<'a>| match input.first() {
         Some(token)
             if token.kind == TokenKind::Word
-                && words.iter().any(|word| word.eq_ignore_ascii_case(context.text(token))) =>
+                && words
+                    .iter()
+                    .any(|word| word.eq_ignore_ascii_case(context.text(token))) =>
         {
             Ok((Tokens::new(&input.tokens[1..]), token))
         }
@@ -170,16 +199,25 @@ pub fn keyword<'a>(
 
 /// Succeeds only at the end of the line.
 pub fn end_of_line(input: Tokens<'_>) -> LineResult<'_, ()> {
-    if input.is_empty() { Ok((input, ())) } else { Err(fail(input, "end of line")) }
+    if input.is_empty() {
+        Ok((input, ()))
+    } else {
+        Err(fail(input, "end of line"))
+    }
 }
 
 /// A decimal number token that fits in `u16`.
-pub fn decimal<'a>(context: Context<'a>, expected: &'static str) -> impl Fn(Tokens<'a>) -> LineResult<'a, (u16, Token)> {
+pub fn decimal<'a>(
+    context: Context<'a>,
+    expected: &'static str,
+) -> impl Fn(Tokens<'a>) -> LineResult<'a, (u16, Token)> {
     move |input: Tokens<'a>| match input.first() {
-        Some(token) if token.kind == TokenKind::Number => match context.text(token).parse::<u16>() {
-            Ok(value) => Ok((Tokens::new(&input.tokens[1..]), (value, token))),
-            Err(_) => Err(fail(input, expected)),
-        },
+        Some(token) if token.kind == TokenKind::Number => {
+            match context.text(token).parse::<u16>() {
+                Ok(value) => Ok((Tokens::new(&input.tokens[1..]), (value, token))),
+                Err(_) => Err(fail(input, expected)),
+            }
+        }
         _ => Err(fail(input, expected)),
     }
 }

@@ -10,7 +10,12 @@ pub enum ScenarioError {
     Read { path: String, reason: String },
 
     #[error("{message}")]
-    #[diagnostic(code(awl::scenario::syntax), help("see SPEC §3 for the keys a scenario has: program, cpu, mode, interrupt_points, run, watchdog, [ob13], [[hw_module]], [[event]], [expect]"))]
+    #[diagnostic(
+        code(awl::scenario::syntax),
+        help(
+            "see SPEC §3 for the keys a scenario has: program, cpu, mode, interrupt_points, run, watchdog, [ob13], [[hw_module]], [[event]], [expect]"
+        )
+    )]
     Syntax {
         message: String,
         #[label("here")]
@@ -50,7 +55,10 @@ pub enum ScenarioError {
     },
 
     #[error("bad duration `{text}`")]
-    #[diagnostic(code(awl::scenario::bad_duration), help("write a number and a unit: ns, us, ms or s, e.g. \"2.5ms\""))]
+    #[diagnostic(
+        code(awl::scenario::bad_duration),
+        help("write a number and a unit: ns, us, ms or s, e.g. \"2.5ms\"")
+    )]
     BadDuration {
         text: String,
         #[label("not a duration")]

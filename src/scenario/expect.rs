@@ -1,16 +1,20 @@
 //! Checking `[expect]` at the end of a run.
 
+use crate::compiler::bytecode::Width;
 use crate::vm::Cpu;
 use crate::vm::cycle::RunOutcome;
 use crate::vm::exec::read_memory;
-use crate::compiler::bytecode::Width;
 
 use super::operand::Target;
 
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Expected {
     /// The raw value the operand must hold; `written` is the number as the file gave it.
-    Value { target: Target, raw: u32, written: i64 },
+    Value {
+        target: Target,
+        raw: u32,
+        written: i64,
+    },
     Mode(String),
     StopCause(String),
 }
@@ -43,8 +47,16 @@ pub fn actual(cpu: &Cpu, target: Target) -> Option<u32> {
     Some(match target {
         Target::ImageBit { byte, bit } => u32::from(cpu.image[usize::from(byte)] >> bit & 1),
         Target::Image { byte, bytes } => read_memory(&cpu.image, usize::from(byte), width(bytes)),
-        Target::Periphery { byte, bytes, extended } => {
-            let memory = if extended { &cpu.extended_outputs } else { &cpu.outputs };
+        Target::Periphery {
+            byte,
+            bytes,
+            extended,
+        } => {
+            let memory = if extended {
+                &cpu.extended_outputs
+            } else {
+                &cpu.outputs
+            };
             read_memory(memory, usize::from(byte), width(bytes))
         }
         Target::TimerBit(n) => {
@@ -52,7 +64,11 @@ pub fn actual(cpu: &Cpu, target: Target) -> Option<u32> {
             u32::from(timer.bit(cpu.clock))
         }
         Target::CounterValue(n) => u32::from(cpu.counters[usize::from(n)].value),
-        Target::DataWord { db, word } => u32::from(*cpu.data_blocks[usize::from(db)].as_ref()?.get(usize::from(word))?),
+        Target::DataWord { db, word } => u32::from(
+            *cpu.data_blocks[usize::from(db)]
+                .as_ref()?
+                .get(usize::from(word))?,
+        ),
     })
 }
 
@@ -69,19 +85,31 @@ pub fn check(cpu: &Cpu, outcome: &RunOutcome, expectations: &[Expectation]) -> V
     let mut mismatches = Vec::new();
     for expectation in expectations {
         let mismatch = match &expectation.expected {
-            Expected::Value { target, raw, written } => match actual(cpu, *target) {
+            Expected::Value {
+                target,
+                raw,
+                written,
+            } => match actual(cpu, *target) {
                 Some(value) if value == *raw => None,
                 Some(value) => Some((written.to_string(), show(*target, value))),
                 None => Some((written.to_string(), "not loaded".to_string())),
             },
-            Expected::Mode(mode) => (outcome.mode.name() != mode).then(|| (mode.clone(), outcome.mode.name().to_string())),
+            Expected::Mode(mode) => (outcome.mode.name() != mode)
+                .then(|| (mode.clone(), outcome.mode.name().to_string())),
             Expected::StopCause(cause) => {
-                let actual = outcome.stop.as_ref().map_or("none", |stop| stop.cause.code());
+                let actual = outcome
+                    .stop
+                    .as_ref()
+                    .map_or("none", |stop| stop.cause.code());
                 (actual != cause).then(|| (cause.clone(), actual.to_string()))
             }
         };
         if let Some((expected, actual)) = mismatch {
-            mismatches.push(Mismatch { name: expectation.name.clone(), expected, actual });
+            mismatches.push(Mismatch {
+                name: expectation.name.clone(),
+                expected,
+                actual,
+            });
         }
     }
     mismatches

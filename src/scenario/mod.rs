@@ -60,26 +60,45 @@ pub fn parse_duration(text: &str) -> Option<u64> {
         _ => return None,
     };
     let ns = value * scale;
-    (value.is_finite() && ns >= 0.0 && ns < 1e19).then_some(ns.round() as u64)
+    (value.is_finite() && (0.0..1e19).contains(&ns)).then_some(ns.round() as u64)
 }
 
 fn duration(spanned: &Spanned<String>) -> Result<u64, ScenarioError> {
-    parse_duration(spanned.get_ref()).ok_or_else(|| ScenarioError::BadDuration { text: spanned.get_ref().clone(), at: span(spanned) })
+    parse_duration(spanned.get_ref()).ok_or_else(|| ScenarioError::BadDuration {
+        text: spanned.get_ref().clone(),
+        at: span(spanned),
+    })
 }
 
-fn invalid(message: impl Into<String>, at: SourceSpan, label: impl Into<String>, help: Option<String>) -> ScenarioError {
-    ScenarioError::Invalid { message: message.into(), at, label: label.into(), help }
+fn invalid(
+    message: impl Into<String>,
+    at: SourceSpan,
+    label: impl Into<String>,
+    help: Option<String>,
+) -> ScenarioError {
+    ScenarioError::Invalid {
+        message: message.into(),
+        at,
+        label: label.into(),
+        help,
+    }
 }
 
 impl Scenario {
     /// Renders an error with this scenario's text.
     pub fn report(&self, error: ScenarioError) -> Report {
-        Report::new(error).with_source_code(NamedSource::new(self.path.display().to_string(), self.text.clone()))
+        Report::new(error).with_source_code(NamedSource::new(
+            self.path.display().to_string(),
+            self.text.clone(),
+        ))
     }
 
     pub fn load(path: &Path) -> Result<Scenario, Report> {
         let text = std::fs::read_to_string(path).map_err(|error| {
-            Report::new(ScenarioError::Read { path: path.display().to_string(), reason: error.to_string() })
+            Report::new(ScenarioError::Read {
+                path: path.display().to_string(),
+                reason: error.to_string(),
+            })
         })?;
         Scenario::parse(path, &text)
     }
@@ -87,11 +106,17 @@ impl Scenario {
     pub fn parse(path: &Path, text: &str) -> Result<Scenario, Report> {
         let text: Arc<str> = Arc::from(text);
         let with_source = |error: ScenarioError| {
-            Report::new(error).with_source_code(NamedSource::new(path.display().to_string(), text.clone()))
+            Report::new(error)
+                .with_source_code(NamedSource::new(path.display().to_string(), text.clone()))
         };
         let raw: RawScenario = toml::from_str(&text).map_err(|error| {
-            let at = error.span().map(|range| SourceSpan::from((range.start, range.end - range.start)));
-            with_source(ScenarioError::Syntax { message: error.message().to_string(), at })
+            let at = error
+                .span()
+                .map(|range| SourceSpan::from((range.start, range.end - range.start)));
+            with_source(ScenarioError::Syntax {
+                message: error.message().to_string(),
+                at,
+            })
         })?;
         Scenario::from_raw(path, text.clone(), raw).map_err(with_source)
     }
@@ -114,17 +139,30 @@ impl Scenario {
                 )
             })?),
         };
-        let profile = cpu.unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile"));
+        let profile = cpu
+            .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile"));
         let special_mode = match &raw.mode {
             None => None,
             Some(mode) => {
                 if profile.family != Family::Sinumerik840c {
-                    return Err(invalid("`mode` belongs to the sinumerik-840c profile", span(mode), format!("not a setting of {}", profile.name), None));
+                    return Err(invalid(
+                        "`mode` belongs to the sinumerik-840c profile",
+                        span(mode),
+                        format!("not a setting of {}", profile.name),
+                        None,
+                    ));
                 }
                 match mode.get_ref().as_str() {
                     "normal" => Some(false),
                     "special" => Some(true),
-                    _ => return Err(invalid(format!("unknown mode `{}`", mode.get_ref()), span(mode), "\"normal\" or \"special\"", None)),
+                    _ => {
+                        return Err(invalid(
+                            format!("unknown mode `{}`", mode.get_ref()),
+                            span(mode),
+                            "\"normal\" or \"special\"",
+                            None,
+                        ));
+                    }
                 }
             }
         };
@@ -133,7 +171,14 @@ impl Scenario {
             Some(points) => Some(match points.get_ref().as_str() {
                 "block" => InterruptPoints::Block,
                 "operation" => InterruptPoints::Operation,
-                other => return Err(invalid(format!("unknown interrupt points `{other}`"), span(points), "\"block\" or \"operation\"", None)),
+                other => {
+                    return Err(invalid(
+                        format!("unknown interrupt points `{other}`"),
+                        span(points),
+                        "\"block\" or \"operation\"",
+                        None,
+                    ));
+                }
             }),
         };
         let limit = match &raw.run {
@@ -142,9 +187,18 @@ impl Scenario {
                 let run_span = span(run);
                 let run = run.get_ref();
                 match (&run.duration, &run.cycles) {
-                    (Some(duration_text), None) => Some(RunLimit::Duration(duration(duration_text)?)),
+                    (Some(duration_text), None) => {
+                        Some(RunLimit::Duration(duration(duration_text)?))
+                    }
                     (None, Some(cycles)) => Some(RunLimit::Cycles(*cycles.get_ref())),
-                    _ => return Err(invalid("`run` takes either `for` or `cycles`", run_span, "one of the two", Some("run = { for = \"100ms\" } or run = { cycles = 20 }".into()))),
+                    _ => {
+                        return Err(invalid(
+                            "`run` takes either `for` or `cycles`",
+                            run_span,
+                            "one of the two",
+                            Some("run = { for = \"100ms\" } or run = { cycles = 20 }".into()),
+                        ));
+                    }
                 }
             }
         };
@@ -153,11 +207,21 @@ impl Scenario {
             None => None,
             Some(ob13) => {
                 if profile.family != Family::S5_95f {
-                    return Err(invalid("[ob13] belongs to the s5-95f profile", span(&ob13.interval), format!("{} has no time-controlled OB 13", profile.name), Some("set `cpu = \"s5-95f\"`".into())));
+                    return Err(invalid(
+                        "[ob13] belongs to the s5-95f profile",
+                        span(&ob13.interval),
+                        format!("{} has no time-controlled OB 13", profile.name),
+                        Some("set `cpu = \"s5-95f\"`".into()),
+                    ));
                 }
                 let interval = duration(&ob13.interval)?;
                 if interval == 0 {
-                    return Err(invalid("the OB 13 interval must be above zero", span(&ob13.interval), "zero", None));
+                    return Err(invalid(
+                        "the OB 13 interval must be above zero",
+                        span(&ob13.interval),
+                        "zero",
+                        None,
+                    ));
                 }
                 Some(interval)
             }
@@ -165,11 +229,21 @@ impl Scenario {
         let mut hw_modules = Vec::new();
         for module in raw.hw_module.iter().flatten() {
             if profile.family != Family::Speed7 {
-                return Err(invalid("[[hw_module]] belongs to the speed7 profile", span(&module.module), format!("{} has no hardware interrupt OBs", profile.name), None));
+                return Err(invalid(
+                    "[[hw_module]] belongs to the speed7 profile",
+                    span(&module.module),
+                    format!("{} has no hardware interrupt OBs", profile.name),
+                    None,
+                ));
             }
             let ob = *module.ob.get_ref();
             if ob != 40 && ob != 41 {
-                return Err(ScenarioError::UnknownOb { ob: format!("OB {ob}"), cpu: profile.name, at: span(&module.ob), help: Some("hardware interrupts start OB 40 or OB 41".into()) });
+                return Err(ScenarioError::UnknownOb {
+                    ob: format!("OB {ob}"),
+                    cpu: profile.name,
+                    at: span(&module.ob),
+                    help: Some("hardware interrupts start OB 40 or OB 41".into()),
+                });
             }
             hw_modules.push((*module.module.get_ref(), ob));
         }
@@ -204,19 +278,35 @@ impl Scenario {
         match value.get_ref() {
             toml::Value::Integer(number) => Ok(*number),
             toml::Value::Boolean(flag) => Ok(i64::from(*flag)),
-            other => Err(ScenarioError::BadValue { operand: operand.into(), value: other.to_string(), at: span(value), range: "an integer".into() }),
+            other => Err(ScenarioError::BadValue {
+                operand: operand.into(),
+                value: other.to_string(),
+                at: span(value),
+                range: "an integer".into(),
+            }),
         }
     }
 
     /// The timed events, with operands resolved against the compiled program.
-    pub fn schedule(&self, program: &Program, set: MnemonicSet) -> Result<Vec<Scheduled>, ScenarioError> {
+    pub fn schedule(
+        &self,
+        program: &Program,
+        set: MnemonicSet,
+    ) -> Result<Vec<Scheduled>, ScenarioError> {
         let profile = program.profile;
         let mut schedule = Vec::new();
         for event in &self.events {
             let at_ns = duration(&event.at)?;
-            let kinds = usize::from(event.set.is_some()) + usize::from(event.interrupt.is_some()) + usize::from(event.hw_interrupt.is_some());
+            let kinds = usize::from(event.set.is_some())
+                + usize::from(event.interrupt.is_some())
+                + usize::from(event.hw_interrupt.is_some());
             if kinds != 1 {
-                return Err(invalid("an [[event]] has exactly one of `set`, `interrupt`, `hw_interrupt`", span(&event.at), "this event", None));
+                return Err(invalid(
+                    "an [[event]] has exactly one of `set`, `interrupt`, `hw_interrupt`",
+                    span(&event.at),
+                    "this event",
+                    None,
+                ));
             }
             if let Some(changes) = &event.set {
                 let mut resolved = Vec::new();
@@ -224,11 +314,26 @@ impl Scenario {
                     let at = self.key_span(&format!("\"{operand}\""), value.span().start);
                     let target = parse_target(operand, at, set, profile, program.layout)?;
                     let (input_target, byte, bit, bytes) = match target {
-                        Target::ImageBit { byte, bit } if byte < program.layout.output_base() => (InputTarget::Process, byte, bit, 0),
-                        Target::Image { byte, bytes } if byte < program.layout.output_base() => (InputTarget::Process, byte, 0, bytes),
-                        Target::Periphery { byte, bytes, extended } => {
-                            (if extended { InputTarget::Extended } else { InputTarget::Process }, byte, 0, bytes)
+                        Target::ImageBit { byte, bit } if byte < program.layout.output_base() => {
+                            (InputTarget::Process, byte, bit, 0)
                         }
+                        Target::Image { byte, bytes } if byte < program.layout.output_base() => {
+                            (InputTarget::Process, byte, 0, bytes)
+                        }
+                        Target::Periphery {
+                            byte,
+                            bytes,
+                            extended,
+                        } => (
+                            if extended {
+                                InputTarget::Extended
+                            } else {
+                                InputTarget::Process
+                            },
+                            byte,
+                            0,
+                            bytes,
+                        ),
                         _ => {
                             return Err(ScenarioError::UnknownOperand {
                                 operand: operand.clone(),
@@ -239,26 +344,48 @@ impl Scenario {
                         }
                     };
                     let number = self.integer(value, operand)?;
-                    let raw = raw_value(target, number).map_err(|range| ScenarioError::BadValue {
-                        operand: operand.clone(),
-                        value: number.to_string(),
-                        at: span(value),
-                        range,
-                    })?;
-                    resolved.push(InputChange { target: input_target, byte, bit, bytes, value: raw });
+                    let raw =
+                        raw_value(target, number).map_err(|range| ScenarioError::BadValue {
+                            operand: operand.clone(),
+                            value: number.to_string(),
+                            at: span(value),
+                            range,
+                        })?;
+                    resolved.push(InputChange {
+                        target: input_target,
+                        byte,
+                        bit,
+                        bytes,
+                        value: raw,
+                    });
                 }
-                schedule.push(Scheduled { at_ns, what: Happening::SetInputs(resolved) });
+                schedule.push(Scheduled {
+                    at_ns,
+                    what: Happening::SetInputs(resolved),
+                });
             }
             if let Some(interrupt) = &event.interrupt {
                 let ob = self.interrupt_ob(interrupt, profile)?;
-                schedule.push(Scheduled { at_ns, what: Happening::Interrupt { ob } });
+                schedule.push(Scheduled {
+                    at_ns,
+                    what: Happening::Interrupt { ob },
+                });
             }
             if let Some(hardware) = &event.hw_interrupt {
                 if profile.family != Family::Speed7 {
-                    return Err(invalid("`hw_interrupt` belongs to the speed7 profile", span(hardware), format!("{} has no hardware interrupts", profile.name), None));
+                    return Err(invalid(
+                        "`hw_interrupt` belongs to the speed7 profile",
+                        span(hardware),
+                        format!("{} has no hardware interrupts", profile.name),
+                        None,
+                    ));
                 }
                 let inner = hardware.get_ref();
-                if !self.hw_modules.iter().any(|(module, _)| *module == inner.module) {
+                if !self
+                    .hw_modules
+                    .iter()
+                    .any(|(module, _)| *module == inner.module)
+                {
                     return Err(invalid(
                         format!("module {} has no [[hw_module]] entry", inner.module),
                         span(hardware),
@@ -267,15 +394,30 @@ impl Scenario {
                     ));
                 }
                 let active_for_ns = duration(&inner.active_for)?;
-                schedule.push(Scheduled { at_ns, what: Happening::Hardware { module: inner.module, channel: inner.channel, active_for_ns } });
+                schedule.push(Scheduled {
+                    at_ns,
+                    what: Happening::Hardware {
+                        module: inner.module,
+                        channel: inner.channel,
+                        active_for_ns,
+                    },
+                });
             }
         }
         Ok(schedule)
     }
 
-    fn interrupt_ob(&self, text: &Spanned<String>, profile: &'static Profile) -> Result<u8, ScenarioError> {
+    fn interrupt_ob(
+        &self,
+        text: &Spanned<String>,
+        profile: &'static Profile,
+    ) -> Result<u8, ScenarioError> {
         let name = text.get_ref();
-        let digits = name.trim().strip_prefix("OB").or_else(|| name.trim().strip_prefix("ob")).map(str::trim);
+        let digits = name
+            .trim()
+            .strip_prefix("OB")
+            .or_else(|| name.trim().strip_prefix("ob"))
+            .map(str::trim);
         let allowed: Vec<u8> = profile
             .interrupt_obs
             .iter()
@@ -293,37 +435,68 @@ impl Scenario {
         };
         match digits.and_then(|digits| digits.parse::<u8>().ok()) {
             Some(ob) if allowed.contains(&ob) => Ok(ob),
-            _ => Err(ScenarioError::UnknownOb { ob: name.clone(), cpu: profile.name, at: span(text), help }),
+            _ => Err(ScenarioError::UnknownOb {
+                ob: name.clone(),
+                cpu: profile.name,
+                at: span(text),
+                help,
+            }),
         }
     }
 
     /// The `[expect]` table, resolved against the compiled program.
-    pub fn expectations(&self, program: &Program, set: MnemonicSet) -> Result<Vec<Expectation>, ScenarioError> {
+    pub fn expectations(
+        &self,
+        program: &Program,
+        set: MnemonicSet,
+    ) -> Result<Vec<Expectation>, ScenarioError> {
         let mut expectations = Vec::new();
         for (key, value) in &self.expect {
             let at = self.key_span(key, value.span().start);
             let expected = match key.as_str() {
                 "mode" => match value.get_ref().as_str() {
                     Some(mode @ ("RUN" | "STOP")) => Expected::Mode(mode.to_string()),
-                    _ => return Err(ScenarioError::BadValue { operand: key.clone(), value: value.get_ref().to_string(), at: span(value), range: "\"RUN\" or \"STOP\"".into() }),
+                    _ => {
+                        return Err(ScenarioError::BadValue {
+                            operand: key.clone(),
+                            value: value.get_ref().to_string(),
+                            at: span(value),
+                            range: "\"RUN\" or \"STOP\"".into(),
+                        });
+                    }
                 },
                 "stop_cause" => match value.get_ref().as_str() {
                     Some(cause) => Expected::StopCause(cause.to_string()),
-                    None => return Err(ScenarioError::BadValue { operand: key.clone(), value: value.get_ref().to_string(), at: span(value), range: "a cause such as \"WECK\"".into() }),
+                    None => {
+                        return Err(ScenarioError::BadValue {
+                            operand: key.clone(),
+                            value: value.get_ref().to_string(),
+                            at: span(value),
+                            range: "a cause such as \"WECK\"".into(),
+                        });
+                    }
                 },
                 operand => {
                     let target = parse_target(operand, at, set, program.profile, program.layout)?;
                     let number = self.integer(value, operand)?;
-                    let raw = raw_value(target, number).map_err(|range| ScenarioError::BadValue {
-                        operand: operand.to_string(),
-                        value: number.to_string(),
-                        at: span(value),
-                        range,
-                    })?;
-                    Expected::Value { target, raw, written: number }
+                    let raw =
+                        raw_value(target, number).map_err(|range| ScenarioError::BadValue {
+                            operand: operand.to_string(),
+                            value: number.to_string(),
+                            at: span(value),
+                            range,
+                        })?;
+                    Expected::Value {
+                        target,
+                        raw,
+                        written: number,
+                    }
                 }
             };
-            expectations.push(Expectation { name: key.clone(), expected });
+            expectations.push(Expectation {
+                name: key.clone(),
+                expected,
+            });
         }
         Ok(expectations)
     }

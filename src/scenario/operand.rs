@@ -14,15 +14,28 @@ use super::error::ScenarioError;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Target {
     /// A bit of the image memory (I, Q, F).
-    ImageBit { byte: u16, bit: u8 },
+    ImageBit {
+        byte: u16,
+        bit: u8,
+    },
     /// Bytes of the image memory (IB…FD).
-    Image { byte: u16, bytes: u8 },
+    Image {
+        byte: u16,
+        bytes: u8,
+    },
     /// Process input or output modules (PY/PW) and the extended periphery (OY/OW).
-    Periphery { byte: u16, bytes: u8, extended: bool },
+    Periphery {
+        byte: u16,
+        bytes: u8,
+        extended: bool,
+    },
     TimerBit(u16),
     CounterValue(u16),
     /// `DB 10 DW 3` (or `DB10.DW3`).
-    DataWord { db: u8, word: u16 },
+    DataWord {
+        db: u8,
+        word: u16,
+    },
 }
 
 impl Target {
@@ -37,7 +50,11 @@ impl Target {
 
 fn area_bytes(area: Area) -> u8 {
     match area {
-        Area::InputByte | Area::OutputByte | Area::FlagByte | Area::PeripheralByte | Area::ExtendedByte => 1,
+        Area::InputByte
+        | Area::OutputByte
+        | Area::FlagByte
+        | Area::PeripheralByte
+        | Area::ExtendedByte => 1,
         Area::FlagDouble => 4,
         _ => 2,
     }
@@ -58,7 +75,11 @@ fn words(text: &str) -> Vec<String> {
         spaced.push(c);
         previous = Some(c);
     }
-    spaced.replace(".D", " D").split_whitespace().map(str::to_string).collect()
+    spaced
+        .replace(".D", " D")
+        .split_whitespace()
+        .map(str::to_string)
+        .collect()
 }
 
 pub fn parse_target(
@@ -76,13 +97,17 @@ pub fn parse_target(
     };
     let parts = words(text);
     let number = |part: Option<&String>| part.and_then(|p| p.parse::<u16>().ok());
-    let Some(first) = parts.first() else { return Err(unknown("empty operand", None)) };
+    let Some(first) = parts.first() else {
+        return Err(unknown("empty operand", None));
+    };
     if first.eq_ignore_ascii_case("DB") {
         let db = number(parts.get(1)).filter(|db| *db <= 255);
         let is_dw = parts.get(2).is_some_and(|p| p.eq_ignore_ascii_case("DW"));
         let word = number(parts.get(3));
         return match (db, is_dw, word, parts.len()) {
-            (Some(db), true, Some(word), 4) if word < profile.sizes.data_words => Ok(Target::DataWord { db: db as u8, word }),
+            (Some(db), true, Some(word), 4) if word < profile.sizes.data_words => {
+                Ok(Target::DataWord { db: db as u8, word })
+            }
             _ => Err(unknown("write a data word as `DB 10 DW 3`", None)),
         };
     }
@@ -105,23 +130,49 @@ pub fn parse_target(
             Ok(index) => (index, 0),
             Err(_) => return Err(unknown("a number must follow the area", None)),
         },
-        _ => return Err(unknown("an area and an address, e.g. `Q 4.0` or `FW 10`", None)),
+        _ => {
+            return Err(unknown(
+                "an area and an address, e.g. `Q 4.0` or `FW 10`",
+                None,
+            ));
+        }
     };
     let address = Address { area, index, bit };
     if !address_in_range(address, profile) {
-        return Err(unknown(&format!("out of range for the {} CPU", profile.name), None));
+        return Err(unknown(
+            &format!("out of range for the {} CPU", profile.name),
+            None,
+        ));
     }
-    let image = |area, index| layout.image_byte(area, index).expect("image areas have a place");
+    let image = |area, index| {
+        layout
+            .image_byte(area, index)
+            .expect("image areas have a place")
+    };
     Ok(match area {
-        Area::Input | Area::Output | Area::Flag => Target::ImageBit { byte: image(area, index), bit },
+        Area::Input | Area::Output | Area::Flag => Target::ImageBit {
+            byte: image(area, index),
+            bit,
+        },
         Area::Timer => Target::TimerBit(index),
         Area::Counter => Target::CounterValue(index),
         Area::DataBit | Area::DataLeft | Area::DataRight | Area::DataWord | Area::DataDouble => {
             return Err(unknown("data operands need their DB: `DB 10 DW 3`", None));
         }
-        Area::PeripheralByte | Area::PeripheralWord => Target::Periphery { byte: index, bytes: area_bytes(area), extended: false },
-        Area::ExtendedByte | Area::ExtendedWord => Target::Periphery { byte: index, bytes: area_bytes(area), extended: true },
-        _ => Target::Image { byte: image(area, index), bytes: area_bytes(area) },
+        Area::PeripheralByte | Area::PeripheralWord => Target::Periphery {
+            byte: index,
+            bytes: area_bytes(area),
+            extended: false,
+        },
+        Area::ExtendedByte | Area::ExtendedWord => Target::Periphery {
+            byte: index,
+            bytes: area_bytes(area),
+            extended: true,
+        },
+        _ => Target::Image {
+            byte: image(area, index),
+            bytes: area_bytes(area),
+        },
     })
 }
 
@@ -129,7 +180,13 @@ pub fn parse_target(
 /// and double words unsigned or signed.
 pub fn raw_value(target: Target, value: i64) -> Result<u32, String> {
     let bits = match target.bytes() {
-        0 => return if value == 0 || value == 1 { Ok(value as u32) } else { Err("0 or 1".into()) },
+        0 => {
+            return if value == 0 || value == 1 {
+                Ok(value as u32)
+            } else {
+                Err("0 or 1".into())
+            };
+        }
         bytes => u32::from(bytes) * 8,
     };
     let unsigned_max = (1i64 << bits) - 1;

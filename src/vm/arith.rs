@@ -72,7 +72,10 @@ pub fn shift(left: bool, n: u8, accu1: &mut u32, status: &mut Status) {
     }
     let n = u32::from(n);
     let (result, last_out) = if left {
-        (word.checked_shl(n).unwrap_or(0), (word >> (16 - n)) & 1 == 1)
+        (
+            word.checked_shl(n).unwrap_or(0),
+            (word >> (16 - n)) & 1 == 1,
+        )
     } else {
         (word.checked_shr(n).unwrap_or(0), (word >> (n - 1)) & 1 == 1)
     };

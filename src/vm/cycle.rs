@@ -33,7 +33,15 @@ impl Cpu {
         let from = self.mode;
         self.mode = to;
         if self.tracer.enabled {
-            self.tracer.emit(self.clock, 0, Event::Mode { from: from.name(), to: to.name(), cause });
+            self.tracer.emit(
+                self.clock,
+                0,
+                Event::Mode {
+                    from: from.name(),
+                    to: to.name(),
+                    cause,
+                },
+            );
         }
     }
 
@@ -86,7 +94,11 @@ impl Cpu {
         self.set_mode(Mode::Startup, None);
         self.cycle_started_at = self.clock;
         self.update_attention();
-        let startup_ob = self.profile.startup_obs.iter().find_map(|ob| self.program.ob(*ob));
+        let startup_ob = self
+            .profile
+            .startup_obs
+            .iter()
+            .find_map(|ob| self.program.ob(*ob));
         if let Some(block) = startup_ob {
             self.enter_level(block);
             self.last_point_at = self.clock;
@@ -107,7 +119,14 @@ impl Cpu {
         }
         let duration = u64::from(self.profile.timings.process_image_per_byte) * bytes as u64;
         if self.tracer.enabled {
-            self.tracer.emit(self.clock, 1, Event::DataCycle { kind: "process_image", duration_ns: duration });
+            self.tracer.emit(
+                self.clock,
+                1,
+                Event::DataCycle {
+                    kind: "process_image",
+                    duration_ns: duration,
+                },
+            );
         }
         self.clock += duration;
     }
@@ -116,7 +135,8 @@ impl Cpu {
         let ob1 = self.program.ob(1);
         self.cycle += 1;
         if self.tracer.enabled {
-            self.tracer.emit(self.clock, 0, Event::CycleStart { cycle: self.cycle });
+            self.tracer
+                .emit(self.clock, 0, Event::CycleStart { cycle: self.cycle });
         }
         self.poll()?;
         self.process_image_cycle(true);
@@ -134,7 +154,14 @@ impl Cpu {
         }
         let cycle_time = self.clock - self.cycle_started_at;
         if self.tracer.enabled {
-            self.tracer.emit(self.clock, 0, Event::CycleEnd { cycle: self.cycle, cycle_time_ns: cycle_time });
+            self.tracer.emit(
+                self.clock,
+                0,
+                Event::CycleEnd {
+                    cycle: self.cycle,
+                    cycle_time_ns: cycle_time,
+                },
+            );
         }
         self.last_point_at = self.clock;
         self.cycle_started_at = self.clock;
@@ -163,7 +190,15 @@ impl Cpu {
             if self.tracer.enabled {
                 let line = self.line_of(stop.block, stop.pc, &self.sources);
                 let block = self.block_id(stop.block).to_string();
-                self.tracer.emit(self.clock, 0, Event::Stop { cause: stop.cause.code(), block, line });
+                self.tracer.emit(
+                    self.clock,
+                    0,
+                    Event::Stop {
+                        cause: stop.cause.code(),
+                        block,
+                        line,
+                    },
+                );
             }
         }
         RunOutcome {

@@ -16,7 +16,11 @@ use super::{Cpu, Exit, Frame, Point, Stretch};
 impl Cpu {
     /// Runs the current level; `operation_points` makes every operation an interrupt point.
     pub fn execute(&mut self, operation_points: bool) -> Exit {
-        if operation_points { self.run_loop::<true>() } else { self.run_loop::<false>() }
+        if operation_points {
+            self.run_loop::<true>()
+        } else {
+            self.run_loop::<false>()
+        }
     }
 
     #[inline(always)]
@@ -49,11 +53,19 @@ impl Cpu {
     /// Marks an interrupt point for the stretch measurement of the cyclic level.
     #[inline(always)]
     fn mark_point(&mut self, clock: u64, stretch_block: u16, end_pc: u32) {
-        self.last_stretch = super::LastStretch { block: stretch_block, end_pc, start_ns: self.last_point_at, end_ns: clock };
+        self.last_stretch = super::LastStretch {
+            block: stretch_block,
+            end_pc,
+            start_ns: self.last_point_at,
+            end_ns: clock,
+        };
         if self.levels.is_empty() {
             let stretch = clock - self.last_point_at;
             if stretch > self.longest_stretch.ns {
-                self.longest_stretch = Stretch { ns: stretch, block: stretch_block };
+                self.longest_stretch = Stretch {
+                    ns: stretch,
+                    block: stretch_block,
+                };
             }
         }
         self.last_point_at = clock;
@@ -145,7 +157,11 @@ impl Cpu {
         let exit = loop {
             let Some(&fetched) = code.get(pc) else {
                 sync!();
-                break Exit::Stop(self.stop(StopCause::Bcf, pc as u32, StopDetail::Text("the block has no BE".into())));
+                break Exit::Stop(self.stop(
+                    StopCause::Bcf,
+                    pc as u32,
+                    StopDetail::Text("the block has no BE".into()),
+                ));
             };
             pc += 1;
             let mut op = fetched;
@@ -229,7 +245,11 @@ impl Cpu {
                         }
                     }
                 }
-                Op::Call { block: target, conditional, params } => {
+                Op::Call {
+                    block: target,
+                    conditional,
+                    params,
+                } => {
                     let taken = !conditional || status.rlo();
                     status.after_jump();
                     if !taken {
@@ -237,9 +257,18 @@ impl Cpu {
                     }
                     if self.depth() >= usize::from(self.profile.nesting_limit) {
                         sync!();
-                        break Exit::Stop(self.stop(StopCause::Stueb, pc as u32 - 1, StopDetail::None));
+                        break Exit::Stop(self.stop(
+                            StopCause::Stueb,
+                            pc as u32 - 1,
+                            StopDetail::None,
+                        ));
                     }
-                    self.frames.push(Frame { block: self.block, pc: pc as u32, open_db: self.open_db, params: self.params });
+                    self.frames.push(Frame {
+                        block: self.block,
+                        pc: pc as u32,
+                        open_db: self.open_db,
+                        params: self.params,
+                    });
                     let caller = self.block;
                     let call_pc = pc as u32 - 1;
                     self.block = target;
@@ -283,7 +312,11 @@ impl Cpu {
                     self.open_db = frame.open_db;
                     self.params = frame.params;
                     let caller = &program.blocks[usize::from(frame.block)];
-                    move_to!(frame.pc as usize, &caller.code, &caller.elapsed[..=caller.code.len()]);
+                    move_to!(
+                        frame.pc as usize,
+                        &caller.code,
+                        &caller.elapsed[..=caller.code.len()]
+                    );
                     if segment_clock >= self.attention_at {
                         self.last_op = (ended, self.last_stretch.end_pc);
                         break Exit::Point(Point::BlockEnd);
@@ -322,9 +355,17 @@ impl Cpu {
         let operand = match operand {
             Resolved::Address(address) => {
                 let replaced = if address.area.is_bit() {
-                    Address { area: address.area, index: value & 0xFF, bit: (value >> 8) as u8 }
+                    Address {
+                        area: address.area,
+                        index: value & 0xFF,
+                        bit: (value >> 8) as u8,
+                    }
                 } else {
-                    Address { area: address.area, index: value, bit: 0 }
+                    Address {
+                        area: address.area,
+                        index: value,
+                        bit: 0,
+                    }
                 };
                 let fits = crate::compiler::address_in_range(replaced, self.profile);
                 fits.then_some(Resolved::Address(replaced))?
@@ -344,14 +385,21 @@ impl Cpu {
         let problem = match self.open_db {
             None => format!("DW {word} accessed with no data block open"),
             Some(db) => {
-                let length = self.data_blocks[usize::from(db)].as_ref().map_or(0, Vec::len);
+                let length = self.data_blocks[usize::from(db)]
+                    .as_ref()
+                    .map_or(0, Vec::len);
                 format!("DW {word} is past the end of DB {db} ({length} words)")
             }
         };
         self.stop(StopCause::LzfData, pc, StopDetail::Text(problem))
     }
 
-    fn read_data(&self, part: DataPart, word: u16, pc: u32) -> Result<u32, (StopCause, StopDetail)> {
+    fn read_data(
+        &self,
+        part: DataPart,
+        word: u16,
+        pc: u32,
+    ) -> Result<u32, (StopCause, StopDetail)> {
         let fault = || {
             let stop = self.data_fault(pc, word);
             (stop.cause, stop.detail)
@@ -361,17 +409,31 @@ impl Cpu {
             DataPart::Left => value >> 8,
             DataPart::Right => value & 0xFF,
             DataPart::Word => value,
-            DataPart::Double => value << 16 | u32::from(self.data_word(word + 1).ok_or_else(fault)?),
+            DataPart::Double => {
+                value << 16 | u32::from(self.data_word(word + 1).ok_or_else(fault)?)
+            }
         })
     }
 
-    fn write_data(&mut self, part: DataPart, word: u16, value: u32, pc: u32) -> Result<(), (StopCause, StopDetail)> {
-        let last = if part == DataPart::Double { word + 1 } else { word };
+    fn write_data(
+        &mut self,
+        part: DataPart,
+        word: u16,
+        value: u32,
+        pc: u32,
+    ) -> Result<(), (StopCause, StopDetail)> {
+        let last = if part == DataPart::Double {
+            word + 1
+        } else {
+            word
+        };
         if self.data_word(last).is_none() {
             let stop = self.data_fault(pc, last);
             return Err((stop.cause, stop.detail));
         }
-        let db = self.data_blocks[usize::from(self.open_db.unwrap_or(0))].as_mut().expect("checked above");
+        let db = self.data_blocks[usize::from(self.open_db.unwrap_or(0))]
+            .as_mut()
+            .expect("checked above");
         let slot = &mut db[usize::from(word)];
         match part {
             DataPart::Left => *slot = *slot & 0x00FF | (value as u16 & 0xFF) << 8,
@@ -389,7 +451,13 @@ impl Cpu {
         Ok(self.read_data(DataPart::Word, word, pc)? >> bit & 1 != 0)
     }
 
-    fn write_data_bit(&mut self, word: u16, bit: u8, value: bool, pc: u32) -> Result<(), (StopCause, StopDetail)> {
+    fn write_data_bit(
+        &mut self,
+        word: u16,
+        bit: u8,
+        value: bool,
+        pc: u32,
+    ) -> Result<(), (StopCause, StopDetail)> {
         let old = self.read_data(DataPart::Word, word, pc)?;
         let mask = 1u32 << bit;
         let new = if value { old | mask } else { old & !mask };
@@ -403,7 +471,12 @@ impl Cpu {
         }
     }
 
-    fn write_bit_target(&mut self, target: BitTarget, value: bool, pc: u32) -> Result<(), (StopCause, StopDetail)> {
+    fn write_bit_target(
+        &mut self,
+        target: BitTarget,
+        value: bool,
+        pc: u32,
+    ) -> Result<(), (StopCause, StopDetail)> {
         match target {
             BitTarget::Image(bit) => {
                 self.write_image_bit(bit, value);
@@ -458,13 +531,26 @@ impl Cpu {
         let rlo = self.status.rlo();
         match op {
             Op::AndBracket | Op::OrBracket => {
-                if !self.brackets.open(&mut self.status, op == Op::OrBracket, self.profile.bracket_depth) {
-                    return Err((StopCause::Bcf, StopDetail::Text(format!("more than {} nested brackets", self.profile.bracket_depth))));
+                if !self.brackets.open(
+                    &mut self.status,
+                    op == Op::OrBracket,
+                    self.profile.bracket_depth,
+                ) {
+                    return Err((
+                        StopCause::Bcf,
+                        StopDetail::Text(format!(
+                            "more than {} nested brackets",
+                            self.profile.bracket_depth
+                        )),
+                    ));
                 }
             }
             Op::CloseBracket => {
                 if !self.brackets.close(&mut self.status) {
-                    return Err((StopCause::Bcf, StopDetail::Text("`)` without an open bracket".into())));
+                    return Err((
+                        StopCause::Bcf,
+                        StopDetail::Text("`)` without an open bracket".into()),
+                    ));
                 }
             }
             Op::LogicOther(logic, source) => {
@@ -494,11 +580,19 @@ impl Cpu {
                 self.load(value);
             }
             Op::TransferData(part, word) => self.write_data(part, word, self.accu1, pc)?,
-            Op::LoadPeripheral { width, byte, extended } => {
+            Op::LoadPeripheral {
+                width,
+                byte,
+                extended,
+            } => {
                 let value = self.read_periphery(width, byte, extended);
                 self.load(value);
             }
-            Op::TransferPeripheral { width, byte, extended } => self.write_periphery(width, byte, self.accu1, extended),
+            Op::TransferPeripheral {
+                width,
+                byte,
+                extended,
+            } => self.write_periphery(width, byte, self.accu1, extended),
             Op::LoadTimer(n) => {
                 let timer = &mut self.timers[usize::from(n)];
                 timer.settle(now);
@@ -549,22 +643,35 @@ impl Cpu {
                 self.counters[usize::from(n)].enable(rlo);
                 self.status.end_string();
             }
-            Op::CallMissing { kind, number, conditional } => {
+            Op::CallMissing {
+                kind,
+                number,
+                conditional,
+            } => {
                 if !conditional || rlo {
-                    return Err((StopCause::LzfBlock, StopDetail::Text(format!("{} {number}", kind.name()))));
+                    return Err((
+                        StopCause::LzfBlock,
+                        StopDetail::Text(format!("{} {number}", kind.name())),
+                    ));
                 }
                 self.status.after_jump();
             }
             Op::OpenDb(number) => {
                 if self.data_blocks[usize::from(number)].is_none() {
-                    return Err((StopCause::LzfBlock, StopDetail::Text(format!("DB {number}"))));
+                    return Err((
+                        StopCause::LzfBlock,
+                        StopDetail::Text(format!("DB {number}")),
+                    ));
                 }
                 self.open_db = Some(number);
             }
             Op::GenerateDb(number) => {
                 let words = self.accu1 as u16;
                 if words > self.profile.sizes.data_words {
-                    let text = format!("G DB {number} with {words} words: the CPU allows {}", self.profile.sizes.data_words);
+                    let text = format!(
+                        "G DB {number} with {words} words: the CPU allows {}",
+                        self.profile.sizes.data_words
+                    );
                     return Err((StopCause::LzfData, StopDetail::Text(text)));
                 }
                 let slot = &mut self.data_blocks[usize::from(number)];
@@ -576,7 +683,9 @@ impl Cpu {
             Op::Stop => {
                 self.stop_requested.get_or_insert((self.block, pc));
             }
-            Op::WordLogic(kind) => arith::word_logic(kind, &mut self.accu1, self.accu2, &mut self.status),
+            Op::WordLogic(kind) => {
+                arith::word_logic(kind, &mut self.accu1, self.accu2, &mut self.status)
+            }
             Op::ShiftLeft(n) => arith::shift(true, n, &mut self.accu1, &mut self.status),
             Op::ShiftRight(n) => arith::shift(false, n, &mut self.accu1, &mut self.status),
             Op::OnesComplement => arith::ones_complement(&mut self.accu1),
@@ -608,7 +717,9 @@ fn read_bytes(memory: &[u8], at: usize, width: Width) -> u32 {
     match width {
         Width::Byte => u32::from(memory[at]),
         Width::Word => u32::from(u16::from_be_bytes([memory[at], memory[at + 1]])),
-        Width::Double => u32::from_be_bytes([memory[at], memory[at + 1], memory[at + 2], memory[at + 3]]),
+        Width::Double => {
+            u32::from_be_bytes([memory[at], memory[at + 1], memory[at + 2], memory[at + 3]])
+        }
     }
 }
 

@@ -33,7 +33,11 @@ pub enum Happening {
     /// An S5 interrupt request for an interrupt OB.
     Interrupt { ob: u8 },
     /// A SPEED7 hardware interrupt event on a module's channel.
-    Hardware { module: u16, channel: u16, active_for_ns: u64 },
+    Hardware {
+        module: u16,
+        channel: u16,
+        active_for_ns: u64,
+    },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -151,7 +155,11 @@ pub struct Engine {
 impl Engine {
     pub fn new(config: EngineConfig, mut schedule: Vec<Scheduled>) -> Self {
         schedule.sort_by_key(|item| item.at_ns);
-        Engine { config, schedule, ..Engine::default() }
+        Engine {
+            config,
+            schedule,
+            ..Engine::default()
+        }
     }
 
     pub fn has_pending(&self) -> bool {
@@ -169,7 +177,11 @@ impl Engine {
 
     fn record_latency(&mut self, ob: u8, latency: u64) {
         let stats = self.stats(ob);
-        stats.latency_min = if stats.serviced == 0 { latency } else { stats.latency_min.min(latency) };
+        stats.latency_min = if stats.serviced == 0 {
+            latency
+        } else {
+            stats.latency_min.min(latency)
+        };
         stats.latency_max = stats.latency_max.max(latency);
         stats.latency_sum += latency;
         stats.serviced += 1;
@@ -184,19 +196,27 @@ impl Engine {
 
     /// The next time the engine must look, apart from pending requests.
     fn next_due(&self) -> u64 {
-        let scheduled = self.schedule.get(self.next).map_or(u64::MAX, |item| item.at_ns);
+        let scheduled = self
+            .schedule
+            .get(self.next)
+            .map_or(u64::MAX, |item| item.at_ns);
         scheduled.min(self.next_ob13_at.unwrap_or(u64::MAX))
     }
 }
 
 impl Cpu {
     fn priority_of(&self, ob: u8) -> u8 {
-        self.profile.interrupt_ob(ob).map_or(0, |entry| entry.priority)
+        self.profile
+            .interrupt_ob(ob)
+            .map_or(0, |entry| entry.priority)
     }
 
     /// The priority of the running level: 0 for the cyclic and startup levels.
     pub fn running_priority(&self) -> u8 {
-        self.engine.active.last().map_or(0, |active| active.priority)
+        self.engine
+            .active
+            .last()
+            .map_or(0, |active| active.priority)
     }
 
     fn emit(&mut self, t_ns: u64, event: Event) {
@@ -210,13 +230,20 @@ impl Cpu {
     /// that came before it.
     pub(super) fn trace_call(&mut self, from: u16, to: u16, defer: bool) {
         let depth = self.depth();
-        let event = Event::BlockCall { from: self.block_id(from).to_string(), to: self.block_id(to).to_string(), depth };
+        let event = Event::BlockCall {
+            from: self.block_id(from).to_string(),
+            to: self.block_id(to).to_string(),
+            depth,
+        };
         self.trace_block_event(event, defer, 0);
     }
 
     pub(super) fn trace_end(&mut self, block: u16, defer: bool) {
         let depth = self.depth();
-        let event = Event::BlockEnd { block: self.block_id(block).to_string(), depth };
+        let event = Event::BlockEnd {
+            block: self.block_id(block).to_string(),
+            depth,
+        };
         self.trace_block_event(event, defer, 1);
     }
 
@@ -244,13 +271,17 @@ impl Cpu {
             return self.stop(cause, pc, detail);
         }
         let mut stop = self.stop(cause, self.pc, detail);
-        let called = self.frames.len() > self.level_base && self.frames.last().is_some_and(|frame| frame.block == block);
+        let called = self.frames.len() > self.level_base
+            && self.frames.last().is_some_and(|frame| frame.block == block);
         if called {
             // A block call: the running block is the callee; the call is the caller's entry.
             stop.stack.remove(0);
         } else {
             // A block end: the block that ended is no longer on the stack.
-            let entry = super::stop::StackEntry { block: self.block_id(block).to_string(), line: self.line_of(block, pc, &self.sources) };
+            let entry = super::stop::StackEntry {
+                block: self.block_id(block).to_string(),
+                line: self.line_of(block, pc, &self.sources),
+            };
             stop.stack.insert(0, entry);
         }
         stop.block = block;
@@ -262,9 +293,19 @@ impl Cpu {
     pub fn update_attention(&mut self) {
         let serviceable = self.mode == Mode::Run
             && self.interrupts_enabled
-            && self.engine.pending.iter().any(|request| self.priority_of(request.ob) > self.running_priority());
-        let watchdog = self.cycle_started_at.saturating_add(self.engine.config.watchdog_ns);
-        self.attention_at = if serviceable { 0 } else { self.engine.next_due().min(watchdog) };
+            && self
+                .engine
+                .pending
+                .iter()
+                .any(|request| self.priority_of(request.ob) > self.running_priority());
+        let watchdog = self
+            .cycle_started_at
+            .saturating_add(self.engine.config.watchdog_ns);
+        self.attention_at = if serviceable {
+            0
+        } else {
+            self.engine.next_due().min(watchdog)
+        };
     }
 
     pub fn start_engine_run(&mut self) {
@@ -286,11 +327,16 @@ impl Cpu {
         polled?;
         let cycle_time = self.clock - self.cycle_started_at;
         if self.mode != Mode::Stop && cycle_time > self.engine.config.watchdog_ns {
-            let detail = StopDetail::Cycle { cycle_ns: cycle_time, watchdog_ns: self.engine.config.watchdog_ns };
+            let detail = StopDetail::Cycle {
+                cycle_ns: cycle_time,
+                watchdog_ns: self.engine.config.watchdog_ns,
+            };
             return Err(self.stop_at_last_op(StopCause::Zyk, detail));
         }
         let is_point = match self.engine.config.points {
-            InterruptPoints::Block => matches!(point, Point::BlockCall | Point::BlockEnd | Point::Cycle),
+            InterruptPoints::Block => {
+                matches!(point, Point::BlockCall | Point::BlockEnd | Point::Cycle)
+            }
             InterruptPoints::Operation => point != Point::Loop,
         };
         let mut entered = false;
@@ -304,9 +350,17 @@ impl Cpu {
     /// Takes in everything due by now, in time order.
     pub(super) fn poll(&mut self) -> Result<(), Stop> {
         loop {
-            let scheduled_at = self.engine.schedule.get(self.engine.next).map(|item| item.at_ns);
+            let scheduled_at = self
+                .engine
+                .schedule
+                .get(self.engine.next)
+                .map(|item| item.at_ns);
             let ob13_at = self.engine.next_ob13_at;
-            let due = [scheduled_at, ob13_at].into_iter().flatten().filter(|at| *at <= self.clock).min();
+            let due = [scheduled_at, ob13_at]
+                .into_iter()
+                .flatten()
+                .filter(|at| *at <= self.clock)
+                .min();
             let Some(at) = due else { return Ok(()) };
             if ob13_at == Some(at) {
                 let interval = self.engine.config.ob13_interval_ns.unwrap_or(u64::MAX);
@@ -332,8 +386,16 @@ impl Cpu {
                 self.request(ob, item.at_ns, None);
                 Ok(())
             }
-            Happening::Hardware { module, channel, active_for_ns } => {
-                let source = HardwareSource { module, channel, active_until: item.at_ns.saturating_add(active_for_ns) };
+            Happening::Hardware {
+                module,
+                channel,
+                active_for_ns,
+            } => {
+                let source = HardwareSource {
+                    module,
+                    channel,
+                    active_until: item.at_ns.saturating_add(active_for_ns),
+                };
                 self.hardware_event(item.at_ns, source)
             }
         }
@@ -347,7 +409,11 @@ impl Cpu {
         let at = usize::from(change.byte);
         if change.bytes == 0 {
             let mask = 1u8 << change.bit;
-            if change.value != 0 { memory[at] |= mask } else { memory[at] &= !mask }
+            if change.value != 0 {
+                memory[at] |= mask
+            } else {
+                memory[at] &= !mask
+            }
         } else {
             let bytes = change.value.to_be_bytes();
             let count = usize::from(change.bytes);
@@ -365,19 +431,29 @@ impl Cpu {
         let stretch = self.last_stretch;
         let (block, end_pc, end_ns) = if stretch.end_ns == self.clock && stretch.start_ns <= at {
             (stretch.block, stretch.end_pc, stretch.end_ns)
-        } else if self.block != super::IDLE && self.engine.config.points == InterruptPoints::Operation {
+        } else if self.block != super::IDLE
+            && self.engine.config.points == InterruptPoints::Operation
+        {
             (self.block, self.pc.saturating_sub(1), self.clock)
         } else {
             return (None, None);
         };
-        let Some(code) = self.program.blocks.get(usize::from(block)) else { return (None, None) };
+        let Some(code) = self.program.blocks.get(usize::from(block)) else {
+            return (None, None);
+        };
         let name = Some(code.id.to_string());
-        if code.code.iter().any(|op| matches!(op, crate::compiler::Op::Jump(..))) {
+        if code
+            .code
+            .iter()
+            .any(|op| matches!(op, crate::compiler::Op::Jump(..)))
+        {
             return (name, None);
         }
         let mut t = end_ns;
         for pc in (0..=end_pc as usize).rev() {
-            let Some(cost) = code.elapsed.get(pc + 1).map(|_| code.cost(pc)) else { break };
+            let Some(cost) = code.elapsed.get(pc + 1).map(|_| code.cost(pc)) else {
+                break;
+            };
             if t.saturating_sub(cost) <= at {
                 return (name, Some(self.sources.line_of(code.spans[pc])));
             }
@@ -391,10 +467,27 @@ impl Cpu {
         let id = self.engine.new_id();
         self.engine.stats(ob).requested += 1;
         let (block, line) = self.place_of_request(at);
-        let (module, channel) = hardware.map_or((None, None), |source| (Some(source.module), Some(source.channel)));
-        self.emit(at, Event::IrqRequest { id, ob, module, channel, block, line });
-        let ignored = if self.profile.family == Family::Sinumerik840c && !self.engine.config.special_mode && (ob == 2 || ob == 5) {
-            Some(format!("normal mode: OB {ob} is not processed, even when it exists (seed 000, 5.3.1)"))
+        let (module, channel) = hardware.map_or((None, None), |source| {
+            (Some(source.module), Some(source.channel))
+        });
+        self.emit(
+            at,
+            Event::IrqRequest {
+                id,
+                ob,
+                module,
+                channel,
+                block,
+                line,
+            },
+        );
+        let ignored = if self.profile.family == Family::Sinumerik840c
+            && !self.engine.config.special_mode
+            && (ob == 2 || ob == 5)
+        {
+            Some(format!(
+                "normal mode: OB {ob} is not processed, even when it exists (seed 000, 5.3.1)"
+            ))
         } else if self.program.ob(ob).is_none() {
             Some(format!("OB {ob} is not programmed"))
         } else {
@@ -411,7 +504,12 @@ impl Cpu {
             self.emit(at, Event::IrqLost { id, ob, reason });
             return None;
         }
-        self.engine.pending.push(super::interrupts::Request { id, ob, requested_at: at, hardware });
+        self.engine.pending.push(super::interrupts::Request {
+            id,
+            ob,
+            requested_at: at,
+            hardware,
+        });
         Some(id)
     }
 
@@ -421,7 +519,11 @@ impl Cpu {
         if self.program.ob(13).is_none() || self.mode != Mode::Run {
             return Ok(());
         }
-        let running = self.engine.active.iter().any(|active| active.request.ob == 13);
+        let running = self
+            .engine
+            .active
+            .iter()
+            .any(|active| active.request.ob == 13);
         let pending = self.engine.pending.iter().any(|request| request.ob == 13);
         if running || pending || self.engine.ob13_ended_at > at {
             return Err(self.stop_at_last_op(StopCause::Weck, StopDetail::Ob(13)));
@@ -432,7 +534,13 @@ impl Cpu {
 
     /// SPEED7: a hardware interrupt event on a module's channel (seed 001).
     fn hardware_event(&mut self, at: u64, source: HardwareSource) -> Result<(), Stop> {
-        let Some(&(_, ob)) = self.engine.config.hw_modules.iter().find(|(module, _)| *module == source.module) else {
+        let Some(&(_, ob)) = self
+            .engine
+            .config
+            .hw_modules
+            .iter()
+            .find(|(module, _)| *module == source.module)
+        else {
             return Ok(());
         };
         match self.engine.run_started_at {
@@ -450,30 +558,76 @@ impl Cpu {
             let id = self.engine.new_id();
             self.engine.stats(ob).requested += 1;
             let (block, line) = self.place_of_request(at);
-            self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block, line });
-            let request = Request { id, ob, requested_at: at, hardware: Some(source) };
+            self.emit(
+                at,
+                Event::IrqRequest {
+                    id,
+                    ob,
+                    module: Some(source.module),
+                    channel: Some(source.channel),
+                    block,
+                    line,
+                },
+            );
+            let request = Request {
+                id,
+                ob,
+                requested_at: at,
+                hardware: Some(source),
+            };
             if channel == source.channel {
                 self.engine.stats(ob).lost += 1;
-                let reason = "same channel between identification and acknowledgement (seed 001)".to_string();
+                let reason = "same channel between identification and acknowledgement (seed 001)"
+                    .to_string();
                 self.emit(at, Event::IrqLost { id, ob, reason });
                 if self.program.ob(82).is_some() {
                     self.request(82, at, None);
                 }
             } else {
-                self.engine.held.push(Held { request, released_by: source.module });
+                self.engine.held.push(Held {
+                    request,
+                    released_by: source.module,
+                });
             }
             return Ok(());
         }
-        let ob_busy_for = self.engine.active.iter().map(|active| active.request).chain(self.engine.pending.iter().copied()).find_map(|request| {
-            (request.ob == ob).then_some(request.hardware).flatten().filter(|other| other.module != source.module)
-        });
+        let ob_busy_for = self
+            .engine
+            .active
+            .iter()
+            .map(|active| active.request)
+            .chain(self.engine.pending.iter().copied())
+            .find_map(|request| {
+                (request.ob == ob)
+                    .then_some(request.hardware)
+                    .flatten()
+                    .filter(|other| other.module != source.module)
+            });
         if let Some(other) = ob_busy_for {
             let id = self.engine.new_id();
             self.engine.stats(ob).requested += 1;
             let (block, line) = self.place_of_request(at);
-            self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block, line });
-            let request = Request { id, ob, requested_at: at, hardware: Some(source) };
-            self.engine.held.push(Held { request, released_by: other.module });
+            self.emit(
+                at,
+                Event::IrqRequest {
+                    id,
+                    ob,
+                    module: Some(source.module),
+                    channel: Some(source.channel),
+                    block,
+                    line,
+                },
+            );
+            let request = Request {
+                id,
+                ob,
+                requested_at: at,
+                hardware: Some(source),
+            };
+            self.engine.held.push(Held {
+                request,
+                released_by: other.module,
+            });
             return Ok(());
         }
         self.identify(at, ob, source)
@@ -486,12 +640,30 @@ impl Cpu {
         self.engine.stats(ob).requested += 1;
         let event = if source.active_until > run_started {
             self.engine.stats(ob).lost += 1;
-            Event::IrqLost { id, ob, reason: "hardware interrupt during the transition to RUN (seed 001)".into() }
+            Event::IrqLost {
+                id,
+                ob,
+                reason: "hardware interrupt during the transition to RUN (seed 001)".into(),
+            }
         } else {
             self.engine.stats(ob).ignored += 1;
-            Event::IrqIgnored { id, ob, reason: "no hardware interrupt is produced in STARTUP (seed 001)".into() }
+            Event::IrqIgnored {
+                id,
+                ob,
+                reason: "no hardware interrupt is produced in STARTUP (seed 001)".into(),
+            }
         };
-        self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block: None, line: None });
+        self.emit(
+            at,
+            Event::IrqRequest {
+                id,
+                ob,
+                module: Some(source.module),
+                channel: Some(source.channel),
+                block: None,
+                line: None,
+            },
+        );
         self.emit(at.max(run_started.min(self.clock)), event);
     }
 
@@ -504,17 +676,44 @@ impl Cpu {
             self.engine.stats(ob).requested += 1;
             self.engine.stats(ob).ignored += 1;
             let (block, line) = self.place_of_request(at);
-            self.emit(at, Event::IrqRequest { id, ob, module: Some(source.module), channel: Some(source.channel), block, line });
+            self.emit(
+                at,
+                Event::IrqRequest {
+                    id,
+                    ob,
+                    module: Some(source.module),
+                    channel: Some(source.channel),
+                    block,
+                    line,
+                },
+            );
             if self.program.ob(85).is_none() {
-                self.emit(at, Event::IrqIgnored { id, ob, reason: format!("OB {ob} is not programmed and OB 85 is missing (seed 001)") });
-                return Err(self.stop_at_last_op(StopCause::Ob85, StopDetail::Module { module: source.module, ob }));
+                self.emit(
+                    at,
+                    Event::IrqIgnored {
+                        id,
+                        ob,
+                        reason: format!(
+                            "OB {ob} is not programmed and OB 85 is missing (seed 001)"
+                        ),
+                    },
+                );
+                return Err(self.stop_at_last_op(
+                    StopCause::Ob85,
+                    StopDetail::Module {
+                        module: source.module,
+                        ob,
+                    },
+                ));
             }
             self.emit(at, Event::IrqIgnored { id, ob, reason: format!("OB {ob} is not programmed: OB 85 is called, the interrupt acknowledged (seed 001)") });
             self.request(85, at, None);
             return Ok(());
         }
         if let Some(id) = self.request(ob, at, Some(source)) {
-            self.engine.busy_modules.insert(source.module, (source.channel, id));
+            self.engine
+                .busy_modules
+                .insert(source.module, (source.channel, id));
         }
         Ok(())
     }
@@ -527,10 +726,18 @@ impl Cpu {
             .pending
             .iter()
             .enumerate()
-            .map(|(index, request)| (self.priority_of(request.ob), std::cmp::Reverse(request.requested_at), index))
+            .map(|(index, request)| {
+                (
+                    self.priority_of(request.ob),
+                    std::cmp::Reverse(request.requested_at),
+                    index,
+                )
+            })
             .filter(|(priority, _, _)| *priority > running)
             .max();
-        let Some((priority, _, index)) = best else { return Ok(false) };
+        let Some((priority, _, index)) = best else {
+            return Ok(false);
+        };
         let request = self.engine.pending.remove(index);
         let latency = self.clock - request.requested_at;
         self.engine.record_latency(request.ob, latency);
@@ -542,13 +749,16 @@ impl Cpu {
             _ => (!idle).then_some(self.block),
         };
         let interrupted = point_block.map(|block| self.block_id(block).to_string());
-        self.emit(self.clock, Event::IrqService {
-            id: request.id,
-            ob: request.ob,
-            latency_ns: latency,
-            point: point.name(),
-            block: interrupted,
-        });
+        self.emit(
+            self.clock,
+            Event::IrqService {
+                id: request.id,
+                ob: request.ob,
+                latency_ns: latency,
+                point: point.name(),
+                block: interrupted,
+            },
+        );
         self.levels.push(SavedLevel {
             accu1: self.accu1,
             accu2: self.accu2,
@@ -564,7 +774,10 @@ impl Cpu {
             last_point_at: self.last_point_at,
         });
         self.engine.active.push(Active { request, priority });
-        let block = self.program.ob(request.ob).expect("requests are only pending for programmed OBs");
+        let block = self
+            .program
+            .ob(request.ob)
+            .expect("requests are only pending for programmed OBs");
         self.enter_level(block);
         if request.ob == 13 && self.profile.family == Family::S5_95f {
             self.interrupt_input_cycle();
@@ -577,7 +790,13 @@ impl Cpu {
         let length = self.interrupt_pii.len();
         self.interrupt_pii.copy_from_slice(&self.inputs[..length]);
         let duration = u64::from(self.profile.timings.data_cycle);
-        self.emit(self.clock, Event::DataCycle { kind: "interrupt_input", duration_ns: duration });
+        self.emit(
+            self.clock,
+            Event::DataCycle {
+                kind: "interrupt_input",
+                duration_ns: duration,
+            },
+        );
         self.clock += duration;
         self.engine.interrupt_images = true;
         self.interrupt_piq_written = false;
@@ -598,20 +817,37 @@ impl Cpu {
         }
         self.interrupt_piq_written = false;
         let duration = u64::from(self.profile.timings.data_cycle);
-        self.emit(self.clock, Event::DataCycle { kind: "interrupt_output", duration_ns: duration });
+        self.emit(
+            self.clock,
+            Event::DataCycle {
+                kind: "interrupt_output",
+                duration_ns: duration,
+            },
+        );
         self.clock += duration;
     }
 
     /// The interrupt OB's level has ended: acknowledge, restore the interrupted level.
     pub fn leave_interrupt(&mut self) {
-        let Some(active) = self.engine.active.pop() else { return };
+        let Some(active) = self.engine.active.pop() else {
+            return;
+        };
         let request = active.request;
-        self.emit(self.clock, Event::IrqEnd { id: request.id, ob: request.ob });
+        self.emit(
+            self.clock,
+            Event::IrqEnd {
+                id: request.id,
+                ob: request.ob,
+            },
+        );
         if request.ob == 13 && self.profile.family == Family::S5_95f {
             self.interrupt_output_cycle();
             self.engine.ob13_ended_at = self.clock;
         }
-        let level = self.levels.pop().expect("an interrupt level has a saved level");
+        let level = self
+            .levels
+            .pop()
+            .expect("an interrupt level has a saved level");
         self.accu1 = level.accu1;
         self.accu2 = level.accu2;
         self.status = level.status;
@@ -632,21 +868,38 @@ impl Cpu {
     /// if still active, else they are lost (seed 001).
     fn acknowledge(&mut self, module: u16) {
         self.engine.busy_modules.remove(&module);
-        let (released, kept): (Vec<Held>, Vec<Held>) =
-            std::mem::take(&mut self.engine.held).into_iter().partition(|held| held.released_by == module);
+        let (released, kept): (Vec<Held>, Vec<Held>) = std::mem::take(&mut self.engine.held)
+            .into_iter()
+            .partition(|held| held.released_by == module);
         self.engine.held = kept;
         for held in released {
             let request = held.request;
-            let source = request.hardware.expect("held requests are hardware interrupts");
-            if self.clock < source.active_until && !self.engine.busy_modules.contains_key(&source.module) {
-                self.engine.busy_modules.insert(source.module, (source.channel, request.id));
+            let source = request
+                .hardware
+                .expect("held requests are hardware interrupts");
+            if self.clock < source.active_until
+                && !self.engine.busy_modules.contains_key(&source.module)
+            {
+                self.engine
+                    .busy_modules
+                    .insert(source.module, (source.channel, request.id));
                 self.engine.pending.push(request);
             } else if self.engine.busy_modules.contains_key(&source.module) {
-                self.engine.held.push(Held { request, released_by: source.module });
+                self.engine.held.push(Held {
+                    request,
+                    released_by: source.module,
+                });
             } else {
                 self.engine.stats(request.ob).lost += 1;
                 let reason = "no longer active at the acknowledgement (seed 001)".to_string();
-                self.emit(self.clock, Event::IrqLost { id: request.id, ob: request.ob, reason });
+                self.emit(
+                    self.clock,
+                    Event::IrqLost {
+                        id: request.id,
+                        ob: request.ob,
+                        reason,
+                    },
+                );
             }
         }
     }

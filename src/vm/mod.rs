@@ -266,7 +266,13 @@ impl Cpu {
     /// The block stack, innermost first: the running block, then each return point.
     /// Interrupted levels follow, each with its own return points.
     pub fn block_stack(&self, pc: u32) -> Vec<(u16, u32)> {
-        let calls = |frames: &[Frame]| frames.iter().rev().map(|frame| (frame.block, frame.pc.saturating_sub(1))).collect::<Vec<_>>();
+        let calls = |frames: &[Frame]| {
+            frames
+                .iter()
+                .rev()
+                .map(|frame| (frame.block, frame.pc.saturating_sub(1)))
+                .collect::<Vec<_>>()
+        };
         let mut stack = vec![(self.block, pc)];
         let (mut base, mut top) = (self.level_base, self.frames.len());
         stack.extend(calls(&self.frames[base..top]));
@@ -287,16 +293,35 @@ impl Cpu {
     pub fn stop(&self, cause: StopCause, pc: u32, detail: StopDetail) -> Stop {
         let (block, pc) = if self.block == IDLE {
             let ob1 = self.program.ob(1).unwrap_or(0);
-            (ob1, self.program.blocks.get(usize::from(ob1)).map_or(0, |b| b.code.len().saturating_sub(1) as u32))
+            (
+                ob1,
+                self.program
+                    .blocks
+                    .get(usize::from(ob1))
+                    .map_or(0, |b| b.code.len().saturating_sub(1) as u32),
+            )
         } else {
             (self.block, pc)
         };
-        let stack = if self.block == IDLE { vec![(block, pc)] } else { self.block_stack(pc) };
+        let stack = if self.block == IDLE {
+            vec![(block, pc)]
+        } else {
+            self.block_stack(pc)
+        };
         let stack = stack
             .into_iter()
-            .map(|(block, pc)| StackEntry { block: self.block_id(block).to_string(), line: self.line_of(block, pc, &self.sources) })
+            .map(|(block, pc)| StackEntry {
+                block: self.block_id(block).to_string(),
+                line: self.line_of(block, pc, &self.sources),
+            })
             .collect();
-        Stop { cause, block, pc, detail, stack }
+        Stop {
+            cause,
+            block,
+            pc,
+            detail,
+            stack,
+        }
     }
 
     /// Resolves an actual parameter of the running FB, following parameters passed on from the
@@ -306,7 +331,11 @@ impl Cpu {
         let mut frames = self.frames[self.level_base..].iter().rev();
         let mut index = param;
         loop {
-            let actual = *self.program.param_lists.get(usize::from(list))?.get(usize::from(index))?;
+            let actual = *self
+                .program
+                .param_lists
+                .get(usize::from(list))?
+                .get(usize::from(index))?;
             match actual {
                 Resolved::Formal(outer) => {
                     list = frames.next()?.params;

@@ -72,7 +72,11 @@ impl Status {
 
     #[inline(always)]
     pub fn or(&mut self, value: bool) {
-        let before = if self.get(FIRST_CHECK_DONE) { self.get(RLO) } else { self.get(OR_BIT) };
+        let before = if self.get(FIRST_CHECK_DONE) {
+            self.get(RLO)
+        } else {
+            self.get(OR_BIT)
+        };
         self.bits = self.bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | u8::from(before | value);
     }
 
@@ -131,7 +135,10 @@ impl Brackets {
         if self.depth >= limit.min(MAX_BRACKETS as u8) {
             return false;
         }
-        self.stack[usize::from(self.depth)] = Bracket { status: *status, or };
+        self.stack[usize::from(self.depth)] = Bracket {
+            status: *status,
+            or,
+        };
         self.depth += 1;
         status.end_string();
         true
@@ -148,7 +155,11 @@ impl Brackets {
         let codes = *status;
         *status = outer.status;
         status.set_condition(codes.cc1(), codes.cc0());
-        if outer.or { status.or(inner) } else { status.and(inner) }
+        if outer.or {
+            status.or(inner)
+        } else {
+            status.and(inner)
+        }
         true
     }
 }
@@ -219,7 +230,16 @@ mod tests {
     fn nested_brackets() {
         for bits in 0..16u8 {
             let [a, b, c, d] = [0, 1, 2, 3].map(|i| bits >> i & 1 == 1);
-            let rlo = string(&[("A", a), ("A(", false), ("O", b), ("O(", false), ("A", c), ("A", d), (")", false), (")", false)]);
+            let rlo = string(&[
+                ("A", a),
+                ("A(", false),
+                ("O", b),
+                ("O(", false),
+                ("A", c),
+                ("A", d),
+                (")", false),
+                (")", false),
+            ]);
             assert_eq!(rlo, a & (b | (c & d)), "{a} {b} {c} {d}");
         }
     }

@@ -53,8 +53,15 @@ pub struct StackEntry {
 /// The runtime STOP as a diagnostic.
 #[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
 pub enum StopError {
-    #[error("STOP ZYK: cycle time {cycle_ms} ms exceeded the watchdog ({watchdog_ms} ms) in {block}")]
-    #[diagnostic(code(awl::stop::zyk), help("{stack}\nshorten the cycle, or raise the watchdog in the scenario (`watchdog = \"300ms\"`)"))]
+    #[error(
+        "STOP ZYK: cycle time {cycle_ms} ms exceeded the watchdog ({watchdog_ms} ms) in {block}"
+    )]
+    #[diagnostic(
+        code(awl::stop::zyk),
+        help(
+            "{stack}\nshorten the cycle, or raise the watchdog in the scenario (`watchdog = \"300ms\"`)"
+        )
+    )]
     CycleTime {
         cycle_ms: String,
         watchdog_ms: String,
@@ -65,7 +72,10 @@ pub enum StopError {
     },
 
     #[error("STOP STUEB: block nesting deeper than {limit} in {block}")]
-    #[diagnostic(code(awl::stop::stueb), help("{stack}\nthe CPU allows {limit} nested blocks; look for a block that calls itself"))]
+    #[diagnostic(
+        code(awl::stop::stueb),
+        help("{stack}\nthe CPU allows {limit} nested blocks; look for a block that calls itself")
+    )]
     Nesting {
         limit: u16,
         block: String,
@@ -75,7 +85,10 @@ pub enum StopError {
     },
 
     #[error("STOP LZF: {target} is not loaded")]
-    #[diagnostic(code(awl::stop::lzf_block), help("{stack}\nadd {target} to the program or load the file that holds it"))]
+    #[diagnostic(
+        code(awl::stop::lzf_block),
+        help("{stack}\nadd {target} to the program or load the file that holds it")
+    )]
     BlockNotLoaded {
         target: String,
         #[label("called or opened here")]
@@ -84,7 +97,10 @@ pub enum StopError {
     },
 
     #[error("STOP LZF: {problem}")]
-    #[diagnostic(code(awl::stop::lzf_data), help("{stack}\nopen a data block long enough with `C DB n` before using DW/DL/DR/DD/D"))]
+    #[diagnostic(
+        code(awl::stop::lzf_data),
+        help("{stack}\nopen a data block long enough with `C DB n` before using DW/DL/DR/DD/D")
+    )]
     DataAccess {
         problem: String,
         #[label("data access here")]
@@ -102,7 +118,10 @@ pub enum StopError {
     },
 
     #[error("STOP STP: the program executed STP")]
-    #[diagnostic(code(awl::stop::stp), help("{stack}\nSTP sends the CPU to STOP at the end of the cycle"))]
+    #[diagnostic(
+        code(awl::stop::stp),
+        help("{stack}\nSTP sends the CPU to STOP at the end of the cycle")
+    )]
     StopOperation {
         #[label("STP")]
         at: Span,
@@ -110,7 +129,12 @@ pub enum StopError {
     },
 
     #[error("STOP WECK: OB {ob} was due again before it had finished")]
-    #[diagnostic(code(awl::stop::weck), help("{stack}\nthe wake-up error of seed 002: lengthen the OB 13 interval, shorten OB 13, or reduce the interrupts that delay it"))]
+    #[diagnostic(
+        code(awl::stop::weck),
+        help(
+            "{stack}\nthe wake-up error of seed 002: lengthen the OB 13 interval, shorten OB 13, or reduce the interrupts that delay it"
+        )
+    )]
     WakeUp {
         ob: u8,
         #[label("running here when OB {ob} was due")]
@@ -118,8 +142,15 @@ pub enum StopError {
         stack: String,
     },
 
-    #[error("STOP OB85: hardware interrupt of module {module} has no OB, and OB 85 is not programmed")]
-    #[diagnostic(code(awl::stop::ob85), help("{stack}\nprogram OB {ob} for the module, or OB 85 to handle the missing OB (seed 001)"))]
+    #[error(
+        "STOP OB85: hardware interrupt of module {module} has no OB, and OB 85 is not programmed"
+    )]
+    #[diagnostic(
+        code(awl::stop::ob85),
+        help(
+            "{stack}\nprogram OB {ob} for the module, or OB 85 to handle the missing OB (seed 001)"
+        )
+    )]
     MissingOb85 {
         module: u16,
         ob: u8,

@@ -48,7 +48,10 @@ impl Default for Timer {
 /// The time value (0…999, BCD in bits 0–11) and base (bits 12–13) of a KT word.
 pub fn decode_time(word: u32) -> (u16, u8) {
     let digit = |shift: u32| ((word >> shift) & 0xF).min(9) as u16;
-    (digit(8) * 100 + digit(4) * 10 + digit(0), ((word >> 12) & 3) as u8)
+    (
+        digit(8) * 100 + digit(4) * 10 + digit(0),
+        ((word >> 12) & 3) as u8,
+    )
 }
 
 impl Timer {
@@ -196,20 +199,62 @@ mod tests {
 
     #[test]
     fn pulse_ends_early_when_the_rlo_drops() {
-        assert_eq!(run(TimerKind::Pulse, &[(0, true), (500, true), (1000, true)]), [true, true, false]);
-        assert_eq!(run(TimerKind::Pulse, &[(0, true), (300, false), (500, true)]), [true, false, true]);
+        assert_eq!(
+            run(TimerKind::Pulse, &[(0, true), (500, true), (1000, true)]),
+            [true, true, false]
+        );
+        assert_eq!(
+            run(TimerKind::Pulse, &[(0, true), (300, false), (500, true)]),
+            [true, false, true]
+        );
     }
 
     #[test]
     fn extended_pulse_runs_on_and_retriggers() {
-        assert_eq!(run(TimerKind::ExtendedPulse, &[(0, true), (100, false), (999, false), (1000, false)]), [true, true, true, false]);
-        assert_eq!(run(TimerKind::ExtendedPulse, &[(0, true), (800, false), (900, true), (1500, true), (1900, true)]), [true, true, true, true, false]);
+        assert_eq!(
+            run(
+                TimerKind::ExtendedPulse,
+                &[(0, true), (100, false), (999, false), (1000, false)]
+            ),
+            [true, true, true, false]
+        );
+        assert_eq!(
+            run(
+                TimerKind::ExtendedPulse,
+                &[
+                    (0, true),
+                    (800, false),
+                    (900, true),
+                    (1500, true),
+                    (1900, true)
+                ]
+            ),
+            [true, true, true, true, false]
+        );
     }
 
     #[test]
     fn on_delay_needs_the_rlo_throughout() {
-        assert_eq!(run(TimerKind::OnDelay, &[(0, true), (999, true), (1000, true), (1200, false)]), [false, false, true, false]);
-        assert_eq!(run(TimerKind::OnDelay, &[(0, true), (500, false), (600, true), (1500, true), (1600, true)]), [false, false, false, false, true]);
+        assert_eq!(
+            run(
+                TimerKind::OnDelay,
+                &[(0, true), (999, true), (1000, true), (1200, false)]
+            ),
+            [false, false, true, false]
+        );
+        assert_eq!(
+            run(
+                TimerKind::OnDelay,
+                &[
+                    (0, true),
+                    (500, false),
+                    (600, true),
+                    (1500, true),
+                    (1600, true)
+                ]
+            ),
+            [false, false, false, false, true]
+        );
     }
 
     #[test]
@@ -227,10 +272,25 @@ mod tests {
     #[test]
     fn off_delay_starts_on_the_falling_edge() {
         assert_eq!(
-            run(TimerKind::OffDelay, &[(0, false), (10, true), (20, false), (1019, false), (1020, false)]),
+            run(
+                TimerKind::OffDelay,
+                &[
+                    (0, false),
+                    (10, true),
+                    (20, false),
+                    (1019, false),
+                    (1020, false)
+                ]
+            ),
             [false, true, true, true, false]
         );
-        assert_eq!(run(TimerKind::OffDelay, &[(0, true), (10, false), (500, true), (2000, true)]), [true, true, true, true]);
+        assert_eq!(
+            run(
+                TimerKind::OffDelay,
+                &[(0, true), (10, false), (500, true), (2000, true)]
+            ),
+            [true, true, true, true]
+        );
     }
 
     #[test]

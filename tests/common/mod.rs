@@ -12,11 +12,20 @@ use awl::vm::cycle::{RunLimit, RunOutcome};
 use awl::vm::interrupts::{Engine, EngineConfig, Scheduled};
 
 /// Compiles `source` for `cpu` (it must be free of errors) and runs it.
-pub fn run_with(source: &str, cpu: &str, limit: RunLimit, config: EngineConfig, schedule: Vec<Scheduled>) -> (Cpu, RunOutcome) {
+pub fn run_with(
+    source: &str,
+    cpu: &str,
+    limit: RunLimit,
+    config: EngineConfig,
+    schedule: Vec<Scheduled>,
+) -> (Cpu, RunOutcome) {
     let profile = profile::find(cpu).expect("known profile");
     let built = frontend::build_text("test.awl", source, profile);
     assert!(!built.has_errors(), "{:#?}", built.diagnostics);
-    let mut cpu = Cpu::new(Arc::new(built.compiled.program.clone()), Arc::new(built.sources.clone()));
+    let mut cpu = Cpu::new(
+        Arc::new(built.compiled.program.clone()),
+        Arc::new(built.sources.clone()),
+    );
     cpu.engine = Engine::new(config, schedule);
     let outcome = cpu.run(limit);
     (cpu, outcome)
@@ -24,7 +33,13 @@ pub fn run_with(source: &str, cpu: &str, limit: RunLimit, config: EngineConfig, 
 
 /// One cycle on the default CPU.
 pub fn run_once(source: &str) -> (Cpu, RunOutcome) {
-    run_with(source, "sinumerik-840c", RunLimit::Cycles(1), EngineConfig::default(), Vec::new())
+    run_with(
+        source,
+        "sinumerik-840c",
+        RunLimit::Cycles(1),
+        EngineConfig::default(),
+        Vec::new(),
+    )
 }
 
 /// Flag word `n` as a signed number.
@@ -35,7 +50,12 @@ pub fn fw(cpu: &Cpu, n: usize) -> i16 {
 
 pub fn fd(cpu: &Cpu, n: usize) -> u32 {
     let base = 2 * usize::from(cpu.program.layout.image_bytes) + n;
-    u32::from_be_bytes([cpu.image[base], cpu.image[base + 1], cpu.image[base + 2], cpu.image[base + 3]])
+    u32::from_be_bytes([
+        cpu.image[base],
+        cpu.image[base + 1],
+        cpu.image[base + 2],
+        cpu.image[base + 3],
+    ])
 }
 
 pub fn flag(cpu: &Cpu, byte: usize, bit: u8) -> bool {
@@ -54,7 +74,10 @@ pub fn run_scenario(name: &str, program: &str, scenario: &str) -> Result<Ran, No
     std::fs::write(dir.join("program.awl"), program).unwrap();
     let path = dir.join("scenario.toml");
     std::fs::write(&path, format!("program = [\"program.awl\"]\n{scenario}")).unwrap();
-    runner::run(&RunOptions { scenario: Some(path), ..RunOptions::default() })
+    runner::run(&RunOptions {
+        scenario: Some(path),
+        ..RunOptions::default()
+    })
 }
 
 pub fn ran(result: Result<Ran, NotRun>) -> Ran {
