@@ -152,6 +152,8 @@ impl Cpu {
             self.block = block;
             return Err(self.stop(StopCause::Stp, pc, super::stop::StopDetail::None));
         }
+        // Requests of the operating-system time are logged before the cycle end.
+        self.poll()?;
         let cycle_time = self.clock - self.cycle_started_at;
         if self.tracer.enabled {
             self.tracer.emit(
