@@ -462,11 +462,19 @@ impl Cpu {
         (name, None)
     }
 
-    /// An interrupt request for an OB: ignored, lost, or pending.
-    fn request(&mut self, ob: u8, at: u64, hardware: Option<HardwareSource>) -> Option<u64> {
+    /// Logs and counts a request; the caller decides what becomes of it.
+    fn announce(&mut self, ob: u8, at: u64, hardware: Option<HardwareSource>) -> Request {
         let id = self.engine.new_id();
         self.engine.stats(ob).requested += 1;
-        let (block, line) = self.place_of_request(at);
+        let (block, line) = if self
+            .engine
+            .run_started_at
+            .is_some_and(|started| at >= started)
+        {
+            self.place_of_request(at)
+        } else {
+            (None, None)
+        };
         let (module, channel) = hardware.map_or((None, None), |source| {
             (Some(source.module), Some(source.channel))
         });
@@ -481,6 +489,17 @@ impl Cpu {
                 line,
             },
         );
+        Request {
+            id,
+            ob,
+            requested_at: at,
+            hardware,
+        }
+    }
+
+    /// An interrupt request for an OB: ignored, lost, or pending.
+    fn request(&mut self, ob: u8, at: u64, hardware: Option<HardwareSource>) -> Option<u64> {
+        let id = self.announce(ob, at, hardware).id;
         let ignored = if self.profile.family == Family::Sinumerik840c
             && !self.engine.config.special_mode
             && (ob == 2 || ob == 5)
@@ -555,26 +574,8 @@ impl Cpu {
             Some(_) => {}
         }
         if let Some(&(channel, _)) = self.engine.busy_modules.get(&source.module) {
-            let id = self.engine.new_id();
-            self.engine.stats(ob).requested += 1;
-            let (block, line) = self.place_of_request(at);
-            self.emit(
-                at,
-                Event::IrqRequest {
-                    id,
-                    ob,
-                    module: Some(source.module),
-                    channel: Some(source.channel),
-                    block,
-                    line,
-                },
-            );
-            let request = Request {
-                id,
-                ob,
-                requested_at: at,
-                hardware: Some(source),
-            };
+            let request = self.announce(ob, at, Some(source));
+            let id = request.id;
             if channel == source.channel {
                 self.engine.stats(ob).lost += 1;
                 let reason = "same channel between identification and acknowledgement (seed 001)"
@@ -604,26 +605,7 @@ impl Cpu {
                     .filter(|other| other.module != source.module)
             });
         if let Some(other) = ob_busy_for {
-            let id = self.engine.new_id();
-            self.engine.stats(ob).requested += 1;
-            let (block, line) = self.place_of_request(at);
-            self.emit(
-                at,
-                Event::IrqRequest {
-                    id,
-                    ob,
-                    module: Some(source.module),
-                    channel: Some(source.channel),
-                    block,
-                    line,
-                },
-            );
-            let request = Request {
-                id,
-                ob,
-                requested_at: at,
-                hardware: Some(source),
-            };
+            let request = self.announce(ob, at, Some(source));
             self.engine.held.push(Held {
                 request,
                 released_by: other.module,
@@ -636,8 +618,7 @@ impl Cpu {
     /// A hardware event from before RUN: none is produced in STARTUP, and one still active at
     /// the transition to RUN is lost (seed 001).
     fn before_run_event(&mut self, at: u64, ob: u8, source: HardwareSource, run_started: u64) {
-        let id = self.engine.new_id();
-        self.engine.stats(ob).requested += 1;
+        let id = self.announce(ob, at, Some(source)).id;
         let event = if source.active_until > run_started {
             self.engine.stats(ob).lost += 1;
             Event::IrqLost {
@@ -653,17 +634,6 @@ impl Cpu {
                 reason: "no hardware interrupt is produced in STARTUP (seed 001)".into(),
             }
         };
-        self.emit(
-            at,
-            Event::IrqRequest {
-                id,
-                ob,
-                module: Some(source.module),
-                channel: Some(source.channel),
-                block: None,
-                line: None,
-            },
-        );
         self.emit(at.max(run_started.min(self.clock)), event);
     }
 
@@ -672,21 +642,8 @@ impl Cpu {
     /// OB 85 stops the CPU.
     fn identify(&mut self, at: u64, ob: u8, source: HardwareSource) -> Result<(), Stop> {
         if self.program.ob(ob).is_none() {
-            let id = self.engine.new_id();
-            self.engine.stats(ob).requested += 1;
+            let id = self.announce(ob, at, Some(source)).id;
             self.engine.stats(ob).ignored += 1;
-            let (block, line) = self.place_of_request(at);
-            self.emit(
-                at,
-                Event::IrqRequest {
-                    id,
-                    ob,
-                    module: Some(source.module),
-                    channel: Some(source.channel),
-                    block,
-                    line,
-                },
-            );
             if self.program.ob(85).is_none() {
                 self.emit(
                     at,

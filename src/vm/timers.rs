@@ -91,10 +91,12 @@ impl Timer {
         self.kind = kind;
         self.input = rlo;
         match kind {
-            TimerKind::Pulse => {
+            TimerKind::Pulse | TimerKind::OnDelay => {
+                // Both stop when the RLO drops; the pulse is 1 while it runs, the on-delay
+                // only once it has run out.
                 if rising {
                     self.start(now, time_word);
-                    self.output = true;
+                    self.output = kind == TimerKind::Pulse;
                 } else if !rlo {
                     if self.running {
                         self.stop(now);
@@ -106,17 +108,6 @@ impl Timer {
                 if rising {
                     self.start(now, time_word);
                     self.output = true;
-                }
-            }
-            TimerKind::OnDelay => {
-                if rising {
-                    self.start(now, time_word);
-                    self.output = false;
-                } else if !rlo {
-                    if self.running {
-                        self.stop(now);
-                    }
-                    self.output = false;
                 }
             }
             TimerKind::StoredOnDelay => {
