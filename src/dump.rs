@@ -2,7 +2,9 @@
 
 use std::fmt::Write as _;
 
-use crate::compiler::bytecode::{BitSource, BitTarget, ImageBit, IndirectSource, Op, Width};
+use crate::compiler::bytecode::{
+    BitSource, BitTarget, DataPart, ImageBit, IndirectSource, Op, Width,
+};
 use crate::compiler::{Layout, Program};
 use crate::source::SourceSet;
 
@@ -105,9 +107,69 @@ pub fn op_text(op: Op, program: &Program) -> String {
                 bit_target(layout, target)
             )
         }
-        Op::Formal { op, param } => format!("formal {op:?} param {param}").to_lowercase(),
-        other => format!("{other:?}").to_lowercase(),
+        Op::Formal { op, param } => format!("{} =param {}", kebab(&format!("{op:?}")), param + 1),
+        Op::LoadPeripheral {
+            width,
+            byte,
+            extended,
+        }
+        | Op::TransferPeripheral {
+            width,
+            byte,
+            extended,
+        } => {
+            let verb = if matches!(op, Op::LoadPeripheral { .. }) {
+                "load"
+            } else {
+                "transfer"
+            };
+            let area = match (extended, width) {
+                (false, Width::Byte) => "PY",
+                (false, _) => "PW",
+                (true, Width::Byte) => "OY",
+                (true, _) => "OW",
+            };
+            format!("{verb} {area} {byte}")
+        }
+        Op::LoadData(part, word) | Op::TransferData(part, word) => {
+            let verb = if matches!(op, Op::LoadData(..)) {
+                "load"
+            } else {
+                "transfer"
+            };
+            let area = match part {
+                DataPart::Left => "DL",
+                DataPart::Right => "DR",
+                DataPart::Word => "DW",
+                DataPart::Double => "DD",
+            };
+            format!("{verb} {area} {word}")
+        }
+        Op::OpenDb(number) => format!("open DB {number}"),
+        Op::GenerateDb(number) => format!("generate DB {number}"),
+        other => kebab(&format!("{other:?}")),
     }
+}
+
+/// `StartTimer(OnDelay, 1)` → `start-timer on-delay 1`: Debug names made readable.
+fn kebab(debug: &str) -> String {
+    let mut out = String::new();
+    let mut previous_lower = false;
+    for c in debug.chars() {
+        match c {
+            '(' | ',' => out.push(' '),
+            ')' => {}
+            c if c.is_ascii_uppercase() => {
+                if previous_lower {
+                    out.push('-');
+                }
+                out.push(c.to_ascii_lowercase());
+            }
+            c => out.push(c),
+        }
+        previous_lower = c.is_ascii_lowercase();
+    }
+    out.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 /// The whole dump: a header line per block, then one line per op.
