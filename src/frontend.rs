@@ -30,6 +30,8 @@ pub struct Frontend {
     pub sources: SourceSet,
     pub compiled: Compiled,
     pub diagnostics: Vec<SourceDiagnostic>,
+    /// The mnemonic set of each file, detected or forced.
+    pub mnemonics: Vec<MnemonicSet>,
 }
 
 impl Frontend {
@@ -78,10 +80,12 @@ pub fn build(
         let span = diagnostic.span();
         (span.file, span.start)
     });
+    let mnemonics = units.iter().map(|unit| unit.mnemonics).collect();
     Frontend {
         sources,
         compiled,
         diagnostics,
+        mnemonics,
     }
 }
 

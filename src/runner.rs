@@ -120,11 +120,7 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         return Err(NotRun::SourceErrors);
     }
     let program = Arc::new(built.compiled.program.clone());
-    let set = options.mnemonics.unwrap_or_else(|| {
-        crate::parser::parse_file(0, &built.sources.get(0).text, None)
-            .unit
-            .mnemonics
-    });
+    let set = built.mnemonics.first().copied().unwrap_or(MnemonicSet::English);
     let (schedule, expectations) = match &scenario {
         Some(scenario) => {
             let schedule = scenario
