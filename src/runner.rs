@@ -120,7 +120,11 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         return Err(NotRun::SourceErrors);
     }
     let program = Arc::new(built.compiled.program.clone());
-    let set = built.mnemonics.first().copied().unwrap_or(MnemonicSet::English);
+    let set = built
+        .mnemonics
+        .first()
+        .copied()
+        .unwrap_or(MnemonicSet::English);
     let (schedule, expectations) = match &scenario {
         Some(scenario) => {
             let schedule = scenario

@@ -120,3 +120,81 @@ fn crlf_and_latin1_files_parse() {
     assert!(built.diagnostics.is_empty(), "{:#?}", built.diagnostics);
     assert_eq!(built.compiled.program.blocks[0].code.len(), 3);
 }
+
+/// Mutated scenario files never panic the scenario loader or resolver.
+fn scenario_samples() -> Vec<(std::path::PathBuf, String)> {
+    let mut files: Vec<_> = std::fs::read_dir("programs")
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|ext| ext == "toml"))
+        .collect();
+    files.sort();
+    files
+        .into_iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(&path).unwrap();
+            (path, text)
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    #[test]
+    fn mutated_scenarios(index in any::<usize>(), mutations in prop::collection::vec(mutation(), 1..8)) {
+        let samples = scenario_samples();
+        let (path, text) = &samples[index % samples.len()];
+        let mutated = String::from_utf8_lossy(&apply(text.clone().into_bytes(), &mutations)).into_owned();
+        if let Ok(scenario) = awl::scenario::Scenario::parse(path, &mutated) {
+            let program_text = std::fs::read_to_string("programs/fig5_2_interrupt.awl").unwrap();
+            let cpu = scenario.cpu.unwrap_or(profile::find("sinumerik-840c").unwrap());
+            let built = frontend::build_text("p.awl", &program_text, cpu);
+            let set = awl::mnemonics::MnemonicSet::English;
+            if let Err(error) = scenario.schedule(&built.compiled.program, set) {
+                let _ = render_plain(&scenario.report(error));
+            }
+            if let Err(error) = scenario.expectations(&built.compiled.program, set) {
+                let _ = render_plain(&scenario.report(error));
+            }
+        }
+    }
+}
+
+/// Random programs from the whole operation table run on every CPU without a panic: whatever
+/// they do ends in RUN or in a STOP with a cause.
+fn random_fb(picks: &[(usize, bool)]) -> String {
+    let mut body = String::new();
+    for (index, labelled) in picks {
+        let info = &awl::mnemonics::OPERATIONS[index % awl::mnemonics::OPERATIONS.len()];
+        if info.op == awl::mnemonics::OpCode::BlockEnd {
+            continue;
+        }
+        let label = if *labelled { "M001 :" } else { "      " };
+        body.push_str(&format!("{label}{} {}\n", info.en, info.example_en));
+    }
+    format!(
+        "OB 1\n      C  DB 10\n      JU FB 1\nNAME :R\nX    :I 0.0\n      BE\nFB 1\nNAME :R\nDES  :X I BI\n{body}M001 :NOP 0\n      BE\nPB 3\n      BE\nFB 5\n      BE\nDB 10\n 0: KF +1\n 1: KF +2\n 2: KF +3\n"
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_programs_run_without_panic(picks in prop::collection::vec((any::<usize>(), prop::bool::weighted(0.05)), 1..40)) {
+        let source = random_fb(&picks);
+        for cpu in profile::PROFILES {
+            let built = frontend::build_text("random.awl", &source, cpu);
+            if built.has_errors() {
+                continue;
+            }
+            let mut machine = awl::vm::Cpu::new(
+                std::sync::Arc::new(built.compiled.program.clone()),
+                std::sync::Arc::new(built.sources.clone()),
+            );
+            let outcome = machine.run(awl::vm::cycle::RunLimit::Cycles(3));
+            prop_assert!(outcome.stop.is_some() || outcome.cycles == 3);
+        }
+    }
+}
