@@ -303,7 +303,7 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
         (
             OpenDb,
             R::Block {
-                kind: BlockKind::Db | BlockKind::Dx,
+                kind: BlockKind::Db,
                 number,
                 ..
             },

@@ -549,9 +549,9 @@ impl<'a> Compiler<'a> {
                     mnemonics::op_word(set, OpCode::OpenDb)
                 ))
             }
-            (OpCode::OpenDb, Resolved::Block { .. }) => {
-                Some("only data blocks (DB, DX) can be opened".to_string())
-            }
+            (OpCode::OpenDb, Resolved::Block { .. }) => Some(
+                "`C DB n` opens a data block (DB); DX blocks are not opened by `C`".to_string(),
+            ),
             _ => {
                 let info = mnemonics::op_info(statement.op);
                 let example = match set {
