@@ -249,3 +249,16 @@ fn watchdog_stops_an_endless_loop() {
     assert_eq!(stop.cause, StopCause::Zyk);
     assert_eq!(stop.stack[0].block, "FB 1");
 }
+
+#[test]
+fn do_must_not_modify_another_do() {
+    let built = awl::frontend::build_text(
+        "do.awl",
+        &fb("      DO FW 0\n      DO FW 2\n      L  DW 0"),
+        awl::profile::find("sinumerik-840c").unwrap(),
+    );
+    assert!(built.diagnostics.iter().any(|d| matches!(
+        d,
+        awl::diagnostics::SourceDiagnostic::Check(awl::compiler::CheckError::IndirectTarget { .. })
+    )));
+}

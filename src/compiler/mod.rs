@@ -383,7 +383,8 @@ impl<'a> Compiler<'a> {
         next: Option<&Statement>,
     ) -> Option<u16> {
         let op_word = mnemonics::op_word(context.set, statement.op).to_string();
-        let Some(next) = next else {
+        // The next operation must take an operand, and may not be another `DO`.
+        let Some(next) = next.filter(|next| next.op != OpCode::Indirect) else {
             return self.fail(CheckError::IndirectTarget {
                 op: op_word,
                 at: statement.op_span,

@@ -373,7 +373,9 @@ impl Cpu {
             Resolved::Number(_) => Resolved::Number(value & 0xFF),
             _ => return None,
         };
+        // Only operations the loop runs directly can be substituted.
         lower::lower(code, operand, self.program.layout, NO_PARAMS)
+            .filter(|op| !matches!(op, Op::Indirect { .. } | Op::Formal { .. }))
     }
 
     pub(super) fn data_word(&self, word: u16) -> Option<u16> {
