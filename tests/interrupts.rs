@@ -469,7 +469,7 @@ fn seed001_other_channel_is_held_until_acknowledgement() {
         "s001_hold",
         SPEED7_OBS,
         &speed7(
-            &[("1ms", 4, 1, "5us"), ("1.01ms", 4, 2, "500us")],
+            &[("1ms", 4, 1, "5us"), ("1.05ms", 4, 2, "500us")],
             "[expect]\n\"FW 40\" = 2\n\"FW 82\" = 0\n",
         ),
     );
@@ -478,7 +478,7 @@ fn seed001_other_channel_is_held_until_acknowledgement() {
         "s001_hold_gone",
         SPEED7_OBS,
         &speed7(
-            &[("1ms", 4, 1, "5us"), ("1.01ms", 4, 2, "5us")],
+            &[("1ms", 4, 1, "5us"), ("1.05ms", 4, 2, "5us")],
             "[expect]\n\"FW 40\" = 1\n",
         ),
     );
@@ -500,7 +500,7 @@ fn seed001_busy_ob_for_another_module() {
         "s001_busy",
         SPEED7_OBS,
         &speed7(
-            &[("1ms", 4, 1, "5us"), ("1.01ms", 5, 1, "500us")],
+            &[("1ms", 4, 1, "5us"), ("1.05ms", 5, 1, "500us")],
             "[expect]\n\"FW 40\" = 2\n",
         ),
     );
@@ -509,7 +509,7 @@ fn seed001_busy_ob_for_another_module() {
         "s001_busy_gone",
         SPEED7_OBS,
         &speed7(
-            &[("1ms", 4, 1, "5us"), ("1.01ms", 5, 1, "5us")],
+            &[("1ms", 4, 1, "5us"), ("1.05ms", 5, 1, "5us")],
             "[expect]\n\"FW 40\" = 1\n",
         ),
     );
