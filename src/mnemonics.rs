@@ -3,10 +3,9 @@
 //!
 //! `grammar/mnemonics.md` documents this table; a test keeps both in step.
 
-use std::collections::HashMap;
 use std::sync::OnceLock;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum MnemonicSet {
     English,
     German,
@@ -906,62 +905,78 @@ pub fn key(word: &str) -> Option<u64> {
     Some(u64::from_le_bytes(packed))
 }
 
-struct Tables {
-    operations: HashMap<(MnemonicSet, u64), OpInfo>,
-    areas: HashMap<(MnemonicSet, u64), Area>,
-    constants: HashMap<(MnemonicSet, u64), ConstFormat>,
-    param_kinds: HashMap<(MnemonicSet, u64), ParamKind>,
+/// Words of one kind, sorted by (set, packed word) for binary search.
+struct Table<V> {
+    entries: Vec<((MnemonicSet, u64), V)>,
 }
 
-fn fill<T: Copy, V: Copy>(
-    rows: &[T],
-    words: impl Fn(&T) -> (&'static str, &'static str),
-    value: impl Fn(&T) -> V,
-) -> HashMap<(MnemonicSet, u64), V> {
-    let mut map = HashMap::new();
-    for row in rows {
-        let (en, de) = words(row);
-        for (set, word) in [(MnemonicSet::English, en), (MnemonicSet::German, de)] {
-            map.insert(
-                (set, key(word).expect("table words are short ASCII")),
-                value(row),
-            );
+impl<V: Copy> Table<V> {
+    fn new<T>(
+        rows: &[T],
+        words: impl Fn(&T) -> (&'static str, &'static str),
+        value: impl Fn(&T) -> V,
+    ) -> Self {
+        let mut entries = Vec::with_capacity(rows.len() * 2);
+        for row in rows {
+            let (en, de) = words(row);
+            for (set, word) in [(MnemonicSet::English, en), (MnemonicSet::German, de)] {
+                entries.push((
+                    (set, key(word).expect("table words are short ASCII")),
+                    value(row),
+                ));
+            }
         }
+        entries.sort_by_key(|(slot, _)| *slot);
+        entries.dedup_by_key(|(slot, _)| *slot);
+        Table { entries }
     }
-    map
+
+    fn get(&self, set: MnemonicSet, word: &str) -> Option<V> {
+        let slot = (set, key(word)?);
+        let index = self
+            .entries
+            .binary_search_by_key(&slot, |(slot, _)| *slot)
+            .ok()?;
+        Some(self.entries[index].1)
+    }
+}
+
+struct Tables {
+    operations: Table<OpCode>,
+    areas: Table<Area>,
+    constants: Table<ConstFormat>,
+    param_kinds: Table<ParamKind>,
 }
 
 fn tables() -> &'static Tables {
     static TABLES: OnceLock<Tables> = OnceLock::new();
     TABLES.get_or_init(|| Tables {
-        operations: fill(OPERATIONS, |r| (r.en, r.de), |r| *r),
-        areas: fill(AREAS, |r| (r.en, r.de), |r| r.area),
-        constants: fill(CONSTANTS, |r| (r.en, r.de), |r| r.format),
-        param_kinds: fill(PARAM_KINDS, |r| (r.en, r.de), |r| r.kind),
+        operations: Table::new(OPERATIONS, |r| (r.en, r.de), |r| r.op),
+        areas: Table::new(AREAS, |r| (r.en, r.de), |r| r.area),
+        constants: Table::new(CONSTANTS, |r| (r.en, r.de), |r| r.format),
+        param_kinds: Table::new(PARAM_KINDS, |r| (r.en, r.de), |r| r.kind),
     })
 }
 
 pub fn operation(set: MnemonicSet, word: &str) -> Option<OpInfo> {
-    tables().operations.get(&(set, key(word)?)).copied()
+    tables().operations.get(set, word).map(|op| *op_info(op))
 }
 
 pub fn area(set: MnemonicSet, word: &str) -> Option<Area> {
-    tables().areas.get(&(set, key(word)?)).copied()
+    tables().areas.get(set, word)
 }
 
 pub fn constant_format(set: MnemonicSet, word: &str) -> Option<ConstFormat> {
-    tables().constants.get(&(set, key(word)?)).copied()
+    tables().constants.get(set, word)
 }
 
 pub fn param_kind(set: MnemonicSet, word: &str) -> Option<ParamKind> {
-    tables().param_kinds.get(&(set, key(word)?)).copied()
+    tables().param_kinds.get(set, word)
 }
 
+/// The table row of an operation; `OPERATIONS` is in `OpCode` order (a test checks it).
 pub fn op_info(op: OpCode) -> &'static OpInfo {
-    OPERATIONS
-        .iter()
-        .find(|info| info.op == op)
-        .expect("every op code has a table row")
+    &OPERATIONS[op as usize]
 }
 
 pub fn op_word(set: MnemonicSet, op: OpCode) -> &'static str {
@@ -1018,6 +1033,13 @@ pub fn operation_words(set: MnemonicSet) -> impl Iterator<Item = &'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn operations_are_in_op_code_order() {
+        for (index, info) in OPERATIONS.iter().enumerate() {
+            assert_eq!(info.op as usize, index, "{:?}", info.op);
+        }
+    }
 
     #[test]
     fn sets_disagree_on_se() {

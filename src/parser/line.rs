@@ -360,20 +360,21 @@ fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, 
         let mut rest = Tokens::new(&input.tokens[1..]);
         let mut last = first;
         let mut inline_operand = None;
-        let word: String = match first.kind {
+        // Borrowed in the common case; the lookup ignores case.
+        let word: std::borrow::Cow<'a, str> = match first.kind {
             TokenKind::Word => {
-                let text = context.text(first).to_ascii_uppercase();
+                let text = context.text(first);
                 if let Ok((after, paren)) = touching(first, TokenKind::LParen, "(")(rest) {
                     rest = after;
                     last = paren;
-                    format!("{text}(")
-                } else if text == "X" || text == "XF" {
-                    if text == "X" {
+                    format!("{text}(").into()
+                } else if text.eq_ignore_ascii_case("X") || text.eq_ignore_ascii_case("XF") {
+                    if text.eq_ignore_ascii_case("X") {
                         let (after, f) = keyword(context, &["F"], "`X F`")(rest)?;
                         rest = after;
                         last = f;
                     }
-                    "X F".to_string()
+                    "X F".into()
                 } else {
                     if let Ok((after, equals)) = touching(first, TokenKind::Equals, "=")(rest) {
                         let (after, target) = kind(TokenKind::Word, "a label after `=`")(after)?;
@@ -383,12 +384,12 @@ fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, 
                         ));
                         rest = after;
                     }
-                    text
+                    text.into()
                 }
             }
-            TokenKind::RParen => ")".to_string(),
-            TokenKind::Equals => "=".to_string(),
-            TokenKind::AddSub | TokenKind::Compare => context.text(first).to_ascii_uppercase(),
+            TokenKind::RParen => ")".into(),
+            TokenKind::Equals => "=".into(),
+            TokenKind::AddSub | TokenKind::Compare => context.text(first).into(),
             _ => {
                 return Err(nom::Err::Error(LineError {
                     at: Some(first),
@@ -412,8 +413,8 @@ fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, 
                 at: Some(first),
                 expected: "an operation",
                 diagnostic: Some(Box::new(ParseError::UnknownOperation {
-                    help: suggest_operation(context.set, &word),
-                    word,
+                    help: suggest_operation(context.set, &word.to_ascii_uppercase()),
+                    word: word.into_owned(),
                     at: span,
                     set: context.set.name(),
                 })),

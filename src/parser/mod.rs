@@ -137,9 +137,6 @@ struct Builder<'a> {
     errors: Vec<ParseError>,
 }
 
-/// Builds a line parser for a mnemonic set.
-type LineParser<'a, T> = Box<dyn Fn(Tokens<'a>) -> tokens::LineResult<'a, T> + 'a>;
-
 impl<'a> Builder<'a> {
     fn context(&self, set: MnemonicSet) -> Context<'a> {
         Context {
@@ -226,15 +223,15 @@ impl<'a> Builder<'a> {
     }
 
     fn data_line(&mut self, line: &'a [Token]) -> Result<(), ParseError> {
-        let (index, constant, span) = self
-            .parse(line, |context| Box::new(line::data_word(context)))
-            .map_err(|error| match error {
-                ParseError::UnexpectedToken { at, expected, .. } => ParseError::BadDataWord {
-                    at,
-                    reason: format!("expected {expected}"),
-                },
-                other => other,
-            })?;
+        let (index, constant, span) =
+            self.parse(line, line::data_word)
+                .map_err(|error| match error {
+                    ParseError::UnexpectedToken { at, expected, .. } => ParseError::BadDataWord {
+                        at,
+                        reason: format!("expected {expected}"),
+                    },
+                    other => other,
+                })?;
         let index = index.unwrap_or(self.next_data_word);
         self.next_data_word = index.saturating_add(1 + constant.extra_words.len() as u16);
         if let Some(Block {
@@ -288,15 +285,13 @@ impl<'a> Builder<'a> {
                 Err(_) => {}
             }
         }
-        if after_fb_call
-            && let Ok(param) = self.parse(line, |context| Box::new(line::param_line(context)))
-        {
+        if after_fb_call && let Ok(param) = self.parse(line, line::param_line) {
             if let Some(last) = self.logic_body().statements.last_mut() {
                 last.call_params.push(param);
             }
             return Ok(());
         }
-        let statement = self.parse(line, |context| Box::new(line::statement(context)))?;
+        let statement = self.parse(line, line::statement)?;
         if statement.op == OpCode::BlockEnd {
             self.logic_body().end = Some(statement.op_span);
             self.ended = true;
@@ -317,11 +312,14 @@ impl<'a> Builder<'a> {
 
     /// Runs a line parser in the file's set and, when that fails, in the other set; success there
     /// records the first foreign word instead of failing the line.
-    fn parse<T>(
+    fn parse<T, P>(
         &mut self,
         line: &'a [Token],
-        parser: impl Fn(Context<'a>) -> LineParser<'a, T>,
-    ) -> Result<T, ParseError> {
+        parser: impl Fn(Context<'a>) -> P,
+    ) -> Result<T, ParseError>
+    where
+        P: Fn(Tokens<'a>) -> tokens::LineResult<'a, T>,
+    {
         let run = |set: MnemonicSet| -> Result<T, LineError> {
             match parser(self.context(set))(Tokens::new(line)) {
                 Ok((rest, value)) if rest.is_empty() => Ok(value),
