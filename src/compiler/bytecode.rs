@@ -191,12 +191,6 @@ pub enum Op {
     Swap,
     Increment(u8),
     Decrement(u8),
-    /// `DO`: run the next op with its parameter taken from the source; `template` indexes the
-    /// program's indirect templates.
-    Indirect {
-        source: IndirectSource,
-        template: u16,
-    },
     SetUnconditional(BitTarget),
     ResetUnconditional(BitTarget),
     TestBit {
@@ -206,6 +200,14 @@ pub enum Op {
     DisableInterrupts,
     EnableInterrupts,
     GenerateDb(u8),
+    // The two ops resolved at run time come last and together, so the loop tells them from the
+    // rest with one comparison of the tag.
+    /// `DO`: run the next op with its parameter taken from the source; `template` indexes the
+    /// program's indirect templates.
+    Indirect {
+        source: IndirectSource,
+        template: u16,
+    },
     /// An operation on a formal operand, resolved against the running FB's actual parameters.
     Formal {
         op: OpCode,

@@ -31,8 +31,7 @@ pub fn arithmetic(op: Arith, accu1: &mut u32, accu2: u32, status: &mut Status) {
         }
     };
     let wrapped = exact as i16;
-    status.set_overflow(i32::from(wrapped) != exact);
-    status.set_cc_from(wrapped);
+    status.set_result(wrapped, i32::from(wrapped) != exact);
     *accu1 = with_low(*accu1, wrapped as u16);
 }
 

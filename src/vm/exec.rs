@@ -718,7 +718,10 @@ impl Cpu {
 fn read_bytes(memory: &[u8], at: usize, width: Width) -> u32 {
     match width {
         Width::Byte => u32::from(memory[at]),
-        Width::Word => u32::from(u16::from_be_bytes([memory[at], memory[at + 1]])),
+        Width::Word => {
+            let pair: [u8; 2] = memory[at..at + 2].try_into().expect("two bytes");
+            u32::from(u16::from_be_bytes(pair))
+        }
         Width::Double => {
             u32::from_be_bytes([memory[at], memory[at + 1], memory[at + 2], memory[at + 3]])
         }

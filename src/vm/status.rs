@@ -111,6 +111,14 @@ impl Status {
     pub fn set_cc_from(&mut self, result: i16) {
         self.set_condition(result > 0, result < 0);
     }
+
+    /// CC1/CC0 from a fixed-point result and OV (with OS) in one write.
+    #[inline(always)]
+    pub fn set_result(&mut self, result: i16, overflow: bool) {
+        let codes = if result > 0 { CC1 } else { 0 } | if result < 0 { CC0 } else { 0 };
+        let flow = if overflow { OV | OS } else { 0 };
+        self.bits = self.bits & !(CC1 | CC0 | OV) | codes | flow;
+    }
 }
 
 /// One open bracket: the status before it, and how its result combines.
