@@ -45,6 +45,12 @@ pub enum RunError {
         help("name .awl files, or a scenario with `program = [...]`")
     )]
     NoProgram,
+    #[error("`--mode` belongs to the sinumerik-840c profile, not to {cpu}")]
+    #[diagnostic(
+        code(awl::cli::mode_not_for_cpu),
+        help("normal and special mode are the SINUMERIK 840C's; leave `--mode` out for this CPU")
+    )]
+    ModeNotForCpu { cpu: &'static str },
     #[error("cannot write the trace to `{path}`: {reason}")]
     #[diagnostic(
         code(awl::cli::trace_write),
