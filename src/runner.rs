@@ -116,6 +116,11 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         .and_then(profile::find)
         .or(scenario.as_ref().and_then(|s| s.cpu))
         .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile"));
+    if options.special_mode.is_some() && profile.family != crate::profile::Family::Sinumerik840c {
+        return Err(NotRun::Failed(Report::new(RunError::ModeNotForCpu {
+            cpu: profile.name,
+        })));
+    }
     let sources =
         frontend::read_sources(&files).map_err(|error| NotRun::Failed(Report::new(error)))?;
     let built = frontend::build(sources, options.mnemonics, profile);
