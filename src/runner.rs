@@ -45,6 +45,13 @@ pub enum RunError {
         help("name .awl files, or a scenario with `program = [...]`")
     )]
     NoProgram,
+    #[error("the program has no OB 1: the cycles run no user program")]
+    #[diagnostic(
+        code(awl::run::no_ob1),
+        severity(Warning),
+        help("OB 1 is the cyclic program; add it, or load the file that holds it")
+    )]
+    NoOb1,
     #[error("`--mode` belongs to the sinumerik-840c profile, not to {cpu}")]
     #[diagnostic(
         code(awl::cli::mode_not_for_cpu),
@@ -131,6 +138,9 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         return Err(NotRun::SourceErrors);
     }
     let program = Arc::new(built.compiled.program.clone());
+    if program.ob(1).is_none() {
+        eprintln!("{:?}", Report::new(RunError::NoOb1));
+    }
     let set = built
         .mnemonics
         .first()
