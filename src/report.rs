@@ -81,6 +81,23 @@ fn us(ns: u64) -> String {
     format!("{:.1}", ns as f64 / 1000.0)
 }
 
+/// The program's longest single operation: with operation points, the bound on the response.
+fn longest_operation(ran: &crate::runner::Ran) -> Option<(String, u32, u64)> {
+    let program = &ran.cpu.program;
+    let (block, pc, ns) = program
+        .blocks
+        .iter()
+        .enumerate()
+        .flat_map(|(index, block)| (0..block.code.len()).map(move |pc| (index, pc, block.cost(pc))))
+        .max_by_key(|(_, _, ns)| *ns)?;
+    let block = &program.blocks[block];
+    Some((
+        block.id.to_string(),
+        ran.frontend.sources.line_of(block.spans[pc]),
+        ns,
+    ))
+}
+
 /// The summary of `awl run`; it ends with the `cpu:` and `instructions:` lines of SPEC §2.
 pub fn summary(ran: &crate::runner::Ran) -> String {
     let mut out = String::new();
@@ -102,21 +119,24 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
             expectations
         );
     }
-    let stretch = cpu.longest_stretch;
-    if stretch.ns > 0 {
-        let block = cpu.block_id(stretch.block);
-        let duration = format!("{:.3} ms", stretch.ns as f64 / 1e6);
-        match ran.points {
-            InterruptPoints::Block => {
+    match ran.points {
+        InterruptPoints::Block => {
+            let stretch = cpu.longest_stretch;
+            if stretch.ns > 0 {
                 let _ = writeln!(
                     out,
-                    "longest block: {block}, {duration} (worst-case response in normal mode)"
+                    "longest block: {}, {:.3} ms (worst-case response in normal mode)",
+                    cpu.block_id(stretch.block),
+                    stretch.ns as f64 / 1e6
                 );
             }
-            InterruptPoints::Operation => {
+        }
+        InterruptPoints::Operation => {
+            if let Some((block, line, ns)) = longest_operation(ran) {
                 let _ = writeln!(
                     out,
-                    "longest operation: {block}, {duration} (worst-case response with operation points)"
+                    "longest operation: {block} line {line}, {:.3} us (worst-case response with operation points)",
+                    ns as f64 / 1e3
                 );
             }
         }
