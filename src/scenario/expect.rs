@@ -46,7 +46,9 @@ fn width(bytes: u8) -> Width {
 pub fn actual(cpu: &Cpu, target: Target) -> Option<u32> {
     Some(match target {
         Target::ImageBit { byte, bit } => u32::from(cpu.image[usize::from(byte)] >> bit & 1),
-        Target::Image { byte, bytes } => read_memory(&cpu.image, usize::from(byte), width(bytes)),
+        Target::Image { byte, bytes } => {
+            read_memory(&cpu.image[..], usize::from(byte), width(bytes))
+        }
         Target::Periphery {
             byte,
             bytes,

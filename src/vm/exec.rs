@@ -40,14 +40,31 @@ impl Cpu {
         self.accu1 = value;
     }
 
+    /// Image reads and writes index the fixed-size image with a `u16` offset: in bounds by type.
     #[inline(always)]
     fn read_image(&self, width: Width, byte: u16) -> u32 {
-        read_bytes(&self.image, usize::from(byte), width)
+        let at = usize::from(byte);
+        let image = &*self.image;
+        match width {
+            Width::Byte => u32::from(image[at]),
+            Width::Word => u32::from(u16::from_be_bytes([image[at], image[at + 1]])),
+            Width::Double => {
+                u32::from_be_bytes([image[at], image[at + 1], image[at + 2], image[at + 3]])
+            }
+        }
     }
 
     #[inline(always)]
     fn write_image(&mut self, width: Width, byte: u16, value: u32) {
-        write_bytes(&mut self.image, usize::from(byte), width, value);
+        let at = usize::from(byte);
+        let image = &mut *self.image;
+        match width {
+            Width::Byte => image[at] = value as u8,
+            Width::Word => [image[at], image[at + 1]] = (value as u16).to_be_bytes(),
+            Width::Double => {
+                [image[at], image[at + 1], image[at + 2], image[at + 3]] = value.to_be_bytes()
+            }
+        }
     }
 
     /// Marks an interrupt point for the stretch measurement of the cyclic level.
@@ -522,7 +539,7 @@ impl Cpu {
         let image_bytes = usize::from(self.program.layout.image_bytes);
         let piq = usize::from(self.program.layout.output_base());
         if at + width_bytes <= image_bytes {
-            write_bytes(&mut self.image, piq + at, width, value);
+            write_bytes(&mut self.image[..], piq + at, width, value);
         }
     }
 

@@ -119,6 +119,13 @@ pub struct Stretch {
     pub block: u16,
 }
 
+/// Image memory for every `u16` offset plus a double word: ops address it with `u16` offsets,
+/// so the compiler can prove every access in bounds. A program uses only the profile's part
+/// (`Layout::total`); its addresses are range-checked when it is compiled.
+pub const IMAGE_MEMORY: usize = 1 << 16 | 4;
+
+pub type ImageMemory = [u8; IMAGE_MEMORY];
+
 /// The block index that stands for "no block runs" (between cycles).
 pub const IDLE: u16 = u16::MAX;
 
@@ -128,7 +135,7 @@ pub struct Cpu {
     pub sources: Arc<SourceSet>,
     pub profile: &'static Profile,
     /// PII, then PIQ, then the flags (see [`crate::compiler::Layout`]).
-    pub image: Vec<u8>,
+    pub image: Box<ImageMemory>,
     /// The process inputs at the input modules.
     pub inputs: Vec<u8>,
     /// The process outputs at the output modules.
@@ -191,7 +198,10 @@ impl Cpu {
         }
         let levels_capacity = profile.interrupt_obs.len() + 2;
         Cpu {
-            image: vec![0; program.layout.total()],
+            image: vec![0u8; IMAGE_MEMORY]
+                .into_boxed_slice()
+                .try_into()
+                .expect("the length is IMAGE_MEMORY"),
             inputs: vec![0; periphery],
             outputs: vec![0; periphery],
             extended_inputs: vec![0; periphery],
