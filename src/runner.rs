@@ -217,6 +217,9 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
 }
 
 fn stack_text(stop: &Stop) -> String {
+    if stop.stack.is_empty() {
+        return "BSTACK: empty, no block was running".to_string();
+    }
     let mut text = String::from("BSTACK, innermost first:");
     for (index, entry) in stop.stack.iter().enumerate() {
         let role = if index == 0 {
@@ -235,14 +238,23 @@ fn stack_text(stop: &Stop) -> String {
 /// The STOP as a miette report with the source line.
 pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
     let program = &ran.cpu.program;
-    let block = &program.blocks[usize::from(stop.block)];
-    let at: Span = block
-        .spans
-        .get(stop.pc as usize)
-        .copied()
-        .unwrap_or(block.header);
+    // Between cycles in a program without OB 1 there is no block: the label goes to the start
+    // of the first file.
+    let (at, name) = match stop.block.map(|index| &program.blocks[usize::from(index)]) {
+        Some(block) => {
+            let at: Span = block
+                .spans
+                .get(stop.pc as usize)
+                .copied()
+                .unwrap_or(block.header);
+            (at, block.id.to_string())
+        }
+        None => (
+            Span::default(),
+            "the operating system (between cycles)".to_string(),
+        ),
+    };
     let stack = stack_text(stop);
-    let name = block.id.to_string();
     let detail = match &stop.detail {
         StopDetail::Text(text) => text.clone(),
         _ => String::new(),

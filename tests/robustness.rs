@@ -198,3 +198,71 @@ proptest! {
         }
     }
 }
+
+/// Random programs with random interrupt OBs present or not, and random requests and hardware
+/// events, on every CPU: the engine never panics, and a run ends in RUN or with a STOP cause.
+fn engine_program(with_ob1: bool, obs: &[u8]) -> String {
+    let mut text = String::new();
+    if with_ob1 {
+        text.push_str("OB 1\n      JU PB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n");
+    }
+    text.push_str("PB 1\n      L  FW 0\n      L  KF +1\n      +F\n      T  FW 0\n      BE\n");
+    for ob in obs {
+        text.push_str(&format!(
+            "OB {ob}\n      JU PB 1\n      L  PY 0\n      T  PY 1\n      BE\n"
+        ));
+    }
+    text
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_interrupts_never_panic(
+        with_ob1 in any::<bool>(),
+        obs in prop::collection::vec(prop::sample::select(vec![2u8, 3, 4, 5, 6, 7, 13, 40, 41, 82, 85, 100, 21]), 0..6),
+        events in prop::collection::vec((0u64..5_000_000, 0u8..12, 0u16..3, 0u64..400_000), 0..12),
+        points_operation in any::<bool>(),
+        special in any::<bool>(),
+    ) {
+        use awl::vm::interrupts::{Engine, EngineConfig, Happening, Scheduled};
+        let mut obs = obs;
+        obs.sort_unstable();
+        obs.dedup();
+        let source = engine_program(with_ob1, &obs);
+        for cpu in profile::PROFILES {
+            let built = frontend::build_text("engine.awl", &source, cpu);
+            prop_assert!(!built.has_errors(), "{:?}", built.diagnostics);
+            let interrupt_obs: Vec<u8> = cpu.interrupt_obs.iter().map(|entry| entry.ob).collect();
+            let schedule = events
+                .iter()
+                .map(|&(at_ns, which, channel, active_for_ns)| {
+                    let what = if cpu.family == profile::Family::Speed7 {
+                        Happening::Hardware { module: u16::from(which % 3), channel, active_for_ns }
+                    } else {
+                        Happening::Interrupt { ob: interrupt_obs[usize::from(which) % interrupt_obs.len()] }
+                    };
+                    Scheduled { at_ns, what }
+                })
+                .collect();
+            let config = EngineConfig {
+                points: if points_operation { profile::InterruptPoints::Operation } else { profile::InterruptPoints::Block },
+                special_mode: special,
+                ob13_interval_ns: (cpu.family == profile::Family::S5_95f).then_some(1_000_000),
+                hw_modules: vec![(0, 40), (1, 41)],
+                watchdog_ns: 150_000_000,
+            };
+            let mut machine = awl::vm::Cpu::new(
+                std::sync::Arc::new(built.compiled.program.clone()),
+                std::sync::Arc::new(built.sources.clone()),
+            );
+            machine.engine = Engine::new(config, schedule);
+            let outcome = machine.run(awl::vm::cycle::RunLimit::Duration(6_000_000));
+            if let Some(stop) = &outcome.stop {
+                let ran_stop = stop.clone();
+                prop_assert!(!ran_stop.cause.code().is_empty());
+            }
+        }
+    }
+}

@@ -164,3 +164,21 @@ fn on_delay_timer_edges_on_simulated_time() {
         assert!(ran.mismatches.is_empty(), "{run_for}: {:?}", ran.mismatches);
     }
 }
+
+/// A STOP between cycles in a program without any block still gets a report, not a panic.
+#[test]
+fn stop_between_cycles_without_blocks() {
+    let scenario = "cpu = \"speed7\"\nrun = { for = \"3ms\" }\n[[hw_module]]\nmodule = 4\nob = 40\n[[event]]\nat = \"1ms\"\nhw_interrupt = { module = 4, channel = 1, active_for = \"5us\" }\n";
+    let ran = ran(run_scenario(
+        "empty_program",
+        "; no blocks at all\n",
+        scenario,
+    ));
+    let stop = ran.outcome.stop.as_ref().expect("STOP OB85");
+    assert_eq!(stop.block, None);
+    let rendered = render_plain(&runner::stop_report(&ran, stop));
+    assert!(
+        rendered.contains("awl::stop::ob85") && rendered.contains("BSTACK: empty"),
+        "{rendered}"
+    );
+}

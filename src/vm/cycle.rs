@@ -190,8 +190,13 @@ impl Cpu {
         if let Some(stop) = &stop {
             self.set_mode(Mode::Stop, Some(stop.cause.code()));
             if self.tracer.enabled {
-                let line = self.line_of(stop.block, stop.pc, &self.sources);
-                let block = self.block_id(stop.block).to_string();
+                let (block, line) = match stop.block {
+                    Some(block) => (
+                        self.block_id(block).to_string(),
+                        self.line_of(block, stop.pc, &self.sources),
+                    ),
+                    None => ("between cycles".to_string(), 0),
+                };
                 self.tracer.emit(
                     self.clock,
                     0,

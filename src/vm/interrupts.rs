@@ -284,7 +284,7 @@ impl Cpu {
             };
             stop.stack.insert(0, entry);
         }
-        stop.block = block;
+        stop.block = Some(block);
         stop.pc = pc;
         stop
     }

@@ -302,21 +302,24 @@ impl Cpu {
     /// at the end of OB 1, where the cycle ended.
     pub fn stop(&self, cause: StopCause, pc: u32, detail: StopDetail) -> Stop {
         let (block, pc) = if self.block == IDLE {
-            let ob1 = self.program.ob(1).unwrap_or(0);
-            (
-                ob1,
-                self.program
-                    .blocks
-                    .get(usize::from(ob1))
-                    .map_or(0, |b| b.code.len().saturating_sub(1) as u32),
-            )
+            // Between cycles: at the end of OB 1, where the cycle ended, if there is one.
+            match self.program.ob(1) {
+                Some(ob1) => {
+                    let last = self.program.blocks[usize::from(ob1)]
+                        .code
+                        .len()
+                        .saturating_sub(1);
+                    (Some(ob1), last as u32)
+                }
+                None => (None, 0),
+            }
         } else {
-            (self.block, pc)
+            (Some(self.block), pc)
         };
-        let stack = if self.block == IDLE {
-            vec![(block, pc)]
-        } else {
-            self.block_stack(pc)
+        let stack = match block {
+            None => Vec::new(),
+            Some(block) if self.block == IDLE => vec![(block, pc)],
+            Some(_) => self.block_stack(pc),
         };
         let stack = stack
             .into_iter()

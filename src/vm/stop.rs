@@ -179,8 +179,9 @@ impl StopError {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Stop {
     pub cause: StopCause,
-    /// The block index and op index where it happened.
-    pub block: u16,
+    /// The block index and op index where it happened; no block when it happened between
+    /// cycles in a program without OB 1.
+    pub block: Option<u16>,
     pub pc: u32,
     pub detail: StopDetail,
     pub stack: Vec<StackEntry>,
