@@ -44,7 +44,8 @@ fn bit_target(layout: Layout, target: BitTarget) -> String {
 }
 
 /// A compact, readable form of one op.
-pub fn op_text(op: Op, program: &Program) -> String {
+/// `params` are the declarations of the block the op is in (for formal operands).
+pub fn op_text(op: Op, program: &Program, params: &[crate::ast::ParamDecl]) -> String {
     let layout = program.layout;
     match op {
         Op::And(bit) => format!("and {}", image_bit(layout, bit)),
@@ -107,7 +108,16 @@ pub fn op_text(op: Op, program: &Program) -> String {
                 bit_target(layout, target)
             )
         }
-        Op::Formal { op, param } => format!("{} =param {}", kebab(&format!("{op:?}")), param + 1),
+        Op::Formal { op, param } => {
+            let name = params
+                .get(usize::from(param))
+                .map_or("?", |decl| decl.name.text.as_str());
+            format!(
+                "{} ={name} (parameter {})",
+                kebab(&format!("{op:?}")),
+                param + 1
+            )
+        }
         Op::LoadPeripheral {
             width,
             byte,
@@ -192,7 +202,7 @@ pub fn dump(program: &Program, sources: &SourceSet) -> String {
                 out,
                 "  {pc:>4}  line {line:>4}  {:<28} {}",
                 text,
-                op_text(*op, program)
+                op_text(*op, program, &block.params)
             );
         }
         out.push('\n');
