@@ -182,18 +182,35 @@ fn kebab(debug: &str) -> String {
     out.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
+/// `PB 3  (file.awl:12, 4 ops)`
+fn header(
+    out: &mut String,
+    sources: &SourceSet,
+    id: crate::ast::BlockId,
+    at: crate::source::Span,
+    count: usize,
+    unit: &str,
+) {
+    let file = sources.get(at.file);
+    let _ = writeln!(
+        out,
+        "{id}  ({}:{}, {count} {unit})",
+        file.name,
+        file.line_of(at.start)
+    );
+}
+
 /// The whole dump: a header line per block, then one line per op.
 pub fn dump(program: &Program, sources: &SourceSet) -> String {
     let mut out = String::new();
     for block in &program.blocks {
-        let file = sources.get(block.header.file);
-        let _ = writeln!(
-            out,
-            "{}  ({}:{}, {} ops)",
+        header(
+            &mut out,
+            sources,
             block.id,
-            file.name,
-            file.line_of(block.header.start),
-            block.code.len()
+            block.header,
+            block.code.len(),
+            "ops",
         );
         for (pc, (op, span)) in block.code.iter().zip(&block.spans).enumerate() {
             let line = sources.line_of(*span);
@@ -208,14 +225,13 @@ pub fn dump(program: &Program, sources: &SourceSet) -> String {
         out.push('\n');
     }
     for data in &program.data_blocks {
-        let file = sources.get(data.header.file);
-        let _ = writeln!(
-            out,
-            "{}  ({}:{}, {} words)",
+        header(
+            &mut out,
+            sources,
             data.id,
-            file.name,
-            file.line_of(data.header.start),
-            data.words.len()
+            data.header,
+            data.words.len(),
+            "words",
         );
         for (index, word) in data.words.iter().enumerate() {
             let _ = writeln!(out, "  DW {index:>4}  {word:#06X}  {}", *word as i16);
