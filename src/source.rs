@@ -25,15 +25,6 @@ impl Span {
         }
     }
 
-    /// The smallest span covering both.
-    pub fn to(self, other: Span) -> Span {
-        Span {
-            file: self.file,
-            start: self.start.min(other.start),
-            end: self.end.max(other.end),
-        }
-    }
-
     pub fn len(self) -> usize {
         (self.end - self.start) as usize
     }

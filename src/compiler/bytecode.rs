@@ -231,18 +231,6 @@ impl Op {
             Width::Double => Op::TransferImageDouble(byte),
         }
     }
-
-    /// Block changes: the interrupt points of normal mode.
-    pub fn is_block_change(self) -> bool {
-        matches!(
-            self,
-            Op::Call { .. }
-                | Op::CallMissing { .. }
-                | Op::BlockEnd
-                | Op::BlockEndConditional
-                | Op::BlockEndUnconditional
-        )
-    }
 }
 
 #[cfg(test)]

@@ -240,27 +240,20 @@ impl Compiler<'_> {
                         }
                     }
                 }
-                actual if accepts(decl, actual) => {
-                    let pseudo = Statement {
-                        operand: actual.clone(),
-                        operand_span: param.actual_span,
-                        ..statement.clone()
-                    };
-                    match &pseudo.operand {
-                        Operand::Block(id) => Resolved::Block {
-                            kind: id.kind,
-                            number: id.number,
-                            index: self.index.get(id).copied(),
-                        },
-                        _ => match self.resolve(context, &pseudo) {
-                            Some(resolved) => resolved,
-                            None => {
-                                ok = false;
-                                continue;
-                            }
-                        },
-                    }
-                }
+                actual if accepts(decl, actual) => match actual {
+                    Operand::Block(id) => Resolved::Block {
+                        kind: id.kind,
+                        number: id.number,
+                        index: self.index.get(id).copied(),
+                    },
+                    _ => match self.resolve_value(context.set, actual, param.actual_span) {
+                        Some(resolved) => resolved,
+                        None => {
+                            ok = false;
+                            continue;
+                        }
+                    },
+                },
                 _ => {
                     mismatch(self);
                     ok = false;

@@ -52,10 +52,6 @@ impl Layout {
         2 * self.image_bytes
     }
 
-    pub fn total(self) -> usize {
-        2 * usize::from(self.image_bytes) + usize::from(self.flag_bytes)
-    }
-
     /// The image byte of an address in I, Q or F (bit, byte, word or double word).
     pub fn image_byte(self, area: Area, index: u16) -> Option<u16> {
         let base = match area {

@@ -406,17 +406,25 @@ impl<'a> Compiler<'a> {
     fn resolve(&mut self, context: &BlockContext<'_>, statement: &Statement) -> Option<Resolved> {
         let at = statement.operand_span;
         match &statement.operand {
-            Operand::None => Some(Resolved::None),
+            Operand::Block(id) => Some(self.resolve_block(statement.op, *id, at)),
+            Operand::Symbol(name) => self.resolve_symbol(context, statement, name),
+            value => self.resolve_value(context.set, value, at),
+        }
+    }
+
+    /// An operand that names no block and no symbol: range-checked addresses, constants,
+    /// numbers.
+    fn resolve_value(&mut self, set: MnemonicSet, operand: &Operand, at: Span) -> Option<Resolved> {
+        match operand {
             Operand::Number(value) => Some(Resolved::Number(*value)),
             Operand::Constant(constant) => Some(Resolved::Constant(constant.value)),
             Operand::Address(address) => {
-                if let Err(error) = ranges::check_address(*address, context.set, self.profile, at) {
+                if let Err(error) = ranges::check_address(*address, set, self.profile, at) {
                     return self.fail(error);
                 }
                 Some(Resolved::Address(*address))
             }
-            Operand::Block(id) => Some(self.resolve_block(statement.op, *id, at)),
-            Operand::Symbol(name) => self.resolve_symbol(context, statement, name),
+            Operand::None | Operand::Block(_) | Operand::Symbol(_) => Some(Resolved::None),
         }
     }
 

@@ -72,12 +72,10 @@ fn detect(source: &str, lines: &[&[Token]]) -> Option<(MnemonicSet, Span)> {
         });
     };
     for line in lines {
-        let words: Vec<Token> = strip_label(line)
+        let mut words = strip_label(line)
             .iter()
-            .copied()
-            .filter(|t| t.kind == TokenKind::Word)
-            .collect();
-        let Some(first) = words.first() else { continue };
+            .filter(|token| token.kind == TokenKind::Word);
+        let Some(first) = words.next() else { continue };
         let text = first.text(source);
         if text.eq_ignore_ascii_case(mnemonics::DECLARATION_EN) {
             vote(MnemonicSet::English, *first);
@@ -90,7 +88,7 @@ fn detect(source: &str, lines: &[&[Token]]) -> Option<(MnemonicSet, Span)> {
         if let Some(set) = mnemonics::evidence(Position::Operation, text) {
             vote(set, *first);
         }
-        if let Some(second) = words.get(1)
+        if let Some(second) = words.next()
             && let Some(set) = mnemonics::evidence(Position::Operand, second.text(source))
         {
             vote(set, *second);

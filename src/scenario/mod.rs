@@ -274,17 +274,27 @@ impl Scenario {
         }
     }
 
-    fn integer(&self, value: &Spanned<toml::Value>, operand: &str) -> Result<i64, ScenarioError> {
-        match value.get_ref() {
-            toml::Value::Integer(number) => Ok(*number),
-            toml::Value::Boolean(flag) => Ok(i64::from(*flag)),
-            other => Err(ScenarioError::BadValue {
-                operand: operand.into(),
-                value: other.to_string(),
-                at: span(value),
-                range: "an integer".into(),
-            }),
-        }
+    /// The integer a `set` or `[expect]` entry gives (booleans count as 0 and 1) and the raw
+    /// value it stands for in the operand.
+    fn value(
+        &self,
+        target: Target,
+        value: &Spanned<toml::Value>,
+        operand: &str,
+    ) -> Result<(i64, u32), ScenarioError> {
+        let bad = |shown: String, range: String| ScenarioError::BadValue {
+            operand: operand.into(),
+            value: shown,
+            at: span(value),
+            range,
+        };
+        let number = match value.get_ref() {
+            toml::Value::Integer(number) => *number,
+            toml::Value::Boolean(flag) => i64::from(*flag),
+            other => return Err(bad(other.to_string(), "an integer".into())),
+        };
+        let raw = raw_value(target, number).map_err(|range| bad(number.to_string(), range))?;
+        Ok((number, raw))
     }
 
     /// The timed events, with operands resolved against the compiled program.
@@ -343,14 +353,7 @@ impl Scenario {
                             });
                         }
                     };
-                    let number = self.integer(value, operand)?;
-                    let raw =
-                        raw_value(target, number).map_err(|range| ScenarioError::BadValue {
-                            operand: operand.clone(),
-                            value: number.to_string(),
-                            at: span(value),
-                            range,
-                        })?;
+                    let (_, raw) = self.value(target, value, operand)?;
                     resolved.push(InputChange {
                         target: input_target,
                         byte,
@@ -478,14 +481,7 @@ impl Scenario {
                 },
                 operand => {
                     let target = parse_target(operand, at, set, program.profile, program.layout)?;
-                    let number = self.integer(value, operand)?;
-                    let raw =
-                        raw_value(target, number).map_err(|range| ScenarioError::BadValue {
-                            operand: operand.to_string(),
-                            value: number.to_string(),
-                            at: span(value),
-                            range,
-                        })?;
+                    let (number, raw) = self.value(target, value, operand)?;
                     Expected::Value {
                         target,
                         raw,

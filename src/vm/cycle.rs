@@ -59,7 +59,7 @@ impl Cpu {
                     // OB 1's own block end is a block change too: pending interrupts run
                     // before the operating system ends the cycle.
                     if depth == 0 && self.mode == Mode::Run {
-                        self.block = IDLE;
+                        self.level.block = IDLE;
                         self.interrupts_between_levels(Point::BlockEnd)?;
                     }
                     return Ok(());
@@ -76,7 +76,7 @@ impl Cpu {
     /// The cycle boundary: pending interrupts run here, highest first, until none outranks
     /// the cyclic level.
     fn cycle_boundary(&mut self) -> Result<(), Stop> {
-        self.block = IDLE;
+        self.level.block = IDLE;
         self.interrupts_between_levels(Point::Cycle)
     }
 
@@ -149,7 +149,7 @@ impl Cpu {
         self.process_image_cycle(false);
         self.clock += u64::from(self.profile.timings.cycle_overhead);
         if let Some((block, pc)) = self.stop_requested.take() {
-            self.block = block;
+            self.level.block = block;
             return Err(self.stop(StopCause::Stp, pc, super::stop::StopDetail::None));
         }
         // Requests of the operating-system time are logged before the cycle end.
@@ -193,7 +193,7 @@ impl Cpu {
                 let (block, line) = match stop.block {
                     Some(block) => (
                         self.block_id(block).to_string(),
-                        self.line_of(block, stop.pc, &self.sources),
+                        self.line_of(block, stop.pc),
                     ),
                     None => ("between cycles".to_string(), 0),
                 };

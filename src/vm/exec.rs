@@ -36,8 +36,8 @@ impl Cpu {
     }
 
     fn load(&mut self, value: u32) {
-        self.accu2 = self.accu1;
-        self.accu1 = value;
+        self.level.accu2 = self.level.accu1;
+        self.level.accu1 = value;
     }
 
     /// Image reads and writes index the fixed-size image with a `u16` offset: in bounds by type.
@@ -104,7 +104,10 @@ impl Cpu {
                     IndirectSource::FlagWord(byte) => self.read_image(Width::Word, byte),
                     IndirectSource::DataWord(word) => match self.data_word(word) {
                         Some(value) => u32::from(value),
-                        None => return Err(self.data_fault(pc, word)),
+                        None => {
+                            let (cause, detail) = self.data_fault(word);
+                            return Err(self.stop(cause, pc, detail));
+                        }
                     },
                 };
                 match self.substitute(template, value as u16) {
@@ -121,20 +124,21 @@ impl Cpu {
 
     fn run_loop<const OPERATION_POINTS: bool>(&mut self) -> Exit {
         let program = Arc::clone(&self.program);
-        let mut code: &[Op] = &program.blocks[usize::from(self.block)].code;
+        let mut code: &[Op] = &program.blocks[usize::from(self.level.block)].code;
         // Prefix sums of the op times: time is settled only when control moves or someone reads
         // the clock, so straight code pays nothing per op for it. Slicing to `code.len() + 1`
         // lets the fetch's bounds check cover `elapsed[pc]` too.
-        let mut elapsed: &[u64] = &program.blocks[usize::from(self.block)].elapsed[..=code.len()];
-        let mut pc = self.pc as usize;
+        let mut elapsed: &[u64] =
+            &program.blocks[usize::from(self.level.block)].elapsed[..=code.len()];
+        let mut pc = self.level.pc as usize;
         // The clock stood at `segment_clock` when the straight run of ops from `segment_start`
         // began; `executed` counts the ops of the finished runs.
         let mut segment_start = pc;
         let mut segment_clock = self.clock;
         let mut executed = 0u64;
-        let mut status = self.status;
-        let mut accu1 = self.accu1;
-        let mut accu2 = self.accu2;
+        let mut status = self.level.status;
+        let mut accu1 = self.level.accu1;
+        let mut accu2 = self.level.accu2;
         macro_rules! now {
             () => {
                 segment_clock + elapsed[pc] - elapsed[segment_start]
@@ -145,9 +149,9 @@ impl Cpu {
         macro_rules! sync {
             () => {
                 self.clock = now!();
-                self.status = status;
-                self.accu1 = accu1;
-                self.accu2 = accu2;
+                self.level.status = status;
+                self.level.accu1 = accu1;
+                self.level.accu2 = accu2;
             };
         }
         macro_rules! reload {
@@ -155,9 +159,9 @@ impl Cpu {
                 segment_clock = self.clock;
                 executed += (pc - segment_start) as u64;
                 segment_start = pc;
-                status = self.status;
-                accu1 = self.accu1;
-                accu2 = self.accu2;
+                status = self.level.status;
+                accu1 = self.level.accu1;
+                accu2 = self.level.accu2;
             };
         }
         // Ends the straight run at `pc` before control moves to `$to` in `$elapsed`.
@@ -257,7 +261,7 @@ impl Cpu {
                         let backward = (target as usize) < pc;
                         move_to!(target as usize, code, elapsed);
                         if !OPERATION_POINTS && backward && segment_clock >= self.attention_at {
-                            self.last_op = (self.block, jump_pc);
+                            self.last_op = (self.level.block, jump_pc);
                             break Exit::Point(Point::Loop);
                         }
                     }
@@ -281,15 +285,15 @@ impl Cpu {
                         ));
                     }
                     self.frames.push(Frame {
-                        block: self.block,
+                        block: self.level.block,
                         pc: pc as u32,
-                        open_db: self.open_db,
-                        params: self.params,
+                        open_db: self.level.open_db,
+                        params: self.level.params,
                     });
-                    let caller = self.block;
+                    let caller = self.level.block;
                     let call_pc = pc as u32 - 1;
-                    self.block = target;
-                    self.params = params;
+                    self.level.block = target;
+                    self.level.params = params;
                     let callee = &program.blocks[usize::from(target)];
                     move_to!(0, &callee.code, &callee.elapsed[..=callee.code.len()]);
                     self.mark_point(segment_clock, caller, call_pc);
@@ -313,10 +317,10 @@ impl Cpu {
                     } else {
                         status.after_jump();
                     }
-                    let ended = self.block;
+                    let ended = self.level.block;
                     let clock = now!();
                     self.mark_point(clock, ended, pc as u32 - 1);
-                    let level_end = self.frames.len() == self.level_base;
+                    let level_end = self.frames.len() == self.level.level_base;
                     if self.tracer.enabled {
                         self.clock = clock;
                         self.trace_end(ended, !level_end && clock >= self.attention_at);
@@ -325,9 +329,9 @@ impl Cpu {
                         break Exit::LevelEnd;
                     }
                     let frame = self.frames.pop().expect("a frame above the level base");
-                    self.block = frame.block;
-                    self.open_db = frame.open_db;
-                    self.params = frame.params;
+                    self.level.block = frame.block;
+                    self.level.open_db = frame.open_db;
+                    self.level.params = frame.params;
                     let caller = &program.blocks[usize::from(frame.block)];
                     move_to!(
                         frame.pc as usize,
@@ -349,12 +353,12 @@ impl Cpu {
                 }
             }
             if OPERATION_POINTS && now!() >= self.attention_at {
-                self.last_op = (self.block, pc as u32 - 1);
+                self.last_op = (self.level.block, pc as u32 - 1);
                 break Exit::Point(Point::Operation);
             }
         };
         sync!();
-        self.pc = pc as u32;
+        self.level.pc = pc as u32;
         self.instructions += executed + (pc - segment_start) as u64;
         exit
     }
@@ -396,12 +400,13 @@ impl Cpu {
     }
 
     pub(super) fn data_word(&self, word: u16) -> Option<u16> {
-        let db = self.data_blocks[usize::from(self.open_db?)].as_ref()?;
+        let db = self.data_blocks[usize::from(self.level.open_db?)].as_ref()?;
         db.get(usize::from(word)).copied()
     }
 
-    fn data_fault(&self, pc: u32, word: u16) -> super::stop::Stop {
-        let problem = match self.open_db {
+    /// Why data word `word` cannot be reached: no DB open, or past its end.
+    fn data_fault(&self, word: u16) -> (StopCause, StopDetail) {
+        let problem = match self.level.open_db {
             None => format!("DW {word} accessed with no data block open"),
             Some(db) => {
                 let length = self.data_blocks[usize::from(db)]
@@ -410,19 +415,11 @@ impl Cpu {
                 format!("DW {word} is past the end of DB {db} ({length} words)")
             }
         };
-        self.stop(StopCause::LzfData, pc, StopDetail::Text(problem))
+        (StopCause::LzfData, StopDetail::Text(problem))
     }
 
-    fn read_data(
-        &self,
-        part: DataPart,
-        word: u16,
-        pc: u32,
-    ) -> Result<u32, (StopCause, StopDetail)> {
-        let fault = || {
-            let stop = self.data_fault(pc, word);
-            (stop.cause, stop.detail)
-        };
+    fn read_data(&self, part: DataPart, word: u16) -> Result<u32, (StopCause, StopDetail)> {
+        let fault = || self.data_fault(word);
         let value = u32::from(self.data_word(word).ok_or_else(fault)?);
         Ok(match part {
             DataPart::Left => value >> 8,
@@ -439,7 +436,6 @@ impl Cpu {
         part: DataPart,
         word: u16,
         value: u32,
-        pc: u32,
     ) -> Result<(), (StopCause, StopDetail)> {
         let last = if part == DataPart::Double {
             word + 1
@@ -447,10 +443,9 @@ impl Cpu {
             word
         };
         if self.data_word(last).is_none() {
-            let stop = self.data_fault(pc, last);
-            return Err((stop.cause, stop.detail));
+            return Err(self.data_fault(last));
         }
-        let db = self.data_blocks[usize::from(self.open_db.unwrap_or(0))]
+        let db = self.data_blocks[usize::from(self.level.open_db.unwrap_or(0))]
             .as_mut()
             .expect("checked above");
         let slot = &mut db[usize::from(word)];
@@ -466,8 +461,8 @@ impl Cpu {
         Ok(())
     }
 
-    fn data_bit(&self, word: u16, bit: u8, pc: u32) -> Result<bool, (StopCause, StopDetail)> {
-        Ok(self.read_data(DataPart::Word, word, pc)? >> bit & 1 != 0)
+    fn data_bit(&self, word: u16, bit: u8) -> Result<bool, (StopCause, StopDetail)> {
+        Ok(self.read_data(DataPart::Word, word)? >> bit & 1 != 0)
     }
 
     fn write_data_bit(
@@ -475,18 +470,17 @@ impl Cpu {
         word: u16,
         bit: u8,
         value: bool,
-        pc: u32,
     ) -> Result<(), (StopCause, StopDetail)> {
-        let old = self.read_data(DataPart::Word, word, pc)?;
+        let old = self.read_data(DataPart::Word, word)?;
         let mask = 1u32 << bit;
         let new = if value { old | mask } else { old & !mask };
-        self.write_data(DataPart::Word, word, new, pc)
+        self.write_data(DataPart::Word, word, new)
     }
 
-    fn bit_target(&self, target: BitTarget, pc: u32) -> Result<bool, (StopCause, StopDetail)> {
+    fn bit_target(&self, target: BitTarget) -> Result<bool, (StopCause, StopDetail)> {
         match target {
             BitTarget::Image(bit) => Ok(self.image_bit(bit)),
-            BitTarget::Data { word, bit } => self.data_bit(word, bit, pc),
+            BitTarget::Data { word, bit } => self.data_bit(word, bit),
         }
     }
 
@@ -494,14 +488,13 @@ impl Cpu {
         &mut self,
         target: BitTarget,
         value: bool,
-        pc: u32,
     ) -> Result<(), (StopCause, StopDetail)> {
         match target {
             BitTarget::Image(bit) => {
                 self.write_image_bit(bit, value);
                 Ok(())
             }
-            BitTarget::Data { word, bit } => self.write_data_bit(word, bit, value, pc),
+            BitTarget::Data { word, bit } => self.write_data_bit(word, bit, value),
         }
     }
 
@@ -547,11 +540,11 @@ impl Cpu {
     #[inline(never)]
     fn execute_other(&mut self, op: Op, pc: u32) -> Result<(), (StopCause, StopDetail)> {
         let now = self.clock;
-        let rlo = self.status.rlo();
+        let rlo = self.level.status.rlo();
         match op {
             Op::AndBracket | Op::OrBracket => {
-                if !self.brackets.open(
-                    &mut self.status,
+                if !self.level.brackets.open(
+                    &mut self.level.status,
                     op == Op::OrBracket,
                     self.profile.bracket_depth,
                 ) {
@@ -565,7 +558,7 @@ impl Cpu {
                 }
             }
             Op::CloseBracket => {
-                if !self.brackets.close(&mut self.status) {
+                if !self.level.brackets.close(&mut self.level.status) {
                     return Err((
                         StopCause::Bcf,
                         StopDetail::Text("`)` without an open bracket".into()),
@@ -574,31 +567,31 @@ impl Cpu {
             }
             Op::LogicOther(logic, source) => {
                 let value = match source {
-                    BitSource::Data { word, bit } => self.data_bit(word, bit, pc)?,
+                    BitSource::Data { word, bit } => self.data_bit(word, bit)?,
                     BitSource::Timer(n) => self.timers[usize::from(n)].bit(now),
                     BitSource::Counter(n) => self.counters[usize::from(n)].bit(),
                 };
                 match logic {
-                    Logic::And => self.status.and(value),
-                    Logic::AndNot => self.status.and(!value),
-                    Logic::Or => self.status.or(value),
-                    Logic::OrNot => self.status.or(!value),
+                    Logic::And => self.level.status.and(value),
+                    Logic::AndNot => self.level.status.and(!value),
+                    Logic::Or => self.level.status.or(value),
+                    Logic::OrNot => self.level.status.or(!value),
                 }
             }
             Op::WriteData { write, word, bit } => {
                 match write {
-                    Write::Assign => self.write_data_bit(word, bit, rlo, pc)?,
-                    Write::Set if rlo => self.write_data_bit(word, bit, true, pc)?,
-                    Write::Reset if rlo => self.write_data_bit(word, bit, false, pc)?,
+                    Write::Assign => self.write_data_bit(word, bit, rlo)?,
+                    Write::Set if rlo => self.write_data_bit(word, bit, true)?,
+                    Write::Reset if rlo => self.write_data_bit(word, bit, false)?,
                     _ => {}
                 }
-                self.status.end_string();
+                self.level.status.end_string();
             }
             Op::LoadData(part, word) => {
-                let value = self.read_data(part, word, pc)?;
+                let value = self.read_data(part, word)?;
                 self.load(value);
             }
-            Op::TransferData(part, word) => self.write_data(part, word, self.accu1, pc)?,
+            Op::TransferData(part, word) => self.write_data(part, word, self.level.accu1)?,
             Op::LoadPeripheral {
                 width,
                 byte,
@@ -611,7 +604,7 @@ impl Cpu {
                 width,
                 byte,
                 extended,
-            } => self.write_periphery(width, byte, self.accu1, extended),
+            } => self.write_periphery(width, byte, self.level.accu1, extended),
             Op::LoadTimer(n) => {
                 let timer = &mut self.timers[usize::from(n)];
                 timer.settle(now);
@@ -631,36 +624,36 @@ impl Cpu {
                 self.load(value);
             }
             Op::StartTimer(kind, n) => {
-                self.timers[usize::from(n)].start_op(kind, rlo, self.accu1, now);
-                self.status.end_string();
+                self.timers[usize::from(n)].start_op(kind, rlo, self.level.accu1, now);
+                self.level.status.end_string();
             }
             Op::EnableTimer(n) => {
                 self.timers[usize::from(n)].enable(rlo);
-                self.status.end_string();
+                self.level.status.end_string();
             }
             Op::ResetTimer(n) => {
                 self.timers[usize::from(n)].reset(rlo);
-                self.status.end_string();
+                self.level.status.end_string();
             }
             Op::CountUp(n) => {
                 self.counters[usize::from(n)].up(rlo);
-                self.status.end_string();
+                self.level.status.end_string();
             }
             Op::CountDown(n) => {
                 self.counters[usize::from(n)].down(rlo);
-                self.status.end_string();
+                self.level.status.end_string();
             }
             Op::SetCounter(n) => {
-                self.counters[usize::from(n)].set(rlo, self.accu1);
-                self.status.end_string();
+                self.counters[usize::from(n)].set(rlo, self.level.accu1);
+                self.level.status.end_string();
             }
             Op::ResetCounter(n) => {
                 self.counters[usize::from(n)].reset(rlo);
-                self.status.end_string();
+                self.level.status.end_string();
             }
             Op::EnableCounter(n) => {
                 self.counters[usize::from(n)].enable(rlo);
-                self.status.end_string();
+                self.level.status.end_string();
             }
             Op::CallMissing {
                 kind,
@@ -673,7 +666,7 @@ impl Cpu {
                         StopDetail::Text(format!("{} {number}", kind.name())),
                     ));
                 }
-                self.status.after_jump();
+                self.level.status.after_jump();
             }
             Op::OpenDb(number) => {
                 if self.data_blocks[usize::from(number)].is_none() {
@@ -682,10 +675,10 @@ impl Cpu {
                         StopDetail::Text(format!("DB {number}")),
                     ));
                 }
-                self.open_db = Some(number);
+                self.level.open_db = Some(number);
             }
             Op::GenerateDb(number) => {
-                let words = self.accu1 as u16;
+                let words = self.level.accu1 as u16;
                 if words > self.profile.sizes.data_words {
                     let text = format!(
                         "G DB {number} with {words} words: the CPU allows {}",
@@ -700,27 +693,36 @@ impl Cpu {
             }
             Op::Nop => {}
             Op::Stop => {
-                self.stop_requested.get_or_insert((self.block, pc));
+                self.stop_requested.get_or_insert((self.level.block, pc));
             }
-            Op::WordLogic(kind) => {
-                arith::word_logic(kind, &mut self.accu1, self.accu2, &mut self.status)
+            Op::WordLogic(kind) => arith::word_logic(
+                kind,
+                &mut self.level.accu1,
+                self.level.accu2,
+                &mut self.level.status,
+            ),
+            Op::ShiftLeft(n) => {
+                arith::shift(true, n, &mut self.level.accu1, &mut self.level.status)
             }
-            Op::ShiftLeft(n) => arith::shift(true, n, &mut self.accu1, &mut self.status),
-            Op::ShiftRight(n) => arith::shift(false, n, &mut self.accu1, &mut self.status),
-            Op::OnesComplement => arith::ones_complement(&mut self.accu1),
-            Op::TwosComplement => arith::twos_complement(&mut self.accu1, &mut self.status),
-            Op::Swap => std::mem::swap(&mut self.accu1, &mut self.accu2),
-            Op::Increment(n) => arith::increment(&mut self.accu1, i16::from(n)),
-            Op::Decrement(n) => arith::increment(&mut self.accu1, -i16::from(n)),
-            Op::SetUnconditional(target) => self.write_bit_target(target, true, pc)?,
-            Op::ResetUnconditional(target) => self.write_bit_target(target, false, pc)?,
+            Op::ShiftRight(n) => {
+                arith::shift(false, n, &mut self.level.accu1, &mut self.level.status)
+            }
+            Op::OnesComplement => arith::ones_complement(&mut self.level.accu1),
+            Op::TwosComplement => {
+                arith::twos_complement(&mut self.level.accu1, &mut self.level.status)
+            }
+            Op::Swap => std::mem::swap(&mut self.level.accu1, &mut self.level.accu2),
+            Op::Increment(n) => arith::increment(&mut self.level.accu1, i16::from(n)),
+            Op::Decrement(n) => arith::increment(&mut self.level.accu1, -i16::from(n)),
+            Op::SetUnconditional(target) => self.write_bit_target(target, true)?,
+            Op::ResetUnconditional(target) => self.write_bit_target(target, false)?,
             Op::TestBit { negate, target } => {
-                let value = self.bit_target(target, pc)?;
-                self.status.load(value != negate);
+                let value = self.bit_target(target)?;
+                self.level.status.load(value != negate);
             }
-            Op::DisableInterrupts => self.interrupts_enabled = false,
+            Op::DisableInterrupts => self.level.interrupts_enabled = false,
             Op::EnableInterrupts => {
-                self.interrupts_enabled = true;
+                self.level.interrupts_enabled = true;
                 if self.engine.has_pending() {
                     self.attention_at = 0;
                 }

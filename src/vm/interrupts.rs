@@ -23,7 +23,7 @@ use crate::profile::{Family, InterruptPoints};
 use crate::trace::Event;
 
 use super::stop::{Stop, StopCause, StopDetail};
-use super::{Cpu, Mode, Point, SavedLevel};
+use super::{Cpu, Mode, Point};
 
 /// Something that happens at a simulated time, from the scenario.
 #[derive(Debug, Clone, PartialEq)]
@@ -267,11 +267,11 @@ impl Cpu {
     /// A STOP found by the engine, at the op that led to the interrupt point.
     fn stop_at_last_op(&mut self, cause: StopCause, detail: StopDetail) -> Stop {
         let (block, pc) = self.last_op;
-        if self.block == super::IDLE || block == self.block {
+        if self.level.block == super::IDLE || block == self.level.block {
             return self.stop(cause, pc, detail);
         }
-        let mut stop = self.stop(cause, self.pc, detail);
-        let called = self.frames.len() > self.level_base
+        let mut stop = self.stop(cause, self.level.pc, detail);
+        let called = self.frames.len() > self.level.level_base
             && self.frames.last().is_some_and(|frame| frame.block == block);
         if called {
             // A block call: the running block is the callee; the call is the caller's entry.
@@ -280,7 +280,7 @@ impl Cpu {
             // A block end: the block that ended is no longer on the stack.
             let entry = super::stop::StackEntry {
                 block: self.block_id(block).to_string(),
-                line: self.line_of(block, pc, &self.sources),
+                line: self.line_of(block, pc),
             };
             stop.stack.insert(0, entry);
         }
@@ -292,7 +292,7 @@ impl Cpu {
     /// Keeps `attention_at` at the next moment the engine has to look.
     pub fn update_attention(&mut self) {
         let serviceable = self.mode == Mode::Run
-            && self.interrupts_enabled
+            && self.level.interrupts_enabled
             && self
                 .engine
                 .pending
@@ -340,7 +340,7 @@ impl Cpu {
             InterruptPoints::Operation => point != Point::Loop,
         };
         let mut entered = false;
-        if is_point && self.mode == Mode::Run && self.interrupts_enabled {
+        if is_point && self.mode == Mode::Run && self.level.interrupts_enabled {
             entered = self.service(point)?;
         }
         self.update_attention();
@@ -431,10 +431,14 @@ impl Cpu {
         let stretch = self.last_stretch;
         let (block, end_pc, end_ns) = if stretch.end_ns == self.clock && stretch.start_ns <= at {
             (stretch.block, stretch.end_pc, stretch.end_ns)
-        } else if self.block != super::IDLE
+        } else if self.level.block != super::IDLE
             && self.engine.config.points == InterruptPoints::Operation
         {
-            (self.block, self.pc.saturating_sub(1), self.clock)
+            (
+                self.level.block,
+                self.level.pc.saturating_sub(1),
+                self.clock,
+            )
         } else {
             return (None, None);
         };
@@ -698,12 +702,12 @@ impl Cpu {
         let request = self.engine.pending.remove(index);
         let latency = self.clock - request.requested_at;
         self.engine.record_latency(request.ob, latency);
-        let idle = self.block == super::IDLE;
+        let idle = self.level.block == super::IDLE;
         // The block the point belongs to: the one that ended, or was called, or ran the op.
         let point_block = match point {
             Point::BlockEnd => Some(self.last_stretch.block),
             Point::Cycle => None,
-            _ => (!idle).then_some(self.block),
+            _ => (!idle).then_some(self.level.block),
         };
         let interrupted = point_block.map(|block| self.block_id(block).to_string());
         self.emit(
@@ -716,20 +720,7 @@ impl Cpu {
                 block: interrupted,
             },
         );
-        self.levels.push(SavedLevel {
-            accu1: self.accu1,
-            accu2: self.accu2,
-            status: self.status,
-            brackets: self.brackets,
-            open_db: self.open_db,
-            block: self.block,
-            pc: self.pc,
-            params: self.params,
-            level_base: self.level_base,
-            interrupts_enabled: self.interrupts_enabled,
-            idle,
-            last_point_at: self.last_point_at,
-        });
+        self.levels.push(self.level);
         self.engine.active.push(Active { request, priority });
         let block = self
             .program
@@ -801,20 +792,10 @@ impl Cpu {
             self.interrupt_output_cycle();
             self.engine.ob13_ended_at = self.clock;
         }
-        let level = self
+        self.level = self
             .levels
             .pop()
             .expect("an interrupt level has a saved level");
-        self.accu1 = level.accu1;
-        self.accu2 = level.accu2;
-        self.status = level.status;
-        self.brackets = level.brackets;
-        self.open_db = level.open_db;
-        self.block = level.block;
-        self.pc = level.pc;
-        self.params = level.params;
-        self.level_base = level.level_base;
-        self.interrupts_enabled = level.interrupts_enabled;
         self.last_point_at = self.clock;
         if let Some(source) = request.hardware {
             self.acknowledge(source.module);

@@ -37,9 +37,9 @@ pub struct Frame {
     pub params: u16,
 }
 
-/// What an interrupted level had when an interrupt OB took over.
+/// The registers and position of a processing level: what an interrupt OB saves and restores.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SavedLevel {
+pub struct LevelState {
     pub accu1: u32,
     pub accu2: u32,
     pub status: Status,
@@ -48,12 +48,9 @@ pub struct SavedLevel {
     pub block: u16,
     pub pc: u32,
     pub params: u16,
+    /// Where this level's frames begin on the block stack.
     pub level_base: usize,
     pub interrupts_enabled: bool,
-    /// The level was between cycles (no block running).
-    pub idle: bool,
-    /// The cyclic level's last interrupt point, to resume the stretch measurement.
-    pub last_point_at: u64,
 }
 
 /// The operating mode.
@@ -121,7 +118,7 @@ pub struct Stretch {
 
 /// Image memory for every `u16` offset plus a double word: ops address it with `u16` offsets,
 /// so the compiler can prove every access in bounds. A program uses only the profile's part
-/// (`Layout::total`); its addresses are range-checked when it is compiled.
+/// (PII, PIQ and flags, see `Layout`); its addresses are range-checked when it is compiled.
 pub const IMAGE_MEMORY: usize = 1 << 16 | 4;
 
 pub type ImageMemory = [u8; IMAGE_MEMORY];
@@ -150,18 +147,11 @@ pub struct Cpu {
     pub counters: Vec<Counter>,
     /// Data blocks by number.
     pub data_blocks: Vec<Option<Vec<u16>>>,
-    pub accu1: u32,
-    pub accu2: u32,
-    pub status: Status,
-    pub brackets: Brackets,
-    pub open_db: Option<u8>,
-    pub block: u16,
-    pub pc: u32,
-    pub params: u16,
+    /// The running level's registers and position.
+    pub level: LevelState,
     pub frames: Vec<Frame>,
-    pub level_base: usize,
-    pub levels: Vec<SavedLevel>,
-    pub interrupts_enabled: bool,
+    /// The interrupted levels, innermost last.
+    pub levels: Vec<LevelState>,
     pub mode: Mode,
     /// Simulated time in ns.
     pub clock: u64,
@@ -212,18 +202,20 @@ impl Cpu {
             timers: vec![Timer::default(); usize::from(sizes.timers)],
             counters: vec![Counter::default(); usize::from(sizes.counters)],
             data_blocks,
-            accu1: 0,
-            accu2: 0,
-            status: Status::default(),
-            brackets: Brackets::default(),
-            open_db: None,
-            block: 0,
-            pc: 0,
-            params: NO_PARAMS,
+            level: LevelState {
+                accu1: 0,
+                accu2: 0,
+                status: Status::default(),
+                brackets: Brackets::default(),
+                open_db: None,
+                block: 0,
+                pc: 0,
+                params: NO_PARAMS,
+                level_base: 0,
+                interrupts_enabled: true,
+            },
             frames: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
-            level_base: 0,
             levels: Vec::with_capacity(levels_capacity),
-            interrupts_enabled: true,
             mode: Mode::Stop,
             clock: 0,
             attention_at: u64::MAX,
@@ -249,28 +241,31 @@ impl Cpu {
     }
 
     /// Source line of an op.
-    pub fn line_of(&self, block: u16, pc: u32, sources: &crate::source::SourceSet) -> u32 {
+    pub fn line_of(&self, block: u16, pc: u32) -> u32 {
         let block = &self.program.blocks[usize::from(block)];
-        match block.spans.get(pc as usize) {
-            Some(span) => sources.line_of(*span),
-            None => sources.line_of(block.header),
-        }
+        self.sources.line_of(
+            block
+                .spans
+                .get(pc as usize)
+                .copied()
+                .unwrap_or(block.header),
+        )
     }
 
     /// Nesting depth of the running level (1 = its bottom block).
     pub fn depth(&self) -> usize {
-        self.frames.len() - self.level_base + 1
+        self.frames.len() - self.level.level_base + 1
     }
 
     /// Starts a level at a block (OB 1, a startup OB, an interrupt OB).
     pub fn enter_level(&mut self, block: u16) {
-        self.level_base = self.frames.len();
-        self.block = block;
-        self.pc = 0;
-        self.params = NO_PARAMS;
-        self.open_db = None;
-        self.status = Status::default();
-        self.brackets = Brackets::default();
+        self.level.level_base = self.frames.len();
+        self.level.block = block;
+        self.level.pc = 0;
+        self.level.params = NO_PARAMS;
+        self.level.open_db = None;
+        self.level.status = Status::default();
+        self.level.brackets = Brackets::default();
     }
 
     /// The block stack, innermost first: the running block, then each return point.
@@ -283,11 +278,11 @@ impl Cpu {
                 .map(|frame| (frame.block, frame.pc.saturating_sub(1)))
                 .collect::<Vec<_>>()
         };
-        let mut stack = vec![(self.block, pc)];
-        let (mut base, mut top) = (self.level_base, self.frames.len());
+        let mut stack = vec![(self.level.block, pc)];
+        let (mut base, mut top) = (self.level.level_base, self.frames.len());
         stack.extend(calls(&self.frames[base..top]));
         for level in self.levels.iter().rev() {
-            if level.idle {
+            if level.block == IDLE {
                 break;
             }
             stack.push((level.block, level.pc));
@@ -301,7 +296,7 @@ impl Cpu {
     /// A STOP at the running block's op `pc`, with the block stack. Between cycles it is placed
     /// at the end of OB 1, where the cycle ended.
     pub fn stop(&self, cause: StopCause, pc: u32, detail: StopDetail) -> Stop {
-        let (block, pc) = if self.block == IDLE {
+        let (block, pc) = if self.level.block == IDLE {
             // Between cycles: at the end of OB 1, where the cycle ended, if there is one.
             match self.program.ob(1) {
                 Some(ob1) => {
@@ -314,18 +309,18 @@ impl Cpu {
                 None => (None, 0),
             }
         } else {
-            (Some(self.block), pc)
+            (Some(self.level.block), pc)
         };
         let stack = match block {
             None => Vec::new(),
-            Some(block) if self.block == IDLE => vec![(block, pc)],
+            Some(block) if self.level.block == IDLE => vec![(block, pc)],
             Some(_) => self.block_stack(pc),
         };
         let stack = stack
             .into_iter()
             .map(|(block, pc)| StackEntry {
                 block: self.block_id(block).to_string(),
-                line: self.line_of(block, pc, &self.sources),
+                line: self.line_of(block, pc),
             })
             .collect();
         Stop {
@@ -340,8 +335,8 @@ impl Cpu {
     /// Resolves an actual parameter of the running FB, following parameters passed on from the
     /// calling FBs.
     pub fn actual(&self, param: u8) -> Option<Resolved> {
-        let mut list = self.params;
-        let mut frames = self.frames[self.level_base..].iter().rev();
+        let mut list = self.level.params;
+        let mut frames = self.frames[self.level.level_base..].iter().rev();
         let mut index = param;
         loop {
             let actual = *self

@@ -35,9 +35,6 @@ impl Status {
     pub fn rlo(self) -> bool {
         self.get(RLO)
     }
-    pub fn first_check_done(self) -> bool {
-        self.get(FIRST_CHECK_DONE)
-    }
     pub fn cc1(self) -> bool {
         self.get(CC1)
     }
