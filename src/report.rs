@@ -141,7 +141,7 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
             }
         }
     }
-    for (ob, stats) in &cpu.engine.stats {
+    for (ob, stats) in cpu.engine.requested_obs() {
         let latency = match stats.latency_sum.checked_div(stats.serviced) {
             Some(mean) => format!(
                 "{}/{}/{} us",

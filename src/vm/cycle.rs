@@ -65,7 +65,7 @@ impl Cpu {
                     return Ok(());
                 }
                 Exit::LevelEnd => {
-                    self.leave_interrupt();
+                    self.leave_interrupt()?;
                     self.at_point(Point::BlockEnd)?;
                 }
                 Exit::Stop(stop) => return Err(stop),
@@ -85,7 +85,7 @@ impl Cpu {
     fn interrupts_between_levels(&mut self, point: Point) -> Result<(), Stop> {
         while self.at_point(point)? {
             self.run_level()?;
-            self.leave_interrupt();
+            self.leave_interrupt()?;
         }
         Ok(())
     }

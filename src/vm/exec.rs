@@ -524,7 +524,7 @@ impl Cpu {
         if self.engine.interrupt_images {
             write_bytes(&mut self.interrupt_piq, at, width, value);
             self.interrupt_piq_written = true;
-            self.engine.mark_dirty(at, width_bytes);
+            self.interrupt_piq_dirty[at..at + width_bytes].fill(true);
         } else {
             write_bytes(&mut self.outputs, at, width, value);
         }

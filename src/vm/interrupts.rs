@@ -17,8 +17,6 @@
 //!   same-channel loss with diagnostic interrupt OB 82; other-channel hold; busy-OB hold; none
 //!   in STARTUP, loss at the transition to RUN; OB 85 for a missing OB, STOP without OB 85.
 
-use std::collections::BTreeMap;
-
 use crate::profile::{Family, InterruptPoints};
 use crate::trace::Event;
 
@@ -47,6 +45,25 @@ pub struct InputChange {
     pub bit: u8,
     pub bytes: u8,
     pub value: u32,
+}
+
+impl InputChange {
+    /// Writes the change into the input modules' bytes.
+    pub fn apply(self, modules: &mut [u8]) {
+        let at = usize::from(self.byte);
+        if self.bytes == 0 {
+            let mask = 1u8 << self.bit;
+            if self.value != 0 {
+                modules[at] |= mask
+            } else {
+                modules[at] &= !mask
+            }
+        } else {
+            let bytes = self.value.to_be_bytes();
+            let count = usize::from(self.bytes);
+            modules[at..at + count].copy_from_slice(&bytes[4 - count..]);
+        }
+    }
 }
 
 /// Which input modules an input change writes.
@@ -129,7 +146,8 @@ struct Held {
     released_by: u16,
 }
 
-#[derive(Default)]
+/// The engine's state. Every collection gets its capacity when the engine is made, sized from
+/// the schedule, so servicing interrupts allocates nothing while the CPU runs.
 pub struct Engine {
     pub config: EngineConfig,
     schedule: Vec<Scheduled>,
@@ -139,31 +157,96 @@ pub struct Engine {
     pending: Vec<Request>,
     pub active: Vec<Active>,
     held: Vec<Held>,
-    /// SPEED7 modules between identification and acknowledgement: module → (channel, request id).
-    busy_modules: BTreeMap<u16, (u16, u64)>,
-    pub stats: BTreeMap<u8, ObStats>,
+    /// Held events released by an acknowledgement, while they are judged.
+    released: Vec<Held>,
+    /// SPEED7 modules between identification and acknowledgement: (module, channel, request).
+    busy_modules: Vec<(u16, u16, u64)>,
+    /// Counts and latencies by OB number.
+    stats: Box<[ObStats; 256]>,
     next_id: u64,
     /// S5-95F: OB 13 runs, so PY/PW reach the interrupt images.
     pub interrupt_images: bool,
-    interrupt_piq_dirty: Vec<bool>,
     /// When RUN began (hardware interrupts before it are not produced).
     run_started_at: Option<u64>,
     /// Hardware events of the STARTUP, judged at the transition to RUN.
     startup_events: Vec<(u64, u8, HardwareSource)>,
 }
 
+impl Default for Engine {
+    fn default() -> Self {
+        Engine::new(EngineConfig::default(), Vec::new())
+    }
+}
+
+/// Room for pending and active requests: at most one pending request per OB, and one active
+/// level per priority.
+const LEVELS: usize = 32;
+
 impl Engine {
     pub fn new(config: EngineConfig, mut schedule: Vec<Scheduled>) -> Self {
         schedule.sort_by_key(|item| item.at_ns);
+        // Each hardware event is held at most once at a time.
+        let hardware = schedule
+            .iter()
+            .filter(|item| matches!(item.what, Happening::Hardware { .. }))
+            .count();
+        let modules = config.hw_modules.len();
         Engine {
-            config,
             schedule,
-            ..Engine::default()
+            next: 0,
+            next_ob13_at: None,
+            ob13_ended_at: 0,
+            pending: Vec::with_capacity(LEVELS + hardware),
+            active: Vec::with_capacity(LEVELS),
+            held: Vec::with_capacity(hardware),
+            released: Vec::with_capacity(hardware),
+            busy_modules: Vec::with_capacity(modules),
+            stats: Box::new([ObStats::default(); 256]),
+            next_id: 0,
+            interrupt_images: false,
+            run_started_at: None,
+            startup_events: Vec::new(),
+            config,
         }
+    }
+
+    /// Counts and latencies of an OB.
+    pub fn stats(&self, ob: u8) -> ObStats {
+        self.stats[usize::from(ob)]
+    }
+
+    /// The OBs that were requested, with their counts, by OB number.
+    pub fn requested_obs(&self) -> impl Iterator<Item = (u8, &ObStats)> {
+        (0..=u8::MAX)
+            .zip(self.stats.iter())
+            .filter(|(_, stats)| stats.requested > 0)
+    }
+
+    fn busy_channel(&self, module: u16) -> Option<u16> {
+        self.busy_modules
+            .iter()
+            .find(|(busy, _, _)| *busy == module)
+            .map(|(_, channel, _)| *channel)
+    }
+
+    fn set_busy(&mut self, module: u16, channel: u16, id: u64) {
+        self.busy_modules.push((module, channel, id));
+    }
+
+    fn acknowledged(&mut self, module: u16) {
+        self.busy_modules.retain(|(busy, _, _)| *busy != module);
     }
 
     pub fn has_pending(&self) -> bool {
         !self.pending.is_empty()
+    }
+
+    /// Requests for `ob` that were counted but not yet serviced, lost or ignored: pending, or
+    /// held until an acknowledgement.
+    pub fn waiting(&self, ob: u8) -> u64 {
+        let pending = self.pending.iter().filter(|request| request.ob == ob);
+        let held = self.held.iter().filter(|held| held.request.ob == ob);
+        (pending.count() + held.count()) as u64
     }
 
     fn new_id(&mut self) -> u64 {
@@ -171,12 +254,12 @@ impl Engine {
         self.next_id
     }
 
-    fn stats(&mut self, ob: u8) -> &mut ObStats {
-        self.stats.entry(ob).or_default()
+    fn stats_mut(&mut self, ob: u8) -> &mut ObStats {
+        &mut self.stats[usize::from(ob)]
     }
 
     fn record_latency(&mut self, ob: u8, latency: u64) {
-        let stats = self.stats(ob);
+        let stats = self.stats_mut(ob);
         stats.latency_min = if stats.serviced == 0 {
             latency
         } else {
@@ -185,13 +268,6 @@ impl Engine {
         stats.latency_max = stats.latency_max.max(latency);
         stats.latency_sum += latency;
         stats.serviced += 1;
-    }
-
-    pub fn mark_dirty(&mut self, byte: usize, bytes: usize) {
-        if self.interrupt_piq_dirty.len() < byte + bytes {
-            self.interrupt_piq_dirty.resize(byte + bytes, false);
-        }
-        self.interrupt_piq_dirty[byte..byte + bytes].fill(true);
     }
 
     /// The next time the engine must look, apart from pending requests.
@@ -219,8 +295,11 @@ impl Cpu {
             .map_or(0, |active| active.priority)
     }
 
-    fn emit(&mut self, t_ns: u64, event: Event) {
+    /// Traces an event of the engine; `event` builds it only when a trace is written, so the
+    /// engine does no string work and allocates nothing otherwise.
+    fn emit(&mut self, t_ns: u64, event: impl FnOnce(&Self) -> Event) {
         if self.tracer.enabled {
+            let event = event(self);
             let indent = self.frames.len() + 2 * self.levels.len() + 1;
             self.tracer.emit(t_ns, indent, event);
         }
@@ -367,26 +446,32 @@ impl Cpu {
                 self.engine.next_ob13_at = Some(at.saturating_add(interval));
                 self.ob13_due(at)?;
             } else {
-                let item = self.engine.schedule[self.engine.next].clone();
+                let index = self.engine.next;
                 self.engine.next += 1;
-                self.happen(item)?;
+                self.happen(index)?;
             }
         }
     }
 
-    fn happen(&mut self, item: Scheduled) -> Result<(), Stop> {
-        match item.what {
+    /// The scheduled item `index` happens (read in place: a schedule is never copied).
+    fn happen(&mut self, index: usize) -> Result<(), Stop> {
+        let at = self.engine.schedule[index].at_ns;
+        match &self.engine.schedule[index].what {
             Happening::SetInputs(changes) => {
                 for change in changes {
-                    self.apply_input(change);
+                    let modules = match change.target {
+                        InputTarget::Process => &mut self.inputs,
+                        InputTarget::Extended => &mut self.extended_inputs,
+                    };
+                    change.apply(modules);
                 }
                 Ok(())
             }
-            Happening::Interrupt { ob } => {
-                self.request(ob, item.at_ns, None);
+            &Happening::Interrupt { ob } => {
+                self.request(ob, at, None);
                 Ok(())
             }
-            Happening::Hardware {
+            &Happening::Hardware {
                 module,
                 channel,
                 active_for_ns,
@@ -394,30 +479,10 @@ impl Cpu {
                 let source = HardwareSource {
                     module,
                     channel,
-                    active_until: item.at_ns.saturating_add(active_for_ns),
+                    active_until: at.saturating_add(active_for_ns),
                 };
-                self.hardware_event(item.at_ns, source)
+                self.hardware_event(at, source)
             }
-        }
-    }
-
-    pub fn apply_input(&mut self, change: InputChange) {
-        let memory = match change.target {
-            InputTarget::Process => &mut self.inputs,
-            InputTarget::Extended => &mut self.extended_inputs,
-        };
-        let at = usize::from(change.byte);
-        if change.bytes == 0 {
-            let mask = 1u8 << change.bit;
-            if change.value != 0 {
-                memory[at] |= mask
-            } else {
-                memory[at] &= !mask
-            }
-        } else {
-            let bytes = change.value.to_be_bytes();
-            let count = usize::from(change.bytes);
-            memory[at..at + count].copy_from_slice(&bytes[4 - count..]);
         }
     }
 
@@ -469,21 +534,20 @@ impl Cpu {
     /// Logs and counts a request; the caller decides what becomes of it.
     fn announce(&mut self, ob: u8, at: u64, hardware: Option<HardwareSource>) -> Request {
         let id = self.engine.new_id();
-        self.engine.stats(ob).requested += 1;
-        let (block, line) = if self
-            .engine
-            .run_started_at
-            .is_some_and(|started| at >= started)
-        {
-            self.place_of_request(at)
-        } else {
-            (None, None)
-        };
-        let (module, channel) = hardware.map_or((None, None), |source| {
-            (Some(source.module), Some(source.channel))
-        });
-        self.emit(
-            at,
+        self.engine.stats_mut(ob).requested += 1;
+        self.emit(at, |cpu| {
+            let (block, line) = if cpu
+                .engine
+                .run_started_at
+                .is_some_and(|started| at >= started)
+            {
+                cpu.place_of_request(at)
+            } else {
+                (None, None)
+            };
+            let (module, channel) = hardware.map_or((None, None), |source| {
+                (Some(source.module), Some(source.channel))
+            });
             Event::IrqRequest {
                 id,
                 ob,
@@ -491,8 +555,8 @@ impl Cpu {
                 channel,
                 block,
                 line,
-            },
-        );
+            }
+        });
         Request {
             id,
             ob,
@@ -504,30 +568,34 @@ impl Cpu {
     /// An interrupt request for an OB: ignored, lost, or pending.
     fn request(&mut self, ob: u8, at: u64, hardware: Option<HardwareSource>) -> Option<u64> {
         let id = self.announce(ob, at, hardware).id;
-        let ignored = if self.profile.family == Family::Sinumerik840c
+        let normal_mode = self.profile.family == Family::Sinumerik840c
             && !self.engine.config.special_mode
-            && (ob == 2 || ob == 5)
-        {
-            Some(format!(
-                "normal mode: OB {ob} is not processed, even when it exists (seed 000, 5.3.1)"
-            ))
-        } else if self.program.ob(ob).is_none() {
-            Some(format!("OB {ob} is not programmed"))
-        } else {
-            None
-        };
-        if let Some(reason) = ignored {
-            self.engine.stats(ob).ignored += 1;
-            self.emit(at, Event::IrqIgnored { id, ob, reason });
+            && (ob == 2 || ob == 5);
+        if normal_mode || self.program.ob(ob).is_none() {
+            self.engine.stats_mut(ob).ignored += 1;
+            self.emit(at, |_| Event::IrqIgnored {
+                id,
+                ob,
+                reason: if normal_mode {
+                    format!(
+                        "normal mode: OB {ob} is not processed, even when it exists (seed 000, 5.3.1)"
+                    )
+                } else {
+                    format!("OB {ob} is not programmed")
+                },
+            });
             return None;
         }
         if self.engine.pending.iter().any(|request| request.ob == ob) {
-            self.engine.stats(ob).lost += 1;
-            let reason = format!("OB {ob} already has a pending request");
-            self.emit(at, Event::IrqLost { id, ob, reason });
+            self.engine.stats_mut(ob).lost += 1;
+            self.emit(at, |_| Event::IrqLost {
+                id,
+                ob,
+                reason: format!("OB {ob} already has a pending request"),
+            });
             return None;
         }
-        self.engine.pending.push(super::interrupts::Request {
+        self.engine.pending.push(Request {
             id,
             ob,
             requested_at: at,
@@ -577,14 +645,17 @@ impl Cpu {
             }
             Some(_) => {}
         }
-        if let Some(&(channel, _)) = self.engine.busy_modules.get(&source.module) {
+        if let Some(channel) = self.engine.busy_channel(source.module) {
             let request = self.announce(ob, at, Some(source));
             let id = request.id;
             if channel == source.channel {
-                self.engine.stats(ob).lost += 1;
-                let reason = "same channel between identification and acknowledgement (seed 001)"
-                    .to_string();
-                self.emit(at, Event::IrqLost { id, ob, reason });
+                self.engine.stats_mut(ob).lost += 1;
+                self.emit(at, |_| Event::IrqLost {
+                    id,
+                    ob,
+                    reason: "same channel between identification and acknowledgement (seed 001)"
+                        .into(),
+                });
                 if self.program.ob(82).is_some() {
                     self.request(82, at, None);
                 }
@@ -623,22 +694,27 @@ impl Cpu {
     /// the transition to RUN is lost (seed 001).
     fn before_run_event(&mut self, at: u64, ob: u8, source: HardwareSource, run_started: u64) {
         let id = self.announce(ob, at, Some(source)).id;
-        let event = if source.active_until > run_started {
-            self.engine.stats(ob).lost += 1;
-            Event::IrqLost {
-                id,
-                ob,
-                reason: "hardware interrupt during the transition to RUN (seed 001)".into(),
-            }
+        let lost = source.active_until > run_started;
+        if lost {
+            self.engine.stats_mut(ob).lost += 1;
         } else {
-            self.engine.stats(ob).ignored += 1;
-            Event::IrqIgnored {
-                id,
-                ob,
-                reason: "no hardware interrupt is produced in STARTUP (seed 001)".into(),
+            self.engine.stats_mut(ob).ignored += 1;
+        }
+        self.emit(at.max(run_started.min(self.clock)), |_| {
+            if lost {
+                Event::IrqLost {
+                    id,
+                    ob,
+                    reason: "hardware interrupt during the transition to RUN (seed 001)".into(),
+                }
+            } else {
+                Event::IrqIgnored {
+                    id,
+                    ob,
+                    reason: "no hardware interrupt is produced in STARTUP (seed 001)".into(),
+                }
             }
-        };
-        self.emit(at.max(run_started.min(self.clock)), event);
+        });
     }
 
     /// The OS identifies the module's OB: the OB is requested and the module is busy until the
@@ -647,18 +723,20 @@ impl Cpu {
     fn identify(&mut self, at: u64, ob: u8, source: HardwareSource) -> Result<(), Stop> {
         if self.program.ob(ob).is_none() {
             let id = self.announce(ob, at, Some(source)).id;
-            self.engine.stats(ob).ignored += 1;
-            if self.program.ob(85).is_none() {
-                self.emit(
-                    at,
-                    Event::IrqIgnored {
-                        id,
-                        ob,
-                        reason: format!(
-                            "OB {ob} is not programmed and OB 85 is missing (seed 001)"
-                        ),
-                    },
-                );
+            self.engine.stats_mut(ob).ignored += 1;
+            let ob85 = self.program.ob(85).is_some();
+            self.emit(at, |_| Event::IrqIgnored {
+                id,
+                ob,
+                reason: if ob85 {
+                    format!(
+                        "OB {ob} is not programmed: OB 85 is called, the interrupt acknowledged (seed 001)"
+                    )
+                } else {
+                    format!("OB {ob} is not programmed and OB 85 is missing (seed 001)")
+                },
+            });
+            if !ob85 {
                 return Err(self.stop_at_last_op(
                     StopCause::Ob85,
                     StopDetail::Module {
@@ -667,14 +745,11 @@ impl Cpu {
                     },
                 ));
             }
-            self.emit(at, Event::IrqIgnored { id, ob, reason: format!("OB {ob} is not programmed: OB 85 is called, the interrupt acknowledged (seed 001)") });
             self.request(85, at, None);
             return Ok(());
         }
         if let Some(id) = self.request(ob, at, Some(source)) {
-            self.engine
-                .busy_modules
-                .insert(source.module, (source.channel, id));
+            self.engine.set_busy(source.module, source.channel, id);
         }
         Ok(())
     }
@@ -702,24 +777,21 @@ impl Cpu {
         let request = self.engine.pending.remove(index);
         let latency = self.clock - request.requested_at;
         self.engine.record_latency(request.ob, latency);
-        let idle = self.level.block == super::IDLE;
-        // The block the point belongs to: the one that ended, or was called, or ran the op.
-        let point_block = match point {
-            Point::BlockEnd => Some(self.last_stretch.block),
-            Point::Cycle => None,
-            _ => (!idle).then_some(self.level.block),
-        };
-        let interrupted = point_block.map(|block| self.block_id(block).to_string());
-        self.emit(
-            self.clock,
+        self.emit(self.clock, |cpu| {
+            // The block the point belongs to: the one that ended, or was called, or ran the op.
+            let point_block = match point {
+                Point::BlockEnd => Some(cpu.last_stretch.block),
+                Point::Cycle => None,
+                _ => (cpu.level.block != super::IDLE).then_some(cpu.level.block),
+            };
             Event::IrqService {
                 id: request.id,
                 ob: request.ob,
                 latency_ns: latency,
                 point: point.name(),
-                block: interrupted,
-            },
-        );
+                block: point_block.map(|block| cpu.block_id(block).to_string()),
+            }
+        });
         self.levels.push(self.level);
         self.engine.active.push(Active { request, priority });
         let block = self
@@ -733,22 +805,23 @@ impl Cpu {
         Ok(true)
     }
 
+    fn data_cycle(&mut self, kind: &'static str) {
+        let duration = u64::from(self.profile.timings.data_cycle);
+        self.emit(self.clock, |_| Event::DataCycle {
+            kind,
+            duration_ns: duration,
+        });
+        self.clock += duration;
+    }
+
     /// S5-95F: at OB 13 start the input modules are read into the interrupt PII (seed 002).
     fn interrupt_input_cycle(&mut self) {
         let length = self.interrupt_pii.len();
         self.interrupt_pii.copy_from_slice(&self.inputs[..length]);
-        let duration = u64::from(self.profile.timings.data_cycle);
-        self.emit(
-            self.clock,
-            Event::DataCycle {
-                kind: "interrupt_input",
-                duration_ns: duration,
-            },
-        );
-        self.clock += duration;
+        self.data_cycle("interrupt_input");
         self.engine.interrupt_images = true;
         self.interrupt_piq_written = false;
-        self.engine.interrupt_piq_dirty.clear();
+        self.interrupt_piq_dirty.fill(false);
     }
 
     /// S5-95F: after OB 13, the interrupt PIQ goes to the modules, only if it was written.
@@ -757,37 +830,27 @@ impl Cpu {
         if !self.interrupt_piq_written {
             return;
         }
-        let dirty = std::mem::take(&mut self.engine.interrupt_piq_dirty);
-        for (byte, written) in dirty.iter().enumerate() {
-            if *written {
+        for (byte, written) in self.interrupt_piq_dirty.iter_mut().enumerate() {
+            if std::mem::take(written) {
                 self.outputs[byte] = self.interrupt_piq[byte];
             }
         }
         self.interrupt_piq_written = false;
-        let duration = u64::from(self.profile.timings.data_cycle);
-        self.emit(
-            self.clock,
-            Event::DataCycle {
-                kind: "interrupt_output",
-                duration_ns: duration,
-            },
-        );
-        self.clock += duration;
+        self.data_cycle("interrupt_output");
     }
 
-    /// The interrupt OB's level has ended: acknowledge, restore the interrupted level.
-    pub fn leave_interrupt(&mut self) {
+    /// The interrupt OB's level has ended: acknowledge, restore the interrupted level. Events
+    /// up to the OB's end are taken in first: they came before the acknowledgement.
+    pub fn leave_interrupt(&mut self) -> Result<(), Stop> {
+        self.poll()?;
         let Some(active) = self.engine.active.pop() else {
-            return;
+            return Ok(());
         };
         let request = active.request;
-        self.emit(
-            self.clock,
-            Event::IrqEnd {
-                id: request.id,
-                ob: request.ob,
-            },
-        );
+        self.emit(self.clock, |_| Event::IrqEnd {
+            id: request.id,
+            ob: request.ob,
+        });
         if request.ob == 13 && self.profile.family == Family::S5_95f {
             self.interrupt_output_cycle();
             self.engine.ob13_ended_at = self.clock;
@@ -800,45 +863,46 @@ impl Cpu {
         if let Some(source) = request.hardware {
             self.acknowledge(source.module);
         }
+        Ok(())
     }
 
     /// SPEED7: the channel-specific acknowledgement after the OB has run; held events fire now
     /// if still active, else they are lost (seed 001).
     fn acknowledge(&mut self, module: u16) {
-        self.engine.busy_modules.remove(&module);
-        let (released, kept): (Vec<Held>, Vec<Held>) = std::mem::take(&mut self.engine.held)
-            .into_iter()
-            .partition(|held| held.released_by == module);
-        self.engine.held = kept;
-        for held in released {
+        self.engine.acknowledged(module);
+        // Judge the events this acknowledgement releases; the lists keep their capacity.
+        let mut released = std::mem::take(&mut self.engine.released);
+        self.engine.held.retain(|held| {
+            let release = held.released_by == module;
+            if release {
+                released.push(*held);
+            }
+            !release
+        });
+        for held in released.drain(..) {
             let request = held.request;
             let source = request
                 .hardware
                 .expect("held requests are hardware interrupts");
-            if self.clock < source.active_until
-                && !self.engine.busy_modules.contains_key(&source.module)
-            {
+            let busy = self.engine.busy_channel(source.module).is_some();
+            if self.clock < source.active_until && !busy {
                 self.engine
-                    .busy_modules
-                    .insert(source.module, (source.channel, request.id));
+                    .set_busy(source.module, source.channel, request.id);
                 self.engine.pending.push(request);
-            } else if self.engine.busy_modules.contains_key(&source.module) {
+            } else if busy {
                 self.engine.held.push(Held {
                     request,
                     released_by: source.module,
                 });
             } else {
-                self.engine.stats(request.ob).lost += 1;
-                let reason = "no longer active at the acknowledgement (seed 001)".to_string();
-                self.emit(
-                    self.clock,
-                    Event::IrqLost {
-                        id: request.id,
-                        ob: request.ob,
-                        reason,
-                    },
-                );
+                self.engine.stats_mut(request.ob).lost += 1;
+                self.emit(self.clock, |_| Event::IrqLost {
+                    id: request.id,
+                    ob: request.ob,
+                    reason: "no longer active at the acknowledgement (seed 001)".into(),
+                });
             }
         }
+        self.engine.released = released;
     }
 }

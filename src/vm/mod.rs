@@ -143,6 +143,8 @@ pub struct Cpu {
     pub interrupt_pii: Vec<u8>,
     pub interrupt_piq: Vec<u8>,
     pub interrupt_piq_written: bool,
+    /// Which bytes of the interrupt PIQ OB 13 wrote.
+    pub interrupt_piq_dirty: Vec<bool>,
     pub timers: Vec<Timer>,
     pub counters: Vec<Counter>,
     /// Data blocks by number.
@@ -199,6 +201,7 @@ impl Cpu {
             interrupt_pii: vec![0; periphery],
             interrupt_piq: vec![0; periphery],
             interrupt_piq_written: false,
+            interrupt_piq_dirty: vec![false; periphery],
             timers: vec![Timer::default(); usize::from(sizes.timers)],
             counters: vec![Counter::default(); usize::from(sizes.counters)],
             data_blocks,
