@@ -97,12 +97,30 @@ fn seed000_both_kinds_of_block_change_are_interrupt_points() {
         "run = { cycles = 1 }\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 3\"\n",
     );
     assert_eq!(services(&events), [(3, "block_call".to_string())]);
+    let call = time_of(&events, "block_call", "to", "PB 3");
+    let service = of(&events, "irq_service")[0];
+    assert_eq!(service["t_ns"], call, "taken at the call of PB 3");
+    assert_eq!(service["latency_ns"], call - 13_000);
     let (_, events) = traced(
         "s000_end",
         program,
         "run = { cycles = 1 }\n[[event]]\nat = \"24us\"\ninterrupt = \"OB 3\"\n",
     );
     assert_eq!(services(&events), [(3, "block_end".to_string())]);
+    let end = time_of(&events, "block_end", "block", "PB 3");
+    let service = of(&events, "irq_service")[0];
+    assert_eq!(service["t_ns"], end, "taken at the end of PB 3");
+    assert_eq!(service["latency_ns"], end - 24_000);
+}
+
+/// The time of the first event of a kind whose `field` is `value`.
+fn time_of(events: &[Value], kind: &str, field: &str, value: &str) -> u64 {
+    of(events, kind)
+        .into_iter()
+        .find(|event| event[field] == value)
+        .unwrap_or_else(|| panic!("no {kind} with {field} {value}"))["t_ns"]
+        .as_u64()
+        .unwrap()
 }
 
 /// Seed 000: "Organization blocks OB 2 and OB 5 cannot be called up in normal mode. If these
@@ -134,14 +152,19 @@ fn seed000_ob2_and_ob5_are_ignored_in_normal_mode_and_run_in_special_mode() {
 #[test]
 fn seed000_latency_is_bounded_by_the_longest_block() {
     let (ran, events) = sample("fig5_2_interrupt", "4");
-    let latency = of(&events, "irq_service")[0]["latency_ns"]
-        .as_u64()
-        .unwrap();
-    assert!(
-        latency <= ran.cpu.longest_stretch.ns,
-        "{latency} > {}",
-        ran.cpu.longest_stretch.ns
+    let service = of(&events, "irq_service")[0];
+    let requested = of(&events, "irq_request")[0]["t_ns"].as_u64().unwrap();
+    let pb3_end = time_of(&events, "block_end", "block", "PB 3");
+    assert_eq!(
+        service["latency_ns"],
+        pb3_end - requested,
+        "the request waits for the end of the block that runs"
     );
+    // The longest block is PB 13: the bound is its processing time, from its call to its end.
+    let pb13 = time_of(&events, "block_end", "block", "PB 13")
+        - time_of(&events, "block_call", "to", "PB 13");
+    assert_eq!(ran.cpu.longest_stretch.ns, pb13);
+    assert!(service["latency_ns"].as_u64().unwrap() <= pb13);
     let summary = awl::report::summary(&ran);
     assert!(summary.contains("longest block: PB 13"), "{summary}");
 }
@@ -238,7 +261,7 @@ fn second_request_for_a_pending_ob_is_lost() {
     let scenario = "run = { cycles = 1 }\n[[event]]\nat = \"20us\"\ninterrupt = \"OB 3\"\n[[event]]\nat = \"21us\"\ninterrupt = \"OB 3\"\n";
     let (ran, events) = traced("lost", program, scenario);
     assert_eq!(of(&events, "irq_lost").len(), 1);
-    let stats = ran.cpu.engine.stats[&3];
+    let stats = ran.cpu.engine.stats(3);
     assert_eq!((stats.requested, stats.serviced, stats.lost), (2, 1, 1));
 }
 
@@ -331,15 +354,37 @@ fn seed002_interrupt_output_cycle_only_after_ob13_and_only_if_written() {
 #[test]
 fn seed002_data_cycles_lengthen_the_cycle() {
     let (_, events) = sample("ob13_images", "9");
-    let times: Vec<u64> = of(&events, "cycle_end")
+    // What OB 13 takes: from its service (the interrupt input data cycle starts there) to the
+    // end of the interrupt output data cycle after it.
+    let services = of(&events, "irq_service");
+    let outputs: Vec<&Value> = of(&events, "data_cycle")
+        .into_iter()
+        .filter(|e| e["kind"] == "interrupt_output")
+        .collect();
+    assert_eq!(services.len(), 2);
+    let spans: Vec<u64> = services
+        .iter()
+        .zip(&outputs)
+        .map(|(service, output)| {
+            output["t_ns"].as_u64().unwrap() + output["duration_ns"].as_u64().unwrap()
+                - service["t_ns"].as_u64().unwrap()
+        })
+        .collect();
+    assert_eq!(spans[0], spans[1]);
+    assert!(
+        spans[0] > 2 * 300_000,
+        "two data cycles of 0.3 ms and OB 13"
+    );
+    let mut times: Vec<u64> = of(&events, "cycle_end")
         .iter()
         .map(|e| e["cycle_time_ns"].as_u64().unwrap())
         .collect();
-    let shortest = *times.iter().min().unwrap();
-    let longest = *times.iter().max().unwrap();
-    assert!(
-        longest >= shortest + 2 * 300_000,
-        "two data cycles of 0.3 ms: {shortest} vs {longest}"
+    times.sort_unstable();
+    times.dedup();
+    assert_eq!(
+        times,
+        [times[0], times[0] + spans[0]],
+        "a cycle with OB 13 is longer by exactly OB 13 and its data cycles"
     );
 }
 
@@ -368,10 +413,25 @@ fn seed002_wake_up_error_when_interrupts_keep_ob13_from_finishing() {
     scenario.push_str("[expect]\nmode = \"STOP\"\nstop_cause = \"WECK\"\n");
     let (ran, events) = traced("s002_interrupted", program, &scenario);
     expectations_met(&ran);
-    assert!(
-        services(&events).iter().filter(|(ob, _)| *ob == 3).count() >= 2,
-        "OB 3 (above OB 13) interrupted OB 13"
-    );
+    // Follow the levels: each OB 3 starts while OB 13 is the running level.
+    let mut running: Vec<u64> = Vec::new();
+    let mut interrupted_ob13 = 0;
+    for event in &events {
+        match event["ev"].as_str().unwrap() {
+            "irq_service" => {
+                let ob = event["ob"].as_u64().unwrap();
+                if ob == 3 {
+                    assert_eq!(running.last(), Some(&13), "OB 3 interrupts OB 13");
+                    interrupted_ob13 += 1;
+                }
+                running.push(ob);
+            }
+            "irq_end" => assert_eq!(running.pop(), event["ob"].as_u64()),
+            _ => {}
+        }
+    }
+    assert!(interrupted_ob13 >= 2);
+    assert!(running.contains(&13), "OB 13 had not finished at the STOP");
 }
 
 // ---- seed 001: VIPA SPEED7, OB 40/OB 41 hardware interrupts ----
@@ -434,19 +494,33 @@ fn seed001_ob_starts_only_above_the_active_priority_class() {
 }
 
 /// Seed 001: "The channel-specific acknowledgement is sent after this hardware interrupt OB
-/// has been executed": after OB 40 has run, the same channel triggers again.
+/// has been executed": a second event on the same channel up to the moment OB 40 ends is
+/// lost (the channel is not yet acknowledged), one just after it starts OB 40 again.
 #[test]
 fn seed001_acknowledgement_after_the_ob() {
-    let (ran, events) = traced(
-        "s001_ack",
+    let (_, events) = traced(
+        "s001_ack_once",
         SPEED7_OBS,
-        &speed7(
-            &[("1ms", 4, 1, "5us"), ("2ms", 4, 1, "5us")],
-            "[expect]\n\"FW 40\" = 2\n",
-        ),
+        &speed7(&[("1ms", 4, 1, "5us")], ""),
     );
-    expectations_met(&ran);
-    assert!(of(&events, "irq_lost").is_empty());
+    let end = of(&events, "irq_end")[0]["t_ns"].as_u64().unwrap();
+    for (at, runs, lost) in [(end - 1, 1, 1), (end, 1, 1), (end + 1, 2, 0)] {
+        let second = format!("{at}ns");
+        let (ran, events) = traced(
+            &format!("s001_ack_{at}"),
+            SPEED7_OBS,
+            &speed7(
+                &[("1ms", 4, 1, "5us"), (second.as_str(), 4, 1, "5us")],
+                &format!("[expect]\n\"FW 40\" = {runs}\n\"FW 82\" = {lost}\n"),
+            ),
+        );
+        expectations_met(&ran);
+        assert_eq!(
+            of(&events, "irq_lost").len(),
+            lost as usize,
+            "second event at {at}"
+        );
+    }
 }
 
 /// Seed 001: "If the event occurs on the channel that previously triggered the hardware
