@@ -172,9 +172,15 @@ fn every_front_end_code_renders() {
             .map(|d| render_plain(&report(&built.sources, d)))
             .collect();
         let all = rendered.join("\n");
-        assert!(
-            all.contains(code),
-            "{code} not reported for:\n{source}\n---\n{all}"
+        let codes: Vec<String> = built
+            .diagnostics
+            .iter()
+            .map(|d| miette::Diagnostic::code(d).unwrap().to_string())
+            .collect();
+        assert_eq!(
+            codes,
+            [code],
+            "exactly this code, no follow-on errors, for:\n{source}\n---\n{all}"
         );
         insta::assert_snapshot!(code.replace("::", "__"), all, &source);
     }
@@ -205,4 +211,46 @@ fn cases_cover_the_front_end_codes() {
             assert!(covered.contains(&code), "{code} has no snapshot case");
         }
     }
+}
+
+/// After a bad line, parsing goes on: the statements after it and the blocks after its block
+/// are still in the program.
+#[test]
+fn recovery_keeps_what_follows_a_bad_line() {
+    let source = "PB 1\n      A  I 0.0\n      BE 5\nPB 300\n      A  I 0.1\n      BE\nPB 2\n      A  § 1\n      =  Q 4.0\n      BE\n";
+    let parsed = awl::parser::parse_text(source);
+    let codes: Vec<String> = parsed
+        .errors
+        .iter()
+        .map(|e| miette::Diagnostic::code(e).unwrap().to_string())
+        .collect();
+    assert_eq!(
+        codes,
+        [
+            "awl::parse::unexpected_token",
+            "awl::parse::block_number",
+            "awl::lex::unexpected_character"
+        ]
+    );
+    let blocks: Vec<String> = parsed
+        .unit
+        .blocks
+        .iter()
+        .map(|b| b.id.to_string())
+        .collect();
+    assert_eq!(
+        blocks,
+        ["PB 1", "PB 2"],
+        "the block with the bad number is left out"
+    );
+    let statements = |index: usize| match &parsed.unit.blocks[index].body {
+        awl::ast::BlockBody::Logic(body) => (body.statements.len(), body.end.is_some()),
+        awl::ast::BlockBody::Data(_) => unreachable!(),
+    };
+    assert_eq!(statements(0), (1, true), "PB 1 keeps its A and is ended");
+    assert_eq!(
+        statements(1),
+        (2, true),
+        "PB 2 keeps = and BE after the bad line"
+    );
 }

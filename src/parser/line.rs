@@ -67,6 +67,13 @@ pub fn header<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a,
     }
 }
 
+/// The block type of a header line whose number is bad (`PB 300`, `PB300`).
+pub fn header_kind(source: &str, first: Token) -> BlockKind {
+    let text = first.text(source);
+    let letters = text.trim_end_matches(|c: char| c.is_ascii_digit());
+    BlockKind::from_word(letters).unwrap_or(BlockKind::Pb)
+}
+
 fn kind_number<'a>(context: Context<'a>, input: Tokens<'a>) -> LineResult<'a, u8> {
     match input.first() {
         Some(token) if token.kind == TokenKind::Number => {

@@ -47,6 +47,7 @@ pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> Pa
         blocks: Vec::new(),
         current: None,
         ended: false,
+        discard: false,
         outside_reported: false,
         next_data_word: 0,
         foreign: None,
@@ -128,6 +129,8 @@ struct Builder<'a> {
     current: Option<Block>,
     /// The current logic block has had its `BE`.
     ended: bool,
+    /// The current block's header was bad: its lines are checked, the block is dropped.
+    discard: bool,
     outside_reported: bool,
     next_data_word: u16,
     /// The first word of the other mnemonic set.
@@ -171,7 +174,13 @@ impl<'a> Builder<'a> {
                 diagnostic: Some(diagnostic),
                 ..
             })) => {
-                return self.errors.push(*diagnostic);
+                // A header with a bad number: its lines are still checked, so they are not
+                // reported as outside a block, but the block stays out of the program.
+                self.errors.push(*diagnostic);
+                let kind = line::header_kind(self.source, line[0]);
+                self.start_block(BlockId { kind, number: 0 }, self.span_of(line));
+                self.discard = true;
+                return;
             }
             Err(_) => {}
         }
@@ -198,6 +207,31 @@ impl<'a> Builder<'a> {
         };
         if let Err(error) = result {
             self.errors.push(error);
+            self.end_on_bad_block_end(line);
+        }
+    }
+
+    /// A `BE` line with something wrong after it still ends the block, so the error is not
+    /// followed by a "block has no BE".
+    fn end_on_bad_block_end(&mut self, line: &[Token]) {
+        let Some(Block {
+            body: BlockBody::Logic(body),
+            ..
+        }) = &mut self.current
+        else {
+            return;
+        };
+        let Some(&first) = strip_label(line).first() else {
+            return;
+        };
+        let word = first.text(self.source);
+        if mnemonics::operation(self.set, word).is_some_and(|info| info.op == OpCode::BlockEnd) {
+            body.end = Some(Span {
+                file: self.file,
+                start: first.start,
+                end: first.end,
+            });
+            self.ended = true;
         }
     }
 
@@ -215,7 +249,9 @@ impl<'a> Builder<'a> {
     }
 
     fn finish_block(&mut self) {
-        if let Some(block) = self.current.take() {
+        if let Some(block) = self.current.take()
+            && !std::mem::take(&mut self.discard)
+        {
             self.blocks.push(block);
         }
     }
