@@ -146,32 +146,51 @@ proptest! {
         let samples = scenario_samples();
         let (path, text) = &samples[index % samples.len()];
         let mutated = String::from_utf8_lossy(&apply(text.clone().into_bytes(), &mutations)).into_owned();
-        if let Ok(scenario) = awl::scenario::Scenario::parse(path, &mutated) {
-            let program_text = std::fs::read_to_string("programs/fig5_2_interrupt.awl").unwrap();
-            let cpu = scenario.cpu.unwrap_or(profile::find("sinumerik-840c").unwrap());
-            let built = frontend::build_text("p.awl", &program_text, cpu);
-            let set = awl::mnemonics::MnemonicSet::English;
-            if let Err(error) = scenario.schedule(&built.compiled.program, set) {
-                let _ = render_plain(&scenario.report(error));
+        // Every error is a rendered diagnostic with a scenario code.
+        let is_scenario_diagnostic = |rendered: &str| rendered.contains("awl::scenario::");
+        match awl::scenario::Scenario::parse(path, &mutated) {
+            Err(report) => {
+                let rendered = render_plain(&report);
+                prop_assert!(is_scenario_diagnostic(&rendered), "{}", rendered);
             }
-            if let Err(error) = scenario.expectations(&built.compiled.program, set) {
-                let _ = render_plain(&scenario.report(error));
+            Ok(scenario) => {
+                let program_text = std::fs::read_to_string("programs/fig5_2_interrupt.awl").unwrap();
+                let cpu = scenario.cpu.unwrap_or(profile::find("sinumerik-840c").unwrap());
+                let built = frontend::build_text("p.awl", &program_text, cpu);
+                let set = awl::mnemonics::MnemonicSet::English;
+                if let Err(error) = scenario.schedule(&built.compiled.program, set) {
+                    let rendered = render_plain(&scenario.report(error));
+                    prop_assert!(is_scenario_diagnostic(&rendered), "{}", rendered);
+                }
+                if let Err(error) = scenario.expectations(&built.compiled.program, set) {
+                    let rendered = render_plain(&scenario.report(error));
+                    prop_assert!(is_scenario_diagnostic(&rendered), "{}", rendered);
+                }
             }
         }
     }
 }
 
 /// Random programs from the whole operation table run on every CPU without a panic: whatever
-/// they do ends in RUN or in a STOP with a cause.
+/// they do ends in RUN after the cycles asked for, or in STOP with a cause at a real op.
+/// Labels are numbered so none is defined twice; a `DO` is always followed by a load it can
+/// modify, so every generated program compiles.
 fn random_fb(picks: &[(usize, bool)]) -> String {
     let mut body = String::new();
-    for (index, labelled) in picks {
+    for (line, (index, labelled)) in picks.iter().enumerate() {
         let info = &awl::mnemonics::OPERATIONS[index % awl::mnemonics::OPERATIONS.len()];
         if info.op == awl::mnemonics::OpCode::BlockEnd {
             continue;
         }
-        let label = if *labelled { "M001 :" } else { "      " };
+        let label = if *labelled {
+            format!("L{line:03} :")
+        } else {
+            "      ".to_string()
+        };
         body.push_str(&format!("{label}{} {}\n", info.en, info.example_en));
+        if info.op == awl::mnemonics::OpCode::Indirect {
+            body.push_str("      L  DW 0\n");
+        }
     }
     format!(
         "OB 1\n      C  DB 10\n      JU FB 1\nNAME :R\nX    :I 0.0\n      BE\nFB 1\nNAME :R\nDES  :X I BI\n{body}M001 :NOP 0\n      BE\nPB 3\n      BE\nFB 5\n      BE\nDB 10\n 0: KF +1\n 1: KF +2\n 2: KF +3\n"
@@ -186,15 +205,26 @@ proptest! {
         let source = random_fb(&picks);
         for cpu in profile::PROFILES {
             let built = frontend::build_text("random.awl", &source, cpu);
-            if built.has_errors() {
-                continue;
-            }
+            prop_assert!(!built.has_errors(), "{}: {:?}\n{}", cpu.name, built.diagnostics, source);
             let mut machine = awl::vm::Cpu::new(
                 std::sync::Arc::new(built.compiled.program.clone()),
                 std::sync::Arc::new(built.sources.clone()),
             );
             let outcome = machine.run(awl::vm::cycle::RunLimit::Cycles(3));
-            prop_assert!(outcome.stop.is_some() || outcome.cycles == 3);
+            prop_assert!(outcome.instructions > 0);
+            match &outcome.stop {
+                None => {
+                    prop_assert_eq!(outcome.mode, awl::vm::Mode::Run);
+                    prop_assert_eq!(outcome.cycles, 3);
+                }
+                Some(stop) => {
+                    prop_assert_eq!(outcome.mode, awl::vm::Mode::Stop);
+                    let block = &machine.program.blocks[usize::from(stop.block.expect("OB 1 exists"))];
+                    prop_assert!((stop.pc as usize) < block.code.len(), "STOP at a real op");
+                    prop_assert_eq!(&stop.stack[0].block, &block.id.to_string());
+                    prop_assert!(outcome.cycles <= 3);
+                }
+            }
         }
     }
 }
@@ -259,9 +289,19 @@ proptest! {
             );
             machine.engine = Engine::new(config, schedule);
             let outcome = machine.run(awl::vm::cycle::RunLimit::Duration(6_000_000));
-            if let Some(stop) = &outcome.stop {
-                let ran_stop = stop.clone();
-                prop_assert!(!ran_stop.cause.code().is_empty());
+            prop_assert_eq!(outcome.stop.is_some(), outcome.mode == awl::vm::Mode::Stop);
+            if outcome.stop.is_none() {
+                prop_assert!(outcome.clock_ns >= 6_000_000, "ran to the end");
+            }
+            // Every request is accounted for: serviced, lost, ignored, or still waiting.
+            for (ob, stats) in machine.engine.requested_obs() {
+                let waiting = machine.engine.waiting(ob);
+                prop_assert_eq!(
+                    stats.requested,
+                    stats.serviced + stats.lost + stats.ignored + waiting,
+                    "OB {}: {:?}, {} waiting", ob, stats, waiting
+                );
+                prop_assert!(stats.latency_min <= stats.latency_max);
             }
         }
     }

@@ -69,10 +69,17 @@ fn sub_mul_div_work_on_accu_2_and_accu_1() {
 
 #[test]
 fn division_by_zero_leaves_accu_1_and_sets_cc_11_and_ov() {
-    let body = "      L  KF +100\n      L  KF +0\n      :F\n      T  FW 0\n      JO =OVF\n      BEU\nOVF  :L  KF +9\n      T  FW 2";
+    // FW 0 starts at 77, so the 0 read back is the divisor left in ACCU 1; JZ/JN/JP/JM tell
+    // CC1 CC0 = 1 1 apart: only "not zero" jumps (CC1 != CC0 is false, so JN does not).
+    let body = "      L  KF +77\n      T  FW 0\n      L  KF +100\n      L  KF +0\n      :F\n      T  FW 0\n      JO =OVF\n      BEU\nOVF  :L  KF +9\n      T  FW 2\n      L  KF +100\n      L  KF +0\n      :F\n      JP =POS\n      JM =NEG\n      JZ =ZER\n      L  KF +11\n      T  FW 4\n      BEU\nPOS  :L  KF +1\n      T  FW 4\n      BEU\nNEG  :L  KF +2\n      T  FW 4\n      BEU\nZER  :L  KF +3\n      T  FW 4";
     let (cpu, _) = run_once(&fb(body));
     assert_eq!(fw(&cpu, 0), 0, "ACCU 1 still holds the divisor 0");
-    assert_eq!(fw(&cpu, 2), 9);
+    assert_eq!(fw(&cpu, 2), 9, "OV is set");
+    assert_eq!(
+        fw(&cpu, 4),
+        11,
+        "CC1 CC0 = 1 1: neither positive, minus nor zero"
+    );
 }
 
 #[test]
@@ -120,7 +127,7 @@ fn load_and_transfer_every_memory_operand() {
 
 #[test]
 fn every_constant_format_loads() {
-    let body = "      L  KB 255\n      T  FW 0\n      L  KF -1\n      T  FW 2\n      L  KM 0000000011110000\n      T  FW 4\n      L  KY 1,2\n      T  FW 6\n      L  KT 123.2\n      T  FW 8\n      L  KC 456\n      T  FW 10\n      L  KS 'AB'\n      T  FW 12\n      L  DH 12345678\n      T  FD 14\n      L  KG +5000000+01\n      T  FD 18";
+    let body = "      L  KB 255\n      T  FW 0\n      L  KF -1\n      T  FW 2\n      L  KM 0000000011110000\n      T  FW 4\n      L  KY 1,2\n      T  FW 6\n      L  KT 123.2\n      T  FW 8\n      L  KC 456\n      T  FW 10\n      L  KS 'AB'\n      T  FW 12\n      L  DH 12345678\n      T  FD 14\n      L  KG +5000000+01\n      T  FD 18\n      L  KG -7500000+00\n      T  FD 22";
     let (cpu, _) = run_once(&fb(body));
     assert_eq!(fw(&cpu, 0), 255);
     assert_eq!(fw(&cpu, 2), -1);
@@ -130,7 +137,16 @@ fn every_constant_format_loads() {
     assert_eq!(fw(&cpu, 10), 0x0456, "KC: BCD");
     assert_eq!(fw(&cpu, 12), 0x4142);
     assert_eq!(fd(&cpu, 14), 0x1234_5678);
-    assert_eq!(fd(&cpu, 18) >> 24, 3, "KG 5.0: exponent 3, mantissa 0.625");
+    assert_eq!(
+        fd(&cpu, 18),
+        0x0350_0000,
+        "KG 5.0: exponent 3, mantissa +0.625 (sign and 23 bits)"
+    );
+    assert_eq!(
+        fd(&cpu, 22),
+        0x00A0_0000,
+        "KG -0.75: exponent 0, mantissa -0.75 in two's complement"
+    );
 }
 
 #[test]
@@ -174,10 +190,31 @@ fn bit_test_and_unconditional_set_and_reset() {
 
 #[test]
 fn counters_stay_within_0_and_999() {
-    let body = "      ON F 9.0\n      L  KC 999\n      S  C 1\n      CU C 1\n      L  C 1\n      T  FW 0\n      R  C 1\n      CD C 1\n      L  C 1\n      T  FW 2\n      A  C 1\n      =  F 4.0\n      ON F 9.0\n      L  KC 123\n      S  C 2\n      LC C 2\n      T  FW 6";
-    let (cpu, _) = run_once(&fb(body));
-    assert_eq!(fw(&cpu, 0), 999);
-    assert_eq!(fw(&cpu, 2), 0);
+    // Each operation first sees RLO 0 (A F 9.0), then RLO 1 (AN F 9.0): a rising edge.
+    let edge = |op: &str| format!("      A  F 9.0\n      {op}\n      AN F 9.0\n      {op}\n");
+    let body = [
+        "      L  KC 5\n".to_string(),
+        edge("S  C 1"),
+        edge("CU C 1"),
+        "      L  C 1\n      T  FW 0\n      L  KC 999\n".to_string(),
+        edge("S  C 1"),
+        edge("CU C 1"),
+        "      L  C 1\n      T  FW 2\n      L  KC 3\n".to_string(),
+        edge("S  C 2"),
+        edge("CD C 2"),
+        "      L  C 2\n      T  FW 4\n".to_string(),
+        edge("R  C 2"),
+        edge("CD C 2"),
+        "      L  C 2\n      T  FW 8\n      A  C 2\n      =  F 4.0\n      L  KC 123\n".to_string(),
+        edge("S  C 3"),
+        "      LC C 3\n      T  FW 6".to_string(),
+    ]
+    .concat();
+    let (cpu, _) = run_once(&fb(&body));
+    assert_eq!(fw(&cpu, 0), 6, "CU counts 5 up to 6");
+    assert_eq!(fw(&cpu, 2), 999, "no count above 999");
+    assert_eq!(fw(&cpu, 4), 2, "CD counts 3 down to 2");
+    assert_eq!(fw(&cpu, 8), 0, "no count below 0");
     assert!(!flag(&cpu, 4, 0), "a counter at 0 reads 0");
     assert_eq!(fw(&cpu, 6), 0x0123);
 }
@@ -191,13 +228,13 @@ fn open_data_block_is_restored_after_a_call() {
 
 #[test]
 fn fb_parameters_of_every_kind() {
-    let source = "OB 1\n      JU FB 3\nNAME :ALL\nBIT  :F 0.1\nOUT  :F 0.2\nWORD :FW 10\nKON  :KF +42\nBLK  :PB 7\nTIM  :T 4\nCNT  :C 5\n      BE\n\
+    let source = "OB 1\n      L  KF +1234\n      T  FW 10\n      JU FB 3\nNAME :ALL\nBIT  :F 0.1\nOUT  :F 0.2\nWORD :FW 10\nKON  :KF +42\nBLK  :PB 7\nTIM  :T 4\nCNT  :C 5\n      BE\n\
 FB 3\nNAME :ALL\nDES  :BIT  I BI\nDES  :OUT  Q BI\nDES  :WORD I W\nDES  :KON  D KF\nDES  :BLK  B\nDES  :TIM  T\nDES  :CNT  C\n      ON =BIT\n      =  =OUT\n      L  =KON\n      T  FW 20\n      L  =WORD\n      T  FW 22\n      JU =BLK\n      L  KT 010.2\n      ON =BIT\n      SE =TIM\n      A  =TIM\n      =  F 3.0\n      ON =BIT\n      CU =CNT\n      L  =CNT\n      T  FW 24\n      BE\nPB 7\n      L  KF +7\n      T  FW 26\n      BE\n";
     let (cpu, _) = run_once(source);
     assert!(flag(&cpu, 0, 2));
     assert_eq!(
         (fw(&cpu, 20), fw(&cpu, 22), fw(&cpu, 24), fw(&cpu, 26)),
-        (42, 0, 1, 7)
+        (42, 1234, 1, 7)
     );
     assert!(flag(&cpu, 3, 0), "the extended pulse on T 4 runs");
 }
