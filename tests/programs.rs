@@ -1,4 +1,5 @@
-//! Every scenario in programs/ (and programs/bench/) passes, and every sample program has one.
+//! Every scenario in programs/ (and programs/bench/) passes and states the mode it ends in, and
+//! every sample program has one.
 
 mod common;
 
@@ -36,6 +37,27 @@ fn every_scenario_passes() {
             "{}: {:?}",
             scenario.display(),
             ran.mismatches
+        );
+    }
+}
+
+/// Every scenario says how the run must end: `mode` in its `[expect]` table.
+#[test]
+fn every_scenario_states_its_final_mode() {
+    for scenario in files("programs", "toml")
+        .into_iter()
+        .chain(files("programs/bench", "toml"))
+    {
+        let text = std::fs::read_to_string(&scenario).unwrap();
+        let table: toml::Table = text.parse().unwrap();
+        let mode = table
+            .get("expect")
+            .and_then(|expect| expect.get("mode"))
+            .and_then(toml::Value::as_str);
+        assert!(
+            matches!(mode, Some("RUN" | "STOP")),
+            "{}: no `mode` in [expect]",
+            scenario.display()
         );
     }
 }
