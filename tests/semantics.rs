@@ -299,3 +299,58 @@ fn do_must_not_modify_another_do() {
         awl::diagnostics::SourceDiagnostic::Check(awl::compiler::CheckError::IndirectTarget { .. })
     )));
 }
+
+#[test]
+fn data_bits_take_every_logic_and_write_operation() {
+    // DW 3 starts at 0: = D 3.0 with RLO 1, S D 3.1, R D 3.0 again; A D / O D read them back.
+    let body = "      C  DB 5\n      ON F 9.0\n      =  D 3.0\n      S  D 3.1\n      A  D 3.0\n      A  D 3.1\n      =  F 1.0\n      ON F 9.0\n      R  D 3.0\n      A  D 3.0\n      O  D 3.1\n      =  F 1.1\n      AN D 3.0\n      ON D 3.1\n      =  F 1.2\n      L  DW 3\n      T  FW 20";
+    let (cpu, _) = run_once(&fb(body));
+    assert!(flag(&cpu, 1, 0), "= D and S D set the bits");
+    assert!(flag(&cpu, 1, 1), "O D 3.1 is 1 after R D 3.0");
+    assert!(flag(&cpu, 1, 2), "AN D 3.0 is 1");
+    assert_eq!(fw(&cpu, 20), 0b10, "only D 3.1 is left set");
+}
+
+#[test]
+fn timer_and_counter_bits_in_logic_and_loads() {
+    // T 1 runs (extended pulse, bit 1); C 1 counted to 1 (bit 1); C 2 stays 0.
+    let body = "      ON F 9.0\n      L  KT 500.0\n      SE T 1\n      ON F 9.0\n      CU C 1\n      A  F 9.0\n      O  T 1\n      =  F 1.0\n      A  F 9.0\n      O  C 1\n      =  F 1.1\n      AN C 2\n      ON C 2\n      =  F 1.2\n      A  F 9.0\n      ON T 1\n      =  F 1.3\n      L  T 1\n      T  FW 20\n      L  C 1\n      T  FW 22";
+    let (cpu, _) = run_once(&fb(body));
+    assert!(flag(&cpu, 1, 0), "O T 1");
+    assert!(flag(&cpu, 1, 1), "O C 1");
+    assert!(flag(&cpu, 1, 2), "AN C 2 / ON C 2");
+    assert!(!flag(&cpu, 1, 3), "ON T 1 of a running pulse is 0");
+    assert_eq!(
+        fw(&cpu, 20),
+        500,
+        "L T 1: the remaining time, nothing elapsed yet"
+    );
+    assert_eq!(fw(&cpu, 22), 1);
+}
+
+#[test]
+fn enabling_a_counter_lets_it_count_again() {
+    // CU with RLO 1 twice counts once; FR C 1 on a rising edge lets the next CU count again.
+    let body = "      ON F 9.0\n      CU C 1\n      CU C 1\n      A  F 9.0\n      FR C 1\n      ON F 9.0\n      FR C 1\n      CU C 1\n      L  C 1\n      T  FW 0";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 0), 2);
+}
+
+#[test]
+fn indirect_data_word_and_peripheral_words() {
+    // DO DW 2: DW 2 holds -2 → 0xFFFE, out of range: use DW 0 = 1 to make `L DW 0` load DW 1.
+    let body = "      C  DB 5\n      DO DW 0\n      L  DW 3\n      T  FW 0\n      L  KH 1234\n      T  PW 4\n      L  PW 4\n      T  FW 2\n      L  KB 9\n      T  OY 7\n      L  OY 7\n      T  FW 4";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 0) as u16, 0xABCD, "DO DW 0 made it L DW 1");
+    assert_eq!(
+        cpu.outputs[4..6],
+        [0x12, 0x34],
+        "T PW writes the output module"
+    );
+    assert_eq!(
+        cpu.extended_outputs[7], 9,
+        "T OY writes the extended module"
+    );
+    // L PW / L OY read the input modules, which hold 0.
+    assert_eq!((fw(&cpu, 2), fw(&cpu, 4)), (0, 0));
+}

@@ -69,11 +69,6 @@ impl Program {
         self.index.get(&id).copied()
     }
 
-    pub fn block(&self, id: BlockId) -> Option<&CompiledBlock> {
-        self.block_index(id)
-            .map(|index| &self.blocks[usize::from(index)])
-    }
-
     pub fn ob(&self, number: u8) -> Option<u16> {
         self.block_index(BlockId {
             kind: BlockKind::Ob,
@@ -88,14 +83,6 @@ impl Program {
 pub struct Compiled {
     pub program: Program,
     pub diagnostics: Vec<CheckError>,
-}
-
-impl Compiled {
-    pub fn has_errors(&self) -> bool {
-        self.diagnostics
-            .iter()
-            .any(|diagnostic| !diagnostic.is_warning())
-    }
 }
 
 pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Profile) -> Compiled {
