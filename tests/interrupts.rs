@@ -629,3 +629,79 @@ fn seed001_missing_ob_calls_ob85_and_without_ob85_stops() {
     expectations_met(&ran);
     assert_eq!(of(&events, "stop")[0]["cause"], "OB85");
 }
+
+/// Seed 000: "An interrupt is only serviced on a block change, i.e. when a block is called or
+/// terminated": OB 3 runs at the cycle boundary; OB 2 (higher) comes while OB 3 runs without
+/// a block change, so it waits for OB 3's block end and runs after OB 3 has ended.
+#[test]
+fn seed000_a_higher_request_during_an_interrupt_ob_waits_for_its_end() {
+    let program = "OB 1\n      BE\nOB 3\n      L  KF +1\n      L  KF +2\n      X  F\n      X  F\n      X  F\n      BE\nOB 2\n      L  KF +9\n      BE\n";
+    let scenario = |events: &str| {
+        format!(
+            "mode = \"special\"\nrun = {{ cycles = 2 }}\n[[event]]\nat = \"100us\"\ninterrupt = \"OB 3\"\n{events}"
+        )
+    };
+    let (_, events) = traced("s000_during_ob3_dry", program, &scenario(""));
+    let start = of(&events, "irq_service")[0]["t_ns"].as_u64().unwrap();
+    let end = of(&events, "irq_end")[0]["t_ns"].as_u64().unwrap();
+    let at = start + (end - start) / 2;
+    let (_, events) = traced(
+        "s000_during_ob3",
+        program,
+        &scenario(&format!(
+            "[[event]]\nat = \"{at}ns\"\ninterrupt = \"OB 2\"\n"
+        )),
+    );
+    let order: Vec<(String, u64)> = events
+        .iter()
+        .filter(|e| e["ev"] == "irq_service" || e["ev"] == "irq_end")
+        .map(|e| {
+            (
+                e["ev"].as_str().unwrap().to_string(),
+                e["ob"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        order,
+        [
+            ("irq_service".to_string(), 3),
+            ("irq_end".to_string(), 3),
+            ("irq_service".to_string(), 2),
+            ("irq_end".to_string(), 2)
+        ]
+    );
+    let ob2 = of(&events, "irq_service")[1];
+    assert_eq!(ob2["latency_ns"].as_u64().unwrap(), end - at);
+}
+
+/// The nesting limit counts an interrupt OB's own blocks (840C: 32 a level): OB 3, entered at
+/// OB 1's call of PB 1, may nest 31 blocks below itself; one more is STOP STUEB.
+#[test]
+fn nesting_depth_counts_from_the_interrupt_obs_level() {
+    let chain = |last: u8| {
+        let mut text = String::from(
+            "OB 1\n      JU PB 1\n      BE\nPB 1\n      BE\nOB 3\n      JU PB 10\n      BE\n",
+        );
+        for pb in 10..last {
+            text.push_str(&format!("PB {pb}\n      JU PB {}\n      BE\n", pb + 1));
+        }
+        text + &format!("PB {last}\n      BE\n")
+    };
+    let scenario = "run = { cycles = 1 }\n[[event]]\nat = \"0ms\"\ninterrupt = \"OB 3\"\n";
+    let (ran, events) = traced("nesting_ok", &chain(40), scenario);
+    assert!(ran.outcome.stop.is_none(), "{:?}", ran.outcome.stop);
+    let deepest = of(&events, "block_call")
+        .iter()
+        .map(|e| e["depth"].as_u64().unwrap())
+        .max();
+    assert_eq!(
+        deepest,
+        Some(32),
+        "OB 3 is depth 1 of its level, PB 40 depth 32"
+    );
+    let (ran, _) = traced("nesting_stueb", &chain(41), scenario);
+    let stop = ran.outcome.stop.expect("STOP");
+    assert_eq!(stop.cause.code(), "STUEB");
+    assert_eq!(stop.stack[0].block, "PB 40");
+}

@@ -182,3 +182,54 @@ fn stop_between_cycles_without_blocks() {
         "{rendered}"
     );
 }
+
+/// A STOP found at an interrupt point names the operation that led there: the block call, the
+/// operation (with operation points), or the `DO` whose parameter was bad.
+#[test]
+fn stops_at_points_name_the_operation_that_led_there() {
+    let program = "OB 1\n      L  KF +1\n      L  KF +2\n      X  F\n      X  F\n      JU PB 2\n      BE\nPB 2\n      BE\n";
+    let result = ran(run_scenario(
+        "zyk_at_call",
+        program,
+        "run = { cycles = 1 }\nwatchdog = \"20us\"\n",
+    ));
+    let stop = result.outcome.stop.as_ref().expect("ZYK");
+    assert_eq!(stop.cause.code(), "ZYK");
+    assert_eq!(
+        (stop.stack[0].block.as_str(), stop.stack[0].line),
+        ("OB 1", 6),
+        "the call of PB 2 found the watchdog expired"
+    );
+    let result = ran(run_scenario(
+        "zyk_at_operation",
+        program,
+        "run = { cycles = 1 }\nwatchdog = \"20us\"\ninterrupt_points = \"operation\"\n",
+    ));
+    let stop = result.outcome.stop.as_ref().expect("ZYK");
+    assert_eq!(
+        (stop.stack[0].block.as_str(), stop.stack[0].line),
+        ("OB 1", 5),
+        "the second X F ends after 20 us (24.7 us)"
+    );
+    let bad_do = "OB 1\n      JU FB 1\nNAME :D\n      BE\nFB 1\nNAME :D\n      L  KF +999\n      T  FW 0\n      DO FW 0\n      A  I 0.0\n      BE\n";
+    let result = ran(run_scenario("bad_do", bad_do, "run = { cycles = 1 }\n"));
+    let stop = result.outcome.stop.as_ref().expect("BCF");
+    assert_eq!(stop.cause.code(), "BCF");
+    assert_eq!(
+        (stop.stack[0].block.as_str(), stop.stack[0].line),
+        ("FB 1", 9)
+    );
+}
+
+/// Of two blocks with the same longest stretch, the summary names the first one reached.
+#[test]
+fn longest_block_is_the_first_of_equals() {
+    let program = "OB 1\n      JU PB 2\n      JU PB 1\n      BE\nPB 1\n      L  KF +1\n      X  F\n      BE\nPB 2\n      L  KF +1\n      X  F\n      BE\n";
+    let result = ran(run_scenario(
+        "equal_blocks",
+        program,
+        "run = { cycles = 1 }\n",
+    ));
+    let summary = awl::report::summary(&result);
+    assert!(summary.contains("longest block: PB 2"), "{summary}");
+}

@@ -354,3 +354,81 @@ fn indirect_data_word_and_peripheral_words() {
     // L PW / L OY read the input modules, which hold 0.
     assert_eq!((fw(&cpu, 2), fw(&cpu, 4)), (0, 0));
 }
+
+/// Comparisons of equal values: `>F` and `<F` are 0, `>=F`, `<=F` and `!=F` 1, and the
+/// condition codes say "zero" (CC1 CC0 = 0 0), so JZ jumps; greater gives 1 0 (JP), less
+/// 0 1 (JM).
+#[test]
+fn comparisons_of_equal_values_and_their_condition_codes() {
+    let body = "      L  KF +4\n      L  KF +4\n      >F\n      =  F 1.0\n      <F\n      =  F 1.1\n      >=F\n      =  F 1.2\n      <=F\n      =  F 1.3\n      !=F\n      =  F 1.4\n      ><F\n      =  F 1.5\n      JZ =ZER\n      BEU\nZER  :L  KF +5\n      L  KF +4\n      >F\n      JP =POS\n      BEU\nPOS  :L  KF +3\n      L  KF +4\n      >F\n      JM =NEG\n      BEU\nNEG  :L  KF +1\n      T  FW 10";
+    let (cpu, _) = run_once(&fb(body));
+    let bits: Vec<bool> = (0..6).map(|bit| flag(&cpu, 1, bit)).collect();
+    assert_eq!(bits, [false, false, true, true, true, false]);
+    assert_eq!(fw(&cpu, 10), 1, "JZ on equal, JP on greater, JM on less");
+}
+
+/// Shifts put the last bit shifted out into CC1: 1 jumps with JN (not zero), 0 with JZ.
+#[test]
+fn shifts_report_the_last_bit_shifted_out() {
+    let body = "      L  KH 4000\n      SLW 1\n      JZ =Z1\n      BEU\nZ1   :L  KH 8000\n      SLW 1\n      JN =N1\n      BEU\nN1   :L  KH 0002\n      SRW 1\n      JZ =Z2\n      BEU\nZ2   :L  KH 0001\n      SRW 1\n      JN =N2\n      BEU\nN2   :L  KF +1\n      T  FW 10";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 10), 1, "0 out: JZ; 1 out: JN, both directions");
+}
+
+/// `S C n` sets the count only on a rising edge of the RLO: not with RLO 0, not again while
+/// the RLO stays 1.
+#[test]
+fn setting_a_counter_needs_a_rising_edge() {
+    let body = "      L  KC 7\n      A  F 9.0\n      S  C 1\n      L  C 1\n      T  FW 10\n      L  KC 7\n      ON F 9.0\n      S  C 1\n      CU C 1\n      L  KC 7\n      ON F 9.0\n      S  C 1\n      L  C 1\n      T  FW 12";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 10), 0, "RLO 0: not set");
+    assert_eq!(
+        fw(&cpu, 12),
+        8,
+        "the second S with RLO still 1 does not set 7 again"
+    );
+}
+
+#[test]
+fn flag_double_words_load_with_their_byte_order() {
+    let body = "      L  DH 11223344\n      T  FD 4\n      L  FD 4\n      T  FD 8\n      L  FD 5\n      T  FD 12";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fd(&cpu, 8), 0x1122_3344);
+    assert_eq!(
+        fd(&cpu, 12),
+        0x2233_4411,
+        "FD 5: bytes 5 to 8, the last one FD 8's first"
+    );
+}
+
+/// JZ jumps only on CC1 CC0 = 0 0: not after a positive or a negative result.
+#[test]
+fn jump_on_zero_needs_both_condition_codes_clear() {
+    let body = "      L  KF +5\n      L  KF +3\n      -F\n      JZ =BAD\n      L  KF +3\n      L  KF +5\n      -F\n      JZ =BAD\n      L  KF +1\n      T  FW 10\n      BEU\nBAD  :L  KF +2\n      T  FW 10";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 10), 1);
+}
+
+/// `BEC` ends the block only when the RLO is 1; `BE` passes the RLO back to the caller,
+/// `BEU` and a taken `BEC` leave it 1.
+#[test]
+fn block_ends_and_the_rlo_they_pass_back() {
+    let source = "OB 1\n      JU PB 1\n      =  F 1.0\n      JU PB 2\n      =  F 1.1\n      JU PB 3\n      =  F 1.2\n      BE\n\
+PB 1\n      A  F 9.0\n      BEC\n      L  KF +7\n      T  FW 10\n      A  F 9.0\n      BE\n\
+PB 2\n      ON F 9.0\n      BEC\n      L  KF +8\n      T  FW 12\n      BE\n\
+PB 3\n      A  F 9.0\n      BEU\n      BE\n";
+    let (cpu, _) = run_once(source);
+    assert_eq!(fw(&cpu, 10), 7, "BEC with RLO 0 goes on");
+    assert_eq!(fw(&cpu, 12), 0, "BEC with RLO 1 ends the block");
+    assert!(!flag(&cpu, 1, 0), "BE passes the RLO 0 back");
+    assert!(flag(&cpu, 1, 1), "a taken BEC leaves RLO 1");
+    assert!(flag(&cpu, 1, 2), "BEU leaves RLO 1");
+}
+
+/// `DO` also replaces the number of operations that take one (`SLW n`).
+#[test]
+fn indirect_shift_count() {
+    let body = "      L  KF +3\n      T  FW 10\n      L  KH 0001\n      DO FW 10\n      SLW 0\n      T  FW 12";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 12), 8);
+}
