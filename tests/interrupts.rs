@@ -705,3 +705,29 @@ fn nesting_depth_counts_from_the_interrupt_obs_level() {
     assert_eq!(stop.cause.code(), "STUEB");
     assert_eq!(stop.stack[0].block, "PB 40");
 }
+
+/// Seed 002: the interrupt output data cycle outputs what OB 13 wrote into the interrupt PIQ:
+/// both bytes of a word, and nothing it did not write.
+#[test]
+fn seed002_interrupt_output_cycle_writes_the_bytes_ob13_wrote() {
+    let program = "OB 1\n      BE\nOB 13\n      L  KH 1234\n      T  PW 2\n      BE\n";
+    let scenario = "cpu = \"s5-95f\"\nrun = { for = \"12ms\" }\n[ob13]\ninterval = \"10ms\"\n[expect]\n\"PW 2\" = 4660\n\"PY 1\" = 0\n\"PY 4\" = 0\n";
+    let (ran, _) = traced("s002_word", program, scenario);
+    expectations_met(&ran);
+}
+
+/// A request noticed inside a loop (block points: not an interrupt point) is serviced at the
+/// next block change, the loop's block end, not later.
+#[test]
+fn seed000_a_request_noticed_in_a_loop_waits_only_for_the_next_block_change() {
+    let program = "OB 1\n      JU FB 1\nNAME :LOOP\n      JU PB 2\n      BE\nFB 1\nNAME :LOOP\n      L  KF +100\n      T  FW 0\nM001 :L  FW 0\n      L  KF +1\n      -F\n      T  FW 0\n      JP =M001\n      BE\nPB 2\n      BE\nOB 3\n      BE\n";
+    let (_, events) = traced(
+        "loop_request",
+        program,
+        "run = { cycles = 1 }\n[[event]]\nat = \"100us\"\ninterrupt = \"OB 3\"\n",
+    );
+    let end = time_of(&events, "block_end", "block", "FB 1");
+    let service = of(&events, "irq_service")[0];
+    assert_eq!(service["t_ns"], end);
+    assert_eq!(service["point"], "block_end");
+}

@@ -233,3 +233,33 @@ fn longest_block_is_the_first_of_equals() {
     let summary = awl::report::summary(&result);
     assert!(summary.contains("longest block: PB 2"), "{summary}");
 }
+
+/// A STOP found at a block end names the block that ended, with its caller's return point.
+#[test]
+fn stops_at_a_block_end_name_the_block_that_ended() {
+    let program = "OB 1\n      JU PB 2\n      BE\nPB 2\n      L  KF +1\n      L  KF +2\n      X  F\n      X  F\n      BE\n";
+    let result = ran(run_scenario(
+        "zyk_at_end",
+        program,
+        "run = { cycles = 1 }\nwatchdog = \"30us\"\n",
+    ));
+    let stop = result.outcome.stop.as_ref().expect("ZYK");
+    let stack: Vec<(&str, u32)> = stop
+        .stack
+        .iter()
+        .map(|entry| (entry.block.as_str(), entry.line))
+        .collect();
+    assert_eq!(stack, [("PB 2", 9), ("OB 1", 2)]);
+}
+
+/// Expectations read double words of the flags.
+#[test]
+fn expectations_read_double_words() {
+    let program = "OB 1\n      L  DH 12345678\n      T  FD 8\n      BE\n";
+    let result = ran(run_scenario(
+        "fd_expect",
+        program,
+        "run = { cycles = 1 }\n[expect]\n\"FD 8\" = 305419896\n\"FD 9\" = 878082048\n",
+    ));
+    assert!(result.mismatches.is_empty(), "{:?}", result.mismatches);
+}

@@ -432,3 +432,57 @@ fn indirect_shift_count() {
     let (cpu, _) = run_once(&fb(body));
     assert_eq!(fw(&cpu, 12), 8);
 }
+
+/// `T DL` and `T DR` replace one byte of the data word and keep the other; `T DD` writes two
+/// words, and one that would reach past the DB's end is STOP LZF.
+#[test]
+fn data_byte_and_double_word_transfers() {
+    // DW 1 = ABCD, DW 2 = FFFE (-2).
+    let body = "      C  DB 5\n      L  KB 18\n      T  DL 1\n      L  KB 52\n      T  DR 2\n      L  DH 01020304\n      T  DD 0\n      L  DW 1\n      T  FW 10\n      L  DW 0\n      T  FW 12\n      L  DL 1\n      T  FW 14";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 12) as u16, 0x0102, "DD 0: DW 0 the high word");
+    assert_eq!(fw(&cpu, 10) as u16, 0x0304, "DD 0: DW 1 the low word");
+    assert_eq!(fw(&cpu, 14), 0x03);
+    let words = cpu.data_blocks[5].as_ref().unwrap();
+    assert_eq!(words[2], 0xFF34, "T DR 2 kept the left byte FF");
+    let (cpu, _) = run_once(&fb(
+        "      C  DB 5\n      L  KB 18\n      T  DL 2\n      L  DW 2\n      T  FW 10",
+    ));
+    assert_eq!(fw(&cpu, 10) as u16, 0x12FE, "T DL 2 kept the right byte FE");
+    let (_, outcome) = run_once(&fb("      C  DB 5\n      L  DH 01020304\n      T  DD 3"));
+    assert_eq!(
+        outcome.stop.unwrap().cause,
+        StopCause::LzfData,
+        "DD 3 needs DW 4"
+    );
+}
+
+/// Setting a data bit that is already set keeps it set, and the other bits.
+#[test]
+fn setting_a_set_data_bit_keeps_it() {
+    let body = "      C  DB 5\n      SU D 1.0\n      SU D 1.0\n      ON F 9.0\n      =  D 1.0\n      S  D 1.0\n      L  DW 1\n      T  FW 10";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 10) as u16, 0xABCD, "bit 0 of ABCD was already 1");
+}
+
+/// A direct output reaches the PIQ only for a digital module: a word at the end of the image
+/// is not copied into the PIQ (nor past it, into the flags).
+#[test]
+fn direct_outputs_follow_the_piq_only_inside_it() {
+    let body = "      L  KH 1234\n      T  PW 126\n      L  KH 5678\n      T  PW 127\n      L  KB 9\n      T  PY 127";
+    let (cpu, _) = run_once(&fb(body));
+    let piq = 128;
+    assert_eq!(cpu.image[piq + 126], 0x12, "PW 126 fits the PIQ");
+    assert_eq!(cpu.image[piq + 127], 9, "PY 127 is the last PIQ byte");
+    assert_eq!(fw(&cpu, 0), 0, "PW 127 did not spill into the flags");
+    assert_eq!(cpu.outputs[127..129], [9, 0x78]);
+}
+
+/// `G DB` may create a data block of up to the CPU's data words, not one more.
+#[test]
+fn generated_data_block_size_limit() {
+    let (_, outcome) = run_once(&fb("      L  KF +2048\n      G  DB 40"));
+    assert!(outcome.stop.is_none(), "2048 words fit the 840C");
+    let (_, outcome) = run_once(&fb("      L  KF +2049\n      G  DB 40"));
+    assert_eq!(outcome.stop.unwrap().cause, StopCause::LzfData);
+}

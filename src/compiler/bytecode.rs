@@ -47,6 +47,16 @@ pub enum Width {
     Double,
 }
 
+impl Width {
+    pub fn bytes(self) -> usize {
+        match self {
+            Width::Byte => 1,
+            Width::Word => 2,
+            Width::Double => 4,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DataPart {
     Left,

@@ -1,9 +1,8 @@
 //! Checking `[expect]` at the end of a run.
 
-use crate::compiler::bytecode::Width;
 use crate::vm::Cpu;
 use crate::vm::cycle::RunOutcome;
-use crate::vm::exec::read_memory;
+use crate::vm::exec::read_bytes;
 
 use super::operand::Target;
 
@@ -33,21 +32,13 @@ pub struct Mismatch {
     pub actual: String,
 }
 
-fn width(bytes: u8) -> Width {
-    match bytes {
-        1 => Width::Byte,
-        2 => Width::Word,
-        _ => Width::Double,
-    }
-}
-
 /// The raw value of a target in the CPU at the end of the run; `None` when it does not exist
 /// (a DB that is not loaded).
 pub fn actual(cpu: &Cpu, target: Target) -> Option<u32> {
     Some(match target {
         Target::ImageBit { byte, bit } => u32::from(cpu.image[usize::from(byte)] >> bit & 1),
         Target::Image { byte, bytes } => {
-            read_memory(&cpu.image[..], usize::from(byte), width(bytes))
+            read_bytes(&cpu.image[..], usize::from(byte), usize::from(bytes))
         }
         Target::Periphery {
             byte,
@@ -59,7 +50,7 @@ pub fn actual(cpu: &Cpu, target: Target) -> Option<u32> {
             } else {
                 &cpu.outputs
             };
-            read_memory(memory, usize::from(byte), width(bytes))
+            read_bytes(memory, usize::from(byte), usize::from(bytes))
         }
         Target::TimerBit(n) => {
             let mut timer = cpu.timers[usize::from(n)];

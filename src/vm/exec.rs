@@ -507,32 +507,28 @@ impl Cpu {
         } else {
             &self.inputs
         };
-        read_bytes(source, usize::from(byte), width)
+        read_bytes(source, usize::from(byte), width.bytes())
     }
 
     fn write_periphery(&mut self, width: Width, byte: u16, value: u32, extended: bool) {
         let at = usize::from(byte);
+        let width_bytes = width.bytes();
         if extended {
-            write_bytes(&mut self.extended_outputs, at, width, value);
+            write_bytes(&mut self.extended_outputs, at, width_bytes, value);
             return;
         }
-        let width_bytes = match width {
-            Width::Byte => 1,
-            Width::Word => 2,
-            Width::Double => 4,
-        };
         if self.engine.interrupt_images {
-            write_bytes(&mut self.interrupt_piq, at, width, value);
+            write_bytes(&mut self.interrupt_piq, at, width_bytes, value);
             self.interrupt_piq_written = true;
             self.interrupt_piq_dirty[at..at + width_bytes].fill(true);
         } else {
-            write_bytes(&mut self.outputs, at, width, value);
+            write_bytes(&mut self.outputs, at, width_bytes, value);
         }
         // The normal PIQ follows a direct output to a digital module.
         let image_bytes = usize::from(self.program.layout.image_bytes);
         let piq = usize::from(self.program.layout.output_base());
         if at + width_bytes <= image_bytes {
-            write_bytes(&mut self.image[..], piq + at, width, value);
+            write_bytes(&mut self.image[..], piq + at, width_bytes, value);
         }
     }
 
@@ -723,9 +719,7 @@ impl Cpu {
             Op::DisableInterrupts => self.level.interrupts_enabled = false,
             Op::EnableInterrupts => {
                 self.level.interrupts_enabled = true;
-                if self.engine.has_pending() {
-                    self.attention_at = 0;
-                }
+                self.update_attention();
             }
             handled_by_the_loop => unreachable!("{handled_by_the_loop:?} is executed inline"),
         }
@@ -733,30 +727,16 @@ impl Cpu {
     }
 }
 
+/// The big-endian value of the `count` bytes (1, 2 or 4) at `at`.
 #[inline(always)]
-fn read_bytes(memory: &[u8], at: usize, width: Width) -> u32 {
-    match width {
-        Width::Byte => u32::from(memory[at]),
-        Width::Word => {
-            let pair: [u8; 2] = memory[at..at + 2].try_into().expect("two bytes");
-            u32::from(u16::from_be_bytes(pair))
-        }
-        Width::Double => {
-            u32::from_be_bytes([memory[at], memory[at + 1], memory[at + 2], memory[at + 3]])
-        }
-    }
+pub fn read_bytes(memory: &[u8], at: usize, count: usize) -> u32 {
+    memory[at..at + count]
+        .iter()
+        .fold(0, |value, byte| value << 8 | u32::from(*byte))
 }
 
+/// Writes the low `count` bytes (1, 2 or 4) of `value` big-endian at `at`.
 #[inline(always)]
-fn write_bytes(memory: &mut [u8], at: usize, width: Width, value: u32) {
-    match width {
-        Width::Byte => memory[at] = value as u8,
-        Width::Word => memory[at..at + 2].copy_from_slice(&(value as u16).to_be_bytes()),
-        Width::Double => memory[at..at + 4].copy_from_slice(&value.to_be_bytes()),
-    }
-}
-
-/// Reads a process-image value of the given width (for scenario expectations and reports).
-pub fn read_memory(memory: &[u8], at: usize, width: Width) -> u32 {
-    read_bytes(memory, at, width)
+pub fn write_bytes(memory: &mut [u8], at: usize, count: usize, value: u32) {
+    memory[at..at + count].copy_from_slice(&value.to_be_bytes()[4 - count..]);
 }

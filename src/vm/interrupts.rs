@@ -59,9 +59,7 @@ impl InputChange {
                 modules[at] &= !mask
             }
         } else {
-            let bytes = self.value.to_be_bytes();
-            let count = usize::from(self.bytes);
-            modules[at..at + count].copy_from_slice(&bytes[4 - count..]);
+            super::exec::write_bytes(modules, at, usize::from(self.bytes), self.value);
         }
     }
 }
@@ -237,10 +235,6 @@ impl Engine {
         self.busy_modules.retain(|(busy, _, _)| *busy != module);
     }
 
-    pub fn has_pending(&self) -> bool {
-        !self.pending.is_empty()
-    }
-
     /// Requests for `ob` that were counted but not yet serviced, lost or ignored: pending, or
     /// held until an acknowledgement.
     pub fn waiting(&self, ob: u8) -> u64 {
@@ -356,7 +350,10 @@ impl Cpu {
             // A block call: the running block is the callee; the call is the caller's entry.
             stop.stack.remove(0);
         } else {
-            // A block end: the block that ended is no longer on the stack.
+            // A block end: the block that ended is no longer on the stack, and its caller's
+            // entry is the call, as for every other return point.
+            let running = self.level.block;
+            stop.stack[0].line = self.line_of(running, self.level.pc.saturating_sub(1));
             let entry = super::stop::StackEntry {
                 block: self.block_id(block).to_string(),
                 line: self.line_of(block, pc),
