@@ -731,3 +731,113 @@ fn seed000_a_request_noticed_in_a_loop_waits_only_for_the_next_block_change() {
     assert_eq!(service["t_ns"], end);
     assert_eq!(service["point"], "block_end");
 }
+
+/// Seed 002: OB 13 due while its interrupt output data cycle still runs is the wake-up error
+/// (OB 13 "called again before OB 13 processing is completed"); and without OB 13 nothing is
+/// requested at all ("cyclical program processing continues").
+#[test]
+fn seed002_wake_up_error_inside_the_output_data_cycle_and_no_ob13() {
+    // OB 1 loops for a while; with operation points OB 13 starts right when it is due. A dry
+    // run measures OB 13 from its due time to the end of its output data cycle (about
+    // 0.64 ms); an interval 0.15 ms shorter falls due inside that output data cycle.
+    let program = "OB 1\n      JU FB 1\nNAME :LOOP\n      BE\nFB 1\nNAME :LOOP\n      L  KF +2000\n      T  FW 0\nM001 :L  FW 0\n      L  KF +1\n      -F\n      T  FW 0\n      JP =M001\n      BE\nOB 13\n      L  KH 1234\n      T  PW 2\n      BE\n";
+    let scenario = |interval: u64| {
+        format!(
+            "cpu = \"s5-95f\"\ninterrupt_points = \"operation\"\nrun = {{ cycles = 1 }}\nwatchdog = \"1s\"\n[ob13]\ninterval = \"{interval}ns\"\n"
+        )
+    };
+    let (_, events) = traced("s002_weck_output_dry", program, &scenario(5_000_000));
+    let output = of(&events, "data_cycle")
+        .into_iter()
+        .find(|e| e["kind"] == "interrupt_output")
+        .unwrap();
+    let done = output["t_ns"].as_u64().unwrap() + output["duration_ns"].as_u64().unwrap();
+    let interval = done - 5_000_000 - 150_000;
+    let (ran, events) = traced("s002_weck_output", program, &scenario(interval));
+    assert_eq!(
+        ran.outcome.stop.as_ref().map(|s| s.cause.code()),
+        Some("WECK")
+    );
+    assert_eq!(of(&events, "irq_service").len(), 1, "the first OB 13 ran");
+    let (ran, _) = traced(
+        "s002_no_ob13",
+        "OB 1\n      BE\n",
+        "cpu = \"s5-95f\"\nrun = { for = \"30ms\" }\n[ob13]\ninterval = \"10ms\"\n[expect]\nmode = \"RUN\"\n",
+    );
+    expectations_met(&ran);
+    assert_eq!(ran.cpu.engine.stats(13).requested, 0);
+}
+
+/// An OB does not interrupt itself: a second OB 3 request made while OB 3 runs waits for its
+/// end, even across OB 3's block changes.
+#[test]
+fn an_ob_is_not_interrupted_by_its_own_request() {
+    let program = "OB 1\n      JU PB 1\n      BE\nPB 1\n      L  KF +1\n      X  F\n      BE\nOB 3\n      L  KF +1\n      X  F\n      JU PB 2\n      JU PB 2\n      BE\nPB 2\n      BE\n";
+    let scenario = "run = { cycles = 1 }\n[[event]]\nat = \"13us\"\ninterrupt = \"OB 3\"\n[[event]]\nat = \"22us\"\ninterrupt = \"OB 3\"\n";
+    let (_, events) = traced("own_request", program, scenario);
+    let order: Vec<String> = events
+        .iter()
+        .filter(|e| e["ev"] == "irq_service" || e["ev"] == "irq_end")
+        .map(|e| format!("{} {}", e["ev"].as_str().unwrap(), e["id"]))
+        .collect();
+    assert_eq!(
+        order,
+        ["irq_service 1", "irq_end 1", "irq_service 2", "irq_end 2"]
+    );
+}
+
+/// With operation points the service names the block whose operation it followed.
+#[test]
+fn operation_point_services_name_the_interrupted_block() {
+    let (_, events) = sample("fig5_2_operation", "op_block");
+    let service = of(&events, "irq_service")[0];
+    assert_eq!(service["point"], "operation");
+    assert_eq!(service["block"], "PB 3");
+}
+
+/// Seed 001: a held event that is no longer active at the acknowledgement is lost and counted
+/// so.
+#[test]
+fn seed001_a_held_event_gone_at_the_acknowledgement_is_counted_lost() {
+    let (ran, _) = traced(
+        "s001_hold_count",
+        SPEED7_OBS,
+        &speed7(&[("1ms", 4, 1, "5us"), ("1.05ms", 4, 2, "5us")], ""),
+    );
+    let stats = ran.cpu.engine.stats(40);
+    assert_eq!((stats.requested, stats.serviced, stats.lost), (2, 1, 1));
+}
+
+/// Seed 001: STARTUP ends and RUN begins at one instant: an event at that instant is in RUN
+/// and starts its OB; one a nanosecond earlier that is still active then is lost at the
+/// transition; one that ended by then was in STARTUP and produced nothing.
+#[test]
+fn seed001_the_transition_to_run_is_an_instant() {
+    let program = format!("{SPEED7_OBS}OB 100\n      L  KF +1\n      BE\n");
+    let (_, events) = traced("s001_startup_len", &program, &speed7(&[], ""));
+    let run = of(&events, "mode")
+        .into_iter()
+        .find(|e| e["to"] == "RUN")
+        .unwrap()["t_ns"]
+        .as_u64()
+        .unwrap();
+    assert!(run > 0);
+    for (at, active, serviced, lost, ignored) in [
+        (run, 5, 1, 0, 0),
+        (run - 1, 5, 0, 1, 0),
+        (run - 2, 1, 0, 0, 1),
+        (run - 2, 2, 0, 0, 1),
+    ] {
+        let (ran, _) = traced(
+            &format!("s001_transition_{at}_{active}"),
+            &program,
+            &speed7(&[(&format!("{at}ns"), 4, 1, &format!("{active}ns"))], ""),
+        );
+        let stats = ran.cpu.engine.stats(40);
+        assert_eq!(
+            (stats.serviced, stats.lost, stats.ignored),
+            (serviced, lost, ignored),
+            "event at {at} ns active {active} ns, RUN at {run} ns"
+        );
+    }
+}

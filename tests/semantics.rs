@@ -486,3 +486,24 @@ fn generated_data_block_size_limit() {
     let (_, outcome) = run_once(&fb("      L  KF +2049\n      G  DB 40"));
     assert_eq!(outcome.stop.unwrap().cause, StopCause::LzfData);
 }
+
+/// After a conditional jump the RLO is 1 and a new logic string starts: neither the first
+/// check nor the OR of `O` carries over.
+#[test]
+fn a_logic_string_ends_at_a_conditional_jump() {
+    let body = "      A  F 9.0\n      JC =L1\nL1   :O  F 9.0\n      =  F 1.0\n      ON F 9.0\n      O\n      A  F 9.0\n      JC =L2\n      BEU\nL2   :A  F 9.0\n      =  F 1.1";
+    let (cpu, _) = run_once(&fb(body));
+    assert!(
+        !flag(&cpu, 1, 0),
+        "O after JC loads, it does not OR with the old RLO"
+    );
+    assert!(!flag(&cpu, 1, 1), "the OR of `O` ends at the taken JC");
+}
+
+/// `CSW` sets the condition codes of its result.
+#[test]
+fn twos_complement_sets_the_condition_codes() {
+    let body = "      L  KF +5\n      CSW\n      JM =M1\n      BEU\nM1   :L  KF -5\n      CSW\n      JP =M2\n      BEU\nM2   :L  KF +0\n      CSW\n      JZ =M3\n      BEU\nM3   :L  KF +1\n      T  FW 10";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 10), 1);
+}
