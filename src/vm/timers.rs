@@ -303,4 +303,24 @@ mod tests {
         assert_eq!(timer.coded(1200 * MS), 0x1038);
         assert_eq!(decode_time(0x2999), (999, 2));
     }
+
+    #[test]
+    fn a_stopped_timer_keeps_its_remaining_time() {
+        let mut timer = Timer::default();
+        timer.start_op(TimerKind::Pulse, true, ONE_SECOND, 0);
+        timer.start_op(TimerKind::Pulse, false, ONE_SECOND, 300 * MS);
+        assert_eq!(timer.value(300 * MS), 7, "0.7 s left in units of 100 ms");
+        assert_eq!(timer.value(900 * MS), 7, "and it stays there");
+        assert!(!timer.bit(900 * MS));
+    }
+
+    #[test]
+    fn enable_needs_a_rising_edge_of_its_own() {
+        let mut timer = Timer::default();
+        timer.start_op(TimerKind::OnDelay, true, ONE_SECOND, 0);
+        assert!(timer.bit(1000 * MS));
+        timer.enable(false);
+        timer.start_op(TimerKind::OnDelay, true, ONE_SECOND, 1000 * MS);
+        assert!(timer.bit(1500 * MS), "FR with RLO 0 does not restart it");
+    }
 }
