@@ -32,7 +32,7 @@ fn cpu_for(file: &str, points: InterruptPoints) -> Cpu {
         watchdog_ns: 10_000_000_000,
         ..EngineConfig::default()
     };
-    cpu.engine = Engine::new(config, far);
+    cpu.engine = Engine::new(cpu.profile, config, far);
     cpu
 }
 

@@ -156,6 +156,12 @@ pub fn op_text(op: Op, program: &Program, params: &[crate::ast::ParamDecl]) -> S
             format!("{verb} {area} {word}")
         }
         Op::OpenDb(number) => format!("open DB {number}"),
+        Op::ArithmeticStack(kind) => {
+            format!(
+                "arithmetic {}, ACCU 3/4 up",
+                format!("{kind:?}").to_lowercase()
+            )
+        }
         Op::GenerateDb(number) => format!("generate DB {number}"),
         other => kebab(&format!("{other:?}")),
     }

@@ -83,6 +83,7 @@ pub enum OpCode {
     OnesComplement,
     TwosComplement,
     Swap,
+    Enter,
     Increment,
     Decrement,
     Indirect,
@@ -448,6 +449,14 @@ pub static OPERATIONS: &[OpInfo] = &[
         "",
     ),
     supp(Swap, "TAK", "TAK", "swap ACCU 1 and ACCU 2", "", ""),
+    supp(
+        Enter,
+        "ENT",
+        "ENT",
+        "ACCU 3 to ACCU 4, ACCU 2 to ACCU 3 (CPUs with four accumulators)",
+        "",
+        "",
+    ),
     supp(Increment, "I", "I", "increment ACCU 1 by n", "1", "1"),
     supp(Decrement, "D", "D", "decrement ACCU 1 by n", "1", "1"),
     supp(

@@ -1,21 +1,31 @@
 //! CPU profiles: operand ranges, limits, per-operation execution times and interrupt rules of the
-//! three CPUs the seeds describe. `awl cpus` prints them with where each figure comes from.
+//! three CPUs the manuals describe. `awl cpus` prints them with where each figure comes from.
 
-/// The CPUs whose interrupt rules differ; each rule in the engine is keyed to one of these.
+/// The CPUs whose interrupt rules differ; each has its rules in `vm::interrupts`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Family {
-    /// SINUMERIK 840C PLC (CPU 928B), seed 000.
+    /// SINUMERIK 840C PLC (CPU 928B): SINUMERIK 840C PLC manual, 5.3.
     Sinumerik840c,
-    /// S5-95F with time-controlled OB 13, seed 002.
+    /// S5-95F with time-controlled OB 13: S5-95F manual, "Introduction to STEP 5", 7.4.
     S5_95f,
-    /// VIPA SPEED7 with hardware interrupt OBs 40/41, seed 001.
+    /// VIPA SPEED7 with hardware interrupt OBs 40/41: VIPA SPEED7 operation list.
     Speed7,
+}
+
+/// What the block nesting limit counts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Nesting {
+    /// The blocks of each processing level on its own.
+    PerLevel,
+    /// All blocks on the block stack, interrupt levels included.
+    WholeCpu,
 }
 
 /// Where interrupts may be serviced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum InterruptPoints {
-    /// Block calls, block ends and the cycle boundary (normal mode of seed 000).
+    /// Block calls, block ends and the operating system's points of the cycle (normal mode of
+    /// the SINUMERIK 840C).
     Block,
     /// After every operation.
     Operation,
@@ -82,6 +92,8 @@ pub struct Timings {
     pub data_cycle: u32,
     /// Reading the PII and writing the PIQ, per byte.
     pub process_image_per_byte: u32,
+    /// Delay of the digital input modules (S5-95F 7.4.5 response time).
+    pub input_delay: u32,
     /// Where the figures come from.
     pub source: &'static str,
 }
@@ -91,9 +103,13 @@ pub struct Profile {
     pub name: &'static str,
     pub family: Family,
     pub title: &'static str,
-    pub seed: &'static str,
+    /// The manual the rules come from, by title and section.
+    pub manual: &'static str,
     pub sizes: Sizes,
     pub nesting_limit: u16,
+    pub nesting: Nesting,
+    /// 2, or 4 on the CPU 928B (ACCU 3 and 4).
+    pub accumulators: u8,
     pub bracket_depth: u8,
     pub watchdog_ns: u64,
     pub startup_obs: &'static [u8],
@@ -136,9 +152,11 @@ const SINUMERIK_840C_TIMES: Timings = Timings {
     cycle_overhead: 400_000,
     data_cycle: 0,
     process_image_per_byte: 100,
-    source: "CPU 928B table (seed 000 PLC manual): bit operations on I/Q/F 0.57 µs, on D 3.4 µs; \
-             L FY 0.81, L FW 0.94, L FD 1.6 µs; fixed-point arithmetic 0.94–10 µs. Block call/end, \
-             timers, jumps and the 0.4 ms operating-system time are estimates.",
+    input_delay: 0,
+    source: "CPU 928B operation times (SINUMERIK 840C PLC manual): bit operations on I/Q/F \
+             0.57 µs, on D 3.4 µs; L FY 0.81, L FW 0.94, L FD 1.6 µs; fixed-point arithmetic \
+             0.94–10 µs. Block call/end, timers, jumps and the 0.4 ms operating-system time are \
+             estimates.",
 };
 
 const S5_95F_TIMES: Timings = Timings {
@@ -166,8 +184,10 @@ const S5_95F_TIMES: Timings = Timings {
     cycle_overhead: 1_000_000,
     data_cycle: 300_000,
     process_image_per_byte: 500,
-    source: "estimates of the S5-95 class (about 1.6 µs per bit operation); the seed gives the \
-             rules, not the times. Interrupt data cycles 0.3 ms each.",
+    input_delay: 3_000_000,
+    source: "estimates of the S5-95 class (about 1.6 µs per bit operation): the S5-95F manual \
+             excerpt gives the rules, not the times. Interrupt data cycles 0.3 ms each, input \
+             module delay 3 ms (estimates).",
 };
 
 const SPEED7_TIMES: Timings = Timings {
@@ -195,16 +215,23 @@ const SPEED7_TIMES: Timings = Timings {
     cycle_overhead: 50_000,
     data_cycle: 0,
     process_image_per_byte: 20,
+    input_delay: 0,
     source: "SPEED7 class (0.01 µs per bit and word operation); block calls and the 50 µs \
              operating-system time are estimates.",
 };
+
+/// The cycle-end model every profile shares, as `awl cpus` states it.
+pub const CYCLE_MODEL: &str = "a cycle is: PII read, OB 1, PIQ write, operating-system time; \
+     interrupts may be serviced between these parts (the operating system's points) as at a \
+     block change, never inside one, so the response bound is the longest stretch between two \
+     interrupt points anywhere in the cycle, the cycle-end work included";
 
 pub static PROFILES: &[Profile] = &[
     Profile {
         name: "sinumerik-840c",
         family: Family::Sinumerik840c,
         title: "SINUMERIK 840C/880 PLC (CPU 928B), normal mode",
-        seed: "seed 000: SINUMERIK 840C/880 PLC manual, 5.3.1 Normal mode, 5.3.2 Response time",
+        manual: "SINUMERIK 840C/880 PLC manual, 5.3.1 Normal mode, 5.3.2 Response time",
         sizes: Sizes {
             image_bytes: 128,
             flag_bytes: 256,
@@ -214,6 +241,8 @@ pub static PROFILES: &[Profile] = &[
             data_words: 2048,
         },
         nesting_limit: 32,
+        nesting: Nesting::PerLevel,
+        accumulators: 4,
         bracket_depth: 7,
         watchdog_ns: 150_000_000,
         startup_obs: &[21, 22],
@@ -254,22 +283,28 @@ pub static PROFILES: &[Profile] = &[
         timings: SINUMERIK_840C_TIMES,
         rules: &[
             "normal mode: the cyclic program is interrupted only at block changes (a block call or \
-             a block end) and at the cycle boundary (seed 000, 5.3.1)",
+             a block end) and at the operating system's points of the cycle (SINUMERIK 840C PLC \
+             manual, 5.3.1)",
             "priority OB 2 > OB 3 > OB 4 > OB 5 > OB 6 > OB 7 > OB 1; simultaneous requests are \
              serviced highest first, and after an interrupt OB ends the pending requests are \
-             ranked again (seed 000, 5.3.2)",
+             ranked again (SINUMERIK 840C PLC manual, 5.3.2)",
             "normal mode: requests for OB 2 and OB 5 are ignored even when the OBs exist \
-             (seed 000, 5.3.1); mode = \"special\" processes them",
+             (SINUMERIK 840C PLC manual, 5.3.1); mode = \"special\" processes them; a program \
+             call of OB 2 or OB 5 runs it as a block, with a warning",
             "worst-case response time in normal mode = the processing time of the longest block \
-             (seed 000, 5.3.2)",
+             (SINUMERIK 840C PLC manual, 5.3.2); the summary adds the operating system's work at \
+             the cycle end when it is longer",
             "a second request for an OB that is still pending is lost",
+            "four accumulators (CPU 928B programming guide, table 3-7): +F -F X F :F move ACCU 3 \
+             to ACCU 2 and ACCU 4 to ACCU 3; ENT moves ACCU 2 to ACCU 3 and ACCU 3 to ACCU 4",
         ],
     },
     Profile {
         name: "s5-95f",
         family: Family::S5_95f,
         title: "S5-95F with time-controlled OB 13",
-        seed: "seed 002: Einführung in STEP 5, S5-95F, OB 13 interrupt process images and wake-up error",
+        manual: "S5-95F manual, Introduction to STEP 5, 7.4.4 Time-controlled program \
+                 processing, 7.4.5 Maximum response time; 12 Interrupt processing",
         sizes: Sizes {
             image_bytes: 128,
             flag_bytes: 256,
@@ -279,10 +314,17 @@ pub static PROFILES: &[Profile] = &[
             data_words: 256,
         },
         nesting_limit: 16,
+        nesting: Nesting::WholeCpu,
+        accumulators: 2,
         bracket_depth: 7,
         watchdog_ns: 150_000_000,
         startup_obs: &[21, 22],
         interrupt_obs: &[
+            InterruptOb {
+                ob: 2,
+                priority: 4,
+                summary: "process interrupt (interrupt inputs)",
+            },
             InterruptOb {
                 ob: 3,
                 priority: 3,
@@ -294,27 +336,39 @@ pub static PROFILES: &[Profile] = &[
                 summary: "time-controlled at [ob13].interval",
             },
         ],
-        default_points: InterruptPoints::Block,
+        default_points: InterruptPoints::Operation,
         extended_blocks: false,
         timings: S5_95F_TIMES,
         rules: &[
-            "OB 13 starts every [ob13].interval; at its start an interrupt input data cycle reads \
-             the input modules into the interrupt PII (seed 002)",
-            "inside OB 13, L PY/L PW read the interrupt PII; T PY/T PW write the interrupt PIQ and \
-             the normal PIQ (seed 002)",
-            "after OB 13, an interrupt output data cycle writes the interrupt PIQ to the modules, \
-             only if it was written; both data cycles cost time (seed 002)",
-            "OB 13 due while OB 13 still runs or is still pending: wake-up error, STOP cause WECK \
-             (seed 002)",
-            "OB 3 (process interrupt) has priority over OB 13",
-            "block nesting depth at most 16 (deeper: STOP cause STUEB)",
+            "OB 13 can interrupt the cyclic program after any STEP 5 statement; OB 2 and OB 3 can \
+             interrupt OB 13; OB 13 cannot interrupt the data cycles, OB 2, OB 3 or a running \
+             OB 13 (S5-95F manual, 7.4.4): operation interrupt points, priority OB 2 > OB 3 > \
+             OB 13 > OB 1",
+            "OB 2 cannot be interrupted; OB 3 only by OB 2; a request made while its OB runs is \
+             stored and runs after it (S5-95F manual, 12)",
+            "OB 13 is called every [ob13].interval, each call late by the delay t ([ob13].delay, \
+             0 by default: the manual's ideal case); with [ob13].max_delay given, an interval \
+             not above it is the time interrupt error, STOP cause WECK (S5-95F manual, 7.4.4)",
+            "at OB 13's start an interrupt input data cycle reads the input modules into the \
+             interrupt PII; inside OB 13, L PY/L PW read the interrupt PII and T PY/T PW write the \
+             interrupt PIQ and the normal PIQ; after OB 13 an interrupt output data cycle writes \
+             the interrupt PIQ to the modules, only if it was written (S5-95F manual, 7.4.4); \
+             the images belong to OB 13's level: an OB 3 inside OB 13 reaches the modules",
+            "OB 13 called again before it was completed (running, pending, or in its output data \
+             cycle): wake-up error, STOP cause WECK (S5-95F manual, 7.4.4)",
+            "IA holds OB 13 and the process interrupts back, they are stored; RA is the default \
+             (S5-95F manual, 7.4.4 and 12)",
+            "block nesting depth at most 16, interrupt levels included (S5-95F manual, 7.4.4 and \
+             12; deeper: STOP cause STUEB)",
+            "maximum response of time-controlled processing: OB 13 interval + delay t + OB 13's \
+             execution time + data cycles + input module delay (S5-95F manual, 7.4.5)",
         ],
     },
     Profile {
         name: "speed7",
         family: Family::Speed7,
         title: "VIPA SPEED7 with hardware interrupts OB 40/OB 41",
-        seed: "seed 001: VIPA SPEED7 operation list, OB 40/OB 41 hardware interrupts",
+        manual: "VIPA SPEED7 operation list, OB 40/OB 41 hardware interrupts",
         sizes: Sizes {
             image_bytes: 256,
             flag_bytes: 2048,
@@ -324,6 +378,8 @@ pub static PROFILES: &[Profile] = &[
             data_words: 4096,
         },
         nesting_limit: 16,
+        nesting: Nesting::PerLevel,
+        accumulators: 2,
         bracket_depth: 7,
         watchdog_ns: 150_000_000,
         startup_obs: &[100],
@@ -354,18 +410,18 @@ pub static PROFILES: &[Profile] = &[
         timings: SPEED7_TIMES,
         rules: &[
             "a module's hardware interrupt starts its OB ([[hw_module]]) if the OB's priority is \
-             above the active priority class (seed 001)",
-            "the channel is acknowledged after the OB has run (seed 001)",
+             above the active priority class (VIPA SPEED7 operation list, OB 40/OB 41)",
+            "the channel is acknowledged after the OB has run",
             "between identification and acknowledgement: a new event on the same channel is \
-             lost and its loss starts the diagnostic interrupt OB 82 (seed 001)",
+             lost and its loss starts the diagnostic interrupt OB 82",
             "an event on another channel of the same module is held and triggered after the \
-             acknowledgement if still active, else lost (seed 001)",
+             acknowledgement if still active, else lost",
             "while the OB is busy with another module's interrupt, a new request is processed only \
-             if still active after that acknowledgement (seed 001)",
-            "no hardware interrupts in STARTUP; those during the transition to RUN are lost \
-             (seed 001)",
+             if still active after that acknowledgement",
+            "no hardware interrupts in STARTUP (events there are no requests); those during the \
+             transition to RUN are lost",
             "no OB for the module: OB 85 is called and the interrupt acknowledged; no OB 85 \
-             either: STOP cause OB85 (seed 001)",
+             either: STOP cause OB85",
             "interrupt points: after every operation, as S7 CPUs do",
         ],
     },

@@ -2,7 +2,10 @@
 
 use std::fmt::Write as _;
 
-use crate::profile::{self, InterruptPoints};
+use crate::profile::{self, Family, InterruptPoints};
+use crate::vm::bound::BoundCause;
+use crate::vm::interrupts::Wait;
+use crate::vm::{Cpu, IDLE, StretchKind};
 
 fn micros(ns: u32) -> String {
     format!("{:.2} µs", f64::from(ns) / 1000.0)
@@ -10,10 +13,10 @@ fn micros(ns: u32) -> String {
 
 /// `awl cpus`: every profile with its rules, priorities, limits, timings and their sources.
 pub fn cpus() -> String {
-    let mut out = String::new();
+    let mut out = format!("the cycle, on every CPU: {}\n\n", profile::CYCLE_MODEL);
     for p in profile::PROFILES {
         let _ = writeln!(out, "{}  —  {}", p.name, p.title);
-        let _ = writeln!(out, "  from: {}", p.seed);
+        let _ = writeln!(out, "  from: {}", p.manual);
         let _ = writeln!(
             out,
             "  interrupt points: {} by default{}",
@@ -81,21 +84,89 @@ fn us(ns: u64) -> String {
     format!("{:.1}", ns as f64 / 1000.0)
 }
 
-/// The program's longest single operation: with operation points, the bound on the response.
-fn longest_operation(ran: &crate::runner::Ran) -> Option<(String, u32, u64)> {
-    let program = &ran.cpu.program;
-    let (block, pc, ns) = program
-        .blocks
-        .iter()
-        .enumerate()
-        .flat_map(|(index, block)| (0..block.code.len()).map(move |pc| (index, pc, block.cost(pc))))
-        .max_by_key(|(_, _, ns)| *ns)?;
-    let block = &program.blocks[block];
-    Some((
-        block.id.to_string(),
-        ran.frontend.sources.line_of(block.spans[pc]),
-        ns,
-    ))
+/// `PB 3 line 12`, `OB 1`, or the operating system's work a stretch stands for.
+fn stretch_text(cpu: &Cpu, kind: StretchKind) -> String {
+    match kind {
+        StretchKind::Block { block, .. } if block == IDLE => "no block".to_string(),
+        StretchKind::Block { block, .. } => cpu.block_id(block).to_string(),
+        StretchKind::ProcessImageRead => "the process image read (PII) at the cycle start".into(),
+        StretchKind::ProcessImageWrite => "the process image write (PIQ) after OB 1".into(),
+        StretchKind::OsTime => "the operating-system time at the cycle end".into(),
+        StretchKind::InterruptEnd { block } => {
+            format!("the end of {} with its data cycle", cpu.block_id(block))
+        }
+    }
+}
+
+fn bound_lines(out: &mut String, cpu: &Cpu) {
+    match cpu.engine.config.points {
+        InterruptPoints::Block => {
+            let block = cpu.longest_block;
+            if block.ns > 0 {
+                let _ = writeln!(
+                    out,
+                    "longest block: {}, {:.3} ms (the worst case in normal mode: SINUMERIK 840C PLC manual, 5.3.2)",
+                    stretch_text(cpu, block.kind),
+                    block.ns as f64 / 1e6
+                );
+            }
+        }
+        InterruptPoints::Operation => {
+            if let Some((block, pc, ns)) = cpu.longest_operation() {
+                let _ = writeln!(
+                    out,
+                    "longest operation: {} line {}, {:.3} us",
+                    cpu.block_id(block),
+                    cpu.line_of(block, pc as u32),
+                    ns as f64 / 1e3
+                );
+            }
+        }
+    }
+    let bound = cpu.response_bound();
+    if bound.ns == 0 {
+        return;
+    }
+    let what = match bound.cause {
+        BoundCause::Stretch(kind) => stretch_text(cpu, kind),
+        BoundCause::Operation { block, pc } => format!(
+            "an operation of {} (line {})",
+            cpu.block_id(block),
+            cpu.line_of(block, pc as u32)
+        ),
+    };
+    let _ = writeln!(
+        out,
+        "response bound: {:.3} ms, the longest stretch without an interrupt point: {what}",
+        bound.ns as f64 / 1e6
+    );
+}
+
+/// The S5-95F's maximum response of time-controlled processing (S5-95F manual, 7.4.5).
+fn time_controlled_response(out: &mut String, cpu: &Cpu) {
+    let (Some(timing), Family::S5_95f) = (cpu.engine.config.ob13, cpu.profile.family) else {
+        return;
+    };
+    let stats = cpu.engine.stats(13);
+    if stats.run_max == 0 {
+        // No OB 13 has ended yet: its execution time is not known.
+        return;
+    }
+    let delay = timing.max_delay_ns.unwrap_or(timing.delay_ns);
+    let data_cycles = 2 * u64::from(cpu.profile.timings.data_cycle);
+    let input = u64::from(cpu.profile.timings.input_delay);
+    let total = timing.interval_ns + delay + stats.run_max + data_cycles + input;
+    let ms = |ns: u64| format!("{:.3}", ns as f64 / 1e6);
+    let _ = writeln!(
+        out,
+        "time-controlled response ≤ {} ms: OB 13 interval {} + delay t {} + OB 13 {} (longest run) + data cycles {} + input module {} (estimate) (S5-95F manual, 7.4.5)",
+        ms(total),
+        ms(timing.interval_ns),
+        ms(delay),
+        ms(stats.run_max),
+        ms(data_cycles),
+        ms(input)
+    );
 }
 
 /// The summary of `awl run`; it ends with the `cpu:` and `instructions:` lines of SPEC §2.
@@ -119,28 +190,8 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
             expectations
         );
     }
-    match ran.points {
-        InterruptPoints::Block => {
-            let stretch = cpu.longest_stretch;
-            if stretch.ns > 0 {
-                let _ = writeln!(
-                    out,
-                    "longest block: {}, {:.3} ms (worst-case response in normal mode)",
-                    cpu.block_id(stretch.block),
-                    stretch.ns as f64 / 1e6
-                );
-            }
-        }
-        InterruptPoints::Operation => {
-            if let Some((block, line, ns)) = longest_operation(ran) {
-                let _ = writeln!(
-                    out,
-                    "longest operation: {block} line {line}, {:.3} us (worst-case response with operation points)",
-                    ns as f64 / 1e3
-                );
-            }
-        }
-    }
+    bound_lines(&mut out, cpu);
+    time_controlled_response(&mut out, cpu);
     for (ob, stats) in cpu.engine.requested_obs() {
         let latency = match stats.latency_sum.checked_div(stats.serviced) {
             Some(mean) => format!(
@@ -156,6 +207,19 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
             "OB {ob}: requested {}, serviced {}, lost {}, ignored {}, latency min/mean/max {latency}",
             stats.requested, stats.serviced, stats.lost, stats.ignored
         );
+        let waits: Vec<String> = Wait::ALL
+            .iter()
+            .zip(stats.waited)
+            .filter(|(_, count)| *count > 0)
+            .map(|(wait, count)| format!("{count} because {}", wait.explanation()))
+            .collect();
+        if !waits.is_empty() {
+            let _ = writeln!(
+                out,
+                "  OB {ob}: waited beyond the response bound: {}",
+                waits.join(", ")
+            );
+        }
     }
     let simulated = outcome.clock_ns as f64 / 1e6;
     let _ = writeln!(

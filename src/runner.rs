@@ -18,6 +18,7 @@ use crate::source::Span;
 use crate::trace::{TraceFormat, Tracer};
 use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
+use crate::vm::interrupts::sinumerik840c::normal_mode_skips;
 use crate::vm::interrupts::{Engine, EngineConfig};
 use crate::vm::stop::{Stop, StopCause, StopDetail, StopError};
 
@@ -52,6 +53,19 @@ pub enum RunError {
         help("OB 1 is the cyclic program; add it, or load the file that holds it")
     )]
     NoOb1,
+    #[error("the program calls {ob}, which normal mode does not process")]
+    #[diagnostic(
+        code(awl::run::ob_call_normal_mode),
+        severity(Warning),
+        help(
+            "SINUMERIK 840C PLC manual, 5.3.1: OB 2 and OB 5 \"cannot be called up in normal mode\"; this call runs {ob} as an ordinary block. Use `mode = \"special\"`, or move the code into a PB"
+        )
+    )]
+    ObCallNormalMode {
+        ob: String,
+        #[label("called here")]
+        at: Span,
+    },
     #[error("`--mode` belongs to the sinumerik-840c profile, not to {cpu}")]
     #[diagnostic(
         code(awl::cli::mode_not_for_cpu),
@@ -162,13 +176,17 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         .points
         .or(scenario.as_ref().and_then(|s| s.points))
         .unwrap_or(profile.default_points);
+    let special_mode = options
+        .special_mode
+        .or(scenario.as_ref().and_then(|s| s.special_mode))
+        .unwrap_or(false);
+    if profile.family == crate::profile::Family::Sinumerik840c && !special_mode {
+        warn_normal_mode_calls(&built, &program);
+    }
     let config = EngineConfig {
         points,
-        special_mode: options
-            .special_mode
-            .or(scenario.as_ref().and_then(|s| s.special_mode))
-            .unwrap_or(false),
-        ob13_interval_ns: scenario.as_ref().and_then(|s| s.ob13_interval_ns),
+        special_mode,
+        ob13: scenario.as_ref().and_then(|s| s.ob13),
         hw_modules: scenario
             .as_ref()
             .map(|s| s.hw_modules.clone())
@@ -184,7 +202,7 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         .unwrap_or(DEFAULT_RUN);
     let sources = Arc::new(built.sources.clone());
     let mut cpu = Cpu::new(program, sources);
-    cpu.engine = Engine::new(config, schedule);
+    cpu.engine = Engine::new(profile, config, schedule);
     let trace_to_stdout = options
         .trace
         .as_ref()
@@ -214,6 +232,28 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         points,
         trace_to_stdout,
     })
+}
+
+/// Program calls of OB 2 or OB 5 on the 840C in normal mode get a warning each.
+fn warn_normal_mode_calls(built: &Frontend, program: &crate::compiler::Program) {
+    for block in &program.blocks {
+        for (op, span) in block.code.iter().zip(&block.spans) {
+            let crate::compiler::Op::Call { block: target, .. } = *op else {
+                continue;
+            };
+            let id = program.blocks[usize::from(target)].id;
+            if id.kind == crate::mnemonics::BlockKind::Ob && normal_mode_skips(id.number) {
+                let warning = RunError::ObCallNormalMode {
+                    ob: id.to_string(),
+                    at: *span,
+                };
+                eprintln!(
+                    "{:?}",
+                    diagnostics::with_source(&built.sources, *span, warning)
+                );
+            }
+        }
+    }
 }
 
 fn stack_text(stop: &Stop) -> String {
@@ -303,6 +343,17 @@ pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
         },
         (StopCause::Stp, _) => StopError::StopOperation { at, stack },
         (StopCause::Weck, StopDetail::Ob(ob)) => StopError::WakeUp { ob: *ob, at, stack },
+        (
+            StopCause::Weck,
+            StopDetail::Ob13Interval {
+                interval_ns,
+                max_delay_ns,
+            },
+        ) => StopError::IntervalNotAboveDelay {
+            interval_ms: format!("{:.3}", *interval_ns as f64 / 1e6),
+            max_delay_ms: format!("{:.3}", *max_delay_ns as f64 / 1e6),
+            at,
+        },
         (StopCause::Weck, _) => StopError::WakeUp { ob: 13, at, stack },
         (StopCause::Ob85, StopDetail::Module { module, ob }) => StopError::MissingOb85 {
             module: *module,

@@ -1,6 +1,8 @@
 //! The trace: one event per mode change, cycle, block change and interrupt, on simulated time.
 //! `jsonl` writes one JSON object per line (stable field names); `text` writes an indented
-//! timeline a person can follow.
+//! timeline a person can follow. Events come out in time order: the tracer holds them back
+//! until the CPU has taken in everything due by then (a request is only noticed at the next
+//! point, after the block changes it came before).
 
 use std::io::Write;
 
@@ -12,7 +14,8 @@ pub enum TraceFormat {
     Text,
 }
 
-/// The trace events of SPEC §7. Block names are written `"PB 3"`.
+/// The trace events; `programs/README.md` documents every field. Block names are written
+/// `"PB 3"`.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 #[serde(tag = "ev", rename_all = "snake_case")]
 pub enum Event {
@@ -51,6 +54,9 @@ pub enum Event {
         /// Its source line, where it can be told (operation points, or straight-line code).
         #[serde(skip_serializing_if = "Option::is_none")]
         line: Option<u32>,
+        /// The operating system's work it came in, when no block ran.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        during: Option<&'static str>,
     },
     IrqService {
         id: u64,
@@ -60,6 +66,9 @@ pub enum Event {
         /// The block of the interrupt point: the one that ended, was called, or ran the operation.
         #[serde(skip_serializing_if = "Option::is_none")]
         block: Option<String>,
+        /// Why it waited longer than the response bound: `priority`, `disabled`, `startup`.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        waited: Option<&'static str>,
     },
     IrqEnd {
         id: u64,
@@ -77,7 +86,20 @@ pub enum Event {
     },
     DataCycle {
         kind: &'static str,
+        /// `input` (read into an image) or `output` (written to the modules).
+        direction: &'static str,
         duration_ns: u64,
+    },
+    /// The operating system's time at the cycle end.
+    OsTime {
+        duration_ns: u64,
+    },
+    /// A module's hardware event that is no request (SPEED7: in STARTUP).
+    ModuleEvent {
+        module: u16,
+        channel: u16,
+        ob: u8,
+        reason: &'static str,
     },
     Stop {
         cause: &'static str,
@@ -98,6 +120,9 @@ pub struct Tracer {
     pub enabled: bool,
     format: TraceFormat,
     out: Option<Box<dyn Write>>,
+    /// Events not yet written: (time, order of arrival, indent, event).
+    held: Vec<(u64, u64, usize, Event)>,
+    arrivals: u64,
     error: Option<std::io::Error>,
 }
 
@@ -107,6 +132,8 @@ impl Tracer {
             enabled: false,
             format: TraceFormat::Jsonl,
             out: None,
+            held: Vec::new(),
+            arrivals: 0,
             error: None,
         }
     }
@@ -116,40 +143,62 @@ impl Tracer {
             enabled: true,
             format,
             out: Some(out),
+            held: Vec::new(),
+            arrivals: 0,
             error: None,
         }
     }
 
-    /// Records an event at simulated time `t_ns`; `indent` is the nesting for the text timeline.
+    /// Records an event at simulated time `t_ns`; `indent` is the nesting for the text
+    /// timeline. It is written by the next [`Tracer::settle`] that reaches its time.
     pub fn emit(&mut self, t_ns: u64, indent: usize, event: Event) {
+        if self.out.is_some() {
+            self.arrivals += 1;
+            self.held.push((t_ns, self.arrivals, indent, event));
+        }
+    }
+
+    /// Writes, in time order (events of one time in the order they came), every event up to
+    /// `t_ns`: the caller has taken in everything due by then.
+    pub fn settle(&mut self, t_ns: u64) {
+        if self.held.is_empty() {
+            return;
+        }
+        self.held.sort_by_key(|(t, arrival, _, _)| (*t, *arrival));
+        let ready = self.held.partition_point(|(t, _, _, _)| *t <= t_ns);
+        let held = std::mem::take(&mut self.held);
+        let mut rest = held.into_iter();
+        for (t, _, indent, event) in rest.by_ref().take(ready) {
+            self.write(t, indent, &event);
+        }
+        self.held = rest.collect();
+    }
+
+    fn write(&mut self, t_ns: u64, indent: usize, event: &Event) {
         let Some(out) = self.out.as_mut() else { return };
         let result = match self.format {
-            TraceFormat::Jsonl => serde_json::to_writer(
-                &mut *out,
-                &Record {
-                    t_ns,
-                    event: &event,
-                },
-            )
-            .map_err(std::io::Error::other)
-            .and_then(|()| out.write_all(b"\n")),
+            TraceFormat::Jsonl => serde_json::to_writer(&mut *out, &Record { t_ns, event })
+                .map_err(std::io::Error::other)
+                .and_then(|()| out.write_all(b"\n")),
             TraceFormat::Text => writeln!(
                 out,
                 "{:>12}  {}{}",
                 format_ms(t_ns),
                 "  ".repeat(indent),
-                text(&event)
+                text(event)
             ),
         };
         if let Err(error) = result {
             self.error.get_or_insert(error);
             self.enabled = false;
             self.out = None;
+            self.held.clear();
         }
     }
 
-    /// Flushes the output; the first write error, if any.
+    /// Writes what is held, flushes the output; the first write error, if any.
     pub fn finish(&mut self) -> Result<(), std::io::Error> {
+        self.settle(u64::MAX);
         if let Some(out) = self.out.as_mut()
             && let Err(error) = out.flush()
         {
@@ -195,14 +244,16 @@ fn text(event: &Event) -> String {
             channel,
             block,
             line,
+            during,
         } => {
             let source = match (module, channel) {
                 (Some(module), Some(channel)) => format!(" by module {module} channel {channel}"),
                 _ => String::new(),
             };
-            let place = match (block, line) {
-                (Some(block), Some(line)) => format!(" while {block} runs line {line}"),
-                (Some(block), None) => format!(" while {block} runs"),
+            let place = match (block, line, during) {
+                (Some(block), Some(line), _) => format!(" while {block} runs line {line}"),
+                (Some(block), None, _) => format!(" while {block} runs"),
+                (None, _, Some(during)) => format!(" during the {during}"),
                 _ => " between cycles".to_string(),
             };
             format!("⚡ OB {ob} requested (#{id}){source}{place}")
@@ -213,16 +264,23 @@ fn text(event: &Event) -> String {
             latency_ns,
             point,
             block,
+            waited,
         } => {
             let block = block.as_deref().unwrap_or("?");
             let place = match *point {
                 "block_end" => format!("at the block end of {block}"),
                 "block_call" => format!("at the call of {block}"),
                 "operation" => format!("after an operation of {block}"),
-                _ => "at the cycle boundary".to_string(),
+                _ => "at a point of the operating system".to_string(),
+            };
+            let waited = match waited {
+                Some("priority") => " (a higher or equal priority ran first)",
+                Some("disabled") => " (IA held it back)",
+                Some("startup") => " (it came before RUN)",
+                _ => "",
             };
             format!(
-                "▶ OB {ob} serviced (#{id}) {place}, latency {}",
+                "▶ OB {ob} serviced (#{id}) {place}, latency {}{waited}",
                 format_us(*latency_ns)
             )
         }
@@ -233,11 +291,28 @@ fn text(event: &Event) -> String {
         Event::IrqIgnored { id, ob, reason } => {
             format!("✗ OB {ob} request #{id} ignored: {reason}")
         }
-        Event::DataCycle { kind, duration_ns } => format!(
-            "data cycle {}, {}",
-            kind.replace('_', " "),
-            format_us(*duration_ns)
-        ),
+        Event::DataCycle {
+            kind,
+            direction,
+            duration_ns,
+        } => {
+            let what = match (*kind, *direction) {
+                ("process_image", "input") => "process image read (PII)",
+                ("process_image", _) => "process image write (PIQ)",
+                ("interrupt_input", _) => "interrupt input data cycle",
+                _ => "interrupt output data cycle",
+            };
+            format!("{what}, {}", format_us(*duration_ns))
+        }
+        Event::OsTime { duration_ns } => {
+            format!("operating-system time, {}", format_us(*duration_ns))
+        }
+        Event::ModuleEvent {
+            module,
+            channel,
+            ob,
+            reason,
+        } => format!("· module {module} channel {channel} (OB {ob}): {reason}"),
         Event::Stop { cause, block, line } => format!("STOP {cause} in {block} line {line}"),
     }
 }
@@ -256,6 +331,7 @@ mod tests {
                 latency_ns: 20,
                 point: "block_end",
                 block: None,
+                waited: None,
             },
         };
         assert_eq!(

@@ -16,7 +16,7 @@ use awl::profile::{self, Family, InterruptPoints, Profile};
 use awl::trace::{TraceFormat, Tracer};
 use awl::vm::Cpu;
 use awl::vm::cycle::RunLimit;
-use awl::vm::interrupts::{Engine, EngineConfig, Happening, Scheduled};
+use awl::vm::interrupts::{Engine, EngineConfig, Happening, Ob13Timing, Scheduled};
 use proptest::prelude::*;
 
 mod common;
@@ -299,10 +299,15 @@ fn run(
         Arc::new(built.sources.clone()),
     );
     machine.engine = Engine::new(
+        cpu,
         EngineConfig {
             points,
             special_mode: true,
-            ob13_interval_ns: ob13.then_some(3_000_000),
+            ob13: ob13.then_some(Ob13Timing {
+                interval_ns: 3_000_000,
+                delay_ns: 0,
+                max_delay_ns: None,
+            }),
             hw_modules: vec![(1, 40), (2, 41)],
             watchdog_ns: 150_000_000,
         },

@@ -155,6 +155,11 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
             "PB 1\n      C  DB 9\n      BE\n".into(),
         ),
         (
+            "awl::check::not_on_cpu",
+            "s5-95f",
+            "FB 1\nNAME :X\n      ENT\n      BE\n".into(),
+        ),
+        (
             "awl::check::indirect_target",
             "sinumerik-840c",
             "FB 1\nNAME :X\n      DO FW 10\n      BE\n".into(),

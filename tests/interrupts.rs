@@ -163,7 +163,7 @@ fn seed000_latency_is_bounded_by_the_longest_block() {
     // The longest block is PB 13: the bound is its processing time, from its call to its end.
     let pb13 = time_of(&events, "block_end", "block", "PB 13")
         - time_of(&events, "block_call", "to", "PB 13");
-    assert_eq!(ran.cpu.longest_stretch.ns, pb13);
+    assert_eq!(ran.cpu.longest_block.ns, pb13);
     assert!(service["latency_ns"].as_u64().unwrap() <= pb13);
     let summary = awl::report::summary(&ran);
     assert!(summary.contains("longest block: PB 13"), "{summary}");
@@ -608,9 +608,20 @@ fn seed001_nothing_in_startup_and_loss_at_the_transition() {
         ),
     );
     expectations_met(&ran);
-    assert_eq!(of(&events, "irq_ignored").len(), 1);
+    // The event inside STARTUP is no request: a module event with the reason.
+    let module_events = of(&events, "module_event");
+    assert_eq!(module_events.len(), 1);
+    assert!(
+        module_events[0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("STARTUP")
+    );
+    assert!(of(&events, "irq_ignored").is_empty());
     assert_eq!(of(&events, "irq_lost").len(), 1);
     assert!(services(&events).is_empty());
+    let stats = ran.cpu.engine.stats(40);
+    assert_eq!((stats.requested, stats.lost), (1, 1));
 }
 
 /// Seed 001: "If a hardware interrupt is generated for which there is no hardware interrupt
@@ -810,7 +821,7 @@ fn seed001_a_held_event_gone_at_the_acknowledgement_is_counted_lost() {
 
 /// Seed 001: STARTUP ends and RUN begins at one instant: an event at that instant is in RUN
 /// and starts its OB; one a nanosecond earlier that is still active then is lost at the
-/// transition; one that ended by then was in STARTUP and produced nothing.
+/// transition; one that ended by then was in STARTUP and produced no request at all.
 #[test]
 fn seed001_the_transition_to_run_is_an_instant() {
     let program = format!("{SPEED7_OBS}OB 100\n      L  KF +1\n      BE\n");
@@ -822,11 +833,11 @@ fn seed001_the_transition_to_run_is_an_instant() {
         .as_u64()
         .unwrap();
     assert!(run > 0);
-    for (at, active, serviced, lost, ignored) in [
-        (run, 5, 1, 0, 0),
-        (run - 1, 5, 0, 1, 0),
-        (run - 2, 1, 0, 0, 1),
-        (run - 2, 2, 0, 0, 1),
+    for (at, active, requested, serviced, lost) in [
+        (run, 5, 1, 1, 0),
+        (run - 1, 5, 1, 0, 1),
+        (run - 2, 1, 0, 0, 0),
+        (run - 2, 2, 0, 0, 0),
     ] {
         let (ran, _) = traced(
             &format!("s001_transition_{at}_{active}"),
@@ -835,8 +846,8 @@ fn seed001_the_transition_to_run_is_an_instant() {
         );
         let stats = ran.cpu.engine.stats(40);
         assert_eq!(
-            (stats.serviced, stats.lost, stats.ignored),
-            (serviced, lost, ignored),
+            (stats.requested, stats.serviced, stats.lost),
+            (requested, serviced, lost),
             "event at {at} ns active {active} ns, RUN at {run} ns"
         );
     }

@@ -13,7 +13,7 @@ use awl::profile::{self, InterruptPoints};
 use awl::vm::Cpu;
 use awl::vm::cycle::RunLimit;
 use awl::vm::interrupts::{
-    Engine, EngineConfig, Happening, InputChange, InputTarget, ObStats, Scheduled,
+    Engine, EngineConfig, Happening, InputChange, InputTarget, Ob13Timing, ObStats, Scheduled,
 };
 
 struct Counting;
@@ -135,6 +135,7 @@ fn servicing_interrupts_allocates_nothing_on_the_840c() {
             &[input(2, 7), input(2, 9)],
         ));
         cpu.engine = Engine::new(
+            cpu.profile,
             EngineConfig {
                 points,
                 ..EngineConfig::default()
@@ -164,8 +165,13 @@ fn servicing_ob13_and_process_interrupts_allocates_nothing_on_the_s5_95f() {
         &[input(0, 5), input(0, 6)],
     ));
     cpu.engine = Engine::new(
+        cpu.profile,
         EngineConfig {
-            ob13_interval_ns: Some(5 * MS),
+            ob13: Some(Ob13Timing {
+                interval_ns: 5 * MS,
+                delay_ns: 0,
+                max_delay_ns: None,
+            }),
             ..EngineConfig::default()
         },
         events,
@@ -212,6 +218,7 @@ fn hardware_interrupts_allocate_nothing_on_the_speed7() {
         &[input(2, 1), input(2, 2)],
     ));
     cpu.engine = Engine::new(
+        cpu.profile,
         EngineConfig {
             points: InterruptPoints::Operation,
             hw_modules: vec![(1, 40), (2, 40), (3, 41)],

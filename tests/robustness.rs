@@ -175,11 +175,14 @@ proptest! {
 /// they do ends in RUN after the cycles asked for, or in STOP with a cause at a real op.
 /// Labels are numbered so none is defined twice; a `DO` is always followed by a load it can
 /// modify, so every generated program compiles.
-fn random_fb(picks: &[(usize, bool)]) -> String {
+fn random_fb(picks: &[(usize, bool)], cpu: &profile::Profile) -> String {
     let mut body = String::new();
     for (line, (index, labelled)) in picks.iter().enumerate() {
         let info = &awl::mnemonics::OPERATIONS[index % awl::mnemonics::OPERATIONS.len()];
-        if info.op == awl::mnemonics::OpCode::BlockEnd {
+        let two_accumulators = cpu.accumulators == 2;
+        if info.op == awl::mnemonics::OpCode::BlockEnd
+            || (info.op == awl::mnemonics::OpCode::Enter && two_accumulators)
+        {
             continue;
         }
         let label = if *labelled {
@@ -202,8 +205,8 @@ proptest! {
 
     #[test]
     fn random_programs_run_without_panic(picks in prop::collection::vec((any::<usize>(), prop::bool::weighted(0.05)), 1..40)) {
-        let source = random_fb(&picks);
         for cpu in profile::PROFILES {
+            let source = random_fb(&picks, cpu);
             let built = frontend::build_text("random.awl", &source, cpu);
             prop_assert!(!built.has_errors(), "{}: {:?}\n{}", cpu.name, built.diagnostics, source);
             let mut machine = awl::vm::Cpu::new(
@@ -279,7 +282,13 @@ proptest! {
             let config = EngineConfig {
                 points: if points_operation { profile::InterruptPoints::Operation } else { profile::InterruptPoints::Block },
                 special_mode: special,
-                ob13_interval_ns: (cpu.family == profile::Family::S5_95f).then_some(1_000_000),
+                ob13: (cpu.family == profile::Family::S5_95f).then_some(
+                    awl::vm::interrupts::Ob13Timing {
+                        interval_ns: 1_000_000,
+                        delay_ns: 0,
+                        max_delay_ns: None,
+                    },
+                ),
                 hw_modules: vec![(0, 40), (1, 41)],
                 watchdog_ns: 150_000_000,
             };
@@ -287,7 +296,7 @@ proptest! {
                 std::sync::Arc::new(built.compiled.program.clone()),
                 std::sync::Arc::new(built.sources.clone()),
             );
-            machine.engine = Engine::new(config, schedule);
+            machine.engine = Engine::new(cpu, config, schedule);
             let outcome = machine.run(awl::vm::cycle::RunLimit::Duration(6_000_000));
             prop_assert_eq!(outcome.stop.is_some(), outcome.mode == awl::vm::Mode::Stop);
             if outcome.stop.is_none() {

@@ -172,7 +172,10 @@ pub enum Op {
     SetCounter(u16),
     ResetCounter(u16),
     EnableCounter(u16),
+    /// Fixed-point arithmetic on CPUs with two accumulators.
     Arithmetic(Arith),
+    /// Fixed-point arithmetic on CPUs with four accumulators: ACCU 3 and 4 move up after it.
+    ArithmeticStack(Arith),
     Compare(Comparison),
     /// `JU`/`JC` to a block: its index in the program, and its actual-parameter list.
     Call {
@@ -199,6 +202,8 @@ pub enum Op {
     OnesComplement,
     TwosComplement,
     Swap,
+    /// `ENT`: ACCU 3 to ACCU 4, ACCU 2 to ACCU 3.
+    Enter,
     Increment(u8),
     Decrement(u8),
     SetUnconditional(BitTarget),

@@ -43,9 +43,11 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         | Op::SetCounter(_)
         | Op::ResetCounter(_)
         | Op::EnableCounter(_) => t.timer_counter,
-        Op::Arithmetic(Arith::Add | Arith::Sub) => t.add_sub,
-        Op::Arithmetic(Arith::Mul) => t.multiply,
-        Op::Arithmetic(Arith::Div) => t.divide,
+        Op::Arithmetic(Arith::Add | Arith::Sub) | Op::ArithmeticStack(Arith::Add | Arith::Sub) => {
+            t.add_sub
+        }
+        Op::Arithmetic(Arith::Mul) | Op::ArithmeticStack(Arith::Mul) => t.multiply,
+        Op::Arithmetic(Arith::Div) | Op::ArithmeticStack(Arith::Div) => t.divide,
         Op::Compare(_) => t.compare,
         Op::Call { .. } | Op::CallMissing { .. } => t.block_call,
         Op::BlockEnd | Op::BlockEndConditional | Op::BlockEndUnconditional => t.block_end,
@@ -57,6 +59,7 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         | Op::OnesComplement
         | Op::TwosComplement
         | Op::Swap
+        | Op::Enter
         | Op::Increment(_)
         | Op::Decrement(_) => t.accumulator,
         Op::Indirect { .. } => t.load_word + t.other,

@@ -180,6 +180,19 @@ pub enum CheckError {
         at: Span,
     },
 
+    #[error("the {cpu} CPU has no `{op}`")]
+    #[diagnostic(
+        code(awl::check::not_on_cpu),
+        help("`{op}` exists on CPUs with four accumulators, such as the sinumerik-840c profile")
+    )]
+    NotOnCpu {
+        op: String,
+        #[label("{reason}")]
+        at: Span,
+        cpu: &'static str,
+        reason: &'static str,
+    },
+
     #[error("`{op}` must be followed by the operation it modifies")]
     #[diagnostic(
         code(awl::check::indirect_target),
@@ -212,7 +225,8 @@ impl CheckError {
             | CheckError::UnknownParam { at, .. }
             | CheckError::UndefinedBlock { at, .. }
             | CheckError::UndefinedDb { at, .. }
-            | CheckError::IndirectTarget { at, .. } => *at,
+            | CheckError::IndirectTarget { at, .. }
+            | CheckError::NotOnCpu { at, .. } => *at,
         }
     }
 

@@ -327,6 +327,7 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
         (OnesComplement, R::None) => Op::OnesComplement,
         (TwosComplement, R::None) => Op::TwosComplement,
         (Swap, R::None) => Op::Swap,
+        (Enter, R::None) => Op::Enter,
         (Increment, R::Number(n)) if n <= 255 => Op::Increment(n as u8),
         (Decrement, R::Number(n)) if n <= 255 => Op::Decrement(n as u8),
         (Indirect, R::Address(_)) => match area? {

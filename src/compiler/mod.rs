@@ -333,6 +333,19 @@ impl<'a> Compiler<'a> {
         let Some(mut op) = lower::lower(statement.op, resolved, self.layout, params) else {
             return self.fail(self.not_allowed(context, statement, resolved));
         };
+        let four_accumulators = self.profile.accumulators == 4;
+        match op {
+            Op::Arithmetic(kind) if four_accumulators => op = Op::ArithmeticStack(kind),
+            Op::Enter if !four_accumulators => {
+                return self.fail(CheckError::NotOnCpu {
+                    op: op_word.to_string(),
+                    at: statement.op_span,
+                    cpu: self.profile.name,
+                    reason: "it moves ACCU 2 to ACCU 3, and this CPU has two accumulators",
+                });
+            }
+            _ => {}
+        }
         let mut cost_op = op;
         if let Resolved::Formal(index) = resolved {
             let decl = &context.params[usize::from(index)];

@@ -472,6 +472,7 @@ fn shape(op: OpCode) -> Shape {
         | OnesComplement
         | TwosComplement
         | Swap
+        | Enter
         | DisableInterrupts
         | EnableInterrupts => Shape::Nothing,
         Nop | Display | ShiftLeft | ShiftRight | Increment | Decrement => Shape::Number,

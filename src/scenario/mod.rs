@@ -17,7 +17,7 @@ use crate::compiler::Program;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
 use crate::vm::cycle::RunLimit;
-use crate::vm::interrupts::{Happening, InputChange, InputTarget, Scheduled};
+use crate::vm::interrupts::{Happening, InputChange, InputTarget, Ob13Timing, Scheduled};
 
 pub use error::ScenarioError;
 pub use expect::{Expectation, Expected};
@@ -35,7 +35,7 @@ pub struct Scenario {
     pub points: Option<InterruptPoints>,
     pub limit: Option<RunLimit>,
     pub watchdog_ns: Option<u64>,
-    pub ob13_interval_ns: Option<u64>,
+    pub ob13: Option<Ob13Timing>,
     pub hw_modules: Vec<(u16, u8)>,
     events: Vec<RawEvent>,
     expect: Vec<(String, Spanned<toml::Value>)>,
@@ -203,7 +203,7 @@ impl Scenario {
             }
         };
         let watchdog_ns = raw.watchdog.as_ref().map(duration).transpose()?;
-        let ob13_interval_ns = match &raw.ob13 {
+        let ob13 = match &raw.ob13 {
             None => None,
             Some(ob13) => {
                 if profile.family != Family::S5_95f {
@@ -223,7 +223,23 @@ impl Scenario {
                         None,
                     ));
                 }
-                Some(interval)
+                let delay = ob13.delay.as_ref().map(duration).transpose()?;
+                let max_delay = ob13.max_delay.as_ref().map(duration).transpose()?;
+                if let (Some(delay), Some(max_delay), Some(text)) = (delay, max_delay, &ob13.delay)
+                    && delay > max_delay
+                {
+                    return Err(invalid(
+                        "the OB 13 delay is above its maximum delay",
+                        span(text),
+                        "above `max_delay`",
+                        Some("the delay t of each call is at most the maximum delay (S5-95F manual, 7.4.4)".into()),
+                    ));
+                }
+                Some(Ob13Timing {
+                    interval_ns: interval,
+                    delay_ns: delay.unwrap_or(0),
+                    max_delay_ns: max_delay,
+                })
             }
         };
         let mut hw_modules = Vec::new();
@@ -258,7 +274,7 @@ impl Scenario {
             points,
             limit,
             watchdog_ns,
-            ob13_interval_ns,
+            ob13,
             hw_modules,
             events,
             expect,
@@ -433,7 +449,7 @@ impl Scenario {
             .collect();
         let help = match profile.family {
             Family::Speed7 => Some("SPEED7 interrupts come from modules: use `hw_interrupt = { module, channel, active_for }`".to_string()),
-            Family::S5_95f => Some("OB 13 runs at its [ob13] interval; `interrupt` requests OB 3".to_string()),
+            Family::S5_95f => Some("OB 13 runs at its [ob13] interval; `interrupt` requests OB 2 or OB 3".to_string()),
             Family::Sinumerik840c => Some(format!("the interrupt OBs are: {}", allowed.iter().map(|ob| format!("OB {ob}")).collect::<Vec<_>>().join(", "))),
         };
         match digits.and_then(|digits| digits.parse::<u8>().ok()) {

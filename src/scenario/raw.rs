@@ -39,6 +39,8 @@ pub struct RawRun {
 #[serde(deny_unknown_fields)]
 pub struct RawOb13 {
     pub interval: Spanned<String>,
+    pub delay: Option<Spanned<String>>,
+    pub max_delay: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]

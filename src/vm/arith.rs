@@ -1,5 +1,15 @@
 //! Accumulator operations: fixed-point arithmetic and comparison on the low words of ACCU 1 and
 //! ACCU 2, word logic, shifts and complements, with the condition codes CC1/CC0 and OV.
+//!
+//! The status rules and their sources:
+//! - fixed-point arithmetic sets CC1/CC0 and OV (OS stays set); after an overflow of `+F`/`-F`
+//!   the codes are those of the 16-bit result, after one of `X F`/`:F` those of the true result
+//!   (STEP 7 status-word table for integer math, which the VIPA SPEED7 operation list follows;
+//!   the S5 manuals at hand do not spell the overflow case out);
+//! - `:F` puts the quotient in ACCU 1-L and the remainder in ACCU 1-H (CPU 928B programming
+//!   guide, table 3-7); division by 0 leaves ACCU 1 and sets CC1 CC0 = 1 1 and OV;
+//! - word logic and shifts set CC1/CC0 and leave the overflow bit alone (S5-101U manual,
+//!   5.2.5).
 
 use crate::compiler::bytecode::{Arith, Comparison, WordLogic};
 
@@ -13,26 +23,44 @@ fn with_low(accu: u32, value: u16) -> u32 {
     accu & 0xFFFF_0000 | u32::from(value)
 }
 
-/// `+F -F X F :F`: ACCU 1 := ACCU 2 op ACCU 1 (low words). Division by zero leaves ACCU 1 and
-/// sets CC1 CC0 = 1 1 and OV; an overflow keeps the wrapped result and sets OV and OS.
+/// `+F -F X F :F`: ACCU 1 := ACCU 2 op ACCU 1 (low words). An overflow keeps the wrapped
+/// result and sets OV and OS.
+#[inline(always)]
 pub fn arithmetic(op: Arith, accu1: &mut u32, accu2: u32, status: &mut Status) {
     let (a, b) = (i32::from(low(accu2)), i32::from(low(*accu1)));
     let exact = match op {
         Arith::Add => a + b,
         Arith::Sub => a - b,
-        Arith::Mul => a * b,
-        Arith::Div => {
-            if b == 0 {
-                status.set_condition(true, true);
-                status.set_overflow(true);
-                return;
-            }
-            a / b
-        }
+        Arith::Mul | Arith::Div => return multiply_divide(op, accu1, a, b, status),
     };
     let wrapped = exact as i16;
     status.set_result(wrapped, i32::from(wrapped) != exact);
     *accu1 = with_low(*accu1, wrapped as u16);
+}
+
+/// `X F` and `:F`: after an overflow the condition codes are those of the true result; `:F`
+/// leaves the remainder in ACCU 1-H.
+#[inline(always)]
+fn multiply_divide(op: Arith, accu1: &mut u32, a: i32, b: i32, status: &mut Status) {
+    if op == Arith::Div && b == 0 {
+        status.set_condition(true, true);
+        status.set_overflow(true);
+        return;
+    }
+    let exact = if op == Arith::Mul { a * b } else { a / b };
+    let wrapped = exact as i16;
+    let overflow = i32::from(wrapped) != exact;
+    let codes = if overflow {
+        exact.signum() as i16
+    } else {
+        wrapped
+    };
+    status.set_result(codes, overflow);
+    *accu1 = if op == Arith::Div {
+        u32::from((a % b) as u16) << 16 | u32::from(wrapped as u16)
+    } else {
+        with_low(*accu1, wrapped as u16)
+    };
 }
 
 /// `!=F ><F >F >=F <F <=F`: ACCU 2 compared with ACCU 1 gives the RLO.
@@ -50,7 +78,7 @@ pub fn compare(op: Comparison, accu1: u32, accu2: u32, status: &mut Status) {
     status.load(result);
 }
 
-/// `AW OW XOW`: CC1 = result not zero, CC0 = 0, OV = 0.
+/// `AW OW XOW`: CC1 = result not zero, CC0 = 0; OV unchanged.
 pub fn word_logic(op: WordLogic, accu1: &mut u32, accu2: u32, status: &mut Status) {
     let (a, b) = (*accu1 as u16, accu2 as u16);
     let result = match op {
@@ -59,11 +87,10 @@ pub fn word_logic(op: WordLogic, accu1: &mut u32, accu2: u32, status: &mut Statu
         WordLogic::Xor => a ^ b,
     };
     status.set_condition(result != 0, false);
-    status.set_overflow(false);
     *accu1 = with_low(*accu1, result);
 }
 
-/// `SLW n` / `SRW n`: CC1 = the last bit shifted out.
+/// `SLW n` / `SRW n`: CC1 = the last bit shifted out, CC0 = 0; OV unchanged.
 pub fn shift(left: bool, n: u8, accu1: &mut u32, status: &mut Status) {
     let word = *accu1 as u16;
     if n == 0 {
@@ -79,7 +106,6 @@ pub fn shift(left: bool, n: u8, accu1: &mut u32, status: &mut Status) {
         (word.checked_shr(n).unwrap_or(0), (word >> (n - 1)) & 1 == 1)
     };
     status.set_condition(last_out, false);
-    status.set_overflow(false);
     *accu1 = with_low(*accu1, result);
 }
 

@@ -7,7 +7,7 @@ use crate::profile::InterruptPoints;
 use crate::trace::Event;
 
 use super::stop::{Stop, StopCause};
-use super::{Cpu, Exit, IDLE, Mode, Point};
+use super::{Cpu, Exit, IDLE, LastStretch, Mode, Point, StretchKind};
 
 /// How long a run goes on: a number of cycles, or simulated time (the run ends at the first
 /// cycle end at or after it).
@@ -51,7 +51,11 @@ impl Cpu {
         let depth = self.levels.len();
         let operation_points = self.engine.config.points == InterruptPoints::Operation;
         loop {
-            match self.execute(operation_points) {
+            let exit = self.execute(operation_points);
+            if operation_points {
+                self.operation_boundary(&exit);
+            }
+            match exit {
                 Exit::Point(point) => {
                     self.at_point(point)?;
                 }
@@ -65,7 +69,7 @@ impl Cpu {
                     return Ok(());
                 }
                 Exit::LevelEnd => {
-                    self.leave_interrupt()?;
+                    self.end_interrupt_level()?;
                     self.at_point(Point::BlockEnd)?;
                 }
                 Exit::Stop(stop) => return Err(stop),
@@ -73,9 +77,58 @@ impl Cpu {
         }
     }
 
-    /// The cycle boundary: pending interrupts run here, highest first, until none outranks
-    /// the cyclic level.
-    fn cycle_boundary(&mut self) -> Result<(), Stop> {
+    /// With operation points every operation ends at a point: the loop left at one (or, at an
+    /// interrupt OB's block end, the point is the start of that block end: its data cycle
+    /// follows before the next point).
+    fn operation_boundary(&mut self, exit: &Exit) {
+        match exit {
+            Exit::Point(Point::Operation) => {
+                let (block, pc) = self.last_op;
+                let start = self.clock - self.program.blocks[usize::from(block)].cost(pc as usize);
+                self.last_stretch = LastStretch {
+                    kind: StretchKind::Block { block, end_pc: pc },
+                    start_ns: start,
+                    end_ns: self.clock,
+                };
+                self.last_point_at = self.clock;
+            }
+            Exit::Point(_) => self.last_point_at = self.clock,
+            Exit::LevelEnd if !self.levels.is_empty() => {
+                let (block, pc) = self.last_op;
+                let start = self.clock - self.program.blocks[usize::from(block)].cost(pc as usize);
+                self.last_point_at = start;
+                self.last_stretch.start_ns = start;
+            }
+            Exit::LevelEnd | Exit::Stop(_) => {}
+        }
+    }
+
+    /// An interrupt OB's level has ended: the interrupted level comes back, and the OB's end
+    /// (with its data cycle) closes a stretch.
+    fn end_interrupt_level(&mut self) -> Result<(), Stop> {
+        let block = self.level.block;
+        self.leave_interrupt()?;
+        self.mark_system_point(StretchKind::InterruptEnd { block });
+        Ok(())
+    }
+
+    /// A point of the operating system's own work (between the parts of the cycle, or after
+    /// an interrupt OB's end): the stretch since the last point ends here.
+    fn mark_system_point(&mut self, kind: StretchKind) {
+        let ns = self.clock - self.last_point_at;
+        self.last_stretch = LastStretch {
+            kind,
+            start_ns: self.last_point_at,
+            end_ns: self.clock,
+        };
+        self.longest_system.record(ns, kind);
+        self.last_point_at = self.clock;
+    }
+
+    /// A point between the parts of the cycle: pending interrupts run here, highest first,
+    /// until none outranks the cyclic level.
+    fn cycle_point(&mut self, after: StretchKind) -> Result<(), Stop> {
+        self.mark_system_point(after);
         self.level.block = IDLE;
         self.interrupts_between_levels(Point::Cycle)
     }
@@ -85,7 +138,7 @@ impl Cpu {
     fn interrupts_between_levels(&mut self, point: Point) -> Result<(), Stop> {
         while self.at_point(point)? {
             self.run_level()?;
-            self.leave_interrupt()?;
+            self.end_interrupt_level()?;
         }
         Ok(())
     }
@@ -105,8 +158,7 @@ impl Cpu {
             self.run_level()?;
         }
         self.set_mode(Mode::Run, None);
-        self.start_engine_run();
-        Ok(())
+        self.start_engine_run()
     }
 
     fn process_image_cycle(&mut self, read: bool) {
@@ -119,20 +171,31 @@ impl Cpu {
         }
         let duration = u64::from(self.profile.timings.process_image_per_byte) * bytes as u64;
         if self.tracer.enabled {
-            self.tracer.emit(
-                self.clock,
-                1,
-                Event::DataCycle {
-                    kind: "process_image",
-                    duration_ns: duration,
-                },
-            );
+            let event = Event::DataCycle {
+                kind: "process_image",
+                direction: if read { "input" } else { "output" },
+                duration_ns: duration,
+            };
+            self.tracer.emit(self.clock, 1, event);
         }
         self.clock += duration;
     }
 
+    /// The operating system's time at the cycle end.
+    fn os_time(&mut self) {
+        let duration = u64::from(self.profile.timings.cycle_overhead);
+        if self.tracer.enabled {
+            let event = Event::OsTime {
+                duration_ns: duration,
+            };
+            self.tracer.emit(self.clock, 1, event);
+        }
+        self.clock += duration;
+    }
+
+    /// One cycle: PII read, OB 1, PIQ write, operating-system time; interrupts may be
+    /// serviced between these parts.
     fn one_cycle(&mut self) -> Result<(), Stop> {
-        let ob1 = self.program.ob(1);
         self.cycle += 1;
         if self.tracer.enabled {
             self.tracer
@@ -140,34 +203,29 @@ impl Cpu {
         }
         self.poll()?;
         self.process_image_cycle(true);
-        if let Some(block) = ob1 {
+        self.cycle_point(StretchKind::ProcessImageRead)?;
+        if let Some(block) = self.program.ob(1) {
             self.enter_level(block);
-            self.last_point_at = self.clock;
             self.update_attention();
             self.run_level()?;
         }
         self.process_image_cycle(false);
-        self.clock += u64::from(self.profile.timings.cycle_overhead);
+        self.cycle_point(StretchKind::ProcessImageWrite)?;
+        self.os_time();
         if let Some((block, pc)) = self.stop_requested.take() {
             self.level.block = block;
             return Err(self.stop(StopCause::Stp, pc, super::stop::StopDetail::None));
         }
-        // Requests of the operating-system time are logged before the cycle end.
-        self.poll()?;
         let cycle_time = self.clock - self.cycle_started_at;
         if self.tracer.enabled {
-            self.tracer.emit(
-                self.clock,
-                0,
-                Event::CycleEnd {
-                    cycle: self.cycle,
-                    cycle_time_ns: cycle_time,
-                },
-            );
+            let event = Event::CycleEnd {
+                cycle: self.cycle,
+                cycle_time_ns: cycle_time,
+            };
+            self.tracer.emit(self.clock, 0, event);
         }
-        self.last_point_at = self.clock;
         self.cycle_started_at = self.clock;
-        self.cycle_boundary()
+        self.cycle_point(StretchKind::OsTime)
     }
 
     fn limit_reached(&self, limit: RunLimit) -> bool {

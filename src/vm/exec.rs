@@ -9,9 +9,13 @@ use crate::ast::Address;
 use crate::compiler::bytecode::*;
 use crate::compiler::{Resolved, lower};
 
+use crate::trace::Event;
+
 use super::arith;
+use super::interrupts::FamilyRules;
+use super::interrupts::s5_95f::S595f;
 use super::stop::{StopCause, StopDetail};
-use super::{Cpu, Exit, Frame, Point, Stretch};
+use super::{Cpu, Exit, Frame, LastStretch, Point, StretchKind};
 
 impl Cpu {
     /// Runs the current level; `operation_points` makes every operation an interrupt point.
@@ -67,25 +71,65 @@ impl Cpu {
         }
     }
 
-    /// Marks an interrupt point for the stretch measurement of the cyclic level.
+    /// Marks a block change (an interrupt point in both modes): the stretch since the last
+    /// point ended with op `end_pc` of `block`.
     #[inline(always)]
-    fn mark_point(&mut self, clock: u64, stretch_block: u16, end_pc: u32) {
-        self.last_stretch = super::LastStretch {
-            block: stretch_block,
-            end_pc,
+    fn mark_point(&mut self, clock: u64, block: u16, end_pc: u32) {
+        let kind = StretchKind::Block { block, end_pc };
+        self.last_stretch = LastStretch {
+            kind,
             start_ns: self.last_point_at,
             end_ns: clock,
         };
-        if self.levels.is_empty() {
-            let stretch = clock - self.last_point_at;
-            if stretch > self.longest_stretch.ns {
-                self.longest_stretch = Stretch {
-                    ns: stretch,
-                    block: stretch_block,
-                };
-            }
-        }
+        self.longest_block.record(clock - self.last_point_at, kind);
         self.last_point_at = clock;
+    }
+
+    /// Records where the loop stopped without a block change: the stretch from `start_ns`
+    /// to `end_ns` ended with op `end_pc` of the running block.
+    #[cold]
+    fn note_stretch(&mut self, end_pc: u32, start_ns: u64, end_ns: u64) {
+        self.last_op = (self.level.block, end_pc);
+        self.last_stretch = LastStretch {
+            kind: StretchKind::Block {
+                block: self.level.block,
+                end_pc,
+            },
+            start_ns,
+            end_ns,
+        };
+    }
+
+    /// Traces a block call at `self.clock`.
+    #[cold]
+    fn trace_call(&mut self, from: u16, to: u16) {
+        let event = Event::BlockCall {
+            from: self.block_id(from).to_string(),
+            to: self.block_id(to).to_string(),
+            depth: self.depth(),
+        };
+        let indent = self.frames.len() + 2 * self.levels.len();
+        self.trace_block_change(indent, event);
+    }
+
+    /// Traces a block end at `self.clock`.
+    #[cold]
+    fn trace_end(&mut self, block: u16) {
+        let event = Event::BlockEnd {
+            block: self.block_id(block).to_string(),
+            depth: self.depth(),
+        };
+        let indent = self.frames.len() + 2 * self.levels.len() + 1;
+        self.trace_block_change(indent, event);
+    }
+
+    /// The trace holds events back until the engine has taken in everything due by then;
+    /// when nothing is due by now, they can be written at once.
+    fn trace_block_change(&mut self, indent: usize, event: Event) {
+        self.tracer.emit(self.clock, indent, event);
+        if self.clock < self.engine.next_due() {
+            self.tracer.settle(self.clock);
+        }
     }
 
     /// The op that a formal operand or a `DO` stands for; `DO` also consumes the next op.
@@ -139,6 +183,8 @@ impl Cpu {
         let mut status = self.level.status;
         let mut accu1 = self.level.accu1;
         let mut accu2 = self.level.accu2;
+        // When the running pass of a loop began (where a request that came in it is placed).
+        let mut pass_start = self.last_point_at;
         macro_rules! now {
             () => {
                 segment_clock + elapsed[pc] - elapsed[segment_start]
@@ -242,6 +288,12 @@ impl Cpu {
                     accu1 = value;
                 }
                 Op::Arithmetic(kind) => arith::arithmetic(kind, &mut accu1, accu2, &mut status),
+                Op::ArithmeticStack(kind) => {
+                    arith::arithmetic(kind, &mut accu1, accu2, &mut status);
+                    // Four accumulators: ACCU 3 moves to ACCU 2, ACCU 4 to ACCU 3.
+                    accu2 = self.level.accu3;
+                    self.level.accu3 = self.level.accu4;
+                }
                 Op::Compare(kind) => arith::compare(kind, accu1, accu2, &mut status),
                 Op::Jump(condition, target) => {
                     let taken = match condition {
@@ -253,16 +305,20 @@ impl Cpu {
                         JumpCondition::Minus => !status.cc1() && status.cc0(),
                         JumpCondition::Overflow => status.ov(),
                     };
-                    if matches!(condition, JumpCondition::Always | JumpCondition::Rlo) {
+                    if condition == JumpCondition::Rlo {
                         status.after_jump();
                     }
                     if taken {
                         let jump_pc = pc as u32 - 1;
                         let backward = (target as usize) < pc;
                         move_to!(target as usize, code, elapsed);
-                        if !OPERATION_POINTS && backward && segment_clock >= self.attention_at {
-                            self.last_op = (self.level.block, jump_pc);
-                            break Exit::Point(Point::Loop);
+                        if !OPERATION_POINTS && backward {
+                            if segment_clock >= self.attention_at {
+                                let start = pass_start.max(self.last_point_at);
+                                self.note_stretch(jump_pc, start, segment_clock);
+                                break Exit::Point(Point::Loop);
+                            }
+                            pass_start = segment_clock;
                         }
                     }
                 }
@@ -276,7 +332,7 @@ impl Cpu {
                     if !taken {
                         continue;
                     }
-                    if self.depth() >= usize::from(self.profile.nesting_limit) {
+                    if self.frames.len() >= self.level.frame_limit {
                         sync!();
                         break Exit::Stop(self.stop(
                             StopCause::Stueb,
@@ -297,12 +353,11 @@ impl Cpu {
                     let callee = &program.blocks[usize::from(target)];
                     move_to!(0, &callee.code, &callee.elapsed[..=callee.code.len()]);
                     self.mark_point(segment_clock, caller, call_pc);
-                    let attention = segment_clock >= self.attention_at;
                     if self.tracer.enabled {
                         self.clock = segment_clock;
-                        self.trace_call(caller, target, attention);
+                        self.trace_call(caller, target);
                     }
-                    if attention {
+                    if segment_clock >= self.attention_at {
                         self.last_op = (caller, call_pc);
                         break Exit::Point(Point::BlockCall);
                     }
@@ -318,14 +373,21 @@ impl Cpu {
                         status.after_jump();
                     }
                     let ended = self.level.block;
+                    let end_pc = pc as u32 - 1;
                     let clock = now!();
-                    self.mark_point(clock, ended, pc as u32 - 1);
                     let level_end = self.frames.len() == self.level.level_base;
                     if self.tracer.enabled {
                         self.clock = clock;
-                        self.trace_end(ended, !level_end && clock >= self.attention_at);
+                        self.trace_end(ended);
                     }
+                    if level_end && !self.levels.is_empty() {
+                        // An interrupt OB's end is no point yet: its data cycle comes first.
+                        self.note_stretch(end_pc, self.last_point_at, clock);
+                        break Exit::LevelEnd;
+                    }
+                    self.mark_point(clock, ended, end_pc);
                     if level_end {
+                        self.last_op = (ended, end_pc);
                         break Exit::LevelEnd;
                     }
                     let frame = self.frames.pop().expect("a frame above the level base");
@@ -339,7 +401,7 @@ impl Cpu {
                         &caller.elapsed[..=caller.code.len()]
                     );
                     if segment_clock >= self.attention_at {
-                        self.last_op = (ended, self.last_stretch.end_pc);
+                        self.last_op = (ended, end_pc);
                         break Exit::Point(Point::BlockEnd);
                     }
                 }
@@ -498,37 +560,42 @@ impl Cpu {
         }
     }
 
-    /// The periphery a load or transfer reaches: S5-95F OB 13 uses the interrupt images.
-    fn read_periphery(&self, width: Width, byte: u16, extended: bool) -> u32 {
-        let source = if extended {
-            &self.extended_inputs
-        } else if self.engine.interrupt_images {
-            &self.interrupt_pii
-        } else {
-            &self.inputs
-        };
-        read_bytes(source, usize::from(byte), width.bytes())
+    /// The S5-95F interrupt images, when the running level is OB 13.
+    fn interrupt_images(&mut self) -> Option<&mut S595f> {
+        match &mut self.engine.rules {
+            FamilyRules::S595f(rules) if self.level.interrupt_images => Some(rules),
+            _ => None,
+        }
     }
 
-    fn write_periphery(&mut self, width: Width, byte: u16, value: u32, extended: bool) {
-        let at = usize::from(byte);
-        let width_bytes = width.bytes();
+    /// The periphery a load reaches: in the S5-95F's OB 13, the interrupt PII.
+    fn read_periphery(&mut self, width: Width, byte: u16, extended: bool) -> u32 {
+        let (at, count) = (usize::from(byte), width.bytes());
         if extended {
-            write_bytes(&mut self.extended_outputs, at, width_bytes, value);
+            return read_bytes(&self.extended_inputs, at, count);
+        }
+        match self.interrupt_images() {
+            Some(images) => images.read_interrupt_pii(at, count),
+            None => read_bytes(&self.inputs, at, count),
+        }
+    }
+
+    /// The periphery a transfer reaches: the output module, or in the S5-95F's OB 13 the
+    /// interrupt PIQ; the normal PIQ follows a direct output to a digital module.
+    fn write_periphery(&mut self, width: Width, byte: u16, value: u32, extended: bool) {
+        let (at, count) = (usize::from(byte), width.bytes());
+        if extended {
+            write_bytes(&mut self.extended_outputs, at, count, value);
             return;
         }
-        if self.engine.interrupt_images {
-            write_bytes(&mut self.interrupt_piq, at, width_bytes, value);
-            self.interrupt_piq_written = true;
-            self.interrupt_piq_dirty[at..at + width_bytes].fill(true);
-        } else {
-            write_bytes(&mut self.outputs, at, width_bytes, value);
+        match self.interrupt_images() {
+            Some(images) => images.write_interrupt_piq(at, count, value),
+            None => write_bytes(&mut self.outputs, at, count, value),
         }
-        // The normal PIQ follows a direct output to a digital module.
         let image_bytes = usize::from(self.program.layout.image_bytes);
         let piq = usize::from(self.program.layout.output_base());
-        if at + width_bytes <= image_bytes {
-            write_bytes(&mut self.image[..], piq + at, width_bytes, value);
+        if at + count <= image_bytes {
+            write_bytes(&mut self.image[..], piq + at, count, value);
         }
     }
 
@@ -708,6 +775,10 @@ impl Cpu {
                 arith::twos_complement(&mut self.level.accu1, &mut self.level.status)
             }
             Op::Swap => std::mem::swap(&mut self.level.accu1, &mut self.level.accu2),
+            Op::Enter => {
+                self.level.accu4 = self.level.accu3;
+                self.level.accu3 = self.level.accu2;
+            }
             Op::Increment(n) => arith::increment(&mut self.level.accu1, i16::from(n)),
             Op::Decrement(n) => arith::increment(&mut self.level.accu1, -i16::from(n)),
             Op::SetUnconditional(target) => self.write_bit_target(target, true)?,
@@ -721,7 +792,31 @@ impl Cpu {
                 self.level.interrupts_enabled = true;
                 self.update_attention();
             }
-            handled_by_the_loop => unreachable!("{handled_by_the_loop:?} is executed inline"),
+            Op::And(_)
+            | Op::AndNot(_)
+            | Op::Or(_)
+            | Op::OrNot(_)
+            | Op::Assign(_)
+            | Op::Set(_)
+            | Op::Reset(_)
+            | Op::OrAlone
+            | Op::LoadImageByte(_)
+            | Op::LoadImageWord(_)
+            | Op::LoadImageDouble(_)
+            | Op::TransferImageByte(_)
+            | Op::TransferImageWord(_)
+            | Op::TransferImageDouble(_)
+            | Op::LoadConstant(_)
+            | Op::Arithmetic(_)
+            | Op::ArithmeticStack(_)
+            | Op::Compare(_)
+            | Op::Jump(..)
+            | Op::Call { .. }
+            | Op::BlockEnd
+            | Op::BlockEndConditional
+            | Op::BlockEndUnconditional
+            | Op::Indirect { .. }
+            | Op::Formal { .. } => unreachable!("{op:?} is executed by the loop itself"),
         }
         Ok(())
     }

@@ -5,10 +5,12 @@
 //! the engine that decides, at the interrupt points the loop reports, which OB runs.
 
 pub mod arith;
+pub mod bound;
 pub mod counters;
 pub mod cycle;
 pub mod exec;
 pub mod interrupts;
+pub mod place;
 pub mod status;
 pub mod stop;
 pub mod timers;
@@ -18,12 +20,12 @@ use std::sync::Arc;
 use crate::ast::BlockId;
 use crate::compiler::bytecode::NO_PARAMS;
 use crate::compiler::{Program, Resolved};
-use crate::profile::Profile;
+use crate::profile::{Nesting, Profile};
 use crate::source::SourceSet;
 use crate::trace::Tracer;
 
 use counters::Counter;
-use interrupts::Engine;
+use interrupts::{Engine, EngineConfig};
 use status::{Brackets, Status};
 use stop::{StackEntry, Stop, StopCause, StopDetail};
 use timers::Timer;
@@ -42,6 +44,9 @@ pub struct Frame {
 pub struct LevelState {
     pub accu1: u32,
     pub accu2: u32,
+    /// ACCU 3 and 4 of the CPUs that have four accumulators (the CPU 928B).
+    pub accu3: u32,
+    pub accu4: u32,
     pub status: Status,
     pub brackets: Brackets,
     pub open_db: Option<u8>,
@@ -50,7 +55,11 @@ pub struct LevelState {
     pub params: u16,
     /// Where this level's frames begin on the block stack.
     pub level_base: usize,
+    /// A block call with this many frames on the block stack exceeds the nesting limit.
+    pub frame_limit: usize,
     pub interrupts_enabled: bool,
+    /// S5-95F: this level is OB 13, so `L PY`/`T PY` reach the interrupt process images.
+    pub interrupt_images: bool,
 }
 
 /// The operating mode.
@@ -101,19 +110,52 @@ pub enum Exit {
     Stop(Stop),
 }
 
+/// What ran in a stretch between two interrupt points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StretchKind {
+    /// Operations of a block, ending with op `end_pc`.
+    Block { block: u16, end_pc: u32 },
+    /// The PII read at the cycle start.
+    ProcessImageRead,
+    /// The PIQ write after OB 1.
+    ProcessImageWrite,
+    /// The operating-system time at the cycle end.
+    OsTime,
+    /// An interrupt OB's last operations with its end (S5-95F OB 13: and its interrupt output
+    /// data cycle).
+    InterruptEnd { block: u16 },
+}
+
+impl Default for StretchKind {
+    fn default() -> Self {
+        StretchKind::Block {
+            block: IDLE,
+            end_pc: 0,
+        }
+    }
+}
+
+/// The last stretch between interrupt points: what ran, from when to when.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct LastStretch {
-    pub block: u16,
-    pub end_pc: u32,
+    pub kind: StretchKind,
     pub start_ns: u64,
     pub end_ns: u64,
 }
 
-/// The longest stretch between two interrupt points on the cyclic level.
+/// The longest stretch of a kind seen in the run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Stretch {
     pub ns: u64,
-    pub block: u16,
+    pub kind: StretchKind,
+}
+
+impl Stretch {
+    pub fn record(&mut self, ns: u64, kind: StretchKind) {
+        if ns > self.ns {
+            *self = Stretch { ns, kind };
+        }
+    }
 }
 
 /// Image memory for every `u16` offset plus a double word: ops address it with `u16` offsets,
@@ -139,12 +181,6 @@ pub struct Cpu {
     pub outputs: Vec<u8>,
     pub extended_inputs: Vec<u8>,
     pub extended_outputs: Vec<u8>,
-    /// S5-95F interrupt process images.
-    pub interrupt_pii: Vec<u8>,
-    pub interrupt_piq: Vec<u8>,
-    pub interrupt_piq_written: bool,
-    /// Which bytes of the interrupt PIQ OB 13 wrote.
-    pub interrupt_piq_dirty: Vec<bool>,
     pub timers: Vec<Timer>,
     pub counters: Vec<Counter>,
     /// Data blocks by number.
@@ -163,16 +199,18 @@ pub struct Cpu {
     pub cycle: u64,
     pub cycle_started_at: u64,
     pub stop_requested: Option<(u16, u32)>,
+    /// The last moment an interrupt could have been serviced.
     pub last_point_at: u64,
-    /// The last stretch between interrupt points: its block, the op that ended it, and when it
-    /// began and ended.
+    /// The last stretch between interrupt points: what ran, and when it began and ended.
     pub last_stretch: LastStretch,
     /// The op that led to the last interrupt point (block, pc), where STOPs found there are
     /// reported.
     pub last_op: (u16, u32),
-    /// A block change the engine traces after the requests that came before it.
-    pub deferred_trace: Option<crate::trace::Event>,
-    pub longest_stretch: Stretch,
+    /// The longest stretch between two block changes, on any level.
+    pub longest_block: Stretch,
+    /// The longest stretch of the operating system's work: a part of the cycle-end work, or an
+    /// interrupt OB's end with its data cycle.
+    pub longest_system: Stretch,
     pub engine: Engine,
     pub tracer: Tracer,
 }
@@ -198,16 +236,14 @@ impl Cpu {
             outputs: vec![0; periphery],
             extended_inputs: vec![0; periphery],
             extended_outputs: vec![0; periphery],
-            interrupt_pii: vec![0; periphery],
-            interrupt_piq: vec![0; periphery],
-            interrupt_piq_written: false,
-            interrupt_piq_dirty: vec![false; periphery],
             timers: vec![Timer::default(); usize::from(sizes.timers)],
             counters: vec![Counter::default(); usize::from(sizes.counters)],
             data_blocks,
             level: LevelState {
                 accu1: 0,
                 accu2: 0,
+                accu3: 0,
+                accu4: 0,
                 status: Status::default(),
                 brackets: Brackets::default(),
                 open_db: None,
@@ -215,7 +251,9 @@ impl Cpu {
                 pc: 0,
                 params: NO_PARAMS,
                 level_base: 0,
+                frame_limit: usize::from(profile.nesting_limit).saturating_sub(1),
                 interrupts_enabled: true,
+                interrupt_images: false,
             },
             frames: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
             levels: Vec::with_capacity(levels_capacity),
@@ -228,10 +266,10 @@ impl Cpu {
             stop_requested: None,
             last_point_at: 0,
             last_stretch: LastStretch::default(),
-            deferred_trace: None,
             last_op: (0, 0),
-            longest_stretch: Stretch::default(),
-            engine: Engine::default(),
+            longest_block: Stretch::default(),
+            longest_system: Stretch::default(),
+            engine: Engine::new(profile, EngineConfig::default(), Vec::new()),
             tracer: Tracer::off(),
             profile,
             program,
@@ -269,6 +307,15 @@ impl Cpu {
         self.level.open_db = None;
         self.level.status = Status::default();
         self.level.brackets = Brackets::default();
+        self.level.interrupt_images = false;
+        let limit = usize::from(self.profile.nesting_limit);
+        self.level.frame_limit = match self.profile.nesting {
+            Nesting::PerLevel => self.level.level_base + limit - 1,
+            Nesting::WholeCpu => {
+                let outer = self.levels.iter().filter(|level| level.block != IDLE);
+                (limit - 1).saturating_sub(outer.count())
+            }
+        };
     }
 
     /// The block stack, innermost first: the running block, then each return point.

@@ -132,7 +132,7 @@ pub enum StopError {
     #[diagnostic(
         code(awl::stop::weck),
         help(
-            "{stack}\nthe wake-up error of seed 002: lengthen the OB 13 interval, shorten OB 13, or reduce the interrupts that delay it"
+            "{stack}\nthe wake-up error (S5-95F manual, 7.4.4): lengthen the OB 13 interval, shorten OB 13, or reduce the interrupts that delay it"
         )
     )]
     WakeUp {
@@ -143,12 +143,28 @@ pub enum StopError {
     },
 
     #[error(
+        "STOP WECK: the OB 13 interval {interval_ms} ms is not above the maximum delay {max_delay_ms} ms"
+    )]
+    #[diagnostic(
+        code(awl::stop::weck_interval),
+        help(
+            "the time interrupt error of the S5-95F manual, 7.4.4: \"OB13 call-up interval > maximum delay t of OB13 processing\"; lengthen `[ob13].interval`"
+        )
+    )]
+    IntervalNotAboveDelay {
+        interval_ms: String,
+        max_delay_ms: String,
+        #[label("RUN began here")]
+        at: Span,
+    },
+
+    #[error(
         "STOP OB85: hardware interrupt of module {module} has no OB, and OB 85 is not programmed"
     )]
     #[diagnostic(
         code(awl::stop::ob85),
         help(
-            "{stack}\nprogram OB {ob} for the module, or OB 85 to handle the missing OB (seed 001)"
+            "{stack}\nprogram OB {ob} for the module, or OB 85 to handle the missing OB (VIPA SPEED7 operation list, OB 40/OB 41)"
         )
     )]
     MissingOb85 {
@@ -170,6 +186,7 @@ impl StopError {
             | StopError::Operation { at, .. }
             | StopError::StopOperation { at, .. }
             | StopError::WakeUp { at, .. }
+            | StopError::IntervalNotAboveDelay { at, .. }
             | StopError::MissingOb85 { at, .. } => *at,
         }
     }
@@ -193,6 +210,17 @@ pub enum StopDetail {
     None,
     Text(String),
     Ob(u8),
-    Module { module: u16, ob: u8 },
-    Cycle { cycle_ns: u64, watchdog_ns: u64 },
+    Module {
+        module: u16,
+        ob: u8,
+    },
+    Cycle {
+        cycle_ns: u64,
+        watchdog_ns: u64,
+    },
+    /// S5-95F: the OB 13 interval is not above the maximum delay.
+    Ob13Interval {
+        interval_ns: u64,
+        max_delay_ns: u64,
+    },
 }

@@ -26,7 +26,7 @@ pub fn run_with(
         Arc::new(built.compiled.program.clone()),
         Arc::new(built.sources.clone()),
     );
-    cpu.engine = Engine::new(config, schedule);
+    cpu.engine = Engine::new(profile, config, schedule);
     let outcome = cpu.run(limit);
     (cpu, outcome)
 }

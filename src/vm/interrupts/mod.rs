@@ -1,0 +1,774 @@
+//! The interrupt engine: pending requests, priorities, and where they are serviced. What each
+//! manual adds lives in a file of its own, behind the [`Rules`] trait:
+//! - [`sinumerik840c`]: normal and special mode (SINUMERIK 840C PLC manual, 5.3.1 and 5.3.2);
+//! - [`s5_95f`]: OB 13 with its delay, interrupt process images and wake-up error (S5-95F
+//!   manual, "Introduction to STEP 5", 7.4.4 and 7.4.5);
+//! - [`speed7`]: hardware interrupts by module and channel (VIPA SPEED7 operation list,
+//!   OB 40/OB 41).
+//!
+//! The rules every CPU shares (SINUMERIK 840C PLC manual, 5.3.2): a pending request is serviced
+//! at the next interrupt point when its OB's priority is above the running level's; of several,
+//! the highest first; after an interrupt OB ends, the pending requests are ranked again. An OB
+//! holds one pending request; a second one is lost.
+//!
+//! The execution loop reports interrupt points only when `clock >= attention_at`; the engine
+//! keeps `attention_at` at the next moment something is due (a scheduled event, OB 13, the
+//! watchdog), or at 0 while a pending request outranks the running level. With nothing pending
+//! the loop pays one comparison per block change.
+
+pub mod s5_95f;
+pub mod sinumerik840c;
+pub mod speed7;
+
+use crate::profile::{Family, InterruptPoints, Profile};
+use crate::trace::Event;
+
+use super::stop::{Stop, StopCause, StopDetail};
+use super::{Cpu, IDLE, Mode, Point, StretchKind};
+
+use s5_95f::S595f;
+use sinumerik840c::Sinumerik840c;
+use speed7::Speed7;
+
+/// Something that happens at a simulated time, from the scenario.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Happening {
+    /// Process inputs change.
+    SetInputs(Vec<InputChange>),
+    /// An S5 interrupt request for an interrupt OB.
+    Interrupt { ob: u8 },
+    /// A SPEED7 hardware interrupt event on a module's channel.
+    Hardware {
+        module: u16,
+        channel: u16,
+        active_for_ns: u64,
+    },
+}
+
+/// A change of the input modules: a bit (`bytes` 0) or 1, 2 or 4 bytes from `byte`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct InputChange {
+    pub target: InputTarget,
+    pub byte: u16,
+    pub bit: u8,
+    pub bytes: u8,
+    pub value: u32,
+}
+
+impl InputChange {
+    /// Writes the change into the input modules' bytes.
+    pub fn apply(self, modules: &mut [u8]) {
+        let at = usize::from(self.byte);
+        if self.bytes == 0 {
+            let mask = 1u8 << self.bit;
+            if self.value != 0 {
+                modules[at] |= mask
+            } else {
+                modules[at] &= !mask
+            }
+        } else {
+            super::exec::write_bytes(modules, at, usize::from(self.bytes), self.value);
+        }
+    }
+}
+
+/// Which input modules an input change writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InputTarget {
+    Process,
+    Extended,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scheduled {
+    pub at_ns: u64,
+    pub what: Happening,
+}
+
+/// When the S5-95F calls OB 13: every `interval_ns`, each call `delay_ns` late (the delay t
+/// of the S5-95F manual, 7.4.4; 0 is the manual's ideal case). With `max_delay_ns` given, an
+/// interval not above it is the time interrupt error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Ob13Timing {
+    pub interval_ns: u64,
+    pub delay_ns: u64,
+    pub max_delay_ns: Option<u64>,
+}
+
+/// The engine's settings for one run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EngineConfig {
+    pub points: InterruptPoints,
+    /// SINUMERIK 840C special mode: OB 2 and OB 5 are processed.
+    pub special_mode: bool,
+    /// S5-95F: the time-controlled OB 13.
+    pub ob13: Option<Ob13Timing>,
+    /// SPEED7: which OB a module's hardware interrupts start.
+    pub hw_modules: Vec<(u16, u8)>,
+    pub watchdog_ns: u64,
+}
+
+impl Default for EngineConfig {
+    fn default() -> Self {
+        EngineConfig {
+            points: InterruptPoints::Block,
+            special_mode: false,
+            ob13: None,
+            hw_modules: Vec::new(),
+            watchdog_ns: 150_000_000,
+        }
+    }
+}
+
+/// Why a serviced request waited longer than the response bound allows for: reasons the
+/// manuals give, so the bound does not apply to it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Wait {
+    /// A level of the same or a higher priority ran, or was serviced first (SINUMERIK 840C
+    /// PLC manual, 5.3.2).
+    Priority,
+    /// `IA` held interrupt servicing back.
+    Disabled,
+    /// It came before RUN.
+    NotInRun,
+}
+
+impl Wait {
+    pub const ALL: [Wait; 3] = [Wait::Priority, Wait::Disabled, Wait::NotInRun];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Wait::Priority => "priority",
+            Wait::Disabled => "disabled",
+            Wait::NotInRun => "startup",
+        }
+    }
+
+    /// What it means, for the summary.
+    pub fn explanation(self) -> &'static str {
+        match self {
+            Wait::Priority => "a level of the same or a higher priority ran first",
+            Wait::Disabled => "IA held interrupts back",
+            Wait::NotInRun => "it came before RUN",
+        }
+    }
+}
+
+/// Counts and latencies of one interrupt OB.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ObStats {
+    pub requested: u64,
+    pub serviced: u64,
+    pub lost: u64,
+    pub ignored: u64,
+    pub latency_min: u64,
+    pub latency_max: u64,
+    pub latency_sum: u64,
+    /// Serviced requests that waited for a reason of [`Wait`], by its order in `Wait::ALL`.
+    pub waited: [u64; 3],
+    /// The longest time from the OB's start to its end, interruptions included.
+    pub run_max: u64,
+}
+
+/// Where a hardware request came from, for the acknowledgement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct HardwareSource {
+    pub module: u16,
+    pub channel: u16,
+    pub active_until: u64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Request {
+    pub id: u64,
+    pub ob: u8,
+    pub requested_at: u64,
+    pub hardware: Option<HardwareSource>,
+    pub waited: Option<Wait>,
+}
+
+/// An interrupt OB that is running (or interrupted by a higher one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Active {
+    pub request: Request,
+    pub priority: u8,
+    pub started_at: u64,
+}
+
+/// What one manual adds to the generic engine. Each CPU family implements it in its own file,
+/// with the state its rules keep.
+pub trait Rules {
+    /// Why the CPU does not process a request for `ob`, when it does not.
+    fn ignores(&self, _ob: u8) -> Option<&'static str> {
+        None
+    }
+    /// The next moment these rules need the engine to look, besides the schedule.
+    fn next_due(&self) -> u64 {
+        u64::MAX
+    }
+    /// Takes in the CPU's own requests due by now.
+    fn poll(&mut self, _cpu: &mut Cpu) -> Result<(), Stop> {
+        Ok(())
+    }
+    /// RUN begins.
+    fn start_run(&mut self, _cpu: &mut Cpu) -> Result<(), Stop> {
+        Ok(())
+    }
+    /// An interrupt OB's level was entered.
+    fn entered(&mut self, _cpu: &mut Cpu, _ob: u8) {}
+    /// An interrupt OB's level ended; the interrupted level is not back yet.
+    fn ended(&mut self, _cpu: &mut Cpu, _request: Request) {}
+    /// An interrupt OB's level ended and the interrupted level is back.
+    fn left(&mut self, _cpu: &mut Cpu, _request: Request) {}
+    /// A module's hardware interrupt event.
+    fn hardware_event(
+        &mut self,
+        _cpu: &mut Cpu,
+        _at: u64,
+        _source: HardwareSource,
+    ) -> Result<(), Stop> {
+        Ok(())
+    }
+    /// Requests for `ob` these rules hold outside the pending list.
+    fn held(&self, _ob: u8) -> u64 {
+        0
+    }
+}
+
+/// The rules of the running CPU's family, with their state.
+#[derive(Debug, Default)]
+pub enum FamilyRules {
+    Sinumerik840c(Sinumerik840c),
+    S595f(S595f),
+    Speed7(Speed7),
+    /// Taken out while one of its hooks runs (see `Cpu::with_rules`).
+    #[default]
+    Taken,
+}
+
+/// What the engine sees of the rules while a hook has them.
+struct Taken;
+
+impl Rules for Taken {}
+
+impl FamilyRules {
+    fn new(profile: &Profile, config: &EngineConfig, schedule: &[Scheduled]) -> Self {
+        match profile.family {
+            Family::Sinumerik840c => FamilyRules::Sinumerik840c(Sinumerik840c::new(config)),
+            Family::S5_95f => FamilyRules::S595f(S595f::new(profile, config)),
+            Family::Speed7 => FamilyRules::Speed7(Speed7::new(config, schedule)),
+        }
+    }
+
+    fn rules(&self) -> &dyn Rules {
+        match self {
+            FamilyRules::Sinumerik840c(rules) => rules,
+            FamilyRules::S595f(rules) => rules,
+            FamilyRules::Speed7(rules) => rules,
+            FamilyRules::Taken => &Taken,
+        }
+    }
+
+    fn rules_mut(&mut self) -> &mut dyn Rules {
+        match self {
+            FamilyRules::Sinumerik840c(rules) => rules,
+            FamilyRules::S595f(rules) => rules,
+            FamilyRules::Speed7(rules) => rules,
+            // A box of a zero-sized type allocates nothing.
+            FamilyRules::Taken => Box::leak(Box::new(Taken)),
+        }
+    }
+}
+
+/// Room for pending and active requests: one pending request per OB, one active level per
+/// priority.
+const LEVELS: usize = 32;
+
+/// The engine's state. Every collection gets its capacity when the engine is made, sized from
+/// the schedule, so servicing interrupts allocates nothing while the CPU runs.
+pub struct Engine {
+    pub config: EngineConfig,
+    schedule: Vec<Scheduled>,
+    next: usize,
+    pub(super) pending: Vec<Request>,
+    pub active: Vec<Active>,
+    /// Counts and latencies by OB number.
+    stats: Box<[ObStats; 256]>,
+    next_id: u64,
+    /// When RUN began (SPEED7: hardware interrupts before it are not produced).
+    run_started_at: Option<u64>,
+    pub rules: FamilyRules,
+}
+
+impl Engine {
+    pub fn new(profile: &Profile, config: EngineConfig, mut schedule: Vec<Scheduled>) -> Self {
+        schedule.sort_by_key(|item| item.at_ns);
+        let hardware = schedule
+            .iter()
+            .filter(|item| matches!(item.what, Happening::Hardware { .. }))
+            .count();
+        Engine {
+            rules: FamilyRules::new(profile, &config, &schedule),
+            schedule,
+            next: 0,
+            pending: Vec::with_capacity(LEVELS + hardware),
+            active: Vec::with_capacity(LEVELS),
+            stats: Box::new([ObStats::default(); 256]),
+            next_id: 0,
+            run_started_at: None,
+            config,
+        }
+    }
+
+    /// Counts and latencies of an OB.
+    pub fn stats(&self, ob: u8) -> ObStats {
+        self.stats[usize::from(ob)]
+    }
+
+    /// The OBs that were requested, with their counts, by OB number.
+    pub fn requested_obs(&self) -> impl Iterator<Item = (u8, &ObStats)> {
+        (0..=u8::MAX)
+            .zip(self.stats.iter())
+            .filter(|(_, stats)| stats.requested > 0)
+    }
+
+    /// Requests for `ob` that were counted but not yet serviced, lost or ignored: pending, or
+    /// held until an acknowledgement.
+    pub fn waiting(&self, ob: u8) -> u64 {
+        let pending = self.pending.iter().filter(|request| request.ob == ob);
+        pending.count() as u64 + self.rules.rules().held(ob)
+    }
+
+    fn new_id(&mut self) -> u64 {
+        self.next_id += 1;
+        self.next_id
+    }
+
+    fn stats_mut(&mut self, ob: u8) -> &mut ObStats {
+        &mut self.stats[usize::from(ob)]
+    }
+
+    fn record_service(&mut self, request: Request, latency: u64) {
+        let stats = self.stats_mut(request.ob);
+        stats.latency_min = if stats.serviced == 0 {
+            latency
+        } else {
+            stats.latency_min.min(latency)
+        };
+        stats.latency_max = stats.latency_max.max(latency);
+        stats.latency_sum += latency;
+        stats.serviced += 1;
+        if let Some(wait) = request.waited {
+            let index = Wait::ALL.iter().position(|w| *w == wait).unwrap_or(0);
+            stats.waited[index] += 1;
+        }
+    }
+
+    /// The next moment the engine must look, apart from pending requests.
+    pub(crate) fn next_due(&self) -> u64 {
+        let scheduled = self
+            .schedule
+            .get(self.next)
+            .map_or(u64::MAX, |item| item.at_ns);
+        scheduled.min(self.rules.rules().next_due())
+    }
+}
+
+impl Cpu {
+    pub(super) fn priority_of(&self, ob: u8) -> u8 {
+        self.profile
+            .interrupt_ob(ob)
+            .map_or(0, |entry| entry.priority)
+    }
+
+    /// The priority of the running level: 0 for the cyclic and startup levels.
+    pub fn running_priority(&self) -> u8 {
+        self.engine
+            .active
+            .last()
+            .map_or(0, |active| active.priority)
+    }
+
+    /// Runs a hook of the family's rules, which get the whole CPU: their state is taken out of
+    /// it meanwhile (a move, no allocation). Hooks do not nest.
+    fn with_rules<T>(&mut self, hook: impl FnOnce(&mut dyn Rules, &mut Cpu) -> T) -> T {
+        let mut rules = std::mem::take(&mut self.engine.rules);
+        let result = hook(rules.rules_mut(), self);
+        self.engine.rules = rules;
+        result
+    }
+
+    /// Traces an event of the engine; `event` builds it only when a trace is written, so the
+    /// engine does no string work and allocates nothing otherwise.
+    pub(super) fn emit(&mut self, t_ns: u64, event: impl FnOnce(&Self) -> Event) {
+        if self.tracer.enabled {
+            let event = event(self);
+            let indent = self.frames.len() + 2 * self.levels.len() + 1;
+            self.tracer.emit(t_ns, indent, event);
+        }
+    }
+
+    /// A STOP found by the engine, at the op that led to the interrupt point.
+    pub(super) fn stop_at_last_op(&mut self, cause: StopCause, detail: StopDetail) -> Stop {
+        let (block, pc) = self.last_op;
+        if self.level.block == IDLE || block == self.level.block {
+            return self.stop(cause, pc, detail);
+        }
+        let mut stop = self.stop(cause, self.level.pc, detail);
+        let called = self.frames.len() > self.level.level_base
+            && self.frames.last().is_some_and(|frame| frame.block == block);
+        if called {
+            // A block call: the running block is the callee; the call is the caller's entry.
+            stop.stack.remove(0);
+        } else {
+            // A block end: the block that ended is no longer on the stack, and its caller's
+            // entry is the call, as for every other return point.
+            let running = self.level.block;
+            stop.stack[0].line = self.line_of(running, self.level.pc.saturating_sub(1));
+            let entry = super::stop::StackEntry {
+                block: self.block_id(block).to_string(),
+                line: self.line_of(block, pc),
+            };
+            stop.stack.insert(0, entry);
+        }
+        stop.block = Some(block);
+        stop.pc = pc;
+        stop
+    }
+
+    /// Keeps `attention_at` at the next moment the engine has to look.
+    pub fn update_attention(&mut self) {
+        let running = self.running_priority();
+        let serviceable = self.mode == Mode::Run
+            && self.level.interrupts_enabled
+            && self
+                .engine
+                .pending
+                .iter()
+                .any(|request| self.priority_of(request.ob) > running);
+        let watchdog = self
+            .cycle_started_at
+            .saturating_add(self.engine.config.watchdog_ns);
+        self.attention_at = if serviceable {
+            0
+        } else {
+            self.engine.next_due().min(watchdog)
+        };
+    }
+
+    /// RUN begins: the rules judge what came before it and start their own timing.
+    pub(super) fn start_engine_run(&mut self) -> Result<(), Stop> {
+        self.engine.run_started_at = Some(self.clock);
+        self.with_rules(|rules, cpu| rules.start_run(cpu))?;
+        self.update_attention();
+        Ok(())
+    }
+
+    /// When RUN began, if it has.
+    pub fn run_started_at(&self) -> Option<u64> {
+        self.engine.run_started_at
+    }
+
+    /// Handles an interrupt point: takes in what is due, checks the watchdog, and services the
+    /// highest pending request that outranks the running level. Returns whether an OB was
+    /// entered.
+    pub fn at_point(&mut self, point: Point) -> Result<bool, Stop> {
+        self.poll()?;
+        let cycle_time = self.clock - self.cycle_started_at;
+        if self.mode != Mode::Stop && cycle_time > self.engine.config.watchdog_ns {
+            let detail = StopDetail::Cycle {
+                cycle_ns: cycle_time,
+                watchdog_ns: self.engine.config.watchdog_ns,
+            };
+            return Err(self.stop_at_last_op(StopCause::Zyk, detail));
+        }
+        let is_point = match self.engine.config.points {
+            InterruptPoints::Block => {
+                matches!(point, Point::BlockCall | Point::BlockEnd | Point::Cycle)
+            }
+            InterruptPoints::Operation => point != Point::Loop,
+        };
+        let mut entered = false;
+        if is_point && self.mode == Mode::Run {
+            if self.level.interrupts_enabled {
+                entered = self.service(point)?;
+            } else {
+                self.mark_waiting(Wait::Disabled);
+            }
+        }
+        self.update_attention();
+        Ok(entered)
+    }
+
+    /// Pending requests that outrank the running level but cannot be serviced now.
+    fn mark_waiting(&mut self, wait: Wait) {
+        let running = self.running_priority();
+        for index in 0..self.engine.pending.len() {
+            let ob = self.engine.pending[index].ob;
+            if self.priority_of(ob) > running {
+                self.engine.pending[index].waited.get_or_insert(wait);
+            }
+        }
+    }
+
+    /// Takes in everything due by now, in time order. The trace is in time order too: what
+    /// it holds back until now is written.
+    pub(super) fn poll(&mut self) -> Result<(), Stop> {
+        loop {
+            let scheduled_at = self
+                .engine
+                .schedule
+                .get(self.engine.next)
+                .map_or(u64::MAX, |item| item.at_ns);
+            let own = self.engine.rules.rules().next_due();
+            if scheduled_at.min(own) > self.clock {
+                break;
+            }
+            if own <= scheduled_at {
+                self.with_rules(|rules, cpu| rules.poll(cpu))?;
+            } else {
+                let index = self.engine.next;
+                self.engine.next += 1;
+                self.happen(index)?;
+            }
+        }
+        if self.tracer.enabled {
+            self.tracer.settle(self.clock);
+        }
+        Ok(())
+    }
+
+    /// The scheduled item `index` happens (read in place: a schedule is never copied).
+    fn happen(&mut self, index: usize) -> Result<(), Stop> {
+        let at = self.engine.schedule[index].at_ns;
+        match &self.engine.schedule[index].what {
+            Happening::SetInputs(changes) => {
+                for change in changes {
+                    let modules = match change.target {
+                        InputTarget::Process => &mut self.inputs,
+                        InputTarget::Extended => &mut self.extended_inputs,
+                    };
+                    change.apply(modules);
+                }
+                Ok(())
+            }
+            &Happening::Interrupt { ob } => {
+                self.request(ob, at, None);
+                Ok(())
+            }
+            &Happening::Hardware {
+                module,
+                channel,
+                active_for_ns,
+            } => {
+                let source = HardwareSource {
+                    module,
+                    channel,
+                    active_until: at.saturating_add(active_for_ns),
+                };
+                self.with_rules(|rules, cpu| rules.hardware_event(cpu, at, source))
+            }
+        }
+    }
+
+    /// Logs and counts a request; the caller decides what becomes of it.
+    pub(super) fn announce(
+        &mut self,
+        ob: u8,
+        at: u64,
+        hardware: Option<HardwareSource>,
+    ) -> Request {
+        let id = self.engine.new_id();
+        self.engine.stats_mut(ob).requested += 1;
+        self.emit(at, |cpu| {
+            let place = cpu.place_of(at);
+            let (module, channel) = hardware.map_or((None, None), |source| {
+                (Some(source.module), Some(source.channel))
+            });
+            Event::IrqRequest {
+                id,
+                ob,
+                module,
+                channel,
+                block: place.block,
+                line: place.line,
+                during: place.during,
+            }
+        });
+        let waited = if self.mode != Mode::Run {
+            Some(Wait::NotInRun)
+        } else if self.running_priority() >= self.priority_of(ob) {
+            Some(Wait::Priority)
+        } else if !self.level.interrupts_enabled {
+            Some(Wait::Disabled)
+        } else {
+            None
+        };
+        Request {
+            id,
+            ob,
+            requested_at: at,
+            hardware,
+            waited,
+        }
+    }
+
+    /// An interrupt request for an OB: ignored, lost, or pending. Returns its id when pending.
+    pub(super) fn request(
+        &mut self,
+        ob: u8,
+        at: u64,
+        hardware: Option<HardwareSource>,
+    ) -> Option<u64> {
+        let request = self.announce(ob, at, hardware);
+        let id = request.id;
+        let rule = self.engine.rules.rules().ignores(ob);
+        if rule.is_some() || self.program.ob(ob).is_none() {
+            self.ignore(at, request, rule);
+            return None;
+        }
+        if self.engine.pending.iter().any(|request| request.ob == ob) {
+            self.engine.stats_mut(ob).lost += 1;
+            self.emit(at, |_| Event::IrqLost {
+                id,
+                ob,
+                reason: format!("OB {ob} already has a pending request"),
+            });
+            return None;
+        }
+        self.engine.pending.push(request);
+        Some(id)
+    }
+
+    /// Counts and traces a request the CPU does not process.
+    pub(super) fn ignore(&mut self, at: u64, request: Request, rule: Option<&'static str>) {
+        let (id, ob) = (request.id, request.ob);
+        self.engine.stats_mut(ob).ignored += 1;
+        self.emit(at, |_| Event::IrqIgnored {
+            id,
+            ob,
+            reason: match rule {
+                Some(rule) => format!("OB {ob}: {rule}"),
+                None => format!("OB {ob} is not programmed"),
+            },
+        });
+    }
+
+    /// Counts and traces a request that is lost.
+    pub(super) fn lose(&mut self, at: u64, request: Request, reason: &'static str) {
+        let (id, ob) = (request.id, request.ob);
+        self.engine.stats_mut(ob).lost += 1;
+        self.emit(at, |_| Event::IrqLost {
+            id,
+            ob,
+            reason: reason.to_string(),
+        });
+    }
+
+    /// Services the highest pending request above the running priority, if any.
+    fn service(&mut self, point: Point) -> Result<bool, Stop> {
+        let running = self.running_priority();
+        let best = self
+            .engine
+            .pending
+            .iter()
+            .enumerate()
+            .map(|(index, request)| {
+                (
+                    self.priority_of(request.ob),
+                    std::cmp::Reverse(request.requested_at),
+                    index,
+                )
+            })
+            .filter(|(priority, _, _)| *priority > running)
+            .max();
+        let Some((priority, _, index)) = best else {
+            return Ok(false);
+        };
+        let request = self.engine.pending.remove(index);
+        let latency = self.clock - request.requested_at;
+        self.engine.record_service(request, latency);
+        // The others wait for this OB, unless they outrank it.
+        for other in &mut self.engine.pending {
+            if self
+                .profile
+                .interrupt_ob(other.ob)
+                .map_or(0, |o| o.priority)
+                <= priority
+            {
+                other.waited.get_or_insert(Wait::Priority);
+            }
+        }
+        self.emit(self.clock, |cpu| Event::IrqService {
+            id: request.id,
+            ob: request.ob,
+            latency_ns: latency,
+            point: point.name(),
+            block: cpu
+                .point_block(point)
+                .map(|block| cpu.block_id(block).to_string()),
+            waited: request.waited.map(Wait::name),
+        });
+        self.levels.push(self.level);
+        self.engine.active.push(Active {
+            request,
+            priority,
+            started_at: self.clock,
+        });
+        let block = self
+            .program
+            .ob(request.ob)
+            .expect("requests are only pending for programmed OBs");
+        self.enter_level(block);
+        self.with_rules(|rules, cpu| rules.entered(cpu, request.ob));
+        Ok(true)
+    }
+
+    /// The block an interrupt point belongs to: the one that ended, was called, or ran the
+    /// operation; none at the cycle's own points.
+    fn point_block(&self, point: Point) -> Option<u16> {
+        match point {
+            Point::Cycle => None,
+            _ => match self.last_stretch.kind {
+                StretchKind::Block { block, .. } | StretchKind::InterruptEnd { block } => {
+                    Some(block)
+                }
+                _ => None,
+            },
+        }
+    }
+
+    /// The interrupt OB's level has ended: acknowledge, restore the interrupted level. Events
+    /// up to the OB's end are taken in first: they came before the acknowledgement.
+    pub fn leave_interrupt(&mut self) -> Result<(), Stop> {
+        self.poll()?;
+        let Some(active) = self.engine.active.pop() else {
+            return Ok(());
+        };
+        let request = active.request;
+        self.emit(self.clock, |_| Event::IrqEnd {
+            id: request.id,
+            ob: request.ob,
+        });
+        self.with_rules(|rules, cpu| rules.ended(cpu, request));
+        let stats = self.engine.stats_mut(request.ob);
+        stats.run_max = stats.run_max.max(self.clock - active.started_at);
+        self.level = self
+            .levels
+            .pop()
+            .expect("an interrupt level has a saved level");
+        self.with_rules(|rules, cpu| rules.left(cpu, request));
+        Ok(())
+    }
+
+    /// An S5 data cycle of the family's rules: traced, and it takes its time.
+    pub(super) fn data_cycle(&mut self, kind: &'static str, direction: &'static str) {
+        let duration = u64::from(self.profile.timings.data_cycle);
+        self.emit(self.clock, |_| Event::DataCycle {
+            kind,
+            direction,
+            duration_ns: duration,
+        });
+        self.clock += duration;
+    }
+}

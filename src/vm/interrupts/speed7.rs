@@ -1,0 +1,247 @@
+//! The VIPA SPEED7: hardware interrupts by module and channel (VIPA SPEED7 operation list,
+//! "OB 40, OB 41 - HW_INTx - Hardware Interrupt").
+//!
+//! - "the operating system identifies the slot and the corresponding hardware interrupt OB. If
+//!   this OB has a higher priority than the currently active priority class, it will be
+//!   started" (the generic engine's priorities);
+//! - "the channel-specific acknowledgement is sent after this hardware interrupt OB has been
+//!   executed";
+//! - between identification and acknowledgement, a new event "on the channel that previously
+//!   triggered the hardware interrupt" is lost, and the loss "is announced by means of a
+//!   diagnostic interrupt" (OB 82); one "on another channel of the same module" is held and
+//!   "triggered if just active after the acknowledgement ... Else it is lost";
+//! - "if a hardware interrupt is triggered and its OB is currently active due to a hardware
+//!   interrupt from another module, the new request can be processed only if it is still
+//!   active after acknowledgement";
+//! - "During STARTUP there is no hardware interrupt produced ... Hardware interrupts during
+//!   transition to RUN are lost";
+//! - no OB for the module: "OB 85 is called ... The hardware interrupt is acknowledged. If OB 85
+//!   has not been programmed, the CPU goes to STOP".
+
+use crate::trace::Event;
+
+use super::super::stop::{Stop, StopCause, StopDetail};
+use super::{Cpu, EngineConfig, Happening, HardwareSource, Request, Rules, Scheduled, Wait};
+
+/// A hardware event held until an acknowledgement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Held {
+    request: Request,
+    /// The module whose acknowledgement releases it.
+    released_by: u16,
+}
+
+#[derive(Debug, Default)]
+pub struct Speed7 {
+    /// Which OB each module's hardware interrupts start.
+    modules: Vec<(u16, u8)>,
+    /// Modules between identification and acknowledgement: (module, channel).
+    busy: Vec<(u16, u16)>,
+    held: Vec<Held>,
+    /// Held events released by an acknowledgement, while they are judged.
+    released: Vec<Held>,
+    /// Events of the STARTUP, judged at the transition to RUN.
+    startup_events: Vec<(u64, u8, HardwareSource)>,
+}
+
+const SAME_CHANNEL: &str = "same channel between identification and acknowledgement \
+     (VIPA SPEED7 operation list, OB 40/OB 41)";
+const GONE: &str =
+    "no longer active at the acknowledgement (VIPA SPEED7 operation list, OB 40/OB 41)";
+const TRANSITION: &str =
+    "hardware interrupt during the transition to RUN (VIPA SPEED7 operation list, OB 40/OB 41)";
+const IN_STARTUP: &str =
+    "during STARTUP no hardware interrupt is produced (VIPA SPEED7 operation list, OB 40/OB 41)";
+const OB85_CALLED: &str = "not programmed: OB 85 is called and the interrupt acknowledged \
+     (VIPA SPEED7 operation list, OB 40/OB 41)";
+const NO_OB85: &str =
+    "not programmed and OB 85 is missing (VIPA SPEED7 operation list, OB 40/OB 41)";
+
+impl Speed7 {
+    pub fn new(config: &EngineConfig, schedule: &[Scheduled]) -> Self {
+        // Each event is held at most once at a time.
+        let events = schedule
+            .iter()
+            .filter(|item| matches!(item.what, Happening::Hardware { .. }))
+            .count();
+        Speed7 {
+            modules: config.hw_modules.clone(),
+            busy: Vec::with_capacity(config.hw_modules.len()),
+            held: Vec::with_capacity(events),
+            released: Vec::with_capacity(events),
+            startup_events: Vec::with_capacity(events),
+        }
+    }
+
+    fn busy_channel(&self, module: u16) -> Option<u16> {
+        self.busy
+            .iter()
+            .find(|(busy, _)| *busy == module)
+            .map(|(_, channel)| *channel)
+    }
+
+    fn hold(&mut self, mut request: Request, released_by: u16) {
+        request.waited.get_or_insert(Wait::Priority);
+        self.held.push(Held {
+            request,
+            released_by,
+        });
+    }
+
+    /// A hardware event from before RUN: in STARTUP none is produced (it is no request), and
+    /// one still active at the transition to RUN is lost.
+    fn before_run(&mut self, cpu: &mut Cpu, at: u64, ob: u8, source: HardwareSource) {
+        let run_started = cpu.run_started_at().unwrap_or(cpu.clock);
+        if source.active_until > run_started {
+            let request = cpu.announce(ob, at, Some(source));
+            cpu.lose(run_started, request, TRANSITION);
+        } else {
+            cpu.emit(at, |_| Event::ModuleEvent {
+                module: source.module,
+                channel: source.channel,
+                ob,
+                reason: IN_STARTUP,
+            });
+        }
+    }
+
+    /// The OS identifies the module's OB: the OB is requested and the module is busy until the
+    /// acknowledgement; a missing OB calls OB 85 (the interrupt is acknowledged), and a missing
+    /// OB 85 stops the CPU.
+    fn identify(
+        &mut self,
+        cpu: &mut Cpu,
+        at: u64,
+        ob: u8,
+        source: HardwareSource,
+    ) -> Result<(), Stop> {
+        if cpu.program.ob(ob).is_none() {
+            let request = cpu.announce(ob, at, Some(source));
+            let ob85 = cpu.program.ob(85).is_some();
+            cpu.ignore(at, request, Some(if ob85 { OB85_CALLED } else { NO_OB85 }));
+            if !ob85 {
+                let detail = StopDetail::Module {
+                    module: source.module,
+                    ob,
+                };
+                return Err(cpu.stop_at_last_op(StopCause::Ob85, detail));
+            }
+            cpu.request(85, at, None);
+            return Ok(());
+        }
+        if cpu.request(ob, at, Some(source)).is_some() {
+            self.busy.push((source.module, source.channel));
+        }
+        Ok(())
+    }
+
+    /// The channel-specific acknowledgement after the OB has run: held events fire now if
+    /// still active, else they are lost.
+    fn acknowledge(&mut self, cpu: &mut Cpu, module: u16) {
+        self.busy.retain(|(busy, _)| *busy != module);
+        let mut released = std::mem::take(&mut self.released);
+        self.held.retain(|held| {
+            let release = held.released_by == module;
+            if release {
+                released.push(*held);
+            }
+            !release
+        });
+        for held in released.drain(..) {
+            let request = held.request;
+            let source = request
+                .hardware
+                .expect("held requests are hardware interrupts");
+            let busy = self.busy_channel(source.module).is_some();
+            if cpu.clock < source.active_until && !busy {
+                self.busy.push((source.module, source.channel));
+                cpu.engine.pending.push(request);
+            } else if busy {
+                self.hold(request, source.module);
+            } else {
+                cpu.lose(cpu.clock, request, GONE);
+            }
+        }
+        self.released = released;
+    }
+}
+
+impl Rules for Speed7 {
+    fn hardware_event(
+        &mut self,
+        cpu: &mut Cpu,
+        at: u64,
+        source: HardwareSource,
+    ) -> Result<(), Stop> {
+        let Some(&(_, ob)) = self
+            .modules
+            .iter()
+            .find(|(module, _)| *module == source.module)
+        else {
+            return Ok(());
+        };
+        match cpu.run_started_at() {
+            None => {
+                self.startup_events.push((at, ob, source));
+                return Ok(());
+            }
+            Some(started) if at < started => {
+                self.before_run(cpu, at, ob, source);
+                return Ok(());
+            }
+            Some(_) => {}
+        }
+        if let Some(channel) = self.busy_channel(source.module) {
+            let request = cpu.announce(ob, at, Some(source));
+            if channel == source.channel {
+                cpu.lose(at, request, SAME_CHANNEL);
+                if cpu.program.ob(82).is_some() {
+                    cpu.request(82, at, None);
+                }
+            } else {
+                self.hold(request, source.module);
+            }
+            return Ok(());
+        }
+        let busy_for_another_module = cpu
+            .engine
+            .active
+            .iter()
+            .map(|active| active.request)
+            .chain(cpu.engine.pending.iter().copied())
+            .find_map(|request| {
+                (request.ob == ob)
+                    .then_some(request.hardware)
+                    .flatten()
+                    .filter(|other| other.module != source.module)
+            });
+        if let Some(other) = busy_for_another_module {
+            let request = cpu.announce(ob, at, Some(source));
+            self.hold(request, other.module);
+            return Ok(());
+        }
+        self.identify(cpu, at, ob, source)
+    }
+
+    fn start_run(&mut self, cpu: &mut Cpu) -> Result<(), Stop> {
+        let mut events = std::mem::take(&mut self.startup_events);
+        for (at, ob, source) in events.drain(..) {
+            self.before_run(cpu, at, ob, source);
+        }
+        self.startup_events = events;
+        Ok(())
+    }
+
+    fn left(&mut self, cpu: &mut Cpu, request: Request) {
+        if let Some(source) = request.hardware {
+            self.acknowledge(cpu, source.module);
+        }
+    }
+
+    fn held(&self, ob: u8) -> u64 {
+        self.held
+            .iter()
+            .filter(|held| held.request.ob == ob)
+            .count() as u64
+    }
+}
