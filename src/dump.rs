@@ -6,70 +6,107 @@ use crate::compiler::bytecode::{
     BitSource, BitTarget, DataPart, ImageBit, IndirectSource, Op, Width,
 };
 use crate::compiler::{Layout, Program};
+use crate::mnemonics::{self, Area, MnemonicSet};
 use crate::source::SourceSet;
 
-/// `I 0`, `Q 4`, `F 10` for an image byte offset.
-fn image_byte(layout: Layout, byte: u16) -> String {
-    if byte >= layout.flag_base() {
-        format!("F {}", byte - layout.flag_base())
-    } else if byte >= layout.output_base() {
-        format!("Q {}", byte - layout.output_base())
-    } else {
-        format!("I {byte}")
+/// Operand names in the block's mnemonic set: `I 0.0` or `E 0.0`, `FW 10` or `MW 10`.
+#[derive(Clone, Copy)]
+struct Names {
+    layout: Layout,
+    set: MnemonicSet,
+}
+
+impl Names {
+    fn word(self, area: Area) -> &'static str {
+        mnemonics::area_word(self.set, area)
     }
-}
 
-/// `IW 2`, `FY 10`, `FD 4` for a sized image access.
-fn sized(layout: Layout, width: Width, byte: u16) -> String {
-    let plain = image_byte(layout, byte);
-    let (area, number) = plain.split_once(' ').unwrap_or(("I", "0"));
-    let suffix = match (area, width) {
-        ("F", Width::Byte) => "Y",
-        (_, Width::Byte) => "B",
-        (_, Width::Word) => "W",
-        (_, Width::Double) => "D",
-    };
-    format!("{area}{suffix} {number}")
-}
+    /// The bit area of an image byte offset and the byte's number in it.
+    fn image(self, byte: u16) -> (Area, u16) {
+        let layout = self.layout;
+        if byte >= layout.flag_base() {
+            (Area::Flag, byte - layout.flag_base())
+        } else if byte >= layout.output_base() {
+            (Area::Output, byte - layout.output_base())
+        } else {
+            (Area::Input, byte)
+        }
+    }
 
-fn image_bit(layout: Layout, bit: ImageBit) -> String {
-    format!("{}.{}", image_byte(layout, bit.byte), bit.bit)
-}
+    /// `IW 2`, `MB 10`, `FD 4` for a sized image access.
+    fn sized(self, width: Width, byte: u16) -> String {
+        let (area, number) = self.image(byte);
+        let sized = match (area, width) {
+            (Area::Input, Width::Byte) => Area::InputByte,
+            (Area::Input, _) => Area::InputWord,
+            (Area::Output, Width::Byte) => Area::OutputByte,
+            (Area::Output, _) => Area::OutputWord,
+            (_, Width::Byte) => Area::FlagByte,
+            (_, Width::Word) => Area::FlagWord,
+            (_, Width::Double) => Area::FlagDouble,
+        };
+        format!("{} {number}", self.word(sized))
+    }
 
-fn bit_target(layout: Layout, target: BitTarget) -> String {
-    match target {
-        BitTarget::Image(bit) => image_bit(layout, bit),
-        BitTarget::Data { word, bit } => format!("D {word}.{bit}"),
+    fn bit(self, bit: ImageBit) -> String {
+        let (area, number) = self.image(bit.byte);
+        format!("{} {number}.{}", self.word(area), bit.bit)
+    }
+
+    fn data_bit(self, word: u16, bit: u8) -> String {
+        format!("{} {word}.{bit}", self.word(Area::DataBit))
+    }
+
+    fn bit_target(self, target: BitTarget) -> String {
+        match target {
+            BitTarget::Image(bit) => self.bit(bit),
+            BitTarget::Data { word, bit } => self.data_bit(word, bit),
+        }
     }
 }
 
 /// A compact, readable form of one op.
 /// `params` are the declarations of the block the op is in (for formal operands).
-pub fn op_text(op: Op, program: &Program, params: &[crate::ast::ParamDecl]) -> String {
-    let layout = program.layout;
+/// The operand words are the block's mnemonic set's; the verbs are English.
+pub fn op_text(
+    op: Op,
+    program: &Program,
+    set: MnemonicSet,
+    params: &[crate::ast::ParamDecl],
+) -> String {
+    let names = Names {
+        layout: program.layout,
+        set,
+    };
     match op {
-        Op::And(bit) => format!("and {}", image_bit(layout, bit)),
-        Op::AndNot(bit) => format!("and-not {}", image_bit(layout, bit)),
-        Op::Or(bit) => format!("or {}", image_bit(layout, bit)),
-        Op::OrNot(bit) => format!("or-not {}", image_bit(layout, bit)),
-        Op::Assign(bit) => format!("assign {}", image_bit(layout, bit)),
-        Op::Set(bit) => format!("set {}", image_bit(layout, bit)),
-        Op::Reset(bit) => format!("reset {}", image_bit(layout, bit)),
+        Op::And(bit) => format!("and {}", names.bit(bit)),
+        Op::AndNot(bit) => format!("and-not {}", names.bit(bit)),
+        Op::Or(bit) => format!("or {}", names.bit(bit)),
+        Op::OrNot(bit) => format!("or-not {}", names.bit(bit)),
+        Op::Assign(bit) => format!("assign {}", names.bit(bit)),
+        Op::Set(bit) => format!("set {}", names.bit(bit)),
+        Op::Reset(bit) => format!("reset {}", names.bit(bit)),
         Op::LogicOther(logic, source) => {
             let source = match source {
-                BitSource::Data { word, bit } => format!("D {word}.{bit}"),
-                BitSource::Timer(n) => format!("T {n}"),
-                BitSource::Counter(n) => format!("C {n}"),
+                BitSource::Data { word, bit } => names.data_bit(word, bit),
+                BitSource::Timer(n) => format!("{} {n}", names.word(Area::Timer)),
+                BitSource::Counter(n) => format!("{} {n}", names.word(Area::Counter)),
             };
-            format!("{logic:?} {source}").to_lowercase()
+            format!("{} {source}", format!("{logic:?}").to_lowercase())
         }
-        Op::WriteData { write, word, bit } => format!("{write:?} D {word}.{bit}").to_lowercase(),
-        Op::LoadImageByte(byte) => format!("load {}", sized(layout, Width::Byte, byte)),
-        Op::LoadImageWord(byte) => format!("load {}", sized(layout, Width::Word, byte)),
-        Op::LoadImageDouble(byte) => format!("load {}", sized(layout, Width::Double, byte)),
-        Op::TransferImageByte(byte) => format!("transfer {}", sized(layout, Width::Byte, byte)),
-        Op::TransferImageWord(byte) => format!("transfer {}", sized(layout, Width::Word, byte)),
-        Op::TransferImageDouble(byte) => format!("transfer {}", sized(layout, Width::Double, byte)),
+        Op::WriteData { write, word, bit } => format!(
+            "{} {}",
+            format!("{write:?}").to_lowercase(),
+            names.data_bit(word, bit)
+        ),
+        Op::LoadImageByte(byte) => format!("load {}", names.sized(Width::Byte, byte)),
+        Op::LoadImageWord(byte) => format!("load {}", names.sized(Width::Word, byte)),
+        Op::LoadImageDouble(byte) => format!("load {}", names.sized(Width::Double, byte)),
+        Op::TransferImageByte(byte) => format!("transfer {}", names.sized(Width::Byte, byte)),
+        Op::TransferImageWord(byte) => format!("transfer {}", names.sized(Width::Word, byte)),
+        Op::TransferImageDouble(byte) => {
+            format!("transfer {}", names.sized(Width::Double, byte))
+        }
         Op::LoadConstant(value) => format!("load-constant {value:#06X}"),
         Op::Call {
             block,
@@ -92,20 +129,20 @@ pub fn op_text(op: Op, program: &Program, params: &[crate::ast::ParamDecl]) -> S
         }
         Op::Jump(condition, target) => format!("jump-{condition:?} -> {target}").to_lowercase(),
         Op::Indirect { source, .. } => match source {
-            IndirectSource::FlagWord(byte) => {
-                format!("do {}", image_byte(layout, byte).replace("F ", "FW "))
-            }
-            IndirectSource::DataWord(word) => format!("do DW {word}"),
+            IndirectSource::FlagWord(byte) => format!("do {}", names.sized(Width::Word, byte)),
+            IndirectSource::DataWord(word) => format!("do {} {word}", names.word(Area::DataWord)),
         },
-        Op::SetUnconditional(target) => format!("set-unconditional {}", bit_target(layout, target)),
+        Op::SetUnconditional(target) => {
+            format!("set-unconditional {}", names.bit_target(target))
+        }
         Op::ResetUnconditional(target) => {
-            format!("reset-unconditional {}", bit_target(layout, target))
+            format!("reset-unconditional {}", names.bit_target(target))
         }
         Op::TestBit { negate, target } => {
             format!(
                 "{} {}",
                 if negate { "test-bit-not" } else { "test-bit" },
-                bit_target(layout, target)
+                names.bit_target(target)
             )
         }
         Op::Formal { op, param } => {
@@ -134,12 +171,12 @@ pub fn op_text(op: Op, program: &Program, params: &[crate::ast::ParamDecl]) -> S
                 "transfer"
             };
             let area = match (extended, width) {
-                (false, Width::Byte) => "PY",
-                (false, _) => "PW",
-                (true, Width::Byte) => "OY",
-                (true, _) => "OW",
+                (false, Width::Byte) => Area::PeripheralByte,
+                (false, _) => Area::PeripheralWord,
+                (true, Width::Byte) => Area::ExtendedByte,
+                (true, _) => Area::ExtendedWord,
             };
-            format!("{verb} {area} {byte}")
+            format!("{verb} {} {byte}", names.word(area))
         }
         Op::LoadData(part, word) | Op::TransferData(part, word) => {
             let verb = if matches!(op, Op::LoadData(..)) {
@@ -148,12 +185,12 @@ pub fn op_text(op: Op, program: &Program, params: &[crate::ast::ParamDecl]) -> S
                 "transfer"
             };
             let area = match part {
-                DataPart::Left => "DL",
-                DataPart::Right => "DR",
-                DataPart::Word => "DW",
-                DataPart::Double => "DD",
+                DataPart::Left => Area::DataLeft,
+                DataPart::Right => Area::DataRight,
+                DataPart::Word => Area::DataWord,
+                DataPart::Double => Area::DataDouble,
             };
-            format!("{verb} {area} {word}")
+            format!("{verb} {} {word}", names.word(area))
         }
         Op::OpenDb(number) => format!("open DB {number}"),
         Op::ArithmeticStack(kind) => {
@@ -225,7 +262,7 @@ pub fn dump(program: &Program, sources: &SourceSet) -> String {
                 out,
                 "  {pc:>4}  line {line:>4}  {:<28} {}",
                 text,
-                op_text(*op, program, &block.params)
+                op_text(*op, program, block.mnemonics, &block.params)
             );
         }
         out.push('\n');

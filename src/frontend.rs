@@ -13,15 +13,29 @@ use crate::parser;
 use crate::profile::Profile;
 use crate::source::{SourceFile, SourceSet};
 
+/// Why the source files could not be loaded.
 #[derive(Debug, Error, Diagnostic)]
-#[error("cannot read `{path}`: {reason}")]
-#[diagnostic(
-    code(awl::cli::read_file),
-    help("check the path; program files are plain text (.awl)")
-)]
-pub struct ReadError {
-    pub path: PathBuf,
-    pub reason: String,
+pub enum SourceError {
+    #[error("cannot read `{}`: {reason}", path.display())]
+    #[diagnostic(
+        code(awl::cli::read_file),
+        help("check the path; program files are plain text (.awl)")
+    )]
+    Read { path: PathBuf, reason: String },
+
+    #[error("`{}` is a scenario file, not a program", path.display())]
+    #[diagnostic(
+        code(awl::cli::scenario_as_program),
+        help("run a scenario with `awl run --scenario {}`", path.display())
+    )]
+    ScenarioAsProgram { path: PathBuf },
+
+    #[error("{count} source files: awl reads at most 65,536 at once")]
+    #[diagnostic(
+        code(awl::cli::too_many_files),
+        help("join the files, or check them in parts")
+    )]
+    TooMany { count: usize },
 }
 
 /// The outcome of the front end.
@@ -42,17 +56,38 @@ impl Frontend {
     }
 }
 
-pub fn read_sources(paths: &[impl AsRef<Path>]) -> Result<SourceSet, ReadError> {
+/// Reads every file; every file that cannot be read is reported.
+pub fn read_sources(paths: &[impl AsRef<Path>]) -> Result<SourceSet, Vec<SourceError>> {
     let mut sources = SourceSet::default();
+    let mut errors = Vec::new();
     for path in paths {
         let path = path.as_ref();
-        let file = SourceFile::read(path).map_err(|error| ReadError {
-            path: path.to_path_buf(),
-            reason: error.to_string(),
-        })?;
-        sources.add(file);
+        if path
+            .extension()
+            .is_some_and(|ext| ext.eq_ignore_ascii_case("toml"))
+        {
+            errors.push(SourceError::ScenarioAsProgram {
+                path: path.to_path_buf(),
+            });
+            continue;
+        }
+        match SourceFile::read(path) {
+            Ok(file) => {
+                if sources.add(file).is_none() {
+                    return Err(vec![SourceError::TooMany { count: paths.len() }]);
+                }
+            }
+            Err(error) => errors.push(SourceError::Read {
+                path: path.to_path_buf(),
+                reason: error.to_string(),
+            }),
+        }
     }
-    Ok(sources)
+    if errors.is_empty() {
+        Ok(sources)
+    } else {
+        Err(errors)
+    }
 }
 
 /// Parses and compiles every file of the set.
@@ -92,6 +127,8 @@ pub fn build(
 /// Parses and compiles source text held in memory (tests, benchmarks, fuzzing).
 pub fn build_text(name: &str, text: &str, profile: &'static Profile) -> Frontend {
     let mut sources = SourceSet::default();
-    sources.add(SourceFile::new(name, text));
+    sources
+        .add(SourceFile::new(name, text))
+        .expect("one file fits");
     build(sources, None, profile)
 }

@@ -25,6 +25,14 @@ impl MnemonicSet {
             MnemonicSet::German => "German",
         }
     }
+
+    /// The name with its article: "an English (SIMATIC)", "a German".
+    pub fn with_article(self) -> &'static str {
+        match self {
+            MnemonicSet::English => "an English (SIMATIC)",
+            MnemonicSet::German => "a German",
+        }
+    }
 }
 
 /// Language-independent operation codes.

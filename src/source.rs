@@ -1,9 +1,16 @@
-//! Source files: reading (UTF-8, falling back to ISO-8859-1 for old PG exports) and line lookup.
+//! Source files: reading and decoding, line lookup, and the snippets diagnostics show.
+//!
+//! Decoding: a UTF-8 byte-order mark is skipped; UTF-16 with a byte-order mark is decoded;
+//! other text that is not UTF-8 is read as ISO-8859-1 (old PG exports). Lines may end in LF,
+//! CR LF or a lone CR (old Macs); a lone CR is read as LF. Control characters other than tab,
+//! line ends, vertical tab and form feed are shown as their Unicode control pictures (`␇`), so
+//! a diagnostic never sends them to the terminal.
 
 use std::path::Path;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-use miette::NamedSource;
+use miette::{MietteError, MietteSpanContents, SourceCode, SourceSpan, SpanContents};
 
 /// Index of a file in a [`SourceSet`].
 pub type FileId = u16;
@@ -45,7 +52,7 @@ impl From<Span> for miette::SourceSpan {
 pub struct SourceFile {
     pub name: String,
     pub text: Arc<str>,
-    line_starts: Vec<u32>,
+    line_starts: Arc<[u32]>,
 }
 
 impl SourceFile {
@@ -61,13 +68,9 @@ impl SourceFile {
         }
     }
 
-    /// Decodes bytes as UTF-8, or as ISO-8859-1 when they are not valid UTF-8.
+    /// Decodes a file's bytes (see the module documentation).
     pub fn from_bytes(name: impl Into<String>, bytes: Vec<u8>) -> Self {
-        let text = match String::from_utf8(bytes) {
-            Ok(text) => text,
-            Err(err) => err.into_bytes().iter().map(|&b| char::from(b)).collect(),
-        };
-        SourceFile::new(name, text)
+        SourceFile::new(name, clean(&decode(bytes)))
     }
 
     pub fn read(path: &Path) -> std::io::Result<Self> {
@@ -86,8 +89,118 @@ impl SourceFile {
         &self.text[span.start as usize..span.end as usize]
     }
 
-    pub fn named_source(&self) -> NamedSource<Arc<str>> {
-        NamedSource::new(self.name.clone(), self.text.clone())
+    /// The file as miette reads it for a diagnostic.
+    pub fn named_source(&self) -> IndexedSource {
+        IndexedSource {
+            name: self.name.clone(),
+            text: self.text.clone(),
+            line_starts: self.line_starts.clone(),
+        }
+    }
+}
+
+fn decode(bytes: Vec<u8>) -> String {
+    match bytes.as_slice() {
+        [0xEF, 0xBB, 0xBF, rest @ ..] => String::from_utf8_lossy(rest).into_owned(),
+        [0xFF, 0xFE, rest @ ..] => utf16(rest, u16::from_le_bytes),
+        [0xFE, 0xFF, rest @ ..] => utf16(rest, u16::from_be_bytes),
+        _ => match String::from_utf8(bytes) {
+            Ok(text) => text,
+            Err(err) => err.into_bytes().iter().map(|&b| char::from(b)).collect(),
+        },
+    }
+}
+
+fn utf16(bytes: &[u8], unit: fn([u8; 2]) -> u16) -> String {
+    let units = bytes.chunks_exact(2).map(|pair| unit([pair[0], pair[1]]));
+    char::decode_utf16(units)
+        .map(|c| c.unwrap_or(char::REPLACEMENT_CHARACTER))
+        .collect()
+}
+
+/// Lone CRs become LFs; control characters become their control pictures.
+fn clean(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\r' if chars.peek() == Some(&'\n') => out.push(c),
+            '\r' => out.push('\n'),
+            '\t' | '\n' | '\x0B' | '\x0C' => out.push(c),
+            '\x00'..='\x1F' => out.push(char::from_u32(0x2400 + c as u32).unwrap_or('?')),
+            '\x7F' => out.push('\u{2421}'),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// Bytes of source text diagnostics have read, over the whole process: what rendering costs.
+static SNIPPET_BYTES: AtomicU64 = AtomicU64::new(0);
+
+/// How many bytes of source diagnostics have read so far (rendering work, for tests).
+pub fn snippet_bytes_read() -> u64 {
+    SNIPPET_BYTES.load(Ordering::Relaxed)
+}
+
+/// A named source whose snippets are found through its line index: a diagnostic reads only the
+/// lines around its span, not the file from its start, so rendering many diagnostics of one
+/// file takes linear time.
+#[derive(Debug, Clone)]
+pub struct IndexedSource {
+    name: String,
+    text: Arc<str>,
+    line_starts: Arc<[u32]>,
+}
+
+impl IndexedSource {
+    /// The 0-based line holding byte `offset`.
+    fn line(&self, offset: usize) -> usize {
+        self.line_starts
+            .partition_point(|&start| start as usize <= offset)
+            .saturating_sub(1)
+    }
+
+    fn line_start(&self, line: usize) -> usize {
+        self.line_starts
+            .get(line)
+            .map_or(self.text.len(), |start| *start as usize)
+    }
+}
+
+impl SourceCode for IndexedSource {
+    fn read_span<'a>(
+        &'a self,
+        span: &SourceSpan,
+        context_lines_before: usize,
+        context_lines_after: usize,
+    ) -> Result<Box<dyn SpanContents<'a> + 'a>, MietteError> {
+        let end = span.offset() + span.len();
+        if end > self.text.len() {
+            return Err(MietteError::OutOfBounds);
+        }
+        // The lines miette would show, and the one before them (miette's reading of an empty
+        // span at a line start looks at the character before), cut out of the text; miette
+        // reads only those.
+        let first = self
+            .line(span.offset())
+            .saturating_sub(context_lines_before + 1);
+        let last = self.line(end.saturating_sub(1).max(span.offset())) + context_lines_after + 1;
+        let (from, to) = (self.line_start(first), self.line_start(last + 1));
+        let window = &self.text[from..to];
+        SNIPPET_BYTES.fetch_add(window.len() as u64, Ordering::Relaxed);
+        let inner = SourceSpan::new((span.offset() - from).into(), span.len());
+        let found = window.read_span(&inner, context_lines_before, context_lines_after)?;
+        let data = found.data();
+        let start = data.as_ptr() as usize - self.text.as_ptr() as usize;
+        Ok(Box::new(MietteSpanContents::new_named(
+            self.name.clone(),
+            data,
+            SourceSpan::new(start.into(), data.len()),
+            found.line() + first,
+            found.column(),
+            found.line_count() + first,
+        )))
     }
 }
 
@@ -98,9 +211,11 @@ pub struct SourceSet {
 }
 
 impl SourceSet {
-    pub fn add(&mut self, file: SourceFile) -> FileId {
+    /// Adds a file; `None` when the set is full (a span names its file in 16 bits).
+    pub fn add(&mut self, file: SourceFile) -> Option<FileId> {
+        let id = FileId::try_from(self.files.len()).ok()?;
         self.files.push(file);
-        (self.files.len() - 1) as FileId
+        Some(id)
     }
 
     pub fn get(&self, id: FileId) -> &SourceFile {
@@ -128,5 +243,41 @@ mod tests {
         assert_eq!(file.line_of(0), 1);
         assert_eq!(file.line_of(2), 2);
         assert_eq!(file.line_of(5), 3);
+    }
+
+    #[test]
+    fn byte_order_marks_and_line_ends() {
+        let bom = SourceFile::from_bytes("a", b"\xEF\xBB\xBFPB 1\n".to_vec());
+        assert_eq!(&*bom.text, "PB 1\n");
+        let utf16: Vec<u8> = [0xFF, 0xFE]
+            .into_iter()
+            .chain("PB 1\r\nBE".encode_utf16().flat_map(u16::to_le_bytes))
+            .collect();
+        assert_eq!(&*SourceFile::from_bytes("b", utf16).text, "PB 1\r\nBE");
+        let cr = SourceFile::from_bytes("c", b"PB 1\rBE\r".to_vec());
+        assert_eq!(&*cr.text, "PB 1\nBE\n");
+        assert_eq!(cr.line_of(5), 2);
+        let bell = SourceFile::from_bytes("d", b"A\x07B\x7F".to_vec());
+        assert_eq!(&*bell.text, "A\u{2407}B\u{2421}");
+    }
+
+    #[test]
+    fn snippets_match_a_plain_read() {
+        let text = "PB 1\n  A I 0.0\r\n  = Q 4.0\n\n  BE\n";
+        let file = SourceFile::new("x", text);
+        let indexed = file.named_source();
+        for start in 0..text.len() {
+            for len in 0..12.min(text.len() - start) {
+                let span = SourceSpan::new(start.into(), len);
+                for context in 0..3 {
+                    let plain = text.read_span(&span, context, context).unwrap();
+                    let ours = indexed.read_span(&span, context, context).unwrap();
+                    assert_eq!(ours.data(), plain.data(), "{start}+{len} ±{context}");
+                    assert_eq!(ours.line(), plain.line(), "{start}+{len} ±{context}");
+                    assert_eq!(ours.column(), plain.column());
+                    assert_eq!(ours.span(), plain.span());
+                }
+            }
+        }
     }
 }

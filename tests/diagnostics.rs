@@ -164,6 +164,25 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
             "sinumerik-840c",
             "FB 1\nNAME :X\n      DO FW 10\n      BE\n".into(),
         ),
+        (
+            "awl::check::unclosed_bracket",
+            "sinumerik-840c",
+            "PB 1\n      A(\n      A  I 0.0\n      O  I 0.1\n      =  Q 4.0\n      BE\n".into(),
+        ),
+        (
+            "awl::check::unopened_bracket",
+            "sinumerik-840c",
+            "PB 1\n      A  I 0.0\n      )\n      =  Q 4.0\n      BE\n".into(),
+        ),
+        (
+            "awl::check::bracket_depth",
+            "s5-95f",
+            format!(
+                "PB 1\n{}      A  I 0.0\n{}      =  Q 4.0\n      BE\n",
+                "      A(\n".repeat(8),
+                "      )\n".repeat(8)
+            ),
+        ),
     ]
 }
 
@@ -193,8 +212,9 @@ fn every_front_end_code_renders() {
 
 #[test]
 fn cli_read_error_renders() {
-    let error = frontend::read_sources(&["does/not/exist.awl"]).unwrap_err();
-    let rendered = render_plain(&miette::Report::new(error));
+    let mut errors = frontend::read_sources(&["does/not/exist.awl"]).unwrap_err();
+    assert_eq!(errors.len(), 1);
+    let rendered = render_plain(&miette::Report::new(errors.remove(0)));
     assert!(rendered.contains("awl::cli::read_file"));
     insta::assert_snapshot!("awl__cli__read_file", rendered);
 }

@@ -1,7 +1,7 @@
 //! Keeps the grammar, the mnemonic table, the error pages and the parser in step.
 
 use awl::frontend;
-use awl::mnemonics::{self, MnemonicSet, OPERATIONS};
+use awl::mnemonics::{self, MnemonicSet, OPERATIONS, OpCode, OpInfo};
 use awl::profile;
 
 fn read(path: &str) -> String {
@@ -9,17 +9,32 @@ fn read(path: &str) -> String {
 }
 
 /// A function block that uses one operation, with what it needs around it.
-fn program_with(set: MnemonicSet, op: &str, operand: &str) -> String {
-    let (des, input) = match set {
-        MnemonicSet::English => ("DES", "I"),
-        MnemonicSet::German => ("BEZ", "E"),
+fn program_with(set: MnemonicSet, info: &OpInfo) -> String {
+    let (des, input, op, operand) = match set {
+        MnemonicSet::English => ("DES", "I", info.en, info.example_en),
+        MnemonicSet::German => ("BEZ", "E", info.de, info.example_de),
     };
+    let (before, after) = bracket_partners(set, info.op);
     let tail = if op == "BE" {
         ""
     } else {
         "M001 :NOP 0\n      BE\n"
     };
-    format!("FB 1\nNAME :TEST\n{des} :X {input} BI\n      {op} {operand}\n{tail}{SUPPORT}")
+    format!(
+        "FB 1\nNAME :TEST\n{des} :X {input} BI\n{before}      {op} {operand}\n{after}{tail}{SUPPORT}"
+    )
+}
+
+/// A bracket needs its partner, or the block does not compile.
+fn bracket_partners(set: MnemonicSet, op: OpCode) -> (String, String) {
+    match op {
+        OpCode::AndBracket | OpCode::OrBracket => (String::new(), "      )\n".into()),
+        OpCode::CloseBracket => (
+            format!("      {}\n", mnemonics::op_word(set, OpCode::AndBracket)),
+            String::new(),
+        ),
+        _ => (String::new(), String::new()),
+    }
 }
 
 /// The blocks the examples call and open.
@@ -29,17 +44,15 @@ const SUPPORT: &str = "PB 3\n      BE\nFB 5\n      BE\nDB 10\n 0: KF +1\n";
 fn every_operation_parses_and_compiles_in_both_sets() {
     let cpu = profile::find("sinumerik-840c").unwrap();
     for info in OPERATIONS {
-        for (set, word, example) in [
-            (MnemonicSet::English, info.en, info.example_en),
-            (MnemonicSet::German, info.de, info.example_de),
-        ] {
-            let source = program_with(set, word, example);
+        for set in [MnemonicSet::English, MnemonicSet::German] {
+            let source = program_with(set, info);
             let mut sources = awl::source::SourceSet::default();
             sources.add(awl::source::SourceFile::new("op.awl", source.clone()));
             let built = frontend::build(sources, Some(set), cpu);
             assert!(
                 built.diagnostics.is_empty(),
-                "{set:?} `{word} {example}`:\n{source}\n{:#?}",
+                "{set:?} `{}`:\n{source}\n{:#?}",
+                info.en,
                 built.diagnostics
             );
             let fb = built
@@ -49,8 +62,14 @@ fn every_operation_parses_and_compiles_in_both_sets() {
                 .iter()
                 .find(|b| b.id.kind == mnemonics::BlockKind::Fb)
                 .unwrap();
-            let expected = if word == "BE" { 1 } else { 3 };
-            assert_eq!(fb.code.len(), expected, "{word}: one op per statement");
+            let (before, after) = bracket_partners(set, info.op);
+            let partners = [before, after].iter().filter(|s| !s.is_empty()).count();
+            let expected = if info.op == OpCode::BlockEnd {
+                1
+            } else {
+                3 + partners
+            };
+            assert_eq!(fb.code.len(), expected, "{}: one op per statement", info.en);
         }
     }
 }
@@ -62,8 +81,9 @@ fn detection_picks_the_set_without_override() {
         .iter()
         .filter(|info| info.op != mnemonics::OpCode::BlockEnd)
     {
+        let (before, after) = bracket_partners(MnemonicSet::German, info.op);
         let german = format!(
-            "FB 1\nNAME :TEST\nBEZ :X E BI\n      U E 0.0\n      {} {}\nM001 :NOP 0\n      BE\n{SUPPORT}",
+            "FB 1\nNAME :TEST\nBEZ :X E BI\n      U E 0.0\n{before}      {} {}\n{after}M001 :NOP 0\n      BE\n{SUPPORT}",
             info.de, info.example_de
         );
         let built = frontend::build_text("de.awl", &german, cpu);

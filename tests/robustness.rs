@@ -148,25 +148,15 @@ proptest! {
         let mutated = String::from_utf8_lossy(&apply(text.clone().into_bytes(), &mutations)).into_owned();
         // Every error is a rendered diagnostic with a scenario code.
         let is_scenario_diagnostic = |rendered: &str| rendered.contains("awl::scenario::");
-        match awl::scenario::Scenario::parse(path, &mutated) {
-            Err(report) => {
-                let rendered = render_plain(&report);
-                prop_assert!(is_scenario_diagnostic(&rendered), "{}", rendered);
-            }
-            Ok(scenario) => {
-                let program_text = std::fs::read_to_string("programs/fig5_2_interrupt.awl").unwrap();
-                let cpu = scenario.cpu.unwrap_or(profile::find("sinumerik-840c").unwrap());
-                let built = frontend::build_text("p.awl", &program_text, cpu);
-                let set = awl::mnemonics::MnemonicSet::English;
-                if let Err(error) = scenario.schedule(&built.compiled.program, set) {
-                    let rendered = render_plain(&scenario.report(error));
-                    prop_assert!(is_scenario_diagnostic(&rendered), "{}", rendered);
-                }
-                if let Err(error) = scenario.expectations(&built.compiled.program, set) {
-                    let rendered = render_plain(&scenario.report(error));
-                    prop_assert!(is_scenario_diagnostic(&rendered), "{}", rendered);
-                }
-            }
+        let (scenario, mut reports) = awl::scenario::Scenario::parse(path, &mutated, None);
+        let program_text = std::fs::read_to_string("programs/fig5_2_interrupt.awl").unwrap();
+        let built = frontend::build_text("p.awl", &program_text, scenario.profile);
+        let set = awl::mnemonics::MnemonicSet::English;
+        reports.extend(scenario.schedule(&built.compiled.program, set).err().into_iter().flatten());
+        reports.extend(scenario.expectations(&built.compiled.program, set).err().into_iter().flatten());
+        for report in &reports {
+            let rendered = render_plain(report);
+            prop_assert!(is_scenario_diagnostic(&rendered), "{}", rendered);
         }
     }
 }
@@ -176,7 +166,11 @@ proptest! {
 /// Labels are numbered so none is defined twice; a `DO` is always followed by a load it can
 /// modify, so every generated program compiles.
 fn random_fb(picks: &[(usize, bool)], cpu: &profile::Profile) -> String {
+    use awl::mnemonics::OpCode;
     let mut body = String::new();
+    // Brackets are balanced in the text (the compiler rejects anything else); jumps may still
+    // unbalance them at run time, which must end in a STOP, not a panic.
+    let mut open = 0;
     for (line, (index, labelled)) in picks.iter().enumerate() {
         let info = &awl::mnemonics::OPERATIONS[index % awl::mnemonics::OPERATIONS.len()];
         let two_accumulators = cpu.accumulators == 2;
@@ -190,11 +184,28 @@ fn random_fb(picks: &[(usize, bool)], cpu: &profile::Profile) -> String {
         } else {
             "      ".to_string()
         };
+        match info.op {
+            OpCode::AndBracket | OpCode::OrBracket if open == cpu.bracket_depth => {
+                body.push_str("      )\n");
+                open -= 1;
+            }
+            OpCode::CloseBracket if open == 0 => {
+                body.push_str("      A(\n");
+                open += 1;
+            }
+            _ => {}
+        }
+        match info.op {
+            OpCode::AndBracket | OpCode::OrBracket => open += 1,
+            OpCode::CloseBracket => open -= 1,
+            _ => {}
+        }
         body.push_str(&format!("{label}{} {}\n", info.en, info.example_en));
         if info.op == awl::mnemonics::OpCode::Indirect {
             body.push_str("      L  DW 0\n");
         }
     }
+    body.push_str(&"      )\n".repeat(usize::from(open)));
     format!(
         "OB 1\n      C  DB 10\n      JU FB 1\nNAME :R\nX    :I 0.0\n      BE\nFB 1\nNAME :R\nDES  :X I BI\n{body}M001 :NOP 0\n      BE\nPB 3\n      BE\nFB 5\n      BE\nDB 10\n 0: KF +1\n 1: KF +2\n 2: KF +3\n"
     )

@@ -205,6 +205,49 @@ pub enum CheckError {
         #[label("no operation with a parameter follows")]
         at: Span,
     },
+
+    #[error("`{open}` is never closed before the block end")]
+    #[diagnostic(
+        code(awl::check::unclosed_bracket),
+        help(
+            "close the bracket with `)` before `BE`; an open bracket leaves its logic unfinished"
+        )
+    )]
+    UnclosedBracket {
+        open: String,
+        #[label("opened here")]
+        at: Span,
+        #[label("the block ends here")]
+        end: Span,
+    },
+
+    #[error("`)` closes no bracket")]
+    #[diagnostic(
+        code(awl::check::unopened_bracket),
+        help(
+            "every `)` closes an `{and}` or `O(` above it in the block; at run time this `)` is a STOP BCF"
+        )
+    )]
+    UnopenedBracket {
+        and: &'static str,
+        #[label("no open bracket")]
+        at: Span,
+    },
+
+    #[error("more than {depth} nested brackets")]
+    #[diagnostic(
+        code(awl::check::bracket_depth),
+        help(
+            "the {cpu} CPU's bracket stack holds {depth} open brackets; at run time this one is a STOP BCF. Move inner logic into flags"
+        )
+    )]
+    BracketDepth {
+        depth: u8,
+        cpu: &'static str,
+        #[label("bracket {nth}")]
+        at: Span,
+        nth: usize,
+    },
 }
 
 impl CheckError {
@@ -226,7 +269,10 @@ impl CheckError {
             | CheckError::UndefinedBlock { at, .. }
             | CheckError::UndefinedDb { at, .. }
             | CheckError::IndirectTarget { at, .. }
-            | CheckError::NotOnCpu { at, .. } => *at,
+            | CheckError::NotOnCpu { at, .. }
+            | CheckError::UnclosedBracket { at, .. }
+            | CheckError::UnopenedBracket { at, .. }
+            | CheckError::BracketDepth { at, .. } => *at,
         }
     }
 

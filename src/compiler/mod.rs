@@ -1,6 +1,7 @@
 //! Compiler: checked blocks of statements to per-block bytecode, with the static checks of the
 //! front end (operand ranges, labels, FB parameters, operation sets, block existence).
 
+mod brackets;
 pub mod bytecode;
 mod calls;
 pub mod cost;
@@ -240,6 +241,8 @@ impl<'a> Compiler<'a> {
                 at: block.header,
             });
         }
+        self.diagnostics
+            .extend(brackets::check(body, set, self.profile));
         let labels = self.labels(body);
         let mut compiled = CompiledBlock {
             id: block.id,

@@ -31,7 +31,7 @@ pub enum ParseError {
         help: Option<String>,
     },
 
-    #[error("`{word}` is a {word_set} mnemonic, but this file uses {file_set} mnemonics")]
+    #[error("`{word}` is {word_set} mnemonic, but this file uses {file_set} mnemonics")]
     #[diagnostic(code(awl::parse::mixed_mnemonics))]
     MixedMnemonics {
         word: String,

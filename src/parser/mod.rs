@@ -134,7 +134,8 @@ struct Builder<'a> {
     outside_reported: bool,
     next_data_word: u16,
     /// The first word of the other mnemonic set.
-    foreign: Option<Span>,
+    /// The first word of the other set, and whether it stands in the operation's place.
+    foreign: Option<(Span, bool)>,
     errors: Vec<ParseError>,
 }
 
@@ -375,7 +376,8 @@ impl<'a> Builder<'a> {
             Err(error) => match run(self.set.other()) {
                 Ok(value) => {
                     let at = self.error_span(&error, line);
-                    self.foreign.get_or_insert(at);
+                    self.foreign
+                        .get_or_insert((at, in_operation_place(line, at.start)));
                     Ok(value)
                 }
                 Err(_) => Err(self.to_diagnostic(error, line)),
@@ -420,12 +422,12 @@ impl<'a> Builder<'a> {
 
     fn finish(mut self) -> ParsedFile {
         self.finish_block();
-        if let Some(at) = self.foreign {
+        if let Some((at, operation)) = self.foreign {
             let word = self.source[at.start as usize..at.end as usize].to_string();
             self.errors.push(ParseError::MixedMnemonics {
-                help: equivalent(self.set, &word),
+                help: equivalent(self.set, &word, operation),
                 word,
-                word_set: self.set.other().name(),
+                word_set: self.set.other().with_article(),
                 file_set: self.set.name(),
                 at,
                 decided_by: self.decided_by,
@@ -443,14 +445,30 @@ impl<'a> Builder<'a> {
     }
 }
 
-/// "the German word is `U`" for an English word, and the other way round.
-fn equivalent(file_set: MnemonicSet, word: &str) -> Option<String> {
+/// Whether the token at `start` stands where the operation of a line does: first, or right
+/// after a label (`M001 :`).
+fn in_operation_place(line: &[Token], start: u32) -> bool {
+    match line.iter().position(|token| token.start == start) {
+        Some(0) => true,
+        Some(2) => line[1].kind == TokenKind::Colon,
+        _ => false,
+    }
+}
+
+/// "the German word is `U`" for an English word, and the other way round. `operation` tells
+/// whether the word stands in the place of the operation (`I` is the English increment there,
+/// and the English input area as an operand).
+fn equivalent(file_set: MnemonicSet, word: &str, operation: bool) -> Option<String> {
     let other = file_set.other();
-    let own = if let Some(info) = mnemonics::operation(other, word) {
-        mnemonics::op_word(file_set, info.op)
-    } else if let Some(area) = mnemonics::area(other, word) {
-        mnemonics::area_word(file_set, area)
-    } else {
+    let as_operation = operation
+        .then(|| mnemonics::operation(other, word))
+        .flatten()
+        .map(|info| mnemonics::op_word(file_set, info.op));
+    let as_area = (!operation)
+        .then(|| mnemonics::area(other, word))
+        .flatten()
+        .map(|area| mnemonics::area_word(file_set, area));
+    let Some(own) = as_operation.or(as_area) else {
         return Some(format!(
             "use {} mnemonics throughout the file, or pass `--mnemonics`",
             file_set.name()
