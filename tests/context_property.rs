@@ -102,7 +102,9 @@ impl Generator {
                     let open = self.rng.pick(&["A(", "O("]);
                     self.line(open);
                     self.logic(depth + 1);
-                    if depth < 2 && self.rng.below(4) == 0 {
+                    // A call only from the outermost bracket: OB 1 and the four FBs then hold
+                    // at most 1 + 1 + 1 + 1 + 3 open brackets, the 7 every CPU allows.
+                    if depth == 0 && self.rng.below(4) == 0 {
                         self.call();
                         self.logic(depth + 1);
                     }
@@ -233,8 +235,8 @@ fn clobber(rng: &mut Rng) -> String {
     while !parts.is_empty() {
         body.push_str(&parts.remove(rng.below(parts.len() as u64) as usize));
     }
-    // A logic string and a bracket left open at the block end.
-    body + "      A(\n      O  F 203.0\n      A  F 204.0\n"
+    // A logic string and a bracket left open when the block ends (BEU before its `)`).
+    body + "      A(\n      O  F 203.0\n      A  F 204.0\n      BEU\n      )\n"
 }
 
 const INTERRUPT_OBS: [u8; 9] = [2, 3, 4, 5, 6, 7, 13, 40, 41];

@@ -41,7 +41,8 @@ fn every_stop_cause_renders_with_line_and_block_stack() {
         ),
         (
             "awl::stop::bcf",
-            "OB 1\n      A  I 0.0\n      )\n      BE\n",
+            // The brackets balance in the text; the jump skips the `A(`.
+            "OB 1\n      JU FB 1\nNAME :SKIP\n      BE\nFB 1\nNAME :SKIP\n      JU =M001\n      A(\nM001 :A  I 0.0\n      )\n      BE\n",
             "run = { cycles = 1 }\n",
         ),
         (
@@ -70,8 +71,8 @@ fn every_stop_cause_renders_with_line_and_block_stack() {
 
 fn scenario_error(name: &str, program: &str, scenario: &str) -> String {
     match run_scenario(name, program, scenario) {
-        Err(NotRun::Failed(report)) => render_plain(&report),
-        Err(NotRun::SourceErrors) => panic!("{name}: source errors"),
+        Err(NotRun::Failed(reports)) => reports.iter().map(render_plain).collect(),
+        Err(NotRun::SourceErrors(_) | NotRun::Usage(_)) => panic!("{name}: not a scenario error"),
         Ok(_) => panic!("{name}: the scenario ran"),
     }
 }
@@ -82,6 +83,10 @@ fn every_scenario_error_names_its_key_and_line() {
     let cases = [
         (
             "awl::scenario::syntax",
+            "run = { cycles = 1 }\nwatchdog = \"1s\n",
+        ),
+        (
+            "awl::scenario::unknown_key",
             "run = { cycles = 1 }\nwatchdgo = \"1s\"\n",
         ),
         (
@@ -125,10 +130,11 @@ fn unreadable_scenario_is_reported() {
         scenario: Some("no/such/scenario.toml".into()),
         ..Default::default()
     };
-    let Err(NotRun::Failed(report)) = runner::run(&options) else {
+    let Err(NotRun::Failed(reports)) = runner::run(&options) else {
         panic!("ran")
     };
-    assert!(render_plain(&report).contains("awl::scenario::read"));
+    assert_eq!(reports.len(), 1);
+    assert!(render_plain(&reports[0]).contains("awl::scenario::read"));
 }
 
 fn jsonl_trace(name: &str) -> Vec<u8> {

@@ -47,8 +47,10 @@ fn nested_brackets() {
 
 #[test]
 fn eight_brackets_overflow_the_bracket_stack() {
-    let body = "      A(\n".repeat(8) + &"      )\n".repeat(8);
-    let (_, outcome) = run_once(&fb(&body));
+    // Four brackets in the text, eight at run time: the loop opens them twice.
+    let body = "      L  KF +0\n      T  FW 60\nLOOP :A(\n      A(\n      A(\n      A(\n      L  FW 60\n      I  1\n      T  FW 60\n      L  KF +2\n      ><F\n      JC =LOOP\n      )\n      )\n      )\n      )";
+    let (cpu, outcome) = run_once(&fb(body));
+    assert_eq!(fw(&cpu, 60), 1, "the loop went round once");
     assert_eq!(outcome.stop.unwrap().cause, StopCause::Bcf);
 }
 
@@ -260,7 +262,10 @@ fn runtime_faults_stop_the_cpu() {
             "OB 1\n      C  DB 5\n      L  DW 7\n      BE\nDB 5\n 0: KF +1\n",
             StopCause::LzfData,
         ),
-        ("OB 1\n      )\n      BE\n", StopCause::Bcf),
+        (
+            "OB 1\n      JU FB 1\n      BE\nFB 1\nNAME :SKIP\n      JU =OVER\n      A(\nOVER :)\n      BE\n",
+            StopCause::Bcf,
+        ),
     ];
     for (source, cause) in cases {
         let (_, outcome) = run_once(source);

@@ -13,13 +13,23 @@ pub enum ScenarioError {
     #[diagnostic(
         code(awl::scenario::syntax),
         help(
-            "see SPEC §3 for the keys a scenario has: program, cpu, mode, interrupt_points, run, watchdog, [ob13], [[hw_module]], [[event]], [expect]"
+            "programs/README.md lists the keys a scenario has: program, cpu, mode, interrupt_points, run, watchdog, [ob13], [[hw_module]], [[event]], [expect]"
         )
     )]
     Syntax {
         message: String,
         #[label("here")]
         at: Option<SourceSpan>,
+    },
+
+    #[error("unknown key `{key}`")]
+    #[diagnostic(code(awl::scenario::unknown_key))]
+    UnknownKey {
+        key: String,
+        #[label("not a scenario key")]
+        at: SourceSpan,
+        #[help]
+        help: Option<String>,
     },
 
     #[error("unknown operand `{operand}`")]
@@ -65,6 +75,19 @@ pub enum ScenarioError {
         at: SourceSpan,
     },
 
+    #[error("the event at {when} never happened: the run ended at {end}")]
+    #[diagnostic(
+        code(awl::scenario::event_after_end),
+        severity(Warning),
+        help("lengthen the run (`run = {{ for = \"...\" }}` or `--for`), or move the event")
+    )]
+    EventAfterEnd {
+        when: String,
+        end: String,
+        #[label("after the end of the run")]
+        at: SourceSpan,
+    },
+
     #[error("{message}")]
     #[diagnostic(code(awl::scenario::invalid))]
     Invalid {
@@ -75,4 +98,21 @@ pub enum ScenarioError {
         #[help]
         help: Option<String>,
     },
+}
+
+impl ScenarioError {
+    /// Where the error stands in the file, to report errors in file order.
+    pub fn offset(&self) -> usize {
+        match self {
+            ScenarioError::Read { .. } => 0,
+            ScenarioError::Syntax { at, .. } => at.map_or(0, |at| at.offset()),
+            ScenarioError::UnknownKey { at, .. }
+            | ScenarioError::UnknownOperand { at, .. }
+            | ScenarioError::BadValue { at, .. }
+            | ScenarioError::UnknownOb { at, .. }
+            | ScenarioError::BadDuration { at, .. }
+            | ScenarioError::EventAfterEnd { at, .. }
+            | ScenarioError::Invalid { at, .. } => at.offset(),
+        }
+    }
 }

@@ -1,6 +1,8 @@
-//! Scenario files (SPEC §3): the program, CPU, run length, timed events and expected results.
-//! Loading checks the keys, durations and OBs; operands are resolved once the program is
-//! compiled, in its mnemonic set or English.
+//! Scenario files: the program, CPU, run length, timed events and expected results
+//! (`programs/README.md` documents every key). Loading checks the keys, durations and OBs
+//! against the CPU the run will use (the command line's `--cpu` included); operands are
+//! resolved once the program is compiled, in its mnemonic set or English. Every error of a
+//! file is reported, not only the first.
 
 pub mod error;
 pub mod expect;
@@ -18,11 +20,16 @@ use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
 use crate::vm::cycle::RunLimit;
 use crate::vm::interrupts::{Happening, InputChange, InputTarget, Ob13Timing, Scheduled};
+use crate::vm::stop::StopCause;
 
 pub use error::ScenarioError;
 pub use expect::{Expectation, Expected};
 use operand::{Target, parse_target, raw_value};
-use raw::{ProgramList, RawEvent, RawScenario};
+use raw::{ProgramList, RawEvent, RawScenario, SpannedTable};
+
+/// The longest cycle watchdog a scenario may set: the longest cycle monitoring time of the
+/// S7-300 class CPUs the VIPA SPEED7 follows (6000 ms); the S5 CPUs allow less.
+pub const MAX_WATCHDOG_NS: u64 = 6_000_000_000;
 
 /// A loaded scenario.
 #[derive(Debug)]
@@ -30,15 +37,18 @@ pub struct Scenario {
     pub path: PathBuf,
     text: Arc<str>,
     pub programs: Vec<PathBuf>,
+    /// The CPU the file names.
     pub cpu: Option<&'static Profile>,
+    /// The CPU the run uses: the command line's, the file's, or the default.
+    pub profile: &'static Profile,
     pub special_mode: Option<bool>,
     pub points: Option<InterruptPoints>,
     pub limit: Option<RunLimit>,
     pub watchdog_ns: Option<u64>,
     pub ob13: Option<Ob13Timing>,
     pub hw_modules: Vec<(u16, u8)>,
-    events: Vec<RawEvent>,
-    expect: Vec<(String, Spanned<toml::Value>)>,
+    events: Vec<Spanned<RawEvent>>,
+    expect: SpannedTable,
 }
 
 fn span<T>(spanned: &Spanned<T>) -> SourceSpan {
@@ -46,21 +56,30 @@ fn span<T>(spanned: &Spanned<T>) -> SourceSpan {
     (range.start, range.end - range.start).into()
 }
 
-/// `"1.5ms"`, `"200us"`, `"2s"`, `"100ns"` to nanoseconds.
+/// `"1.5ms"`, `"200us"`, `"200µs"`, `"2s"`, `"100ns"` to nanoseconds.
 pub fn parse_duration(text: &str) -> Option<u64> {
     let text = text.trim();
-    let split = text.find(|c: char| c.is_ascii_alphabetic())?;
+    let split = text.find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '+' | ' ')))?;
     let (number, unit) = text.split_at(split);
     let value: f64 = number.trim().parse().ok()?;
     let scale = match unit.trim() {
         "ns" => 1.0,
-        "us" | "µs" => 1e3,
+        "us" | "µs" | "μs" => 1e3,
         "ms" => 1e6,
         "s" => 1e9,
         _ => return None,
     };
     let ns = value * scale;
     (value.is_finite() && (0.0..1e19).contains(&ns)).then_some(ns.round() as u64)
+}
+
+/// The closest of `candidates` to `word`, when it is close enough to be a typo.
+pub fn did_you_mean<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    candidates
+        .map(|candidate| (strsim::damerau_levenshtein(word, candidate), candidate))
+        .filter(|(distance, candidate)| *distance <= 2 && *distance < candidate.len())
+        .min_by_key(|(distance, _)| *distance)
+        .map(|(_, candidate)| candidate)
 }
 
 fn duration(spanned: &Spanned<String>) -> Result<u64, ScenarioError> {
@@ -84,216 +103,139 @@ fn invalid(
     }
 }
 
+/// Errors found while checking, kept to report them all.
+#[derive(Default)]
+struct Errors(Vec<ScenarioError>);
+
+impl Errors {
+    fn push(&mut self, error: ScenarioError) {
+        self.0.push(error);
+    }
+
+    /// The value of a check, or `None` with its error kept.
+    fn keep<T>(&mut self, result: Result<T, ScenarioError>) -> Option<T> {
+        result.map_err(|error| self.push(error)).ok()
+    }
+}
+
 impl Scenario {
     /// Renders an error with this scenario's text.
     pub fn report(&self, error: ScenarioError) -> Report {
-        Report::new(error).with_source_code(NamedSource::new(
-            self.path.display().to_string(),
-            self.text.clone(),
-        ))
+        report(&self.path, &self.text, error)
     }
 
-    pub fn load(path: &Path) -> Result<Scenario, Report> {
+    /// The span of a table key without its quotes (`"I 0.0" = 1`).
+    fn key_span(&self, key: &Spanned<String>) -> SourceSpan {
+        let range = key.span();
+        let quoted = self.text[range.clone()].starts_with(['"', '\'']) && range.len() >= 2;
+        if quoted {
+            (range.start + 1, range.len() - 2).into()
+        } else {
+            span(key)
+        }
+    }
+
+    fn reports(&self, errors: Vec<ScenarioError>) -> Vec<Report> {
+        sorted(errors)
+            .into_iter()
+            .map(|error| self.report(error))
+            .collect()
+    }
+
+    /// Reads and checks a scenario file for the CPU `cpu` (the command line's), or the one
+    /// it names. `Err` when the file cannot be read; otherwise the scenario as far as it could
+    /// be read, and every error found in it.
+    pub fn load(
+        path: &Path,
+        cpu: Option<&'static Profile>,
+    ) -> Result<(Scenario, Vec<Report>), Report> {
         let text = std::fs::read_to_string(path).map_err(|error| {
             Report::new(ScenarioError::Read {
                 path: path.display().to_string(),
                 reason: error.to_string(),
             })
         })?;
-        Scenario::parse(path, &text)
+        Ok(Scenario::parse(path, &text, cpu))
     }
 
-    pub fn parse(path: &Path, text: &str) -> Result<Scenario, Report> {
+    /// Checks scenario text: the scenario as far as it could be read, and every error.
+    pub fn parse(
+        path: &Path,
+        text: &str,
+        cpu: Option<&'static Profile>,
+    ) -> (Scenario, Vec<Report>) {
         let text: Arc<str> = Arc::from(text);
-        let with_source = |error: ScenarioError| {
-            Report::new(error)
-                .with_source_code(NamedSource::new(path.display().to_string(), text.clone()))
-        };
-        let raw: RawScenario = toml::from_str(&text).map_err(|error| {
-            let at = error
-                .span()
-                .map(|range| SourceSpan::from((range.start, range.end - range.start)));
-            with_source(ScenarioError::Syntax {
-                message: error.message().to_string(),
-                at,
-            })
-        })?;
-        Scenario::from_raw(path, text.clone(), raw).map_err(with_source)
+        let (raw, errors) = raw::parse(&text);
+        let mut errors = Errors(errors);
+        let scenario = Scenario::from_raw(path, text.clone(), raw, cpu, &mut errors);
+        let reports = scenario.reports(errors.0);
+        (scenario, reports)
     }
 
-    fn from_raw(path: &Path, text: Arc<str>, raw: RawScenario) -> Result<Scenario, ScenarioError> {
+    fn from_raw(
+        path: &Path,
+        text: Arc<str>,
+        raw: RawScenario,
+        cpu_override: Option<&'static Profile>,
+        errors: &mut Errors,
+    ) -> Scenario {
         let base = path.parent().unwrap_or(Path::new("."));
         let programs = match raw.program.as_ref().map(Spanned::get_ref) {
             None => Vec::new(),
             Some(ProgramList::One(one)) => vec![base.join(one)],
             Some(ProgramList::Many(many)) => many.iter().map(|one| base.join(one)).collect(),
         };
-        let cpu = match &raw.cpu {
-            None => None,
-            Some(name) => Some(profile::find(name.get_ref()).ok_or_else(|| {
+        let cpu = raw.cpu.as_ref().and_then(|name| {
+            errors.keep(profile::find(name.get_ref()).ok_or_else(|| {
                 invalid(
                     format!("unknown CPU `{}`", name.get_ref()),
                     span(name),
                     "no such profile",
                     Some(format!("the profiles are: {}", profile::names().join(", "))),
                 )
-            })?),
-        };
-        let profile = cpu
+            }))
+        });
+        let profile = cpu_override
+            .or(cpu)
             .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile"));
-        let special_mode = match &raw.mode {
-            None => None,
-            Some(mode) => {
-                if profile.family != Family::Sinumerik840c {
-                    return Err(invalid(
-                        "`mode` belongs to the sinumerik-840c profile",
-                        span(mode),
-                        format!("not a setting of {}", profile.name),
-                        None,
-                    ));
-                }
-                match mode.get_ref().as_str() {
-                    "normal" => Some(false),
-                    "special" => Some(true),
-                    _ => {
-                        return Err(invalid(
-                            format!("unknown mode `{}`", mode.get_ref()),
-                            span(mode),
-                            "\"normal\" or \"special\"",
-                            None,
-                        ));
-                    }
-                }
-            }
-        };
-        let points = match &raw.interrupt_points {
-            None => None,
-            Some(points) => Some(match points.get_ref().as_str() {
-                "block" => InterruptPoints::Block,
-                "operation" => InterruptPoints::Operation,
-                other => {
-                    return Err(invalid(
-                        format!("unknown interrupt points `{other}`"),
-                        span(points),
-                        "\"block\" or \"operation\"",
-                        None,
-                    ));
-                }
-            }),
-        };
-        let limit = match &raw.run {
-            None => None,
-            Some(run) => {
-                let run_span = span(run);
-                let run = run.get_ref();
-                match (&run.duration, &run.cycles) {
-                    (Some(duration_text), None) => {
-                        Some(RunLimit::Duration(duration(duration_text)?))
-                    }
-                    (None, Some(cycles)) => Some(RunLimit::Cycles(*cycles.get_ref())),
-                    _ => {
-                        return Err(invalid(
-                            "`run` takes either `for` or `cycles`",
-                            run_span,
-                            "one of the two",
-                            Some("run = { for = \"100ms\" } or run = { cycles = 20 }".into()),
-                        ));
-                    }
-                }
-            }
-        };
-        let watchdog_ns = raw.watchdog.as_ref().map(duration).transpose()?;
-        let ob13 = match &raw.ob13 {
-            None => None,
-            Some(ob13) => {
-                if profile.family != Family::S5_95f {
-                    return Err(invalid(
-                        "[ob13] belongs to the s5-95f profile",
-                        span(&ob13.interval),
-                        format!("{} has no time-controlled OB 13", profile.name),
-                        Some("set `cpu = \"s5-95f\"`".into()),
-                    ));
-                }
-                let interval = duration(&ob13.interval)?;
-                if interval == 0 {
-                    return Err(invalid(
-                        "the OB 13 interval must be above zero",
-                        span(&ob13.interval),
-                        "zero",
-                        None,
-                    ));
-                }
-                let delay = ob13.delay.as_ref().map(duration).transpose()?;
-                let max_delay = ob13.max_delay.as_ref().map(duration).transpose()?;
-                if let (Some(delay), Some(max_delay), Some(text)) = (delay, max_delay, &ob13.delay)
-                    && delay > max_delay
-                {
-                    return Err(invalid(
-                        "the OB 13 delay is above its maximum delay",
-                        span(text),
-                        "above `max_delay`",
-                        Some("the delay t of each call is at most the maximum delay (S5-95F manual, 7.4.4)".into()),
-                    ));
-                }
-                Some(Ob13Timing {
-                    interval_ns: interval,
-                    delay_ns: delay.unwrap_or(0),
-                    max_delay_ns: max_delay,
-                })
-            }
-        };
-        let mut hw_modules = Vec::new();
-        for module in raw.hw_module.iter().flatten() {
-            if profile.family != Family::Speed7 {
-                return Err(invalid(
-                    "[[hw_module]] belongs to the speed7 profile",
-                    span(&module.module),
-                    format!("{} has no hardware interrupt OBs", profile.name),
-                    None,
-                ));
-            }
-            let ob = *module.ob.get_ref();
-            if ob != 40 && ob != 41 {
-                return Err(ScenarioError::UnknownOb {
-                    ob: format!("OB {ob}"),
-                    cpu: profile.name,
-                    at: span(&module.ob),
-                    help: Some("hardware interrupts start OB 40 or OB 41".into()),
-                });
-            }
-            hw_modules.push((*module.module.get_ref(), ob));
-        }
-        let events = raw.event.unwrap_or_default();
-        let expect = raw.expect.unwrap_or_default().into_iter().collect();
-        Ok(Scenario {
+        let special_mode = raw
+            .mode
+            .as_ref()
+            .and_then(|mode| errors.keep(check_mode(mode, profile)));
+        let points = raw
+            .interrupt_points
+            .as_ref()
+            .and_then(|points| errors.keep(check_points(points)));
+        let limit = raw.run.as_ref().and_then(|run| errors.keep(check_run(run)));
+        let watchdog_ns = raw
+            .watchdog
+            .as_ref()
+            .and_then(|watchdog| errors.keep(check_watchdog(watchdog)));
+        let ob13 = raw
+            .ob13
+            .as_ref()
+            .and_then(|ob13| errors.keep(check_ob13(ob13, profile)));
+        let hw_modules = check_modules(&raw.hw_module, profile, errors);
+        Scenario {
             path: path.to_path_buf(),
             text,
             programs,
             cpu,
+            profile,
             special_mode,
             points,
             limit,
             watchdog_ns,
             ob13,
             hw_modules,
-            events,
-            expect,
-        })
-    }
-
-    /// Where the key `key` stands before `value_start`, for labels on expectation keys.
-    fn key_span(&self, key: &str, value_start: usize) -> SourceSpan {
-        let before = &self.text[..value_start.min(self.text.len())];
-        match before.rfind(key) {
-            Some(start) => (start, key.len()).into(),
-            None => (value_start, 0).into(),
+            events: raw.event,
+            expect: raw.expect,
         }
     }
 
     /// The integer a `set` or `[expect]` entry gives (booleans count as 0 and 1) and the raw
     /// value it stands for in the operand.
     fn value(
-        &self,
         target: Target,
         value: &Spanned<toml::Value>,
         operand: &str,
@@ -318,119 +260,118 @@ impl Scenario {
         &self,
         program: &Program,
         set: MnemonicSet,
-    ) -> Result<Vec<Scheduled>, ScenarioError> {
-        let profile = program.profile;
+    ) -> Result<Vec<Scheduled>, Vec<Report>> {
+        let mut errors = Errors::default();
         let mut schedule = Vec::new();
         for event in &self.events {
-            let at_ns = duration(&event.at)?;
+            let at_span = span(&event.get_ref().at);
+            let event_span = span(event);
+            let event = event.get_ref();
+            let at_ns = errors.keep(duration(&event.at));
             let kinds = usize::from(event.set.is_some())
                 + usize::from(event.interrupt.is_some())
                 + usize::from(event.hw_interrupt.is_some());
             if kinds != 1 {
-                return Err(invalid(
+                errors.push(invalid(
                     "an [[event]] has exactly one of `set`, `interrupt`, `hw_interrupt`",
-                    span(&event.at),
+                    if kinds == 0 { event_span } else { at_span },
                     "this event",
                     None,
                 ));
+                continue;
             }
-            if let Some(changes) = &event.set {
-                let mut resolved = Vec::new();
-                for (operand, value) in changes {
-                    let at = self.key_span(&format!("\"{operand}\""), value.span().start);
-                    let target = parse_target(operand, at, set, profile, program.layout)?;
-                    let (input_target, byte, bit, bytes) = match target {
-                        Target::ImageBit { byte, bit } if byte < program.layout.output_base() => {
-                            (InputTarget::Process, byte, bit, 0)
-                        }
-                        Target::Image { byte, bytes } if byte < program.layout.output_base() => {
-                            (InputTarget::Process, byte, 0, bytes)
-                        }
-                        Target::Periphery {
-                            byte,
-                            bytes,
-                            extended,
-                        } => (
-                            if extended {
-                                InputTarget::Extended
-                            } else {
-                                InputTarget::Process
-                            },
-                            byte,
-                            0,
-                            bytes,
-                        ),
-                        _ => {
-                            return Err(ScenarioError::UnknownOperand {
-                                operand: operand.clone(),
-                                at,
-                                reason: "`set` changes process inputs only".into(),
-                                help: Some("use I bits, IB, IW, PY, PW, OY or OW".into()),
-                            });
-                        }
-                    };
-                    let (_, raw) = self.value(target, value, operand)?;
-                    resolved.push(InputChange {
-                        target: input_target,
-                        byte,
-                        bit,
-                        bytes,
-                        value: raw,
-                    });
-                }
-                schedule.push(Scheduled {
-                    at_ns,
-                    what: Happening::SetInputs(resolved),
+            let what = if let Some(changes) = &event.set {
+                self.input_changes(changes, program, set, &mut errors)
+                    .map(Happening::SetInputs)
+            } else if let Some(interrupt) = &event.interrupt {
+                errors
+                    .keep(self.interrupt_ob(interrupt))
+                    .map(|ob| Happening::Interrupt { ob })
+            } else if let Some(hardware) = &event.hw_interrupt {
+                errors.keep(self.hardware(hardware))
+            } else {
+                None
+            };
+            if let (Some(at_ns), Some(what)) = (at_ns, what) {
+                schedule.push(Scheduled { at_ns, what });
+            }
+        }
+        if errors.0.is_empty() {
+            Ok(schedule)
+        } else {
+            Err(self.reports(errors.0))
+        }
+    }
+
+    fn input_changes(
+        &self,
+        changes: &SpannedTable,
+        program: &Program,
+        set: MnemonicSet,
+        errors: &mut Errors,
+    ) -> Option<Vec<InputChange>> {
+        let mut resolved = Vec::new();
+        for (operand, value) in changes {
+            let at = self.key_span(operand);
+            let text = operand.get_ref();
+            let Some(target) =
+                errors.keep(parse_target(text, at, set, self.profile, program.layout))
+            else {
+                continue;
+            };
+            let Some((input_target, byte, bit, bytes)) = input_of(target, program) else {
+                errors.push(ScenarioError::UnknownOperand {
+                    operand: text.clone(),
+                    at,
+                    reason: "`set` changes process inputs only".into(),
+                    help: Some("use I bits, IB, IW, PY, PW, OY or OW".into()),
                 });
-            }
-            if let Some(interrupt) = &event.interrupt {
-                let ob = self.interrupt_ob(interrupt, profile)?;
-                schedule.push(Scheduled {
-                    at_ns,
-                    what: Happening::Interrupt { ob },
-                });
-            }
-            if let Some(hardware) = &event.hw_interrupt {
-                if profile.family != Family::Speed7 {
-                    return Err(invalid(
-                        "`hw_interrupt` belongs to the speed7 profile",
-                        span(hardware),
-                        format!("{} has no hardware interrupts", profile.name),
-                        None,
-                    ));
-                }
-                let inner = hardware.get_ref();
-                if !self
-                    .hw_modules
-                    .iter()
-                    .any(|(module, _)| *module == inner.module)
-                {
-                    return Err(invalid(
-                        format!("module {} has no [[hw_module]] entry", inner.module),
-                        span(hardware),
-                        "unknown module",
-                        Some("add [[hw_module]] with `module` and `ob = 40` or `41`".into()),
-                    ));
-                }
-                let active_for_ns = duration(&inner.active_for)?;
-                schedule.push(Scheduled {
-                    at_ns,
-                    what: Happening::Hardware {
-                        module: inner.module,
-                        channel: inner.channel,
-                        active_for_ns,
-                    },
+                continue;
+            };
+            if let Some((_, raw)) = errors.keep(Scenario::value(target, value, text)) {
+                resolved.push(InputChange {
+                    target: input_target,
+                    byte,
+                    bit,
+                    bytes,
+                    value: raw,
                 });
             }
         }
-        Ok(schedule)
+        (resolved.len() == changes.len()).then_some(resolved)
     }
 
-    fn interrupt_ob(
-        &self,
-        text: &Spanned<String>,
-        profile: &'static Profile,
-    ) -> Result<u8, ScenarioError> {
+    fn hardware(&self, hardware: &Spanned<raw::RawHardware>) -> Result<Happening, ScenarioError> {
+        if self.profile.family != Family::Speed7 {
+            return Err(invalid(
+                "`hw_interrupt` belongs to the speed7 profile",
+                span(hardware),
+                format!("{} has no hardware interrupts", self.profile.name),
+                None,
+            ));
+        }
+        let inner = hardware.get_ref();
+        if !self
+            .hw_modules
+            .iter()
+            .any(|(module, _)| *module == inner.module)
+        {
+            return Err(invalid(
+                format!("module {} has no [[hw_module]] entry", inner.module),
+                span(hardware),
+                "unknown module",
+                Some("add [[hw_module]] with `module` and `ob = 40` or `41`".into()),
+            ));
+        }
+        Ok(Happening::Hardware {
+            module: inner.module,
+            channel: inner.channel,
+            active_for_ns: duration(&inner.active_for)?,
+        })
+    }
+
+    fn interrupt_ob(&self, text: &Spanned<String>) -> Result<u8, ScenarioError> {
+        let profile = self.profile;
         let name = text.get_ref();
         let digits = name
             .trim()
@@ -448,9 +389,12 @@ impl Scenario {
             })
             .collect();
         let help = match profile.family {
-            Family::Speed7 => Some("SPEED7 interrupts come from modules: use `hw_interrupt = { module, channel, active_for }`".to_string()),
-            Family::S5_95f => Some("OB 13 runs at its [ob13] interval; `interrupt` requests OB 2 or OB 3".to_string()),
-            Family::Sinumerik840c => Some(format!("the interrupt OBs are: {}", allowed.iter().map(|ob| format!("OB {ob}")).collect::<Vec<_>>().join(", "))),
+            Family::Speed7 => "SPEED7 interrupts come from modules: use `hw_interrupt = { module, channel, active_for }`".to_string(),
+            Family::S5_95f => "OB 13 runs at its [ob13] interval; `interrupt` requests OB 2 or OB 3".to_string(),
+            Family::Sinumerik840c => format!(
+                "the interrupt OBs are: {}",
+                allowed.iter().map(|ob| format!("OB {ob}")).collect::<Vec<_>>().join(", ")
+            ),
         };
         match digits.and_then(|digits| digits.parse::<u8>().ok()) {
             Some(ob) if allowed.contains(&ob) => Ok(ob),
@@ -458,9 +402,27 @@ impl Scenario {
                 ob: name.clone(),
                 cpu: profile.name,
                 at: span(text),
-                help,
+                help: Some(help),
             }),
         }
+    }
+
+    /// A warning for each event later than `end_ns`, the time the run ended: it never fired.
+    pub fn events_after(&self, end_ns: u64) -> Vec<Report> {
+        self.events
+            .iter()
+            .filter_map(|event| {
+                let at = &event.get_ref().at;
+                let when = parse_duration(at.get_ref())?;
+                (when > end_ns).then(|| {
+                    self.report(ScenarioError::EventAfterEnd {
+                        when: at.get_ref().trim().to_string(),
+                        end: crate::trace::format_ms(end_ns),
+                        at: span(at),
+                    })
+                })
+            })
+            .collect()
     }
 
     /// The `[expect]` table, resolved against the compiled program.
@@ -468,50 +430,259 @@ impl Scenario {
         &self,
         program: &Program,
         set: MnemonicSet,
-    ) -> Result<Vec<Expectation>, ScenarioError> {
+    ) -> Result<Vec<Expectation>, Vec<Report>> {
+        let mut errors = Errors::default();
         let mut expectations = Vec::new();
         for (key, value) in &self.expect {
-            let at = self.key_span(key, value.span().start);
-            let expected = match key.as_str() {
+            let name = key.get_ref();
+            let expected = match name.as_str() {
                 "mode" => match value.get_ref().as_str() {
-                    Some(mode @ ("RUN" | "STOP")) => Expected::Mode(mode.to_string()),
+                    Some(mode @ ("RUN" | "STOP")) => Some(Expected::Mode(mode.to_string())),
                     _ => {
-                        return Err(ScenarioError::BadValue {
-                            operand: key.clone(),
+                        errors.push(ScenarioError::BadValue {
+                            operand: name.clone(),
                             value: value.get_ref().to_string(),
                             at: span(value),
                             range: "\"RUN\" or \"STOP\"".into(),
                         });
+                        None
                     }
                 },
                 "stop_cause" => match value.get_ref().as_str() {
-                    Some(cause) => Expected::StopCause(cause.to_string()),
-                    None => {
-                        return Err(ScenarioError::BadValue {
-                            operand: key.clone(),
+                    Some(cause) if StopCause::CODES.contains(&cause) => {
+                        Some(Expected::StopCause(cause.to_string()))
+                    }
+                    _ => {
+                        errors.push(ScenarioError::BadValue {
+                            operand: name.clone(),
                             value: value.get_ref().to_string(),
                             at: span(value),
-                            range: "a cause such as \"WECK\"".into(),
+                            range: format!("one of {}", StopCause::CODES.join(", ")),
                         });
+                        None
                     }
                 },
-                operand => {
-                    let target = parse_target(operand, at, set, program.profile, program.layout)?;
-                    let (number, raw) = self.value(target, value, operand)?;
-                    Expected::Value {
-                        target,
-                        raw,
-                        written: number,
-                    }
-                }
+                operand => errors
+                    .keep(parse_target(
+                        operand,
+                        self.key_span(key),
+                        set,
+                        self.profile,
+                        program.layout,
+                    ))
+                    .and_then(|target| {
+                        errors
+                            .keep(Scenario::value(target, value, operand))
+                            .map(|(number, raw)| Expected::Value {
+                                target,
+                                raw,
+                                written: number,
+                            })
+                    }),
             };
-            expectations.push(Expectation {
-                name: key.clone(),
-                expected,
-            });
+            if let Some(expected) = expected {
+                expectations.push(Expectation {
+                    name: name.clone(),
+                    expected,
+                });
+            }
         }
-        Ok(expectations)
+        if errors.0.is_empty() {
+            Ok(expectations)
+        } else {
+            Err(self.reports(errors.0))
+        }
     }
+}
+
+fn report(path: &Path, text: &Arc<str>, error: ScenarioError) -> Report {
+    Report::new(error).with_source_code(NamedSource::new(path.display().to_string(), text.clone()))
+}
+
+/// Errors in the order they stand in the file.
+fn sorted(mut errors: Vec<ScenarioError>) -> Vec<ScenarioError> {
+    errors.sort_by_key(|error| error.offset());
+    errors
+}
+
+/// Which input modules a `set` operand changes: (modules, byte, bit, bytes).
+fn input_of(target: Target, program: &Program) -> Option<(InputTarget, u16, u8, u8)> {
+    let outputs = program.layout.output_base();
+    match target {
+        Target::ImageBit { byte, bit } if byte < outputs => {
+            Some((InputTarget::Process, byte, bit, 0))
+        }
+        Target::Image { byte, bytes } if byte < outputs => {
+            Some((InputTarget::Process, byte, 0, bytes))
+        }
+        Target::Periphery {
+            byte,
+            bytes,
+            extended,
+        } => {
+            let modules = if extended {
+                InputTarget::Extended
+            } else {
+                InputTarget::Process
+            };
+            Some((modules, byte, 0, bytes))
+        }
+        _ => None,
+    }
+}
+
+fn check_mode(mode: &Spanned<String>, profile: &Profile) -> Result<bool, ScenarioError> {
+    if profile.family != Family::Sinumerik840c {
+        return Err(invalid(
+            "`mode` belongs to the sinumerik-840c profile",
+            span(mode),
+            format!("not a setting of {}", profile.name),
+            None,
+        ));
+    }
+    match mode.get_ref().as_str() {
+        "normal" => Ok(false),
+        "special" => Ok(true),
+        _ => Err(invalid(
+            format!("unknown mode `{}`", mode.get_ref()),
+            span(mode),
+            "\"normal\" or \"special\"",
+            None,
+        )),
+    }
+}
+
+fn check_points(points: &Spanned<String>) -> Result<InterruptPoints, ScenarioError> {
+    match points.get_ref().as_str() {
+        "block" => Ok(InterruptPoints::Block),
+        "operation" => Ok(InterruptPoints::Operation),
+        other => Err(invalid(
+            format!("unknown interrupt points `{other}`"),
+            span(points),
+            "\"block\" or \"operation\"",
+            None,
+        )),
+    }
+}
+
+fn check_run(run: &Spanned<raw::RawRun>) -> Result<RunLimit, ScenarioError> {
+    let run_span = span(run);
+    match (&run.get_ref().duration, &run.get_ref().cycles) {
+        (Some(text), None) => match duration(text)? {
+            0 => Err(invalid("a run of no time", span(text), "0", None)),
+            ns => Ok(RunLimit::Duration(ns)),
+        },
+        (None, Some(cycles)) if *cycles.get_ref() == 0 => Err(invalid(
+            "a run of no cycles",
+            span(cycles),
+            "0",
+            Some("run at least one cycle".into()),
+        )),
+        (None, Some(cycles)) => Ok(RunLimit::Cycles(*cycles.get_ref())),
+        _ => Err(invalid(
+            "`run` takes either `for` or `cycles`",
+            run_span,
+            "one of the two",
+            Some("run = { for = \"100ms\" } or run = { cycles = 20 }".into()),
+        )),
+    }
+}
+
+fn check_watchdog(watchdog: &Spanned<String>) -> Result<u64, ScenarioError> {
+    match duration(watchdog)? {
+        ns @ 1..=MAX_WATCHDOG_NS => Ok(ns),
+        _ => Err(invalid(
+            "the watchdog must be above 0 and at most 6 s",
+            span(watchdog),
+            "out of range",
+            Some("6000 ms is the longest cycle monitoring time the S7-300 class CPUs (and the SPEED7) accept; the S5 CPUs allow less".into()),
+        )),
+    }
+}
+
+fn check_ob13(
+    ob13: &Spanned<raw::RawOb13>,
+    profile: &Profile,
+) -> Result<Ob13Timing, ScenarioError> {
+    let raw = ob13.get_ref();
+    if profile.family != Family::S5_95f {
+        return Err(invalid(
+            "[ob13] belongs to the s5-95f profile",
+            span(&raw.interval),
+            format!("{} has no time-controlled OB 13", profile.name),
+            Some("set `cpu = \"s5-95f\"`".into()),
+        ));
+    }
+    let interval = duration(&raw.interval)?;
+    if interval == 0 {
+        return Err(invalid(
+            "the OB 13 interval must be above zero",
+            span(&raw.interval),
+            "zero",
+            None,
+        ));
+    }
+    let delay = raw.delay.as_ref().map(duration).transpose()?;
+    let max_delay = raw.max_delay.as_ref().map(duration).transpose()?;
+    if let (Some(delay), Some(max_delay), Some(text)) = (delay, max_delay, &raw.delay)
+        && delay > max_delay
+    {
+        return Err(invalid(
+            "the OB 13 delay is above its maximum delay",
+            span(text),
+            "above `max_delay`",
+            Some(
+                "the delay t of each call is at most the maximum delay (S5-95F manual, 7.4.4)"
+                    .into(),
+            ),
+        ));
+    }
+    Ok(Ob13Timing {
+        interval_ns: interval,
+        delay_ns: delay.unwrap_or(0),
+        max_delay_ns: max_delay,
+    })
+}
+
+fn check_modules(
+    modules: &[Spanned<raw::RawHwModule>],
+    profile: &Profile,
+    errors: &mut Errors,
+) -> Vec<(u16, u8)> {
+    let mut mapped: Vec<(u16, u8)> = Vec::new();
+    for module in modules {
+        let raw = module.get_ref();
+        if profile.family != Family::Speed7 {
+            errors.push(invalid(
+                "[[hw_module]] belongs to the speed7 profile",
+                span(&raw.module),
+                format!("{} has no hardware interrupt OBs", profile.name),
+                None,
+            ));
+            continue;
+        }
+        let (number, ob) = (*raw.module.get_ref(), *raw.ob.get_ref());
+        if ob != 40 && ob != 41 {
+            errors.push(ScenarioError::UnknownOb {
+                ob: format!("OB {ob}"),
+                cpu: profile.name,
+                at: span(&raw.ob),
+                help: Some("hardware interrupts start OB 40 or OB 41".into()),
+            });
+            continue;
+        }
+        if mapped.iter().any(|(known, _)| *known == number) {
+            errors.push(invalid(
+                format!("module {number} is mapped twice"),
+                span(&raw.module),
+                "mapped before",
+                Some("a module's hardware interrupts start one OB: keep one [[hw_module]] per module".into()),
+            ));
+            continue;
+        }
+        mapped.push((number, ob));
+    }
+    mapped
 }
 
 #[cfg(test)]
@@ -522,6 +693,7 @@ mod tests {
     fn durations() {
         assert_eq!(parse_duration("1.5ms"), Some(1_500_000));
         assert_eq!(parse_duration("200us"), Some(200_000));
+        assert_eq!(parse_duration("500µs"), Some(500_000));
         assert_eq!(parse_duration("2s"), Some(2_000_000_000));
         assert_eq!(parse_duration("7 ns"), Some(7));
         assert_eq!(parse_duration("5"), None);

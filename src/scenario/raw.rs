@@ -1,12 +1,34 @@
-//! The scenario file as TOML, with spans kept for diagnostics.
+//! The scenario file as TOML, with spans kept for diagnostics. Every top-level key, and every
+//! entry of `[[event]]` and `[[hw_module]]`, is read on its own, so one bad key does not hide
+//! the errors of the others.
 
 use std::collections::BTreeMap;
 
 use serde::Deserialize;
+use serde::de::DeserializeOwned;
 use toml::Spanned;
+use toml::de::{DeTable, DeValue, ValueDeserializer};
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+use super::error::ScenarioError;
+
+/// A table whose keys keep their spans (`set = { "I 0.0" = 1 }`, `[expect]`).
+pub type SpannedTable = BTreeMap<Spanned<String>, Spanned<toml::Value>>;
+
+/// The top-level keys of a scenario file.
+pub const KEYS: &[&str] = &[
+    "program",
+    "cpu",
+    "mode",
+    "interrupt_points",
+    "run",
+    "watchdog",
+    "ob13",
+    "hw_module",
+    "event",
+    "expect",
+];
+
+#[derive(Debug, Default)]
 pub struct RawScenario {
     pub program: Option<Spanned<ProgramList>>,
     pub cpu: Option<Spanned<String>>,
@@ -14,10 +36,10 @@ pub struct RawScenario {
     pub interrupt_points: Option<Spanned<String>>,
     pub run: Option<Spanned<RawRun>>,
     pub watchdog: Option<Spanned<String>>,
-    pub ob13: Option<RawOb13>,
-    pub hw_module: Option<Vec<RawHwModule>>,
-    pub event: Option<Vec<RawEvent>>,
-    pub expect: Option<BTreeMap<String, Spanned<toml::Value>>>,
+    pub ob13: Option<Spanned<RawOb13>>,
+    pub hw_module: Vec<Spanned<RawHwModule>>,
+    pub event: Vec<Spanned<RawEvent>>,
+    pub expect: SpannedTable,
 }
 
 #[derive(Debug, Deserialize)]
@@ -54,7 +76,7 @@ pub struct RawHwModule {
 #[serde(deny_unknown_fields)]
 pub struct RawEvent {
     pub at: Spanned<String>,
-    pub set: Option<BTreeMap<String, Spanned<toml::Value>>>,
+    pub set: Option<SpannedTable>,
     pub interrupt: Option<Spanned<String>>,
     pub hw_interrupt: Option<Spanned<RawHardware>>,
 }
@@ -65,4 +87,81 @@ pub struct RawHardware {
     pub module: u16,
     pub channel: u16,
     pub active_for: Spanned<String>,
+}
+
+fn span_of(range: std::ops::Range<usize>) -> miette::SourceSpan {
+    (range.start, range.end - range.start).into()
+}
+
+/// A TOML error at its place (or at `fallback` when it has none).
+fn toml_error(error: toml::de::Error, fallback: std::ops::Range<usize>) -> ScenarioError {
+    ScenarioError::Syntax {
+        message: error.message().to_string(),
+        at: Some(span_of(error.span().unwrap_or(fallback))),
+    }
+}
+
+fn read<T: DeserializeOwned>(value: &Spanned<DeValue<'_>>) -> Result<T, ScenarioError> {
+    T::deserialize(ValueDeserializer::from(value.clone())).map_err(|e| toml_error(e, value.span()))
+}
+
+/// Each element of an array of tables, read on its own.
+fn read_each<T: DeserializeOwned>(
+    value: &Spanned<DeValue<'_>>,
+    errors: &mut Vec<ScenarioError>,
+) -> Vec<Spanned<T>> {
+    let Some(items) = value.get_ref().as_array() else {
+        errors.push(ScenarioError::Syntax {
+            message: "expected an array of tables, e.g. `[[event]]`".into(),
+            at: Some(span_of(value.span())),
+        });
+        return Vec::new();
+    };
+    items
+        .iter()
+        .filter_map(|item| match read::<T>(item) {
+            Ok(value) => Some(Spanned::new(item.span(), value)),
+            Err(error) => {
+                errors.push(error);
+                None
+            }
+        })
+        .collect()
+}
+
+/// Reads the file: what could be read, and every error found on the way.
+pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
+    let (table, syntax) = DeTable::parse_recoverable(text);
+    let mut errors: Vec<ScenarioError> = syntax
+        .into_iter()
+        .map(|error| toml_error(error, 0..0))
+        .collect();
+    let mut raw = RawScenario::default();
+    for (key, value) in table.get_ref() {
+        let mut keep = |result: Result<(), ScenarioError>| {
+            if let Err(error) = result {
+                errors.push(error);
+            }
+        };
+        match key.get_ref().as_ref() {
+            "program" => keep(read(value).map(|v| raw.program = Some(v))),
+            "cpu" => keep(read(value).map(|v| raw.cpu = Some(v))),
+            "mode" => keep(read(value).map(|v| raw.mode = Some(v))),
+            "interrupt_points" => keep(read(value).map(|v| raw.interrupt_points = Some(v))),
+            "run" => keep(read(value).map(|v| raw.run = Some(v))),
+            "watchdog" => keep(read(value).map(|v| raw.watchdog = Some(v))),
+            "ob13" => keep(read(value).map(|v| raw.ob13 = Some(v))),
+            "expect" => keep(read(value).map(|v| raw.expect = v)),
+            "hw_module" => raw.hw_module = read_each(value, &mut errors),
+            "event" => raw.event = read_each(value, &mut errors),
+            other => errors.push(ScenarioError::UnknownKey {
+                key: other.to_string(),
+                at: span_of(key.span()),
+                help: super::did_you_mean(other, KEYS.iter().copied()).map(|known| {
+                    format!("did you mean `{known}`? The keys are listed in programs/README.md")
+                }),
+            }),
+        }
+    }
+    (raw, errors)
 }

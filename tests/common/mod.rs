@@ -83,8 +83,8 @@ pub fn run_scenario(name: &str, program: &str, scenario: &str) -> Result<Ran, No
 pub fn ran(result: Result<Ran, NotRun>) -> Ran {
     match result {
         Ok(ran) => ran,
-        Err(NotRun::SourceErrors) => panic!("source errors"),
-        Err(NotRun::Failed(report)) => panic!("{report:?}"),
+        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::Usage(report)) => panic!("{report:?}"),
     }
 }
 
