@@ -112,10 +112,13 @@ fn bound_lines(out: &mut String, cpu: &Cpu) {
             }
         }
         InterruptPoints::Operation => {
-            if let Some((block, pc, ns)) = cpu.longest_operation() {
+            // The longest operation is the program's, not the run's: say it only when the
+            // program ran at all.
+            if let Some((block, pc, ns)) = cpu.longest_operation().filter(|_| cpu.instructions > 0)
+            {
                 let _ = writeln!(
                     out,
-                    "longest operation: {} line {}, {:.3} us",
+                    "longest operation in the program: {} line {}, {:.3} us",
                     cpu.block_id(block),
                     cpu.line_of(block, pc as u32),
                     ns as f64 / 1e3
@@ -169,7 +172,7 @@ fn time_controlled_response(out: &mut String, cpu: &Cpu) {
     );
 }
 
-/// The summary of `awl run`; it ends with the `cpu:` and `instructions:` lines of SPEC §2.
+/// The summary of `awl run`; it ends with the `cpu:` and `instructions:` lines scripts read.
 pub fn summary(ran: &crate::runner::Ran) -> String {
     let mut out = String::new();
     let outcome = &ran.outcome;
@@ -220,6 +223,13 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
                 waits.join(", ")
             );
         }
+    }
+    if outcome.halted {
+        let _ = writeln!(
+            out,
+            "halted: interrupted (Ctrl-C or SIGTERM) at the cycle boundary after cycle {}",
+            outcome.cycles
+        );
     }
     let simulated = outcome.clock_ns as f64 / 1e6;
     let _ = writeln!(

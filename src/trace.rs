@@ -115,6 +115,9 @@ struct Record<'a> {
     event: &'a Event,
 }
 
+/// Width of the text timeline's time column: aligned up to 999 s (`999999.999999 ms`).
+const TIME_WIDTH: usize = 16;
+
 /// Writes events when a trace was asked for; `enabled` is the one flag the loop tests.
 pub struct Tracer {
     pub enabled: bool,
@@ -182,7 +185,7 @@ impl Tracer {
                 .and_then(|()| out.write_all(b"\n")),
             TraceFormat::Text => writeln!(
                 out,
-                "{:>12}  {}{}",
+                "{:>TIME_WIDTH$}  {}{}",
                 format_ms(t_ns),
                 "  ".repeat(indent),
                 text(event)

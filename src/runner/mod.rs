@@ -1,4 +1,8 @@
 //! One run, as `awl run` and `awl test` do it: scenario, front end, CPU, trace, expectations.
+//! Nothing is printed here: every diagnostic comes back as a report for the caller to show.
+
+mod stop_report;
+pub mod warnings;
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -11,16 +15,16 @@ use thiserror::Error;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend};
 use crate::mnemonics::MnemonicSet;
-use crate::profile::{self, InterruptPoints, Profile};
+use crate::profile::{self, Family, InterruptPoints, Profile};
 use crate::scenario::Scenario;
 use crate::scenario::expect::{self, Mismatch};
-use crate::source::Span;
 use crate::trace::{TraceFormat, Tracer};
 use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
-use crate::vm::interrupts::sinumerik840c::normal_mode_skips;
 use crate::vm::interrupts::{Engine, EngineConfig};
-use crate::vm::stop::{Stop, StopCause, StopDetail, StopError};
+
+pub use stop_report::stop_report;
+pub use warnings::RunWarning;
 
 /// The default run length when neither the command line nor the scenario gives one.
 pub const DEFAULT_RUN: RunLimit = RunLimit::Duration(1_000_000_000);
@@ -29,7 +33,8 @@ pub const DEFAULT_RUN: RunLimit = RunLimit::Duration(1_000_000_000);
 pub struct RunOptions {
     pub files: Vec<PathBuf>,
     pub scenario: Option<PathBuf>,
-    pub cpu: Option<String>,
+    /// The command line's CPU; it overrides the scenario's.
+    pub cpu: Option<&'static Profile>,
     pub limit: Option<RunLimit>,
     pub points: Option<InterruptPoints>,
     pub special_mode: Option<bool>,
@@ -46,26 +51,6 @@ pub enum RunError {
         help("name .awl files, or a scenario with `program = [...]`")
     )]
     NoProgram,
-    #[error("the program has no OB 1: the cycles run no user program")]
-    #[diagnostic(
-        code(awl::run::no_ob1),
-        severity(Warning),
-        help("OB 1 is the cyclic program; add it, or load the file that holds it")
-    )]
-    NoOb1,
-    #[error("the program calls {ob}, which normal mode does not process")]
-    #[diagnostic(
-        code(awl::run::ob_call_normal_mode),
-        severity(Warning),
-        help(
-            "SINUMERIK 840C PLC manual, 5.3.1: OB 2 and OB 5 \"cannot be called up in normal mode\"; this call runs {ob} as an ordinary block. Use `mode = \"special\"`, or move the code into a PB"
-        )
-    )]
-    ObCallNormalMode {
-        ob: String,
-        #[label("called here")]
-        at: Span,
-    },
     #[error("`--mode` belongs to the sinumerik-840c profile, not to {cpu}")]
     #[diagnostic(
         code(awl::cli::mode_not_for_cpu),
@@ -89,14 +74,21 @@ pub struct Ran {
     pub expectations: usize,
     pub points: InterruptPoints,
     pub trace_to_stdout: bool,
+    /// The program's warnings, the setup's (OBs that never run, events after the end) and an
+    /// incomplete trace, in that order.
+    pub warnings: Vec<Report>,
+    /// The trace could not be written to the end because its output was closed (a pipe).
+    pub trace_closed: bool,
 }
 
 /// Why a run did not get to run.
 pub enum NotRun {
-    /// Reports were printed already (source errors).
-    SourceErrors,
-    /// A report to print (scenario, files, trace).
-    Failed(Report),
+    /// The command line asks for what cannot be (exit code 2).
+    Usage(Report),
+    /// The program has errors: every diagnostic of the front end, warnings included.
+    SourceErrors(Vec<Report>),
+    /// The scenario, the files or the trace output are at fault.
+    Failed(Vec<Report>),
 }
 
 fn open_trace(path: &PathBuf, format: TraceFormat) -> Result<Tracer, NotRun> {
@@ -104,22 +96,50 @@ fn open_trace(path: &PathBuf, format: TraceFormat) -> Result<Tracer, NotRun> {
         Box::new(BufWriter::new(std::io::stdout()))
     } else {
         let file = File::create(path).map_err(|error| {
-            NotRun::Failed(Report::new(RunError::TraceWrite {
+            NotRun::Failed(vec![Report::new(RunError::TraceWrite {
                 path: path.display().to_string(),
                 reason: error.to_string(),
-            }))
+            })])
         })?;
         Box::new(BufWriter::new(file))
     };
     Ok(Tracer::new(format, out))
 }
 
-/// Builds and runs. Diagnostics of the program are printed to stderr as they are found.
+fn default_profile() -> &'static Profile {
+    profile::find(profile::DEFAULT_PROFILE).expect("default profile")
+}
+
+/// Builds and runs to the limit or a STOP.
 pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
-    let scenario = match &options.scenario {
-        Some(path) => Some(Scenario::load(path).map_err(NotRun::Failed)?),
-        None => None,
+    run_watched(options, &mut |_| true)
+}
+
+/// As [`run`], asking `go_on` at every cycle boundary whether to go on (see
+/// [`Cpu::run_watched`]).
+pub fn run_watched(
+    options: &RunOptions,
+    go_on: &mut dyn FnMut(&Cpu) -> bool,
+) -> Result<Ran, NotRun> {
+    // A scenario's errors are reported together with those found once the program is
+    // compiled (its operands), so a file shows all of them at once.
+    let (scenario, mut scenario_errors) = match &options.scenario {
+        Some(path) => {
+            let (scenario, errors) =
+                Scenario::load(path, options.cpu).map_err(|error| NotRun::Failed(vec![error]))?;
+            (Some(scenario), errors)
+        }
+        None => (None, Vec::new()),
     };
+    let profile = match &scenario {
+        Some(scenario) => scenario.profile,
+        None => options.cpu.unwrap_or_else(default_profile),
+    };
+    if options.special_mode.is_some() && profile.family != Family::Sinumerik840c {
+        return Err(NotRun::Usage(Report::new(RunError::ModeNotForCpu {
+            cpu: profile.name,
+        })));
+    }
     let files = if options.files.is_empty() {
         scenario
             .as_ref()
@@ -129,31 +149,26 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         options.files.clone()
     };
     if files.is_empty() {
-        return Err(NotRun::Failed(Report::new(RunError::NoProgram)));
+        scenario_errors.push(Report::new(RunError::NoProgram));
+        return Err(NotRun::Failed(scenario_errors));
     }
-    let profile: &'static Profile = options
-        .cpu
-        .as_deref()
-        .and_then(profile::find)
-        .or(scenario.as_ref().and_then(|s| s.cpu))
-        .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile"));
-    if options.special_mode.is_some() && profile.family != crate::profile::Family::Sinumerik840c {
-        return Err(NotRun::Failed(Report::new(RunError::ModeNotForCpu {
-            cpu: profile.name,
-        })));
-    }
-    let sources =
-        frontend::read_sources(&files).map_err(|error| NotRun::Failed(Report::new(error)))?;
+    let sources = frontend::read_sources(&files).map_err(|errors| {
+        scenario_errors.extend(errors.into_iter().map(Report::new));
+        NotRun::Failed(std::mem::take(&mut scenario_errors))
+    })?;
     let built = frontend::build(sources, options.mnemonics, profile);
-    for diagnostic in &built.diagnostics {
-        eprintln!("{:?}", diagnostics::report(&built.sources, diagnostic));
-    }
+    let mut warnings: Vec<Report> = built
+        .diagnostics
+        .iter()
+        .map(|diagnostic| diagnostics::report(&built.sources, diagnostic))
+        .collect();
     if built.has_errors() {
-        return Err(NotRun::SourceErrors);
+        warnings.append(&mut scenario_errors);
+        return Err(NotRun::SourceErrors(warnings));
     }
     let program = Arc::new(built.compiled.program.clone());
     if program.ob(1).is_none() {
-        eprintln!("{:?}", Report::new(RunError::NoOb1));
+        warnings.push(Report::new(RunWarning::NoOb1));
     }
     let set = built
         .mnemonics
@@ -162,13 +177,18 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         .unwrap_or(MnemonicSet::English);
     let (schedule, expectations) = match &scenario {
         Some(scenario) => {
-            let schedule = scenario
-                .schedule(&program, set)
-                .map_err(|error| NotRun::Failed(scenario.report(error)))?;
-            let expectations = scenario
-                .expectations(&program, set)
-                .map_err(|error| NotRun::Failed(scenario.report(error)))?;
-            (schedule, expectations)
+            let schedule = scenario.schedule(&program, set);
+            let expectations = scenario.expectations(&program, set);
+            match (schedule, expectations) {
+                (Ok(schedule), Ok(expectations)) if scenario_errors.is_empty() => {
+                    (schedule, expectations)
+                }
+                (schedule, expectations) => {
+                    scenario_errors.extend(schedule.err().into_iter().flatten());
+                    scenario_errors.extend(expectations.err().into_iter().flatten());
+                    return Err(NotRun::Failed(scenario_errors));
+                }
+            }
         }
         None => (Vec::new(), Vec::new()),
     };
@@ -180,9 +200,6 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         .special_mode
         .or(scenario.as_ref().and_then(|s| s.special_mode))
         .unwrap_or(false);
-    if profile.family == crate::profile::Family::Sinumerik840c && !special_mode {
-        warn_normal_mode_calls(&built, &program);
-    }
     let config = EngineConfig {
         points,
         special_mode,
@@ -196,6 +213,10 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
             .and_then(|s| s.watchdog_ns)
             .unwrap_or(profile.watchdog_ns),
     };
+    if profile.family == Family::Sinumerik840c && !special_mode {
+        warnings.extend(warnings::normal_mode_calls(&program, &built.sources));
+    }
+    warnings.extend(warnings::obs_never_run(&program, &built.sources, &config));
     let limit = options
         .limit
         .or(scenario.as_ref().and_then(|s| s.limit))
@@ -210,17 +231,26 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
     if let Some(path) = &options.trace {
         cpu.tracer = open_trace(path, options.trace_format.unwrap_or(TraceFormat::Jsonl))?;
     }
-    let outcome = cpu.run(limit);
+    let outcome = cpu.run_watched(limit, go_on);
+    if let Some(scenario) = &scenario
+        && outcome.stop.is_none()
+        && !outcome.halted
+    {
+        warnings.extend(scenario.events_after(outcome.clock_ns));
+    }
+    let mut trace_closed = false;
     if let Err(error) = cpu.tracer.finish() {
-        let path = options
-            .trace
-            .as_ref()
-            .map(|p| p.display().to_string())
-            .unwrap_or_default();
-        return Err(NotRun::Failed(Report::new(RunError::TraceWrite {
-            path,
-            reason: error.to_string(),
-        })));
+        trace_closed = trace_to_stdout && error.kind() == std::io::ErrorKind::BrokenPipe;
+        if !trace_closed {
+            warnings.push(Report::new(RunWarning::TraceIncomplete {
+                path: options
+                    .trace
+                    .as_ref()
+                    .map(|p| p.display().to_string())
+                    .unwrap_or_default(),
+                reason: error.to_string(),
+            }));
+        }
     }
     let mismatches = expect::check(&cpu, &outcome, &expectations);
     Ok(Ran {
@@ -231,142 +261,7 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
         expectations: expectations.len(),
         points,
         trace_to_stdout,
+        warnings,
+        trace_closed,
     })
-}
-
-/// Program calls of OB 2 or OB 5 on the 840C in normal mode get a warning each.
-fn warn_normal_mode_calls(built: &Frontend, program: &crate::compiler::Program) {
-    for block in &program.blocks {
-        for (op, span) in block.code.iter().zip(&block.spans) {
-            let crate::compiler::Op::Call { block: target, .. } = *op else {
-                continue;
-            };
-            let id = program.blocks[usize::from(target)].id;
-            if id.kind == crate::mnemonics::BlockKind::Ob && normal_mode_skips(id.number) {
-                let warning = RunError::ObCallNormalMode {
-                    ob: id.to_string(),
-                    at: *span,
-                };
-                eprintln!(
-                    "{:?}",
-                    diagnostics::with_source(&built.sources, *span, warning)
-                );
-            }
-        }
-    }
-}
-
-fn stack_text(stop: &Stop) -> String {
-    if stop.stack.is_empty() {
-        return "BSTACK: empty, no block was running".to_string();
-    }
-    let mut text = String::from("BSTACK, innermost first:");
-    for (index, entry) in stop.stack.iter().enumerate() {
-        let role = if index == 0 {
-            "stopped here"
-        } else {
-            "return point"
-        };
-        text.push_str(&format!(
-            "\n  {:<6} line {:<5} {role}",
-            entry.block, entry.line
-        ));
-    }
-    text
-}
-
-/// The STOP as a miette report with the source line.
-pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
-    let program = &ran.cpu.program;
-    // Between cycles in a program without OB 1 there is no block: the label goes to the start
-    // of the first file.
-    let (at, name) = match stop.block.map(|index| &program.blocks[usize::from(index)]) {
-        Some(block) => {
-            let at: Span = block
-                .spans
-                .get(stop.pc as usize)
-                .copied()
-                .unwrap_or(block.header);
-            (at, block.id.to_string())
-        }
-        None => (
-            Span::default(),
-            "the operating system (between cycles)".to_string(),
-        ),
-    };
-    let stack = stack_text(stop);
-    let detail = match &stop.detail {
-        StopDetail::Text(text) => text.clone(),
-        _ => String::new(),
-    };
-    let error = match (stop.cause, &stop.detail) {
-        (
-            StopCause::Zyk,
-            StopDetail::Cycle {
-                cycle_ns,
-                watchdog_ns,
-            },
-        ) => StopError::CycleTime {
-            cycle_ms: format!("{:.3}", *cycle_ns as f64 / 1e6),
-            watchdog_ms: format!("{:.3}", *watchdog_ns as f64 / 1e6),
-            block: name,
-            at,
-            stack,
-        },
-        (StopCause::Zyk, _) => StopError::CycleTime {
-            cycle_ms: "?".into(),
-            watchdog_ms: "?".into(),
-            block: name,
-            at,
-            stack,
-        },
-        (StopCause::Stueb, _) => StopError::Nesting {
-            limit: program.profile.nesting_limit,
-            block: name,
-            at,
-            stack,
-        },
-        (StopCause::LzfBlock, _) => StopError::BlockNotLoaded {
-            target: detail,
-            at,
-            stack,
-        },
-        (StopCause::LzfData, _) => StopError::DataAccess {
-            problem: detail,
-            at,
-            stack,
-        },
-        (StopCause::Bcf, _) => StopError::Operation {
-            problem: detail,
-            at,
-            stack,
-        },
-        (StopCause::Stp, _) => StopError::StopOperation { at, stack },
-        (StopCause::Weck, StopDetail::Ob(ob)) => StopError::WakeUp { ob: *ob, at, stack },
-        (
-            StopCause::Weck,
-            StopDetail::Ob13Interval {
-                interval_ns,
-                max_delay_ns,
-            },
-        ) => StopError::IntervalNotAboveDelay {
-            interval_ms: format!("{:.3}", *interval_ns as f64 / 1e6),
-            max_delay_ms: format!("{:.3}", *max_delay_ns as f64 / 1e6),
-            at,
-        },
-        (StopCause::Weck, _) => StopError::WakeUp { ob: 13, at, stack },
-        (StopCause::Ob85, StopDetail::Module { module, ob }) => StopError::MissingOb85 {
-            module: *module,
-            ob: *ob,
-            at,
-            stack,
-        },
-        (StopCause::Ob85, _) => StopError::MissingOb85 {
-            module: 0,
-            ob: 40,
-            at,
-            stack,
-        },
-    };
-    diagnostics::with_source(&ran.frontend.sources, at, error)
 }

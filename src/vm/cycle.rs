@@ -26,6 +26,8 @@ pub struct RunOutcome {
     pub clock_ns: u64,
     pub instructions: u64,
     pub wall: Duration,
+    /// The run was halted from outside (Ctrl-C) at a cycle boundary, before its limit.
+    pub halted: bool,
 }
 
 impl Cpu {
@@ -237,9 +239,24 @@ impl Cpu {
 
     /// STOP → STARTUP → RUN, then cycles until the limit or a STOP.
     pub fn run(&mut self, limit: RunLimit) -> RunOutcome {
+        self.run_watched(limit, &mut |_| true)
+    }
+
+    /// As [`Cpu::run`], asking `go_on` at every cycle boundary whether to go on (progress
+    /// display, Ctrl-C); a `false` halts the run there.
+    pub fn run_watched(
+        &mut self,
+        limit: RunLimit,
+        go_on: &mut dyn FnMut(&Cpu) -> bool,
+    ) -> RunOutcome {
         let started = Instant::now();
+        let mut halted = false;
         let result = self.startup().and_then(|()| {
             while !self.limit_reached(limit) {
+                if !go_on(self) {
+                    halted = true;
+                    break;
+                }
                 self.one_cycle()?;
             }
             Ok(())
@@ -273,6 +290,7 @@ impl Cpu {
             clock_ns: self.clock,
             instructions: self.instructions,
             wall: started.elapsed(),
+            halted,
         }
     }
 }

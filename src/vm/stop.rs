@@ -29,6 +29,10 @@ pub enum StopCause {
 }
 
 impl StopCause {
+    /// Every code [`StopCause::code`] gives.
+    pub const CODES: &'static [&'static str] =
+        &["ZYK", "STUEB", "LZF", "BCF", "STP", "WECK", "OB85"];
+
     /// The cause as the PG shows it (and as scenario files expect it).
     pub fn code(self) -> &'static str {
         match self {
@@ -53,9 +57,7 @@ pub struct StackEntry {
 /// The runtime STOP as a diagnostic.
 #[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
 pub enum StopError {
-    #[error(
-        "STOP ZYK: cycle time {cycle_ms} ms exceeded the watchdog ({watchdog_ms} ms) in {block}"
-    )]
+    #[error("STOP ZYK: {how} in {block}")]
     #[diagnostic(
         code(awl::stop::zyk),
         help(
@@ -63,8 +65,8 @@ pub enum StopError {
         )
     )]
     CycleTime {
-        cycle_ms: String,
-        watchdog_ms: String,
+        /// "the cycle reached the watchdog time of 300.000 ms", or how far past it the cycle ran.
+        how: String,
         block: String,
         #[label("running here when the watchdog expired")]
         at: Span,

@@ -1,0 +1,177 @@
+//! The STOP report: the cause as the PG names it, the source line, and the block stack.
+
+use miette::Report;
+
+use crate::diagnostics;
+use crate::source::Span;
+use crate::vm::stop::{StackEntry, Stop, StopCause, StopDetail, StopError};
+
+use super::Ran;
+
+/// The shortest run of entries starting at `from` that repeats right after itself: its length
+/// and how many times it stands there in a row.
+fn repetition(stack: &[StackEntry], from: usize) -> Option<(usize, usize)> {
+    let rest = &stack[from..];
+    (1..=rest.len() / 2).find_map(|period| {
+        let pattern = &rest[..period];
+        let times = rest
+            .chunks_exact(period)
+            .take_while(|chunk| *chunk == pattern)
+            .count();
+        (times >= 2).then_some((period, times))
+    })
+}
+
+fn stack_line(text: &mut String, entry: &StackEntry, role: &str, times: usize) {
+    let count = if times > 1 {
+        format!(" ×{times}")
+    } else {
+        String::new()
+    };
+    text.push_str(&format!(
+        "\n  {:<6} line {:<5} {role}{count}",
+        entry.block, entry.line
+    ));
+}
+
+/// The BSTACK, innermost first. Return points that repeat (a block calling itself, or blocks
+/// calling each other) are shown once with their count.
+fn stack_text(stop: &Stop) -> String {
+    let Some((innermost, callers)) = stop.stack.split_first() else {
+        return "BSTACK: empty, no block was running".to_string();
+    };
+    let mut text = String::from("BSTACK, innermost first:");
+    stack_line(&mut text, innermost, "stopped here", 1);
+    let mut at = 0;
+    while at < callers.len() {
+        match repetition(callers, at) {
+            Some((1, times)) => {
+                stack_line(&mut text, &callers[at], "return point", times);
+                at += times;
+            }
+            Some((period, times)) => {
+                for entry in &callers[at..at + period] {
+                    stack_line(&mut text, entry, "return point", 1);
+                }
+                text.push_str(&format!("\n  (these {period} return points ×{times})"));
+                at += period * times;
+            }
+            None => {
+                stack_line(&mut text, &callers[at], "return point", 1);
+                at += 1;
+            }
+        }
+    }
+    text
+}
+
+fn ms(ns: u64) -> String {
+    format!("{:.3} ms", ns as f64 / 1e6)
+}
+
+/// What the watchdog saw: the cycle reached its time, or an operation carried it past.
+fn watchdog_text(cycle_ns: u64, watchdog_ns: u64) -> String {
+    if ms(cycle_ns) == ms(watchdog_ns) || cycle_ns < watchdog_ns {
+        format!("the cycle reached the watchdog time of {}", ms(watchdog_ns))
+    } else {
+        format!(
+            "the cycle ran {}, past the watchdog time of {}",
+            ms(cycle_ns),
+            ms(watchdog_ns)
+        )
+    }
+}
+
+/// The STOP as a miette report with the source line.
+pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
+    let program = &ran.cpu.program;
+    // Between cycles in a program without OB 1 there is no block: the label goes to the start
+    // of the first file.
+    let (at, name) = match stop.block.map(|index| &program.blocks[usize::from(index)]) {
+        Some(block) => {
+            let at: Span = block
+                .spans
+                .get(stop.pc as usize)
+                .copied()
+                .unwrap_or(block.header);
+            (at, block.id.to_string())
+        }
+        None => (
+            Span::default(),
+            "the operating system (between cycles)".to_string(),
+        ),
+    };
+    let stack = stack_text(stop);
+    let detail = match &stop.detail {
+        StopDetail::Text(text) => text.clone(),
+        _ => String::new(),
+    };
+    let error = match (stop.cause, &stop.detail) {
+        (
+            StopCause::Zyk,
+            StopDetail::Cycle {
+                cycle_ns,
+                watchdog_ns,
+            },
+        ) => StopError::CycleTime {
+            how: watchdog_text(*cycle_ns, *watchdog_ns),
+            block: name,
+            at,
+            stack,
+        },
+        (StopCause::Zyk, _) => StopError::CycleTime {
+            how: "the cycle reached the watchdog time".into(),
+            block: name,
+            at,
+            stack,
+        },
+        (StopCause::Stueb, _) => StopError::Nesting {
+            limit: program.profile.nesting_limit,
+            block: name,
+            at,
+            stack,
+        },
+        (StopCause::LzfBlock, _) => StopError::BlockNotLoaded {
+            target: detail,
+            at,
+            stack,
+        },
+        (StopCause::LzfData, _) => StopError::DataAccess {
+            problem: detail,
+            at,
+            stack,
+        },
+        (StopCause::Bcf, _) => StopError::Operation {
+            problem: detail,
+            at,
+            stack,
+        },
+        (StopCause::Stp, _) => StopError::StopOperation { at, stack },
+        (StopCause::Weck, StopDetail::Ob(ob)) => StopError::WakeUp { ob: *ob, at, stack },
+        (
+            StopCause::Weck,
+            StopDetail::Ob13Interval {
+                interval_ns,
+                max_delay_ns,
+            },
+        ) => StopError::IntervalNotAboveDelay {
+            interval_ms: format!("{:.3}", *interval_ns as f64 / 1e6),
+            max_delay_ms: format!("{:.3}", *max_delay_ns as f64 / 1e6),
+            at,
+        },
+        (StopCause::Weck, _) => StopError::WakeUp { ob: 13, at, stack },
+        (StopCause::Ob85, StopDetail::Module { module, ob }) => StopError::MissingOb85 {
+            module: *module,
+            ob: *ob,
+            at,
+            stack,
+        },
+        (StopCause::Ob85, _) => StopError::MissingOb85 {
+            module: 0,
+            ob: 40,
+            at,
+            stack,
+        },
+    };
+    diagnostics::with_source(&ran.frontend.sources, at, error)
+}

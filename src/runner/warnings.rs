@@ -1,0 +1,149 @@
+//! Warnings about a run's setup: what the program holds that this CPU, mode and scenario will
+//! never run, and what the run could not finish (its trace).
+
+use miette::{Diagnostic, Report};
+use thiserror::Error;
+
+use crate::compiler::{Op, Program};
+use crate::diagnostics;
+use crate::mnemonics::BlockKind;
+use crate::profile::{Family, Profile};
+use crate::source::{SourceSet, Span};
+use crate::vm::interrupts::EngineConfig;
+use crate::vm::interrupts::sinumerik840c::{NORMAL_MODE, normal_mode_skips};
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum RunWarning {
+    #[error("the program has no OB 1: the cycles run no user program")]
+    #[diagnostic(
+        code(awl::run::no_ob1),
+        severity(Warning),
+        help("OB 1 is the cyclic program; add it, or load the file that holds it")
+    )]
+    NoOb1,
+
+    #[error("the program calls {ob}, which normal mode does not process")]
+    #[diagnostic(
+        code(awl::run::ob_call_normal_mode),
+        severity(Warning),
+        help(
+            "SINUMERIK 840C PLC manual, 5.3.1: OB 2 and OB 5 \"cannot be called up in normal mode\"; this call runs {ob} as an ordinary block. Use `mode = \"special\"`, or move the code into a PB"
+        )
+    )]
+    ObCallNormalMode {
+        ob: String,
+        #[label("called here")]
+        at: Span,
+    },
+
+    #[error("OB {ob} never runs in this run")]
+    #[diagnostic(code(awl::run::ob_never_runs), severity(Warning))]
+    ObNeverRuns {
+        ob: u8,
+        #[label("{reason}")]
+        at: Span,
+        reason: String,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("the trace to `{path}` is incomplete: {reason}")]
+    #[diagnostic(
+        code(awl::run::trace_incomplete),
+        severity(Warning),
+        help("the run itself went on; its report and exit code are below")
+    )]
+    TraceIncomplete { path: String, reason: String },
+}
+
+/// Why OB `ob` can never run on `profile` with `config`, and what would make it run.
+fn never_runs(
+    ob: u8,
+    profile: &Profile,
+    config: &EngineConfig,
+) -> Option<(String, Option<String>)> {
+    if ob == 1 || profile.startup_obs.contains(&ob) {
+        return None;
+    }
+    if profile.interrupt_ob(ob).is_none() {
+        return Some((
+            format!("not an OB the {} starts", profile.name),
+            Some(format!(
+                "`awl cpus` lists the OBs of the {}; a program call (JU OB {ob}) runs it as an ordinary block",
+                profile.name
+            )),
+        ));
+    }
+    match profile.family {
+        Family::Sinumerik840c if !config.special_mode && normal_mode_skips(ob) => Some((
+            NORMAL_MODE.to_string(),
+            Some("run it in special mode: `mode = \"special\"` or `--mode special`".into()),
+        )),
+        Family::S5_95f if ob == 13 && config.ob13.is_none() => Some((
+            "OB 13 runs at the interval of the scenario's [ob13] table, and there is none".into(),
+            Some("add `[ob13]` with `interval = \"100ms\"` to the scenario".into()),
+        )),
+        Family::Speed7
+            if (ob == 40 || ob == 41) && !config.hw_modules.iter().any(|(_, to)| *to == ob) =>
+        {
+            Some((
+                format!("no [[hw_module]] of the scenario starts OB {ob}"),
+                Some(format!(
+                    "map a module to it: `[[hw_module]]` with `module = 1` and `ob = {ob}`"
+                )),
+            ))
+        }
+        _ => None,
+    }
+}
+
+/// Whether the program itself calls block `index` (then it runs as an ordinary block).
+fn called(program: &Program, index: u16) -> bool {
+    program.blocks.iter().any(|block| {
+        block
+            .code
+            .iter()
+            .any(|op| matches!(*op, Op::Call { block, .. } if block == index))
+    })
+}
+
+/// A warning for each OB of the program the run will never start, nor the program call.
+pub fn obs_never_run(program: &Program, sources: &SourceSet, config: &EngineConfig) -> Vec<Report> {
+    let mut warnings = Vec::new();
+    for (index, block) in program.blocks.iter().enumerate() {
+        if block.id.kind != BlockKind::Ob || called(program, index as u16) {
+            continue;
+        }
+        if let Some((reason, help)) = never_runs(block.id.number, program.profile, config) {
+            let warning = RunWarning::ObNeverRuns {
+                ob: block.id.number,
+                at: block.header,
+                reason,
+                help,
+            };
+            warnings.push(diagnostics::with_source(sources, block.header, warning));
+        }
+    }
+    warnings
+}
+
+/// On the 840C in normal mode, a warning for each program call of OB 2 or OB 5.
+pub fn normal_mode_calls(program: &Program, sources: &SourceSet) -> Vec<Report> {
+    let mut warnings = Vec::new();
+    for block in &program.blocks {
+        for (op, span) in block.code.iter().zip(&block.spans) {
+            let Op::Call { block: target, .. } = *op else {
+                continue;
+            };
+            let id = program.blocks[usize::from(target)].id;
+            if id.kind == BlockKind::Ob && normal_mode_skips(id.number) {
+                let warning = RunWarning::ObCallNormalMode {
+                    ob: id.to_string(),
+                    at: *span,
+                };
+                warnings.push(diagnostics::with_source(sources, *span, warning));
+            }
+        }
+    }
+    warnings
+}
