@@ -1,0 +1,222 @@
+//! `awl run` and `awl test`: runs, their reports, and their exit codes.
+
+use std::path::{Path, PathBuf};
+
+use clap::ValueEnum;
+
+use crate::profile::{self, InterruptPoints};
+use crate::runner::{self, NotRun, Ran, RunOptions};
+use crate::trace::TraceFormat;
+use crate::vm::cycle::RunLimit;
+
+use super::watch::{EXIT_HALTED, Watch};
+use super::{
+    Console, EXIT_EXPECTATION, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_STOP, EXIT_USAGE, Mnemonics,
+    selected_profile,
+};
+
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum Points {
+    Block,
+    Operation,
+}
+
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum CpuMode {
+    Normal,
+    Special,
+}
+
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum Format {
+    Text,
+    Jsonl,
+}
+
+#[derive(Debug, clap::Args)]
+pub struct RunArgs {
+    /// STL source files (.awl); optional with a scenario that names them
+    #[arg(required_unless_present = "scenario")]
+    pub files: Vec<PathBuf>,
+    /// Scenario file (TOML; its keys are documented in programs/README.md)
+    #[arg(long)]
+    pub scenario: Option<PathBuf>,
+    /// CPU profile (see `awl cpus`); overrides the scenario's
+    #[arg(long, value_parser = profile::names())]
+    pub cpu: Option<String>,
+    /// Run this many cycles (at least 1)
+    #[arg(long, conflicts_with = "duration", value_parser = clap::value_parser!(u64).range(1..))]
+    pub cycles: Option<u64>,
+    /// Run for this much simulated time, e.g. 250ms (ends at the next cycle end)
+    #[arg(long = "for", value_name = "DURATION", value_parser = parse_duration_arg)]
+    pub duration: Option<u64>,
+    /// Where interrupts are serviced
+    #[arg(long, value_enum)]
+    pub interrupt_points: Option<Points>,
+    /// SINUMERIK 840C mode: normal ignores OB 2 and OB 5, special runs them
+    #[arg(long, value_enum)]
+    pub mode: Option<CpuMode>,
+    /// Write a trace to FILE (`-` for stdout); programs/README.md describes its events
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
+    /// Trace format [default: jsonl]
+    #[arg(long, value_enum, requires = "trace")]
+    pub trace_format: Option<Format>,
+    /// Mnemonic set, instead of detecting it per file
+    #[arg(long, value_enum)]
+    pub mnemonics: Option<Mnemonics>,
+}
+
+#[derive(Debug, clap::Args)]
+pub struct TestArgs {
+    /// Scenario files (TOML)
+    #[arg(required = true)]
+    pub scenarios: Vec<PathBuf>,
+}
+
+fn parse_duration_arg(text: &str) -> Result<u64, String> {
+    match crate::scenario::parse_duration(text) {
+        Some(0) => Err("a run of no time: give a duration above zero".into()),
+        Some(ns) => Ok(ns),
+        None => Err(format!(
+            "`{text}` is not a duration; write e.g. 250ms, 2s, 500us"
+        )),
+    }
+}
+
+fn run_options(args: &RunArgs) -> RunOptions {
+    RunOptions {
+        files: args.files.clone(),
+        scenario: args.scenario.clone(),
+        cpu: args.cpu.as_deref().map(|name| selected_profile(Some(name))),
+        limit: args
+            .cycles
+            .map(RunLimit::Cycles)
+            .or(args.duration.map(RunLimit::Duration)),
+        points: args.interrupt_points.map(|points| match points {
+            Points::Block => InterruptPoints::Block,
+            Points::Operation => InterruptPoints::Operation,
+        }),
+        special_mode: args.mode.map(|mode| matches!(mode, CpuMode::Special)),
+        trace: args.trace.clone(),
+        trace_format: args.trace_format.map(|format| match format {
+            Format::Text => TraceFormat::Text,
+            Format::Jsonl => TraceFormat::Jsonl,
+        }),
+        mnemonics: args.mnemonics.map(Into::into),
+    }
+}
+
+/// Prints why a run did not run; its exit code.
+fn not_run(reason: NotRun, console: &mut Console) -> u8 {
+    match reason {
+        NotRun::Usage(report) => {
+            console.report(&report);
+            EXIT_USAGE
+        }
+        NotRun::SourceErrors(reports) | NotRun::Failed(reports) => {
+            console.reports(&reports);
+            EXIT_SOURCE_ERRORS
+        }
+    }
+}
+
+/// Runs with the progress line and Ctrl-C; whether the run was halted.
+fn watched_run(options: &RunOptions) -> (Result<Ran, NotRun>, bool) {
+    let mut watch = Watch::start();
+    let result = runner::run_watched(options, &mut |cpu| watch.go_on(cpu));
+    (result, watch.finish())
+}
+
+pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
+    let (ran, halted) = match watched_run(&run_options(args)) {
+        (Ok(ran), halted) => (ran, halted),
+        (Err(reason), _) => return not_run(reason, console),
+    };
+    console.reports(&ran.warnings);
+    if ran.trace_closed {
+        console.close_out();
+    }
+    if let Some(stop) = &ran.outcome.stop {
+        console.err(&format!("{:?}\n", runner::stop_report(&ran, stop)));
+    }
+    let summary = crate::report::summary(&ran);
+    if ran.trace_to_stdout {
+        console.err(&summary);
+    } else {
+        console.out(&summary);
+    }
+    if halted {
+        EXIT_HALTED
+    } else if !ran.mismatches.is_empty() {
+        EXIT_EXPECTATION
+    } else if ran.outcome.stop.is_some() {
+        EXIT_STOP
+    } else {
+        EXIT_OK
+    }
+}
+
+/// One scenario's line: PASS, or FAIL with the reason.
+fn verdict(path: &Path, result: Result<Ran, NotRun>, console: &mut Console) -> bool {
+    let failure = match result {
+        Ok(ran) => {
+            console.reports(&ran.warnings);
+            if ran.mismatches.is_empty() {
+                console.out(&format!(
+                    "PASS {}  ({}, {}, mode {})\n",
+                    path.display(),
+                    super::plural(ran.expectations as u64, "expectation"),
+                    super::plural(ran.outcome.cycles, "cycle"),
+                    ran.outcome.mode.name()
+                ));
+                return true;
+            }
+            ran.mismatches
+                .iter()
+                .map(|m| format!("{} expected {}, got {}", m.name, m.expected, m.actual))
+                .collect::<Vec<_>>()
+                .join("; ")
+        }
+        Err(NotRun::SourceErrors(reports)) => {
+            console.reports(&reports);
+            "the program has errors".to_string()
+        }
+        Err(NotRun::Usage(report)) => {
+            console.report(&report);
+            "the scenario could not run".to_string()
+        }
+        Err(NotRun::Failed(reports)) => {
+            console.reports(&reports);
+            "the scenario could not run".to_string()
+        }
+    };
+    console.out(&format!("FAIL {}  {failure}\n", path.display()));
+    false
+}
+
+pub fn test(args: &TestArgs, console: &mut Console) -> u8 {
+    let (mut passed, mut failed) = (0u64, 0u64);
+    for path in &args.scenarios {
+        let options = RunOptions {
+            scenario: Some(path.clone()),
+            ..RunOptions::default()
+        };
+        let (result, halted) = watched_run(&options);
+        if halted {
+            console.err("awl test: halted\n");
+            return EXIT_HALTED;
+        }
+        if verdict(path, result, console) {
+            passed += 1;
+        } else {
+            failed += 1;
+        }
+    }
+    console.out(&format!("{passed} passed, {failed} failed\n"));
+    if failed == 0 {
+        EXIT_OK
+    } else {
+        EXIT_EXPECTATION
+    }
+}

@@ -1,0 +1,68 @@
+//! `awl check` and `awl dump`: the front end alone.
+
+use miette::Report;
+
+use crate::diagnostics;
+use crate::frontend::{self, Frontend};
+
+use super::{Console, EXIT_OK, EXIT_SOURCE_ERRORS, SourceOptions, plural, selected_profile};
+
+/// Runs the front end and prints its diagnostics; `None` when a file could not be read.
+fn build(options: &SourceOptions, console: &mut Console) -> Option<Frontend> {
+    let sources = match frontend::read_sources(&options.files) {
+        Ok(sources) => sources,
+        Err(errors) => {
+            for error in errors {
+                console.report(&Report::new(error));
+            }
+            return None;
+        }
+    };
+    let profile = selected_profile(options.cpu.as_deref());
+    let built = frontend::build(sources, options.mnemonics.map(Into::into), profile);
+    for diagnostic in &built.diagnostics {
+        console.report(&diagnostics::report(&built.sources, diagnostic));
+    }
+    Some(built)
+}
+
+fn count_summary(built: &Frontend) -> String {
+    let errors = built.diagnostics.iter().filter(|d| !d.is_warning()).count();
+    let warnings = built.diagnostics.len() - errors;
+    format!(
+        "{}, {} in {}",
+        plural(errors as u64, "error"),
+        plural(warnings as u64, "warning"),
+        plural(built.sources.files.len() as u64, "file")
+    )
+}
+
+pub fn check(options: &SourceOptions, console: &mut Console) -> u8 {
+    let Some(built) = build(options, console) else {
+        return EXIT_SOURCE_ERRORS;
+    };
+    let blocks = built.compiled.program.blocks.len() + built.compiled.program.data_blocks.len();
+    if built.has_errors() {
+        console.err(&format!("awl check: {}\n", count_summary(&built)));
+        EXIT_SOURCE_ERRORS
+    } else {
+        console.out(&format!(
+            "awl check: ok, {}, {}\n",
+            plural(blocks as u64, "block"),
+            count_summary(&built)
+        ));
+        EXIT_OK
+    }
+}
+
+pub fn dump(options: &SourceOptions, console: &mut Console) -> u8 {
+    let Some(built) = build(options, console) else {
+        return EXIT_SOURCE_ERRORS;
+    };
+    if built.has_errors() {
+        console.err(&format!("awl dump: {}\n", count_summary(&built)));
+        return EXIT_SOURCE_ERRORS;
+    }
+    console.out(&crate::dump::dump(&built.compiled.program, &built.sources));
+    EXIT_OK
+}

@@ -1,0 +1,92 @@
+//! Long runs: a progress line on a terminal, and Ctrl-C or SIGTERM halting the run at the next
+//! cycle boundary (a second one ends the process at once).
+
+use std::io::IsTerminal;
+use std::sync::Once;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::trace::format_ms;
+use crate::vm::Cpu;
+
+/// Set by Ctrl-C or SIGTERM.
+static HALT: AtomicBool = AtomicBool::new(false);
+
+/// The exit code of a run halted by Ctrl-C or SIGTERM (128 + SIGINT, as shells report it).
+pub const EXIT_HALTED: u8 = 130;
+
+/// Wall time before the progress line appears: short runs print nothing.
+const QUIET_FOR: Duration = Duration::from_secs(1);
+
+/// Cycles between two looks at the clock.
+const CYCLES_PER_LOOK: u64 = 64;
+
+fn install_handler() {
+    static INSTALL: Once = Once::new();
+    INSTALL.call_once(|| {
+        // Without a handler (the platform refused) Ctrl-C simply ends the process.
+        let _ = ctrlc::set_handler(|| {
+            if HALT.swap(true, Ordering::SeqCst) {
+                std::process::exit(i32::from(EXIT_HALTED));
+            }
+        });
+    });
+}
+
+/// Watches one run from its cycle boundaries.
+pub struct Watch {
+    started: Instant,
+    boundaries: u64,
+    bar: Option<ProgressBar>,
+    terminal: bool,
+}
+
+impl Watch {
+    pub fn start() -> Self {
+        install_handler();
+        Watch {
+            started: Instant::now(),
+            boundaries: 0,
+            bar: None,
+            terminal: std::io::stderr().is_terminal(),
+        }
+    }
+
+    /// Whether the run goes on; updates the progress line now and then.
+    pub fn go_on(&mut self, cpu: &Cpu) -> bool {
+        if HALT.load(Ordering::Relaxed) {
+            return false;
+        }
+        self.boundaries += 1;
+        if !self.terminal || !self.boundaries.is_multiple_of(CYCLES_PER_LOOK) {
+            return true;
+        }
+        let wall = self.started.elapsed();
+        if wall < QUIET_FOR {
+            return true;
+        }
+        let bar = self.bar.get_or_insert_with(|| {
+            let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+            bar.set_style(ProgressStyle::with_template("{spinner} {msg}").expect("valid template"));
+            bar.enable_steady_tick(Duration::from_millis(200));
+            bar
+        });
+        let rate = cpu.instructions as f64 / wall.as_secs_f64() / 1e6;
+        bar.set_message(format!(
+            "running: simulated {}, {} cycles, {rate:.1} M instr/s (Ctrl-C halts at the next cycle end)",
+            format_ms(cpu.clock),
+            cpu.cycle
+        ));
+        true
+    }
+
+    /// Removes the progress line; whether the run was halted by Ctrl-C or SIGTERM.
+    pub fn finish(self) -> bool {
+        if let Some(bar) = self.bar {
+            bar.finish_and_clear();
+        }
+        HALT.load(Ordering::Relaxed)
+    }
+}
