@@ -247,7 +247,8 @@ impl Cpu {
                 status: Status::default(),
                 brackets: Brackets::default(),
                 open_db: None,
-                block: 0,
+                // No block runs before the first cycle; a STOP then names none.
+                block: IDLE,
                 pc: 0,
                 params: NO_PARAMS,
                 level_base: 0,
@@ -347,8 +348,9 @@ impl Cpu {
     /// at the end of OB 1, where the cycle ended.
     pub fn stop(&self, cause: StopCause, pc: u32, detail: StopDetail) -> Stop {
         let (block, pc) = if self.level.block == IDLE {
-            // Between cycles: at the end of OB 1, where the cycle ended, if there is one.
-            match self.program.ob(1) {
+            // Between cycles: at the end of OB 1, where the cycle ended, if there is one and
+            // it has run.
+            match self.program.ob(1).filter(|_| self.instructions > 0) {
                 Some(ob1) => {
                     let last = self.program.blocks[usize::from(ob1)]
                         .code
