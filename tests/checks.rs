@@ -268,3 +268,21 @@ fn diagnostics_keep_their_stage() {
         [SourceDiagnostic::Parse(_)]
     ));
 }
+
+/// An unknown parameter name far from every declared one lists the declared names; `C` with
+/// a block that is no DB says what `C` opens.
+#[test]
+fn help_lists_declared_parameters_and_what_c_opens() {
+    let program = "OB 1\n      JU FB 1\nNAME :X\nSPEED :I 0.0\n      BE\nFB 1\nNAME :X\nDES  :IN1 I BI\nDES  :IN2 I BI\n      BE\n";
+    assert!(
+        rendered("sinumerik-840c", program).contains("FB 1 declares: IN1, IN2"),
+        "{}",
+        rendered("sinumerik-840c", program)
+    );
+    let open = format!("{}PB 3\n      BE\n", in_pb("C  PB 3"));
+    assert!(
+        rendered("sinumerik-840c", &open).contains("opens a data block"),
+        "{}",
+        rendered("sinumerik-840c", &open)
+    );
+}

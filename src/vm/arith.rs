@@ -176,6 +176,21 @@ mod tests {
         assert!(!status.rlo());
     }
 
+    /// CC1 says whether the result is non-zero; CC0 is 0 and the overflow bit stays as it was
+    /// (S5-101U manual, 5.2.5).
+    #[test]
+    fn word_logic_codes_say_zero_or_not() {
+        let mut status = Status::default();
+        status.set_result(0, true);
+        let mut accu = 0xFFFF_0F0F;
+        word_logic(WordLogic::And, &mut accu, 0xF0F0, &mut status);
+        assert_eq!(accu, 0xFFFF_0000, "ACCU 1-H is kept");
+        assert!(!status.cc1() && !status.cc0() && status.ov());
+        word_logic(WordLogic::Or, &mut accu, 0x0100, &mut status);
+        assert_eq!(accu, 0xFFFF_0100);
+        assert!(status.cc1() && !status.cc0() && status.ov());
+    }
+
     #[test]
     fn shifts_and_complements() {
         let mut status = Status::default();
