@@ -18,5 +18,6 @@ pub mod report;
 pub mod runner;
 pub mod scenario;
 pub mod source;
+pub mod state;
 pub mod trace;
 pub mod vm;

@@ -173,6 +173,12 @@ fn time_controlled_response(out: &mut String, cpu: &Cpu) {
 }
 
 /// The summary of `awl run`; it ends with the `cpu:` and `instructions:` lines scripts read.
+/// `n thing` or `n things`.
+pub fn plural(n: impl Into<u64>, word: &str) -> String {
+    let n = n.into();
+    format!("{n} {word}{}", if n == 1 { "" } else { "s" })
+}
+
 pub fn summary(ran: &crate::runner::Ran) -> String {
     let mut out = String::new();
     let outcome = &ran.outcome;
@@ -229,6 +235,18 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
             out,
             "halted: interrupted (Ctrl-C or SIGTERM) at the cycle boundary after cycle {}",
             outcome.cycles
+        );
+    }
+    let times = cpu.cycle_times;
+    if let Some(mean) = times.mean_ns() {
+        let ms = |ns: u64| ns as f64 / 1e6;
+        let _ = writeln!(
+            out,
+            "cycle time min/mean/max {:.3}/{:.3}/{:.3} ms over {}",
+            ms(times.min_ns),
+            ms(mean),
+            ms(times.max_ns),
+            plural(times.count, "completed cycle")
         );
     }
     let simulated = outcome.clock_ns as f64 / 1e6;

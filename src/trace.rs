@@ -106,6 +106,11 @@ pub enum Event {
         block: String,
         line: u32,
     },
+    /// A row of the watch table: the watched operands' values at a cycle boundary.
+    Watch {
+        cycle: u64,
+        values: crate::state::watch::WatchValues,
+    },
 }
 
 #[derive(Serialize)]
@@ -317,6 +322,13 @@ fn text(event: &Event) -> String {
             reason,
         } => format!("· module {module} channel {channel} (OB {ob}): {reason}"),
         Event::Stop { cause, block, line } => format!("STOP {cause} in {block} line {line}"),
+        Event::Watch { values, .. } => {
+            let values: Vec<String> = values
+                .iter()
+                .map(|(operand, value)| format!("{operand} = {value}"))
+                .collect();
+            format!("watch: {}", values.join(", "))
+        }
     }
 }
 

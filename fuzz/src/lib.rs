@@ -78,6 +78,7 @@ pub fn run(
         trace_to_stdout: false,
         warnings: Vec::new(),
         trace_closed: false,
+        watch: awl::state::watch::WatchTable::default(),
     };
     assert!(!awl::report::summary(&ran).is_empty());
     if let Some(stop) = &ran.outcome.stop {

@@ -98,8 +98,4 @@ fn selected_profile(name: Option<&str>) -> &'static Profile {
         .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile exists"))
 }
 
-/// `n thing` or `n things`.
-pub fn plural(n: impl Into<u64>, word: &str) -> String {
-    let n = n.into();
-    format!("{n} {word}{}", if n == 1 { "" } else { "s" })
-}
+pub use crate::report::plural;

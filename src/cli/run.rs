@@ -6,6 +6,7 @@ use clap::ValueEnum;
 
 use crate::profile::{self, InterruptPoints};
 use crate::runner::{self, NotRun, Ran, RunOptions};
+use crate::state::State;
 use crate::trace::TraceFormat;
 use crate::vm::cycle::RunLimit;
 
@@ -31,6 +32,12 @@ pub enum CpuMode {
 pub enum Format {
     Text,
     Jsonl,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum StateFormat {
+    Text,
+    Json,
 }
 
 #[derive(Debug, clap::Args)]
@@ -65,6 +72,20 @@ pub struct RunArgs {
     /// Mnemonic set, instead of detecting it per file
     #[arg(long, value_enum)]
     pub mnemonics: Option<Mnemonics>,
+    /// Print the CPU's state at the end: ACCUs, status word, images, timers, counters, DBs
+    #[arg(long)]
+    pub state: bool,
+    /// The state as text after the summary, or as JSON alone on stdout (the summary then goes
+    /// to stderr); implies --state
+    #[arg(long, value_enum)]
+    pub state_format: Option<StateFormat>,
+    /// Watch operands (STATUS VAR), e.g. "Q 4.0, FW 10, T 1, C 2, DB 10 DW 3": a row each time
+    /// one changed at a cycle end
+    #[arg(long, value_name = "OPERANDS")]
+    pub watch: Option<String>,
+    /// A watch row every DURATION of simulated time (at the next cycle end) instead of on change
+    #[arg(long, value_name = "DURATION", value_parser = parse_duration_arg)]
+    pub watch_every: Option<u64>,
 }
 
 #[derive(Debug, clap::Args)]
@@ -104,6 +125,15 @@ fn run_options(args: &RunArgs) -> RunOptions {
             Format::Jsonl => TraceFormat::Jsonl,
         }),
         mnemonics: args.mnemonics.map(Into::into),
+        watch: args
+            .watch
+            .iter()
+            .flat_map(|list| list.split(','))
+            .map(str::trim)
+            .filter(|operand| !operand.is_empty())
+            .map(str::to_string)
+            .collect(),
+        watch_every_ns: args.watch_every,
     }
 }
 
@@ -129,6 +159,19 @@ fn watched_run(options: &RunOptions) -> (Result<Ran, NotRun>, bool) {
 }
 
 pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
+    let state = args
+        .state_format
+        .or(args.state.then_some(StateFormat::Text));
+    let trace_to_stdout = args
+        .trace
+        .as_ref()
+        .is_some_and(|path| path.as_os_str() == "-");
+    if state == Some(StateFormat::Json) && trace_to_stdout {
+        return not_run(
+            NotRun::Usage(miette::Report::new(runner::RunError::StdoutTwice)),
+            console,
+        );
+    }
     let (ran, halted) = match watched_run(&run_options(args)) {
         (Ok(ran), halted) => (ran, halted),
         (Err(reason), _) => return not_run(reason, console),
@@ -140,11 +183,26 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
     if let Some(stop) = &ran.outcome.stop {
         console.err(&format!("{:?}\n", runner::stop_report(&ran, stop)));
     }
-    let summary = crate::report::summary(&ran);
-    if ran.trace_to_stdout {
-        console.err(&summary);
+    let stdout_taken = ran.trace_to_stdout || state == Some(StateFormat::Json);
+    let mut report = ran.watch.render();
+    if ran.watch.is_empty() {
+        report.clear();
+    }
+    report.push_str(&crate::report::summary(&ran));
+    if stdout_taken {
+        console.err(&report);
     } else {
-        console.out(&summary);
+        console.out(&report);
+    }
+    if let Some(format) = state {
+        let state = State::capture(&ran.cpu, ran.outcome.stop.as_ref());
+        match format {
+            StateFormat::Text => console.out(&crate::state::render(&state)),
+            StateFormat::Json => console.out(&format!(
+                "{}\n",
+                serde_json::to_string_pretty(&state).expect("the state is plain data")
+            )),
+        }
     }
     if halted {
         EXIT_HALTED

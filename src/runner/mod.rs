@@ -12,12 +12,15 @@ use std::sync::Arc;
 use miette::{Diagnostic, Report};
 use thiserror::Error;
 
+use crate::compiler::Program;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend};
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
 use crate::scenario::Scenario;
 use crate::scenario::expect::{self, Mismatch};
+use crate::scenario::operand::{Target, parse_target};
+use crate::state::watch::WatchTable;
 use crate::trace::{TraceFormat, Tracer};
 use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
@@ -41,6 +44,10 @@ pub struct RunOptions {
     pub trace: Option<PathBuf>,
     pub trace_format: Option<TraceFormat>,
     pub mnemonics: Option<MnemonicSet>,
+    /// Operands to watch (`--watch "Q 4.0, FW 10"`), added to the scenario's `watch`.
+    pub watch: Vec<String>,
+    /// A watch row every this much simulated time instead of one per change.
+    pub watch_every_ns: Option<u64>,
 }
 
 #[derive(Debug, Error, Diagnostic)]
@@ -63,6 +70,20 @@ pub enum RunError {
         help("check that the directory exists and is writable")
     )]
     TraceWrite { path: String, reason: String },
+    #[error("`--state-format json` and `--trace -` both want stdout")]
+    #[diagnostic(
+        code(awl::cli::stdout_twice),
+        help("write the trace to a file (`--trace run.jsonl`), or print the state as text")
+    )]
+    StdoutTwice,
+    #[error("cannot watch `{operand}`: {reason}")]
+    #[diagnostic(
+        code(awl::cli::watch_operand),
+        help(
+            "write operands as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
+        )
+    )]
+    WatchOperand { operand: String, reason: String },
 }
 
 /// Everything a finished run has to say.
@@ -79,6 +100,8 @@ pub struct Ran {
     pub warnings: Vec<Report>,
     /// The trace could not be written to the end because its output was closed (a pipe).
     pub trace_closed: bool,
+    /// The watch table's rows (empty without `--watch` or `watch = [...]`).
+    pub watch: WatchTable,
 }
 
 /// Why a run did not get to run.
@@ -192,6 +215,10 @@ pub fn run_watched(
         }
         None => (Vec::new(), Vec::new()),
     };
+    let mut watch = WatchTable::new(
+        watched(options, scenario.as_ref(), &program, set)?,
+        options.watch_every_ns,
+    );
     let points = options
         .points
         .or(scenario.as_ref().and_then(|s| s.points))
@@ -231,7 +258,11 @@ pub fn run_watched(
     if let Some(path) = &options.trace {
         cpu.tracer = open_trace(path, options.trace_format.unwrap_or(TraceFormat::Jsonl))?;
     }
-    let outcome = cpu.run_watched(limit, go_on);
+    let outcome = cpu.run_watched(limit, &mut |cpu| {
+        watch.observe(cpu);
+        go_on(cpu)
+    });
+    watch.observe(&mut cpu);
     if let Some(scenario) = &scenario
         && outcome.stop.is_none()
         && !outcome.halted
@@ -263,5 +294,32 @@ pub fn run_watched(
         trace_to_stdout,
         warnings,
         trace_closed,
+        watch,
     })
+}
+
+/// The watched operands: the scenario's `watch`, then the command line's.
+fn watched(
+    options: &RunOptions,
+    scenario: Option<&Scenario>,
+    program: &Program,
+    set: MnemonicSet,
+) -> Result<Vec<(String, Target)>, NotRun> {
+    let mut targets = match scenario {
+        Some(scenario) => scenario
+            .watch_targets(program, set)
+            .map_err(NotRun::Failed)?,
+        None => Vec::new(),
+    };
+    for operand in &options.watch {
+        let target = parse_target(operand, (0, 0).into(), set, program.profile, program.layout)
+            .map_err(|error| {
+                NotRun::Usage(Report::new(RunError::WatchOperand {
+                    operand: operand.clone(),
+                    reason: error.reason(),
+                }))
+            })?;
+        targets.push((operand.clone(), target));
+    }
+    Ok(targets)
 }

@@ -101,7 +101,16 @@ pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
             "the operating system (between cycles)".to_string(),
         ),
     };
-    let stack = stack_text(stop);
+    let levels = crate::state::levels(&ran.cpu, stop);
+    let stack = if levels.is_empty() {
+        stack_text(stop)
+    } else {
+        format!(
+            "{}\n{}",
+            stack_text(stop),
+            crate::state::istack_text(&levels)
+        )
+    };
     let detail = match &stop.detail {
         StopDetail::Text(text) => text.clone(),
         _ => String::new(),

@@ -101,6 +101,19 @@ pub enum ScenarioError {
 }
 
 impl ScenarioError {
+    /// Why an operand was refused, for messages outside a scenario file (the command line).
+    pub fn reason(&self) -> String {
+        match self {
+            ScenarioError::UnknownOperand { reason, help, .. } => match help {
+                Some(help) => format!("{reason}; {help}"),
+                None => reason.clone(),
+            },
+            other => other.to_string(),
+        }
+    }
+}
+
+impl ScenarioError {
     /// Where the error stands in the file, to report errors in file order.
     pub fn offset(&self) -> usize {
         match self {

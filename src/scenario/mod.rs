@@ -49,6 +49,7 @@ pub struct Scenario {
     pub hw_modules: Vec<(u16, u8)>,
     events: Vec<Spanned<RawEvent>>,
     expect: SpannedTable,
+    watch: Vec<Spanned<String>>,
 }
 
 fn span<T>(spanned: &Spanned<T>) -> SourceSpan {
@@ -230,6 +231,7 @@ impl Scenario {
             hw_modules,
             events: raw.event,
             expect: raw.expect,
+            watch: raw.watch,
         }
     }
 
@@ -489,6 +491,38 @@ impl Scenario {
         }
         if errors.0.is_empty() {
             Ok(expectations)
+        } else {
+            Err(self.reports(errors.0))
+        }
+    }
+}
+
+impl Scenario {
+    /// The operands of `watch = [...]`, checked like those of `[expect]`.
+    pub fn watch_targets(
+        &self,
+        program: &Program,
+        set: MnemonicSet,
+    ) -> Result<Vec<(String, Target)>, Vec<Report>> {
+        let mut errors = Errors::default();
+        let targets: Vec<(String, Target)> = self
+            .watch
+            .iter()
+            .filter_map(|operand| {
+                let target = parse_target(
+                    operand.get_ref(),
+                    self.key_span(operand),
+                    set,
+                    self.profile,
+                    program.layout,
+                );
+                errors
+                    .keep(target)
+                    .map(|target| (operand.get_ref().clone(), target))
+            })
+            .collect();
+        if errors.0.is_empty() {
+            Ok(targets)
         } else {
             Err(self.reports(errors.0))
         }

@@ -26,6 +26,7 @@ pub const KEYS: &[&str] = &[
     "hw_module",
     "event",
     "expect",
+    "watch",
 ];
 
 #[derive(Debug, Default)]
@@ -40,6 +41,7 @@ pub struct RawScenario {
     pub hw_module: Vec<Spanned<RawHwModule>>,
     pub event: Vec<Spanned<RawEvent>>,
     pub expect: SpannedTable,
+    pub watch: Vec<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -152,6 +154,7 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "watchdog" => keep(read(value).map(|v| raw.watchdog = Some(v))),
             "ob13" => keep(read(value).map(|v| raw.ob13 = Some(v))),
             "expect" => keep(read(value).map(|v| raw.expect = v)),
+            "watch" => keep(read(value).map(|v| raw.watch = v)),
             "hw_module" => raw.hw_module = read_each(value, &mut errors),
             "event" => raw.event = read_each(value, &mut errors),
             other => errors.push(ScenarioError::UnknownKey {

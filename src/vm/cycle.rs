@@ -17,6 +17,32 @@ pub enum RunLimit {
     Duration(u64),
 }
 
+/// The cycle times of the completed cycles.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CycleTimes {
+    pub count: u64,
+    pub min_ns: u64,
+    pub max_ns: u64,
+    pub total_ns: u64,
+}
+
+impl CycleTimes {
+    fn record(&mut self, ns: u64) {
+        self.min_ns = if self.count == 0 {
+            ns
+        } else {
+            self.min_ns.min(ns)
+        };
+        self.max_ns = self.max_ns.max(ns);
+        self.total_ns += ns;
+        self.count += 1;
+    }
+
+    pub fn mean_ns(&self) -> Option<u64> {
+        self.total_ns.checked_div(self.count)
+    }
+}
+
 /// What a run did.
 #[derive(Debug, Clone)]
 pub struct RunOutcome {
@@ -219,6 +245,7 @@ impl Cpu {
             return Err(self.stop(StopCause::Stp, pc, super::stop::StopDetail::None));
         }
         let cycle_time = self.clock - self.cycle_started_at;
+        self.cycle_times.record(cycle_time);
         if self.tracer.enabled {
             let event = Event::CycleEnd {
                 cycle: self.cycle,
@@ -247,7 +274,7 @@ impl Cpu {
     pub fn run_watched(
         &mut self,
         limit: RunLimit,
-        go_on: &mut dyn FnMut(&Cpu) -> bool,
+        go_on: &mut dyn FnMut(&mut Cpu) -> bool,
     ) -> RunOutcome {
         let started = Instant::now();
         let mut halted = false;

@@ -247,10 +247,26 @@ impl Cpu {
                 }
             }
             match op {
-                Op::And(bit) => status.and(self.image_bit(bit)),
-                Op::AndNot(bit) => status.and(!self.image_bit(bit)),
-                Op::Or(bit) => status.or(self.image_bit(bit)),
-                Op::OrNot(bit) => status.or(!self.image_bit(bit)),
+                Op::And(bit) => {
+                    let value = self.image_bit(bit);
+                    status.scan(value);
+                    status.and(value);
+                }
+                Op::AndNot(bit) => {
+                    let value = self.image_bit(bit);
+                    status.scan(value);
+                    status.and(!value);
+                }
+                Op::Or(bit) => {
+                    let value = self.image_bit(bit);
+                    status.scan(value);
+                    status.or(value);
+                }
+                Op::OrNot(bit) => {
+                    let value = self.image_bit(bit);
+                    status.scan(value);
+                    status.or(!value);
+                }
                 Op::Assign(bit) => {
                     self.write_image_bit(bit, status.rlo());
                     status.end_string();
@@ -634,6 +650,7 @@ impl Cpu {
                     BitSource::Timer(n) => self.timers[usize::from(n)].bit(now),
                     BitSource::Counter(n) => self.counters[usize::from(n)].bit(),
                 };
+                self.level.status.scan(value);
                 match logic {
                     Logic::And => self.level.status.and(value),
                     Logic::AndNot => self.level.status.and(!value),

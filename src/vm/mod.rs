@@ -213,6 +213,7 @@ pub struct Cpu {
     pub longest_system: Stretch,
     pub engine: Engine,
     pub tracer: Tracer,
+    pub cycle_times: cycle::CycleTimes,
 }
 
 impl Cpu {
@@ -272,6 +273,7 @@ impl Cpu {
             longest_system: Stretch::default(),
             engine: Engine::new(profile, EngineConfig::default(), Vec::new()),
             tracer: Tracer::off(),
+            cycle_times: cycle::CycleTimes::default(),
             profile,
             program,
             sources,

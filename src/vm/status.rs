@@ -15,6 +15,8 @@ const CC0: u8 = 16;
 const OV: u8 = 32;
 /// Overflow, stored until a jump on it.
 const OS: u8 = 64;
+/// STA: the signal state of the last bit operand scanned.
+const STA: u8 = 128;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Status {
@@ -46,6 +48,22 @@ impl Status {
     }
     pub fn os(self) -> bool {
         self.get(OS)
+    }
+    pub fn sta(self) -> bool {
+        self.get(STA)
+    }
+    /// The first-check bit: a logic string is in progress.
+    pub fn first_check(self) -> bool {
+        self.get(FIRST_CHECK_DONE)
+    }
+    pub fn or_bit(self) -> bool {
+        self.get(OR_BIT)
+    }
+
+    /// A bit operand was scanned: STA shows its signal state.
+    #[inline(always)]
+    pub fn scan(&mut self, value: bool) {
+        self.bits = self.bits & !STA | if value { STA } else { 0 };
     }
 
     pub fn set_condition(&mut self, cc1: bool, cc0: bool) {

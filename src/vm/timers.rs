@@ -152,6 +152,11 @@ impl Timer {
         self.output
     }
 
+    /// The time base, 0…3 (10 ms, 100 ms, 1 s, 10 s).
+    pub fn base(&self) -> u8 {
+        self.base
+    }
+
     /// The remaining time in units of the base (`L T n`).
     pub fn value(&self, now: u64) -> u16 {
         if !self.running {

@@ -1,0 +1,266 @@
+//! The CPU's state as a PG shows it: accumulators, status word, open DB, the non-zero bytes of
+//! the process images and flags, the timers and counters in use, the data words that are not
+//! zero, and at a STOP the processing levels (the ISTACK). One plain structure, printed as text
+//! (`--state`) or as JSON (`--state-format json`); `programs/README.md` documents the schema.
+
+mod text;
+pub mod watch;
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::compiler::Layout;
+use crate::vm::counters::Counter;
+use crate::vm::status::Status;
+use crate::vm::stop::Stop;
+use crate::vm::timers::Timer;
+use crate::vm::{Cpu, IDLE, LevelState, Mode};
+
+pub use text::{istack_text, render};
+
+/// The status word, bit by bit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct StatusBits {
+    pub first_check: bool,
+    pub rlo: bool,
+    pub sta: bool,
+    pub or: bool,
+    pub os: bool,
+    pub ov: bool,
+    pub cc1: bool,
+    pub cc0: bool,
+}
+
+impl From<Status> for StatusBits {
+    fn from(status: Status) -> Self {
+        StatusBits {
+            first_check: status.first_check(),
+            rlo: status.rlo(),
+            sta: status.sta(),
+            or: status.or_bit(),
+            os: status.os(),
+            ov: status.ov(),
+            cc1: status.cc1(),
+            cc0: status.cc0(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct TimerState {
+    pub number: u16,
+    /// The remaining time in units of the base.
+    pub value: u16,
+    /// 0…3: 10 ms, 100 ms, 1 s, 10 s.
+    pub base: u8,
+    pub running: bool,
+    pub bit: bool,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct CounterState {
+    pub number: u16,
+    pub value: u16,
+    pub bit: bool,
+}
+
+/// A return point on a level's block stack.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct ReturnPoint {
+    pub block: String,
+    pub line: u32,
+}
+
+/// One processing level at a STOP: the one that was running first, then those it interrupted.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct LevelView {
+    pub block: String,
+    pub line: u32,
+    pub accu: Vec<u32>,
+    pub status: StatusBits,
+    pub open_db: Option<u8>,
+    /// Innermost first.
+    pub return_points: Vec<ReturnPoint>,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct State {
+    pub mode: &'static str,
+    /// ACCU 1, ACCU 2 (and 3, 4 on CPUs with four).
+    pub accu: Vec<u32>,
+    pub status: StatusBits,
+    pub open_db: Option<u8>,
+    /// `"I"`, `"Q"`, `"F"` → byte number → value, the non-zero bytes only.
+    pub images: BTreeMap<&'static str, BTreeMap<String, u8>>,
+    pub timers: Vec<TimerState>,
+    pub counters: Vec<CounterState>,
+    /// `"DB 10"` → word number → value, the non-zero words only.
+    pub data_blocks: BTreeMap<String, BTreeMap<String, u16>>,
+    /// At a STOP: the running level first, then the interrupted ones.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub levels: Option<Vec<LevelView>>,
+}
+
+fn accumulators(cpu: &Cpu, level: &LevelState) -> Vec<u32> {
+    let mut accu = vec![level.accu1, level.accu2];
+    if cpu.profile.accumulators == 4 {
+        accu.extend([level.accu3, level.accu4]);
+    }
+    accu
+}
+
+fn non_zero_bytes(bytes: &[u8]) -> BTreeMap<String, u8> {
+    bytes
+        .iter()
+        .enumerate()
+        .filter(|(_, byte)| **byte != 0)
+        .map(|(n, byte)| (n.to_string(), *byte))
+        .collect()
+}
+
+fn images(cpu: &Cpu) -> BTreeMap<&'static str, BTreeMap<String, u8>> {
+    let layout: Layout = cpu.program.layout;
+    let image = usize::from(layout.image_bytes);
+    let flags = usize::from(layout.flag_base());
+    [
+        ("I", &cpu.image[..image]),
+        ("Q", &cpu.image[image..2 * image]),
+        (
+            "F",
+            &cpu.image[flags..flags + usize::from(layout.flag_bytes)],
+        ),
+    ]
+    .into_iter()
+    .map(|(area, bytes)| (area, non_zero_bytes(bytes)))
+    .collect()
+}
+
+fn timers(cpu: &Cpu) -> Vec<TimerState> {
+    let untouched = Timer::default();
+    cpu.timers
+        .iter()
+        .enumerate()
+        .filter(|(_, timer)| **timer != untouched)
+        .map(|(number, timer)| {
+            let mut timer = *timer;
+            TimerState {
+                number: number as u16,
+                bit: timer.bit(cpu.clock),
+                value: timer.value(cpu.clock),
+                base: timer.base(),
+                running: timer.running,
+            }
+        })
+        .collect()
+}
+
+fn counters(cpu: &Cpu) -> Vec<CounterState> {
+    let untouched = Counter::default();
+    cpu.counters
+        .iter()
+        .enumerate()
+        .filter(|(_, counter)| **counter != untouched)
+        .map(|(number, counter)| CounterState {
+            number: number as u16,
+            value: counter.value,
+            bit: counter.bit(),
+        })
+        .collect()
+}
+
+fn data_blocks(cpu: &Cpu) -> BTreeMap<String, BTreeMap<String, u16>> {
+    cpu.data_blocks
+        .iter()
+        .enumerate()
+        .filter_map(|(number, words)| Some((number, words.as_ref()?)))
+        .map(|(number, words)| {
+            let non_zero = words
+                .iter()
+                .enumerate()
+                .filter(|(_, word)| **word != 0)
+                .map(|(n, word)| (n.to_string(), *word))
+                .collect();
+            (format!("DB {number}"), non_zero)
+        })
+        .collect()
+}
+
+/// The levels at a STOP: the running one as the STOP recorded it (its return points are the
+/// head of the STOP's BSTACK), then the interrupted ones from their saved registers.
+pub fn levels(cpu: &Cpu, stop: &Stop) -> Vec<LevelView> {
+    let Some(block) = stop.block else {
+        return Vec::new();
+    };
+    let return_points = |frames: &[crate::vm::Frame]| {
+        frames
+            .iter()
+            .rev()
+            .map(|frame| ReturnPoint {
+                block: cpu.block_id(frame.block).to_string(),
+                line: cpu.line_of(frame.block, frame.pc.saturating_sub(1)),
+            })
+            .collect::<Vec<_>>()
+    };
+    let mut interrupted = Vec::new();
+    if cpu.level.block != IDLE {
+        let mut base = cpu.level.level_base;
+        for level in cpu.levels.iter().rev() {
+            if level.block == IDLE {
+                break;
+            }
+            let top = base;
+            base = level.level_base;
+            interrupted.push(LevelView {
+                block: cpu.block_id(level.block).to_string(),
+                line: cpu.line_of(level.block, level.pc),
+                accu: accumulators(cpu, level),
+                status: level.status.into(),
+                open_db: level.open_db,
+                return_points: return_points(&cpu.frames[base..top]),
+            });
+        }
+    }
+    let below: usize = interrupted
+        .iter()
+        .map(|level| 1 + level.return_points.len())
+        .sum();
+    let own = stop.stack.len().saturating_sub(1 + below);
+    let running = LevelView {
+        block: cpu.block_id(block).to_string(),
+        line: cpu.line_of(block, stop.pc),
+        accu: accumulators(cpu, &cpu.level),
+        status: cpu.level.status.into(),
+        open_db: cpu.level.open_db,
+        return_points: stop
+            .stack
+            .iter()
+            .skip(1)
+            .take(own)
+            .map(|entry| ReturnPoint {
+                block: entry.block.clone(),
+                line: entry.line,
+            })
+            .collect(),
+    };
+    std::iter::once(running).chain(interrupted).collect()
+}
+
+impl State {
+    /// The state of `cpu` now; `stop` adds the levels.
+    pub fn capture(cpu: &Cpu, stop: Option<&Stop>) -> State {
+        State {
+            mode: cpu.mode.name(),
+            accu: accumulators(cpu, &cpu.level),
+            status: cpu.level.status.into(),
+            open_db: cpu.level.open_db,
+            images: images(cpu),
+            timers: timers(cpu),
+            counters: counters(cpu),
+            data_blocks: data_blocks(cpu),
+            levels: stop
+                .filter(|_| cpu.mode == Mode::Stop)
+                .map(|stop| levels(cpu, stop)),
+        }
+    }
+}
