@@ -5,36 +5,8 @@
 
 mod common;
 
-use awl::runner::{self, Ran, RunOptions};
+use awl::runner::{self, Ran};
 use common::*;
-use serde_json::Value;
-
-fn traced(name: &str, program: &str, scenario: &str) -> (Ran, Vec<Value>) {
-    let dir = std::path::PathBuf::from("target/test-scenarios").join(name);
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("program.awl"), program).unwrap();
-    std::fs::write(
-        dir.join("scenario.toml"),
-        format!("program = [\"program.awl\"]\n{scenario}"),
-    )
-    .unwrap();
-    let options = RunOptions {
-        scenario: Some(dir.join("scenario.toml")),
-        trace: Some(dir.join("trace.jsonl")),
-        ..RunOptions::default()
-    };
-    let ran = ran(runner::run(&options));
-    let events = std::fs::read_to_string(dir.join("trace.jsonl"))
-        .unwrap()
-        .lines()
-        .map(|line| serde_json::from_str(line).unwrap())
-        .collect();
-    (ran, events)
-}
-
-fn of<'a>(events: &'a [Value], kind: &str) -> Vec<&'a Value> {
-    events.iter().filter(|event| event["ev"] == kind).collect()
-}
 
 fn summary(ran: &Ran) -> String {
     awl::report::summary(ran)

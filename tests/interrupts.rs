@@ -2,37 +2,9 @@
 
 mod common;
 
-use awl::runner::{self, Ran, RunOptions};
+use awl::runner::Ran;
 use common::*;
 use serde_json::Value;
-
-/// Runs a program and scenario (written under target/test-scenarios/<name>) with a jsonl trace.
-fn traced(name: &str, program: &str, scenario: &str) -> (Ran, Vec<Value>) {
-    let dir = std::path::PathBuf::from("target/test-scenarios").join(name);
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("program.awl"), program).unwrap();
-    std::fs::write(
-        dir.join("scenario.toml"),
-        format!("program = [\"program.awl\"]\n{scenario}"),
-    )
-    .unwrap();
-    traced_scenario(&dir.join("scenario.toml"), &dir.join("trace.jsonl"))
-}
-
-fn traced_scenario(scenario: &std::path::Path, trace: &std::path::Path) -> (Ran, Vec<Value>) {
-    let options = RunOptions {
-        scenario: Some(scenario.into()),
-        trace: Some(trace.into()),
-        ..RunOptions::default()
-    };
-    let ran = ran(runner::run(&options));
-    let events = std::fs::read_to_string(trace)
-        .unwrap()
-        .lines()
-        .map(|line| serde_json::from_str(line).unwrap())
-        .collect();
-    (ran, events)
-}
 
 /// A scenario of programs/, traced into a file of this test's own (`tag`).
 fn sample(name: &str, tag: &str) -> (Ran, Vec<Value>) {
@@ -43,10 +15,6 @@ fn sample(name: &str, tag: &str) -> (Ran, Vec<Value>) {
         &std::path::PathBuf::from(format!("programs/{name}.toml")),
         &trace,
     )
-}
-
-fn of<'a>(events: &'a [Value], kind: &str) -> Vec<&'a Value> {
-    events.iter().filter(|event| event["ev"] == kind).collect()
 }
 
 fn services(events: &[Value]) -> Vec<(u64, String)> {

@@ -184,10 +184,11 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
         console.err(&format!("{:?}\n", runner::stop_report(&ran, stop)));
     }
     let stdout_taken = ran.trace_to_stdout || state == Some(StateFormat::Json);
-    let mut report = ran.watch.render();
-    if ran.watch.is_empty() {
-        report.clear();
-    }
+    let mut report = if ran.watch.is_empty() {
+        String::new()
+    } else {
+        ran.watch.render()
+    };
     report.push_str(&crate::report::summary(&ran));
     if stdout_taken {
         console.err(&report);

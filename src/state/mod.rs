@@ -192,13 +192,11 @@ pub fn levels(cpu: &Cpu, stop: &Stop) -> Vec<LevelView> {
     let Some(block) = stop.block else {
         return Vec::new();
     };
-    let return_points = |frames: &[crate::vm::Frame]| {
-        frames
-            .iter()
-            .rev()
-            .map(|frame| ReturnPoint {
-                block: cpu.block_id(frame.block).to_string(),
-                line: cpu.line_of(frame.block, frame.pc.saturating_sub(1)),
+    let return_points = |frames| {
+        cpu.return_points(frames)
+            .map(|(block, pc)| ReturnPoint {
+                block: cpu.block_id(block).to_string(),
+                line: cpu.line_of(block, pc),
             })
             .collect::<Vec<_>>()
     };
@@ -217,7 +215,7 @@ pub fn levels(cpu: &Cpu, stop: &Stop) -> Vec<LevelView> {
                 accu: accumulators(cpu, level),
                 status: level.status.into(),
                 open_db: level.open_db,
-                return_points: return_points(&cpu.frames[base..top]),
+                return_points: return_points(base..top),
             });
         }
     }

@@ -321,19 +321,24 @@ impl Cpu {
         };
     }
 
+    /// The return points (block, op of the call) of the block stack's frames `frames`,
+    /// innermost first.
+    pub fn return_points(
+        &self,
+        frames: std::ops::Range<usize>,
+    ) -> impl Iterator<Item = (u16, u32)> + '_ {
+        self.frames[frames]
+            .iter()
+            .rev()
+            .map(|frame| (frame.block, frame.pc.saturating_sub(1)))
+    }
+
     /// The block stack, innermost first: the running block, then each return point.
     /// Interrupted levels follow, each with its own return points.
     pub fn block_stack(&self, pc: u32) -> Vec<(u16, u32)> {
-        let calls = |frames: &[Frame]| {
-            frames
-                .iter()
-                .rev()
-                .map(|frame| (frame.block, frame.pc.saturating_sub(1)))
-                .collect::<Vec<_>>()
-        };
         let mut stack = vec![(self.level.block, pc)];
         let (mut base, mut top) = (self.level.level_base, self.frames.len());
-        stack.extend(calls(&self.frames[base..top]));
+        stack.extend(self.return_points(base..top));
         for level in self.levels.iter().rev() {
             if level.block == IDLE {
                 break;
@@ -341,7 +346,7 @@ impl Cpu {
             stack.push((level.block, level.pc));
             top = base;
             base = level.level_base;
-            stack.extend(calls(&self.frames[base..top]));
+            stack.extend(self.return_points(base..top));
         }
         stack
     }

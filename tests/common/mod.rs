@@ -69,15 +69,52 @@ pub fn output(cpu: &Cpu, byte: usize, bit: u8) -> bool {
 /// Writes a program and a scenario under `target/test-scenarios/<name>/` and runs it as
 /// `awl run --scenario` would; paths are relative so rendered reports are stable.
 pub fn run_scenario(name: &str, program: &str, scenario: &str) -> Result<Ran, NotRun> {
+    runner::run(&RunOptions {
+        scenario: Some(write_scenario(name, program, scenario)),
+        ..RunOptions::default()
+    })
+}
+
+/// Writes `program.awl` and `scenario.toml` (naming it) under `target/test-scenarios/<name>/`;
+/// the scenario's path.
+pub fn write_scenario(name: &str, program: &str, scenario: &str) -> PathBuf {
     let dir = PathBuf::from("target/test-scenarios").join(name);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("program.awl"), program).unwrap();
     let path = dir.join("scenario.toml");
     std::fs::write(&path, format!("program = [\"program.awl\"]\n{scenario}")).unwrap();
-    runner::run(&RunOptions {
-        scenario: Some(path),
+    path
+}
+
+/// Runs a program and scenario (written as [`write_scenario`] does) with a jsonl trace; the
+/// run and the trace's events.
+pub fn traced(name: &str, program: &str, scenario: &str) -> (Ran, Vec<serde_json::Value>) {
+    let path = write_scenario(name, program, scenario);
+    traced_scenario(&path, &path.with_file_name("trace.jsonl"))
+}
+
+/// Runs a scenario file with a jsonl trace written to `trace`.
+pub fn traced_scenario(
+    scenario: &std::path::Path,
+    trace: &std::path::Path,
+) -> (Ran, Vec<serde_json::Value>) {
+    let options = RunOptions {
+        scenario: Some(scenario.into()),
+        trace: Some(trace.into()),
         ..RunOptions::default()
-    })
+    };
+    let ran = ran(runner::run(&options));
+    let events = std::fs::read_to_string(trace)
+        .unwrap()
+        .lines()
+        .map(|line| serde_json::from_str(line).unwrap())
+        .collect();
+    (ran, events)
+}
+
+/// The trace events of one kind (`"irq_service"`, …).
+pub fn of<'a>(events: &'a [serde_json::Value], kind: &str) -> Vec<&'a serde_json::Value> {
+    events.iter().filter(|event| event["ev"] == kind).collect()
 }
 
 pub fn ran(result: Result<Ran, NotRun>) -> Ran {
