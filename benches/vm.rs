@@ -1,18 +1,35 @@
 //! VM speed on programs/bench: a bit-logic and word-arithmetic loop, and block-call-heavy code.
 //! Each is measured as the bare execution loop ("vm_only": OB 1 run directly, no cycle, no
 //! engine) and through the full cycle with the interrupt engine on and nothing pending, with
-//! block and with operation interrupt points. Targets (release, one core): 400 M instr/s on
-//! the loop, 100 M instr/s on block calls.
+//! block and with operation interrupt points, and with a probe that looks at every operation
+//! (the stepping loop of program status and the debugger). Targets (release, one core):
+//! 400 M instr/s on the loop, 100 M instr/s on block calls.
 
 use std::sync::Arc;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
+use awl::compiler::Op;
 use awl::frontend;
 use awl::profile::{self, InterruptPoints};
 use awl::vm::cycle::RunLimit;
 use awl::vm::interrupts::{Engine, EngineConfig, Happening, Scheduled};
+use awl::vm::probe::{Flow, Probe};
 use awl::vm::{Cpu, Exit};
+
+/// Looks at every operation, as program status does, and lets the run go on.
+struct Looking;
+
+impl Probe for Looking {
+    fn before(&mut self, _cpu: &mut Cpu) -> Flow {
+        Flow::Go
+    }
+
+    fn after(&mut self, cpu: &Cpu, _block: u16, _pc: u32, _op: Op) -> Flow {
+        std::hint::black_box(cpu.level.accu1);
+        Flow::Go
+    }
+}
 
 fn cpu_for(file: &str, points: InterruptPoints) -> Cpu {
     let source = std::fs::read_to_string(file).unwrap() + "OB 3\n      BE\n";
@@ -71,6 +88,14 @@ fn bench_program(c: &mut Criterion, name: &str, file: &str, cycles: u64) {
             })
         });
     }
+    group.bench_function("stepping_probe", |b| {
+        let mut cpu = cpu_for(file, InterruptPoints::Block);
+        cpu.probe = Some(Box::new(Looking));
+        b.iter(|| {
+            let limit = RunLimit::Cycles(cpu.cycle + cycles);
+            cpu.run(limit)
+        })
+    });
     group.finish();
 }
 

@@ -10,6 +10,22 @@ pub struct BlockId {
     pub number: u8,
 }
 
+impl BlockId {
+    /// `PB 3`, `pb3`, `OB 1`: a block as the command line names it.
+    pub fn parse(text: &str) -> Option<BlockId> {
+        let text = text.trim();
+        let split = text.find(|c: char| !c.is_ascii_alphabetic())?;
+        let (kind, number) = text.split_at(split);
+        let kind = BlockKind::ALL
+            .into_iter()
+            .find(|k| k.name().eq_ignore_ascii_case(kind))?;
+        Some(BlockId {
+            kind,
+            number: number.trim().parse().ok()?,
+        })
+    }
+}
+
 impl std::fmt::Display for BlockId {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{} {}", self.kind.name(), self.number)

@@ -7,6 +7,7 @@
 pub mod ast;
 pub mod cli;
 pub mod compiler;
+pub mod debug;
 pub mod diagnostics;
 pub mod dump;
 pub mod frontend;
@@ -14,6 +15,7 @@ pub mod lexer;
 pub mod mnemonics;
 pub mod parser;
 pub mod profile;
+pub mod program_status;
 pub mod report;
 pub mod runner;
 pub mod scenario;

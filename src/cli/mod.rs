@@ -1,9 +1,11 @@
-//! The command line: `awl check | dump | run | test | cpus`. Each command reports through a
+//! The command line: `awl check | dump | run | status | debug | test | cpus`. Each command reports through a
 //! [`Console`], so no output failure can panic.
 
 mod console;
+mod debug;
 mod run;
 mod source;
+mod status;
 mod watch;
 
 use std::path::PathBuf;
@@ -65,6 +67,11 @@ pub enum Command {
     Dump(SourceOptions),
     /// Compile, start the CPU (STOP → STARTUP → RUN), run, print a summary
     Run(run::RunArgs),
+    /// Program status: one invocation of a block, line by line (RLO, STA, ACCU 1/2, operand)
+    Status(status::StatusArgs),
+    /// Step debugger: breakpoints, stepping, operands, interrupts on request; simulated time
+    /// stands still at the prompt
+    Debug(debug::DebugArgs),
     /// Run scenario files and check their [expect] tables
     Test(run::TestArgs),
     /// List the CPU profiles with their rules and timings
@@ -83,6 +90,8 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check(options) => source::check(&options, &mut console),
         Command::Dump(options) => source::dump(&options, &mut console),
         Command::Run(args) => run::run(&args, &mut console),
+        Command::Status(args) => status::status(&args, &mut console),
+        Command::Debug(args) => debug::debug(&args, &mut console),
         Command::Test(args) => run::test(&args, &mut console),
         Command::Cpus => {
             console.out(&crate::report::cpus());

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use clap::ValueEnum;
 
 use crate::profile::{self, InterruptPoints};
-use crate::runner::{self, NotRun, Ran, RunOptions};
+use crate::runner::{self, NotRun, Prepared, Ran, RunOptions};
 use crate::state::State;
 use crate::trace::TraceFormat;
 use crate::vm::cycle::RunLimit;
@@ -40,8 +40,10 @@ pub enum StateFormat {
     Json,
 }
 
+/// What every command that runs a program shares: the program, the scenario, the CPU and how
+/// long to run.
 #[derive(Debug, clap::Args)]
-pub struct RunArgs {
+pub struct ProgramArgs {
     /// STL source files (.awl); optional with a scenario that names them
     #[arg(required_unless_present = "scenario")]
     pub files: Vec<PathBuf>,
@@ -63,15 +65,21 @@ pub struct RunArgs {
     /// SINUMERIK 840C mode: normal ignores OB 2 and OB 5, special runs them
     #[arg(long, value_enum)]
     pub mode: Option<CpuMode>,
+    /// Mnemonic set, instead of detecting it per file
+    #[arg(long, value_enum)]
+    pub mnemonics: Option<Mnemonics>,
+}
+
+#[derive(Debug, clap::Args)]
+pub struct RunArgs {
+    #[command(flatten)]
+    pub program: ProgramArgs,
     /// Write a trace to FILE (`-` for stdout); programs/README.md describes its events
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
     /// Trace format [default: jsonl]
     #[arg(long, value_enum, requires = "trace")]
     pub trace_format: Option<Format>,
-    /// Mnemonic set, instead of detecting it per file
-    #[arg(long, value_enum)]
-    pub mnemonics: Option<Mnemonics>,
     /// Print the CPU's state at the end: ACCUs, status word, images, timers, counters, DBs
     #[arg(long)]
     pub state: bool,
@@ -95,7 +103,7 @@ pub struct TestArgs {
     pub scenarios: Vec<PathBuf>,
 }
 
-fn parse_duration_arg(text: &str) -> Result<u64, String> {
+pub(super) fn parse_duration_arg(text: &str) -> Result<u64, String> {
     match crate::scenario::parse_duration(text) {
         Some(0) => Err("a run of no time: give a duration above zero".into()),
         Some(ns) => Ok(ns),
@@ -105,7 +113,8 @@ fn parse_duration_arg(text: &str) -> Result<u64, String> {
     }
 }
 
-fn run_options(args: &RunArgs) -> RunOptions {
+/// The run a program's arguments ask for.
+pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
     RunOptions {
         files: args.files.clone(),
         scenario: args.scenario.clone(),
@@ -119,12 +128,18 @@ fn run_options(args: &RunArgs) -> RunOptions {
             Points::Operation => InterruptPoints::Operation,
         }),
         special_mode: args.mode.map(|mode| matches!(mode, CpuMode::Special)),
+        mnemonics: args.mnemonics.map(Into::into),
+        ..RunOptions::default()
+    }
+}
+
+fn run_options(args: &RunArgs) -> RunOptions {
+    RunOptions {
         trace: args.trace.clone(),
         trace_format: args.trace_format.map(|format| match format {
             Format::Text => TraceFormat::Text,
             Format::Jsonl => TraceFormat::Jsonl,
         }),
-        mnemonics: args.mnemonics.map(Into::into),
         watch: args
             .watch
             .iter()
@@ -134,11 +149,12 @@ fn run_options(args: &RunArgs) -> RunOptions {
             .map(str::to_string)
             .collect(),
         watch_every_ns: args.watch_every,
+        ..program_options(&args.program)
     }
 }
 
 /// Prints why a run did not run; its exit code.
-fn not_run(reason: NotRun, console: &mut Console) -> u8 {
+pub(super) fn not_run(reason: NotRun, console: &mut Console) -> u8 {
     match reason {
         NotRun::Usage(report) => {
             console.report(&report);
@@ -153,9 +169,21 @@ fn not_run(reason: NotRun, console: &mut Console) -> u8 {
 
 /// Runs with the progress line and Ctrl-C; whether the run was halted.
 fn watched_run(options: &RunOptions) -> (Result<Ran, NotRun>, bool) {
+    match runner::prepare(options) {
+        Ok(prepared) => {
+            let (ran, halted) = watched(prepared);
+            (Ok(ran), halted)
+        }
+        Err(reason) => (Err(reason), false),
+    }
+}
+
+/// Runs a prepared run with the progress line and Ctrl-C; whether Ctrl-C halted it.
+pub(super) fn watched(prepared: Prepared) -> (Ran, bool) {
     let mut watch = Watch::start();
-    let result = runner::run_watched(options, &mut |cpu| watch.go_on(cpu));
-    (result, watch.finish())
+    let ran = prepared.run(&mut |cpu| watch.go_on(cpu));
+    let halted = watch.finish();
+    (ran, halted)
 }
 
 pub fn run(args: &RunArgs, console: &mut Console) -> u8 {

@@ -23,7 +23,7 @@ const QUIET_FOR: Duration = Duration::from_secs(1);
 /// Cycles between two looks at the clock.
 const CYCLES_PER_LOOK: u64 = 64;
 
-fn install_handler() {
+pub fn install_handler() {
     static INSTALL: Once = Once::new();
     INSTALL.call_once(|| {
         // Without a handler (the platform refused) Ctrl-C simply ends the process.
@@ -33,6 +33,12 @@ fn install_handler() {
             }
         });
     });
+}
+
+/// Whether Ctrl-C was pressed since the last look (the debugger pauses then, instead of
+/// halting).
+pub fn take_interrupt() -> bool {
+    HALT.swap(false, Ordering::SeqCst)
 }
 
 /// Watches one run from its cycle boundaries.

@@ -144,6 +144,28 @@ pub fn run_watched(
     options: &RunOptions,
     go_on: &mut dyn FnMut(&Cpu) -> bool,
 ) -> Result<Ran, NotRun> {
+    Ok(prepare(options)?.run(go_on))
+}
+
+/// A run set up and ready to go: the CPU in STOP with its program, engine and trace.
+pub struct Prepared {
+    pub frontend: Frontend,
+    pub cpu: Cpu,
+    pub limit: RunLimit,
+    /// The mnemonic set operands are written in (the first file's).
+    pub mnemonics: MnemonicSet,
+    scenario: Option<Scenario>,
+    expectations: Vec<expect::Expectation>,
+    watch: WatchTable,
+    points: InterruptPoints,
+    trace: Option<PathBuf>,
+    trace_to_stdout: bool,
+    warnings: Vec<Report>,
+}
+
+/// Reads the scenario and the program and sets up the CPU; every error found on the way is
+/// reported at once.
+pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     // A scenario's errors are reported together with those found once the program is
     // compiled (its operands), so a file shows all of them at once.
     let (scenario, mut scenario_errors) = match &options.scenario {
@@ -215,7 +237,7 @@ pub fn run_watched(
         }
         None => (Vec::new(), Vec::new()),
     };
-    let mut watch = WatchTable::new(
+    let watch = WatchTable::new(
         watched(options, scenario.as_ref(), &program, set)?,
         options.watch_every_ns,
     );
@@ -258,44 +280,80 @@ pub fn run_watched(
     if let Some(path) = &options.trace {
         cpu.tracer = open_trace(path, options.trace_format.unwrap_or(TraceFormat::Jsonl))?;
     }
-    let outcome = cpu.run_watched(limit, &mut |cpu| {
-        watch.observe(cpu);
-        go_on(cpu)
-    });
-    watch.observe(&mut cpu);
-    if let Some(scenario) = &scenario
-        && outcome.stop.is_none()
-        && !outcome.halted
-    {
-        warnings.extend(scenario.events_after(outcome.clock_ns));
-    }
-    let mut trace_closed = false;
-    if let Err(error) = cpu.tracer.finish() {
-        trace_closed = trace_to_stdout && error.kind() == std::io::ErrorKind::BrokenPipe;
-        if !trace_closed {
-            warnings.push(Report::new(RunWarning::TraceIncomplete {
-                path: options
-                    .trace
-                    .as_ref()
-                    .map(|p| p.display().to_string())
-                    .unwrap_or_default(),
-                reason: error.to_string(),
-            }));
-        }
-    }
-    let mismatches = expect::check(&cpu, &outcome, &expectations);
-    Ok(Ran {
+    Ok(Prepared {
         frontend: built,
         cpu,
-        outcome,
-        mismatches,
-        expectations: expectations.len(),
+        limit,
+        mnemonics: set,
+        scenario,
+        expectations,
+        watch,
         points,
+        trace: options.trace.clone(),
         trace_to_stdout,
         warnings,
-        trace_closed,
-        watch,
     })
+}
+
+impl Prepared {
+    /// The warnings found so far (the program's, the setup's), to show before the run.
+    pub fn take_warnings(&mut self) -> Vec<Report> {
+        std::mem::take(&mut self.warnings)
+    }
+
+    /// Runs to the limit, a STOP, or a halt (`go_on`, a probe).
+    pub fn run(self, go_on: &mut dyn FnMut(&Cpu) -> bool) -> Ran {
+        let Prepared {
+            frontend,
+            mut cpu,
+            limit,
+            scenario,
+            expectations,
+            mut watch,
+            points,
+            trace,
+            trace_to_stdout,
+            mut warnings,
+            ..
+        } = self;
+        let outcome = cpu.run_watched(limit, &mut |cpu| {
+            watch.observe(cpu);
+            go_on(cpu)
+        });
+        watch.observe(&mut cpu);
+        if let Some(scenario) = &scenario
+            && outcome.stop.is_none()
+            && !outcome.halted
+        {
+            warnings.extend(scenario.events_after(outcome.clock_ns));
+        }
+        let mut trace_closed = false;
+        if let Err(error) = cpu.tracer.finish() {
+            trace_closed = trace_to_stdout && error.kind() == std::io::ErrorKind::BrokenPipe;
+            if !trace_closed {
+                warnings.push(Report::new(RunWarning::TraceIncomplete {
+                    path: trace
+                        .as_ref()
+                        .map(|p| p.display().to_string())
+                        .unwrap_or_default(),
+                    reason: error.to_string(),
+                }));
+            }
+        }
+        let mismatches = expect::check(&cpu, &outcome, &expectations);
+        Ran {
+            frontend,
+            cpu,
+            outcome,
+            mismatches,
+            expectations: expectations.len(),
+            points,
+            trace_to_stdout,
+            warnings,
+            trace_closed,
+            watch,
+        }
+    }
 }
 
 /// The watched operands: the scenario's `watch`, then the command line's.

@@ -181,6 +181,12 @@ pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
             at,
             stack,
         },
+        // A halt is reported as one, not as a STOP; should it reach here, it says what it was.
+        (StopCause::Halt, _) => StopError::Operation {
+            problem: "the run was halted here".into(),
+            at,
+            stack,
+        },
     };
     diagnostics::with_source(&ran.frontend.sources, at, error)
 }

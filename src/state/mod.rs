@@ -3,7 +3,8 @@
 //! zero, and at a STOP the processing levels (the ISTACK). One plain structure, printed as text
 //! (`--state`) or as JSON (`--state-format json`); `programs/README.md` documents the schema.
 
-mod text;
+pub mod operand;
+pub mod text;
 pub mod watch;
 
 use std::collections::BTreeMap;
@@ -186,62 +187,87 @@ fn data_blocks(cpu: &Cpu) -> BTreeMap<String, BTreeMap<String, u16>> {
         .collect()
 }
 
+fn return_points(cpu: &Cpu, frames: std::ops::Range<usize>) -> Vec<ReturnPoint> {
+    cpu.return_points(frames)
+        .map(|(block, pc)| ReturnPoint {
+            block: cpu.block_id(block).to_string(),
+            line: cpu.line_of(block, pc),
+        })
+        .collect()
+}
+
+/// The levels the running one interrupted, innermost first, from their saved registers.
+fn interrupted(cpu: &Cpu) -> Vec<LevelView> {
+    let mut interrupted = Vec::new();
+    if cpu.level.block == IDLE {
+        return interrupted;
+    }
+    let mut base = cpu.level.level_base;
+    for level in cpu.levels.iter().rev() {
+        if level.block == IDLE {
+            break;
+        }
+        let top = base;
+        base = level.level_base;
+        interrupted.push(LevelView {
+            block: cpu.block_id(level.block).to_string(),
+            line: cpu.line_of(level.block, level.pc),
+            accu: accumulators(cpu, level),
+            status: level.status.into(),
+            open_db: level.open_db,
+            return_points: return_points(cpu, base..top),
+        });
+    }
+    interrupted
+}
+
+fn running(cpu: &Cpu, block: u16, pc: u32, return_points: Vec<ReturnPoint>) -> LevelView {
+    LevelView {
+        block: cpu.block_id(block).to_string(),
+        line: cpu.line_of(block, pc),
+        accu: accumulators(cpu, &cpu.level),
+        status: cpu.level.status.into(),
+        open_db: cpu.level.open_db,
+        return_points,
+    }
+}
+
 /// The levels at a STOP: the running one as the STOP recorded it (its return points are the
-/// head of the STOP's BSTACK), then the interrupted ones from their saved registers.
+/// head of the STOP's BSTACK), then the interrupted ones.
 pub fn levels(cpu: &Cpu, stop: &Stop) -> Vec<LevelView> {
     let Some(block) = stop.block else {
         return Vec::new();
     };
-    let return_points = |frames| {
-        cpu.return_points(frames)
-            .map(|(block, pc)| ReturnPoint {
-                block: cpu.block_id(block).to_string(),
-                line: cpu.line_of(block, pc),
-            })
-            .collect::<Vec<_>>()
-    };
-    let mut interrupted = Vec::new();
-    if cpu.level.block != IDLE {
-        let mut base = cpu.level.level_base;
-        for level in cpu.levels.iter().rev() {
-            if level.block == IDLE {
-                break;
-            }
-            let top = base;
-            base = level.level_base;
-            interrupted.push(LevelView {
-                block: cpu.block_id(level.block).to_string(),
-                line: cpu.line_of(level.block, level.pc),
-                accu: accumulators(cpu, level),
-                status: level.status.into(),
-                open_db: level.open_db,
-                return_points: return_points(base..top),
-            });
-        }
-    }
+    let interrupted = interrupted(cpu);
     let below: usize = interrupted
         .iter()
         .map(|level| 1 + level.return_points.len())
         .sum();
     let own = stop.stack.len().saturating_sub(1 + below);
-    let running = LevelView {
-        block: cpu.block_id(block).to_string(),
-        line: cpu.line_of(block, stop.pc),
-        accu: accumulators(cpu, &cpu.level),
-        status: cpu.level.status.into(),
-        open_db: cpu.level.open_db,
-        return_points: stop
-            .stack
-            .iter()
-            .skip(1)
-            .take(own)
-            .map(|entry| ReturnPoint {
-                block: entry.block.clone(),
-                line: entry.line,
-            })
-            .collect(),
-    };
-    std::iter::once(running).chain(interrupted).collect()
+    let points = stop
+        .stack
+        .iter()
+        .skip(1)
+        .take(own)
+        .map(|entry| ReturnPoint {
+            block: entry.block.clone(),
+            line: entry.line,
+        })
+        .collect();
+    std::iter::once(running(cpu, block, stop.pc, points))
+        .chain(interrupted)
+        .collect()
+}
+
+/// The levels of a CPU stopped between two operations (the debugger): the running one at its
+/// next operation first.
+pub fn levels_now(cpu: &Cpu) -> Vec<LevelView> {
+    if cpu.level.block == IDLE {
+        return Vec::new();
+    }
+    let points = return_points(cpu, cpu.level.level_base..cpu.frames.len());
+    let now = running(cpu, cpu.level.block, cpu.level.pc, points);
+    std::iter::once(now).chain(interrupted(cpu)).collect()
 }
 
 impl State {

@@ -13,7 +13,7 @@ fn word(value: u16) -> String {
     format!("KF {:+} = KH {value:04X}", value as i16)
 }
 
-fn accu(value: u32) -> String {
+pub fn accu(value: u32) -> String {
     format!(
         "KH {:04X} {:04X}  (low word KF {:+})",
         value >> 16,
@@ -22,7 +22,7 @@ fn accu(value: u32) -> String {
     )
 }
 
-fn status(status: &StatusBits) -> String {
+pub fn status(status: &StatusBits) -> String {
     let bit = |set: bool| u8::from(set);
     format!(
         "first check {}  RLO {}  STA {}  OR {}  OS {}  OV {}  CC 1 {}  CC 0 {}",
@@ -45,7 +45,12 @@ const TIME_BASES: [&str; 4] = ["10 ms", "100 ms", "1 s", "10 s"];
 
 /// `--state`: what a PG would show after the run.
 pub fn render(state: &State) -> String {
-    let mut out = format!("\nstate at the end: mode {}\n", state.mode);
+    render_titled(state, "\nstate at the end")
+}
+
+/// The state under a title of its own (the debugger's `state`: "state at 12.5 ms").
+pub fn render_titled(state: &State, title: &str) -> String {
+    let mut out = format!("{title}: mode {}\n", state.mode);
     for (n, value) in state.accu.iter().enumerate() {
         let _ = writeln!(out, "  ACCU {}   {}", n + 1, accu(*value));
     }

@@ -29,7 +29,7 @@ pub struct WatchTable {
 
 /// A value as the PG shows it: bits 0/1, timers `KT value.base`, counters `KZ`, bytes `KH`,
 /// words `KF`, double words `KH`.
-fn natural(cpu: &Cpu, target: Target) -> String {
+pub fn natural(cpu: &Cpu, target: Target) -> String {
     match target {
         Target::TimerBit(n) => {
             let mut timer = cpu.timers[usize::from(n)];

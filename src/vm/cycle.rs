@@ -288,7 +288,14 @@ impl Cpu {
             }
             Ok(())
         });
-        let stop = result.err();
+        let mut stop = result.err();
+        if stop
+            .as_ref()
+            .is_some_and(|stop| stop.cause == StopCause::Halt)
+        {
+            stop = None;
+            halted = true;
+        }
         if let Some(stop) = &stop {
             self.set_mode(Mode::Stop, Some(stop.cause.code()));
             if self.tracer.enabled {

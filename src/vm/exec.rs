@@ -14,17 +14,39 @@ use crate::trace::Event;
 use super::arith;
 use super::interrupts::FamilyRules;
 use super::interrupts::s5_95f::S595f;
+use super::probe::Flow;
 use super::stop::{StopCause, StopDetail};
 use super::{Cpu, Exit, Frame, LastStretch, Point, StretchKind};
 
 impl Cpu {
     /// Runs the current level; `operation_points` makes every operation an interrupt point.
+    /// With a probe set, the stepping variant shows it every operation.
     pub fn execute(&mut self, operation_points: bool) -> Exit {
-        if operation_points {
-            self.run_loop::<true>()
-        } else {
-            self.run_loop::<false>()
+        if self.probe.is_some() {
+            return self.execute_stepping(operation_points);
         }
+        if operation_points {
+            self.run_loop::<true, false>()
+        } else {
+            self.run_loop::<false, false>()
+        }
+    }
+
+    /// The stepping variants, kept out of line so the plain loops compile as they would alone.
+    #[cold]
+    #[inline(never)]
+    fn execute_stepping(&mut self, operation_points: bool) -> Exit {
+        if operation_points {
+            self.run_loop::<true, true>()
+        } else {
+            self.run_loop::<false, true>()
+        }
+    }
+
+    /// The stop that ends a run a probe halted.
+    #[cold]
+    fn halted_at(&self, pc: u32) -> super::stop::Stop {
+        self.stop(StopCause::Halt, pc, StopDetail::None)
     }
 
     #[inline(always)]
@@ -166,7 +188,7 @@ impl Cpu {
         }
     }
 
-    fn run_loop<const OPERATION_POINTS: bool>(&mut self) -> Exit {
+    fn run_loop<const OPERATION_POINTS: bool, const STEPPING: bool>(&mut self) -> Exit {
         let program = Arc::clone(&self.program);
         let mut code: &[Op] = &program.blocks[usize::from(self.level.block)].code;
         // Prefix sums of the op times: time is settled only when control moves or someone reads
@@ -210,6 +232,33 @@ impl Cpu {
                 accu2 = self.level.accu2;
             };
         }
+        // The stepping variant shows the probe the op at `pc` before it runs, and op `$pc`
+        // of `$block`, run as `$op`, after it ran.
+        macro_rules! probe_before {
+            () => {
+                if STEPPING {
+                    sync!();
+                    self.level.pc = pc as u32;
+                    if self.with_probe(Flow::Go, |probe, cpu| probe.before(cpu)) == Flow::Halt {
+                        break Exit::Stop(self.halted_at(pc as u32));
+                    }
+                    reload!();
+                }
+            };
+        }
+        macro_rules! probe_after {
+            ($block:expr, $pc:expr, $op:expr) => {
+                if STEPPING {
+                    sync!();
+                    let (block, at, op) = ($block, $pc, $op);
+                    let flow =
+                        self.with_probe(Flow::Go, |probe, cpu| probe.after(cpu, block, at, op));
+                    if flow == Flow::Halt {
+                        break Exit::Stop(self.halted_at(at));
+                    }
+                }
+            };
+        }
         // Ends the straight run at `pc` before control moves to `$to` in `$elapsed`.
         macro_rules! move_to {
             ($to:expr, $code:expr, $elapsed:expr) => {
@@ -222,6 +271,7 @@ impl Cpu {
             };
         }
         let exit = loop {
+            probe_before!();
             let Some(&fetched) = code.get(pc) else {
                 sync!();
                 break Exit::Stop(self.stop(
@@ -236,6 +286,9 @@ impl Cpu {
                 sync!();
                 match self.concrete(fetched, pc as u32 - 1) {
                     Ok((concrete, consumes_next)) => {
+                        if consumes_next {
+                            probe_after!(self.level.block, pc as u32 - 1, fetched);
+                        }
                         if consumes_next && pc < code.len() {
                             pc += 1;
                             self.clock = now!();
@@ -246,6 +299,7 @@ impl Cpu {
                     Err(stop) => break Exit::Stop(stop),
                 }
             }
+            let op_pc = pc as u32 - 1;
             match op {
                 Op::And(bit) => {
                     let value = self.image_bit(bit);
@@ -346,6 +400,7 @@ impl Cpu {
                     let taken = !conditional || status.rlo();
                     status.after_jump();
                     if !taken {
+                        probe_after!(self.level.block, op_pc, op);
                         continue;
                     }
                     if self.frames.len() >= self.level.frame_limit {
@@ -356,6 +411,7 @@ impl Cpu {
                             StopDetail::None,
                         ));
                     }
+                    probe_after!(self.level.block, op_pc, op);
                     self.frames.push(Frame {
                         block: self.level.block,
                         pc: pc as u32,
@@ -381,6 +437,7 @@ impl Cpu {
                 Op::BlockEnd | Op::BlockEndUnconditional | Op::BlockEndConditional => {
                     if op == Op::BlockEndConditional && !status.rlo() {
                         status.after_jump();
+                        probe_after!(self.level.block, op_pc, op);
                         continue;
                     }
                     if op == Op::BlockEnd {
@@ -388,6 +445,7 @@ impl Cpu {
                     } else {
                         status.after_jump();
                     }
+                    probe_after!(self.level.block, op_pc, op);
                     let ended = self.level.block;
                     let end_pc = pc as u32 - 1;
                     let clock = now!();
@@ -429,6 +487,17 @@ impl Cpu {
                         break Exit::Stop(self.stop(cause, pc as u32 - 1, detail));
                     }
                 }
+            }
+            // Block calls and ends were shown in their arms, with the frames as they were.
+            let block_change = matches!(
+                op,
+                Op::Call { .. }
+                    | Op::BlockEnd
+                    | Op::BlockEndConditional
+                    | Op::BlockEndUnconditional
+            );
+            if !block_change {
+                probe_after!(self.level.block, op_pc, op);
             }
             if OPERATION_POINTS && now!() >= self.attention_at {
                 self.last_op = (self.level.block, pc as u32 - 1);
@@ -477,7 +546,7 @@ impl Cpu {
             .filter(|op| !matches!(op, Op::Indirect { .. } | Op::Formal { .. }))
     }
 
-    pub(super) fn data_word(&self, word: u16) -> Option<u16> {
+    pub fn data_word(&self, word: u16) -> Option<u16> {
         let db = self.data_blocks[usize::from(self.level.open_db?)].as_ref()?;
         db.get(usize::from(word)).copied()
     }

@@ -11,6 +11,7 @@ pub mod cycle;
 pub mod exec;
 pub mod interrupts;
 pub mod place;
+pub mod probe;
 pub mod status;
 pub mod stop;
 pub mod timers;
@@ -214,6 +215,8 @@ pub struct Cpu {
     pub engine: Engine,
     pub tracer: Tracer,
     pub cycle_times: cycle::CycleTimes,
+    /// An observer of single operations (program status, the debugger); see [`probe`].
+    pub probe: Option<Box<dyn probe::Probe>>,
 }
 
 impl Cpu {
@@ -274,6 +277,7 @@ impl Cpu {
             engine: Engine::new(profile, EngineConfig::default(), Vec::new()),
             tracer: Tracer::off(),
             cycle_times: cycle::CycleTimes::default(),
+            probe: None,
             profile,
             program,
             sources,
@@ -294,6 +298,13 @@ impl Cpu {
                 .copied()
                 .unwrap_or(block.header),
         )
+    }
+
+    /// The block at the bottom of the running level: OB 1, a startup OB, or an interrupt OB.
+    pub fn level_block(&self) -> u16 {
+        self.frames
+            .get(self.level.level_base)
+            .map_or(self.level.block, |frame| frame.block)
     }
 
     /// Nesting depth of the running level (1 = its bottom block).

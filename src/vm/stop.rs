@@ -26,6 +26,8 @@ pub enum StopCause {
     Weck,
     /// A hardware interrupt for a module without OB, and no OB 85.
     Ob85,
+    /// No STOP: a probe (program status, the debugger) ended the run here.
+    Halt,
 }
 
 impl StopCause {
@@ -43,6 +45,7 @@ impl StopCause {
             StopCause::Stp => "STP",
             StopCause::Weck => "WECK",
             StopCause::Ob85 => "OB85",
+            StopCause::Halt => "HALT",
         }
     }
 }

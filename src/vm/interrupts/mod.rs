@@ -595,6 +595,7 @@ impl Cpu {
                 during: place.during,
             }
         });
+        self.with_probe((), |probe, cpu| probe.requested(cpu, ob, at));
         let waited = if self.mode != Mode::Run {
             Some(Wait::NotInRun)
         } else if self.running_priority() >= self.priority_of(ob) {
@@ -665,6 +666,14 @@ impl Cpu {
         });
     }
 
+    /// Requests an interrupt for `ob` now (the debugger's `fire`): it is serviced at the next
+    /// interrupt point, as any other request. Returns whether it is pending.
+    pub fn fire(&mut self, ob: u8) -> bool {
+        let pending = self.request(ob, self.clock, None).is_some();
+        self.update_attention();
+        pending
+    }
+
     /// Services the highest pending request above the running priority, if any.
     fn service(&mut self, point: Point) -> Result<bool, Stop> {
         let running = self.running_priority();
@@ -721,6 +730,7 @@ impl Cpu {
             .expect("requests are only pending for programmed OBs");
         self.enter_level(block);
         self.with_rules(|rules, cpu| rules.entered(cpu, request.ob));
+        self.with_probe((), |probe, cpu| probe.serviced(cpu, request.ob));
         Ok(true)
     }
 

@@ -1,0 +1,128 @@
+//! `awl status`: program status (STATUS BAUSTEIN) of one block invocation.
+
+use miette::Report;
+
+use crate::ast::BlockId;
+use crate::mnemonics::BlockKind;
+use crate::program_status::{self, Recorder, StatusError, Window};
+use crate::runner::{self, Prepared};
+use crate::vm::cycle::RunLimit;
+
+use super::run::{ProgramArgs, not_run, program_options, watched};
+use super::watch::EXIT_HALTED;
+use super::{Console, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_STOP, EXIT_USAGE};
+
+/// How long `--at` looks for the block after its time when no run length is given.
+const LOOK_AFTER_AT_NS: u64 = 1_000_000_000;
+
+#[derive(Debug, clap::Args)]
+pub struct StatusArgs {
+    #[command(flatten)]
+    pub program: ProgramArgs,
+    /// The block to show, e.g. "PB 3"
+    #[arg(long, value_parser = parse_block)]
+    pub block: BlockId,
+    /// Its first invocation in this cycle [default: its first in the run]
+    #[arg(long, conflicts_with = "at", value_parser = clap::value_parser!(u64).range(1..))]
+    pub cycle: Option<u64>,
+    /// Its first invocation that begins at or after this simulated time, e.g. 250ms
+    #[arg(long, value_name = "TIME", value_parser = parse_time)]
+    pub at: Option<u64>,
+}
+
+fn parse_block(text: &str) -> Result<BlockId, String> {
+    BlockId::parse(text).ok_or_else(|| format!("`{text}` is not a block; write e.g. \"PB 3\""))
+}
+
+fn parse_time(text: &str) -> Result<u64, String> {
+    crate::scenario::parse_duration(text)
+        .ok_or_else(|| format!("`{text}` is not a time; write e.g. 250ms, 2s, 500us"))
+}
+
+/// The block's index, or why it cannot be shown.
+fn logic_block(prepared: &Prepared, id: BlockId) -> Result<u16, StatusError> {
+    if matches!(id.kind, BlockKind::Db | BlockKind::Dx) {
+        return Err(StatusError::DataBlock {
+            block: id.to_string(),
+        });
+    }
+    let program = &prepared.cpu.program;
+    program
+        .block_index(id)
+        .ok_or_else(|| StatusError::UnknownBlock {
+            block: id.to_string(),
+            known: program
+                .blocks
+                .iter()
+                .map(|block| block.id.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+}
+
+pub fn status(args: &StatusArgs, console: &mut Console) -> u8 {
+    let options = program_options(&args.program);
+    let mut prepared = match runner::prepare(&options) {
+        Ok(prepared) => prepared,
+        Err(reason) => return not_run(reason, console),
+    };
+    let index = match logic_block(&prepared, args.block) {
+        Ok(index) => index,
+        Err(error) => {
+            console.report(&Report::new(error));
+            return EXIT_USAGE;
+        }
+    };
+    let window = match (args.cycle, args.at) {
+        (Some(cycle), _) => Window::Cycle(cycle),
+        (None, at) => Window::At(at.unwrap_or(0)),
+    };
+    if options.limit.is_none() {
+        prepared.limit = match window {
+            Window::Cycle(cycle) => RunLimit::Cycles(cycle),
+            Window::At(0) => prepared.limit,
+            Window::At(ns) => RunLimit::Duration(ns.saturating_add(LOOK_AFTER_AT_NS)),
+        };
+    }
+    let ops = prepared.cpu.program.blocks[usize::from(index)].code.len();
+    let (recorder, recording) = Recorder::new(index, ops, window);
+    prepared.cpu.probe = Some(Box::new(recorder));
+    let (ran, halted) = watched(prepared);
+    console.reports(&ran.warnings);
+    let recording = recording.borrow();
+    if recording.invocation.is_none() {
+        if let Some(stop) = &ran.outcome.stop {
+            console.err(&format!("{:?}\n", runner::stop_report(&ran, stop)));
+            return EXIT_STOP;
+        }
+        let error = StatusError::DidNotRun {
+            block: args.block.to_string(),
+            window: window.describe(),
+            ended: format!(
+                "{} after {}",
+                crate::trace::format_ms(ran.outcome.clock_ns),
+                super::plural(ran.outcome.cycles, "cycle")
+            ),
+        };
+        console.report(&Report::new(error));
+        return if halted {
+            EXIT_HALTED
+        } else {
+            EXIT_SOURCE_ERRORS
+        };
+    }
+    let block = &ran.cpu.program.blocks[usize::from(index)];
+    console.out(&program_status::render(
+        block,
+        &ran.frontend.sources,
+        &recording,
+    ));
+    if let Some(stop) = &ran.outcome.stop {
+        console.err(&format!("{:?}\n", runner::stop_report(&ran, stop)));
+        return EXIT_STOP;
+    }
+    if halted && !recording.complete {
+        return EXIT_HALTED;
+    }
+    EXIT_OK
+}

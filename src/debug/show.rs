@@ -1,0 +1,188 @@
+//! What the debugger prints: where the CPU stands, the source around it, the block stack, the
+//! registers, and operands by name; and what `set` writes.
+
+use std::fmt::Write;
+
+use crate::mnemonics::MnemonicSet;
+use crate::scenario::operand::{Target, parse_target, raw_value};
+use crate::state::watch::natural;
+use crate::state::{self, LevelView, StatusBits};
+use crate::trace::format_ms;
+use crate::vm::exec::write_bytes;
+use crate::vm::{Cpu, IDLE};
+
+/// `PB 2 line 19, cycle 1, 0.025100 ms, level OB 1`, then the line itself.
+pub fn location(cpu: &Cpu) -> String {
+    if cpu.level.block == IDLE {
+        return format!(
+            "between blocks, cycle {}, {}\n",
+            cpu.cycle,
+            format_ms(cpu.clock)
+        );
+    }
+    let line = cpu.line_of(cpu.level.block, cpu.level.pc);
+    let file = cpu.sources.get(source_file(cpu));
+    format!(
+        "{} line {line}, cycle {}, {}, level {}\n{line:>6}  {}\n",
+        cpu.block_id(cpu.level.block),
+        cpu.cycle,
+        format_ms(cpu.clock),
+        cpu.block_id(cpu.level_block()),
+        file.line(line).trim_end()
+    )
+}
+
+fn source_file(cpu: &Cpu) -> u16 {
+    cpu.program.blocks[usize::from(cpu.level.block)].header.file
+}
+
+/// The source around the next operation, with a marker at its line.
+pub fn listing(cpu: &Cpu) -> String {
+    if cpu.level.block == IDLE {
+        return "no block runs\n".to_string();
+    }
+    let current = cpu.line_of(cpu.level.block, cpu.level.pc);
+    let file = cpu.sources.get(source_file(cpu));
+    let mut out = String::new();
+    for line in current.saturating_sub(5).max(1)..=current + 5 {
+        let text = file.line(line).trim_end();
+        if line > current && text.is_empty() && file.line(line + 1).is_empty() {
+            break;
+        }
+        let marker = if line == current { "=>" } else { "  " };
+        let _ = writeln!(out, "{marker}{line:>5}  {text}");
+    }
+    out
+}
+
+/// The block stack, the running block first, with each return point.
+pub fn stack(cpu: &Cpu) -> String {
+    if cpu.level.block == IDLE {
+        return "no block runs\n".to_string();
+    }
+    let mut out = String::new();
+    for (n, (block, pc)) in cpu.block_stack(cpu.level.pc).into_iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "#{n} {} line {}",
+            cpu.block_id(block),
+            cpu.line_of(block, pc)
+        );
+    }
+    out
+}
+
+pub fn accumulators(cpu: &Cpu) -> String {
+    let mut values = vec![cpu.level.accu1, cpu.level.accu2];
+    if cpu.profile.accumulators == 4 {
+        values.extend([cpu.level.accu3, cpu.level.accu4]);
+    }
+    let mut out = String::new();
+    for (n, value) in values.into_iter().enumerate() {
+        let _ = writeln!(out, "ACCU {}  {}", n + 1, state::text::accu(value));
+    }
+    out
+}
+
+pub fn status_word(cpu: &Cpu) -> String {
+    format!(
+        "{}\n",
+        state::text::status(&StatusBits::from(cpu.level.status))
+    )
+}
+
+pub fn levels(levels: &[LevelView]) -> String {
+    if levels.is_empty() {
+        return "no block runs\n".to_string();
+    }
+    format!("{}\n", state::istack_text(levels))
+}
+
+fn target(cpu: &Cpu, operand: &str, set: MnemonicSet) -> Result<Target, String> {
+    parse_target(operand, (0, 0).into(), set, cpu.profile, cpu.program.layout)
+        .map_err(|error| error.reason())
+}
+
+/// `Q 4.0 = 1`, one line per operand.
+pub fn print(cpu: &Cpu, operands: &[String], set: MnemonicSet) -> Result<String, String> {
+    let mut out = String::new();
+    for operand in operands {
+        let target =
+            target(cpu, operand, set).map_err(|reason| format!("`{operand}`: {reason}"))?;
+        let _ = writeln!(out, "{operand} = {}", natural(cpu, target));
+    }
+    Ok(out)
+}
+
+/// Writes bytes into the PII and, when they are inputs, into the input modules too, so the
+/// forced value holds at the next PII read.
+fn force_image(cpu: &mut Cpu, byte: u16, bytes: u8, raw: u32) {
+    let (at, count) = (usize::from(byte), usize::from(bytes));
+    write_bytes(&mut cpu.image[..], at, count, raw);
+    let inputs = usize::from(cpu.program.layout.image_bytes);
+    if at + count <= inputs.min(cpu.inputs.len()) {
+        write_bytes(&mut cpu.inputs, at, count, raw);
+    }
+}
+
+/// `set OPERAND VALUE`: what it wrote, or why it cannot.
+pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Result<String, String> {
+    let target = target(cpu, operand, set).map_err(|reason| format!("`{operand}`: {reason}"))?;
+    let raw = || {
+        raw_value(target, value)
+            .map_err(|allowed| format!("`{operand}` takes {allowed}, not {value}"))
+    };
+    match target {
+        Target::ImageBit { byte, bit } => {
+            let raw = raw()?;
+            let inputs = usize::from(cpu.program.layout.image_bytes).min(cpu.inputs.len());
+            let at = usize::from(byte);
+            let mask = 1u8 << bit;
+            for memory in [&mut cpu.image[..], &mut cpu.inputs[..inputs]] {
+                if let Some(byte) = memory.get_mut(at) {
+                    *byte = if raw != 0 {
+                        *byte | mask
+                    } else {
+                        *byte & !mask
+                    };
+                }
+            }
+        }
+        Target::Image { byte, bytes } => force_image(cpu, byte, bytes, raw()?),
+        Target::Periphery {
+            byte,
+            bytes,
+            extended,
+        } => {
+            let modules = if extended {
+                &mut cpu.extended_inputs
+            } else {
+                &mut cpu.inputs
+            };
+            let (at, count) = (usize::from(byte), usize::from(bytes));
+            if at + count > modules.len() {
+                return Err(format!("`{operand}` is past the input modules"));
+            }
+            write_bytes(modules, at, count, raw()?);
+        }
+        Target::TimerBit(_) => {
+            return Err("a timer runs as the program starts it; force its start condition".into());
+        }
+        Target::CounterValue(n) => {
+            let raw = raw()?;
+            if raw > 999 {
+                return Err(format!("a counter holds 0…999, not {raw}"));
+            }
+            cpu.counters[usize::from(n)].value = raw as u16;
+        }
+        Target::DataWord { db, word } => {
+            let slot = cpu.data_blocks[usize::from(db)]
+                .as_mut()
+                .ok_or_else(|| format!("DB {db} is not loaded"))?
+                .get_mut(usize::from(word))
+                .ok_or_else(|| format!("DB {db} has no DW {word}"))?;
+            *slot = raw()? as u16;
+        }
+    }
+    Ok(format!("{operand} = {}\n", natural(cpu, target)))
+}

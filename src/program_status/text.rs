@@ -1,0 +1,94 @@
+//! Program status as text: the block's source lines, and beside each line that ran its RLO,
+//! STA, ACCU 1, ACCU 2 and operand; lines that did not run are marked.
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+use crate::compiler::CompiledBlock;
+use crate::source::SourceSet;
+
+use super::{OpStatus, Recording};
+
+/// An accumulator as the PG shows a 16-bit one, with the high word only when it is used.
+fn accu(value: u32) -> String {
+    if value >> 16 == 0 {
+        format!("KH {value:04X}")
+    } else {
+        format!("KH {:04X} {:04X}", value >> 16, value & 0xFFFF)
+    }
+}
+
+fn columns(status: &OpStatus) -> String {
+    let mut out = format!(
+        "{:>3} {:>3}  {:<12} {:<12} {:<14}",
+        u8::from(status.rlo),
+        u8::from(status.sta),
+        accu(status.accu1),
+        accu(status.accu2),
+        status.operand.as_deref().unwrap_or("")
+    );
+    if status.runs > 1 {
+        let _ = write!(out, " ×{}", status.runs);
+    }
+    out.trim_end().to_string()
+}
+
+/// The recording of `block` beside its source.
+pub fn render(block: &CompiledBlock, sources: &SourceSet, recording: &Recording) -> String {
+    let file = sources.get(block.header.file);
+    let mut out = match &recording.invocation {
+        Some(invocation) => format!(
+            "program status of {} in cycle {}, from {}, level {}{}\n",
+            block.id,
+            invocation.cycle,
+            crate::trace::format_ms(invocation.t_ns),
+            invocation.level,
+            if recording.complete {
+                ""
+            } else {
+                " (the run ended before its block end)"
+            }
+        ),
+        None => format!("program status of {}: it did not run\n", block.id),
+    };
+    let by_line: BTreeMap<u32, Option<&OpStatus>> = block
+        .spans
+        .iter()
+        .zip(&recording.ops)
+        .map(|(span, status)| (file.line_of(span.start), status.as_ref()))
+        .collect();
+    let first = file.line_of(block.header.start);
+    let last = by_line.keys().next_back().copied().unwrap_or(first);
+    // Beside a statement its comment would push the columns away; comment lines stay whole.
+    let statement = |line: u32| {
+        let text = file.line(line).replace('\t', "    ");
+        match by_line.contains_key(&line) {
+            true => text.split(';').next().unwrap_or("").trim_end().to_string(),
+            false => text.trim_end().to_string(),
+        }
+    };
+    let width = by_line
+        .keys()
+        .map(|line| statement(*line).chars().count())
+        .max()
+        .unwrap_or(0)
+        .max("statement".len());
+    let _ = writeln!(
+        out,
+        "{:>5}  {:<width$}  {:>3} {:>3}  {:<12} {:<12} operand",
+        "line", "statement", "RLO", "STA", "ACCU 1", "ACCU 2"
+    );
+    for line in first..=last {
+        let beside = match by_line.get(&line) {
+            Some(Some(status)) => columns(status),
+            Some(None) => "  -   -  not executed".to_string(),
+            None => String::new(),
+        };
+        let row = format!("{line:>5}  {:<width$}  {beside}", statement(line));
+        let _ = writeln!(out, "{}", row.trim_end());
+    }
+    if recording.ops.iter().flatten().any(|status| status.runs > 1) {
+        out.push_str("×n: the line ran n times (a loop); its values are those of the last pass\n");
+    }
+    out
+}
