@@ -179,6 +179,37 @@ pub fn plural(n: impl Into<u64>, word: &str) -> String {
     format!("{n} {word}{}", if n == 1 { "" } else { "s" })
 }
 
+/// One line per `[[check]]`: when it was verified and how many of its operands held, then
+/// each one that did not.
+fn checks(out: &mut String, ran: &crate::runner::Ran) {
+    for check in &ran.checks {
+        let Some((at_ns, cycle)) = check.verified else {
+            let _ = writeln!(
+                out,
+                "check at {}: not reached (the run ended at {})",
+                check.at,
+                crate::trace::format_ms(ran.outcome.clock_ns)
+            );
+            continue;
+        };
+        let _ = writeln!(
+            out,
+            "check at {}: verified at {} (cycle {cycle}): {} of {} met",
+            check.at,
+            crate::trace::format_ms(at_ns),
+            check.operands - check.mismatches.len(),
+            check.operands
+        );
+        for mismatch in &check.mismatches {
+            let _ = writeln!(
+                out,
+                "  {}: expected {}, got {}",
+                mismatch.name, mismatch.expected, mismatch.actual
+            );
+        }
+    }
+}
+
 pub fn summary(ran: &crate::runner::Ran) -> String {
     let mut out = String::new();
     let outcome = &ran.outcome;
@@ -199,6 +230,7 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
             expectations
         );
     }
+    checks(&mut out, ran);
     bound_lines(&mut out, cpu);
     time_controlled_response(&mut out, cpu);
     for (ob, stats) in cpu.engine.requested_obs() {

@@ -79,6 +79,7 @@ pub fn run(
         warnings: Vec::new(),
         trace_closed: false,
         watch: awl::state::watch::WatchTable::default(),
+        checks: Vec::new(),
     };
     assert!(!awl::report::summary(&ran).is_empty());
     if let Some(stop) = &ran.outcome.stop {

@@ -235,7 +235,7 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
     }
     if halted {
         EXIT_HALTED
-    } else if !ran.mismatches.is_empty() {
+    } else if ran.failed() {
         EXIT_EXPECTATION
     } else if ran.outcome.stop.is_some() {
         EXIT_STOP
@@ -244,26 +244,46 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
     }
 }
 
+/// What did not hold: `[expect]` entries, then `[[check]]` operands with their time.
+fn failures(ran: &Ran) -> Vec<String> {
+    let mut failures: Vec<String> = ran
+        .mismatches
+        .iter()
+        .map(|m| format!("{} expected {}, got {}", m.name, m.expected, m.actual))
+        .collect();
+    for check in &ran.checks {
+        match check.verified {
+            None => failures.push(format!("check at {} not reached", check.at)),
+            Some((at_ns, _)) => failures.extend(check.mismatches.iter().map(|m| {
+                format!(
+                    "{} at {} expected {}, got {}",
+                    m.name,
+                    crate::trace::format_ms(at_ns),
+                    m.expected,
+                    m.actual
+                )
+            })),
+        }
+    }
+    failures
+}
+
 /// One scenario's line: PASS, or FAIL with the reason.
 fn verdict(path: &Path, result: Result<Ran, NotRun>, console: &mut Console) -> bool {
     let failure = match result {
         Ok(ran) => {
             console.reports(&ran.warnings);
-            if ran.mismatches.is_empty() {
+            if !ran.failed() {
                 console.out(&format!(
                     "PASS {}  ({}, {}, mode {})\n",
                     path.display(),
-                    super::plural(ran.expectations as u64, "expectation"),
+                    super::plural(ran.expectation_count() as u64, "expectation"),
                     super::plural(ran.outcome.cycles, "cycle"),
                     ran.outcome.mode.name()
                 ));
                 return true;
             }
-            ran.mismatches
-                .iter()
-                .map(|m| format!("{} expected {}, got {}", m.name, m.expected, m.actual))
-                .collect::<Vec<_>>()
-                .join("; ")
+            failures(&ran).join("; ")
         }
         Err(NotRun::SourceErrors(reports)) => {
             console.reports(&reports);

@@ -18,6 +18,7 @@ use crate::frontend::{self, Frontend};
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
 use crate::scenario::Scenario;
+use crate::scenario::check::{CheckOutcome, Checker};
 use crate::scenario::expect::{self, Mismatch};
 use crate::scenario::operand::{Target, parse_target};
 use crate::state::watch::WatchTable;
@@ -102,6 +103,25 @@ pub struct Ran {
     pub trace_closed: bool,
     /// The watch table's rows (empty without `--watch` or `watch = [...]`).
     pub watch: WatchTable,
+    /// The scenario's `[[check]]` tables, verified or not reached.
+    pub checks: Vec<CheckOutcome>,
+}
+
+impl Ran {
+    /// Whether an `[expect]` entry or a `[[check]]` did not hold.
+    pub fn failed(&self) -> bool {
+        !self.mismatches.is_empty() || self.checks.iter().any(|check| !check.passed())
+    }
+
+    /// Every operand and state the scenario expects, `[[check]]` operands included.
+    pub fn expectation_count(&self) -> usize {
+        self.expectations
+            + self
+                .checks
+                .iter()
+                .map(|check| check.operands)
+                .sum::<usize>()
+    }
 }
 
 /// Why a run did not get to run.
@@ -156,6 +176,7 @@ pub struct Prepared {
     pub mnemonics: MnemonicSet,
     scenario: Option<Scenario>,
     expectations: Vec<expect::Expectation>,
+    checker: Checker,
     watch: WatchTable,
     points: InterruptPoints,
     trace: Option<PathBuf>,
@@ -220,22 +241,24 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         .first()
         .copied()
         .unwrap_or(MnemonicSet::English);
-    let (schedule, expectations) = match &scenario {
+    let (schedule, expectations, checks) = match &scenario {
         Some(scenario) => {
             let schedule = scenario.schedule(&program, set);
             let expectations = scenario.expectations(&program, set);
-            match (schedule, expectations) {
-                (Ok(schedule), Ok(expectations)) if scenario_errors.is_empty() => {
-                    (schedule, expectations)
+            let checks = scenario.checks(&program, set);
+            match (schedule, expectations, checks) {
+                (Ok(schedule), Ok(expectations), Ok(checks)) if scenario_errors.is_empty() => {
+                    (schedule, expectations, checks)
                 }
-                (schedule, expectations) => {
+                (schedule, expectations, checks) => {
                     scenario_errors.extend(schedule.err().into_iter().flatten());
                     scenario_errors.extend(expectations.err().into_iter().flatten());
+                    scenario_errors.extend(checks.err().into_iter().flatten());
                     return Err(NotRun::Failed(scenario_errors));
                 }
             }
         }
-        None => (Vec::new(), Vec::new()),
+        None => (Vec::new(), Vec::new(), Vec::new()),
     };
     let watch = WatchTable::new(
         watched(options, scenario.as_ref(), &program, set)?,
@@ -287,6 +310,7 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         mnemonics: set,
         scenario,
         expectations,
+        checker: Checker::new(checks),
         watch,
         points,
         trace: options.trace.clone(),
@@ -309,6 +333,7 @@ impl Prepared {
             limit,
             scenario,
             expectations,
+            mut checker,
             mut watch,
             points,
             trace,
@@ -318,9 +343,14 @@ impl Prepared {
         } = self;
         let outcome = cpu.run_watched(limit, &mut |cpu| {
             watch.observe(cpu);
+            checker.observe(cpu);
             go_on(cpu)
         });
         watch.observe(&mut cpu);
+        // The run's end is a cycle end unless it went to STOP or was halted inside a cycle.
+        if outcome.stop.is_none() && !outcome.halted {
+            checker.observe(&cpu);
+        }
         if let Some(scenario) = &scenario
             && outcome.stop.is_none()
             && !outcome.halted
@@ -352,6 +382,7 @@ impl Prepared {
             warnings,
             trace_closed,
             watch,
+            checks: checker.finish(),
         }
     }
 }

@@ -74,6 +74,20 @@ fn show(target: Target, raw: u32) -> String {
     }
 }
 
+/// What an operand holds if it is not the value expected: (expected, actual) as shown.
+pub fn value_mismatch(
+    cpu: &Cpu,
+    target: Target,
+    raw: u32,
+    written: i64,
+) -> Option<(String, String)> {
+    match actual(cpu, target) {
+        Some(value) if value == raw => None,
+        Some(value) => Some((written.to_string(), show(target, value))),
+        None => Some((written.to_string(), "not loaded".to_string())),
+    }
+}
+
 pub fn check(cpu: &Cpu, outcome: &RunOutcome, expectations: &[Expectation]) -> Vec<Mismatch> {
     let mut mismatches = Vec::new();
     for expectation in expectations {
@@ -82,11 +96,7 @@ pub fn check(cpu: &Cpu, outcome: &RunOutcome, expectations: &[Expectation]) -> V
                 target,
                 raw,
                 written,
-            } => match actual(cpu, *target) {
-                Some(value) if value == *raw => None,
-                Some(value) => Some((written.to_string(), show(*target, value))),
-                None => Some((written.to_string(), "not loaded".to_string())),
-            },
+            } => value_mismatch(cpu, *target, *raw, *written),
             Expected::Mode(mode) => (outcome.mode.name() != mode)
                 .then(|| (mode.clone(), outcome.mode.name().to_string())),
             Expected::StopCause(cause) => {

@@ -4,6 +4,7 @@
 //! resolved once the program is compiled, in its mnemonic set or English. Every error of a
 //! file is reported, not only the first.
 
+pub mod check;
 pub mod error;
 pub mod expect;
 pub mod operand;
@@ -22,6 +23,7 @@ use crate::vm::cycle::RunLimit;
 use crate::vm::interrupts::{Happening, InputChange, InputTarget, Ob13Timing, Scheduled};
 use crate::vm::stop::StopCause;
 
+pub use check::TimedCheck;
 pub use error::ScenarioError;
 pub use expect::{Expectation, Expected};
 use operand::{Target, parse_target, raw_value};
@@ -30,6 +32,9 @@ use raw::{ProgramList, RawEvent, RawScenario, SpannedTable};
 /// The longest cycle watchdog a scenario may set: the longest cycle monitoring time of the
 /// S7-300 class CPUs the VIPA SPEED7 follows (6000 ms); the S5 CPUs allow less.
 pub const MAX_WATCHDOG_NS: u64 = 6_000_000_000;
+
+/// The most events a scenario's repetitions (`every`) may add up to.
+pub const MAX_EVENTS: usize = 1_000_000;
 
 /// A loaded scenario.
 #[derive(Debug)]
@@ -50,6 +55,7 @@ pub struct Scenario {
     events: Vec<Spanned<RawEvent>>,
     expect: SpannedTable,
     watch: Vec<Spanned<String>>,
+    checks: Vec<Spanned<SpannedTable>>,
 }
 
 fn span<T>(spanned: &Spanned<T>) -> SourceSpan {
@@ -232,6 +238,7 @@ impl Scenario {
             events: raw.event,
             expect: raw.expect,
             watch: raw.watch,
+            checks: raw.check,
         }
     }
 
@@ -294,8 +301,25 @@ impl Scenario {
             } else {
                 None
             };
-            if let (Some(at_ns), Some(what)) = (at_ns, what) {
-                schedule.push(Scheduled { at_ns, what });
+            let times = at_ns.and_then(|at_ns| errors.keep(occurrences(event, at_ns)));
+            if let (Some(times), Some(what)) = (times, what) {
+                if schedule.len() + times.len() > MAX_EVENTS {
+                    errors.push(invalid(
+                        format!(
+                            "this event repeats {} times; a scenario holds at most {MAX_EVENTS} events",
+                            times.len()
+                        ),
+                        event_span,
+                        "too many repetitions",
+                        Some("repeat it less often (a longer `every`), or fewer times".into()),
+                    ));
+                    continue;
+                }
+                let repeated = times.into_iter().map(|at_ns| Scheduled {
+                    at_ns,
+                    what: what.clone(),
+                });
+                schedule.extend(repeated);
             }
         }
         if errors.0.is_empty() {
@@ -464,23 +488,7 @@ impl Scenario {
                         None
                     }
                 },
-                operand => errors
-                    .keep(parse_target(
-                        operand,
-                        self.key_span(key),
-                        set,
-                        self.profile,
-                        program.layout,
-                    ))
-                    .and_then(|target| {
-                        errors
-                            .keep(Scenario::value(target, value, operand))
-                            .map(|(number, raw)| Expected::Value {
-                                target,
-                                raw,
-                                written: number,
-                            })
-                    }),
+                _ => self.expected_value(key, value, program, set, &mut errors),
             };
             if let Some(expected) = expected {
                 expectations.push(Expectation {
@@ -498,6 +506,118 @@ impl Scenario {
 }
 
 impl Scenario {
+    /// An operand's expected value in `[expect]` or a `[[check]]`.
+    fn expected_value(
+        &self,
+        key: &Spanned<String>,
+        value: &Spanned<toml::Value>,
+        program: &Program,
+        set: MnemonicSet,
+        errors: &mut Errors,
+    ) -> Option<Expected> {
+        let operand = key.get_ref();
+        let at = self.key_span(key);
+        let target = errors.keep(parse_target(operand, at, set, self.profile, program.layout))?;
+        let (number, raw) = errors.keep(Scenario::value(target, value, operand))?;
+        Some(Expected::Value {
+            target,
+            raw,
+            written: number,
+        })
+    }
+
+    /// The `[[check]]` tables, resolved against the compiled program.
+    pub fn checks(
+        &self,
+        program: &Program,
+        set: MnemonicSet,
+    ) -> Result<Vec<TimedCheck>, Vec<Report>> {
+        let mut errors = Errors::default();
+        let mut checks = Vec::new();
+        for table in &self.checks {
+            let at = table
+                .get_ref()
+                .iter()
+                .find(|(key, _)| key.get_ref() == "at");
+            let at_ns = match at {
+                None => {
+                    errors.push(invalid(
+                        "a [[check]] needs `at`, the moment it is verified after",
+                        span(table),
+                        "no `at`",
+                        Some(
+                            "e.g. `at = \"250ms\"`: verified at the first cycle end at or after it"
+                                .into(),
+                        ),
+                    ));
+                    None
+                }
+                Some((_, value)) => match value.get_ref().as_str() {
+                    Some(text) => {
+                        errors.keep(duration(&Spanned::new(value.span(), text.to_string())))
+                    }
+                    None => {
+                        errors.push(ScenarioError::BadDuration {
+                            text: value.get_ref().to_string(),
+                            at: span(value),
+                        });
+                        None
+                    }
+                },
+            };
+            let mut expectations = Vec::new();
+            for (key, value) in table
+                .get_ref()
+                .iter()
+                .filter(|(key, _)| key.get_ref() != "at")
+            {
+                if matches!(key.get_ref().as_str(), "mode" | "stop_cause") {
+                    errors.push(invalid(
+                        format!(
+                            "a [[check]] checks operands; `{}` belongs in [expect]",
+                            key.get_ref()
+                        ),
+                        self.key_span(key),
+                        "not an operand",
+                        None,
+                    ));
+                    continue;
+                }
+                if let Some(expected) = self.expected_value(key, value, program, set, &mut errors) {
+                    expectations.push(Expectation {
+                        name: key.get_ref().clone(),
+                        expected,
+                    });
+                }
+            }
+            if table.get_ref().len() == usize::from(at.is_some()) {
+                errors.push(invalid(
+                    "a [[check]] without operands checks nothing",
+                    span(table),
+                    "no operands",
+                    Some("add operands as in [expect]: `\"Q 4.0\" = 1`".into()),
+                ));
+            }
+            if let (Some(at_ns), Some((_, value))) = (at_ns, at) {
+                checks.push(TimedCheck {
+                    at_ns,
+                    at: value
+                        .get_ref()
+                        .as_str()
+                        .unwrap_or_default()
+                        .trim()
+                        .to_string(),
+                    expectations,
+                });
+            }
+        }
+        if errors.0.is_empty() {
+            Ok(checks)
+        } else {
+            Err(self.reports(errors.0))
+        }
+    }
+
     /// The operands of `watch = [...]`, checked like those of `[expect]`.
     pub fn watch_targets(
         &self,
@@ -563,6 +683,84 @@ fn input_of(target: Target, program: &Program) -> Option<(InputTarget, u16, u8, 
         }
         _ => None,
     }
+}
+
+/// The moments of an event: `at`, and with `every` its repetitions, `count` in all or up to
+/// `until`.
+fn occurrences(event: &RawEvent, at_ns: u64) -> Result<Vec<u64>, ScenarioError> {
+    let Some(every) = &event.every else {
+        if let Some(count) = &event.count {
+            return Err(invalid(
+                "`count` repeats an event: give `every` too",
+                span(count),
+                "no `every`",
+                None,
+            ));
+        }
+        if let Some(until) = &event.until {
+            return Err(invalid(
+                "`until` repeats an event: give `every` too",
+                span(until),
+                "no `every`",
+                None,
+            ));
+        }
+        return Ok(vec![at_ns]);
+    };
+    let every_ns = duration(every)?;
+    if every_ns == 0 {
+        return Err(invalid(
+            "an event cannot repeat every 0 s",
+            span(every),
+            "above zero",
+            None,
+        ));
+    }
+    let last = match (&event.count, &event.until) {
+        (Some(count), None) if *count.get_ref() == 0 => {
+            return Err(invalid(
+                "`count` is how often the event happens in all: at least 1",
+                span(count),
+                "at least 1",
+                None,
+            ));
+        }
+        (Some(count), None) => (count.get_ref() - 1)
+            .checked_mul(every_ns)
+            .and_then(|span| span.checked_add(at_ns))
+            .unwrap_or(u64::MAX),
+        (None, Some(until)) => {
+            let until_ns = duration(until)?;
+            if until_ns < at_ns {
+                return Err(invalid(
+                    "`until` is before `at`",
+                    span(until),
+                    "before the first time",
+                    None,
+                ));
+            }
+            until_ns
+        }
+        (count, _) => {
+            let (message, at) = match count {
+                Some(count) => ("give `count` or `until`, not both", span(count)),
+                None => ("`every` needs `count = N` or `until = \"…\"`", span(every)),
+            };
+            return Err(invalid(message, at, "how long it repeats", None));
+        }
+    };
+    let times = (last - at_ns) / every_ns + 1;
+    if times > MAX_EVENTS as u64 {
+        return Err(invalid(
+            format!(
+                "this event repeats {times} times; a scenario holds at most {MAX_EVENTS} events"
+            ),
+            span(every),
+            "too many repetitions",
+            Some("repeat it less often (a longer `every`), or fewer times".into()),
+        ));
+    }
+    Ok((0..times).map(|n| at_ns + n * every_ns).collect())
 }
 
 fn check_mode(mode: &Spanned<String>, profile: &Profile) -> Result<bool, ScenarioError> {

@@ -1,5 +1,5 @@
 //! The scenario file as TOML, with spans kept for diagnostics. Every top-level key, and every
-//! entry of `[[event]]` and `[[hw_module]]`, is read on its own, so one bad key does not hide
+//! entry of `[[event]]`, `[[check]]` and `[[hw_module]]`, is read on its own, so one bad key does not hide
 //! the errors of the others.
 
 use std::collections::BTreeMap;
@@ -27,6 +27,7 @@ pub const KEYS: &[&str] = &[
     "event",
     "expect",
     "watch",
+    "check",
 ];
 
 #[derive(Debug, Default)]
@@ -42,6 +43,8 @@ pub struct RawScenario {
     pub event: Vec<Spanned<RawEvent>>,
     pub expect: SpannedTable,
     pub watch: Vec<Spanned<String>>,
+    /// `[[check]]` tables: `at` and operands.
+    pub check: Vec<Spanned<SpannedTable>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -78,6 +81,10 @@ pub struct RawHwModule {
 #[serde(deny_unknown_fields)]
 pub struct RawEvent {
     pub at: Spanned<String>,
+    /// Repeats the event this often, `count` times or until `until`.
+    pub every: Option<Spanned<String>>,
+    pub count: Option<Spanned<u64>>,
+    pub until: Option<Spanned<String>>,
     pub set: Option<SpannedTable>,
     pub interrupt: Option<Spanned<String>>,
     pub hw_interrupt: Option<Spanned<RawHardware>>,
@@ -157,6 +164,7 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "watch" => keep(read(value).map(|v| raw.watch = v)),
             "hw_module" => raw.hw_module = read_each(value, &mut errors),
             "event" => raw.event = read_each(value, &mut errors),
+            "check" => raw.check = read_each(value, &mut errors),
             other => errors.push(ScenarioError::UnknownKey {
                 key: other.to_string(),
                 at: span_of(key.span()),
