@@ -73,12 +73,8 @@ pub fn stack(cpu: &Cpu) -> String {
 }
 
 pub fn accumulators(cpu: &Cpu) -> String {
-    let mut values = vec![cpu.level.accu1, cpu.level.accu2];
-    if cpu.profile.accumulators == 4 {
-        values.extend([cpu.level.accu3, cpu.level.accu4]);
-    }
     let mut out = String::new();
-    for (n, value) in values.into_iter().enumerate() {
+    for (n, value) in state::accumulators(cpu, &cpu.level).into_iter().enumerate() {
         let _ = writeln!(out, "ACCU {}  {}", n + 1, state::text::accu(value));
     }
     out

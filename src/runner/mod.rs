@@ -155,16 +155,7 @@ fn default_profile() -> &'static Profile {
 
 /// Builds and runs to the limit or a STOP.
 pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
-    run_watched(options, &mut |_| true)
-}
-
-/// As [`run`], asking `go_on` at every cycle boundary whether to go on (see
-/// [`Cpu::run_watched`]).
-pub fn run_watched(
-    options: &RunOptions,
-    go_on: &mut dyn FnMut(&Cpu) -> bool,
-) -> Result<Ran, NotRun> {
-    Ok(prepare(options)?.run(go_on))
+    Ok(prepare(options)?.run(&mut |_| true))
 }
 
 /// A run set up and ready to go: the CPU in STOP with its program, engine and trace.

@@ -103,7 +103,8 @@ pub struct State {
     pub levels: Option<Vec<LevelView>>,
 }
 
-fn accumulators(cpu: &Cpu, level: &LevelState) -> Vec<u32> {
+/// ACCU 1 and 2 of a level, and 3 and 4 on the CPUs that have four.
+pub fn accumulators(cpu: &Cpu, level: &LevelState) -> Vec<u32> {
     let mut accu = vec![level.accu1, level.accu2];
     if cpu.profile.accumulators == 4 {
         accu.extend([level.accu3, level.accu4]);
