@@ -58,11 +58,21 @@ pub struct Invocation {
     frames: usize,
 }
 
+/// An interrupt OB that ran inside the recorded invocation.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Interruption {
+    /// The op of the block after which it was serviced; `None`: before the first.
+    pub after_pc: Option<u32>,
+    pub ob: u8,
+    pub t_ns: u64,
+}
+
 /// The recording: per op of the block, its status (`None`: not run).
 #[derive(Debug, Clone, Default)]
 pub struct Recording {
     pub invocation: Option<Invocation>,
     pub ops: Vec<Option<OpStatus>>,
+    pub interruptions: Vec<Interruption>,
     /// The invocation ran to its block end.
     pub complete: bool,
 }
@@ -76,6 +86,8 @@ pub struct Recorder {
     jumped_to_start: bool,
     /// A conditional block end ran: whether it ended the block shows at the next op.
     conditional_end: Option<u32>,
+    /// The invocation's last op that ran.
+    last_pc: Option<u32>,
 }
 
 impl Recorder {
@@ -90,6 +102,7 @@ impl Recorder {
             recording: Rc::clone(&recording),
             jumped_to_start: false,
             conditional_end: None,
+            last_pc: None,
         };
         (recorder, recording)
     }
@@ -146,6 +159,7 @@ impl Probe for Recorder {
         if !self.inside(cpu, block) {
             return Flow::Go;
         }
+        self.last_pc = Some(pc);
         {
             let mut recording = self.recording.borrow_mut();
             let Some(slot) = recording.ops.get_mut(pc as usize) else {
@@ -168,6 +182,17 @@ impl Probe for Recorder {
                 Flow::Go
             }
             _ => Flow::Go,
+        }
+    }
+
+    fn serviced(&mut self, cpu: &Cpu, ob: u8) {
+        let mut recording = self.recording.borrow_mut();
+        if recording.invocation.is_some() && !recording.complete {
+            recording.interruptions.push(Interruption {
+                after_pc: self.last_pc,
+                ob,
+                t_ns: cpu.clock,
+            });
         }
     }
 }

@@ -78,6 +78,15 @@ pub fn render(block: &CompiledBlock, sources: &SourceSet, recording: &Recording)
         "{:>5}  {:<width$}  {:>3} {:>3}  {:<12} {:<12} operand",
         "line", "statement", "RLO", "STA", "ACCU 1", "ACCU 2"
     );
+    let interrupted_after = |line: u32| {
+        recording.interruptions.iter().filter(move |interruption| {
+            let after = interruption
+                .after_pc
+                .and_then(|pc| block.spans.get(pc as usize))
+                .map_or(first, |span| file.line_of(span.start));
+            after == line
+        })
+    };
     for line in first..=last {
         let beside = match by_line.get(&line) {
             Some(Some(status)) => columns(status),
@@ -86,6 +95,16 @@ pub fn render(block: &CompiledBlock, sources: &SourceSet, recording: &Recording)
         };
         let row = format!("{line:>5}  {:<width$}  {beside}", statement(line));
         let _ = writeln!(out, "{}", row.trim_end());
+        for interruption in interrupted_after(line) {
+            let _ = writeln!(
+                out,
+                "{:>5}  {:<width$}  OB {} ran here: serviced at {}",
+                "",
+                "↳ interrupt",
+                interruption.ob,
+                crate::trace::format_ms(interruption.t_ns)
+            );
+        }
     }
     if recording.ops.iter().flatten().any(|status| status.runs > 1) {
         out.push_str("×n: the line ran n times (a loop); its values are those of the last pass\n");
