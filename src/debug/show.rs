@@ -8,7 +8,7 @@ use crate::scenario::operand::{Target, parse_target, raw_value};
 use crate::state::watch::natural;
 use crate::state::{self, LevelView, StatusBits};
 use crate::trace::format_ms;
-use crate::vm::exec::write_bytes;
+use crate::vm::interrupts::{InputChange, InputTarget};
 use crate::vm::{Cpu, IDLE};
 
 /// `PB 2 line 19, cycle 1, 0.025100 ms, level OB 1`, then the line itself.
@@ -110,41 +110,32 @@ pub fn print(cpu: &Cpu, operands: &[String], set: MnemonicSet) -> Result<String,
     Ok(out)
 }
 
-/// Writes bytes into the PII and, when they are inputs, into the input modules too, so the
-/// forced value holds at the next PII read.
-fn force_image(cpu: &mut Cpu, byte: u16, bytes: u8, raw: u32) {
-    let (at, count) = (usize::from(byte), usize::from(bytes));
-    write_bytes(&mut cpu.image[..], at, count, raw);
-    let inputs = usize::from(cpu.program.layout.image_bytes);
-    if at + count <= inputs.min(cpu.inputs.len()) {
-        write_bytes(&mut cpu.inputs, at, count, raw);
+/// Writes into the image memory and, for the PII, into the input modules.
+fn force_image(cpu: &mut Cpu, write: InputChange) {
+    write.apply(&mut cpu.image[..]);
+    if write.byte < cpu.program.layout.output_base() {
+        write.apply(&mut cpu.inputs);
     }
 }
 
-/// `set OPERAND VALUE`: what it wrote, or why it cannot.
+/// `set OPERAND VALUE`: what it wrote, or why it cannot. An input is written into the PII and
+/// into the input modules, so the forced value holds at the next PII read too.
 pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Result<String, String> {
     let target = target(cpu, operand, set).map_err(|reason| format!("`{operand}`: {reason}"))?;
     let raw = || {
         raw_value(target, value)
             .map_err(|allowed| format!("`{operand}` takes {allowed}, not {value}"))
     };
+    let change = |byte, bit, bytes, value| InputChange {
+        target: InputTarget::Process,
+        byte,
+        bit,
+        bytes,
+        value,
+    };
     match target {
-        Target::ImageBit { byte, bit } => {
-            let raw = raw()?;
-            let inputs = usize::from(cpu.program.layout.image_bytes).min(cpu.inputs.len());
-            let at = usize::from(byte);
-            let mask = 1u8 << bit;
-            for memory in [&mut cpu.image[..], &mut cpu.inputs[..inputs]] {
-                if let Some(byte) = memory.get_mut(at) {
-                    *byte = if raw != 0 {
-                        *byte | mask
-                    } else {
-                        *byte & !mask
-                    };
-                }
-            }
-        }
-        Target::Image { byte, bytes } => force_image(cpu, byte, bytes, raw()?),
+        Target::ImageBit { byte, bit } => force_image(cpu, change(byte, bit, 0, raw()?)),
+        Target::Image { byte, bytes } => force_image(cpu, change(byte, 0, bytes, raw()?)),
         Target::Periphery {
             byte,
             bytes,
@@ -155,11 +146,10 @@ pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Resu
             } else {
                 &mut cpu.inputs
             };
-            let (at, count) = (usize::from(byte), usize::from(bytes));
-            if at + count > modules.len() {
+            if usize::from(byte) + usize::from(bytes) > modules.len() {
                 return Err(format!("`{operand}` is past the input modules"));
             }
-            write_bytes(modules, at, count, raw()?);
+            change(byte, 0, bytes, raw()?).apply(modules);
         }
         Target::TimerBit(_) => {
             return Err("a timer runs as the program starts it; force its start condition".into());
