@@ -4,6 +4,7 @@
 use std::fmt::Write;
 
 use crate::mnemonics::MnemonicSet;
+use crate::scenario::input_change;
 use crate::scenario::operand::{Target, parse_target, raw_value};
 use crate::state::watch::natural;
 use crate::state::{self, LevelView, StatusBits};
@@ -110,23 +111,42 @@ pub fn print(cpu: &Cpu, operands: &[String], set: MnemonicSet) -> Result<String,
     Ok(out)
 }
 
-/// Writes into the image memory and, for the PII, into the input modules.
-fn force_image(cpu: &mut Cpu, write: InputChange) {
+/// Writes an input change into the input modules, as a scenario's `set` does.
+fn write_modules(cpu: &mut Cpu, change: InputChange, operand: &str) -> Result<(), String> {
+    let modules = match change.target {
+        InputTarget::Process => &mut cpu.inputs,
+        InputTarget::Extended => &mut cpu.extended_inputs,
+    };
+    if usize::from(change.byte) + usize::from(change.bytes.max(1)) > modules.len() {
+        return Err(format!("`{operand}` is past the input modules"));
+    }
+    change.apply(modules);
+    Ok(())
+}
+
+/// Writes into the image memory and, for the PII, into the input modules too, so the forced
+/// value holds at the next PII read.
+fn force_image(
+    cpu: &mut Cpu,
+    target: Target,
+    write: InputChange,
+    operand: &str,
+) -> Result<(), String> {
     write.apply(&mut cpu.image[..]);
-    if write.byte < cpu.program.layout.output_base() {
-        write.apply(&mut cpu.inputs);
+    match input_change(target, &cpu.program, write.value) {
+        Some(change) => write_modules(cpu, change, operand),
+        None => Ok(()),
     }
 }
 
-/// `set OPERAND VALUE`: what it wrote, or why it cannot. An input is written into the PII and
-/// into the input modules, so the forced value holds at the next PII read too.
+/// `set OPERAND VALUE`: what it wrote, or why it cannot.
 pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Result<String, String> {
     let target = target(cpu, operand, set).map_err(|reason| format!("`{operand}`: {reason}"))?;
     let raw = || {
         raw_value(target, value)
             .map_err(|allowed| format!("`{operand}` takes {allowed}, not {value}"))
     };
-    let change = |byte, bit, bytes, value| InputChange {
+    let image = |byte, bit, bytes, value| InputChange {
         target: InputTarget::Process,
         byte,
         bit,
@@ -134,22 +154,16 @@ pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Resu
         value,
     };
     match target {
-        Target::ImageBit { byte, bit } => force_image(cpu, change(byte, bit, 0, raw()?)),
-        Target::Image { byte, bytes } => force_image(cpu, change(byte, 0, bytes, raw()?)),
-        Target::Periphery {
-            byte,
-            bytes,
-            extended,
-        } => {
-            let modules = if extended {
-                &mut cpu.extended_inputs
-            } else {
-                &mut cpu.inputs
-            };
-            if usize::from(byte) + usize::from(bytes) > modules.len() {
-                return Err(format!("`{operand}` is past the input modules"));
+        Target::ImageBit { byte, bit } => {
+            force_image(cpu, target, image(byte, bit, 0, raw()?), operand)?;
+        }
+        Target::Image { byte, bytes } => {
+            force_image(cpu, target, image(byte, 0, bytes, raw()?), operand)?;
+        }
+        Target::Periphery { .. } => {
+            if let Some(change) = input_change(target, &cpu.program, raw()?) {
+                write_modules(cpu, change, operand)?;
             }
-            change(byte, 0, bytes, raw()?).apply(modules);
         }
         Target::TimerBit(_) => {
             return Err("a timer runs as the program starts it; force its start condition".into());

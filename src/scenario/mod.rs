@@ -345,7 +345,7 @@ impl Scenario {
             else {
                 continue;
             };
-            let Some((input_target, byte, bit, bytes)) = input_of(target, program) else {
+            if input_change(target, program, 0).is_none() {
                 errors.push(ScenarioError::UnknownOperand {
                     operand: text.clone(),
                     at,
@@ -353,15 +353,9 @@ impl Scenario {
                     help: Some("use I bits, IB, IW, PY, PW, OY or OW".into()),
                 });
                 continue;
-            };
+            }
             if let Some((_, raw)) = errors.keep(Scenario::value(target, value, text)) {
-                resolved.push(InputChange {
-                    target: input_target,
-                    byte,
-                    bit,
-                    bytes,
-                    value: raw,
-                });
+                resolved.extend(input_change(target, program, raw));
             }
         }
         (resolved.len() == changes.len()).then_some(resolved)
@@ -659,16 +653,13 @@ fn sorted(mut errors: Vec<ScenarioError>) -> Vec<ScenarioError> {
     errors
 }
 
-/// Which input modules a `set` operand changes: (modules, byte, bit, bytes).
-fn input_of(target: Target, program: &Program) -> Option<(InputTarget, u16, u8, u8)> {
+/// The change of the input modules that writing `value` to `target` makes; `None` when the
+/// target is no input (outputs, flags, timers, counters, data words).
+pub fn input_change(target: Target, program: &Program, value: u32) -> Option<InputChange> {
     let outputs = program.layout.output_base();
-    match target {
-        Target::ImageBit { byte, bit } if byte < outputs => {
-            Some((InputTarget::Process, byte, bit, 0))
-        }
-        Target::Image { byte, bytes } if byte < outputs => {
-            Some((InputTarget::Process, byte, 0, bytes))
-        }
+    let (target, byte, bit, bytes) = match target {
+        Target::ImageBit { byte, bit } if byte < outputs => (InputTarget::Process, byte, bit, 0),
+        Target::Image { byte, bytes } if byte < outputs => (InputTarget::Process, byte, 0, bytes),
         Target::Periphery {
             byte,
             bytes,
@@ -679,10 +670,17 @@ fn input_of(target: Target, program: &Program) -> Option<(InputTarget, u16, u8, 
             } else {
                 InputTarget::Process
             };
-            Some((modules, byte, 0, bytes))
+            (modules, byte, 0, bytes)
         }
-        _ => None,
-    }
+        _ => return None,
+    };
+    Some(InputChange {
+        target,
+        byte,
+        bit,
+        bytes,
+        value,
+    })
 }
 
 /// The moments of an event: `at`, and with `every` its repetitions, `count` in all or up to
