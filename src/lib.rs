@@ -21,5 +21,6 @@ pub mod runner;
 pub mod scenario;
 pub mod source;
 pub mod state;
+pub mod timeline;
 pub mod trace;
 pub mod vm;

@@ -58,7 +58,7 @@ pub fn run(
     cpu.engine = Engine::new(profile, config, schedule);
     cpu.tracer = Tracer::new(TraceFormat::Text, Box::new(std::io::sink()));
     let outcome = cpu.run(limit);
-    cpu.tracer.finish().expect("a sink takes everything");
+    assert!(cpu.tracer.finish(cpu.clock).is_empty(), "a sink takes everything");
     assert_eq!(outcome.stop.is_some(), outcome.mode == Mode::Stop);
     for (ob, stats) in cpu.engine.requested_obs() {
         let waiting = cpu.engine.waiting(ob);

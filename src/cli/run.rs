@@ -7,7 +7,7 @@ use clap::ValueEnum;
 use crate::profile::{self, InterruptPoints};
 use crate::runner::{self, NotRun, Prepared, Ran, RunOptions};
 use crate::state::State;
-use crate::trace::TraceFormat;
+use crate::trace::{Kind, TraceFormat};
 use crate::vm::cycle::RunLimit;
 
 use super::watch::{EXIT_HALTED, Watch};
@@ -32,6 +32,23 @@ pub enum CpuMode {
 pub enum Format {
     Text,
     Jsonl,
+    /// The trace-event JSON of Perfetto (ui.perfetto.dev) and chrome://tracing
+    Chrome,
+}
+
+/// A kind of trace events (`--trace-filter`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TraceKind {
+    /// Requests, services, interrupt OB ends, lost and ignored requests
+    Interrupts,
+    /// Block calls and ends
+    Blocks,
+    /// Cycles, data cycles, operating-system time
+    Cycles,
+    /// Input and output changes, watch rows
+    Io,
+    /// Everything
+    All,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -80,6 +97,18 @@ pub struct RunArgs {
     /// Trace format [default: jsonl]
     #[arg(long, value_enum, requires = "trace")]
     pub trace_format: Option<Format>,
+    /// Only these kinds of events in the trace (comma list); mode changes and a STOP always
+    #[arg(long, value_enum, value_delimiter = ',', requires = "trace", value_name = "KINDS")]
+    pub trace_filter: Vec<TraceKind>,
+    /// Draw the run's timeline into FILE: `.svg`, or `.html` with pan, zoom and hover details
+    #[arg(long, value_name = "FILE")]
+    pub timeline: Option<PathBuf>,
+    /// The trace and the timeline start at this simulated time, e.g. 10ms
+    #[arg(long, value_name = "TIME", value_parser = parse_time_arg)]
+    pub from: Option<u64>,
+    /// The trace and the timeline end at this simulated time, e.g. 20ms
+    #[arg(long, value_name = "TIME", value_parser = parse_time_arg)]
+    pub to: Option<u64>,
     /// Print the CPU's state at the end: ACCUs, status word, images, timers, counters, DBs
     #[arg(long)]
     pub state: bool,
@@ -113,6 +142,16 @@ pub(super) fn parse_duration_arg(text: &str) -> Result<u64, String> {
     }
 }
 
+/// A point in simulated time: 0 or a duration from the start.
+fn parse_time_arg(text: &str) -> Result<u64, String> {
+    match text.trim() {
+        "0" => Ok(0),
+        text => crate::scenario::parse_duration(text).ok_or_else(|| {
+            format!("`{text}` is not a time; write e.g. 0, 250us, 10ms, 2s")
+        }),
+    }
+}
+
 /// The run a program's arguments ask for.
 pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
     RunOptions {
@@ -139,7 +178,12 @@ fn run_options(args: &RunArgs) -> RunOptions {
         trace_format: args.trace_format.map(|format| match format {
             Format::Text => TraceFormat::Text,
             Format::Jsonl => TraceFormat::Jsonl,
+            Format::Chrome => TraceFormat::Chrome,
         }),
+        trace_filter: trace_kinds(&args.trace_filter),
+        from_ns: args.from,
+        to_ns: args.to,
+        timeline: args.timeline.clone(),
         watch: args
             .watch
             .iter()
@@ -151,6 +195,22 @@ fn run_options(args: &RunArgs) -> RunOptions {
         watch_every_ns: args.watch_every,
         ..program_options(&args.program)
     }
+}
+
+/// The kinds `--trace-filter` names (none, or `all` among them: every kind).
+fn trace_kinds(kinds: &[TraceKind]) -> Vec<Kind> {
+    if kinds.contains(&TraceKind::All) {
+        return Vec::new();
+    }
+    kinds
+        .iter()
+        .map(|kind| match kind {
+            TraceKind::Interrupts => Kind::Interrupts,
+            TraceKind::Blocks => Kind::Blocks,
+            TraceKind::Cycles => Kind::Cycles,
+            TraceKind::Io | TraceKind::All => Kind::Io,
+        })
+        .collect()
 }
 
 /// Prints why a run did not run; its exit code.

@@ -22,7 +22,8 @@ use crate::scenario::check::{CheckOutcome, Checker};
 use crate::scenario::expect::{self, Mismatch};
 use crate::scenario::operand::{Target, parse_target};
 use crate::state::watch::WatchTable;
-use crate::trace::{TraceFormat, Tracer};
+use crate::timeline;
+use crate::trace::{self, Kind, TraceFilter, TraceFormat};
 use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
 use crate::vm::interrupts::{Engine, EngineConfig};
@@ -44,6 +45,13 @@ pub struct RunOptions {
     pub special_mode: Option<bool>,
     pub trace: Option<PathBuf>,
     pub trace_format: Option<TraceFormat>,
+    /// The kinds of events the trace shows (`--trace-filter`); empty for all.
+    pub trace_filter: Vec<Kind>,
+    /// The window of simulated time the trace and the timeline show (`--from`, `--to`).
+    pub from_ns: Option<u64>,
+    pub to_ns: Option<u64>,
+    /// The timeline picture's file (`.svg` or `.html`).
+    pub timeline: Option<PathBuf>,
     pub mnemonics: Option<MnemonicSet>,
     /// Operands to watch (`--watch "Q 4.0, FW 10"`), added to the scenario's `watch`.
     pub watch: Vec<String>,
@@ -85,6 +93,18 @@ pub enum RunError {
         )
     )]
     WatchOperand { operand: String, reason: String },
+    #[error("the window from {from} to {to} holds no time")]
+    #[diagnostic(
+        code(awl::cli::empty_window),
+        help("`--from` must come before `--to`, e.g. `--from 10ms --to 20ms`")
+    )]
+    EmptyWindow { from: String, to: String },
+    #[error("cannot write the timeline to `{path}`: {reason}")]
+    #[diagnostic(
+        code(awl::cli::timeline_write),
+        help("check that the directory exists and is writable")
+    )]
+    TimelineWrite { path: String, reason: String },
 }
 
 /// Everything a finished run has to say.
@@ -134,19 +154,81 @@ pub enum NotRun {
     Failed(Vec<Report>),
 }
 
-fn open_trace(path: &PathBuf, format: TraceFormat) -> Result<Tracer, NotRun> {
-    let out: Box<dyn Write> = if path.as_os_str() == "-" {
-        Box::new(BufWriter::new(std::io::stdout()))
-    } else {
-        let file = File::create(path).map_err(|error| {
-            NotRun::Failed(vec![Report::new(RunError::TraceWrite {
-                path: path.display().to_string(),
-                reason: error.to_string(),
-            })])
-        })?;
-        Box::new(BufWriter::new(file))
+/// The trace's output: stdout for `-`, else the file, created before the run.
+fn open_trace(path: &PathBuf) -> Result<Box<dyn Write>, NotRun> {
+    if path.as_os_str() == "-" {
+        return Ok(Box::new(BufWriter::new(std::io::stdout())));
+    }
+    let file = File::create(path).map_err(|error| {
+        NotRun::Failed(vec![Report::new(RunError::TraceWrite {
+            path: path.display().to_string(),
+            reason: error.to_string(),
+        })])
+    })?;
+    Ok(Box::new(BufWriter::new(file)))
+}
+
+/// The timeline's file, created before the run so a wrong path is told at once.
+fn open_timeline(path: &PathBuf) -> Result<Box<dyn Write>, NotRun> {
+    let file = File::create(path).map_err(|error| {
+        NotRun::Failed(vec![Report::new(RunError::TimelineWrite {
+            path: path.display().to_string(),
+            reason: error.to_string(),
+        })])
+    })?;
+    Ok(Box::new(BufWriter::new(file)))
+}
+
+/// The trace and the timeline the options ask for, on `cpu`'s tracer.
+fn add_outputs(
+    cpu: &mut Cpu,
+    options: &RunOptions,
+    levels: trace::Levels,
+    caption: String,
+) -> Result<(), NotRun> {
+    if let (Some(from), Some(to)) = (options.from_ns, options.to_ns)
+        && from >= to
+    {
+        return Err(NotRun::Usage(Report::new(RunError::EmptyWindow {
+            from: trace::format_ms(from),
+            to: trace::format_ms(to),
+        })));
+    }
+    let window = TraceFilter::all().window(options.from_ns, options.to_ns);
+    if let Some(path) = &options.trace {
+        let format = options.trace_format.unwrap_or(TraceFormat::Jsonl);
+        let filter = window.kinds(&options.trace_filter);
+        let sink = trace::trace_sink(format, open_trace(path)?, filter, levels.clone());
+        cpu.tracer.add(&path.display().to_string(), sink);
+    }
+    if let Some(path) = &options.timeline {
+        let out = open_timeline(path)?;
+        let sink = timeline::sink(timeline::Format::of(path), out, window, levels, caption);
+        cpu.tracer.add(&path.display().to_string(), sink);
+    }
+    Ok(())
+}
+
+/// What a picture says it shows: the scenario or the program, the CPU and how it ran.
+fn caption(options: &RunOptions, files: &[PathBuf], config: &EngineConfig, profile: &Profile) -> String {
+    let what = match &options.scenario {
+        Some(path) => path.display().to_string(),
+        None => files
+            .iter()
+            .map(|path| path.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
     };
-    Ok(Tracer::new(format, out))
+    let mode = if profile.family == Family::Sinumerik840c {
+        if config.special_mode { ", special mode" } else { ", normal mode" }
+    } else {
+        ""
+    };
+    format!(
+        "{what} — {}{mode}, {} points",
+        profile.name,
+        config.points.name()
+    )
 }
 
 fn default_profile() -> &'static Profile {
@@ -170,7 +252,7 @@ pub struct Prepared {
     checker: Checker,
     watch: WatchTable,
     points: InterruptPoints,
-    trace: Option<PathBuf>,
+    timeline: Option<PathBuf>,
     trace_to_stdout: bool,
     warnings: Vec<Report>,
 }
@@ -285,15 +367,15 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         .or(scenario.as_ref().and_then(|s| s.limit))
         .unwrap_or(DEFAULT_RUN);
     let sources = Arc::new(built.sources.clone());
+    let levels = trace::levels(profile, &program);
+    let caption = caption(options, &files, &config, profile);
     let mut cpu = Cpu::new(program, sources);
     cpu.engine = Engine::new(profile, config, schedule);
     let trace_to_stdout = options
         .trace
         .as_ref()
         .is_some_and(|path| path.as_os_str() == "-");
-    if let Some(path) = &options.trace {
-        cpu.tracer = open_trace(path, options.trace_format.unwrap_or(TraceFormat::Jsonl))?;
-    }
+    add_outputs(&mut cpu, options, levels, caption)?;
     Ok(Prepared {
         frontend: built,
         cpu,
@@ -304,7 +386,7 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         checker: Checker::new(checks),
         watch,
         points,
-        trace: options.trace.clone(),
+        timeline: options.timeline.clone(),
         trace_to_stdout,
         warnings,
     })
@@ -327,7 +409,7 @@ impl Prepared {
             mut checker,
             mut watch,
             points,
-            trace,
+            timeline,
             trace_to_stdout,
             mut warnings,
             ..
@@ -349,17 +431,17 @@ impl Prepared {
             warnings.extend(scenario.events_after(outcome.clock_ns));
         }
         let mut trace_closed = false;
-        if let Err(error) = cpu.tracer.finish() {
-            trace_closed = trace_to_stdout && error.kind() == std::io::ErrorKind::BrokenPipe;
-            if !trace_closed {
-                warnings.push(Report::new(RunWarning::TraceIncomplete {
-                    path: trace
-                        .as_ref()
-                        .map(|p| p.display().to_string())
-                        .unwrap_or_default(),
-                    reason: error.to_string(),
-                }));
+        for failed in cpu.tracer.finish(cpu.clock) {
+            if failed.name == "-" && failed.error.kind() == std::io::ErrorKind::BrokenPipe {
+                trace_closed = true;
+                continue;
             }
+            let is_timeline = timeline.as_ref().is_some_and(|path| path.display().to_string() == failed.name);
+            warnings.push(Report::new(RunWarning::TraceIncomplete {
+                what: if is_timeline { "timeline" } else { "trace" },
+                path: failed.name,
+                reason: failed.error.to_string(),
+            }));
         }
         let mismatches = expect::check(&cpu, &outcome, &expectations);
         Ran {

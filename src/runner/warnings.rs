@@ -47,13 +47,18 @@ pub enum RunWarning {
         help: Option<String>,
     },
 
-    #[error("the trace to `{path}` is incomplete: {reason}")]
+    #[error("the {what} to `{path}` is incomplete: {reason}")]
     #[diagnostic(
         code(awl::run::trace_incomplete),
         severity(Warning),
         help("the run itself went on; its report and exit code are below")
     )]
-    TraceIncomplete { path: String, reason: String },
+    TraceIncomplete {
+        /// `trace` or `timeline`.
+        what: &'static str,
+        path: String,
+        reason: String,
+    },
 }
 
 /// Why OB `ob` can never run on `profile` with `config`, and what would make it run.

@@ -55,6 +55,19 @@ pub fn natural(cpu: &Cpu, target: Target) -> String {
     }
 }
 
+/// A value as a number, for a counter track: timers and counters their value, words signed.
+fn number(cpu: &Cpu, target: Target) -> i64 {
+    match target {
+        Target::TimerBit(n) => i64::from(cpu.timers[usize::from(n)].value(cpu.clock)),
+        Target::CounterValue(n) => i64::from(cpu.counters[usize::from(n)].value),
+        _ => match (actual(cpu, target), target.bytes()) {
+            (None, _) => 0,
+            (Some(raw), 2) => i64::from(raw as u16 as i16),
+            (Some(raw), _) => i64::from(raw),
+        },
+    }
+}
+
 impl WatchTable {
     pub fn new(watched: Vec<(String, Target)>, every_ns: Option<u64>) -> Self {
         let (names, targets) = watched.into_iter().unzip();
@@ -94,8 +107,14 @@ impl WatchTable {
             let event = Event::Watch {
                 cycle: cpu.cycle,
                 values: self.names.iter().cloned().zip(values.clone()).collect(),
+                numbers: self
+                    .names
+                    .iter()
+                    .zip(&self.targets)
+                    .map(|(name, target)| (name.clone(), number(cpu, *target)))
+                    .collect(),
             };
-            cpu.tracer.emit(cpu.clock, 0, event);
+            cpu.tracer.emit(cpu.clock, event);
         }
         self.rows.push(WatchRow {
             t_ns: cpu.clock,

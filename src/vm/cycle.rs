@@ -4,6 +4,7 @@
 use std::time::{Duration, Instant};
 
 use crate::profile::InterruptPoints;
+use super::io_trace::Modules;
 use crate::trace::Event;
 
 use super::stop::{Stop, StopCause};
@@ -61,10 +62,7 @@ impl Cpu {
         let from = self.mode;
         self.mode = to;
         if self.tracer.enabled {
-            self.tracer.emit(
-                self.clock,
-                0,
-                Event::Mode {
+            self.tracer.emit(self.clock, Event::Mode {
                     from: from.name(),
                     to: to.name(),
                     cause,
@@ -195,7 +193,11 @@ impl Cpu {
         if read {
             self.image[..bytes].copy_from_slice(&self.inputs[..bytes]);
         } else {
+            let before = self.modules_before(Modules::Outputs, false, 0, bytes);
             self.outputs[..bytes].copy_from_slice(&self.image[piq..piq + bytes]);
+            if let Some(before) = before {
+                self.trace_module_changes(Modules::Outputs, false, 0, &before);
+            }
         }
         let duration = u64::from(self.profile.timings.process_image_per_byte) * bytes as u64;
         if self.tracer.enabled {
@@ -204,7 +206,7 @@ impl Cpu {
                 direction: if read { "input" } else { "output" },
                 duration_ns: duration,
             };
-            self.tracer.emit(self.clock, 1, event);
+            self.tracer.emit(self.clock, event);
         }
         self.clock += duration;
     }
@@ -216,7 +218,7 @@ impl Cpu {
             let event = Event::OsTime {
                 duration_ns: duration,
             };
-            self.tracer.emit(self.clock, 1, event);
+            self.tracer.emit(self.clock, event);
         }
         self.clock += duration;
     }
@@ -227,7 +229,7 @@ impl Cpu {
         self.cycle += 1;
         if self.tracer.enabled {
             self.tracer
-                .emit(self.clock, 0, Event::CycleStart { cycle: self.cycle });
+                .emit(self.clock, Event::CycleStart { cycle: self.cycle });
         }
         self.poll()?;
         self.process_image_cycle(true);
@@ -251,7 +253,7 @@ impl Cpu {
                 cycle: self.cycle,
                 cycle_time_ns: cycle_time,
             };
-            self.tracer.emit(self.clock, 0, event);
+            self.tracer.emit(self.clock, event);
         }
         self.cycle_started_at = self.clock;
         self.cycle_point(StretchKind::OsTime)
@@ -306,10 +308,7 @@ impl Cpu {
                     ),
                     None => ("between cycles".to_string(), 0),
                 };
-                self.tracer.emit(
-                    self.clock,
-                    0,
-                    Event::Stop {
+                self.tracer.emit(self.clock, Event::Stop {
                         cause: stop.cause.code(),
                         block,
                         line,

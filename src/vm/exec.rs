@@ -9,6 +9,7 @@ use crate::ast::Address;
 use crate::compiler::bytecode::*;
 use crate::compiler::{Resolved, lower};
 
+use super::io_trace::Modules;
 use crate::trace::Event;
 
 use super::arith;
@@ -130,8 +131,7 @@ impl Cpu {
             to: self.block_id(to).to_string(),
             depth: self.depth(),
         };
-        let indent = self.frames.len() + 2 * self.levels.len();
-        self.trace_block_change(indent, event);
+        self.trace_block_change(event);
     }
 
     /// Traces a block end at `self.clock`.
@@ -141,14 +141,13 @@ impl Cpu {
             block: self.block_id(block).to_string(),
             depth: self.depth(),
         };
-        let indent = self.frames.len() + 2 * self.levels.len() + 1;
-        self.trace_block_change(indent, event);
+        self.trace_block_change(event);
     }
 
     /// The trace holds events back until the engine has taken in everything due by then;
     /// when nothing is due by now, they can be written at once.
-    fn trace_block_change(&mut self, indent: usize, event: Event) {
-        self.tracer.emit(self.clock, indent, event);
+    fn trace_block_change(&mut self, event: Event) {
+        self.tracer.emit(self.clock, event);
         if self.clock < self.engine.next_due() {
             self.tracer.settle(self.clock);
         }
@@ -669,13 +668,20 @@ impl Cpu {
     /// interrupt PIQ; the normal PIQ follows a direct output to a digital module.
     fn write_periphery(&mut self, width: Width, byte: u16, value: u32, extended: bool) {
         let (at, count) = (usize::from(byte), width.bytes());
+        let before = self.modules_before(Modules::Outputs, extended, at, count);
         if extended {
             write_bytes(&mut self.extended_outputs, at, count, value);
-            return;
+        } else {
+            match self.interrupt_images() {
+                Some(images) => images.write_interrupt_piq(at, count, value),
+                None => write_bytes(&mut self.outputs, at, count, value),
+            }
         }
-        match self.interrupt_images() {
-            Some(images) => images.write_interrupt_piq(at, count, value),
-            None => write_bytes(&mut self.outputs, at, count, value),
+        if let Some(before) = before {
+            self.trace_module_changes(Modules::Outputs, extended, at, &before);
+        }
+        if extended {
+            return;
         }
         let image_bytes = usize::from(self.program.layout.image_bytes);
         let piq = usize::from(self.program.layout.output_base());

@@ -10,6 +10,7 @@ pub mod counters;
 pub mod cycle;
 pub mod exec;
 pub mod interrupts;
+mod io_trace;
 pub mod place;
 pub mod probe;
 pub mod status;

@@ -23,6 +23,7 @@ pub mod speed7;
 use crate::profile::{Family, InterruptPoints, Profile};
 use crate::trace::Event;
 
+use super::io_trace::Modules;
 use super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, IDLE, Mode, Point, StretchKind};
 
@@ -403,8 +404,7 @@ impl Cpu {
     pub(super) fn emit(&mut self, t_ns: u64, event: impl FnOnce(&Self) -> Event) {
         if self.tracer.enabled {
             let event = event(self);
-            let indent = self.frames.len() + 2 * self.levels.len() + 1;
-            self.tracer.emit(t_ns, indent, event);
+            self.tracer.emit(t_ns, event);
         }
     }
 
@@ -543,12 +543,8 @@ impl Cpu {
         let at = self.engine.schedule[index].at_ns;
         match &self.engine.schedule[index].what {
             Happening::SetInputs(changes) => {
-                for change in changes {
-                    let modules = match change.target {
-                        InputTarget::Process => &mut self.inputs,
-                        InputTarget::Extended => &mut self.extended_inputs,
-                    };
-                    change.apply(modules);
+                for index_of_change in 0..changes.len() {
+                    self.set_inputs(index, index_of_change);
                 }
                 Ok(())
             }
@@ -568,6 +564,25 @@ impl Cpu {
                 };
                 self.with_rules(|rules, cpu| rules.hardware_event(cpu, at, source))
             }
+        }
+    }
+
+    /// Change `change` of the scheduled item `index` reaches the input modules.
+    fn set_inputs(&mut self, index: usize, change: usize) {
+        let Happening::SetInputs(changes) = &self.engine.schedule[index].what else {
+            return;
+        };
+        let change = changes[change];
+        let extended = change.target == InputTarget::Extended;
+        let (at, count) = (usize::from(change.byte), usize::from(change.bytes.max(1)));
+        let before = self.modules_before(Modules::Inputs, extended, at, count);
+        change.apply(if extended {
+            &mut self.extended_inputs
+        } else {
+            &mut self.inputs
+        });
+        if let Some(before) = before {
+            self.trace_module_changes(Modules::Inputs, extended, at, &before);
         }
     }
 

@@ -22,6 +22,7 @@
 use crate::profile::Profile;
 
 use super::super::exec::{read_bytes, write_bytes};
+use super::super::io_trace::Modules;
 use super::super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, EngineConfig, Ob13Timing, Request, Rules};
 
@@ -128,10 +129,14 @@ impl Rules for S595f {
             return;
         }
         if self.written.contains(&true) {
+            let before = cpu.modules_before(Modules::Outputs, false, 0, self.written.len());
             for (byte, written) in self.written.iter_mut().enumerate() {
                 if std::mem::take(written) {
                     cpu.outputs[byte] = self.interrupt_piq[byte];
                 }
+            }
+            if let Some(before) = before {
+                cpu.trace_module_changes(Modules::Outputs, false, 0, &before);
             }
             cpu.data_cycle("interrupt_output", "output");
         }
