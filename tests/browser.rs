@@ -1,0 +1,99 @@
+//! The timeline page in a real browser: headless Chromium opens the `.html` timeline from the
+//! file system (no server, no network), runs its script without a console error, zooms and
+//! shows a mark's details (the page's `#selftest`), and draws a screenshot that is not blank.
+//! `.ci/run` installs Debian's `chromium`; elsewhere the test says why it is skipped.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn chromium() -> Option<PathBuf> {
+    ["chromium", "chromium-browser", "google-chrome"]
+        .into_iter()
+        .find_map(|name| {
+            let found = Command::new("which").arg(name).output().ok()?;
+            let path = String::from_utf8_lossy(&found.stdout).trim().to_string();
+            (found.status.success() && !path.is_empty()).then(|| PathBuf::from(path))
+        })
+}
+
+fn headless(browser: &Path, profile: &Path, args: &[&str]) -> (String, String) {
+    let output = Command::new(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--enable-logging=stderr",
+            "--v=0",
+            "--virtual-time-budget=5000",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .args(args)
+        .output()
+        .expect("chromium starts");
+    (
+        String::from_utf8_lossy(&output.stdout).to_string(),
+        String::from_utf8_lossy(&output.stderr).to_string(),
+    )
+}
+
+/// Console messages and uncaught exceptions in Chromium's log: the page writes none, so any
+/// is an error (Chromium logs `console.error` at the same level as `console.log`).
+fn console_errors(log: &str) -> Vec<&str> {
+    log.lines()
+        .filter(|line| line.contains(":CONSOLE") || line.contains("Uncaught"))
+        .collect()
+}
+
+#[test]
+fn the_html_timeline_works_in_a_headless_browser() {
+    let Some(browser) = chromium() else {
+        println!("skipped: no chromium on this machine (.ci/run installs it)");
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("awl-browser-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let page = dir.join("nested.html");
+    let status = Command::new(env!("CARGO_BIN_EXE_awl"))
+        .args(["run", "--scenario", "programs/nested.toml", "--timeline"])
+        .arg(&page)
+        .output()
+        .expect("awl runs");
+    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+    let url = format!("file://{}#selftest", page.display());
+
+    let (dom, log) = headless(&browser, &dir.join("profile-dom"), &["--dump-dom", &url]);
+    assert!(console_errors(&log).is_empty(), "{:?}", console_errors(&log));
+    assert!(dom.contains(r#"data-ready="yes""#), "the script ran to its end:\n{log}");
+    assert!(!dom.contains(r#"data-error=""#), "a script error: {dom}");
+    assert!(dom.contains(r#"data-selftest="passed""#), "zoom and hover work");
+    let html = std::fs::read_to_string(&page).unwrap();
+    for outside in ["src=", "href=", "<link", "@import", "url("] {
+        assert!(!html.contains(outside), "the page loads nothing: {outside}");
+    }
+
+    let shot = dir.join("shot.png");
+    let (_, log) = headless(
+        &browser,
+        &dir.join("profile-shot"),
+        &[
+            &format!("--screenshot={}", shot.display()),
+            "--window-size=1400,600",
+            &format!("file://{}", page.display()),
+        ],
+    );
+    assert!(console_errors(&log).is_empty(), "{:?}", console_errors(&log));
+    let pixmap = resvg::tiny_skia::Pixmap::load_png(&shot).expect("a PNG screenshot");
+    let pixels = pixmap.pixels();
+    let lane_blue = pixels
+        .iter()
+        .filter(|p| (p.red(), p.green(), p.blue()) == (0x4e, 0x79, 0xa7))
+        .count();
+    let drawn = pixels
+        .iter()
+        .filter(|p| (p.red(), p.green(), p.blue()) != (255, 255, 255))
+        .count();
+    assert!(drawn * 20 > pixels.len(), "the screenshot is blank");
+    assert!(lane_blue > 50, "OB 1's lane colour is on the screen");
+    let _ = std::fs::remove_dir_all(dir);
+}
