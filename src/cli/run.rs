@@ -88,6 +88,7 @@ pub struct ProgramArgs {
 }
 
 #[derive(Debug, clap::Args)]
+#[command(group = clap::ArgGroup::new("outputs").args(["trace", "timeline"]).multiple(true))]
 pub struct RunArgs {
     #[command(flatten)]
     pub program: ProgramArgs,
@@ -104,10 +105,10 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE")]
     pub timeline: Option<PathBuf>,
     /// The trace and the timeline start at this simulated time, e.g. 10ms
-    #[arg(long, value_name = "TIME", value_parser = parse_time_arg)]
+    #[arg(long, value_name = "TIME", value_parser = parse_time_arg, requires = "outputs")]
     pub from: Option<u64>,
     /// The trace and the timeline end at this simulated time, e.g. 20ms
-    #[arg(long, value_name = "TIME", value_parser = parse_time_arg)]
+    #[arg(long, value_name = "TIME", value_parser = parse_time_arg, requires = "outputs")]
     pub to: Option<u64>,
     /// Print the CPU's state at the end: ACCUs, status word, images, timers, counters, DBs
     #[arg(long)]

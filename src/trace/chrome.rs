@@ -4,7 +4,7 @@
 //! instants joined by a flow, counters for inputs, outputs and watched values. Times are in
 //! microseconds with nanosecond fractions.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::io::Write;
 
 use serde::Serialize;
@@ -96,8 +96,8 @@ pub struct Chrome {
     spans: Vec<Span>,
     /// Threads named so far.
     named: BTreeSet<u32>,
-    /// Requests whose flow started in the window.
-    flows: BTreeSet<u64>,
+    /// Requests shown and not yet serviced: id → when, and the thread that ran then.
+    flows: BTreeMap<u64, (u64, u32)>,
     written: usize,
 }
 
@@ -110,7 +110,7 @@ impl Chrome {
             activity: Activity::default(),
             spans: Vec::new(),
             named: BTreeSet::new(),
-            flows: BTreeSet::new(),
+            flows: BTreeMap::new(),
             written: 0,
         }
     }
@@ -209,13 +209,8 @@ impl Chrome {
                     tid,
                     args,
                 ))?;
-                let from = self.thread(running)?;
-                self.flows.insert(*id);
-                self.write(&TraceEvent {
-                    cat: Some("interrupt"),
-                    id: Some(*id),
-                    ..TraceEvent::new("s", format!("OB {ob} request"), t_ns, from)
-                })
+                self.flows.insert(*id, (t_ns, running));
+                Ok(())
             }
             Event::IrqService { id, ob, .. } => {
                 let tid = self.thread(u32::from(*ob))?;
@@ -226,9 +221,16 @@ impl Chrome {
                     tid,
                     args,
                 ))?;
-                if !self.flows.remove(id) {
+                // The flow from the request, which a lost or ignored request never gets.
+                let Some((requested_at, from)) = self.flows.remove(id) else {
                     return Ok(());
-                }
+                };
+                let from = self.thread(from)?;
+                self.write(&TraceEvent {
+                    cat: Some("interrupt"),
+                    id: Some(*id),
+                    ..TraceEvent::new("s", format!("OB {ob} request"), requested_at, from)
+                })?;
                 self.write(&TraceEvent {
                     cat: Some("interrupt"),
                     id: Some(*id),
@@ -236,8 +238,14 @@ impl Chrome {
                     ..TraceEvent::new("f", format!("OB {ob} request"), t_ns, tid)
                 })
             }
-            Event::IrqLost { ob, .. } => self.on_level(*ob, "request lost", t_ns, event),
-            Event::IrqIgnored { ob, .. } => self.on_level(*ob, "request ignored", t_ns, event),
+            Event::IrqLost { id, ob, .. } => {
+                self.flows.remove(id);
+                self.on_level(*ob, "request lost", t_ns, event)
+            }
+            Event::IrqIgnored { id, ob, .. } => {
+                self.flows.remove(id);
+                self.on_level(*ob, "request ignored", t_ns, event)
+            }
             Event::ModuleEvent { ob, .. } => self.on_level(*ob, "module event", t_ns, event),
             Event::Mode { from, to, .. } => self.global(format!("mode {from} → {to}"), t_ns, event),
             Event::Stop { cause, .. } => self.global(format!("STOP {cause}"), t_ns, event),
