@@ -59,14 +59,28 @@ fn the_html_timeline_works_in_a_headless_browser() {
         .arg(&page)
         .output()
         .expect("awl runs");
-    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
     let url = format!("file://{}#selftest", page.display());
 
     let (dom, log) = headless(&browser, &dir.join("profile-dom"), &["--dump-dom", &url]);
-    assert!(console_errors(&log).is_empty(), "{:?}", console_errors(&log));
-    assert!(dom.contains(r#"data-ready="yes""#), "the script ran to its end:\n{log}");
+    assert!(
+        console_errors(&log).is_empty(),
+        "{:?}",
+        console_errors(&log)
+    );
+    assert!(
+        dom.contains(r#"data-ready="yes""#),
+        "the script ran to its end:\n{log}"
+    );
     assert!(!dom.contains(r#"data-error=""#), "a script error: {dom}");
-    assert!(dom.contains(r#"data-selftest="passed""#), "zoom and hover work");
+    assert!(
+        dom.contains(r#"data-selftest="passed""#),
+        "zoom and hover work"
+    );
     let html = std::fs::read_to_string(&page).unwrap();
     for outside in ["src=", "href=", "<link", "@import", "url("] {
         assert!(!html.contains(outside), "the page loads nothing: {outside}");
@@ -82,7 +96,11 @@ fn the_html_timeline_works_in_a_headless_browser() {
             &format!("file://{}", page.display()),
         ],
     );
-    assert!(console_errors(&log).is_empty(), "{:?}", console_errors(&log));
+    assert!(
+        console_errors(&log).is_empty(),
+        "{:?}",
+        console_errors(&log)
+    );
     let pixmap = resvg::tiny_skia::Pixmap::load_png(&shot).expect("a PNG screenshot");
     let pixels = pixmap.pixels();
     let lane_blue = pixels

@@ -65,7 +65,10 @@ fn checked(text: &str) -> TraceFile {
                 let dur = event.dur.expect("a complete slice has a duration");
                 assert!(dur >= 0.0 && event.cat.is_some(), "{event:?}");
                 let start = ns(event.ts);
-                slices.entry(event.tid).or_default().push((start, start + ns(dur)));
+                slices
+                    .entry(event.tid)
+                    .or_default()
+                    .push((start, start + ns(dur)));
             }
             "i" => assert!(matches!(event.s.as_deref(), Some("t" | "g")), "{event:?}"),
             "s" => assert!(starts.insert(event.id.expect("a flow has an id"))),
@@ -149,8 +152,14 @@ fn watched_values_inputs_and_outputs_are_counters() {
         .map(|event| event.name.as_str())
         .collect();
     assert!(counters.contains("QB 4"), "{counters:?}");
-    assert!(counters.iter().any(|name| name.starts_with("I ")), "{counters:?}");
-    assert!(counters.iter().any(|name| name.starts_with("Q ")), "{counters:?}");
+    assert!(
+        counters.iter().any(|name| name.starts_with("I ")),
+        "{counters:?}"
+    );
+    assert!(
+        counters.iter().any(|name| name.starts_with("Q ")),
+        "{counters:?}"
+    );
 }
 
 #[test]

@@ -22,7 +22,11 @@ fn picture_and_trace(name: &str, options: RunOptions) -> (String, Vec<serde_json
         ..options
     };
     let ran = runner::run(&options).unwrap_or_else(|_| panic!("{name} runs"));
-    assert!(ran.warnings.iter().all(|w| !w.to_string().contains("incomplete")));
+    assert!(
+        ran.warnings
+            .iter()
+            .all(|w| !w.to_string().contains("incomplete"))
+    );
     let svg = std::fs::read_to_string(&svg_path).expect("the timeline was written");
     let trace = std::fs::read_to_string(&trace_path).expect("the trace was written");
     let _ = std::fs::remove_file(svg_path);
@@ -99,7 +103,10 @@ fn every_sample_s_picture_marks_exactly_the_trace_s_events() {
             scenario.display()
         );
         for class in ["lane", "run", "tick", "data-cycle", "os-time"] {
-            assert!(svg.contains(&format!("class=\"{class}\"")), "{name}: {class}");
+            assert!(
+                svg.contains(&format!("class=\"{class}\"")),
+                "{name}: {class}"
+            );
         }
     }
 }
@@ -119,7 +126,10 @@ fn a_window_shows_the_trace_s_events_in_it() {
         let t = event["t_ns"].as_u64().unwrap();
         (20_000..=60_000).contains(&t)
     }));
-    assert!(trace_counts(&events)["request"] > 0, "the window holds requests");
+    assert!(
+        trace_counts(&events)["request"] > 0,
+        "the window holds requests"
+    );
     assert_eq!(compared(&marks(&svg)), trace_counts(&events));
 }
 
@@ -184,17 +194,14 @@ fn the_picture_renders_with_its_lane_colours_where_the_lanes_run() {
         pixels.len()
     );
     let document = roxmltree::Document::parse(&svg).unwrap();
-    let number = |node: roxmltree::Node, name| node.attribute(name).unwrap().parse::<f64>().unwrap();
+    let number =
+        |node: roxmltree::Node, name| node.attribute(name).unwrap().parse::<f64>().unwrap();
     let mut lanes_seen = std::collections::BTreeSet::new();
     for bar in document
         .descendants()
         .filter(|node| node.attribute("class") == Some("run"))
     {
-        let (x, y, w) = (
-            number(bar, "x"),
-            number(bar, "y"),
-            number(bar, "width"),
-        );
+        let (x, y, w) = (number(bar, "x"), number(bar, "y"), number(bar, "width"));
         if w < 24.0 {
             continue;
         }
@@ -243,8 +250,14 @@ fn a_sixty_second_run_stays_small() {
 #[test]
 fn the_readme_pictures_are_up_to_date() {
     let pictures = [
-        ("programs/fig5_2_interrupt.toml", "programs/timelines/fig5_2_block.svg"),
-        ("programs/fig5_2_operation.toml", "programs/timelines/fig5_2_operation.svg"),
+        (
+            "programs/fig5_2_interrupt.toml",
+            "programs/timelines/fig5_2_block.svg",
+        ),
+        (
+            "programs/fig5_2_operation.toml",
+            "programs/timelines/fig5_2_operation.svg",
+        ),
     ];
     let mut stale = Vec::new();
     for (scenario, picture) in pictures {

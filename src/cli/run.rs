@@ -99,7 +99,13 @@ pub struct RunArgs {
     #[arg(long, value_enum, requires = "trace")]
     pub trace_format: Option<Format>,
     /// Only these kinds of events in the trace (comma list); mode changes and a STOP always
-    #[arg(long, value_enum, value_delimiter = ',', requires = "trace", value_name = "KINDS")]
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        requires = "trace",
+        value_name = "KINDS"
+    )]
     pub trace_filter: Vec<TraceKind>,
     /// Draw the run's timeline into FILE: `.svg`, or `.html` with pan, zoom and hover details
     #[arg(long, value_name = "FILE")]
@@ -147,9 +153,8 @@ pub(super) fn parse_duration_arg(text: &str) -> Result<u64, String> {
 fn parse_time_arg(text: &str) -> Result<u64, String> {
     match text.trim() {
         "0" => Ok(0),
-        text => crate::scenario::parse_duration(text).ok_or_else(|| {
-            format!("`{text}` is not a time; write e.g. 0, 250us, 10ms, 2s")
-        }),
+        text => crate::scenario::parse_duration(text)
+            .ok_or_else(|| format!("`{text}` is not a time; write e.g. 0, 250us, 10ms, 2s")),
     }
 }
 

@@ -210,7 +210,12 @@ fn add_outputs(
 }
 
 /// What a picture says it shows: the scenario or the program, the CPU and how it ran.
-fn caption(options: &RunOptions, files: &[PathBuf], config: &EngineConfig, profile: &Profile) -> String {
+fn caption(
+    options: &RunOptions,
+    files: &[PathBuf],
+    config: &EngineConfig,
+    profile: &Profile,
+) -> String {
     let what = match &options.scenario {
         Some(path) => path.display().to_string(),
         None => files
@@ -220,7 +225,11 @@ fn caption(options: &RunOptions, files: &[PathBuf], config: &EngineConfig, profi
             .join(", "),
     };
     let mode = if profile.family == Family::Sinumerik840c {
-        if config.special_mode { ", special mode" } else { ", normal mode" }
+        if config.special_mode {
+            ", special mode"
+        } else {
+            ", normal mode"
+        }
     } else {
         ""
     };
@@ -436,7 +445,9 @@ impl Prepared {
                 trace_closed = true;
                 continue;
             }
-            let is_timeline = timeline.as_ref().is_some_and(|path| path.display().to_string() == failed.name);
+            let is_timeline = timeline
+                .as_ref()
+                .is_some_and(|path| path.display().to_string() == failed.name);
             warnings.push(Report::new(RunWarning::TraceIncomplete {
                 what: if is_timeline { "timeline" } else { "trace" },
                 path: failed.name,

@@ -155,7 +155,10 @@ impl Recorder {
                         format_ms(start),
                         format_ms(end)
                     );
-                    ((Mark::Run, ob, 0), Item::new(start, end, format!("OB {ob}"), detail))
+                    (
+                        (Mark::Run, ob, 0),
+                        Item::new(start, end, format!("OB {ob}"), detail),
+                    )
                 }
                 Span::Block {
                     ob,
@@ -170,7 +173,10 @@ impl Recorder {
                         format_ms(end)
                     );
                     let depth = u8::try_from(depth).unwrap_or(u8::MAX);
-                    ((Mark::Block, ob, depth), Item::new(start, end, name, detail))
+                    (
+                        (Mark::Block, ob, depth),
+                        Item::new(start, end, name, detail),
+                    )
                 }
                 Span::System { what, start, end } => {
                     let mark = if what == "operating-system time" {

@@ -81,7 +81,10 @@ impl Scene<'_> {
             }
         }
         obs.sort_by_key(|(priority, ob, _)| (*priority, *ob));
-        let colours = obs.iter().enumerate().map(|(n, _)| PALETTE[n % PALETTE.len()]);
+        let colours = obs
+            .iter()
+            .enumerate()
+            .map(|(n, _)| PALETTE[n % PALETTE.len()]);
         let mut lanes: Vec<Lane> = obs
             .iter()
             .zip(colours)
@@ -307,7 +310,7 @@ fn draw_system(svg: &mut String, scene: &Scene, top: f64, bottom: f64) {
         LEFT - 8.0,
         top + ROW - 4.0
     );
-    for (mark, fill) in [(Mark::DataCycle, "#8c9db5"), (Mark::OsTime, "#b9b9b9")] {
+    for (mark, fill) in [(Mark::DataCycle, "#8c9db5"), (Mark::OsTime, "#c4c4c4")] {
         for (_, item) in scene.items(mark, 0) {
             let x = scene.x(item.start);
             let width = (scene.x(item.end) - x).max(0.8);
@@ -391,7 +394,7 @@ fn draw_axis(svg: &mut String, scene: &Scene, top: f64) {
             r#"<line x1="{x:.1}" x2="{x:.1}" y1="{top:.1}" y2="{:.1}" stroke="{INK}"/><text x="{x:.1}" y="{:.1}" text-anchor="middle" fill="{INK}">{}</text>"#,
             top + 5.0,
             top + 17.0,
-            axis::label(t, step)
+            axis::label(t, step, scene.to)
         );
     }
     let _ = write!(

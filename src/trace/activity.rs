@@ -251,3 +251,111 @@ fn close_level(mut level: Level, t_ns: u64, spans: &mut Vec<Span>) {
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn call(to: &str) -> Event {
+        Event::BlockCall {
+            from: String::new(),
+            to: to.into(),
+            depth: 0,
+        }
+    }
+
+    fn end() -> Event {
+        Event::BlockEnd {
+            block: String::new(),
+            depth: 0,
+        }
+    }
+
+    /// Fig. 5.2's cycle: PII, OB 1 calls PB 3, OB 3 serviced at PB 3's end, OB 1 ends.
+    #[test]
+    fn levels_blocks_and_the_system_s_work_become_spans() {
+        let mut activity = Activity::default();
+        let mut spans = Vec::new();
+        let events = [
+            (0, Event::CycleStart { cycle: 1 }),
+            (
+                0,
+                Event::DataCycle {
+                    kind: "process_image",
+                    direction: "input",
+                    duration_ns: 10,
+                },
+            ),
+            (20, call("PB 3")),
+            (40, end()),
+            (
+                40,
+                Event::IrqService {
+                    id: 1,
+                    ob: 3,
+                    latency_ns: 15,
+                    point: "block_end",
+                    block: None,
+                    waited: None,
+                },
+            ),
+            (50, end()),
+            (50, Event::IrqEnd { id: 1, ob: 3 }),
+            (60, end()),
+        ];
+        let mut indents = Vec::new();
+        for (t, event) in &events {
+            indents.push(activity.indent());
+            activity.apply(*t, event, &mut spans);
+        }
+        activity.finish(70, &mut spans);
+        assert_eq!(indents, [1, 1, 1, 2, 1, 2, 2, 1]);
+        let block = Span::Block {
+            ob: 1,
+            depth: 1,
+            name: "PB 3".into(),
+            start: 20,
+            end: 40,
+        };
+        assert!(spans.contains(&block));
+        for span in [
+            Span::System {
+                what: "process image read (PII)",
+                start: 0,
+                end: 10,
+            },
+            Span::Run {
+                ob: 1,
+                start: 10,
+                end: 40,
+            },
+            Span::Run {
+                ob: 3,
+                start: 40,
+                end: 50,
+            },
+            Span::Level {
+                ob: 3,
+                start: 40,
+                end: 50,
+            },
+            Span::Run {
+                ob: 1,
+                start: 50,
+                end: 60,
+            },
+            Span::Level {
+                ob: 1,
+                start: 10,
+                end: 60,
+            },
+            Span::Cycle {
+                cycle: 1,
+                start: 0,
+                end: 70,
+            },
+        ] {
+            assert!(spans.contains(&span), "{span:?} in {spans:#?}");
+        }
+    }
+}

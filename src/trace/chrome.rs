@@ -175,9 +175,14 @@ impl Chrome {
                 u32::from(ob),
                 "level",
             ),
-            Span::System { what, start, end } => {
-                (Kind::Cycles, what.to_string(), start, end, SYSTEM_TID, "system")
-            }
+            Span::System { what, start, end } => (
+                Kind::Cycles,
+                what.to_string(),
+                start,
+                end,
+                SYSTEM_TID,
+                "system",
+            ),
             Span::Cycle { cycle, start, end } => (
                 Kind::Cycles,
                 format!("cycle {cycle}"),
@@ -272,7 +277,12 @@ impl Chrome {
     fn on_level(&mut self, ob: u8, what: &str, t_ns: u64, event: &Event) -> std::io::Result<()> {
         let tid = self.thread(u32::from(ob))?;
         let args = serde_json::to_value(event).map_err(std::io::Error::other)?;
-        self.write(&TraceEvent::instant(format!("OB {ob} {what}"), t_ns, tid, args))
+        self.write(&TraceEvent::instant(
+            format!("OB {ob} {what}"),
+            t_ns,
+            tid,
+            args,
+        ))
     }
 
     /// An instant over every thread (a mode change, a STOP).

@@ -128,9 +128,15 @@ pub enum Event {
         numbers: Vec<(String, i64)>,
     },
     /// A scenario's input change reached the input modules.
-    Input { operand: String, value: u32 },
+    Input {
+        operand: String,
+        value: u32,
+    },
     /// The output modules changed: the PIQ was written, or a direct (peripheral) output.
-    Output { operand: String, value: u32 },
+    Output {
+        operand: String,
+        value: u32,
+    },
 }
 
 /// Where the events go: a trace file, the timeline picture. Every output sees every event in
@@ -178,7 +184,10 @@ impl Tracer {
     /// A tracer writing every event in `format` to `out`.
     pub fn new(format: TraceFormat, out: Box<dyn Write>) -> Self {
         let mut tracer = Tracer::off();
-        tracer.add("trace", trace_sink(format, out, TraceFilter::all(), Vec::new()));
+        tracer.add(
+            "trace",
+            trace_sink(format, out, TraceFilter::all(), Vec::new()),
+        );
         tracer
     }
 
@@ -305,4 +314,3 @@ pub fn format_ms(ns: u64) -> String {
 pub fn format_us(ns: u64) -> String {
     format!("{}.{:03} µs", ns / 1000, ns % 1000)
 }
-

@@ -163,4 +163,3 @@ pub fn line(event: &Event) -> String {
         }
     }
 }
-

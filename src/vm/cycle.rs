@@ -3,8 +3,8 @@
 
 use std::time::{Duration, Instant};
 
-use crate::profile::InterruptPoints;
 use super::io_trace::Modules;
+use crate::profile::InterruptPoints;
 use crate::trace::Event;
 
 use super::stop::{Stop, StopCause};
@@ -62,7 +62,9 @@ impl Cpu {
         let from = self.mode;
         self.mode = to;
         if self.tracer.enabled {
-            self.tracer.emit(self.clock, Event::Mode {
+            self.tracer.emit(
+                self.clock,
+                Event::Mode {
                     from: from.name(),
                     to: to.name(),
                     cause,
@@ -308,7 +310,9 @@ impl Cpu {
                     ),
                     None => ("between cycles".to_string(), 0),
                 };
-                self.tracer.emit(self.clock, Event::Stop {
+                self.tracer.emit(
+                    self.clock,
+                    Event::Stop {
                         cause: stop.cause.code(),
                         block,
                         line,
