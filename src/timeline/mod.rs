@@ -118,10 +118,10 @@ impl Recorder {
                 id, ob, latency_ns, ..
             } => {
                 let requested_at = self.requests.remove(id).unwrap_or(t_ns);
-                let mut item = Item::new(t_ns, t_ns, String::new(), detail(t_ns, event));
+                let mut item = Item::new(t_ns, t_ns, String::new(), String::new());
                 item.requested_at = requested_at;
                 item.latency = (*latency_ns, *latency_ns);
-                self.add((Mark::Service, *ob, 0), item);
+                self.add((Mark::Service, *ob, 0), item, || detail(t_ns, event));
                 return;
             }
             Event::IrqLost { id, ob, .. } => {
@@ -143,62 +143,21 @@ impl Recorder {
             | Event::IrqEnd { .. }
             | Event::Watch { .. } => return,
         };
-        self.add(key, Item::new(t_ns, t_ns, label, detail(t_ns, event)));
+        let item = Item::new(t_ns, t_ns, label, String::new());
+        self.add(key, item, || detail(t_ns, event));
     }
 
     fn take_spans(&mut self) {
         for span in std::mem::take(&mut self.spans) {
-            let (key, item) = match span {
-                Span::Run { ob, start, end } => {
-                    let detail = format!(
-                        "OB {ob}'s level runs from {} to {}",
-                        format_ms(start),
-                        format_ms(end)
-                    );
-                    (
-                        (Mark::Run, ob, 0),
-                        Item::new(start, end, format!("OB {ob}"), detail),
-                    )
-                }
-                Span::Block {
-                    ob,
-                    depth,
-                    name,
-                    start,
-                    end,
-                } => {
-                    let detail = format!(
-                        "{name} (called at depth {depth} on OB {ob}'s level) from {} to {}",
-                        format_ms(start),
-                        format_ms(end)
-                    );
-                    let depth = u8::try_from(depth).unwrap_or(u8::MAX);
-                    (
-                        (Mark::Block, ob, depth),
-                        Item::new(start, end, name, detail),
-                    )
-                }
-                Span::System { what, start, end } => {
-                    let mark = if what == "operating-system time" {
-                        Mark::OsTime
-                    } else {
-                        Mark::DataCycle
-                    };
-                    let detail = format!(
-                        "{what}, {} from {}",
-                        crate::trace::format_us(end - start),
-                        format_ms(start)
-                    );
-                    ((mark, 0, 0), Item::new(start, end, short(what), detail))
-                }
-                Span::Level { .. } | Span::Cycle { .. } => continue,
-            };
-            self.add(key, item);
+            if let Some((key, item)) = span_item(&span) {
+                self.add(key, item, || span_detail(&span));
+            }
         }
     }
 
-    /// Keeps the part of `item` inside the window.
-    fn add(&mut self, key: RowKey, mut item: Item) {
+    /// Keeps the part of `item` inside the window; its details are written only when it is
+    /// not merged into the mark before it (a long run merges most).
+    fn add(&mut self, key: RowKey, mut item: Item, detail: impl FnOnce() -> String) {
         let Some((start, end)) = self.window.clip(item.start, item.end) else {
             return;
         };
@@ -209,6 +168,9 @@ impl Recorder {
         item.start = start;
         item.end = end;
         item.busy_ns = end - start;
+        if !self.rows.merges(&key, &item) {
+            item.detail = detail();
+        }
         self.rows.push(key, item);
         self.rows
             .bound(end.saturating_sub(self.window.from_ns), PLOT_WIDTH);
@@ -228,6 +190,61 @@ impl Recorder {
             from,
             to,
         })
+    }
+}
+
+/// Where a span is drawn, and its mark without details.
+fn span_item(span: &Span) -> Option<(RowKey, Item)> {
+    let (key, start, end, label) = match span {
+        Span::Run { ob, start, end } => ((Mark::Run, *ob, 0), start, end, format!("OB {ob}")),
+        Span::Block {
+            ob,
+            depth,
+            name,
+            start,
+            end,
+        } => {
+            let depth = u8::try_from(*depth).unwrap_or(u8::MAX);
+            ((Mark::Block, *ob, depth), start, end, name.clone())
+        }
+        Span::System { what, start, end } => {
+            let mark = if *what == "operating-system time" {
+                Mark::OsTime
+            } else {
+                Mark::DataCycle
+            };
+            ((mark, 0, 0), start, end, short(what))
+        }
+        Span::Level { .. } | Span::Cycle { .. } => return None,
+    };
+    Some((key, Item::new(*start, *end, label, String::new())))
+}
+
+/// A span's details for its title.
+fn span_detail(span: &Span) -> String {
+    match span {
+        Span::Run { ob, start, end } => format!(
+            "OB {ob}'s level runs from {} to {}",
+            format_ms(*start),
+            format_ms(*end)
+        ),
+        Span::Block {
+            ob,
+            depth,
+            name,
+            start,
+            end,
+        } => format!(
+            "{name} (called at depth {depth} on OB {ob}'s level) from {} to {}",
+            format_ms(*start),
+            format_ms(*end)
+        ),
+        Span::System { what, start, end } => format!(
+            "{what}, {} from {}",
+            crate::trace::format_us(end - start),
+            format_ms(*start)
+        ),
+        Span::Level { .. } | Span::Cycle { .. } => String::new(),
     }
 }
 

@@ -153,6 +153,14 @@ impl Rows {
         }
     }
 
+    /// Whether `item` would merge into the last mark of its row.
+    pub fn merges(&self, key: &RowKey, item: &Item) -> bool {
+        self.rows
+            .get(key)
+            .and_then(|row| row.last())
+            .is_some_and(|last| last.merges(item, self.pixel_ns))
+    }
+
     /// Keeps memory bounded on a long run: merges at a coarser pixel when too many marks are
     /// kept; `span_ns` is the time seen so far.
     pub fn bound(&mut self, span_ns: u64, plot_width: u64) {
