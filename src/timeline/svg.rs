@@ -299,6 +299,16 @@ fn cross(svg: &mut String, scene: &Scene, mark: Mark, item: &Item, y: f64, colou
         x + 5.0,
         y - 5.0
     );
+    let word = match mark {
+        Mark::Lost => "lost",
+        _ => "ignored",
+    };
+    let _ = write!(
+        svg,
+        r#"<text class="cross-label" x="{:.1}" y="{:.1}" fill="{colour}" pointer-events="none">{word}</text>"#,
+        x + 7.0,
+        y + 3.5
+    );
 }
 
 /// The operating system's strip (data cycles, its time at the cycle end) and their shading
