@@ -97,6 +97,8 @@ pub struct Statement {
     pub operand_span: Span,
     /// The parameter lines after `JU FB n` / `JC FB n`.
     pub call_params: Vec<CallParam>,
+    /// The segment of a PG listing it is in (`SEGMENT 2`); 0 outside segments.
+    pub segment: u16,
     /// The whole line.
     pub span: Span,
 }
@@ -111,6 +113,8 @@ pub enum Operand {
     Symbol(String),
     /// A plain number: `NOP 0`, `BLD 130`, `I 1`, `SLW 3`.
     Number(u16),
+    /// `-NAME`: a symbol of the assignment list; replaced by its operand before compiling.
+    Assigned(String),
 }
 
 /// `I 0.0`, `FW 10`, `T 5`.

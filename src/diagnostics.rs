@@ -6,6 +6,7 @@ use thiserror::Error;
 use crate::compiler::CheckError;
 use crate::parser::ParseError;
 use crate::source::{SourceSet, Span};
+use crate::symbols::SymbolError;
 
 /// A diagnostic of the front end, about one source file.
 #[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
@@ -16,6 +17,9 @@ pub enum SourceDiagnostic {
     #[error(transparent)]
     #[diagnostic(transparent)]
     Check(#[from] CheckError),
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Symbol(#[from] SymbolError),
 }
 
 impl SourceDiagnostic {
@@ -23,6 +27,7 @@ impl SourceDiagnostic {
         match self {
             SourceDiagnostic::Parse(error) => error.span(),
             SourceDiagnostic::Check(error) => error.span(),
+            SourceDiagnostic::Symbol(error) => error.span(),
         }
     }
 

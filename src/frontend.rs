@@ -12,6 +12,7 @@ use crate::mnemonics::MnemonicSet;
 use crate::parser;
 use crate::profile::Profile;
 use crate::source::{SourceFile, SourceSet};
+use crate::symbols;
 
 /// Why the source files could not be loaded.
 #[derive(Debug, Error, Diagnostic)]
@@ -56,6 +57,27 @@ impl Frontend {
     }
 }
 
+/// Reads the assignment lists; every file that cannot be read is reported.
+pub fn read_symbol_files(paths: &[impl AsRef<Path>]) -> Result<Vec<SourceFile>, Vec<SourceError>> {
+    let mut files = Vec::new();
+    let mut errors = Vec::new();
+    for path in paths {
+        let path = path.as_ref();
+        match SourceFile::read(path) {
+            Ok(file) => files.push(file),
+            Err(error) => errors.push(SourceError::Read {
+                path: path.to_path_buf(),
+                reason: error.to_string(),
+            }),
+        }
+    }
+    if errors.is_empty() {
+        Ok(files)
+    } else {
+        Err(errors)
+    }
+}
+
 /// Reads every file; every file that cannot be read is reported.
 pub fn read_sources(paths: &[impl AsRef<Path>]) -> Result<SourceSet, Vec<SourceError>> {
     let mut sources = SourceSet::default();
@@ -96,18 +118,44 @@ pub fn build(
     forced: Option<MnemonicSet>,
     profile: &'static Profile,
 ) -> Frontend {
+    build_with_symbols(sources, Vec::new(), forced, profile)
+}
+
+/// Parses every program file of `sources`, reads the assignment lists `symbol_files` (they
+/// join the set, so their diagnostics show their lines), replaces the program's symbols and
+/// compiles.
+pub fn build_with_symbols(
+    mut sources: SourceSet,
+    symbol_files: Vec<SourceFile>,
+    forced: Option<MnemonicSet>,
+    profile: &'static Profile,
+) -> Frontend {
     let mut diagnostics = Vec::new();
-    let mut units = Vec::with_capacity(sources.files.len());
+    let programs = sources.files.len();
+    let mut units = Vec::with_capacity(programs);
     for (id, file) in sources.files.iter().enumerate() {
         let parsed = parser::parse_file(id as u16, &file.text, forced);
         diagnostics.extend(parsed.errors.into_iter().map(SourceDiagnostic::Parse));
         units.push(parsed.unit);
     }
-    let compiled = compiler::compile(&units, &sources, profile);
+    for file in symbol_files {
+        sources.add(file);
+    }
+    let default = units
+        .first()
+        .map_or(MnemonicSet::English, |unit| unit.mnemonics);
+    let (symbols, mut symbol_errors) =
+        symbols::load(&sources, programs..sources.files.len(), default, profile);
+    let unresolved = symbols::resolve(&mut units, &symbols, &sources, &mut symbol_errors);
+    diagnostics.extend(symbol_errors.into_iter().map(SourceDiagnostic::Symbol));
+    let mut compiled = compiler::compile(&units, &sources, profile);
+    compiled.program.symbols = symbols;
     diagnostics.extend(
         compiled
             .diagnostics
             .iter()
+            // A symbol that could not be resolved is reported once, as such.
+            .filter(|diagnostic| !unresolved.contains(&diagnostic.span()))
             .cloned()
             .map(SourceDiagnostic::Check),
     );

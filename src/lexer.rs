@@ -27,9 +27,15 @@ pub enum TokenKind {
     /// A fixed-point comparison: `!=F`, `><F`, `>F`, `>=F`, `<F`, `<=F`.
     #[regex(r"(!=|><|>=|<=|>|<)[Ff]")]
     Compare,
-    /// Fixed-point addition or subtraction: `+F`, `-F`.
-    #[regex(r"[+\-][Ff]")]
+    /// Fixed-point addition or subtraction: `+F`, `-F` (before a symbol of the same length).
+    #[regex(r"[+\-][Ff]", priority = 10)]
     AddSub,
+    /// `-NAME`: a symbol of the assignment list standing for an operand.
+    #[regex(r"-[A-Za-z_\u{C0}-\u{FF}][A-Za-z0-9_\u{C0}-\u{FF}]*")]
+    SymbolRef,
+    /// `***`: a segment's end in a PG listing.
+    #[token("***")]
+    SegmentEnd,
     /// A character string in quotes (`KS 'TEXT'`).
     #[regex(r"'[^'\r\n]*'")]
     Quoted,
@@ -113,6 +119,14 @@ mod tests {
             [Compare, Compare, Compare, AddSub, AddSub]
         );
         assert_eq!(kinds("KF -100"), [Word, Minus, Number]);
+    }
+
+    #[test]
+    fn symbols_and_segment_ends() {
+        assert_eq!(kinds("U -START"), [Word, SymbolRef]);
+        assert_eq!(kinds("SPA -FILL"), [Word, SymbolRef]);
+        assert_eq!(kinds("-F +F"), [AddSub, AddSub]);
+        assert_eq!(kinds("0003 :***"), [Number, Colon, SegmentEnd]);
     }
 
     #[test]

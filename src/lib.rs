@@ -21,6 +21,7 @@ pub mod runner;
 pub mod scenario;
 pub mod source;
 pub mod state;
+pub mod symbols;
 pub mod timeline;
 pub mod trace;
 pub mod vm;

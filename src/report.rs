@@ -182,6 +182,7 @@ pub fn plural(n: impl Into<u64>, word: &str) -> String {
 /// One line per `[[check]]`: when it was verified and how many of its operands held, then
 /// each one that did not.
 fn checks(out: &mut String, ran: &crate::runner::Ran) {
+    let symbols = &ran.cpu.program.symbols;
     for check in &ran.checks {
         let Some((at_ns, cycle)) = check.verified else {
             let _ = writeln!(
@@ -204,7 +205,9 @@ fn checks(out: &mut String, ran: &crate::runner::Ran) {
             let _ = writeln!(
                 out,
                 "  {}: expected {}, got {}",
-                mismatch.name, mismatch.expected, mismatch.actual
+                symbols.describe(&mismatch.name),
+                mismatch.expected,
+                mismatch.actual
             );
         }
     }
@@ -220,7 +223,9 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
             let _ = writeln!(
                 out,
                 "expect {}: expected {}, got {}",
-                mismatch.name, mismatch.expected, mismatch.actual
+                cpu.program.symbols.describe(&mismatch.name),
+                mismatch.expected,
+                mismatch.actual
             );
         }
         let _ = writeln!(

@@ -57,6 +57,19 @@ pub struct SourceOptions {
     /// Mnemonic set, instead of detecting it per file
     #[arg(long, value_enum)]
     pub mnemonics: Option<Mnemonics>,
+    /// Assignment list giving operands names (`-START`); repeatable
+    #[arg(long = "symbols", value_name = "FILE")]
+    pub symbols: Vec<PathBuf>,
+}
+
+#[derive(Debug, clap::Args)]
+pub struct DumpArgs {
+    #[command(flatten)]
+    pub source: SourceOptions,
+    /// Print the program as a STEP 5 PG listing (segments, statement numbers, `***`) that
+    /// parses back to the same bytecode
+    #[arg(long)]
+    pub listing: bool,
 }
 
 #[derive(Debug, Subcommand)]
@@ -64,7 +77,7 @@ pub enum Command {
     /// Parse and compile; print every error found
     Check(SourceOptions),
     /// Print each block's bytecode with source line numbers
-    Dump(SourceOptions),
+    Dump(DumpArgs),
     /// Compile, start the CPU (STOP → STARTUP → RUN), run, print a summary
     Run(run::RunArgs),
     /// Program status: one invocation of a block, line by line (RLO, STA, ACCU 1/2, operand)

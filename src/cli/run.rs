@@ -85,6 +85,9 @@ pub struct ProgramArgs {
     /// Mnemonic set, instead of detecting it per file
     #[arg(long, value_enum)]
     pub mnemonics: Option<Mnemonics>,
+    /// Assignment list giving operands names (`-START`); repeatable, added to the scenario's
+    #[arg(long = "symbols", value_name = "FILE")]
+    pub symbols: Vec<PathBuf>,
 }
 
 #[derive(Debug, clap::Args)]
@@ -174,6 +177,7 @@ pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
         }),
         special_mode: args.mode.map(|mode| matches!(mode, CpuMode::Special)),
         mnemonics: args.mnemonics.map(Into::into),
+        symbols: args.symbols.clone(),
         ..RunOptions::default()
     }
 }
@@ -312,10 +316,14 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
 
 /// What did not hold: `[expect]` entries, then `[[check]]` operands with their time.
 fn failures(ran: &Ran) -> Vec<String> {
+    let symbols = &ran.cpu.program.symbols;
     let mut failures: Vec<String> = ran
         .mismatches
         .iter()
-        .map(|m| format!("{} expected {}, got {}", m.name, m.expected, m.actual))
+        .map(|m| {
+            let name = symbols.describe(&m.name);
+            format!("{name} expected {}, got {}", m.expected, m.actual)
+        })
         .collect();
     for check in &ran.checks {
         match check.verified {
@@ -323,7 +331,7 @@ fn failures(ran: &Ran) -> Vec<String> {
             Some((at_ns, _)) => failures.extend(check.mismatches.iter().map(|m| {
                 format!(
                     "{} at {} expected {}, got {}",
-                    m.name,
+                    symbols.describe(&m.name),
                     crate::trace::format_ms(at_ns),
                     m.expected,
                     m.actual

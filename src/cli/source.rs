@@ -5,7 +5,9 @@ use miette::Report;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend};
 
-use super::{Console, EXIT_OK, EXIT_SOURCE_ERRORS, SourceOptions, plural, selected_profile};
+use super::{
+    Console, DumpArgs, EXIT_OK, EXIT_SOURCE_ERRORS, SourceOptions, plural, selected_profile,
+};
 
 /// Runs the front end and prints its diagnostics; `None` when a file could not be read.
 fn build(options: &SourceOptions, console: &mut Console) -> Option<Frontend> {
@@ -18,8 +20,22 @@ fn build(options: &SourceOptions, console: &mut Console) -> Option<Frontend> {
             return None;
         }
     };
+    let symbol_files = match frontend::read_symbol_files(&options.symbols) {
+        Ok(files) => files,
+        Err(errors) => {
+            for error in errors {
+                console.report(&Report::new(error));
+            }
+            return None;
+        }
+    };
     let profile = selected_profile(options.cpu.as_deref());
-    let built = frontend::build(sources, options.mnemonics.map(Into::into), profile);
+    let built = frontend::build_with_symbols(
+        sources,
+        symbol_files,
+        options.mnemonics.map(Into::into),
+        profile,
+    );
     for diagnostic in &built.diagnostics {
         console.report(&diagnostics::report(&built.sources, diagnostic));
     }
@@ -55,7 +71,8 @@ pub fn check(options: &SourceOptions, console: &mut Console) -> u8 {
     }
 }
 
-pub fn dump(options: &SourceOptions, console: &mut Console) -> u8 {
+pub fn dump(args: &DumpArgs, console: &mut Console) -> u8 {
+    let options = &args.source;
     let Some(built) = build(options, console) else {
         return EXIT_SOURCE_ERRORS;
     };
@@ -63,6 +80,10 @@ pub fn dump(options: &SourceOptions, console: &mut Console) -> u8 {
         console.err(&format!("awl dump: {}\n", count_summary(&built)));
         return EXIT_SOURCE_ERRORS;
     }
-    console.out(&crate::dump::dump(&built.compiled.program, &built.sources));
+    if args.listing {
+        console.out(&crate::dump::listing::listing(&built));
+    } else {
+        console.out(&crate::dump::dump(&built.compiled.program, &built.sources));
+    }
     EXIT_OK
 }

@@ -14,7 +14,7 @@ use std::collections::HashMap;
 pub use bytecode::Op;
 pub use error::CheckError;
 pub use lower::{Layout, Resolved};
-pub use ranges::address_in_range;
+pub use ranges::{address_in_range, check_address};
 
 use crate::ast::{Block, BlockBody, BlockId, LogicBody, Operand, ParamDecl, SourceUnit, Statement};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
@@ -34,9 +34,22 @@ pub struct CompiledBlock {
     /// Execution times as prefix sums: `elapsed[i]` is the time in ns of ops `0..i`, so the
     /// time of any straight run of ops is one subtraction (`code.len() + 1` entries).
     pub elapsed: Vec<u64>,
+    /// Where the segments of a PG listing start: (first op, segment number), in order.
+    pub segments: Vec<(u32, u16)>,
 }
 
 impl CompiledBlock {
+    /// The listing segment op `pc` is in, if the block has segments.
+    pub fn segment_of(&self, pc: usize) -> Option<u16> {
+        let after = self
+            .segments
+            .partition_point(|(first, _)| *first as usize <= pc);
+        after
+            .checked_sub(1)
+            .map(|at| self.segments[at].1)
+            .filter(|segment| *segment != 0)
+    }
+
     /// The execution time of op `pc`.
     pub fn cost(&self, pc: usize) -> u64 {
         self.elapsed[pc + 1] - self.elapsed[pc]
@@ -62,6 +75,8 @@ pub struct Program {
     pub param_lists: Vec<Vec<Resolved>>,
     /// The operation after each `DO`, with its operand to be replaced at run time.
     pub indirect_templates: Vec<(OpCode, Resolved)>,
+    /// The assignment list's symbols, to show operands by name.
+    pub symbols: crate::symbols::Symbols,
     index: HashMap<BlockId, u16>,
 }
 
@@ -117,6 +132,7 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
             data_blocks,
             param_lists: compiler.param_lists,
             indirect_templates: compiler.templates,
+            symbols: crate::symbols::Symbols::default(),
             index: compiler.index,
         },
         diagnostics: compiler.diagnostics,
@@ -252,6 +268,7 @@ impl<'a> Compiler<'a> {
             code: Vec::with_capacity(body.statements.len()),
             spans: Vec::with_capacity(body.statements.len()),
             elapsed: Vec::with_capacity(body.statements.len() + 1),
+            segments: Vec::new(),
         };
         compiled.elapsed.push(0);
         let context = BlockContext {
@@ -266,6 +283,9 @@ impl<'a> Compiler<'a> {
                 .unwrap_or((Op::Nop, Op::Nop));
             compiled.code.push(op);
             compiled.spans.push(statement.span);
+            if compiled.segments.last().map(|(_, segment)| *segment) != Some(statement.segment) {
+                compiled.segments.push((pc as u32, statement.segment));
+            }
             let before = *compiled.elapsed.last().expect("starts with 0");
             compiled
                 .elapsed
@@ -428,6 +448,8 @@ impl<'a> Compiler<'a> {
                 Some(Resolved::Address(*address))
             }
             Operand::None | Operand::Block(_) | Operand::Symbol(_) => Some(Resolved::None),
+            // A symbol left unresolved: the assignment list's check has reported it.
+            Operand::Assigned(_) => None,
         }
     }
 

@@ -96,8 +96,7 @@ pub fn levels(levels: &[LevelView]) -> String {
 }
 
 fn target(cpu: &Cpu, operand: &str, set: MnemonicSet) -> Result<Target, String> {
-    parse_target(operand, (0, 0).into(), set, cpu.profile, cpu.program.layout)
-        .map_err(|error| error.reason())
+    parse_target(operand, (0, 0).into(), set, &cpu.program).map_err(|error| error.reason())
 }
 
 /// `Q 4.0 = 1`, one line per operand.

@@ -14,6 +14,7 @@ use crate::source::Span;
 
 use super::constant::parse_constant;
 use super::error::ParseError;
+use super::listing::header_information;
 use super::tokens::{
     Context, LineError, LineResult, Tokens, decimal, end_of_line, keyword, kind, touching,
 };
@@ -38,14 +39,14 @@ fn remaining_span(context: Context<'_>, tokens: &[Token]) -> Option<Span> {
     Some(context.span_of(*tokens.first()?, *tokens.last()?))
 }
 
-/// `PB 3` or `PB3`.
+/// `PB 3` or `PB3`, in a listing with its information (`PB 3   LAE=12`).
 pub fn header<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, BlockId> {
     move |input: Tokens<'a>| {
         let (rest, word) = kind(TokenKind::Word, "a block header such as `PB 3`")(input)?;
         let text = context.text(word);
         if let Some(kind) = BlockKind::from_word(text) {
             let (rest, number) = kind_number(context, rest)?;
-            let (rest, _) = end_of_line(rest)?;
+            let (rest, _) = header_information(rest)?;
             return Ok((rest, BlockId { kind, number }));
         }
         let split = text
@@ -54,7 +55,7 @@ pub fn header<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a,
         let (kind_text, digits) = text.split_at(split);
         match (BlockKind::from_word(kind_text), digits.parse::<u32>()) {
             (Some(kind), Ok(number)) if !digits.is_empty() => {
-                let (rest, _) = end_of_line(rest)?;
+                let (rest, _) = header_information(rest)?;
                 let number = block_number(context, word, number)?;
                 Ok((rest, BlockId { kind, number }))
             }
@@ -296,6 +297,7 @@ pub fn statement<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<
                 operand,
                 operand_span,
                 call_params: Vec::new(),
+                segment: 0,
                 span,
             },
         ))
@@ -549,6 +551,10 @@ pub fn operand<'a>(
             TokenKind::FormalRef => {
                 let name = context.text(first)[1..].to_string();
                 Ok((rest, (Operand::Symbol(name), context.span(first))))
+            }
+            TokenKind::SymbolRef => {
+                let name = context.text(first)[1..].to_string();
+                Ok((rest, (Operand::Assigned(name), context.span(first))))
             }
             TokenKind::Number => {
                 let (rest, (value, token)) = decimal(context, "a number")(input)?;

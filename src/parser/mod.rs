@@ -4,6 +4,7 @@
 mod constant;
 pub mod error;
 pub mod line;
+pub mod listing;
 pub mod tokens;
 
 pub use constant::{bcd, to_s5_float};
@@ -50,6 +51,8 @@ pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> Pa
         discard: false,
         outside_reported: false,
         next_data_word: 0,
+        segment: 0,
+        listing: false,
         foreign: None,
         errors: Vec::new(),
     };
@@ -104,8 +107,13 @@ fn detect(source: &str, lines: &[&[Token]]) -> Option<(MnemonicSet, Span)> {
     }
 }
 
-/// The tokens after an optional `LABEL :` and the optional leading `:`.
+/// The tokens after an optional listing address, an optional `LABEL :` and the optional
+/// leading `:`.
 fn strip_label(line: &[Token]) -> &[Token] {
+    let line = match line {
+        [first, rest @ ..] if first.kind == TokenKind::Number => rest,
+        _ => line,
+    };
     let line = match line {
         [first, second, rest @ ..]
             if first.kind == TokenKind::Word && second.kind == TokenKind::Colon =>
@@ -133,6 +141,10 @@ struct Builder<'a> {
     discard: bool,
     outside_reported: bool,
     next_data_word: u16,
+    /// The segment of a PG listing the lines are in (0 before any heading).
+    segment: u16,
+    /// Statement addresses have been seen: the file is a PG listing.
+    listing: bool,
     /// The first word of the other mnemonic set.
     /// The first word of the other set, and whether it stands in the operation's place.
     foreign: Option<(Span, bool)>,
@@ -247,6 +259,7 @@ impl<'a> Builder<'a> {
         self.ended = false;
         self.outside_reported = false;
         self.next_data_word = 0;
+        self.segment = 0;
     }
 
     fn finish_block(&mut self) {
@@ -284,6 +297,17 @@ impl<'a> Builder<'a> {
     }
 
     fn logic_line(&mut self, line: &'a [Token]) -> Result<(), ParseError> {
+        let context = self.context(self.set);
+        let stripped = listing::without_address(context, line, self.listing);
+        self.listing |= stripped.len() < line.len();
+        let line = stripped;
+        if let Ok((_, number)) = listing::segment_heading(context)(Tokens::new(line)) {
+            self.segment = number;
+            return Ok(());
+        }
+        if listing::segment_end(Tokens::new(line)).is_ok() {
+            return Ok(());
+        }
         let Some(Block {
             id,
             body: BlockBody::Logic(body),
@@ -298,7 +322,6 @@ impl<'a> Builder<'a> {
             matches!(last.op, OpCode::JumpUnconditional | OpCode::JumpConditional)
                 && matches!(last.operand, Operand::Block(target) if target.kind.is_function())
         });
-        let context = self.context(self.set);
         if (header_phase || after_fb_call)
             && let Ok((_, name)) = line::name_line(context)(input)
         {
@@ -326,7 +349,8 @@ impl<'a> Builder<'a> {
             }
             return Ok(());
         }
-        let statement = self.parse(line, line::statement)?;
+        let mut statement = self.parse(line, line::statement)?;
+        statement.segment = self.segment;
         if statement.op == OpCode::BlockEnd {
             self.logic_body().end = Some(statement.op_span);
             self.ended = true;

@@ -52,6 +52,8 @@ pub struct RunOptions {
     pub to_ns: Option<u64>,
     /// The timeline picture's file (`.svg` or `.html`).
     pub timeline: Option<PathBuf>,
+    /// Assignment lists (`--symbols`), after the scenario's `symbols`.
+    pub symbols: Vec<PathBuf>,
     pub mnemonics: Option<MnemonicSet>,
     /// Operands to watch (`--watch "Q 4.0, FW 10"`), added to the scenario's `watch`.
     pub watch: Vec<String>,
@@ -198,7 +200,8 @@ fn add_outputs(
     if let Some(path) = &options.trace {
         let format = options.trace_format.unwrap_or(TraceFormat::Jsonl);
         let filter = window.kinds(&options.trace_filter);
-        let sink = trace::trace_sink(format, open_trace(path)?, filter, levels.clone());
+        let symbols = cpu.program.symbols.clone();
+        let sink = trace::trace_sink(format, open_trace(path)?, filter, levels.clone(), symbols);
         cpu.tracer.add(&path.display().to_string(), sink);
     }
     if let Some(path) = &options.timeline {
@@ -300,11 +303,19 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         scenario_errors.push(Report::new(RunError::NoProgram));
         return Err(NotRun::Failed(scenario_errors));
     }
-    let sources = frontend::read_sources(&files).map_err(|errors| {
+    let symbol_paths: Vec<PathBuf> = scenario
+        .iter()
+        .flat_map(|scenario| scenario.symbols.iter().cloned())
+        .chain(options.symbols.iter().cloned())
+        .collect();
+    let read = frontend::read_sources(&files).and_then(|sources| {
+        frontend::read_symbol_files(&symbol_paths).map(|symbols| (sources, symbols))
+    });
+    let (sources, symbol_files) = read.map_err(|errors| {
         scenario_errors.extend(errors.into_iter().map(Report::new));
         NotRun::Failed(std::mem::take(&mut scenario_errors))
     })?;
-    let built = frontend::build(sources, options.mnemonics, profile);
+    let built = frontend::build_with_symbols(sources, symbol_files, options.mnemonics, profile);
     let mut warnings: Vec<Report> = built
         .diagnostics
         .iter()
@@ -485,13 +496,12 @@ fn watched(
         None => Vec::new(),
     };
     for operand in &options.watch {
-        let target = parse_target(operand, (0, 0).into(), set, program.profile, program.layout)
-            .map_err(|error| {
-                NotRun::Usage(Report::new(RunError::WatchOperand {
-                    operand: operand.clone(),
-                    reason: error.reason(),
-                }))
-            })?;
+        let target = parse_target(operand, (0, 0).into(), set, program).map_err(|error| {
+            NotRun::Usage(Report::new(RunError::WatchOperand {
+                operand: operand.clone(),
+                reason: error.reason(),
+            }))
+        })?;
         targets.push((operand.clone(), target));
     }
     Ok(targets)

@@ -29,8 +29,10 @@ fn stack_line(text: &mut String, entry: &StackEntry, role: &str, times: usize) {
         String::new()
     };
     text.push_str(&format!(
-        "\n  {:<6} line {:<5} {role}{count}",
-        entry.block, entry.line
+        "\n  {:<6} {}line {:<5} {role}{count}",
+        entry.block,
+        crate::trace::segment_text(entry.segment),
+        entry.line
     ));
 }
 

@@ -43,6 +43,16 @@ pub enum ScenarioError {
         help: Option<String>,
     },
 
+    #[error("unknown symbol `-{name}`")]
+    #[diagnostic(code(awl::scenario::unknown_symbol))]
+    UnknownSymbol {
+        name: String,
+        #[label("not in the assignment list")]
+        at: SourceSpan,
+        #[help]
+        help: Option<String>,
+    },
+
     #[error("`{value}` does not fit `{operand}`")]
     #[diagnostic(code(awl::scenario::bad_value))]
     BadValue {
@@ -104,6 +114,11 @@ impl ScenarioError {
     /// Why an operand was refused, for messages outside a scenario file (the command line).
     pub fn reason(&self) -> String {
         match self {
+            ScenarioError::UnknownSymbol {
+                help: Some(help), ..
+            } => {
+                format!("not in the assignment list; {help}")
+            }
             ScenarioError::UnknownOperand { reason, help, .. } => match help {
                 Some(help) => format!("{reason}; {help}"),
                 None => reason.clone(),
@@ -121,6 +136,7 @@ impl ScenarioError {
             ScenarioError::Syntax { at, .. } => at.map_or(0, |at| at.offset()),
             ScenarioError::UnknownKey { at, .. }
             | ScenarioError::UnknownOperand { at, .. }
+            | ScenarioError::UnknownSymbol { at, .. }
             | ScenarioError::BadValue { at, .. }
             | ScenarioError::UnknownOb { at, .. }
             | ScenarioError::BadDuration { at, .. }

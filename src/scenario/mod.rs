@@ -42,6 +42,8 @@ pub struct Scenario {
     pub path: PathBuf,
     text: Arc<str>,
     pub programs: Vec<PathBuf>,
+    /// The assignment lists (`symbols = [...]`).
+    pub symbols: Vec<PathBuf>,
     /// The CPU the file names.
     pub cpu: Option<&'static Profile>,
     /// The CPU the run uses: the command line's, the file's, or the default.
@@ -187,11 +189,14 @@ impl Scenario {
         errors: &mut Errors,
     ) -> Scenario {
         let base = path.parent().unwrap_or(Path::new("."));
-        let programs = match raw.program.as_ref().map(Spanned::get_ref) {
+        let paths = |list: &Option<Spanned<ProgramList>>| match list.as_ref().map(Spanned::get_ref)
+        {
             None => Vec::new(),
             Some(ProgramList::One(one)) => vec![base.join(one)],
             Some(ProgramList::Many(many)) => many.iter().map(|one| base.join(one)).collect(),
         };
+        let programs = paths(&raw.program);
+        let symbols = paths(&raw.symbols);
         let cpu = raw.cpu.as_ref().and_then(|name| {
             errors.keep(profile::find(name.get_ref()).ok_or_else(|| {
                 invalid(
@@ -227,6 +232,7 @@ impl Scenario {
             path: path.to_path_buf(),
             text,
             programs,
+            symbols,
             cpu,
             profile,
             special_mode,
@@ -340,9 +346,7 @@ impl Scenario {
         for (operand, value) in changes {
             let at = self.key_span(operand);
             let text = operand.get_ref();
-            let Some(target) =
-                errors.keep(parse_target(text, at, set, self.profile, program.layout))
-            else {
+            let Some(target) = errors.keep(parse_target(text, at, set, program)) else {
                 continue;
             };
             if input_change(target, program, 0).is_none() {
@@ -511,7 +515,7 @@ impl Scenario {
     ) -> Option<Expected> {
         let operand = key.get_ref();
         let at = self.key_span(key);
-        let target = errors.keep(parse_target(operand, at, set, self.profile, program.layout))?;
+        let target = errors.keep(parse_target(operand, at, set, program))?;
         let (number, raw) = errors.keep(Scenario::value(target, value, operand))?;
         Some(Expected::Value {
             target,
@@ -623,13 +627,7 @@ impl Scenario {
             .watch
             .iter()
             .filter_map(|operand| {
-                let target = parse_target(
-                    operand.get_ref(),
-                    self.key_span(operand),
-                    set,
-                    self.profile,
-                    program.layout,
-                );
+                let target = parse_target(operand.get_ref(), self.key_span(operand), set, program);
                 errors
                     .keep(target)
                     .map(|target| (operand.get_ref().clone(), target))

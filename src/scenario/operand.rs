@@ -4,7 +4,7 @@
 use miette::SourceSpan;
 
 use crate::ast::Address;
-use crate::compiler::{Layout, address_in_range};
+use crate::compiler::{Layout, Program, address_in_range};
 use crate::mnemonics::{self, Area, MnemonicSet};
 use crate::profile::Profile;
 
@@ -83,6 +83,32 @@ fn words(text: &str) -> Vec<String> {
 }
 
 pub fn parse_target(
+    text: &str,
+    at: SourceSpan,
+    set: MnemonicSet,
+    program: &Program,
+) -> Result<Target, ScenarioError> {
+    let Some(name) = text.trim().strip_prefix('-') else {
+        return parse_absolute(text, at, set, program.profile, program.layout);
+    };
+    let symbols = &program.symbols;
+    match symbols.operand_in(name, set) {
+        Some(absolute) => parse_absolute(&absolute, at, set, program.profile, program.layout),
+        None => Err(ScenarioError::UnknownSymbol {
+            name: name.to_string(),
+            at,
+            help: symbols.suggest(name).or_else(|| {
+                symbols.is_empty().then(|| {
+                    "name the assignment list with `symbols = [...]` or `--symbols FILE`"
+                        .to_string()
+                })
+            }),
+        }),
+    }
+}
+
+/// An absolute operand: `I 0.0`, `FW 10`, `T 1`, `DB 10 DW 3`.
+fn parse_absolute(
     text: &str,
     at: SourceSpan,
     set: MnemonicSet,

@@ -28,11 +28,14 @@ pub const KEYS: &[&str] = &[
     "expect",
     "watch",
     "check",
+    "symbols",
 ];
 
 #[derive(Debug, Default)]
 pub struct RawScenario {
     pub program: Option<Spanned<ProgramList>>,
+    /// Assignment lists, relative to the scenario.
+    pub symbols: Option<Spanned<ProgramList>>,
     pub cpu: Option<Spanned<String>>,
     pub mode: Option<Spanned<String>>,
     pub interrupt_points: Option<Spanned<String>>,
@@ -154,6 +157,7 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
         };
         match key.get_ref().as_ref() {
             "program" => keep(read(value).map(|v| raw.program = Some(v))),
+            "symbols" => keep(read(value).map(|v| raw.symbols = Some(v))),
             "cpu" => keep(read(value).map(|v| raw.cpu = Some(v))),
             "mode" => keep(read(value).map(|v| raw.mode = Some(v))),
             "interrupt_points" => keep(read(value).map(|v| raw.interrupt_points = Some(v))),

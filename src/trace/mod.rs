@@ -12,7 +12,7 @@ pub mod filter;
 mod jsonl;
 mod text;
 
-pub use text::line as describe;
+pub use text::{line as describe, segment_text};
 
 use std::io::Write;
 
@@ -67,6 +67,9 @@ pub enum Event {
         /// Its source line, where it can be told (operation points, or straight-line code).
         #[serde(skip_serializing_if = "Option::is_none")]
         line: Option<u32>,
+        /// The line's segment, in a PG listing.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        segment: Option<u16>,
         /// The operating system's work it came in, when no block ran.
         #[serde(skip_serializing_if = "Option::is_none")]
         during: Option<&'static str>,
@@ -118,6 +121,9 @@ pub enum Event {
         cause: &'static str,
         block: String,
         line: u32,
+        /// The line's segment, in a PG listing.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        segment: Option<u16>,
     },
     /// A row of the watch table: the watched operands' values at a cycle boundary.
     Watch {
@@ -184,10 +190,14 @@ impl Tracer {
     /// A tracer writing every event in `format` to `out`.
     pub fn new(format: TraceFormat, out: Box<dyn Write>) -> Self {
         let mut tracer = Tracer::off();
-        tracer.add(
-            "trace",
-            trace_sink(format, out, TraceFilter::all(), Vec::new()),
+        let sink = trace_sink(
+            format,
+            out,
+            TraceFilter::all(),
+            Vec::new(),
+            Default::default(),
         );
+        tracer.add("trace", sink);
         tracer
     }
 
@@ -293,16 +303,18 @@ pub fn levels(profile: &crate::profile::Profile, program: &crate::compiler::Prog
         .collect()
 }
 
-/// A trace file's writer in `format`, showing what `filter` lets through.
+/// A trace file's writer in `format`, showing what `filter` lets through; the text trace
+/// shows operands and blocks with their `symbols`.
 pub fn trace_sink(
     format: TraceFormat,
     out: Box<dyn Write>,
     filter: TraceFilter,
     levels: Levels,
+    symbols: crate::symbols::Symbols,
 ) -> Box<dyn Sink> {
     match format {
         TraceFormat::Jsonl => Box::new(jsonl::Jsonl::new(out, filter)),
-        TraceFormat::Text => Box::new(text::Text::new(out, filter)),
+        TraceFormat::Text => Box::new(text::Text::new(out, filter, symbols)),
         TraceFormat::Chrome => Box::new(chrome::Chrome::new(out, filter, levels)),
     }
 }

@@ -2,10 +2,12 @@
 //! called on it, so a call, the called block's end, a request and a service line up with
 //! what ran when they happened.
 
+use std::borrow::Cow;
 use std::io::Write;
 
 use super::activity::{Activity, data_cycle_name};
 use super::{Event, Sink, TraceFilter, format_ms, format_us};
+use crate::symbols::Symbols;
 
 /// Width of the time column: aligned up to 999 s (`999999.999999 ms`).
 const TIME_WIDTH: usize = 16;
@@ -15,16 +17,45 @@ pub struct Text {
     filter: TraceFilter,
     activity: Activity,
     spans: Vec<super::activity::Span>,
+    symbols: Symbols,
 }
 
 impl Text {
-    pub fn new(out: Box<dyn Write>, filter: TraceFilter) -> Self {
+    pub fn new(out: Box<dyn Write>, filter: TraceFilter, symbols: Symbols) -> Self {
         Text {
             out,
             filter,
             activity: Activity::default(),
             spans: Vec::new(),
+            symbols,
         }
+    }
+
+    /// The event with its blocks and operands named by their symbols (`PB 3 (-FILL)`).
+    fn named<'e>(&self, event: &'e Event) -> Cow<'e, Event> {
+        if self.symbols.is_empty() {
+            return Cow::Borrowed(event);
+        }
+        let name = |text: &str| self.symbols.decorate(text);
+        let mut event = event.clone();
+        match &mut event {
+            Event::BlockCall { from, to, .. } => {
+                *from = name(from);
+                *to = name(to);
+            }
+            Event::BlockEnd { block, .. } | Event::Stop { block, .. } => *block = name(block),
+            Event::IrqRequest {
+                block: Some(block), ..
+            }
+            | Event::IrqService {
+                block: Some(block), ..
+            } => *block = name(block),
+            Event::Input { operand, .. } | Event::Output { operand, .. } => {
+                *operand = name(operand)
+            }
+            _ => {}
+        }
+        Cow::Owned(event)
     }
 }
 
@@ -51,7 +82,7 @@ impl Sink for Text {
             "{:>TIME_WIDTH$}  {}{}",
             format_ms(t_ns),
             "  ".repeat(indent),
-            line(event)
+            line(&self.named(event))
         )
     }
 
@@ -84,6 +115,7 @@ pub fn line(event: &Event) -> String {
             channel,
             block,
             line,
+            segment,
             during,
         } => {
             let source = match (module, channel) {
@@ -91,7 +123,9 @@ pub fn line(event: &Event) -> String {
                 _ => String::new(),
             };
             let place = match (block, line, during) {
-                (Some(block), Some(line), _) => format!(" while {block} runs line {line}"),
+                (Some(block), Some(line), _) => {
+                    format!(" while {block} runs {}line {line}", segment_text(*segment))
+                }
                 (Some(block), None, _) => format!(" while {block} runs"),
                 (None, _, Some(during)) => format!(" during the {during}"),
                 _ => " between cycles".to_string(),
@@ -151,7 +185,15 @@ pub fn line(event: &Event) -> String {
             ob,
             reason,
         } => format!("· module {module} channel {channel} (OB {ob}): {reason}"),
-        Event::Stop { cause, block, line } => format!("STOP {cause} in {block} line {line}"),
+        Event::Stop {
+            cause,
+            block,
+            line,
+            segment,
+        } => format!(
+            "STOP {cause} in {block} {}line {line}",
+            segment_text(*segment)
+        ),
         Event::Input { operand, value } => format!("input {operand} = {value}"),
         Event::Output { operand, value } => format!("output {operand} = {value}"),
         Event::Watch { values, .. } => {
@@ -162,4 +204,9 @@ pub fn line(event: &Event) -> String {
             format!("watch: {}", values.join(", "))
         }
     }
+}
+
+/// `segment 2 ` before a line number in a PG listing.
+pub fn segment_text(segment: Option<u16>) -> String {
+    segment.map_or_else(String::new, |segment| format!("segment {segment} "))
 }

@@ -303,12 +303,13 @@ impl Cpu {
         if let Some(stop) = &stop {
             self.set_mode(Mode::Stop, Some(stop.cause.code()));
             if self.tracer.enabled {
-                let (block, line) = match stop.block {
+                let (block, line, segment) = match stop.block {
                     Some(block) => (
                         self.block_id(block).to_string(),
                         self.line_of(block, stop.pc),
+                        self.segment_of(block, stop.pc),
                     ),
-                    None => ("between cycles".to_string(), 0),
+                    None => ("between cycles".to_string(), 0, None),
                 };
                 self.tracer.emit(
                     self.clock,
@@ -316,6 +317,7 @@ impl Cpu {
                         cause: stop.cause.code(),
                         block,
                         line,
+                        segment,
                     },
                 );
             }

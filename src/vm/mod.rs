@@ -301,6 +301,23 @@ impl Cpu {
         )
     }
 
+    /// The PG listing's segment of op `pc` of `block`, in a listing.
+    pub fn segment_of(&self, block: u16, pc: u32) -> Option<u16> {
+        self.program
+            .blocks
+            .get(usize::from(block))?
+            .segment_of(pc as usize)
+    }
+
+    /// A BSTACK entry: the block, the line (and segment) of op `pc`.
+    pub fn stack_entry(&self, block: u16, pc: u32) -> StackEntry {
+        StackEntry {
+            block: self.block_id(block).to_string(),
+            line: self.line_of(block, pc),
+            segment: self.segment_of(block, pc),
+        }
+    }
+
     /// The block at the bottom of the running level: OB 1, a startup OB, or an interrupt OB.
     pub fn level_block(&self) -> u16 {
         self.frames
@@ -389,10 +406,7 @@ impl Cpu {
         };
         let stack = stack
             .into_iter()
-            .map(|(block, pc)| StackEntry {
-                block: self.block_id(block).to_string(),
-                line: self.line_of(block, pc),
-            })
+            .map(|(block, pc)| self.stack_entry(block, pc))
             .collect();
         Stop {
             cause,

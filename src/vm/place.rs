@@ -9,6 +9,8 @@ use super::{Cpu, StretchKind};
 pub struct Place {
     pub block: Option<String>,
     pub line: Option<u32>,
+    /// The PG listing's segment of the line, in a listing.
+    pub segment: Option<u16>,
     pub during: Option<&'static str>,
 }
 
@@ -25,11 +27,15 @@ impl Cpu {
             StretchKind::Block {
                 block: index,
                 end_pc,
-            } => Place {
-                block: block(index),
-                line: self.line_at(index, end_pc, stretch.start_ns, stretch.end_ns, at),
-                during: None,
-            },
+            } => {
+                let pc = self.pc_at(index, end_pc, stretch.start_ns, stretch.end_ns, at);
+                Place {
+                    block: block(index),
+                    line: pc.map(|pc| self.line_of(index, pc)),
+                    segment: pc.and_then(|pc| self.segment_of(index, pc)),
+                    during: None,
+                }
+            }
             StretchKind::InterruptEnd { block: index } => Place {
                 block: block(index),
                 ..Place::default()
@@ -40,10 +46,10 @@ impl Cpu {
         }
     }
 
-    /// The line of the op that ran at `at`, walking back over the op times from op `end_pc`
-    /// (which ended at `end_ns`) towards `start_ns`. Known when the stretch ran straight
-    /// through the block: the walk must not pass `start_ns` between two ops.
-    fn line_at(&self, block: u16, end_pc: u32, start_ns: u64, end_ns: u64, at: u64) -> Option<u32> {
+    /// The op that ran at `at`, walking back over the op times from op `end_pc` (which ended
+    /// at `end_ns`) towards `start_ns`. Known when the stretch ran straight through the block:
+    /// the walk must not pass `start_ns` between two ops.
+    fn pc_at(&self, block: u16, end_pc: u32, start_ns: u64, end_ns: u64, at: u64) -> Option<u32> {
         let code = self.program.blocks.get(usize::from(block))?;
         let mut t = end_ns;
         let mut found = None;
@@ -59,7 +65,7 @@ impl Cpu {
             }
             t = begin;
         }
-        found.map(|pc| self.sources.line_of(code.spans[pc]))
+        found.map(|pc| pc as u32)
     }
 }
 

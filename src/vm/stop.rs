@@ -55,6 +55,8 @@ impl StopCause {
 pub struct StackEntry {
     pub block: String,
     pub line: u32,
+    /// The PG listing's segment of the line, in a listing.
+    pub segment: Option<u16>,
 }
 
 /// The runtime STOP as a diagnostic.

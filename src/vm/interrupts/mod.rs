@@ -424,11 +424,8 @@ impl Cpu {
             // A block end: the block that ended is no longer on the stack, and its caller's
             // entry is the call, as for every other return point.
             let running = self.level.block;
-            stop.stack[0].line = self.line_of(running, self.level.pc.saturating_sub(1));
-            let entry = super::stop::StackEntry {
-                block: self.block_id(block).to_string(),
-                line: self.line_of(block, pc),
-            };
+            stop.stack[0] = self.stack_entry(running, self.level.pc.saturating_sub(1));
+            let entry = self.stack_entry(block, pc);
             stop.stack.insert(0, entry);
         }
         stop.block = Some(block);
@@ -607,6 +604,7 @@ impl Cpu {
                 channel,
                 block: place.block,
                 line: place.line,
+                segment: place.segment,
                 during: place.during,
             }
         });

@@ -9,14 +9,26 @@ use crate::compiler::{Layout, Program};
 use crate::mnemonics::{self, Area, MnemonicSet};
 use crate::source::SourceSet;
 
-/// Operand names in the block's mnemonic set: `I 0.0` or `E 0.0`, `FW 10` or `MW 10`.
+pub mod listing;
+
+/// Operand names in the block's mnemonic set: `I 0.0` or `E 0.0`, `FW 10` or `MW 10`, with
+/// the assignment list's symbol after them: `E 1.0 (-START)`.
 #[derive(Clone, Copy)]
-struct Names {
+struct Names<'a> {
     layout: Layout,
     set: MnemonicSet,
+    symbols: &'a crate::symbols::Symbols,
 }
 
-impl Names {
+impl Names<'_> {
+    /// `text` with its symbol, if it has one.
+    fn named(self, text: String) -> String {
+        match self.symbols.name_of(&text) {
+            Some(name) => format!("{text} (-{name})"),
+            None => text,
+        }
+    }
+
     fn word(self, area: Area) -> &'static str {
         mnemonics::area_word(self.set, area)
     }
@@ -45,12 +57,12 @@ impl Names {
             (_, Width::Word) => Area::FlagWord,
             (_, Width::Double) => Area::FlagDouble,
         };
-        format!("{} {number}", self.word(sized))
+        self.named(format!("{} {number}", self.word(sized)))
     }
 
     fn bit(self, bit: ImageBit) -> String {
         let (area, number) = self.image(bit.byte);
-        format!("{} {number}.{}", self.word(area), bit.bit)
+        self.named(format!("{} {number}.{}", self.word(area), bit.bit))
     }
 
     fn data_bit(self, word: u16, bit: u8) -> String {
@@ -77,6 +89,7 @@ pub fn op_text(
     let names = Names {
         layout: program.layout,
         set,
+        symbols: &program.symbols,
     };
     match op {
         Op::And(bit) => format!("and {}", names.bit(bit)),
@@ -89,8 +102,8 @@ pub fn op_text(
         Op::LogicOther(logic, source) => {
             let source = match source {
                 BitSource::Data { word, bit } => names.data_bit(word, bit),
-                BitSource::Timer(n) => format!("{} {n}", names.word(Area::Timer)),
-                BitSource::Counter(n) => format!("{} {n}", names.word(Area::Counter)),
+                BitSource::Timer(n) => names.named(format!("{} {n}", names.word(Area::Timer))),
+                BitSource::Counter(n) => names.named(format!("{} {n}", names.word(Area::Counter))),
             };
             format!("{} {source}", format!("{logic:?}").to_lowercase())
         }
@@ -113,7 +126,7 @@ pub fn op_text(
             conditional,
             params,
         } => {
-            let id = program.blocks[usize::from(block)].id;
+            let id = names.named(program.blocks[usize::from(block)].id.to_string());
             let kind = if conditional { "call-if-rlo" } else { "call" };
             if params == crate::compiler::bytecode::NO_PARAMS {
                 format!("{kind} {id}")
@@ -176,7 +189,10 @@ pub fn op_text(
                 (true, Width::Byte) => Area::ExtendedByte,
                 (true, _) => Area::ExtendedWord,
             };
-            format!("{verb} {} {byte}", names.word(area))
+            format!(
+                "{verb} {}",
+                names.named(format!("{} {byte}", names.word(area)))
+            )
         }
         Op::LoadData(part, word) | Op::TransferData(part, word) => {
             let verb = if matches!(op, Op::LoadData(..)) {
@@ -256,6 +272,14 @@ pub fn dump(program: &Program, sources: &SourceSet) -> String {
             "ops",
         );
         for (pc, (op, span)) in block.code.iter().zip(&block.spans).enumerate() {
+            if let Some(&(_, segment)) = block
+                .segments
+                .iter()
+                .find(|(first, _)| *first as usize == pc)
+                && segment != 0
+            {
+                let _ = writeln!(out, "  segment {segment}");
+            }
             let line = sources.line_of(*span);
             let text = sources.get(span.file).slice(*span);
             let _ = writeln!(
