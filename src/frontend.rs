@@ -146,19 +146,25 @@ pub fn build_with_symbols(
         .map_or(MnemonicSet::English, |unit| unit.mnemonics);
     let (symbols, mut symbol_errors) =
         symbols::load(&sources, programs..sources.files.len(), default, profile);
-    let unresolved = symbols::resolve(&mut units, &symbols, &sources, &mut symbol_errors);
+    let uses = symbols::resolve(&mut units, &symbols, &sources, &mut symbol_errors);
     diagnostics.extend(symbol_errors.into_iter().map(SourceDiagnostic::Symbol));
-    let mut compiled = compiler::compile(&units, &sources, profile);
+    let compiled = compiler::compile(&units, &sources, profile);
+    for error in &compiled.diagnostics {
+        // A symbol that could not be resolved is reported once, as such; an operand a
+        // symbol stands for is explained by the symbol.
+        if uses.failed.contains(&error.span()) {
+            continue;
+        }
+        let set = units
+            .get(usize::from(error.span().file))
+            .map_or(default, |unit| unit.mnemonics);
+        diagnostics.push(match uses.explain(error, &symbols, &sources, set) {
+            Some(explained) => SourceDiagnostic::Symbol(explained),
+            None => SourceDiagnostic::Check(error.clone()),
+        });
+    }
+    let mut compiled = compiled;
     compiled.program.symbols = symbols;
-    diagnostics.extend(
-        compiled
-            .diagnostics
-            .iter()
-            // A symbol that could not be resolved is reported once, as such.
-            .filter(|diagnostic| !unresolved.contains(&diagnostic.span()))
-            .cloned()
-            .map(SourceDiagnostic::Check),
-    );
     diagnostics.sort_by_key(|diagnostic| {
         let span = diagnostic.span();
         (span.file, span.start)

@@ -334,6 +334,8 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         .first()
         .copied()
         .unwrap_or(MnemonicSet::English);
+    // Watched operands are checked with the scenario's other operands, so all are reported.
+    let watched = watched(options, scenario.as_ref(), &program, set);
     let (schedule, expectations, checks) = match &scenario {
         Some(scenario) => {
             let schedule = scenario.schedule(&program, set);
@@ -347,16 +349,16 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
                     scenario_errors.extend(schedule.err().into_iter().flatten());
                     scenario_errors.extend(expectations.err().into_iter().flatten());
                     scenario_errors.extend(checks.err().into_iter().flatten());
+                    if let Err(NotRun::Failed(reports)) = watched {
+                        scenario_errors.extend(reports);
+                    }
                     return Err(NotRun::Failed(scenario_errors));
                 }
             }
         }
         None => (Vec::new(), Vec::new(), Vec::new()),
     };
-    let watch = WatchTable::new(
-        watched(options, scenario.as_ref(), &program, set)?,
-        options.watch_every_ns,
-    );
+    let watch = WatchTable::new(watched?, options.watch_every_ns);
     let points = options
         .points
         .or(scenario.as_ref().and_then(|s| s.points))

@@ -12,7 +12,7 @@ use std::collections::HashMap;
 
 pub use error::SymbolError;
 pub use file::Entry;
-pub use resolve::resolve;
+pub use resolve::{Uses, resolve};
 
 use crate::ast::Operand;
 use crate::mnemonics::{self, MnemonicSet};

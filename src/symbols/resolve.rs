@@ -14,15 +14,22 @@ fn takes_block(op: OpCode) -> bool {
     )
 }
 
-/// Resolves the symbols of `units`; the spans of those that could not be (their errors are
-/// in the list), so that the compiler's own complaints about them can be left out.
+/// Where the program wrote symbols: those that could not be resolved (their errors are in
+/// the list) and those that were, with their names.
+#[derive(Debug, Default)]
+pub struct Uses {
+    pub failed: Vec<Span>,
+    pub resolved: Vec<(Span, String)>,
+}
+
+/// Resolves the symbols of `units`.
 pub fn resolve(
     units: &mut [SourceUnit],
     symbols: &Symbols,
     sources: &SourceSet,
     errors: &mut Vec<SymbolError>,
-) -> Vec<Span> {
-    let mut failed = Vec::new();
+) -> Uses {
+    let mut uses = Uses::default();
     for unit in units.iter_mut() {
         for block in &mut unit.blocks {
             let BlockBody::Logic(body) = &mut block.body else {
@@ -32,26 +39,68 @@ pub fn resolve(
                 let at = statement.operand_span;
                 let op = statement.op;
                 let set = unit.mnemonics;
-                if let Err(error) =
-                    replace(&mut statement.operand, Some(op), at, symbols, sources, set)
-                {
-                    errors.push(*error);
-                    failed.push(at);
-                }
+                let operand = &mut statement.operand;
+                uses.note(
+                    replace(operand, Some(op), at, symbols, sources, set),
+                    at,
+                    errors,
+                );
                 for param in &mut statement.call_params {
                     let at = param.actual_span;
-                    if let Err(error) = replace(&mut param.actual, None, at, symbols, sources, set)
-                    {
-                        errors.push(*error);
-                        failed.push(at);
-                    }
+                    let result = replace(&mut param.actual, None, at, symbols, sources, set);
+                    uses.note(result, at, errors);
                 }
             }
         }
     }
-    failed
+    uses
 }
 
+impl Uses {
+    fn note(
+        &mut self,
+        result: Result<Option<String>, Box<SymbolError>>,
+        at: Span,
+        errors: &mut Vec<SymbolError>,
+    ) {
+        match result {
+            Ok(Some(name)) => self.resolved.push((at, name)),
+            Ok(None) => {}
+            Err(error) => {
+                errors.push(*error);
+                self.failed.push(at);
+            }
+        }
+    }
+
+    /// A compiler error about an operand written as a symbol, said of the symbol.
+    pub fn explain(
+        &self,
+        error: &crate::compiler::CheckError,
+        symbols: &Symbols,
+        sources: &SourceSet,
+        set: mnemonics::MnemonicSet,
+    ) -> Option<SymbolError> {
+        let crate::compiler::CheckError::OperandNotAllowed { op, at, .. } = error else {
+            return None;
+        };
+        let (_, name) = self.resolved.iter().find(|(span, _)| span == at)?;
+        let entry = symbols.get(name)?;
+        let mut explained = wrong_kind(entry, None, *at, sources, set);
+        if let SymbolError::WrongKind { op: slot, help, .. } = &mut explained {
+            *slot = op.clone();
+            *help = Some(format!(
+                "`-{}` is defined in {} line {}; `{op}` takes another kind of operand",
+                entry.name,
+                sources.get(entry.name_span.file).name,
+                sources.line_of(entry.name_span)
+            ));
+        }
+        Some(explained)
+    }
+}
+
+/// Puts the symbol's operand in place of `-NAME`; the name, if there was one.
 fn replace(
     operand: &mut Operand,
     op: Option<OpCode>,
@@ -59,9 +108,9 @@ fn replace(
     symbols: &Symbols,
     sources: &SourceSet,
     set: mnemonics::MnemonicSet,
-) -> Result<(), Box<SymbolError>> {
+) -> Result<Option<String>, Box<SymbolError>> {
     let Operand::Assigned(name) = operand else {
-        return Ok(());
+        return Ok(None);
     };
     let Some(entry) = symbols.get(name) else {
         let help = symbols.suggest(name).or_else(|| {
@@ -83,8 +132,11 @@ fn replace(
         (false, Some(_), Operand::Block(_)) if op.is_none() => entry.operand.clone(),
         _ => return Err(Box::new(wrong_kind(entry, op, at, sources, set))),
     };
-    *operand = resolved;
-    Ok(())
+    let name = std::mem::replace(operand, resolved);
+    match name {
+        Operand::Assigned(name) => Ok(Some(name)),
+        _ => Ok(None),
+    }
 }
 
 fn wrong_kind(
