@@ -103,6 +103,19 @@ proptest! {
     }
 
     #[test]
+    fn assignment_lists_never_panic(bytes in prop::collection::vec(prop::sample::select(ALPHABET), 0..400)) {
+        let text = String::from_utf8_lossy(&bytes).to_string();
+        let cpu = profile::find("sinumerik-840c").unwrap();
+        let program = "PB 3\n      A  -START\n      SPA -B\n      BE\n";
+        let mut sources = SourceSet::default();
+        sources.add(SourceFile::new("p.awl", program));
+        let built = frontend::build_with_symbols(sources, vec![SourceFile::new("s.seq", text)], None, cpu);
+        for diagnostic in &built.diagnostics {
+            let _ = awl::diagnostics::render_plain(&awl::diagnostics::report(&built.sources, diagnostic));
+        }
+    }
+
+    #[test]
     fn mutated_samples(index in any::<usize>(), mutations in prop::collection::vec(mutation(), 1..12)) {
         let samples = samples();
         let sample = samples[index % samples.len()].clone();
