@@ -19,9 +19,9 @@ const LOOK_AFTER_AT_NS: u64 = 1_000_000_000;
 pub struct StatusArgs {
     #[command(flatten)]
     pub program: ProgramArgs,
-    /// The block to show, e.g. "PB 3"
-    #[arg(long, value_parser = parse_block)]
-    pub block: BlockId,
+    /// The block to show, e.g. "PB 3", or its symbol, e.g. "-FILL"
+    #[arg(long, value_parser = parse_block, allow_hyphen_values = true)]
+    pub block: BlockRef,
     /// Its first invocation in this cycle [default: its first in the run]
     #[arg(long, conflicts_with = "at", value_parser = clap::value_parser!(u64).range(1..))]
     pub cycle: Option<u64>,
@@ -30,8 +30,43 @@ pub struct StatusArgs {
     pub at: Option<u64>,
 }
 
-fn parse_block(text: &str) -> Result<BlockId, String> {
-    BlockId::parse(text).ok_or_else(|| format!("`{text}` is not a block; write e.g. \"PB 3\""))
+/// A block as `--block` names it: absolute, or by its symbol.
+#[derive(Debug, Clone)]
+pub enum BlockRef {
+    Id(BlockId),
+    Symbol(String),
+}
+
+fn parse_block(text: &str) -> Result<BlockRef, String> {
+    if let Some(name) = text.trim().strip_prefix('-') {
+        return Ok(BlockRef::Symbol(name.to_string()));
+    }
+    BlockId::parse(text)
+        .map(BlockRef::Id)
+        .ok_or_else(|| format!("`{text}` is not a block; write e.g. \"PB 3\" or \"-FILL\""))
+}
+
+/// The block a `--block` names; a symbol that names no block is reported as unknown.
+fn block_id(prepared: &Prepared, block: &BlockRef) -> Result<BlockId, StatusError> {
+    let name = match block {
+        BlockRef::Id(id) => return Ok(*id),
+        BlockRef::Symbol(name) => name,
+    };
+    let entry = prepared.cpu.program.symbols.get(name);
+    match entry.map(|entry| (entry.block, &entry.operand)) {
+        Some((Some(id), _)) | Some((None, &crate::ast::Operand::Block(id))) => Ok(id),
+        _ => Err(StatusError::UnknownBlock {
+            block: format!("-{name}"),
+            known: prepared
+                .cpu
+                .program
+                .blocks
+                .iter()
+                .map(|block| prepared.cpu.program.symbols.decorate(&block.id.to_string()))
+                .collect::<Vec<_>>()
+                .join(", "),
+        }),
+    }
 }
 
 fn parse_time(text: &str) -> Result<u64, String> {
@@ -66,7 +101,8 @@ pub fn status(args: &StatusArgs, console: &mut Console) -> u8 {
         Ok(prepared) => prepared,
         Err(reason) => return not_run(reason, console),
     };
-    let index = match logic_block(&prepared, args.block) {
+    let id = block_id(&prepared, &args.block);
+    let index = match id.and_then(|id| logic_block(&prepared, id)) {
         Ok(index) => index,
         Err(error) => {
             console.report(&Report::new(error));
@@ -96,7 +132,10 @@ pub fn status(args: &StatusArgs, console: &mut Console) -> u8 {
             return EXIT_STOP;
         }
         let error = StatusError::DidNotRun {
-            block: args.block.to_string(),
+            block: match &args.block {
+                BlockRef::Id(id) => id.to_string(),
+                BlockRef::Symbol(name) => format!("-{name}"),
+            },
             window: window.describe(),
             ended: format!(
                 "{} after {}",
