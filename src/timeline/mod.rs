@@ -14,7 +14,7 @@ use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
 
-use crate::trace::activity::{Activity, Span};
+use crate::trace::activity::{Activity, OS_TIME, Span};
 use crate::trace::{Event, Levels, Sink, TraceFilter, describe, format_ms};
 use rows::{Item, Mark, RowKey, Rows};
 
@@ -208,7 +208,7 @@ fn span_item(span: &Span) -> Option<(RowKey, Item)> {
             ((Mark::Block, *ob, depth), start, end, name.clone())
         }
         Span::System { what, start, end } => {
-            let mark = if *what == "operating-system time" {
+            let mark = if *what == OS_TIME {
                 Mark::OsTime
             } else {
                 Mark::DataCycle

@@ -55,6 +55,9 @@ pub struct Activity {
     cycle: Option<(u64, u64)>,
 }
 
+/// What the operating system's time at the cycle end is called.
+pub const OS_TIME: &str = "operating-system time";
+
 /// What a data cycle is called in a picture.
 pub fn data_cycle_name(kind: &str, direction: &str) -> &'static str {
     match (kind, direction) {
@@ -96,9 +99,7 @@ impl Activity {
                 direction,
                 duration_ns,
             } => self.system(t_ns, *duration_ns, data_cycle_name(kind, direction), spans),
-            Event::OsTime { duration_ns } => {
-                self.system(t_ns, *duration_ns, "operating-system time", spans)
-            }
+            Event::OsTime { duration_ns } => self.system(t_ns, *duration_ns, OS_TIME, spans),
             Event::BlockCall { to, .. } => {
                 if let Some(level) = self.levels.last_mut() {
                     level.blocks.push((to.clone(), t_ns));
@@ -142,14 +143,7 @@ impl Activity {
         let Some(level) = self.levels.last_mut() else {
             return;
         };
-        if let Some((name, start)) = level.blocks.pop() {
-            spans.push(Span::Block {
-                ob: level.ob,
-                depth: level.blocks.len() + 1,
-                name,
-                start,
-                end: t_ns,
-            });
+        if level.end_block(t_ns, spans) {
             return;
         }
         // The level's own OB ended: OB 1's level is over; an interrupt OB's waits for its end.
@@ -221,6 +215,21 @@ impl Activity {
 }
 
 impl Level {
+    /// The innermost open block ends at `t_ns`; whether one was open.
+    fn end_block(&mut self, t_ns: u64, spans: &mut Vec<Span>) -> bool {
+        let Some((name, start)) = self.blocks.pop() else {
+            return false;
+        };
+        spans.push(Span::Block {
+            ob: self.ob,
+            depth: self.blocks.len() + 1,
+            name,
+            start,
+            end: t_ns,
+        });
+        true
+    }
+
     fn new(ob: u8, base: usize, since: Option<u64>) -> Self {
         Level {
             ob,
@@ -234,15 +243,7 @@ impl Level {
 
 /// A level that ends at `t_ns`: its open blocks and itself.
 fn close_level(mut level: Level, t_ns: u64, spans: &mut Vec<Span>) {
-    while let Some((name, start)) = level.blocks.pop() {
-        spans.push(Span::Block {
-            ob: level.ob,
-            depth: level.blocks.len() + 1,
-            name,
-            start,
-            end: t_ns,
-        });
-    }
+    while level.end_block(t_ns, spans) {}
     if let Some(start) = level.since {
         spans.push(Span::Level {
             ob: level.ob,
