@@ -4,6 +4,7 @@
 //! (bytecode) → [`vm`] (executes) with the interrupt engine in [`vm::interrupts`] → [`trace`] and
 //! [`report`].
 
+pub mod analyze;
 pub mod ast;
 pub mod cli;
 pub mod compiler;

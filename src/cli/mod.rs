@@ -1,6 +1,7 @@
 //! The command line: `awl check | dump | run | status | debug | test | cpus`. Each command reports through a
 //! [`Console`], so no output failure can panic.
 
+mod analyze;
 mod console;
 mod debug;
 mod run;
@@ -85,6 +86,9 @@ pub enum Command {
     /// Step debugger: breakpoints, stepping, operands, interrupts on request; simulated time
     /// stands still at the prompt
     Debug(debug::DebugArgs),
+    /// The worst cases from the program, before it runs: each block's time and longest
+    /// stretch, the response bounds, the nesting, the wake-up and watchdog risks
+    Analyze(analyze::AnalyzeArgs),
     /// Run scenario files and check their [expect] tables
     Test(run::TestArgs),
     /// List the CPU profiles with their rules and timings
@@ -106,6 +110,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Status(args) => status::status(&args, &mut console),
         Command::Debug(args) => debug::debug(&args, &mut console),
         Command::Test(args) => run::test(&args, &mut console),
+        Command::Analyze(args) => analyze::analyze(&args, &mut console),
         Command::Cpus => {
             console.out(&crate::report::cpus());
             EXIT_OK

@@ -1,0 +1,437 @@
+//! The paths through one block's bytecode: the longest time from its start to an end
+//! (`wcet`), and the longest time between two interrupt points (`stretch`), on the same op
+//! times the VM counts. Conditional jumps take the worse branch; `BEB` ends a path; a
+//! backward jump is a loop, bounded by a `; @bound N` comment on its first line (N passes at
+//! most) or unbounded.
+
+use crate::compiler::bytecode::JumpCondition;
+use crate::compiler::{CompiledBlock, Op};
+use crate::mnemonics::OpCode;
+
+/// How an op goes on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Step {
+    Plain,
+    Jump {
+        target: usize,
+        conditional: bool,
+    },
+    /// A block call: an interrupt point when taken.
+    Call {
+        callee: Callee,
+        conditional: bool,
+    },
+    /// A block end: `BE`, `BEA`; `BEB` is conditional.
+    End {
+        conditional: bool,
+    },
+    /// A call of a block that is not loaded: STOP when taken.
+    Stop {
+        conditional: bool,
+    },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Callee {
+    Block(u16),
+    /// A block given as an FB's parameter (`JU =BLK`).
+    Parameter,
+}
+
+pub fn step(op: Op) -> Step {
+    match op {
+        Op::Jump(condition, target) => Step::Jump {
+            target: target as usize,
+            conditional: condition != JumpCondition::Always,
+        },
+        Op::Call {
+            block, conditional, ..
+        } => Step::Call {
+            callee: Callee::Block(block),
+            conditional,
+        },
+        Op::CallMissing { conditional, .. } => Step::Stop { conditional },
+        Op::BlockEnd | Op::BlockEndUnconditional => Step::End { conditional: false },
+        Op::BlockEndConditional => Step::End { conditional: true },
+        Op::Formal {
+            op: op @ (OpCode::JumpUnconditional | OpCode::JumpConditional),
+            ..
+        } => Step::Call {
+            callee: Callee::Parameter,
+            conditional: op == OpCode::JumpConditional,
+        },
+        _ => Step::Plain,
+    }
+}
+
+/// A loop: the ops `head..=tail`, entered at `head`, and the most passes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Loop {
+    pub head: usize,
+    pub tail: usize,
+    pub bound: Option<u32>,
+}
+
+/// The loops of a block from its backward jumps; loops that overlap without nesting are joined
+/// (and bounded only when both are, by the product of their bounds).
+pub fn loops(block: &CompiledBlock, bound_at: &dyn Fn(usize) -> Option<u32>) -> Vec<Loop> {
+    let mut loops: Vec<Loop> = Vec::new();
+    for (pc, op) in block.code.iter().enumerate() {
+        if let Step::Jump { target, .. } = step(*op)
+            && target <= pc
+        {
+            loops.push(Loop {
+                head: target,
+                tail: pc,
+                bound: bound_at(target),
+            });
+        }
+    }
+    loops.sort_by_key(|l| (l.head, std::cmp::Reverse(l.tail)));
+    let mut joined: Vec<Loop> = Vec::new();
+    for next in loops {
+        match joined.iter_mut().find(|l| {
+            l.head == next.head || (l.head < next.head && next.head <= l.tail && l.tail < next.tail)
+        }) {
+            Some(same) if same.head == next.head => same.tail = same.tail.max(next.tail),
+            Some(crossing) => {
+                crossing.tail = next.tail;
+                crossing.bound = crossing
+                    .bound
+                    .zip(next.bound)
+                    .map(|(a, b)| a.saturating_mul(b));
+            }
+            None => joined.push(next),
+        }
+    }
+    joined
+}
+
+/// What is measured along the paths.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Measure {
+    /// From the block's start to an end, with the called blocks' times.
+    Wcet,
+    /// Between two interrupt points: a taken call and a block end are points.
+    Stretch,
+}
+
+/// Where a path leaves a range of ops.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Exit {
+    Pc(usize),
+    /// A block end or a STOP.
+    End,
+}
+
+/// The result over a range of ops entered at its first op with time 0.
+#[derive(Debug, Default)]
+struct Range {
+    exits: Vec<(Exit, u64, usize)>,
+    /// The longest time to the range's last op, through it: one pass of a loop.
+    body: Option<u64>,
+    /// The longest stretch seen inside: (ns, first op, last op).
+    best: Option<(u64, usize, usize)>,
+}
+
+/// The figures of one block.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Paths {
+    /// `Err(reason)` when unbounded.
+    pub value: Result<u64, String>,
+    /// The ops of the longest stretch, first and last (stretch only).
+    pub span: Option<(usize, usize)>,
+}
+
+pub struct Walker<'a> {
+    pub block: &'a CompiledBlock,
+    pub loops: &'a [Loop],
+    /// The time of a called block (Wcet), or why it is unbounded.
+    pub callee: &'a dyn Fn(Callee) -> Result<u64, String>,
+    pub measure: Measure,
+    /// The line of an op, for reasons.
+    pub line: &'a dyn Fn(usize) -> u32,
+}
+
+impl Walker<'_> {
+    pub fn run(&self) -> Paths {
+        let last = self.block.code.len().saturating_sub(1);
+        match self.range(0, last, None) {
+            Err(reason) => Paths {
+                value: Err(reason),
+                span: None,
+            },
+            Ok(range) => match self.measure {
+                Measure::Wcet => Paths {
+                    value: Ok(range.exits.iter().map(|(_, ns, _)| *ns).max().unwrap_or(0)),
+                    span: None,
+                },
+                Measure::Stretch => {
+                    let (ns, first, last) = range.best.unwrap_or((0, 0, 0));
+                    Paths {
+                        value: Ok(ns),
+                        span: Some((first, last)),
+                    }
+                }
+            },
+        }
+    }
+
+    /// The paths through `lo..=hi` entered at `lo`; `own` is the loop the range is the body
+    /// of (its backward jumps to `lo` continue the loop).
+    fn range(&self, lo: usize, hi: usize, own: Option<Loop>) -> Result<Range, String> {
+        let mut reach: Vec<Option<(u64, usize)>> = vec![None; hi - lo + 2];
+        reach[0] = Some((0, lo));
+        let mut out = Range::default();
+        let mut pc = lo;
+        while pc <= hi {
+            let Some((value, start)) = reach[pc - lo] else {
+                pc += 1;
+                continue;
+            };
+            if let Some(inner) = self
+                .loops
+                .iter()
+                .find(|l| l.head == pc && Some(**l) != own && l.tail <= hi)
+            {
+                let after = self.through_loop(*inner, value, start, &mut out)?;
+                for (exit, ns, from) in after {
+                    self.arrive(
+                        lo, hi, inner.tail, own, exit, ns, from, &mut reach, &mut out,
+                    )?;
+                }
+                pc = inner.tail + 1;
+                continue;
+            }
+            let cost = self.block.cost(pc);
+            let at = value + cost;
+            match step(self.block.code[pc]) {
+                Step::Plain => self.arrive(
+                    lo,
+                    hi,
+                    pc,
+                    own,
+                    Exit::Pc(pc + 1),
+                    at,
+                    start,
+                    &mut reach,
+                    &mut out,
+                )?,
+                Step::Jump {
+                    target,
+                    conditional,
+                } => {
+                    self.arrive(
+                        lo,
+                        hi,
+                        pc,
+                        own,
+                        Exit::Pc(target),
+                        at,
+                        start,
+                        &mut reach,
+                        &mut out,
+                    )?;
+                    if conditional {
+                        self.arrive(
+                            lo,
+                            hi,
+                            pc,
+                            own,
+                            Exit::Pc(pc + 1),
+                            at,
+                            start,
+                            &mut reach,
+                            &mut out,
+                        )?;
+                    }
+                }
+                Step::Call {
+                    callee,
+                    conditional,
+                } => match self.measure {
+                    Measure::Wcet => {
+                        let called = at + (self.callee)(callee)?;
+                        self.arrive(
+                            lo,
+                            hi,
+                            pc,
+                            own,
+                            Exit::Pc(pc + 1),
+                            called,
+                            start,
+                            &mut reach,
+                            &mut out,
+                        )?;
+                    }
+                    Measure::Stretch => {
+                        note(&mut out.best, at, start, pc);
+                        let after = if conditional { at } else { 0 };
+                        let next = if conditional { start } else { pc + 1 };
+                        self.arrive(
+                            lo,
+                            hi,
+                            pc,
+                            own,
+                            Exit::Pc(pc + 1),
+                            after,
+                            next,
+                            &mut reach,
+                            &mut out,
+                        )?;
+                        if conditional {
+                            self.arrive(
+                                lo,
+                                hi,
+                                pc,
+                                own,
+                                Exit::Pc(pc + 1),
+                                0,
+                                pc + 1,
+                                &mut reach,
+                                &mut out,
+                            )?;
+                        }
+                    }
+                },
+                Step::End { conditional } | Step::Stop { conditional } => {
+                    if matches!(step(self.block.code[pc]), Step::End { .. }) {
+                        note(&mut out.best, at, start, pc);
+                    }
+                    out.exits.push((Exit::End, at, start));
+                    if conditional {
+                        self.arrive(
+                            lo,
+                            hi,
+                            pc,
+                            own,
+                            Exit::Pc(pc + 1),
+                            at,
+                            start,
+                            &mut reach,
+                            &mut out,
+                        )?;
+                    }
+                }
+            }
+            pc += 1;
+        }
+        Ok(out)
+    }
+
+    /// A path arrives at `exit` with `ns`: inside the range it joins the op's best, to the
+    /// range's head it is a loop pass, beyond the range it leaves it.
+    #[allow(clippy::too_many_arguments)]
+    fn arrive(
+        &self,
+        lo: usize,
+        hi: usize,
+        current: usize,
+        own: Option<Loop>,
+        exit: Exit,
+        ns: u64,
+        start: usize,
+        reach: &mut [Option<(u64, usize)>],
+        out: &mut Range,
+    ) -> Result<(), String> {
+        let Exit::Pc(target) = exit else {
+            out.exits.push((exit, ns, start));
+            return Ok(());
+        };
+        if own.is_some() && target == lo {
+            out.body = Some(out.body.map_or(ns, |body| body.max(ns)));
+            return Ok(());
+        }
+        if target > current && target <= hi {
+            let slot = &mut reach[target - lo];
+            if slot.is_none_or(|(best, _)| ns > best) {
+                *slot = Some((ns, start));
+            }
+            return Ok(());
+        }
+        if target > hi || target < lo {
+            out.exits.push((exit, ns, start));
+            return Ok(());
+        }
+        Err(format!(
+            "a jump back to line {} that is no loop awl can bound",
+            (self.line)(target)
+        ))
+    }
+
+    /// A loop entered with `value`: where its paths leave it, with their times.
+    fn through_loop(
+        &self,
+        inner: Loop,
+        value: u64,
+        start: usize,
+        out: &mut Range,
+    ) -> Result<Vec<(Exit, u64, usize)>, String> {
+        let body = self.range(inner.head, inner.tail, Some(inner))?;
+        let pass = body.body.unwrap_or(0);
+        let has_point = body.best.is_some() && self.measure == Measure::Stretch;
+        let passes = match (inner.bound, has_point) {
+            (Some(bound), _) => u64::from(bound.max(1)),
+            // A point in every pass breaks the stretch: two passes bound it.
+            (None, true) => 2,
+            (None, false) => {
+                return Err(format!(
+                    "the loop at line {} has no bound (write `; @bound N` on that line)",
+                    (self.line)(inner.head)
+                ));
+            }
+        };
+        let repeated = pass.saturating_mul(passes - 1);
+        if let Some((ns, first, last)) = body.best {
+            note(&mut out.best, value + repeated + ns, first.min(start), last);
+        }
+        Ok(body
+            .exits
+            .into_iter()
+            .map(|(exit, ns, from)| (exit, value + repeated + ns, from.min(start)))
+            .collect())
+    }
+}
+
+fn note(best: &mut Option<(u64, usize, usize)>, ns: u64, first: usize, last: usize) {
+    if best.is_none_or(|(seen, _, _)| ns > seen) {
+        *best = Some((ns, first, last));
+    }
+}
+
+/// The ops no path from the block's start reaches: (first, last) of each run.
+pub fn unreachable(block: &CompiledBlock) -> Vec<(usize, usize)> {
+    let n = block.code.len();
+    let mut seen = vec![false; n];
+    let mut work = vec![0usize];
+    while let Some(pc) = work.pop() {
+        if pc >= n || std::mem::replace(&mut seen[pc], true) {
+            continue;
+        }
+        match step(block.code[pc]) {
+            Step::Plain | Step::Call { .. } => work.push(pc + 1),
+            Step::Jump {
+                target,
+                conditional,
+            } => {
+                work.push(target);
+                if conditional {
+                    work.push(pc + 1);
+                }
+            }
+            Step::End { conditional } | Step::Stop { conditional } => {
+                if conditional {
+                    work.push(pc + 1);
+                }
+            }
+        }
+    }
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    for pc in (0..n).filter(|pc| !seen[*pc]) {
+        match runs.last_mut() {
+            Some(run) if run.1 + 1 == pc => run.1 = pc,
+            _ => runs.push((pc, pc)),
+        }
+    }
+    runs
+}
