@@ -253,3 +253,14 @@ fn every_sample_s_analysis() {
     }
     insta::assert_snapshot!(all);
 }
+
+/// The README shows the Fig. 5.2 analysis as `awl analyze` prints it now.
+#[test]
+fn the_readme_shows_the_current_analysis() {
+    let text = analyze::render(&analyze_scenario("programs/fig5_2_interrupt.toml"));
+    let readme = std::fs::read_to_string("README.md").unwrap();
+    assert!(
+        readme.contains(&text),
+        "README.md's analysis of Fig. 5.2 is stale:\n{text}"
+    );
+}

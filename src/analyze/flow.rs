@@ -130,17 +130,20 @@ struct Range {
     exits: Vec<(Exit, u64, usize)>,
     /// The longest time to the range's last op, through it: one pass of a loop.
     body: Option<u64>,
-    /// The longest stretch seen inside: (ns, first op, last op).
-    best: Option<(u64, usize, usize)>,
+    /// The longest stretch seen inside: (ns, its ops).
+    best: Option<(u64, Vec<usize>)>,
 }
+
+/// How the best path reached an op: (time, first op of its stretch, the op before).
+type Reach = Option<(u64, usize, usize)>;
 
 /// The figures of one block.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Paths {
     /// `Err(reason)` when unbounded.
     pub value: Result<u64, String>,
-    /// The ops of the longest stretch, first and last (stretch only).
-    pub span: Option<(usize, usize)>,
+    /// The ops the longest stretch runs through (stretch only).
+    pub path: Vec<usize>,
 }
 
 pub struct Walker<'a> {
@@ -159,18 +162,18 @@ impl Walker<'_> {
         match self.range(0, last, None) {
             Err(reason) => Paths {
                 value: Err(reason),
-                span: None,
+                path: Vec::new(),
             },
             Ok(range) => match self.measure {
                 Measure::Wcet => Paths {
                     value: Ok(range.exits.iter().map(|(_, ns, _)| *ns).max().unwrap_or(0)),
-                    span: None,
+                    path: Vec::new(),
                 },
                 Measure::Stretch => {
-                    let (ns, first, last) = range.best.unwrap_or((0, 0, 0));
+                    let (ns, path) = range.best.unwrap_or_default();
                     Paths {
                         value: Ok(ns),
-                        span: Some((first, last)),
+                        path,
                     }
                 }
             },
@@ -180,12 +183,12 @@ impl Walker<'_> {
     /// The paths through `lo..=hi` entered at `lo`; `own` is the loop the range is the body
     /// of (its backward jumps to `lo` continue the loop).
     fn range(&self, lo: usize, hi: usize, own: Option<Loop>) -> Result<Range, String> {
-        let mut reach: Vec<Option<(u64, usize)>> = vec![None; hi - lo + 2];
-        reach[0] = Some((0, lo));
+        let mut reach: Vec<Reach> = vec![None; hi - lo + 2];
+        reach[0] = Some((0, lo, lo));
         let mut out = Range::default();
         let mut pc = lo;
         while pc <= hi {
-            let Some((value, start)) = reach[pc - lo] else {
+            let Some((value, start, _)) = reach[pc - lo] else {
                 pc += 1;
                 continue;
             };
@@ -265,7 +268,8 @@ impl Walker<'_> {
                         )?;
                     }
                     Measure::Stretch => {
-                        note(&mut out.best, at, start, pc);
+                        let path = self.path_to(lo, pc, start, &reach);
+                        note(&mut out.best, at, path);
                         let after = if conditional { at } else { 0 };
                         let next = if conditional { start } else { pc + 1 };
                         self.arrive(
@@ -296,7 +300,8 @@ impl Walker<'_> {
                 },
                 Step::End { conditional } | Step::Stop { conditional } => {
                     if matches!(step(self.block.code[pc]), Step::End { .. }) {
-                        note(&mut out.best, at, start, pc);
+                        let path = self.path_to(lo, pc, start, &reach);
+                        note(&mut out.best, at, path);
                     }
                     out.exits.push((Exit::End, at, start));
                     if conditional {
@@ -331,7 +336,7 @@ impl Walker<'_> {
         exit: Exit,
         ns: u64,
         start: usize,
-        reach: &mut [Option<(u64, usize)>],
+        reach: &mut [Reach],
         out: &mut Range,
     ) -> Result<(), String> {
         let Exit::Pc(target) = exit else {
@@ -344,8 +349,8 @@ impl Walker<'_> {
         }
         if target > current && target <= hi {
             let slot = &mut reach[target - lo];
-            if slot.is_none_or(|(best, _)| ns > best) {
-                *slot = Some((ns, start));
+            if slot.is_none_or(|(best, _, _)| ns > best) {
+                *slot = Some((ns, start, current));
             }
             return Ok(());
         }
@@ -357,6 +362,34 @@ impl Walker<'_> {
             "a jump back to line {} that is no loop awl can bound",
             (self.line)(target)
         ))
+    }
+
+    /// The ops of the best path from `start` to `pc` in a range starting at `lo`; a loop on
+    /// the way is shown whole.
+    fn path_to(&self, lo: usize, pc: usize, start: usize, reach: &[Reach]) -> Vec<usize> {
+        let mut path = vec![pc];
+        let mut at = pc;
+        while at > start {
+            let Some((_, _, before)) = reach[at - lo] else {
+                break;
+            };
+            if before >= at {
+                break;
+            }
+            match self.loops.iter().find(|l| l.tail == before && l.head >= lo) {
+                Some(inner) => {
+                    path.extend((inner.head..=inner.tail).rev());
+                    at = inner.head;
+                }
+                None => {
+                    path.push(before);
+                    at = before;
+                }
+            }
+        }
+        path.reverse();
+        path.dedup();
+        path
     }
 
     /// A loop entered with `value`: where its paths leave it, with their times.
@@ -382,8 +415,8 @@ impl Walker<'_> {
             }
         };
         let repeated = pass.saturating_mul(passes - 1);
-        if let Some((ns, first, last)) = body.best {
-            note(&mut out.best, value + repeated + ns, first.min(start), last);
+        if let Some((ns, path)) = body.best {
+            note(&mut out.best, value + repeated + ns, path);
         }
         Ok(body
             .exits
@@ -393,9 +426,9 @@ impl Walker<'_> {
     }
 }
 
-fn note(best: &mut Option<(u64, usize, usize)>, ns: u64, first: usize, last: usize) {
-    if best.is_none_or(|(seen, _, _)| ns > seen) {
-        *best = Some((ns, first, last));
+fn note(best: &mut Option<(u64, Vec<usize>)>, ns: u64, path: Vec<usize>) {
+    if best.as_ref().is_none_or(|(seen, _)| ns > *seen) {
+        *best = Some((ns, path));
     }
 }
 

@@ -60,8 +60,8 @@ pub struct BlockFigures {
     pub wcet_ns: Option<u64>,
     /// The longest stretch between two interrupt points inside it.
     pub stretch_ns: Option<u64>,
-    /// The lines the longest stretch runs from and to.
-    pub stretch_lines: Option<[u32; 2]>,
+    /// The lines the longest stretch runs through (`null` when unbounded).
+    pub stretch_path: Option<Vec<u32>>,
     /// Why a figure is unbounded.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub unbounded: Option<String>,
@@ -250,7 +250,7 @@ impl Analyzer<'_> {
             let longest = (0..code.code.len()).max_by_key(|pc| code.cost(*pc));
             return Paths {
                 value: Ok(longest.map_or(0, |pc| code.cost(pc))),
-                span: longest.map(|pc| (pc, pc)),
+                path: longest.into_iter().collect(),
             };
         }
         self.walk(index, Measure::Stretch, &|_| Ok(0))
@@ -307,10 +307,15 @@ impl Analyzer<'_> {
                 block: self.name(index),
                 wcet_ns: wcet.ok(),
                 stretch_ns: stretch.value.clone().ok(),
-                stretch_lines: stretch
-                    .span
-                    .filter(|_| stretch.value.is_ok())
-                    .map(|(first, last)| [self.line(index, first), self.line(index, last)]),
+                stretch_path: stretch.value.is_ok().then(|| {
+                    let mut lines: Vec<u32> = stretch
+                        .path
+                        .iter()
+                        .map(|pc| self.line(index, *pc))
+                        .collect();
+                    lines.dedup();
+                    lines
+                }),
                 unbounded,
                 loops: self.loops[index]
                     .iter()

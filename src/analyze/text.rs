@@ -6,7 +6,7 @@ use super::Analysis;
 
 fn ms(ns: Option<u64>) -> String {
     match ns {
-        Some(ns) => format!("{}.{:03} ms", ns / 1_000_000, ns % 1_000_000 / 1_000),
+        Some(ns) => format!("{:.3} ms", ns as f64 / 1_000_000.0),
         None => "unbounded".to_string(),
     }
 }
@@ -35,6 +35,27 @@ fn margin(margin: Option<i64>) -> String {
     }
 }
 
+/// Lines as runs: `20–23, 27, 30–33`.
+fn runs(lines: &[u32]) -> String {
+    let mut runs: Vec<(u32, u32)> = Vec::new();
+    for &line in lines {
+        match runs.last_mut() {
+            Some(run) if run.1 + 1 == line || run.1 == line => run.1 = line,
+            _ => runs.push((line, line)),
+        }
+    }
+    runs.iter()
+        .map(|&(first, last)| {
+            if first == last {
+                first.to_string()
+            } else {
+                format!("{first}–{last}")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 pub fn render(analysis: &Analysis) -> String {
     let mut out = String::new();
     let mode = analysis
@@ -47,13 +68,11 @@ pub fn render(analysis: &Analysis) -> String {
     );
     let _ = writeln!(
         out,
-        "{:<8} {:>14} {:>14}  {:<12} {:<18} calls",
-        "block", "wcet", "stretch", "lines", "loops"
+        "{:<8} {:>14} {:>14}  {:<16} {:<14} calls",
+        "block", "wcet", "stretch", "stretch lines", "loops"
     );
     for block in &analysis.blocks {
-        let lines = block
-            .stretch_lines
-            .map_or("-".to_string(), |[from, to]| format!("{from}–{to}"));
+        let lines = block.stretch_path.as_deref().map_or("-".to_string(), runs);
         let loops: Vec<String> = block
             .loops
             .iter()
@@ -64,7 +83,7 @@ pub fn render(analysis: &Analysis) -> String {
             .collect();
         let _ = writeln!(
             out,
-            "{:<8} {:>14} {:>14}  {:<12} {:<18} {}",
+            "{:<8} {:>14} {:>14}  {:<16} {:<14} {}",
             block.block,
             us(block.wcet_ns),
             us(block.stretch_ns),
