@@ -303,11 +303,24 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         scenario_errors.push(Report::new(RunError::NoProgram));
         return Err(NotRun::Failed(scenario_errors));
     }
-    let symbol_paths: Vec<PathBuf> = scenario
+    // A list named twice (by the scenario and on the command line) is read once.
+    let mut symbol_paths: Vec<PathBuf> = Vec::new();
+    for path in scenario
         .iter()
-        .flat_map(|scenario| scenario.symbols.iter().cloned())
-        .chain(options.symbols.iter().cloned())
-        .collect();
+        .flat_map(|scenario| scenario.symbols.iter())
+        .chain(&options.symbols)
+    {
+        let same = |known: &PathBuf| {
+            known == path
+                || known
+                    .canonicalize()
+                    .ok()
+                    .is_some_and(|known| path.canonicalize().ok() == Some(known))
+        };
+        if !symbol_paths.iter().any(same) {
+            symbol_paths.push(path.clone());
+        }
+    }
     let read = frontend::read_sources(&files).and_then(|sources| {
         frontend::read_symbol_files(&symbol_paths).map(|symbols| (sources, symbols))
     });
