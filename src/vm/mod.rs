@@ -302,6 +302,8 @@ impl Cpu {
     }
 
     /// The PG listing's segment of op `pc` of `block`, in a listing.
+    #[cold]
+    #[inline(never)]
     pub fn segment_of(&self, block: u16, pc: u32) -> Option<u16> {
         self.program
             .blocks
@@ -310,6 +312,8 @@ impl Cpu {
     }
 
     /// A BSTACK entry: the block, the line (and segment) of op `pc`.
+    #[cold]
+    #[inline(never)]
     pub fn stack_entry(&self, block: u16, pc: u32) -> StackEntry {
         StackEntry {
             block: self.block_id(block).to_string(),
@@ -381,7 +385,10 @@ impl Cpu {
     }
 
     /// A STOP at the running block's op `pc`, with the block stack. Between cycles it is placed
-    /// at the end of OB 1, where the cycle ended.
+    /// at the end of OB 1, where the cycle ended. Out of line: the loop only reaches it on the
+    /// way out.
+    #[cold]
+    #[inline(never)]
     pub fn stop(&self, cause: StopCause, pc: u32, detail: StopDetail) -> Stop {
         let (block, pc) = if self.level.block == IDLE {
             // Between cycles: at the end of OB 1, where the cycle ended, if there is one and
