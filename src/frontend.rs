@@ -11,7 +11,7 @@ use crate::diagnostics::SourceDiagnostic;
 use crate::mnemonics::MnemonicSet;
 use crate::parser;
 use crate::profile::Profile;
-use crate::source::{SourceFile, SourceSet};
+use crate::source::{Files, SourceFile, SourceSet};
 use crate::symbols;
 
 /// Why the source files could not be loaded.
@@ -59,11 +59,19 @@ impl Frontend {
 
 /// Reads the assignment lists; every file that cannot be read is reported.
 pub fn read_symbol_files(paths: &[impl AsRef<Path>]) -> Result<Vec<SourceFile>, Vec<SourceError>> {
+    read_symbol_files_in(&Files::Disk, paths)
+}
+
+/// [`read_symbol_files`] from `store`.
+pub fn read_symbol_files_in(
+    store: &Files,
+    paths: &[impl AsRef<Path>],
+) -> Result<Vec<SourceFile>, Vec<SourceError>> {
     let mut files = Vec::new();
     let mut errors = Vec::new();
     for path in paths {
         let path = path.as_ref();
-        match SourceFile::read(path) {
+        match store.source(path) {
             Ok(file) => files.push(file),
             Err(error) => errors.push(SourceError::Read {
                 path: path.to_path_buf(),
@@ -80,6 +88,14 @@ pub fn read_symbol_files(paths: &[impl AsRef<Path>]) -> Result<Vec<SourceFile>, 
 
 /// Reads every file; every file that cannot be read is reported.
 pub fn read_sources(paths: &[impl AsRef<Path>]) -> Result<SourceSet, Vec<SourceError>> {
+    read_sources_in(&Files::Disk, paths)
+}
+
+/// [`read_sources`] from `store`.
+pub fn read_sources_in(
+    store: &Files,
+    paths: &[impl AsRef<Path>],
+) -> Result<SourceSet, Vec<SourceError>> {
     let mut sources = SourceSet::default();
     let mut errors = Vec::new();
     for path in paths {
@@ -93,7 +109,7 @@ pub fn read_sources(paths: &[impl AsRef<Path>]) -> Result<SourceSet, Vec<SourceE
             });
             continue;
         }
-        match SourceFile::read(path) {
+        match store.source(path) {
             Ok(file) => {
                 if sources.add(file).is_none() {
                     return Err(vec![SourceError::TooMany { count: paths.len() }]);

@@ -6,6 +6,7 @@
 
 pub mod analyze;
 pub mod ast;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod cli;
 pub mod compiler;
 pub mod debug;

@@ -74,10 +74,7 @@ impl SourceFile {
     }
 
     pub fn read(path: &Path) -> std::io::Result<Self> {
-        Ok(SourceFile::from_bytes(
-            path.display().to_string(),
-            std::fs::read(path)?,
-        ))
+        Files::Disk.source(path)
     }
 
     /// 1-based line number of a byte offset.
@@ -236,9 +233,63 @@ impl SourceSet {
     }
 }
 
+/// Where files are read from: the file system, or texts held in memory by their paths (the
+/// browser playground, which has no file system; tests). Paths are compared after `.` and `..`
+/// are taken out.
+#[derive(Debug, Clone, Default)]
+pub enum Files {
+    #[default]
+    Disk,
+    Memory(std::sync::Arc<std::collections::BTreeMap<std::path::PathBuf, Vec<u8>>>),
+}
+
+impl Files {
+    pub fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        match self {
+            Files::Disk => std::fs::read(path),
+            Files::Memory(files) => files
+                .get(&normalize(path))
+                .cloned()
+                .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such file")),
+        }
+    }
+
+    pub fn source(&self, path: &Path) -> std::io::Result<SourceFile> {
+        Ok(SourceFile::from_bytes(
+            path.display().to_string(),
+            self.read(path)?,
+        ))
+    }
+}
+
+/// `a/./b/../c` → `a/c`, without looking at the file system.
+pub fn normalize(path: &Path) -> std::path::PathBuf {
+    use std::path::Component;
+    let mut out = std::path::PathBuf::new();
+    for component in path.components() {
+        match component {
+            Component::CurDir => {}
+            Component::ParentDir if out.file_name().is_some() => {
+                out.pop();
+            }
+            other => out.push(other),
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn files_in_memory_are_found_by_their_normal_path() {
+        let mut map = std::collections::BTreeMap::new();
+        map.insert(std::path::PathBuf::from("programs/a.awl"), b"BE".to_vec());
+        let files = Files::Memory(std::sync::Arc::new(map));
+        assert!(files.read(Path::new("programs/./x/../a.awl")).is_ok());
+        assert!(files.read(Path::new("programs/b.awl")).is_err());
+    }
 
     #[test]
     fn latin1_fallback_keeps_umlauts() {

@@ -4,12 +4,16 @@
 use std::collections::VecDeque;
 use std::io::BufRead;
 
+#[cfg(not(target_arch = "wasm32"))]
 use rustyline::DefaultEditor;
+#[cfg(not(target_arch = "wasm32"))]
 use rustyline::error::ReadlineError;
 
 pub const PROMPT: &str = "(awl) ";
 
 pub enum Input {
+    /// A terminal's line editor (not in a browser).
+    #[cfg(not(target_arch = "wasm32"))]
     Prompt(Box<DefaultEditor>),
     Script(VecDeque<String>),
 }
@@ -25,6 +29,7 @@ pub enum Line {
 impl Input {
     /// The prompt, or `None` when no line editor can run here (then standard input is read as a
     /// script).
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn prompt() -> Option<Input> {
         DefaultEditor::new()
             .ok()
@@ -48,6 +53,7 @@ impl Input {
     /// The next line; a script's line is echoed after the prompt, as if typed.
     pub fn next_line(&mut self, echo: &mut dyn FnMut(&str)) -> Line {
         match self {
+            #[cfg(not(target_arch = "wasm32"))]
             Input::Prompt(editor) => match editor.readline(PROMPT) {
                 Ok(line) => {
                     if !line.trim().is_empty() {

@@ -21,6 +21,7 @@ use crate::scenario::Scenario;
 use crate::scenario::check::{CheckOutcome, Checker};
 use crate::scenario::expect::{self, Mismatch};
 use crate::scenario::operand::{Target, parse_target};
+use crate::source::Files;
 use crate::state::watch::WatchTable;
 use crate::timeline;
 use crate::trace::{self, Kind, TraceFilter, TraceFormat};
@@ -54,6 +55,8 @@ pub struct RunOptions {
     pub timeline: Option<PathBuf>,
     /// Assignment lists (`--symbols`), after the scenario's `symbols`.
     pub symbols: Vec<PathBuf>,
+    /// Where the scenario, program and symbol files are read from.
+    pub store: Files,
     pub mnemonics: Option<MnemonicSet>,
     /// Operands to watch (`--watch "Q 4.0, FW 10"`), added to the scenario's `watch`.
     pub watch: Vec<String>,
@@ -276,8 +279,8 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     // compiled (its operands), so a file shows all of them at once.
     let (scenario, mut scenario_errors) = match &options.scenario {
         Some(path) => {
-            let (scenario, errors) =
-                Scenario::load(path, options.cpu).map_err(|error| NotRun::Failed(vec![error]))?;
+            let (scenario, errors) = Scenario::load_in(&options.store, path, options.cpu)
+                .map_err(|error| NotRun::Failed(vec![error]))?;
             (Some(scenario), errors)
         }
         None => (None, Vec::new()),
@@ -321,8 +324,9 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
             symbol_paths.push(path.clone());
         }
     }
-    let read = frontend::read_sources(&files).and_then(|sources| {
-        frontend::read_symbol_files(&symbol_paths).map(|symbols| (sources, symbols))
+    let store = &options.store;
+    let read = frontend::read_sources_in(store, &files).and_then(|sources| {
+        frontend::read_symbol_files_in(store, &symbol_paths).map(|symbols| (sources, symbols))
     });
     let (sources, symbol_files) = read.map_err(|errors| {
         scenario_errors.extend(errors.into_iter().map(Report::new));

@@ -158,12 +158,24 @@ impl Scenario {
         path: &Path,
         cpu: Option<&'static Profile>,
     ) -> Result<(Scenario, Vec<Report>), Report> {
-        let text = std::fs::read_to_string(path).map_err(|error| {
+        Scenario::load_in(&crate::source::Files::Disk, path, cpu)
+    }
+
+    /// [`Scenario::load`] from `store`.
+    pub fn load_in(
+        store: &crate::source::Files,
+        path: &Path,
+        cpu: Option<&'static Profile>,
+    ) -> Result<(Scenario, Vec<Report>), Report> {
+        let read = |error: std::io::Error| {
             Report::new(ScenarioError::Read {
                 path: path.display().to_string(),
                 reason: error.to_string(),
             })
-        })?;
+        };
+        let bytes = store.read(path).map_err(read)?;
+        let text = String::from_utf8(bytes)
+            .map_err(|error| read(std::io::Error::new(std::io::ErrorKind::InvalidData, error)))?;
         Ok(Scenario::parse(path, &text, cpu))
     }
 
