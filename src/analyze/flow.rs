@@ -183,12 +183,18 @@ impl Walker<'_> {
     /// The paths through `lo..=hi` entered at `lo`; `own` is the loop the range is the body
     /// of (its backward jumps to `lo` continue the loop).
     fn range(&self, lo: usize, hi: usize, own: Option<Loop>) -> Result<Range, String> {
-        let mut reach: Vec<Reach> = vec![None; hi - lo + 2];
-        reach[0] = Some((0, lo, lo));
-        let mut out = Range::default();
+        let mut pass = Pass {
+            lo,
+            hi,
+            own,
+            reach: vec![None; hi - lo + 2],
+            out: Range::default(),
+            line: self.line,
+        };
+        pass.reach[0] = Some((0, lo, lo));
         let mut pc = lo;
         while pc <= hi {
-            let Some((value, start, _)) = reach[pc - lo] else {
+            let Some((value, start, _)) = pass.reach[pc - lo] else {
                 pc += 1;
                 continue;
             };
@@ -197,171 +203,54 @@ impl Walker<'_> {
                 .iter()
                 .find(|l| l.head == pc && Some(**l) != own && l.tail <= hi)
             {
-                let after = self.through_loop(*inner, value, start, &mut out)?;
-                for (exit, ns, from) in after {
-                    self.arrive(
-                        lo, hi, inner.tail, own, exit, ns, from, &mut reach, &mut out,
-                    )?;
+                for (exit, ns, from) in self.through_loop(*inner, value, start, &mut pass.out)? {
+                    pass.arrive(inner.tail, exit, ns, from)?;
                 }
                 pc = inner.tail + 1;
                 continue;
             }
-            let cost = self.block.cost(pc);
-            let at = value + cost;
+            let at = value + self.block.cost(pc);
+            let next = Exit::Pc(pc + 1);
             match step(self.block.code[pc]) {
-                Step::Plain => self.arrive(
-                    lo,
-                    hi,
-                    pc,
-                    own,
-                    Exit::Pc(pc + 1),
-                    at,
-                    start,
-                    &mut reach,
-                    &mut out,
-                )?,
+                Step::Plain => pass.arrive(pc, next, at, start)?,
                 Step::Jump {
                     target,
                     conditional,
                 } => {
-                    self.arrive(
-                        lo,
-                        hi,
-                        pc,
-                        own,
-                        Exit::Pc(target),
-                        at,
-                        start,
-                        &mut reach,
-                        &mut out,
-                    )?;
+                    pass.arrive(pc, Exit::Pc(target), at, start)?;
                     if conditional {
-                        self.arrive(
-                            lo,
-                            hi,
-                            pc,
-                            own,
-                            Exit::Pc(pc + 1),
-                            at,
-                            start,
-                            &mut reach,
-                            &mut out,
-                        )?;
+                        pass.arrive(pc, next, at, start)?;
                     }
                 }
                 Step::Call {
                     callee,
                     conditional,
                 } => match self.measure {
-                    Measure::Wcet => {
-                        let called = at + (self.callee)(callee)?;
-                        self.arrive(
-                            lo,
-                            hi,
-                            pc,
-                            own,
-                            Exit::Pc(pc + 1),
-                            called,
-                            start,
-                            &mut reach,
-                            &mut out,
-                        )?;
-                    }
+                    Measure::Wcet => pass.arrive(pc, next, at + (self.callee)(callee)?, start)?,
                     Measure::Stretch => {
-                        let path = self.path_to(lo, pc, start, &reach);
-                        note(&mut out.best, at, path);
-                        let after = if conditional { at } else { 0 };
-                        let next = if conditional { start } else { pc + 1 };
-                        self.arrive(
-                            lo,
-                            hi,
-                            pc,
-                            own,
-                            Exit::Pc(pc + 1),
-                            after,
-                            next,
-                            &mut reach,
-                            &mut out,
-                        )?;
+                        // Taken, the call is a point: a new stretch starts after the callee.
+                        let path = self.path_to(lo, pc, start, &pass.reach);
+                        note(&mut pass.out.best, at, path);
+                        pass.arrive(pc, next, 0, pc + 1)?;
                         if conditional {
-                            self.arrive(
-                                lo,
-                                hi,
-                                pc,
-                                own,
-                                Exit::Pc(pc + 1),
-                                0,
-                                pc + 1,
-                                &mut reach,
-                                &mut out,
-                            )?;
+                            pass.arrive(pc, next, at, start)?;
                         }
                     }
                 },
                 Step::End { conditional } | Step::Stop { conditional } => {
                     if matches!(step(self.block.code[pc]), Step::End { .. }) {
-                        let path = self.path_to(lo, pc, start, &reach);
-                        note(&mut out.best, at, path);
+                        let path = self.path_to(lo, pc, start, &pass.reach);
+                        note(&mut pass.out.best, at, path);
                     }
-                    out.exits.push((Exit::End, at, start));
+                    pass.out.exits.push((Exit::End, at, start));
                     if conditional {
-                        self.arrive(
-                            lo,
-                            hi,
-                            pc,
-                            own,
-                            Exit::Pc(pc + 1),
-                            at,
-                            start,
-                            &mut reach,
-                            &mut out,
-                        )?;
+                        pass.arrive(pc, next, at, start)?;
                     }
                 }
             }
             pc += 1;
         }
-        Ok(out)
-    }
-
-    /// A path arrives at `exit` with `ns`: inside the range it joins the op's best, to the
-    /// range's head it is a loop pass, beyond the range it leaves it.
-    #[allow(clippy::too_many_arguments)]
-    fn arrive(
-        &self,
-        lo: usize,
-        hi: usize,
-        current: usize,
-        own: Option<Loop>,
-        exit: Exit,
-        ns: u64,
-        start: usize,
-        reach: &mut [Reach],
-        out: &mut Range,
-    ) -> Result<(), String> {
-        let Exit::Pc(target) = exit else {
-            out.exits.push((exit, ns, start));
-            return Ok(());
-        };
-        if own.is_some() && target == lo {
-            out.body = Some(out.body.map_or(ns, |body| body.max(ns)));
-            return Ok(());
-        }
-        if target > current && target <= hi {
-            let slot = &mut reach[target - lo];
-            if slot.is_none_or(|(best, _, _)| ns > best) {
-                *slot = Some((ns, start, current));
-            }
-            return Ok(());
-        }
-        if target > hi || target < lo {
-            out.exits.push((exit, ns, start));
-            return Ok(());
-        }
-        Err(format!(
-            "a jump back to line {} that is no loop awl can bound",
-            (self.line)(target)
-        ))
+        Ok(pass.out)
     }
 
     /// The ops of the best path from `start` to `pc` in a range starting at `lo`; a loop on
@@ -423,6 +312,46 @@ impl Walker<'_> {
             .into_iter()
             .map(|(exit, ns, from)| (exit, value + repeated + ns, from.min(start)))
             .collect())
+    }
+}
+
+/// One walk through a range of ops: where paths got to, and what left the range.
+struct Pass<'a> {
+    lo: usize,
+    hi: usize,
+    own: Option<Loop>,
+    reach: Vec<Reach>,
+    out: Range,
+    line: &'a dyn Fn(usize) -> u32,
+}
+
+impl Pass<'_> {
+    /// A path from op `current` arrives at `exit` with `ns`: inside the range it joins the
+    /// op's best, to the range's head it is a loop pass, beyond the range it leaves it.
+    fn arrive(&mut self, current: usize, exit: Exit, ns: u64, start: usize) -> Result<(), String> {
+        let Exit::Pc(target) = exit else {
+            self.out.exits.push((exit, ns, start));
+            return Ok(());
+        };
+        if self.own.is_some() && target == self.lo {
+            self.out.body = Some(self.out.body.map_or(ns, |body| body.max(ns)));
+            return Ok(());
+        }
+        if target > current && target <= self.hi {
+            let slot = &mut self.reach[target - self.lo];
+            if slot.is_none_or(|(best, _, _)| ns > best) {
+                *slot = Some((ns, start, current));
+            }
+            return Ok(());
+        }
+        if target > self.hi || target < self.lo {
+            self.out.exits.push((exit, ns, start));
+            return Ok(());
+        }
+        Err(format!(
+            "a jump back to line {} that is no loop awl can bound",
+            (self.line)(target)
+        ))
     }
 }
 
