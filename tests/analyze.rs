@@ -143,14 +143,7 @@ fn analyze_scenario(path: &str) -> Analysis {
     })
     .unwrap_or_else(|_| panic!("{path}"));
     let cpu = &prepared.cpu;
-    let config = Config {
-        profile: cpu.profile,
-        points: cpu.engine.config.points,
-        special_mode: cpu.engine.config.special_mode,
-        ob13_interval_ns: cpu.engine.config.ob13.map(|timing| timing.interval_ns),
-        watchdog_ns: cpu.engine.config.watchdog_ns,
-    };
-    analyze::analyze(&cpu.program, &prepared.frontend.sources, config)
+    analyze::analyze(&cpu.program, &prepared.frontend.sources, Config::of(cpu))
 }
 
 #[test]

@@ -32,6 +32,20 @@ pub struct Config {
     pub watchdog_ns: u64,
 }
 
+impl Config {
+    /// The settings a CPU was set up with for a run (its profile and engine).
+    pub fn of(cpu: &crate::vm::Cpu) -> Config {
+        let engine = &cpu.engine.config;
+        Config {
+            profile: cpu.profile,
+            points: engine.points,
+            special_mode: engine.special_mode,
+            ob13_interval_ns: engine.ob13.map(|timing| timing.interval_ns),
+            watchdog_ns: engine.watchdog_ns,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct Analysis {
     pub cpu: &'static str,

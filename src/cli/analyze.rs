@@ -30,14 +30,7 @@ pub fn analyze(args: &AnalyzeArgs, console: &mut Console) -> u8 {
     };
     console.reports(&prepared.take_warnings());
     let cpu = &prepared.cpu;
-    let config = Config {
-        profile: cpu.profile,
-        points: cpu.engine.config.points,
-        special_mode: cpu.engine.config.special_mode,
-        ob13_interval_ns: cpu.engine.config.ob13.map(|timing| timing.interval_ns),
-        watchdog_ns: cpu.engine.config.watchdog_ns,
-    };
-    let analysis = analyze::analyze(&cpu.program, &prepared.frontend.sources, config);
+    let analysis = analyze::analyze(&cpu.program, &prepared.frontend.sources, Config::of(cpu));
     match args.format {
         AnalyzeFormat::Text => console.out(&analyze::render(&analysis)),
         AnalyzeFormat::Json => console.out(&format!(
