@@ -12,6 +12,8 @@ use awl::vm::Cpu;
 use awl::vm::cycle::RunLimit;
 use awl::vm::interrupts::{Engine, EngineConfig};
 
+mod common;
+
 fn analysis(source: &str, cpu: &str, points: InterruptPoints, watchdog_ns: u64) -> Analysis {
     let profile = profile::find(cpu).unwrap();
     let built = frontend::build_text("a.awl", source, profile);
@@ -232,14 +234,8 @@ fn operation_points_bound_by_the_longest_operation() {
 
 #[test]
 fn every_sample_s_analysis() {
-    let mut scenarios: Vec<_> = std::fs::read_dir("programs")
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|ext| ext == "toml"))
-        .collect();
-    scenarios.sort();
     let mut all = String::new();
-    for scenario in scenarios {
+    for scenario in common::sample_scenarios() {
         let path = scenario.to_string_lossy().to_string();
         all.push_str(&format!("==== {path}\n"));
         all.push_str(&analyze::render(&analyze_scenario(&path)));

@@ -9,6 +9,8 @@ use awl::runner::{self, RunOptions};
 use awl::trace::TraceFormat;
 use serde::Deserialize;
 
+mod common;
+
 /// The trace-event format's fields (an unknown one is an error).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -114,13 +116,7 @@ fn a_small_run_s_chrome_trace() {
 
 #[test]
 fn every_sample_s_chrome_trace_keeps_to_the_schema() {
-    let mut samples: Vec<PathBuf> = std::fs::read_dir("programs")
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    samples.sort();
-    for scenario in samples {
+    for scenario in common::sample_scenarios() {
         let name = scenario.file_stem().unwrap().to_string_lossy().to_string();
         let text = chrome_trace(
             &name,

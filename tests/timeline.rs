@@ -8,6 +8,8 @@ use std::path::{Path, PathBuf};
 use awl::runner::{self, RunOptions};
 use awl::vm::cycle::RunLimit;
 
+mod common;
+
 /// A fresh path in the temporary directory.
 fn temp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("awl-timeline-{}-{name}", std::process::id()))
@@ -75,19 +77,9 @@ fn compared(marks: &BTreeMap<String, u64>) -> BTreeMap<String, u64> {
         .collect()
 }
 
-fn scenarios() -> Vec<PathBuf> {
-    let mut paths: Vec<PathBuf> = std::fs::read_dir("programs")
-        .expect("programs/")
-        .map(|entry| entry.expect("an entry").path())
-        .filter(|path| path.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
-    paths
-}
-
 #[test]
 fn every_sample_s_picture_marks_exactly_the_trace_s_events() {
-    for scenario in scenarios() {
+    for scenario in common::sample_scenarios() {
         let name = scenario.file_stem().unwrap().to_string_lossy().to_string();
         let (svg, events) = picture_and_trace(
             &name,

@@ -150,3 +150,14 @@ impl Buffer {
             .collect()
     }
 }
+
+/// The sample scenarios of programs/ (not programs/bench/), in name order.
+pub fn sample_scenarios() -> Vec<PathBuf> {
+    let mut scenarios: Vec<PathBuf> = std::fs::read_dir("programs")
+        .expect("programs/")
+        .map(|entry| entry.expect("an entry").path())
+        .filter(|path| path.extension().is_some_and(|ext| ext == "toml"))
+        .collect();
+    scenarios.sort();
+    scenarios
+}
