@@ -239,6 +239,11 @@ impl Op {
         }
     }
 
+    /// A formal operand or a `DO`: the op it runs as is known only at run time.
+    pub fn resolved_at_run_time(self) -> bool {
+        matches!(self, Op::Formal { .. } | Op::Indirect { .. })
+    }
+
     pub fn transfer_image(width: Width, byte: u16) -> Op {
         match width {
             Width::Byte => Op::TransferImageByte(byte),

@@ -85,6 +85,13 @@ impl Program {
         self.index.get(&id).copied()
     }
 
+    /// The ops block `block` runs when called with actual-parameter list `params`.
+    #[inline(always)]
+    pub fn body(&self, block: u16, params: u16) -> &[Op] {
+        let _ = params;
+        &self.blocks[usize::from(block)].code
+    }
+
     pub fn ob(&self, number: u8) -> Option<u16> {
         self.block_index(BlockId {
             kind: BlockKind::Ob,

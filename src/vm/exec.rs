@@ -1,62 +1,26 @@
-//! The execution loop. It runs ops of the current level until a block change or an operation
-//! (in `operation` mode) finds `clock >= attention_at` — one comparison when nothing is due — or
-//! the level ends, or a fault stops the CPU. It allocates nothing and does no string work
-//! unless a trace is being written.
-
-use std::sync::Arc;
+//! What the execution loop ([`super::run_loop`]) hands off: the image and data memory, formal
+//! operands and `DO`, and the operations it does not run inline.
 
 use crate::ast::Address;
 use crate::compiler::bytecode::*;
 use crate::compiler::{Resolved, lower};
 
 use super::io_trace::Modules;
-use crate::trace::Event;
 
+use super::Cpu;
 use super::arith;
 use super::interrupts::FamilyRules;
 use super::interrupts::s5_95f::S595f;
-use super::probe::Flow;
 use super::stop::{StopCause, StopDetail};
-use super::{Cpu, Exit, Frame, LastStretch, Point, StretchKind};
 
 impl Cpu {
-    /// Runs the current level; `operation_points` makes every operation an interrupt point.
-    /// With a probe set, the stepping variant shows it every operation.
-    pub fn execute(&mut self, operation_points: bool) -> Exit {
-        if self.probe.is_some() {
-            return self.execute_stepping(operation_points);
-        }
-        if operation_points {
-            self.run_loop::<true, false>()
-        } else {
-            self.run_loop::<false, false>()
-        }
-    }
-
-    /// The stepping variants, kept out of line so the plain loops compile as they would alone.
-    #[cold]
-    #[inline(never)]
-    fn execute_stepping(&mut self, operation_points: bool) -> Exit {
-        if operation_points {
-            self.run_loop::<true, true>()
-        } else {
-            self.run_loop::<false, true>()
-        }
-    }
-
-    /// The stop that ends a run a probe halted.
-    #[cold]
-    fn halted_at(&self, pc: u32) -> super::stop::Stop {
-        self.stop(StopCause::Halt, pc, StopDetail::None)
-    }
-
     #[inline(always)]
-    fn image_bit(&self, bit: ImageBit) -> bool {
+    pub(super) fn image_bit(&self, bit: ImageBit) -> bool {
         self.image[usize::from(bit.byte)] >> bit.bit & 1 != 0
     }
 
     #[inline(always)]
-    fn write_image_bit(&mut self, bit: ImageBit, value: bool) {
+    pub(super) fn write_image_bit(&mut self, bit: ImageBit, value: bool) {
         let byte = &mut self.image[usize::from(bit.byte)];
         let mask = 1u8 << bit.bit;
         if value { *byte |= mask } else { *byte &= !mask }
@@ -69,7 +33,7 @@ impl Cpu {
 
     /// Image reads and writes index the fixed-size image with a `u16` offset: in bounds by type.
     #[inline(always)]
-    fn read_image(&self, width: Width, byte: u16) -> u32 {
+    pub(super) fn read_image(&self, width: Width, byte: u16) -> u32 {
         let at = usize::from(byte);
         let image = &*self.image;
         match width {
@@ -82,7 +46,7 @@ impl Cpu {
     }
 
     #[inline(always)]
-    fn write_image(&mut self, width: Width, byte: u16, value: u32) {
+    pub(super) fn write_image(&mut self, width: Width, byte: u16, value: u32) {
         let at = usize::from(byte);
         let image = &mut *self.image;
         match width {
@@ -94,68 +58,9 @@ impl Cpu {
         }
     }
 
-    /// Marks a block change (an interrupt point in both modes): the stretch since the last
-    /// point ended with op `end_pc` of `block`.
-    #[inline(always)]
-    fn mark_point(&mut self, clock: u64, block: u16, end_pc: u32) {
-        let kind = StretchKind::Block { block, end_pc };
-        self.last_stretch = LastStretch {
-            kind,
-            start_ns: self.last_point_at,
-            end_ns: clock,
-        };
-        self.longest_block.record(clock - self.last_point_at, kind);
-        self.last_point_at = clock;
-    }
-
-    /// Records where the loop stopped without a block change: the stretch from `start_ns`
-    /// to `end_ns` ended with op `end_pc` of the running block.
-    #[cold]
-    fn note_stretch(&mut self, end_pc: u32, start_ns: u64, end_ns: u64) {
-        self.last_op = (self.level.block, end_pc);
-        self.last_stretch = LastStretch {
-            kind: StretchKind::Block {
-                block: self.level.block,
-                end_pc,
-            },
-            start_ns,
-            end_ns,
-        };
-    }
-
-    /// Traces a block call at `self.clock`.
-    #[cold]
-    fn trace_call(&mut self, from: u16, to: u16) {
-        let event = Event::BlockCall {
-            from: self.block_id(from).to_string(),
-            to: self.block_id(to).to_string(),
-            depth: self.depth(),
-        };
-        self.trace_block_change(event);
-    }
-
-    /// Traces a block end at `self.clock`.
-    #[cold]
-    fn trace_end(&mut self, block: u16) {
-        let event = Event::BlockEnd {
-            block: self.block_id(block).to_string(),
-            depth: self.depth(),
-        };
-        self.trace_block_change(event);
-    }
-
-    /// The trace holds events back until the engine has taken in everything due by then;
-    /// when nothing is due by now, they can be written at once.
-    fn trace_block_change(&mut self, event: Event) {
-        self.tracer.emit(self.clock, event);
-        if self.clock < self.engine.next_due() {
-            self.tracer.settle(self.clock);
-        }
-    }
-
     /// The op that a formal operand or a `DO` stands for; `DO` also consumes the next op.
     #[inline(never)]
-    fn concrete(&mut self, op: Op, pc: u32) -> Result<(Op, bool), super::stop::Stop> {
+    pub(super) fn concrete(&mut self, op: Op, pc: u32) -> Result<(Op, bool), super::stop::Stop> {
         match op {
             Op::Formal { op: code, param } => match self.formal(code, param) {
                 Some(concrete) => Ok((concrete, false)),
@@ -187,332 +92,11 @@ impl Cpu {
         }
     }
 
-    fn run_loop<const OPERATION_POINTS: bool, const STEPPING: bool>(&mut self) -> Exit {
-        let program = Arc::clone(&self.program);
-        let mut code: &[Op] = &program.blocks[usize::from(self.level.block)].code;
-        // Prefix sums of the op times: time is settled only when control moves or someone reads
-        // the clock, so straight code pays nothing per op for it. Slicing to `code.len() + 1`
-        // lets the fetch's bounds check cover `elapsed[pc]` too.
-        let mut elapsed: &[u64] =
-            &program.blocks[usize::from(self.level.block)].elapsed[..=code.len()];
-        let mut pc = self.level.pc as usize;
-        // The clock stood at `segment_clock` when the straight run of ops from `segment_start`
-        // began; `executed` counts the ops of the finished runs.
-        let mut segment_start = pc;
-        let mut segment_clock = self.clock;
-        let mut executed = 0u64;
-        let mut status = self.level.status;
-        let mut accu1 = self.level.accu1;
-        let mut accu2 = self.level.accu2;
-        // When the running pass of a loop began (where a request that came in it is placed).
-        let mut pass_start = self.last_point_at;
-        macro_rules! now {
-            () => {
-                segment_clock + elapsed[pc] - elapsed[segment_start]
-            };
-        }
-        // The registers live in locals; `sync!` hands them to `self` before anything else looks,
-        // `reload!` takes them back.
-        macro_rules! sync {
-            () => {
-                self.clock = now!();
-                self.level.status = status;
-                self.level.accu1 = accu1;
-                self.level.accu2 = accu2;
-            };
-        }
-        macro_rules! reload {
-            () => {
-                segment_clock = self.clock;
-                executed += (pc - segment_start) as u64;
-                segment_start = pc;
-                status = self.level.status;
-                accu1 = self.level.accu1;
-                accu2 = self.level.accu2;
-            };
-        }
-        // The stepping variant shows the probe the op at `pc` before it runs, and op `$pc`
-        // of `$block`, run as `$op`, after it ran.
-        macro_rules! probe_before {
-            () => {
-                if STEPPING {
-                    sync!();
-                    self.level.pc = pc as u32;
-                    if self.with_probe(Flow::Go, |probe, cpu| probe.before(cpu)) == Flow::Halt {
-                        break Exit::Stop(self.halted_at(pc as u32));
-                    }
-                    reload!();
-                }
-            };
-        }
-        macro_rules! probe_after {
-            ($block:expr, $pc:expr, $op:expr) => {
-                if STEPPING {
-                    sync!();
-                    let (block, at, op) = ($block, $pc, $op);
-                    let flow =
-                        self.with_probe(Flow::Go, |probe, cpu| probe.after(cpu, block, at, op));
-                    if flow == Flow::Halt {
-                        break Exit::Stop(self.halted_at(at));
-                    }
-                }
-            };
-        }
-        // Ends the straight run at `pc` before control moves to `$to` in `$elapsed`.
-        macro_rules! move_to {
-            ($to:expr, $code:expr, $elapsed:expr) => {
-                segment_clock = now!();
-                executed += (pc - segment_start) as u64;
-                code = $code;
-                elapsed = $elapsed;
-                pc = $to;
-                segment_start = pc;
-            };
-        }
-        let exit = loop {
-            probe_before!();
-            let Some(&fetched) = code.get(pc) else {
-                sync!();
-                break Exit::Stop(self.stop(
-                    StopCause::Bcf,
-                    pc as u32,
-                    StopDetail::Text("the block has no BE".into()),
-                ));
-            };
-            pc += 1;
-            let mut op = fetched;
-            if let Op::Formal { .. } | Op::Indirect { .. } = fetched {
-                sync!();
-                match self.concrete(fetched, pc as u32 - 1) {
-                    Ok((concrete, consumes_next)) => {
-                        if consumes_next {
-                            probe_after!(self.level.block, pc as u32 - 1, fetched);
-                        }
-                        if consumes_next && pc < code.len() {
-                            pc += 1;
-                            self.clock = now!();
-                        }
-                        reload!();
-                        op = concrete;
-                    }
-                    Err(stop) => break Exit::Stop(stop),
-                }
-            }
-            let op_pc = pc as u32 - 1;
-            match op {
-                Op::And(bit) => {
-                    let value = self.image_bit(bit);
-                    status.scan(value);
-                    status.and(value);
-                }
-                Op::AndNot(bit) => {
-                    let value = self.image_bit(bit);
-                    status.scan(value);
-                    status.and(!value);
-                }
-                Op::Or(bit) => {
-                    let value = self.image_bit(bit);
-                    status.scan(value);
-                    status.or(value);
-                }
-                Op::OrNot(bit) => {
-                    let value = self.image_bit(bit);
-                    status.scan(value);
-                    status.or(!value);
-                }
-                Op::Assign(bit) => {
-                    self.write_image_bit(bit, status.rlo());
-                    status.end_string();
-                }
-                Op::Set(bit) => {
-                    if status.rlo() {
-                        self.write_image_bit(bit, true);
-                    }
-                    status.end_string();
-                }
-                Op::Reset(bit) => {
-                    if status.rlo() {
-                        self.write_image_bit(bit, false);
-                    }
-                    status.end_string();
-                }
-                Op::OrAlone => status.or_alone(),
-                Op::LoadImageByte(byte) => {
-                    accu2 = accu1;
-                    accu1 = u32::from(self.image[usize::from(byte)]);
-                }
-                Op::LoadImageWord(byte) => {
-                    accu2 = accu1;
-                    accu1 = self.read_image(Width::Word, byte);
-                }
-                Op::LoadImageDouble(byte) => {
-                    accu2 = accu1;
-                    accu1 = self.read_image(Width::Double, byte);
-                }
-                Op::TransferImageByte(byte) => self.image[usize::from(byte)] = accu1 as u8,
-                Op::TransferImageWord(byte) => self.write_image(Width::Word, byte, accu1),
-                Op::TransferImageDouble(byte) => self.write_image(Width::Double, byte, accu1),
-                Op::LoadConstant(value) => {
-                    accu2 = accu1;
-                    accu1 = value;
-                }
-                Op::Arithmetic(kind) => arith::arithmetic(kind, &mut accu1, accu2, &mut status),
-                Op::ArithmeticStack(kind) => {
-                    arith::arithmetic(kind, &mut accu1, accu2, &mut status);
-                    // Four accumulators: ACCU 3 moves to ACCU 2, ACCU 4 to ACCU 3.
-                    accu2 = self.level.accu3;
-                    self.level.accu3 = self.level.accu4;
-                }
-                Op::Compare(kind) => arith::compare(kind, accu1, accu2, &mut status),
-                Op::Jump(condition, target) => {
-                    let taken = match condition {
-                        JumpCondition::Always => true,
-                        JumpCondition::Rlo => status.rlo(),
-                        JumpCondition::Zero => !status.cc1() && !status.cc0(),
-                        JumpCondition::NotZero => status.cc1() != status.cc0(),
-                        JumpCondition::Positive => status.cc1() && !status.cc0(),
-                        JumpCondition::Minus => !status.cc1() && status.cc0(),
-                        JumpCondition::Overflow => status.ov(),
-                    };
-                    if condition == JumpCondition::Rlo {
-                        status.after_jump();
-                    }
-                    if taken {
-                        let jump_pc = pc as u32 - 1;
-                        let backward = (target as usize) < pc;
-                        move_to!(target as usize, code, elapsed);
-                        if !OPERATION_POINTS && backward {
-                            if segment_clock >= self.attention_at {
-                                let start = pass_start.max(self.last_point_at);
-                                self.note_stretch(jump_pc, start, segment_clock);
-                                break Exit::Point(Point::Loop);
-                            }
-                            pass_start = segment_clock;
-                        }
-                    }
-                }
-                Op::Call {
-                    block: target,
-                    conditional,
-                    params,
-                } => {
-                    let taken = !conditional || status.rlo();
-                    status.after_jump();
-                    if !taken {
-                        probe_after!(self.level.block, op_pc, op);
-                        continue;
-                    }
-                    if self.frames.len() >= self.level.frame_limit {
-                        sync!();
-                        break Exit::Stop(self.stop(
-                            StopCause::Stueb,
-                            pc as u32 - 1,
-                            StopDetail::None,
-                        ));
-                    }
-                    probe_after!(self.level.block, op_pc, op);
-                    self.frames.push(Frame {
-                        block: self.level.block,
-                        pc: pc as u32,
-                        open_db: self.level.open_db,
-                        params: self.level.params,
-                    });
-                    let caller = self.level.block;
-                    let call_pc = pc as u32 - 1;
-                    self.level.block = target;
-                    self.level.params = params;
-                    let callee = &program.blocks[usize::from(target)];
-                    move_to!(0, &callee.code, &callee.elapsed[..=callee.code.len()]);
-                    self.mark_point(segment_clock, caller, call_pc);
-                    if self.tracer.enabled {
-                        self.clock = segment_clock;
-                        self.trace_call(caller, target);
-                    }
-                    if segment_clock >= self.attention_at {
-                        self.last_op = (caller, call_pc);
-                        break Exit::Point(Point::BlockCall);
-                    }
-                }
-                Op::BlockEnd | Op::BlockEndUnconditional | Op::BlockEndConditional => {
-                    if op == Op::BlockEndConditional && !status.rlo() {
-                        status.after_jump();
-                        probe_after!(self.level.block, op_pc, op);
-                        continue;
-                    }
-                    if op == Op::BlockEnd {
-                        status.end_string();
-                    } else {
-                        status.after_jump();
-                    }
-                    probe_after!(self.level.block, op_pc, op);
-                    let ended = self.level.block;
-                    let end_pc = pc as u32 - 1;
-                    let clock = now!();
-                    let level_end = self.frames.len() == self.level.level_base;
-                    if self.tracer.enabled {
-                        self.clock = clock;
-                        self.trace_end(ended);
-                    }
-                    if level_end && !self.levels.is_empty() {
-                        // An interrupt OB's end is no point yet: its data cycle comes first.
-                        self.note_stretch(end_pc, self.last_point_at, clock);
-                        break Exit::LevelEnd;
-                    }
-                    self.mark_point(clock, ended, end_pc);
-                    if level_end {
-                        self.last_op = (ended, end_pc);
-                        break Exit::LevelEnd;
-                    }
-                    let frame = self.frames.pop().expect("a frame above the level base");
-                    self.level.block = frame.block;
-                    self.level.open_db = frame.open_db;
-                    self.level.params = frame.params;
-                    let caller = &program.blocks[usize::from(frame.block)];
-                    move_to!(
-                        frame.pc as usize,
-                        &caller.code,
-                        &caller.elapsed[..=caller.code.len()]
-                    );
-                    if segment_clock >= self.attention_at {
-                        self.last_op = (ended, end_pc);
-                        break Exit::Point(Point::BlockEnd);
-                    }
-                }
-                other => {
-                    sync!();
-                    let result = self.execute_other(other, pc as u32 - 1);
-                    reload!();
-                    if let Err((cause, detail)) = result {
-                        break Exit::Stop(self.stop(cause, pc as u32 - 1, detail));
-                    }
-                }
-            }
-            // Block calls and ends were shown in their arms, with the frames as they were.
-            let block_change = matches!(
-                op,
-                Op::Call { .. }
-                    | Op::BlockEnd
-                    | Op::BlockEndConditional
-                    | Op::BlockEndUnconditional
-            );
-            if !block_change {
-                probe_after!(self.level.block, op_pc, op);
-            }
-            if OPERATION_POINTS && now!() >= self.attention_at {
-                self.last_op = (self.level.block, pc as u32 - 1);
-                break Exit::Point(Point::Operation);
-            }
-        };
-        sync!();
-        self.level.pc = pc as u32;
-        self.instructions += executed + (pc - segment_start) as u64;
-        exit
-    }
-
     /// The op an operation on a formal operand amounts to with the running FB's actual.
     fn formal(&self, code: crate::mnemonics::OpCode, param: u8) -> Option<Op> {
         let actual = self.actual(param)?;
         lower::lower(code, actual, self.program.layout, NO_PARAMS)
+            .filter(|op| !op.resolved_at_run_time())
     }
 
     /// The op after `DO` with its parameter replaced by `value`: for bit operands the high byte
@@ -542,6 +126,7 @@ impl Cpu {
         };
         // Only operations the loop runs directly can be substituted.
         lower::lower(code, operand, self.program.layout, NO_PARAMS)
+            .filter(|op| !op.resolved_at_run_time())
             .filter(|op| !matches!(op, Op::Indirect { .. } | Op::Formal { .. }))
     }
 
@@ -692,7 +277,7 @@ impl Cpu {
 
     /// The operations the loop does not handle inline.
     #[inline(never)]
-    fn execute_other(&mut self, op: Op, pc: u32) -> Result<(), (StopCause, StopDetail)> {
+    pub(super) fn execute_other(&mut self, op: Op, pc: u32) -> Result<(), (StopCause, StopDetail)> {
         let now = self.clock;
         let rlo = self.level.status.rlo();
         match op {

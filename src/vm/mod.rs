@@ -13,6 +13,7 @@ pub mod interrupts;
 mod io_trace;
 pub mod place;
 pub mod probe;
+mod run_loop;
 pub mod status;
 pub mod stop;
 pub mod timers;

@@ -1,0 +1,487 @@
+//! The execution loop. It runs ops of the current level until a block change or an operation
+//! (in `operation` mode) finds `clock >= attention_at` — one comparison when nothing is due — or
+//! the level ends, or a fault stops the CPU. It allocates nothing and does no string work
+//! unless a trace is being written.
+//!
+//! The registers of the running level live in locals. Time and the operation count are kept as
+//! bases against the position in the block: the clock is `time_base + elapsed[pc]` and the
+//! count `count_base + pc`, so straight code pays nothing per op for either, and a jump or a
+//! block change moves the bases once.
+
+use std::sync::Arc;
+
+use crate::compiler::bytecode::*;
+use crate::trace::Event;
+
+use super::arith;
+use super::probe::Flow;
+use super::stop::{StopCause, StopDetail};
+use super::{Cpu, Exit, Frame, LastStretch, Point, StretchKind};
+
+impl Cpu {
+    /// Runs the current level; `operation_points` makes every operation an interrupt point.
+    /// With a probe set, the stepping variant shows it every operation.
+    pub fn execute(&mut self, operation_points: bool) -> Exit {
+        if self.probe.is_some() {
+            return self.execute_stepping(operation_points);
+        }
+        if operation_points {
+            self.run_loop::<true, false>()
+        } else {
+            self.run_loop::<false, false>()
+        }
+    }
+
+    /// The stepping variants, kept out of line so the plain loops compile as they would alone.
+    #[cold]
+    #[inline(never)]
+    fn execute_stepping(&mut self, operation_points: bool) -> Exit {
+        if operation_points {
+            self.run_loop::<true, true>()
+        } else {
+            self.run_loop::<false, true>()
+        }
+    }
+
+    /// The stop that ends a run a probe halted.
+    #[cold]
+    fn halted_at(&self, pc: u32) -> super::stop::Stop {
+        self.stop(StopCause::Halt, pc, StopDetail::None)
+    }
+
+    /// The stop of a block that ran past its last op.
+    #[cold]
+    fn fell_off(&self, pc: u32) -> super::stop::Stop {
+        self.stop(
+            StopCause::Bcf,
+            pc,
+            StopDetail::Text("the block has no BE".into()),
+        )
+    }
+
+    /// Marks a block change (an interrupt point in both modes): the stretch since the last
+    /// point ended with op `end_pc` of `block`.
+    #[inline(always)]
+    fn mark_point(&mut self, clock: u64, block: u16, end_pc: u32) {
+        let kind = StretchKind::Block { block, end_pc };
+        self.last_stretch = LastStretch {
+            kind,
+            start_ns: self.last_point_at,
+            end_ns: clock,
+        };
+        self.longest_block.record(clock - self.last_point_at, kind);
+        self.last_point_at = clock;
+    }
+
+    /// Records where the loop stopped without a block change: the stretch from `start_ns`
+    /// to `end_ns` ended with op `end_pc` of the running block.
+    #[cold]
+    fn note_stretch(&mut self, end_pc: u32, start_ns: u64, end_ns: u64) {
+        self.last_op = (self.level.block, end_pc);
+        self.last_stretch = LastStretch {
+            kind: StretchKind::Block {
+                block: self.level.block,
+                end_pc,
+            },
+            start_ns,
+            end_ns,
+        };
+    }
+
+    /// Traces a block call at `self.clock`.
+    #[cold]
+    fn trace_call(&mut self, from: u16, to: u16) {
+        let event = Event::BlockCall {
+            from: self.block_id(from).to_string(),
+            to: self.block_id(to).to_string(),
+            depth: self.depth(),
+        };
+        self.trace_block_change(event);
+    }
+
+    /// Traces a block end at `self.clock`.
+    #[cold]
+    fn trace_end(&mut self, block: u16) {
+        let event = Event::BlockEnd {
+            block: self.block_id(block).to_string(),
+            depth: self.depth(),
+        };
+        self.trace_block_change(event);
+    }
+
+    /// The trace holds events back until the engine has taken in everything due by then;
+    /// when nothing is due by now, they can be written at once.
+    fn trace_block_change(&mut self, event: Event) {
+        self.tracer.emit(self.clock, event);
+        if self.clock < self.engine.next_due() {
+            self.tracer.settle(self.clock);
+        }
+    }
+
+    fn run_loop<const OPERATION_POINTS: bool, const STEPPING: bool>(&mut self) -> Exit {
+        let program = Arc::clone(&self.program);
+        let mut code: &[Op] = program.body(self.level.block, self.level.params);
+        // Prefix sums of the op times, sliced to `code.len() + 1` so the fetch's bounds check
+        // covers `elapsed[pc]` too.
+        let mut elapsed: &[u64] =
+            &program.blocks[usize::from(self.level.block)].elapsed[..=code.len()];
+        let mut pc = self.level.pc as usize;
+        // Wrapping arithmetic: a base may stand "below zero" (a jump forward early in a run),
+        // the clock and count it gives never do.
+        let mut time_base = self.clock.wrapping_sub(elapsed[pc]);
+        let mut count_base = self.instructions.wrapping_sub(pc as u64);
+        let mut status = self.level.status;
+        let mut accu1 = self.level.accu1;
+        let mut accu2 = self.level.accu2;
+        // When the running pass of a loop began (where a request that came in it is placed).
+        let mut pass_start = self.last_point_at;
+        macro_rules! now {
+            () => {
+                time_base.wrapping_add(elapsed[pc])
+            };
+        }
+        // The registers live in locals; `sync!` hands them to `self` before anything else looks,
+        // `reload!` takes them back.
+        macro_rules! sync {
+            () => {
+                self.clock = now!();
+                self.level.status = status;
+                self.level.accu1 = accu1;
+                self.level.accu2 = accu2;
+            };
+        }
+        macro_rules! reload {
+            () => {
+                time_base = self.clock.wrapping_sub(elapsed[pc]);
+                status = self.level.status;
+                accu1 = self.level.accu1;
+                accu2 = self.level.accu2;
+            };
+        }
+        // The stepping variant shows the probe the op at `pc` before it runs, and op `$pc`
+        // of `$block`, run as `$op`, after it ran.
+        macro_rules! probe_before {
+            ($run:lifetime) => {
+                if STEPPING {
+                    sync!();
+                    self.level.pc = pc as u32;
+                    if self.with_probe(Flow::Go, |probe, cpu| probe.before(cpu)) == Flow::Halt {
+                        break $run Exit::Stop(self.halted_at(pc as u32));
+                    }
+                    reload!();
+                }
+            };
+        }
+        macro_rules! probe_after {
+            ($run:lifetime, $pc:expr, $op:expr) => {
+                if STEPPING {
+                    sync!();
+                    let (block, at, op) = (self.level.block, $pc, $op);
+                    let flow =
+                        self.with_probe(Flow::Go, |probe, cpu| probe.after(cpu, block, at, op));
+                    if flow == Flow::Halt {
+                        break $run Exit::Stop(self.halted_at(at));
+                    }
+                }
+            };
+        }
+        // Moves control to op `$to` of `$code` (times `$elapsed`), settling the bases.
+        macro_rules! move_to {
+            ($to:expr, $code:expr, $elapsed:expr) => {
+                let clock = now!();
+                let to: usize = $to;
+                count_base = count_base.wrapping_add(pc as u64).wrapping_sub(to as u64);
+                code = $code;
+                elapsed = $elapsed;
+                pc = to;
+                time_base = clock.wrapping_sub(elapsed[pc]);
+            };
+        }
+        // The block end of the running block, after its status rule was applied.
+        macro_rules! block_end {
+            ($run:lifetime, $op:expr) => {{
+                probe_after!($run, pc as u32 - 1, $op);
+                let ended = self.level.block;
+                let end_pc = pc as u32 - 1;
+                let clock = now!();
+                let level_end = self.frames.len() == self.level.level_base;
+                if self.tracer.enabled {
+                    self.clock = clock;
+                    self.trace_end(ended);
+                }
+                if level_end && !self.levels.is_empty() {
+                    // An interrupt OB's end is no point yet: its data cycle comes first.
+                    self.note_stretch(end_pc, self.last_point_at, clock);
+                    break $run Exit::LevelEnd;
+                }
+                self.mark_point(clock, ended, end_pc);
+                if level_end {
+                    self.last_op = (ended, end_pc);
+                    break $run Exit::LevelEnd;
+                }
+                let Some(frame) = self.frames.pop() else {
+                    unreachable!("a frame above the level base");
+                };
+                self.level.block = frame.block;
+                self.level.open_db = frame.open_db;
+                self.level.params = frame.params;
+                let caller = program.body(frame.block, frame.params);
+                let times = &program.blocks[usize::from(frame.block)].elapsed;
+                move_to!(frame.pc as usize, caller, &times[..=caller.len()]);
+                if clock >= self.attention_at {
+                    self.last_op = (ended, end_pc);
+                    break $run Exit::Point(Point::BlockEnd);
+                }
+            }};
+        }
+        let exit = 'run: loop {
+            probe_before!('run);
+            let Some(&fetched) = code.get(pc) else {
+                sync!();
+                break 'run Exit::Stop(self.fell_off(pc as u32));
+            };
+            pc += 1;
+            let mut op = fetched;
+            // The op's own position, for the probe: after a `DO`, the op it ran.
+            let mut op_pc = pc as u32 - 1;
+            // A formal operand or a `DO` is resolved, then its op dispatched again.
+            'dispatch: loop {
+                match op {
+                    Op::And(bit) => {
+                        let value = self.image_bit(bit);
+                        status.scan(value);
+                        status.and(value);
+                    }
+                    Op::AndNot(bit) => {
+                        let value = self.image_bit(bit);
+                        status.scan(value);
+                        status.and(!value);
+                    }
+                    Op::Or(bit) => {
+                        let value = self.image_bit(bit);
+                        status.scan(value);
+                        status.or(value);
+                    }
+                    Op::OrNot(bit) => {
+                        let value = self.image_bit(bit);
+                        status.scan(value);
+                        status.or(!value);
+                    }
+                    Op::Assign(bit) => {
+                        self.write_image_bit(bit, status.rlo());
+                        status.end_string();
+                    }
+                    Op::Set(bit) => {
+                        if status.rlo() {
+                            self.write_image_bit(bit, true);
+                        }
+                        status.end_string();
+                    }
+                    Op::Reset(bit) => {
+                        if status.rlo() {
+                            self.write_image_bit(bit, false);
+                        }
+                        status.end_string();
+                    }
+                    Op::OrAlone => status.or_alone(),
+                    Op::LoadImageByte(byte) => {
+                        accu2 = accu1;
+                        accu1 = u32::from(self.image[usize::from(byte)]);
+                    }
+                    Op::LoadImageWord(byte) => {
+                        accu2 = accu1;
+                        accu1 = self.read_image(Width::Word, byte);
+                    }
+                    Op::LoadImageDouble(byte) => {
+                        accu2 = accu1;
+                        accu1 = self.read_image(Width::Double, byte);
+                    }
+                    Op::TransferImageByte(byte) => self.image[usize::from(byte)] = accu1 as u8,
+                    Op::TransferImageWord(byte) => self.write_image(Width::Word, byte, accu1),
+                    Op::TransferImageDouble(byte) => self.write_image(Width::Double, byte, accu1),
+                    Op::LoadConstant(value) => {
+                        accu2 = accu1;
+                        accu1 = value;
+                    }
+                    Op::Arithmetic(kind) => arith::arithmetic(kind, &mut accu1, accu2, &mut status),
+                    Op::ArithmeticStack(kind) => {
+                        arith::arithmetic(kind, &mut accu1, accu2, &mut status);
+                        // Four accumulators: ACCU 3 moves to ACCU 2, ACCU 4 to ACCU 3.
+                        accu2 = self.level.accu3;
+                        self.level.accu3 = self.level.accu4;
+                    }
+                    Op::Compare(kind) => arith::compare(kind, accu1, accu2, &mut status),
+                    Op::Jump(condition, target) => {
+                        let taken = match condition {
+                            JumpCondition::Always => true,
+                            JumpCondition::Rlo => status.rlo(),
+                            JumpCondition::Zero => !status.cc1() && !status.cc0(),
+                            JumpCondition::NotZero => status.cc1() != status.cc0(),
+                            JumpCondition::Positive => status.cc1() && !status.cc0(),
+                            JumpCondition::Minus => !status.cc1() && status.cc0(),
+                            JumpCondition::Overflow => status.ov(),
+                        };
+                        if condition == JumpCondition::Rlo {
+                            status.after_jump();
+                        }
+                        if taken {
+                            let jump_pc = pc as u32 - 1;
+                            let backward = (target as usize) < pc;
+                            move_to!(target as usize, code, elapsed);
+                            if !OPERATION_POINTS && backward {
+                                let clock = now!();
+                                if clock >= self.attention_at {
+                                    let start = pass_start.max(self.last_point_at);
+                                    self.note_stretch(jump_pc, start, clock);
+                                    break 'run Exit::Point(Point::Loop);
+                                }
+                                pass_start = clock;
+                            }
+                        }
+                    }
+                    Op::Call {
+                        block: target,
+                        conditional,
+                        params,
+                    } => {
+                        if conditional && !status.rlo() {
+                            status.after_jump();
+                            probe_after!('run, op_pc, op);
+                            continue 'run;
+                        }
+                        status.after_jump();
+                        if self.frames.len() >= self.level.frame_limit {
+                            sync!();
+                            break 'run Exit::Stop(self.stop(
+                                StopCause::Stueb,
+                                pc as u32 - 1,
+                                StopDetail::None,
+                            ));
+                        }
+                        probe_after!('run, op_pc, op);
+                        let caller = self.level.block;
+                        let call_pc = pc as u32 - 1;
+                        self.frames.push(Frame {
+                            block: caller,
+                            pc: pc as u32,
+                            open_db: self.level.open_db,
+                            params: self.level.params,
+                        });
+                        self.level.block = target;
+                        self.level.params = params;
+                        let callee = program.body(target, params);
+                        let times = &program.blocks[usize::from(target)].elapsed;
+                        move_to!(0, callee, &times[..=callee.len()]);
+                        let clock = now!();
+                        self.mark_point(clock, caller, call_pc);
+                        if self.tracer.enabled {
+                            self.clock = clock;
+                            self.trace_call(caller, target);
+                        }
+                        if clock >= self.attention_at {
+                            self.last_op = (caller, call_pc);
+                            break 'run Exit::Point(Point::BlockCall);
+                        }
+                        continue 'run;
+                    }
+                    Op::BlockEnd => {
+                        status.end_string();
+                        block_end!('run, op);
+                        continue 'run;
+                    }
+                    Op::BlockEndUnconditional => {
+                        status.after_jump();
+                        block_end!('run, op);
+                        continue 'run;
+                    }
+                    Op::BlockEndConditional => {
+                        let taken = status.rlo();
+                        status.after_jump();
+                        if !taken {
+                            probe_after!('run, op_pc, op);
+                            continue 'run;
+                        }
+                        block_end!('run, op);
+                        continue 'run;
+                    }
+                    Op::Formal { .. } | Op::Indirect { .. } => {
+                        sync!();
+                        match self.concrete(op, pc as u32 - 1) {
+                            Ok((concrete, consumes_next)) => {
+                                if consumes_next {
+                                    probe_after!('run, op_pc, op);
+                                    if pc < code.len() {
+                                        pc += 1;
+                                        op_pc += 1;
+                                        self.clock = now!();
+                                    }
+                                }
+                                reload!();
+                                op = concrete;
+                                continue 'dispatch;
+                            }
+                            Err(stop) => break 'run Exit::Stop(stop),
+                        }
+                    }
+                    Op::LogicOther(..)
+                    | Op::WriteData { .. }
+                    | Op::AndBracket
+                    | Op::OrBracket
+                    | Op::CloseBracket
+                    | Op::LoadData(..)
+                    | Op::TransferData(..)
+                    | Op::LoadPeripheral { .. }
+                    | Op::TransferPeripheral { .. }
+                    | Op::LoadTimer(_)
+                    | Op::LoadTimerCoded(_)
+                    | Op::LoadCounter(_)
+                    | Op::LoadCounterCoded(_)
+                    | Op::StartTimer(..)
+                    | Op::EnableTimer(_)
+                    | Op::ResetTimer(_)
+                    | Op::CountUp(_)
+                    | Op::CountDown(_)
+                    | Op::SetCounter(_)
+                    | Op::ResetCounter(_)
+                    | Op::EnableCounter(_)
+                    | Op::CallMissing { .. }
+                    | Op::OpenDb(_)
+                    | Op::GenerateDb(_)
+                    | Op::Nop
+                    | Op::Stop
+                    | Op::WordLogic(_)
+                    | Op::ShiftLeft(_)
+                    | Op::ShiftRight(_)
+                    | Op::OnesComplement
+                    | Op::TwosComplement
+                    | Op::Swap
+                    | Op::Enter
+                    | Op::Increment(_)
+                    | Op::Decrement(_)
+                    | Op::SetUnconditional(_)
+                    | Op::ResetUnconditional(_)
+                    | Op::TestBit { .. }
+                    | Op::DisableInterrupts
+                    | Op::EnableInterrupts => {
+                        sync!();
+                        let result = self.execute_other(op, pc as u32 - 1);
+                        reload!();
+                        if let Err((cause, detail)) = result {
+                            break 'run Exit::Stop(self.stop(cause, pc as u32 - 1, detail));
+                        }
+                    }
+                }
+                break 'dispatch;
+            }
+            probe_after!('run, op_pc, op);
+            if OPERATION_POINTS && now!() >= self.attention_at {
+                self.last_op = (self.level.block, pc as u32 - 1);
+                break 'run Exit::Point(Point::Operation);
+            }
+        };
+        sync!();
+        self.level.pc = pc as u32;
+        self.instructions = count_base.wrapping_add(pc as u64);
+        exit
+    }
+}
