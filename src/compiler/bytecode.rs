@@ -11,6 +11,7 @@ pub struct ImageBit {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u8)]
 pub enum Logic {
     And,
     AndNot,

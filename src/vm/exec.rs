@@ -310,13 +310,7 @@ impl Cpu {
                     BitSource::Timer(n) => self.timers[usize::from(n)].bit(now),
                     BitSource::Counter(n) => self.counters[usize::from(n)].bit(),
                 };
-                self.level.status.scan(value);
-                match logic {
-                    Logic::And => self.level.status.and(value),
-                    Logic::AndNot => self.level.status.and(!value),
-                    Logic::Or => self.level.status.or(value),
-                    Logic::OrNot => self.level.status.or(!value),
-                }
+                self.level.status.scanned(logic, value);
             }
             Op::WriteData { write, word, bit } => {
                 match write {

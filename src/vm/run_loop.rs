@@ -247,26 +247,10 @@ impl Cpu {
             // A formal operand or a `DO` is resolved, then its op dispatched again.
             'dispatch: loop {
                 match op {
-                    Op::And(bit) => {
-                        let value = self.image_bit(bit);
-                        status.scan(value);
-                        status.and(value);
-                    }
-                    Op::AndNot(bit) => {
-                        let value = self.image_bit(bit);
-                        status.scan(value);
-                        status.and(!value);
-                    }
-                    Op::Or(bit) => {
-                        let value = self.image_bit(bit);
-                        status.scan(value);
-                        status.or(value);
-                    }
-                    Op::OrNot(bit) => {
-                        let value = self.image_bit(bit);
-                        status.scan(value);
-                        status.or(!value);
-                    }
+                    Op::And(bit) => status.scanned(Logic::And, self.image_bit(bit)),
+                    Op::AndNot(bit) => status.scanned(Logic::AndNot, self.image_bit(bit)),
+                    Op::Or(bit) => status.scanned(Logic::Or, self.image_bit(bit)),
+                    Op::OrNot(bit) => status.scanned(Logic::OrNot, self.image_bit(bit)),
                     Op::Assign(bit) => {
                         self.write_image_bit(bit, status.rlo());
                         status.end_string();

@@ -6,6 +6,8 @@
 //! string so far in the OR bit and starts a new AND function. `=`, `S`, `R` end the string but
 //! keep the RLO for further assignments.
 
+use crate::compiler::bytecode::Logic;
+
 const RLO: u8 = 1;
 /// A logic string is in progress: the next `A`/`O` combines instead of loading.
 const FIRST_CHECK_DONE: u8 = 2;
@@ -60,12 +62,6 @@ impl Status {
         self.get(OR_BIT)
     }
 
-    /// A bit operand was scanned: STA shows its signal state.
-    #[inline(always)]
-    pub fn scan(&mut self, value: bool) {
-        self.bits = self.bits & !STA | if value { STA } else { 0 };
-    }
-
     pub fn set_condition(&mut self, cc1: bool, cc0: bool) {
         self.put(CC1, cc1);
         self.put(CC0, cc0);
@@ -81,18 +77,20 @@ impl Status {
 
     #[inline(always)]
     pub fn and(&mut self, value: bool) {
-        let combined = (self.get(RLO) | !self.get(FIRST_CHECK_DONE)) & value | self.get(OR_BIT);
-        self.bits = self.bits & !RLO | FIRST_CHECK_DONE | u8::from(combined);
+        self.bits = and(self.bits, value);
     }
 
     #[inline(always)]
     pub fn or(&mut self, value: bool) {
-        let before = if self.get(FIRST_CHECK_DONE) {
-            self.get(RLO)
-        } else {
-            self.get(OR_BIT)
-        };
-        self.bits = self.bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | u8::from(before | value);
+        self.bits = or(self.bits, value);
+    }
+
+    /// `A`, `AN`, `O`, `ON` with a bit operand whose signal state is `value`: the scan (STA)
+    /// and the combination in one table lookup, so the loop's bit logic does not branch.
+    #[inline(always)]
+    pub fn scanned(&mut self, logic: Logic, value: bool) {
+        let index = usize::from(self.bits) << 1 | usize::from(value);
+        self.bits = SCANNED[logic as usize][index];
     }
 
     /// `O` without an operand: OR of AND functions.
@@ -135,6 +133,38 @@ impl Status {
         self.bits = self.bits & !(CC1 | CC0 | OV) | codes | flow;
     }
 }
+
+const fn and(bits: u8, value: bool) -> u8 {
+    let rlo = bits & RLO != 0;
+    let first = bits & FIRST_CHECK_DONE == 0;
+    let combined = (rlo | first) & value | (bits & OR_BIT != 0);
+    bits & !RLO | FIRST_CHECK_DONE | combined as u8
+}
+
+const fn or(bits: u8, value: bool) -> u8 {
+    let before = if bits & FIRST_CHECK_DONE != 0 {
+        bits & RLO != 0
+    } else {
+        bits & OR_BIT != 0
+    };
+    bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | (before | value) as u8
+}
+
+/// The status after each of [`Logic`]'s operations, by `status << 1 | signal state`.
+static SCANNED: [[u8; 512]; 4] = {
+    let mut tables = [[0u8; 512]; 4];
+    let mut index = 0;
+    while index < 512 {
+        let value = index & 1 != 0;
+        let bits = (index >> 1) as u8 & !STA | if value { STA } else { 0 };
+        tables[Logic::And as usize][index] = and(bits, value);
+        tables[Logic::AndNot as usize][index] = and(bits, !value);
+        tables[Logic::Or as usize][index] = or(bits, value);
+        tables[Logic::OrNot as usize][index] = or(bits, !value);
+        index += 1;
+    }
+    tables
+};
 
 /// One open bracket: the status before it, and how its result combines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -191,15 +221,37 @@ impl Brackets {
 mod tests {
     use super::*;
 
+    #[test]
+    fn the_scan_tables_are_the_scan_then_the_combination() {
+        for bits in 0..=u8::MAX {
+            for value in [false, true] {
+                let scanned = Status {
+                    bits: bits & !STA | if value { STA } else { 0 },
+                };
+                for (logic, combined) in [
+                    (Logic::And, and(scanned.bits, value)),
+                    (Logic::AndNot, and(scanned.bits, !value)),
+                    (Logic::Or, or(scanned.bits, value)),
+                    (Logic::OrNot, or(scanned.bits, !value)),
+                ] {
+                    let mut status = Status { bits };
+                    status.scanned(logic, value);
+                    assert_eq!(status.bits, combined, "{logic:?} {value} on {bits:#010b}");
+                    assert_eq!(status.sta(), value);
+                }
+            }
+        }
+    }
+
     fn string(ops: &[(&str, bool)]) -> bool {
         let mut status = Status::default();
         let mut brackets = Brackets::default();
         for (op, value) in ops {
             match *op {
-                "A" => status.and(*value),
-                "AN" => status.and(!value),
-                "O" => status.or(*value),
-                "ON" => status.or(!value),
+                "A" => status.scanned(Logic::And, *value),
+                "AN" => status.scanned(Logic::AndNot, *value),
+                "O" => status.scanned(Logic::Or, *value),
+                "ON" => status.scanned(Logic::OrNot, *value),
                 "O_" => status.or_alone(),
                 "A(" => assert!(brackets.open(&mut status, false, 7)),
                 "O(" => assert!(brackets.open(&mut status, true, 7)),
