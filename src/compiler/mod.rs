@@ -8,6 +8,7 @@ pub mod cost;
 pub mod error;
 pub mod lower;
 mod ranges;
+pub mod specialise;
 
 use std::collections::HashMap;
 
@@ -78,6 +79,8 @@ pub struct Program {
     /// The assignment list's symbols, to show operands by name.
     pub symbols: crate::symbols::Symbols,
     index: HashMap<BlockId, u16>,
+    /// By actual-parameter list: the called FB's body with its formal operands substituted.
+    specialised: Vec<Option<Box<[Op]>>>,
 }
 
 impl Program {
@@ -88,8 +91,17 @@ impl Program {
     /// The ops block `block` runs when called with actual-parameter list `params`.
     #[inline(always)]
     pub fn body(&self, block: u16, params: u16) -> &[Op] {
-        let _ = params;
-        &self.blocks[usize::from(block)].code
+        match self.specialised.get(usize::from(params)) {
+            Some(Some(body)) => body,
+            _ => &self.blocks[usize::from(block)].code,
+        }
+    }
+
+    /// The program with no specialised bodies, so every formal operand is resolved at run
+    /// time: the path a parameter passed on from a calling FB takes. Tests compare the two.
+    pub fn unspecialised(mut self) -> Self {
+        self.specialised.clear();
+        self
     }
 
     pub fn ob(&self, number: u8) -> Option<u16> {
@@ -122,7 +134,7 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
         diagnostics: Vec::new(),
     };
     let (logic, data) = compiler.collect(units);
-    let blocks = logic
+    let blocks: Vec<CompiledBlock> = logic
         .iter()
         .map(|(block, set)| compiler.compile_block(block, *set))
         .collect();
@@ -131,6 +143,7 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
         let span = diagnostic.span();
         (span.file, span.start)
     });
+    let specialised = specialise::specialise(&blocks, &compiler.param_lists, compiler.layout);
     Compiled {
         program: Program {
             profile,
@@ -141,6 +154,7 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
             indirect_templates: compiler.templates,
             symbols: crate::symbols::Symbols::default(),
             index: compiler.index,
+            specialised,
         },
         diagnostics: compiler.diagnostics,
     }

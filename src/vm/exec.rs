@@ -3,7 +3,7 @@
 
 use crate::ast::Address;
 use crate::compiler::bytecode::*;
-use crate::compiler::{Resolved, lower};
+use crate::compiler::{Resolved, lower, specialise};
 
 use super::io_trace::Modules;
 
@@ -95,8 +95,7 @@ impl Cpu {
     /// The op an operation on a formal operand amounts to with the running FB's actual.
     fn formal(&self, code: crate::mnemonics::OpCode, param: u8) -> Option<Op> {
         let actual = self.actual(param)?;
-        lower::lower(code, actual, self.program.layout, NO_PARAMS)
-            .filter(|op| !op.resolved_at_run_time())
+        specialise::formal_op(code, actual, self.program.layout)
     }
 
     /// The op after `DO` with its parameter replaced by `value`: for bit operands the high byte

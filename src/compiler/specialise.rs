@@ -1,0 +1,55 @@
+//! FB bodies specialised per call: an FB called with a list of actual parameters that are all
+//! known when the program is compiled (no parameter passed on from a calling FB) gets a copy
+//! of its code with every operation on a formal operand replaced by the op it stands for, so
+//! the VM runs it like any other op. Positions, times and spans stay those of the FB's own code;
+//! an operation that cannot be substituted keeps its formal op and fails at run time as before.
+
+use super::CompiledBlock;
+use super::bytecode::{NO_PARAMS, Op};
+use super::lower::{self, Layout, Resolved};
+
+/// For each actual-parameter list, the body of the FB called with it, where it can be built.
+pub fn specialise(
+    blocks: &[CompiledBlock],
+    param_lists: &[Vec<Resolved>],
+    layout: Layout,
+) -> Vec<Option<Box<[Op]>>> {
+    let mut bodies = vec![None; param_lists.len()];
+    for op in blocks.iter().flat_map(|block| &block.code) {
+        let Op::Call { block, params, .. } = *op else {
+            continue;
+        };
+        let (Some(list), Some(callee)) = (
+            param_lists.get(usize::from(params)),
+            blocks.get(usize::from(block)),
+        ) else {
+            continue;
+        };
+        if list
+            .iter()
+            .any(|actual| matches!(actual, Resolved::Formal(_)))
+        {
+            continue;
+        }
+        bodies[usize::from(params)] = Some(substituted(&callee.code, list, layout));
+    }
+    bodies
+}
+
+fn substituted(code: &[Op], list: &[Resolved], layout: Layout) -> Box<[Op]> {
+    code.iter()
+        .map(|op| match *op {
+            Op::Formal { op: code, param } => list
+                .get(usize::from(param))
+                .and_then(|actual| formal_op(code, *actual, layout))
+                .unwrap_or(*op),
+            other => other,
+        })
+        .collect()
+}
+
+/// The op an operation on a formal operand runs as with `actual`: what the VM substitutes at
+/// run time too. `None` when the actual does not fit the operation.
+pub fn formal_op(code: crate::mnemonics::OpCode, actual: Resolved, layout: Layout) -> Option<Op> {
+    lower::lower(code, actual, layout, NO_PARAMS).filter(|op| !op.resolved_at_run_time())
+}
