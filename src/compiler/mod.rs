@@ -88,13 +88,16 @@ impl Program {
         self.index.get(&id).copied()
     }
 
-    /// The ops block `block` runs when called with actual-parameter list `params`.
+    /// The ops block `block` runs when called with actual-parameter list `params`, and their
+    /// times as prefix sums (one more entry than ops).
     #[inline(always)]
-    pub fn body(&self, block: u16, params: u16) -> &[Op] {
-        match self.specialised.get(usize::from(params)) {
-            Some(Some(body)) => body,
-            _ => &self.blocks[usize::from(block)].code,
-        }
+    pub fn body(&self, block: u16, params: u16) -> (&[Op], &[u64]) {
+        let compiled = &self.blocks[usize::from(block)];
+        let code = match self.specialised.get(usize::from(params)) {
+            Some(Some(body)) => &body[..],
+            _ => &compiled.code[..],
+        };
+        (code, &compiled.elapsed)
     }
 
     /// The program with no specialised bodies, so every formal operand is resolved at run

@@ -120,11 +120,8 @@ impl Cpu {
 
     fn run_loop<const OPERATION_POINTS: bool, const STEPPING: bool>(&mut self) -> Exit {
         let program = Arc::clone(&self.program);
-        let mut code: &[Op] = program.body(self.level.block, self.level.params);
-        // Prefix sums of the op times, sliced to `code.len() + 1` so the fetch's bounds check
-        // covers `elapsed[pc]` too.
-        let mut elapsed: &[u64] =
-            &program.blocks[usize::from(self.level.block)].elapsed[..=code.len()];
+        // The op times as prefix sums (`code.len() + 1` entries).
+        let (mut code, mut elapsed) = program.body(self.level.block, self.level.params);
         let mut pc = self.level.pc as usize;
         // Wrapping arithmetic: a base may stand "below zero" (a jump forward early in a run),
         // the clock and count it gives never do.
@@ -225,9 +222,8 @@ impl Cpu {
                 self.level.block = frame.block;
                 self.level.open_db = frame.open_db;
                 self.level.params = frame.params;
-                let caller = program.body(frame.block, frame.params);
-                let times = &program.blocks[usize::from(frame.block)].elapsed;
-                move_to!(frame.pc as usize, caller, &times[..=caller.len()]);
+                let (caller, times) = program.body(frame.block, frame.params);
+                move_to!(frame.pc as usize, caller, times);
                 if clock >= self.attention_at {
                     self.last_op = (ended, end_pc);
                     break $run Exit::Point(Point::BlockEnd);
@@ -353,9 +349,8 @@ impl Cpu {
                         });
                         self.level.block = target;
                         self.level.params = params;
-                        let callee = program.body(target, params);
-                        let times = &program.blocks[usize::from(target)].elapsed;
-                        move_to!(0, callee, &times[..=callee.len()]);
+                        let (callee, times) = program.body(target, params);
+                        move_to!(0, callee, times);
                         let clock = now!();
                         self.mark_point(clock, caller, call_pc);
                         if self.tracer.enabled {
