@@ -60,13 +60,13 @@ impl Cpu {
 
     /// The op that a formal operand or a `DO` stands for; `DO` also consumes the next op.
     #[inline(never)]
-    pub(super) fn concrete(&mut self, op: Op, pc: u32) -> Result<(Op, bool), super::stop::Stop> {
+    pub(super) fn concrete(&mut self, op: Op) -> Result<(Op, bool), (StopCause, StopDetail)> {
         match op {
             Op::Formal { op: code, param } => match self.formal(code, param) {
                 Some(concrete) => Ok((concrete, false)),
                 None => {
                     let text = format!("formal parameter {} cannot be substituted here", param + 1);
-                    Err(self.stop(StopCause::Bcf, pc, StopDetail::Text(text)))
+                    Err((StopCause::Bcf, StopDetail::Text(text)))
                 }
             },
             Op::Indirect { source, template } => {
@@ -74,17 +74,14 @@ impl Cpu {
                     IndirectSource::FlagWord(byte) => self.read_image(Width::Word, byte),
                     IndirectSource::DataWord(word) => match self.data_word(word) {
                         Some(value) => u32::from(value),
-                        None => {
-                            let (cause, detail) = self.data_fault(word);
-                            return Err(self.stop(cause, pc, detail));
-                        }
+                        None => return Err(self.data_fault(word)),
                     },
                 };
                 match self.substitute(template, value as u16) {
                     Some(concrete) => Ok((concrete, true)),
                     None => {
                         let text = format!("DO parameter {value} gives no valid operand");
-                        Err(self.stop(StopCause::Bcf, pc, StopDetail::Text(text)))
+                        Err((StopCause::Bcf, StopDetail::Text(text)))
                     }
                 }
             }

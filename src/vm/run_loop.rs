@@ -18,6 +18,15 @@ use super::probe::Flow;
 use super::stop::{StopCause, StopDetail};
 use super::{Cpu, Exit, Frame, LastStretch, Point, StretchKind};
 
+/// How the loop ended: small and `Copy`, so leaving it carries no STOP report.
+#[derive(Clone, Copy)]
+enum Leave {
+    LevelEnd,
+    Point(Point),
+    /// A fault (or a halt) at op `pc`.
+    Stop(StopCause, u32),
+}
+
 impl Cpu {
     /// Runs the current level; `operation_points` makes every operation an interrupt point.
     /// With a probe set, the stepping variant shows it every operation.
@@ -43,20 +52,11 @@ impl Cpu {
         }
     }
 
-    /// The stop that ends a run a probe halted.
+    /// The STOP report of a fault the loop left with (built once, after the loop).
     #[cold]
-    fn halted_at(&self, pc: u32) -> super::stop::Stop {
-        self.stop(StopCause::Halt, pc, StopDetail::None)
-    }
-
-    /// The stop of a block that ran past its last op.
-    #[cold]
-    fn fell_off(&self, pc: u32) -> super::stop::Stop {
-        self.stop(
-            StopCause::Bcf,
-            pc,
-            StopDetail::Text("the block has no BE".into()),
-        )
+    #[inline(never)]
+    fn stop_at(&self, cause: StopCause, pc: u32, detail: StopDetail) -> super::stop::Stop {
+        self.stop(cause, pc, detail)
     }
 
     /// Marks a block change (an interrupt point in both modes): the stretch since the last
@@ -163,7 +163,7 @@ impl Cpu {
                     sync!();
                     self.level.pc = pc as u32;
                     if self.with_probe(Flow::Go, |probe, cpu| probe.before(cpu)) == Flow::Halt {
-                        break $run Exit::Stop(self.halted_at(pc as u32));
+                        break $run Leave::Stop(StopCause::Halt, pc as u32);
                     }
                     reload!();
                 }
@@ -177,7 +177,7 @@ impl Cpu {
                     let flow =
                         self.with_probe(Flow::Go, |probe, cpu| probe.after(cpu, block, at, op));
                     if flow == Flow::Halt {
-                        break $run Exit::Stop(self.halted_at(at));
+                        break $run Leave::Stop(StopCause::Halt, at);
                     }
                 }
             };
@@ -209,12 +209,12 @@ impl Cpu {
                 if level_end && !self.levels.is_empty() {
                     // An interrupt OB's end is no point yet: its data cycle comes first.
                     self.note_stretch(end_pc, self.last_point_at, clock);
-                    break $run Exit::LevelEnd;
+                    break $run Leave::LevelEnd;
                 }
                 self.mark_point(clock, ended, end_pc);
                 if level_end {
                     self.last_op = (ended, end_pc);
-                    break $run Exit::LevelEnd;
+                    break $run Leave::LevelEnd;
                 }
                 let Some(frame) = self.frames.pop() else {
                     unreachable!("a frame above the level base");
@@ -226,15 +226,18 @@ impl Cpu {
                 move_to!(frame.pc as usize, caller, times);
                 if clock >= self.attention_at {
                     self.last_op = (ended, end_pc);
-                    break $run Exit::Point(Point::BlockEnd);
+                    break $run Leave::Point(Point::BlockEnd);
                 }
             }};
         }
-        let exit = 'run: loop {
+        // Why the loop ended; a fault's detail waits in `detail` (the loop carries no report).
+        let mut detail = StopDetail::None;
+        let leave = 'run: loop {
             probe_before!('run);
             let Some(&fetched) = code.get(pc) else {
                 sync!();
-                break 'run Exit::Stop(self.fell_off(pc as u32));
+                detail = StopDetail::Text("the block has no BE".into());
+                break 'run Leave::Stop(StopCause::Bcf, pc as u32);
             };
             pc += 1;
             let mut op = fetched;
@@ -313,7 +316,7 @@ impl Cpu {
                                 if clock >= self.attention_at {
                                     let start = pass_start.max(self.last_point_at);
                                     self.note_stretch(jump_pc, start, clock);
-                                    break 'run Exit::Point(Point::Loop);
+                                    break 'run Leave::Point(Point::Loop);
                                 }
                                 pass_start = clock;
                             }
@@ -332,11 +335,7 @@ impl Cpu {
                         status.after_jump();
                         if self.frames.len() >= self.level.frame_limit {
                             sync!();
-                            break 'run Exit::Stop(self.stop(
-                                StopCause::Stueb,
-                                pc as u32 - 1,
-                                StopDetail::None,
-                            ));
+                            break 'run Leave::Stop(StopCause::Stueb, pc as u32 - 1);
                         }
                         probe_after!('run, op_pc, op);
                         let caller = self.level.block;
@@ -359,7 +358,7 @@ impl Cpu {
                         }
                         if clock >= self.attention_at {
                             self.last_op = (caller, call_pc);
-                            break 'run Exit::Point(Point::BlockCall);
+                            break 'run Leave::Point(Point::BlockCall);
                         }
                         continue 'run;
                     }
@@ -385,7 +384,7 @@ impl Cpu {
                     }
                     Op::Formal { .. } | Op::Indirect { .. } => {
                         sync!();
-                        match self.concrete(op, pc as u32 - 1) {
+                        match self.concrete(op) {
                             Ok((concrete, consumes_next)) => {
                                 if consumes_next {
                                     probe_after!('run, op_pc, op);
@@ -399,7 +398,10 @@ impl Cpu {
                                 op = concrete;
                                 continue 'dispatch;
                             }
-                            Err(stop) => break 'run Exit::Stop(stop),
+                            Err((cause, fault)) => {
+                                detail = fault;
+                                break 'run Leave::Stop(cause, pc as u32 - 1);
+                            }
                         }
                     }
                     Op::LogicOther(..)
@@ -445,8 +447,9 @@ impl Cpu {
                         sync!();
                         let result = self.execute_other(op, pc as u32 - 1);
                         reload!();
-                        if let Err((cause, detail)) = result {
-                            break 'run Exit::Stop(self.stop(cause, pc as u32 - 1, detail));
+                        if let Err((cause, fault)) = result {
+                            detail = fault;
+                            break 'run Leave::Stop(cause, pc as u32 - 1);
                         }
                     }
                 }
@@ -455,10 +458,15 @@ impl Cpu {
             probe_after!('run, op_pc, op);
             if OPERATION_POINTS && now!() >= self.attention_at {
                 self.last_op = (self.level.block, pc as u32 - 1);
-                break 'run Exit::Point(Point::Operation);
+                break 'run Leave::Point(Point::Operation);
             }
         };
         sync!();
+        let exit = match leave {
+            Leave::LevelEnd => Exit::LevelEnd,
+            Leave::Point(point) => Exit::Point(point),
+            Leave::Stop(cause, at) => Exit::Stop(self.stop_at(cause, at, detail)),
+        };
         self.level.pc = pc as u32;
         self.instructions = count_base.wrapping_add(pc as u64);
         exit
