@@ -66,5 +66,6 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         Op::Nop | Op::Stop | Op::DisableInterrupts | Op::EnableInterrupts | Op::Formal { .. } => {
             t.other
         }
+        Op::End => 0,
     }
 }

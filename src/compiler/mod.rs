@@ -1,6 +1,7 @@
 //! Compiler: checked blocks of statements to per-block bytecode, with the static checks of the
 //! front end (operand ranges, labels, FB parameters, operation sets, block existence).
 
+pub mod arena;
 mod brackets;
 pub mod bytecode;
 mod calls;
@@ -79,8 +80,8 @@ pub struct Program {
     /// The assignment list's symbols, to show operands by name.
     pub symbols: crate::symbols::Symbols,
     index: HashMap<BlockId, u16>,
-    /// By actual-parameter list: the called FB's body with its formal operands substituted.
-    specialised: Vec<Option<Box<[Op]>>>,
+    /// The code as the VM runs it, with the FB bodies specialised for their actuals.
+    pub arena: arena::Arena,
 }
 
 impl Program {
@@ -88,22 +89,10 @@ impl Program {
         self.index.get(&id).copied()
     }
 
-    /// The ops block `block` runs when called with actual-parameter list `params`, and their
-    /// times as prefix sums (one more entry than ops).
-    #[inline(always)]
-    pub fn body(&self, block: u16, params: u16) -> (&[Op], &[u64]) {
-        let compiled = &self.blocks[usize::from(block)];
-        let code = match self.specialised.get(usize::from(params)) {
-            Some(Some(body)) => &body[..],
-            _ => &compiled.code[..],
-        };
-        (code, &compiled.elapsed)
-    }
-
     /// The program with no specialised bodies, so every formal operand is resolved at run
     /// time: the path a parameter passed on from a calling FB takes. Tests compare the two.
     pub fn unspecialised(mut self) -> Self {
-        self.specialised.clear();
+        self.arena = arena::Arena::build(&self.blocks, &self.param_lists, self.layout, false);
         self
     }
 
@@ -146,7 +135,7 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
         let span = diagnostic.span();
         (span.file, span.start)
     });
-    let specialised = specialise::specialise(&blocks, &compiler.param_lists, compiler.layout);
+    let arena = arena::Arena::build(&blocks, &compiler.param_lists, compiler.layout, true);
     Compiled {
         program: Program {
             profile,
@@ -157,7 +146,7 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
             indirect_templates: compiler.templates,
             symbols: crate::symbols::Symbols::default(),
             index: compiler.index,
-            specialised,
+            arena,
         },
         diagnostics: compiler.diagnostics,
     }

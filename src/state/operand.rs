@@ -128,6 +128,7 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::BlockEndUnconditional
         | Op::Nop
         | Op::Stop
+        | Op::End
         | Op::Jump(..)
         | Op::WordLogic(_)
         | Op::ShiftLeft(_)

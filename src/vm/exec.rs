@@ -483,7 +483,8 @@ impl Cpu {
             | Op::BlockEndConditional
             | Op::BlockEndUnconditional
             | Op::Indirect { .. }
-            | Op::Formal { .. } => unreachable!("{op:?} is executed by the loop itself"),
+            | Op::Formal { .. }
+            | Op::End => unreachable!("{op:?} is executed by the loop itself"),
         }
         Ok(())
     }

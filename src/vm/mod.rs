@@ -40,6 +40,8 @@ pub struct Frame {
     pub pc: u32,
     pub open_db: Option<u8>,
     pub params: u16,
+    /// `pc` as a position in the program's arena, where the loop resumes.
+    pub resume: u32,
 }
 
 /// The registers and position of a processing level: what an interrupt OB saves and restores.

@@ -4,8 +4,8 @@
 //! unless a trace is being written.
 //!
 //! The registers of the running level live in locals. Time and the operation count are kept as
-//! bases against the position in the block: the clock is `time_base + elapsed[pc]` and the
-//! count `count_base + pc`, so straight code pays nothing per op for either, and a jump or a
+//! bases against the position in the program's arena: the clock is `time_base + times[pc]` and
+//! the count `count_base + pc`, so straight code pays nothing per op for either, and a jump or a
 //! block change moves the bases once.
 
 use std::sync::Arc;
@@ -120,12 +120,15 @@ impl Cpu {
 
     fn run_loop<const OPERATION_POINTS: bool, const STEPPING: bool>(&mut self) -> Exit {
         let program = Arc::clone(&self.program);
-        // The op times as prefix sums (`code.len() + 1` entries).
-        let (mut code, mut elapsed) = program.body(self.level.block, self.level.params);
-        let mut pc = self.level.pc as usize;
+        let arena = &program.arena;
+        // Every body in one array: `pc` is a position in it, `start` where the running body
+        // starts (so op `pc - start` of the block), `times` the op times as prefix sums.
+        let (code, times) = (&arena.ops[..], &arena.times[..]);
+        let mut start = arena.start(self.level.block, self.level.params);
+        let mut pc = start + self.level.pc as usize;
         // Wrapping arithmetic: a base may stand "below zero" (a jump forward early in a run),
         // the clock and count it gives never do.
-        let mut time_base = self.clock.wrapping_sub(elapsed[pc]);
+        let mut time_base = self.clock.wrapping_sub(times[pc]);
         let mut count_base = self.instructions.wrapping_sub(pc as u64);
         let mut status = self.level.status;
         let mut accu1 = self.level.accu1;
@@ -134,7 +137,13 @@ impl Cpu {
         let mut pass_start = self.last_point_at;
         macro_rules! now {
             () => {
-                time_base.wrapping_add(elapsed[pc])
+                time_base.wrapping_add(times[pc])
+            };
+        }
+        // The position in the block of the op just fetched.
+        macro_rules! at {
+            () => {
+                (pc - start) as u32 - 1
             };
         }
         // The registers live in locals; `sync!` hands them to `self` before anything else looks,
@@ -149,7 +158,7 @@ impl Cpu {
         }
         macro_rules! reload {
             () => {
-                time_base = self.clock.wrapping_sub(elapsed[pc]);
+                time_base = self.clock.wrapping_sub(times[pc]);
                 status = self.level.status;
                 accu1 = self.level.accu1;
                 accu2 = self.level.accu2;
@@ -161,9 +170,9 @@ impl Cpu {
             ($run:lifetime) => {
                 if STEPPING {
                     sync!();
-                    self.level.pc = pc as u32;
+                    self.level.pc = (pc - start) as u32;
                     if self.with_probe(Flow::Go, |probe, cpu| probe.before(cpu)) == Flow::Halt {
-                        break $run Leave::Stop(StopCause::Halt, pc as u32);
+                        break $run Leave::Stop(StopCause::Halt, (pc - start) as u32);
                     }
                     reload!();
                 }
@@ -182,24 +191,23 @@ impl Cpu {
                 }
             };
         }
-        // Moves control to op `$to` of `$code` (times `$elapsed`), settling the bases.
+        // Moves control to position `$to` of the body starting at `$start`, settling the bases.
         macro_rules! move_to {
-            ($to:expr, $code:expr, $elapsed:expr) => {
+            ($to:expr, $start:expr) => {
                 let clock = now!();
                 let to: usize = $to;
                 count_base = count_base.wrapping_add(pc as u64).wrapping_sub(to as u64);
-                code = $code;
-                elapsed = $elapsed;
+                start = $start;
                 pc = to;
-                time_base = clock.wrapping_sub(elapsed[pc]);
+                time_base = clock.wrapping_sub(times[pc]);
             };
         }
         // The block end of the running block, after its status rule was applied.
         macro_rules! block_end {
             ($run:lifetime, $op:expr) => {{
-                probe_after!($run, pc as u32 - 1, $op);
+                probe_after!($run, at!(), $op);
                 let ended = self.level.block;
-                let end_pc = pc as u32 - 1;
+                let end_pc = at!();
                 let clock = now!();
                 let level_end = self.frames.len() == self.level.level_base;
                 if self.tracer.enabled {
@@ -222,8 +230,8 @@ impl Cpu {
                 self.level.block = frame.block;
                 self.level.open_db = frame.open_db;
                 self.level.params = frame.params;
-                let (caller, times) = program.body(frame.block, frame.params);
-                move_to!(frame.pc as usize, caller, times);
+                let resume = frame.resume as usize;
+                move_to!(resume, resume - frame.pc as usize);
                 if clock >= self.attention_at {
                     self.last_op = (ended, end_pc);
                     break $run Leave::Point(Point::BlockEnd);
@@ -234,15 +242,15 @@ impl Cpu {
         let mut detail = StopDetail::None;
         let leave = 'run: loop {
             probe_before!('run);
+            // Every body ends in `End`, so this finds an op; past the arena it stops all the same.
             let Some(&fetched) = code.get(pc) else {
-                sync!();
                 detail = StopDetail::Text("the block has no BE".into());
-                break 'run Leave::Stop(StopCause::Bcf, pc as u32);
+                break 'run Leave::Stop(StopCause::Bcf, (pc - start) as u32);
             };
             pc += 1;
             let mut op = fetched;
             // The op's own position, for the probe: after a `DO`, the op it ran.
-            let mut op_pc = pc as u32 - 1;
+            let mut op_pc = at!();
             // A formal operand or a `DO` is resolved, then its op dispatched again.
             'dispatch: loop {
                 match op {
@@ -308,9 +316,10 @@ impl Cpu {
                             status.after_jump();
                         }
                         if taken {
-                            let jump_pc = pc as u32 - 1;
-                            let backward = (target as usize) < pc;
-                            move_to!(target as usize, code, elapsed);
+                            let jump_pc = at!();
+                            let to = start + target as usize;
+                            let backward = to < pc;
+                            move_to!(to, start);
                             if !OPERATION_POINTS && backward {
                                 let clock = now!();
                                 if clock >= self.attention_at {
@@ -335,21 +344,22 @@ impl Cpu {
                         status.after_jump();
                         if self.frames.len() >= self.level.frame_limit {
                             sync!();
-                            break 'run Leave::Stop(StopCause::Stueb, pc as u32 - 1);
+                            break 'run Leave::Stop(StopCause::Stueb, at!());
                         }
                         probe_after!('run, op_pc, op);
                         let caller = self.level.block;
-                        let call_pc = pc as u32 - 1;
+                        let call_pc = at!();
                         self.frames.push(Frame {
                             block: caller,
-                            pc: pc as u32,
+                            pc: call_pc + 1,
                             open_db: self.level.open_db,
                             params: self.level.params,
+                            resume: pc as u32,
                         });
                         self.level.block = target;
                         self.level.params = params;
-                        let (callee, times) = program.body(target, params);
-                        move_to!(0, callee, times);
+                        let entry = arena.start(target, params);
+                        move_to!(entry, entry);
                         let clock = now!();
                         self.mark_point(clock, caller, call_pc);
                         if self.tracer.enabled {
@@ -382,13 +392,19 @@ impl Cpu {
                         block_end!('run, op);
                         continue 'run;
                     }
+                    Op::End => {
+                        // Back onto the end, where a block without `BE` stops.
+                        pc -= 1;
+                        detail = StopDetail::Text("the block has no BE".into());
+                        break 'run Leave::Stop(StopCause::Bcf, (pc - start) as u32);
+                    }
                     Op::Formal { .. } | Op::Indirect { .. } => {
                         sync!();
                         match self.concrete(op) {
                             Ok((concrete, consumes_next)) => {
                                 if consumes_next {
                                     probe_after!('run, op_pc, op);
-                                    if pc < code.len() {
+                                    if code.get(pc).is_some_and(|next| *next != Op::End) {
                                         pc += 1;
                                         op_pc += 1;
                                         self.clock = now!();
@@ -400,7 +416,7 @@ impl Cpu {
                             }
                             Err((cause, fault)) => {
                                 detail = fault;
-                                break 'run Leave::Stop(cause, pc as u32 - 1);
+                                break 'run Leave::Stop(cause, at!());
                             }
                         }
                     }
@@ -445,11 +461,11 @@ impl Cpu {
                     | Op::DisableInterrupts
                     | Op::EnableInterrupts => {
                         sync!();
-                        let result = self.execute_other(op, pc as u32 - 1);
+                        let result = self.execute_other(op, at!());
                         reload!();
                         if let Err((cause, fault)) = result {
                             detail = fault;
-                            break 'run Leave::Stop(cause, pc as u32 - 1);
+                            break 'run Leave::Stop(cause, at!());
                         }
                     }
                 }
@@ -457,7 +473,7 @@ impl Cpu {
             }
             probe_after!('run, op_pc, op);
             if OPERATION_POINTS && now!() >= self.attention_at {
-                self.last_op = (self.level.block, pc as u32 - 1);
+                self.last_op = (self.level.block, at!());
                 break 'run Leave::Point(Point::Operation);
             }
         };
@@ -467,7 +483,7 @@ impl Cpu {
             Leave::Point(point) => Exit::Point(point),
             Leave::Stop(cause, at) => Exit::Stop(self.stop_at(cause, at, detail)),
         };
-        self.level.pc = pc as u32;
+        self.level.pc = (pc - start) as u32;
         self.instructions = count_base.wrapping_add(pc as u64);
         exit
     }

@@ -1,0 +1,83 @@
+//! The program's code as the VM runs it: every block's ops, and every FB body specialised for
+//! its actual parameters, in one array, each body followed by an [`Op::End`] guard. Positions
+//! into it are global, so a block change moves one index and the loop keeps one code pointer;
+//! the times are prefix sums per body at the same positions (the guard's is the body's total).
+
+use super::CompiledBlock;
+use super::bytecode::{NO_PARAMS, Op};
+use super::lower::{Layout, Resolved};
+use super::specialise;
+
+#[derive(Debug, Clone, Default)]
+pub struct Arena {
+    pub ops: Box<[Op]>,
+    /// `times[i]`: the time in ns of the ops of i's body before i.
+    pub times: Box<[u64]>,
+    /// Where each block's own body starts.
+    block_start: Box<[u32]>,
+    /// Where the body an FB runs with each actual-parameter list starts: its specialised body,
+    /// or its own.
+    list_start: Box<[u32]>,
+}
+
+impl Arena {
+    /// Lays out `blocks`, with the specialised FB bodies when `specialised`.
+    pub fn build(
+        blocks: &[CompiledBlock],
+        param_lists: &[Vec<Resolved>],
+        layout: Layout,
+        specialised: bool,
+    ) -> Self {
+        let mut arena = Arena::default();
+        let mut ops = Vec::new();
+        let mut times = Vec::new();
+        let mut place = |code: &[Op], elapsed: &[u64]| {
+            let start = ops.len() as u32;
+            ops.extend_from_slice(code);
+            ops.push(Op::End);
+            times.extend_from_slice(&elapsed[..=code.len()]);
+            start
+        };
+        arena.block_start = blocks
+            .iter()
+            .map(|block| place(&block.code, &block.elapsed))
+            .collect();
+        let bodies = if specialised {
+            specialise::specialise(blocks, param_lists, layout)
+        } else {
+            vec![None; param_lists.len()]
+        };
+        let mut callee = vec![None; param_lists.len()];
+        for op in blocks.iter().flat_map(|block| &block.code) {
+            if let Op::Call { block, params, .. } = *op
+                && let Some(slot) = callee.get_mut(usize::from(params))
+            {
+                *slot = Some(block);
+            }
+        }
+        arena.list_start = bodies
+            .iter()
+            .zip(&callee)
+            .map(|(body, callee)| match (body, callee) {
+                (Some(body), Some(block)) => place(body, &blocks[usize::from(*block)].elapsed),
+                (None, Some(block)) => arena.block_start[usize::from(*block)],
+                // A list no call uses: nothing runs with it.
+                (_, None) => 0,
+            })
+            .collect();
+        arena.ops = ops.into_boxed_slice();
+        arena.times = times.into_boxed_slice();
+        arena
+    }
+
+    /// Where the body block `block` runs with actual-parameter list `params` starts.
+    #[inline(always)]
+    pub fn start(&self, block: u16, params: u16) -> usize {
+        let start = if params == NO_PARAMS {
+            self.block_start.get(usize::from(block))
+        } else {
+            self.list_start.get(usize::from(params))
+        };
+        start.map_or(0, |start| *start as usize)
+    }
+}
