@@ -129,6 +129,18 @@ impl Cpu {
         // Wrapping arithmetic: a base may stand "below zero" (a jump forward early in a run),
         // the clock and count it gives never do.
         let mut time_base = self.clock.wrapping_sub(times[pc]);
+        // With operation points: the attention time on the scale of `times`, so the check after
+        // each op is one comparison (`times[pc] >= deadline` is `clock >= attention_at`). Kept
+        // current wherever `time_base` or `attention_at` can change.
+        let mut deadline = u64::MAX;
+        macro_rules! rebase {
+            () => {
+                if OPERATION_POINTS {
+                    deadline = deadline_on(self.attention_at, time_base);
+                }
+            };
+        }
+        rebase!();
         let mut count_base = self.instructions.wrapping_sub(pc as u64);
         let mut status = self.level.status;
         let mut accu1 = self.level.accu1;
@@ -159,6 +171,7 @@ impl Cpu {
         macro_rules! reload {
             () => {
                 time_base = self.clock.wrapping_sub(times[pc]);
+                rebase!();
                 status = self.level.status;
                 accu1 = self.level.accu1;
                 accu2 = self.level.accu2;
@@ -200,6 +213,7 @@ impl Cpu {
                 start = $start;
                 pc = to;
                 time_base = clock.wrapping_sub(times[pc]);
+                rebase!();
             };
         }
         // The block end of the running block, after its status rule was applied.
@@ -472,7 +486,7 @@ impl Cpu {
                 break 'dispatch;
             }
             probe_after!('run, op_pc, op);
-            if OPERATION_POINTS && now!() >= self.attention_at {
+            if OPERATION_POINTS && times[pc] >= deadline {
                 self.last_op = (self.level.block, at!());
                 break 'run Leave::Point(Point::Operation);
             }
@@ -486,5 +500,43 @@ impl Cpu {
         self.level.pc = (pc - start) as u32;
         self.instructions = count_base.wrapping_add(pc as u64);
         exit
+    }
+}
+
+/// `attention_at` on the scale of the prefix times of a body whose clock is
+/// `time_base + times[pc]`: the first time value at which the clock reaches it. `time_base` may
+/// stand below zero (wrapped).
+fn deadline_on(attention_at: u64, time_base: u64) -> u64 {
+    if (time_base as i64) < 0 {
+        attention_at.saturating_add(time_base.wrapping_neg())
+    } else {
+        attention_at.saturating_sub(time_base)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::deadline_on;
+
+    #[test]
+    fn the_deadline_is_the_attention_time_on_the_scale_of_the_body() {
+        let bases: [i64; 7] = [-5_000_000, -1_000, -1, 0, 1, 999, 7_000_000];
+        let attentions = [0, 1, 500, 1_000, 6_999_999, 7_000_000, 9_000_000, u64::MAX];
+        for base in bases {
+            for attention in attentions {
+                let deadline = deadline_on(attention, base as u64);
+                for time in [0u64, 1, 499, 500, 1_001, 2_000_000, 8_000_000, 12_000_000] {
+                    let clock = i128::from(base) + i128::from(time);
+                    if clock < 0 {
+                        continue;
+                    }
+                    assert_eq!(
+                        time >= deadline,
+                        clock >= i128::from(attention),
+                        "base {base} attention {attention} time {time}"
+                    );
+                }
+            }
+        }
     }
 }
