@@ -1,6 +1,6 @@
 //! Front-end speed: lex + parse + compile of a generated 100,000-line program, in the plain
 //! form and as the PG listing `awl dump --listing` writes of it (statement addresses, segment
-//! headings). Target: at least 1.4 million lines per second on the plain form, in release
+//! headings). Target: at least 2 million lines per second on the plain form, in release
 //! mode; the listing's rate is reported.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};

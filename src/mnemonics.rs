@@ -922,9 +922,56 @@ pub fn key(word: &str) -> Option<u64> {
     Some(u64::from_le_bytes(packed))
 }
 
-/// Words of one kind, sorted by (set, packed word) for binary search.
+/// Words of one kind: per set, an open-addressing hash table of packed words (the front end
+/// looks up every word of every line, so this is on its hot path).
 struct Table<V> {
-    entries: Vec<((MnemonicSet, u64), V)>,
+    english: Slots<V>,
+    german: Slots<V>,
+}
+
+struct Slots<V> {
+    slots: Box<[Option<(u64, V)>]>,
+    mask: usize,
+}
+
+impl<V: Copy> Slots<V> {
+    /// The table of `entries`; of two rows with one word, the first counts.
+    fn new(entries: impl ExactSizeIterator<Item = (u64, V)>) -> Self {
+        let size = (entries.len() * 4).next_power_of_two();
+        let mut table = Slots {
+            slots: vec![None; size].into_boxed_slice(),
+            mask: size - 1,
+        };
+        for (key, value) in entries {
+            let mut at = Self::home(key) & table.mask;
+            loop {
+                match table.slots[at] {
+                    None => {
+                        table.slots[at] = Some((key, value));
+                        break;
+                    }
+                    Some((taken, _)) if taken == key => break,
+                    Some(_) => at = (at + 1) & table.mask,
+                }
+            }
+        }
+        table
+    }
+
+    fn home(key: u64) -> usize {
+        (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 40) as usize
+    }
+
+    fn get(&self, key: u64) -> Option<V> {
+        let mut at = Self::home(key) & self.mask;
+        loop {
+            match self.slots.get(at)? {
+                None => return None,
+                Some((found, value)) if *found == key => return Some(*value),
+                Some(_) => at = (at + 1) & self.mask,
+            }
+        }
+    }
 }
 
 impl<V: Copy> Table<V> {
@@ -933,28 +980,25 @@ impl<V: Copy> Table<V> {
         words: impl Fn(&T) -> (&'static str, &'static str),
         value: impl Fn(&T) -> V,
     ) -> Self {
-        let mut entries = Vec::with_capacity(rows.len() * 2);
-        for row in rows {
-            let (en, de) = words(row);
-            for (set, word) in [(MnemonicSet::English, en), (MnemonicSet::German, de)] {
-                entries.push((
-                    (set, key(word).expect("table words are short ASCII")),
-                    value(row),
-                ));
-            }
+        let (words, value) = (&words, &value);
+        let entries = |pick: fn((&'static str, &'static str)) -> &'static str| {
+            rows.iter().map(move |row| {
+                let word = pick(words(row));
+                (key(word).expect("table words are short ASCII"), value(row))
+            })
+        };
+        Table {
+            english: Slots::new(entries(|(en, _)| en)),
+            german: Slots::new(entries(|(_, de)| de)),
         }
-        entries.sort_by_key(|(slot, _)| *slot);
-        entries.dedup_by_key(|(slot, _)| *slot);
-        Table { entries }
     }
 
     fn get(&self, set: MnemonicSet, word: &str) -> Option<V> {
-        let slot = (set, key(word)?);
-        let index = self
-            .entries
-            .binary_search_by_key(&slot, |(slot, _)| *slot)
-            .ok()?;
-        Some(self.entries[index].1)
+        let slots = match set {
+            MnemonicSet::English => &self.english,
+            MnemonicSet::German => &self.german,
+        };
+        slots.get(key(word)?)
     }
 }
 
@@ -1055,6 +1099,25 @@ mod tests {
     fn operations_are_in_op_code_order() {
         for (index, info) in OPERATIONS.iter().enumerate() {
             assert_eq!(info.op as usize, index, "{:?}", info.op);
+        }
+    }
+
+    #[test]
+    fn every_word_of_the_tables_is_found_and_others_are_not() {
+        for set in [MnemonicSet::English, MnemonicSet::German] {
+            for info in OPERATIONS {
+                let word = op_word(set, info.op);
+                let found = operation(set, word).map(|found| op_word(set, found.op));
+                assert_eq!(found, Some(word), "{set:?} {word}");
+                assert!(operation(set, &word.to_ascii_lowercase()).is_some());
+            }
+            for info in AREAS {
+                assert!(area(set, area_word(set, info.area)).is_some());
+            }
+            for word in ["", "XYZZY", "TOOLONGWORD", "Ä", "=F"] {
+                assert!(operation(set, word).is_none(), "{set:?} {word}");
+                assert!(area(set, word).is_none(), "{set:?} {word}");
+            }
         }
     }
 

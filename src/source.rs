@@ -126,6 +126,12 @@ fn utf16(bytes: &[u8], unit: fn([u8; 2]) -> u16) -> String {
 
 /// Lone CRs become LFs; control characters become their control pictures.
 fn clean(text: &str) -> String {
+    // Most sources have nothing to replace: copy them whole.
+    let plain =
+        |byte: u8| byte >= 0x20 && byte != 0x7F || matches!(byte, b'\t' | b'\n' | 0x0B | 0x0C);
+    if text.bytes().all(plain) {
+        return text.to_string();
+    }
     let mut out = String::with_capacity(text.len());
     let mut chars = text.chars().peekable();
     while let Some(c) = chars.next() {
@@ -281,6 +287,14 @@ pub fn normalize(path: &Path) -> std::path::PathBuf {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cleaning_keeps_plain_text_and_makes_control_characters_visible() {
+        let plain = "OB 1\n\tA  I 0.0 ; Ä\x0B\x0C\n";
+        assert_eq!(clean(plain), plain);
+        assert_eq!(clean("A\r\nB\rC"), "A\r\nB\nC");
+        assert_eq!(clean("A\x01B\x7F"), "A\u{2401}B\u{2421}");
+    }
 
     #[test]
     fn files_in_memory_are_found_by_their_normal_path() {
