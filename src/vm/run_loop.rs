@@ -254,7 +254,17 @@ impl Cpu {
         }
         // Why the loop ended; a fault's detail waits in `detail` (the loop carries no report).
         let mut detail = StopDetail::None;
+        // With operation points: the op that just ran ended at a point (the check of it is made
+        // here, at the top, so every arm goes straight back to one place).
+        let mut ended_op = false;
         let leave = 'run: loop {
+            if OPERATION_POINTS && ended_op {
+                ended_op = false;
+                if times[pc] >= deadline {
+                    self.last_op = (self.level.block, at!());
+                    break 'run Leave::Point(Point::Operation);
+                }
+            }
             probe_before!('run);
             // Every body ends in `End`, so this finds an op; past the arena it stops all the same.
             let Some(&fetched) = code.get(pc) else {
@@ -486,10 +496,7 @@ impl Cpu {
                 break 'dispatch;
             }
             probe_after!('run, op_pc, op);
-            if OPERATION_POINTS && times[pc] >= deadline {
-                self.last_op = (self.level.block, at!());
-                break 'run Leave::Point(Point::Operation);
-            }
+            ended_op = OPERATION_POINTS;
         };
         sync!();
         let exit = match leave {
