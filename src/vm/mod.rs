@@ -5,6 +5,7 @@
 //! the engine that decides, at the interrupt points the loop reports, which OB runs.
 
 pub mod arith;
+pub mod block_stack;
 pub mod bound;
 pub mod counters;
 pub mod cycle;
@@ -27,6 +28,7 @@ use crate::profile::{Nesting, Profile};
 use crate::source::SourceSet;
 use crate::trace::Tracer;
 
+use block_stack::BlockStack;
 use counters::Counter;
 use interrupts::{Engine, EngineConfig};
 use status::{Brackets, Status};
@@ -192,7 +194,7 @@ pub struct Cpu {
     pub data_blocks: Vec<Option<Vec<u16>>>,
     /// The running level's registers and position.
     pub level: LevelState,
-    pub frames: Vec<Frame>,
+    pub frames: BlockStack,
     /// The interrupted levels, innermost last.
     pub levels: Vec<LevelState>,
     pub mode: Mode,
@@ -264,7 +266,7 @@ impl Cpu {
                 interrupts_enabled: true,
                 interrupt_images: false,
             },
-            frames: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
+            frames: BlockStack::with_room(usize::from(profile.nesting_limit) * levels_capacity + 1),
             levels: Vec::with_capacity(levels_capacity),
             mode: Mode::Stop,
             clock: 0,

@@ -373,13 +373,16 @@ impl Cpu {
                         probe_after!('run, op_pc, op);
                         let caller = self.level.block;
                         let call_pc = at!();
-                        self.frames.push(Frame {
+                        let pushed = self.frames.push(Frame {
                             block: caller,
                             pc: call_pc + 1,
                             open_db: self.level.open_db,
                             params: self.level.params,
                             resume: pc as u32,
                         });
+                        if !pushed {
+                            break 'run Leave::Stop(StopCause::Stueb, call_pc);
+                        }
                         self.level.block = target;
                         self.level.params = params;
                         let entry = arena.start(target, params);

@@ -1,0 +1,95 @@
+//! The block stack: the return points of every processing level, innermost last. Its room is
+//! fixed when the CPU is made (the profile's nesting limit on every level, plus one), so a
+//! block call never allocates and never calls out of the execution loop.
+
+use std::ops::Deref;
+
+use super::Frame;
+
+#[derive(Debug, Clone)]
+pub struct BlockStack {
+    frames: Box<[Frame]>,
+    len: usize,
+}
+
+impl BlockStack {
+    pub fn with_room(room: usize) -> Self {
+        let empty = Frame {
+            block: super::IDLE,
+            pc: 0,
+            open_db: None,
+            params: crate::compiler::bytecode::NO_PARAMS,
+            resume: 0,
+        };
+        BlockStack {
+            frames: vec![empty; room].into_boxed_slice(),
+            len: 0,
+        }
+    }
+
+    /// The number of return points (not through the slice, which would check its bounds).
+    #[inline(always)]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Pushes a return point; `false` when the stack is full.
+    #[inline(always)]
+    pub fn push(&mut self, frame: Frame) -> bool {
+        match self.frames.get_mut(self.len) {
+            Some(slot) => {
+                *slot = frame;
+                self.len += 1;
+                true
+            }
+            None => false,
+        }
+    }
+
+    #[inline(always)]
+    pub fn pop(&mut self) -> Option<Frame> {
+        self.len = self.len.checked_sub(1)?;
+        self.frames.get(self.len).copied()
+    }
+}
+
+impl Deref for BlockStack {
+    type Target = [Frame];
+
+    fn deref(&self) -> &[Frame] {
+        &self.frames[..self.len]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame(pc: u32) -> Frame {
+        Frame {
+            block: 1,
+            pc,
+            open_db: None,
+            params: 0,
+            resume: pc,
+        }
+    }
+
+    #[test]
+    fn a_full_stack_refuses_and_an_empty_one_gives_nothing() {
+        let mut stack = BlockStack::with_room(2);
+        assert!(stack.push(frame(1)));
+        assert!(stack.push(frame(2)));
+        assert!(!stack.push(frame(3)));
+        assert_eq!(stack.len(), 2);
+        assert_eq!(stack.last().map(|f| f.pc), Some(2));
+        assert_eq!(stack.pop().map(|f| f.pc), Some(2));
+        assert_eq!(stack.pop().map(|f| f.pc), Some(1));
+        assert_eq!(stack.pop(), None);
+        assert!(stack.is_empty());
+    }
+}
