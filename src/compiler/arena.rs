@@ -42,27 +42,31 @@ impl Arena {
             .iter()
             .map(|block| place(&block.code, &block.elapsed))
             .collect();
-        let bodies = if specialised {
-            specialise::specialise(blocks, param_lists, layout)
-        } else {
-            vec![None; param_lists.len()]
-        };
+        // The FB each list is given to (every list belongs to one call).
         let mut callee = vec![None; param_lists.len()];
         for op in blocks.iter().flat_map(|block| &block.code) {
             if let Op::Call { block, params, .. } = *op
                 && let Some(slot) = callee.get_mut(usize::from(params))
             {
-                *slot = Some(block);
+                *slot = Some(usize::from(block));
             }
         }
-        arena.list_start = bodies
+        arena.list_start = param_lists
             .iter()
             .zip(&callee)
-            .map(|(body, callee)| match (body, callee) {
-                (Some(body), Some(block)) => place(body, &blocks[usize::from(*block)].elapsed),
-                (None, Some(block)) => arena.block_start[usize::from(*block)],
+            .map(|(list, callee)| {
                 // A list no call uses: nothing runs with it.
-                (_, None) => 0,
+                let Some(block) = *callee else {
+                    return 0;
+                };
+                let fb = &blocks[block];
+                match specialised
+                    .then(|| specialise::body(&fb.code, list, layout))
+                    .flatten()
+                {
+                    Some(body) => place(&body, &fb.elapsed),
+                    None => arena.block_start[block],
+                }
             })
             .collect();
         arena.ops = ops.into_boxed_slice();
@@ -70,7 +74,8 @@ impl Arena {
         arena
     }
 
-    /// Where the body block `block` runs with actual-parameter list `params` starts.
+    /// Where the body block `block` runs with actual-parameter list `params` starts (both
+    /// resolved by the compiler, so always known).
     #[inline(always)]
     pub fn start(&self, block: u16, params: u16) -> usize {
         let start = if params == NO_PARAMS {

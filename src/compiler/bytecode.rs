@@ -219,8 +219,6 @@ pub enum Op {
     /// The end of a block's code in the VM's arena: reached only by running past the last op
     /// of a block without `BE`. The compiler never emits it.
     End,
-    // The two ops resolved at run time come last and together, so the loop tells them from the
-    // rest with one comparison of the tag.
     /// `DO`: run the next op with its parameter taken from the source; `template` indexes the
     /// program's indirect templates.
     Indirect {

@@ -4,36 +4,19 @@
 //! the VM runs it like any other op. Positions, times and spans stay those of the FB's own code;
 //! an operation that cannot be substituted keeps its formal op and fails at run time as before.
 
-use super::CompiledBlock;
 use super::bytecode::{NO_PARAMS, Op};
 use super::lower::{self, Layout, Resolved};
 
-/// For each actual-parameter list, the body of the FB called with it, where it can be built.
-pub fn specialise(
-    blocks: &[CompiledBlock],
-    param_lists: &[Vec<Resolved>],
-    layout: Layout,
-) -> Vec<Option<Box<[Op]>>> {
-    let mut bodies = vec![None; param_lists.len()];
-    for op in blocks.iter().flat_map(|block| &block.code) {
-        let Op::Call { block, params, .. } = *op else {
-            continue;
-        };
-        let (Some(list), Some(callee)) = (
-            param_lists.get(usize::from(params)),
-            blocks.get(usize::from(block)),
-        ) else {
-            continue;
-        };
-        if list
-            .iter()
-            .any(|actual| matches!(actual, Resolved::Formal(_)))
-        {
-            continue;
-        }
-        bodies[usize::from(params)] = Some(substituted(&callee.code, list, layout));
+/// The body of FB code `code` called with the actual parameters `list`, when all of them are
+/// known (none is a formal operand of a calling FB).
+pub fn body(code: &[Op], list: &[Resolved], layout: Layout) -> Option<Box<[Op]>> {
+    if list
+        .iter()
+        .any(|actual| matches!(actual, Resolved::Formal(_)))
+    {
+        return None;
     }
-    bodies
+    Some(substituted(code, list, layout))
 }
 
 fn substituted(code: &[Op], list: &[Resolved], layout: Layout) -> Box<[Op]> {

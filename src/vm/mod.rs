@@ -42,7 +42,8 @@ pub struct Frame {
     pub pc: u32,
     pub open_db: Option<u8>,
     pub params: u16,
-    /// `pc` as a position in the program's arena, where the loop resumes.
+    /// `pc` as a position in the program's arena, where the loop resumes: kept so a block end
+    /// needs no lookup.
     pub resume: u32,
 }
 
