@@ -2,15 +2,18 @@
 //! its actual parameters, in one array, each body followed by an [`Op::End`] guard. Positions
 //! into it are global, so a block change moves one index and the loop keeps one code pointer;
 //! the times are prefix sums per body at the same positions (the guard's is the body's total).
+//! The same code is there twice at the same positions: as compiled (`plain`, for the stepping
+//! loop and operation points) and with pairs fused (`ops`, for block points; see `fuse`).
 
 use super::CompiledBlock;
 use super::bytecode::{NO_PARAMS, Op};
 use super::lower::{Layout, Resolved};
-use super::specialise;
+use super::{fuse, specialise};
 
 #[derive(Debug, Clone, Default)]
 pub struct Arena {
     pub ops: Box<[Op]>,
+    pub plain: Box<[Op]>,
     /// `times[i]`: the time in ns of the ops of i's body before i.
     pub times: Box<[u64]>,
     /// Where each block's own body starts.
@@ -21,20 +24,29 @@ pub struct Arena {
 }
 
 impl Arena {
-    /// Lays out `blocks`, with the specialised FB bodies when `specialised`.
+    /// Lays out `blocks`; `optimised`: with the specialised FB bodies and the fused pairs (else
+    /// the ops run as compiled, which tests compare with).
     pub fn build(
         blocks: &[CompiledBlock],
         param_lists: &[Vec<Resolved>],
         layout: Layout,
-        specialised: bool,
+        optimised: bool,
     ) -> Self {
+        let specialised = optimised;
         let mut arena = Arena::default();
         let mut ops = Vec::new();
+        let mut plain = Vec::new();
         let mut times = Vec::new();
         let mut place = |code: &[Op], elapsed: &[u64]| {
             let start = ops.len() as u32;
-            ops.extend_from_slice(code);
+            if optimised {
+                ops.extend(fuse::fuse(code));
+            } else {
+                ops.extend_from_slice(code);
+            }
             ops.push(Op::End);
+            plain.extend_from_slice(code);
+            plain.push(Op::End);
             times.extend_from_slice(&elapsed[..=code.len()]);
             start
         };
@@ -70,6 +82,7 @@ impl Arena {
             })
             .collect();
         arena.ops = ops.into_boxed_slice();
+        arena.plain = plain.into_boxed_slice();
         arena.times = times.into_boxed_slice();
         arena
     }

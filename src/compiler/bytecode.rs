@@ -219,6 +219,31 @@ pub enum Op {
     /// The end of a block's code in the VM's arena: reached only by running past the last op
     /// of a block without `BE`. The compiler never emits it.
     End,
+    // Pairs of ops the VM's arena runs as one (see `compiler::fuse`); the compiler never emits
+    // them, and the second op of a pair keeps its own place.
+    /// Two of `A AN O ON` on image bits; each `u8` packs the logic (bits 3–4) and the bit.
+    LogicPair {
+        first_op: u8,
+        first: u16,
+        second: u16,
+        second_op: u8,
+    },
+    /// `L` of an image word, then `L` of a 16-bit constant.
+    LoadWordConstant {
+        byte: u16,
+        value: u16,
+    },
+    /// `L` of two image words.
+    LoadWords {
+        first: u16,
+        second: u16,
+    },
+    /// Fixed-point arithmetic (`stack`: on four accumulators), then `T` of an image word.
+    ArithmeticTransferWord {
+        kind: Arith,
+        stack: bool,
+        byte: u16,
+    },
     /// `DO`: run the next op with its parameter taken from the source; `template` indexes the
     /// program's indirect templates.
     Indirect {

@@ -66,6 +66,11 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         Op::Nop | Op::Stop | Op::DisableInterrupts | Op::EnableInterrupts | Op::Formal { .. } => {
             t.other
         }
-        Op::End => 0,
+        // Never compiled: their ops are timed one by one.
+        Op::End
+        | Op::LogicPair { .. }
+        | Op::LoadWordConstant { .. }
+        | Op::LoadWords { .. }
+        | Op::ArithmeticTransferWord { .. } => 0,
     }
 }

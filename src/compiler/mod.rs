@@ -7,6 +7,7 @@ pub mod bytecode;
 mod calls;
 pub mod cost;
 pub mod error;
+pub mod fuse;
 pub mod lower;
 mod ranges;
 pub mod specialise;
@@ -89,9 +90,10 @@ impl Program {
         self.index.get(&id).copied()
     }
 
-    /// The program with no specialised bodies, so every formal operand is resolved at run
-    /// time: the path a parameter passed on from a calling FB takes. Tests compare the two.
-    pub fn unspecialised(mut self) -> Self {
+    /// The program run op by op as compiled: no specialised bodies (every formal operand is
+    /// resolved at run time, the path a parameter passed on from a calling FB takes) and no
+    /// fused pairs. Tests compare the two.
+    pub fn unoptimised(mut self) -> Self {
         self.arena = arena::Arena::build(&self.blocks, &self.param_lists, self.layout, false);
         self
     }

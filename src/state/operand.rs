@@ -129,6 +129,10 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::Nop
         | Op::Stop
         | Op::End
+        | Op::LogicPair { .. }
+        | Op::LoadWordConstant { .. }
+        | Op::LoadWords { .. }
+        | Op::ArithmeticTransferWord { .. }
         | Op::Jump(..)
         | Op::WordLogic(_)
         | Op::ShiftLeft(_)

@@ -484,7 +484,13 @@ impl Cpu {
             | Op::BlockEndUnconditional
             | Op::Indirect { .. }
             | Op::Formal { .. }
-            | Op::End => unreachable!("{op:?} is executed by the loop itself"),
+            | Op::End
+            | Op::LogicPair { .. }
+            | Op::LoadWordConstant { .. }
+            | Op::LoadWords { .. }
+            | Op::ArithmeticTransferWord { .. } => {
+                unreachable!("{op:?} is executed by the loop itself")
+            }
         }
         Ok(())
     }

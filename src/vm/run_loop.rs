@@ -11,6 +11,7 @@
 use std::sync::Arc;
 
 use crate::compiler::bytecode::*;
+use crate::compiler::fuse;
 use crate::trace::Event;
 
 use super::arith;
@@ -123,7 +124,14 @@ impl Cpu {
         let arena = &program.arena;
         // Every body in one array: `pc` is a position in it, `start` where the running body
         // starts (so op `pc - start` of the block), `times` the op times as prefix sums.
-        let (code, times) = (&arena.ops[..], &arena.times[..]);
+        // Block points run the fused pairs; the stepping loop and operation points, which look
+        // at every op, run them one by one.
+        let code = if STEPPING || OPERATION_POINTS {
+            &arena.plain[..]
+        } else {
+            &arena.ops[..]
+        };
+        let times = &arena.times[..];
         let mut start = arena.start(self.level.block, self.level.params);
         let mut pc = start + self.level.pc as usize;
         // Wrapping arithmetic: a base may stand "below zero" (a jump forward early in a run),
@@ -418,6 +426,37 @@ impl Cpu {
                         }
                         block_end!('run, op);
                         continue 'run;
+                    }
+                    Op::LogicPair {
+                        first_op,
+                        first,
+                        second,
+                        second_op,
+                    } => {
+                        let (logic, bit) = fuse::unpack(first_op, first);
+                        status.scanned(logic, self.image_bit(bit));
+                        let (logic, bit) = fuse::unpack(second_op, second);
+                        status.scanned(logic, self.image_bit(bit));
+                        pc += 1;
+                    }
+                    Op::LoadWordConstant { byte, value } => {
+                        accu2 = self.read_image(Width::Word, byte);
+                        accu1 = u32::from(value);
+                        pc += 1;
+                    }
+                    Op::LoadWords { first, second } => {
+                        accu2 = self.read_image(Width::Word, first);
+                        accu1 = self.read_image(Width::Word, second);
+                        pc += 1;
+                    }
+                    Op::ArithmeticTransferWord { kind, stack, byte } => {
+                        arith::arithmetic(kind, &mut accu1, accu2, &mut status);
+                        if stack {
+                            accu2 = self.level.accu3;
+                            self.level.accu3 = self.level.accu4;
+                        }
+                        self.write_image(Width::Word, byte, accu1);
+                        pc += 1;
                     }
                     Op::End => {
                         // Back onto the end, where a block without `BE` stops.

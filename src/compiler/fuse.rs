@@ -1,0 +1,120 @@
+//! Pairs of operations the VM runs as one op when interrupts are serviced at block changes only:
+//! the common STL idioms `A`/`O` chains on image bits, `L` `L` before arithmetic, and
+//! arithmetic followed by `T`. Between the two ops of a pair there is no interrupt point in that
+//! mode and neither can fault, so running them as one changes nothing but the dispatch: time and
+//! the operation count follow the position, which a pair moves by two. Position `i` holds op
+//! `i`, fused with op `i + 1` where they pair; op `i + 1` keeps its own place, so a jump to it
+//! still finds it. The stepping loop and operation points run the plain ops.
+
+use super::bytecode::{ImageBit, Logic, Op};
+
+/// `code` with every op that pairs with the next one replaced by the pair.
+pub fn fuse(code: &[Op]) -> Vec<Op> {
+    code.iter()
+        .enumerate()
+        .map(|(at, op)| {
+            code.get(at + 1)
+                .and_then(|next| pair(*op, *next))
+                .unwrap_or(*op)
+        })
+        .collect()
+}
+
+fn pair(first: Op, second: Op) -> Option<Op> {
+    Some(match (first, second) {
+        (Op::LoadImageWord(byte), Op::LoadConstant(value)) => Op::LoadWordConstant {
+            byte,
+            value: u16::try_from(value).ok()?,
+        },
+        (Op::LoadImageWord(first), Op::LoadImageWord(second)) => Op::LoadWords { first, second },
+        (Op::Arithmetic(kind), Op::TransferImageWord(byte)) => Op::ArithmeticTransferWord {
+            kind,
+            stack: false,
+            byte,
+        },
+        (Op::ArithmeticStack(kind), Op::TransferImageWord(byte)) => Op::ArithmeticTransferWord {
+            kind,
+            stack: true,
+            byte,
+        },
+        _ => {
+            let (first_logic, first) = bit_logic(first)?;
+            let (second_logic, second) = bit_logic(second)?;
+            Op::LogicPair {
+                first_op: pack(first_logic, first),
+                first: first.byte,
+                second: second.byte,
+                second_op: pack(second_logic, second),
+            }
+        }
+    })
+}
+
+fn bit_logic(op: Op) -> Option<(Logic, ImageBit)> {
+    match op {
+        Op::And(bit) => Some((Logic::And, bit)),
+        Op::AndNot(bit) => Some((Logic::AndNot, bit)),
+        Op::Or(bit) => Some((Logic::Or, bit)),
+        Op::OrNot(bit) => Some((Logic::OrNot, bit)),
+        _ => None,
+    }
+}
+
+fn pack(logic: Logic, bit: ImageBit) -> u8 {
+    (logic as u8) << 3 | bit.bit & 7
+}
+
+/// The logic and the bit of a packed half of a [`Op::LogicPair`].
+#[inline(always)]
+pub fn unpack(packed: u8, byte: u16) -> (Logic, ImageBit) {
+    let logic = match packed >> 3 & 3 {
+        0 => Logic::And,
+        1 => Logic::AndNot,
+        2 => Logic::Or,
+        _ => Logic::OrNot,
+    };
+    (
+        logic,
+        ImageBit {
+            byte,
+            bit: packed & 7,
+        },
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_packed_half_unpacks_to_its_logic_and_bit() {
+        for logic in [Logic::And, Logic::AndNot, Logic::Or, Logic::OrNot] {
+            for bit in 0..8 {
+                let image = ImageBit { byte: 300, bit };
+                assert_eq!(unpack(pack(logic, image), 300), (logic, image));
+            }
+        }
+    }
+
+    #[test]
+    fn pairs_keep_the_second_op_in_its_place() {
+        let code = [
+            Op::LoadImageWord(10),
+            Op::LoadConstant(3),
+            Op::Arithmetic(super::super::bytecode::Arith::Add),
+            Op::TransferImageWord(10),
+            Op::LoadConstant(0x1_0000),
+        ];
+        let fused = fuse(&code);
+        assert_eq!(fused.len(), code.len());
+        assert_eq!(fused[0], Op::LoadWordConstant { byte: 10, value: 3 });
+        // `L KF +3` does not pair with `+F`; it stays itself.
+        assert_eq!(fused[1], code[1]);
+        assert!(matches!(
+            fused[2],
+            Op::ArithmeticTransferWord { byte: 10, .. }
+        ));
+        assert_eq!(fused[3], code[3]);
+        assert_eq!(fused[4], code[4]);
+    }
+}
