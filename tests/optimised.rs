@@ -8,12 +8,38 @@ use std::sync::Arc;
 use awl::compiler::Program;
 use awl::frontend;
 use awl::profile;
+use awl::profile::InterruptPoints;
 use awl::vm::Cpu;
 use awl::vm::cycle::RunLimit;
+use awl::vm::interrupts::{Engine, EngineConfig, Happening, Scheduled};
 
-/// Runs `program` for `cycles` cycles with `set` inputs at 1; what the run left behind.
-fn run(program: Program, sources: &awl::source::SourceSet, cycles: u64) -> String {
+/// Runs `program` for `cycles` cycles with inputs set, interrupt points `points` and a request
+/// for each of its interrupt OBs every 37 µs of the first 5 ms; what the run left behind.
+fn run(
+    program: Program,
+    sources: &awl::source::SourceSet,
+    cycles: u64,
+    points: InterruptPoints,
+) -> String {
+    let schedule = (1..=135u64)
+        .flat_map(|step| {
+            [2u8, 3, 4, 5, 13]
+                .into_iter()
+                .filter(|ob| program.ob(*ob).is_some())
+                .map(move |ob| Scheduled {
+                    at_ns: step * 37_000 + u64::from(ob),
+                    what: Happening::Interrupt { ob },
+                })
+        })
+        .collect();
+    let profile = program.profile;
     let mut cpu = Cpu::new(Arc::new(program), Arc::new(sources.clone()));
+    let config = EngineConfig {
+        points,
+        special_mode: true,
+        ..EngineConfig::default()
+    };
+    cpu.engine = Engine::new(profile, config, schedule);
     for byte in cpu.inputs.iter_mut() {
         *byte = 0b0101_0011;
     }
@@ -34,9 +60,16 @@ fn assert_same(name: &str, source: &str, cpu: &str, cycles: u64) {
     let built = frontend::build_text(name, source, profile::find(cpu).unwrap());
     assert!(!built.has_errors(), "{name}: {:#?}", built.diagnostics);
     let program = built.compiled.program;
-    let optimised = run(program.clone(), &built.sources, cycles);
-    let unoptimised = run(program.unoptimised(), &built.sources, cycles);
-    assert_eq!(optimised, unoptimised, "{name}");
+    for points in [InterruptPoints::Block, InterruptPoints::Operation] {
+        let optimised = run(program.clone(), &built.sources, cycles, points);
+        let unoptimised = run(
+            program.clone().unoptimised(),
+            &built.sources,
+            cycles,
+            points,
+        );
+        assert_eq!(optimised, unoptimised, "{name} {points:?}");
+    }
 }
 
 #[test]
@@ -137,6 +170,13 @@ M003 :AN F 3.1
 PB 9
       L  FW 20
       T  FW 22
+      BE
+
+OB 3
+      L  FW 30
+      L  FW 40
+      +F
+      T  FW 40
       BE
 ";
     assert_same("passing.awl", source, "sinumerik-840c", 50);

@@ -124,13 +124,10 @@ impl Cpu {
         let arena = &program.arena;
         // Every body in one array: `pc` is a position in it, `start` where the running body
         // starts (so op `pc - start` of the block), `times` the op times as prefix sums.
-        // Block points run the fused pairs; the stepping loop and operation points, which look
-        // at every op, run them one by one.
-        let code = if STEPPING || OPERATION_POINTS {
-            &arena.plain[..]
-        } else {
-            &arena.ops[..]
-        };
+        // The fused pairs run as one op, except in the stepping loop, which shows every op;
+        // with operation points a pair runs as one only when no point falls between its ops.
+        let plain = &arena.plain[..];
+        let code = if STEPPING { plain } else { &arena.ops[..] };
         let times = &arena.times[..];
         let mut start = arena.start(self.level.block, self.level.params);
         let mut pc = start + self.level.pc as usize;
@@ -158,6 +155,15 @@ impl Cpu {
         macro_rules! now {
             () => {
                 time_base.wrapping_add(times[pc])
+            };
+        }
+        // With operation points: a pair whose first op ends at a point runs as its first op.
+        macro_rules! split_if_due {
+            ($dispatch:lifetime, $op:ident) => {
+                if OPERATION_POINTS && times[pc] >= deadline {
+                    $op = plain[pc - 1];
+                    continue $dispatch;
+                }
             };
         }
         // The position in the block of the op just fetched.
@@ -433,6 +439,7 @@ impl Cpu {
                         second,
                         second_op,
                     } => {
+                        split_if_due!('dispatch, op);
                         let (logic, bit) = fuse::unpack(first_op, first);
                         status.scanned(logic, self.image_bit(bit));
                         let (logic, bit) = fuse::unpack(second_op, second);
@@ -440,16 +447,19 @@ impl Cpu {
                         pc += 1;
                     }
                     Op::LoadWordConstant { byte, value } => {
+                        split_if_due!('dispatch, op);
                         accu2 = self.read_image(Width::Word, byte);
                         accu1 = u32::from(value);
                         pc += 1;
                     }
                     Op::LoadWords { first, second } => {
+                        split_if_due!('dispatch, op);
                         accu2 = self.read_image(Width::Word, first);
                         accu1 = self.read_image(Width::Word, second);
                         pc += 1;
                     }
                     Op::ArithmeticTransferWord { kind, stack, byte } => {
+                        split_if_due!('dispatch, op);
                         arith::arithmetic(kind, &mut accu1, accu2, &mut status);
                         if stack {
                             accu2 = self.level.accu3;
