@@ -20,6 +20,7 @@ pub enum Logic {
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u8)]
 pub enum Write {
     Assign,
     Set,
@@ -227,6 +228,15 @@ pub enum Op {
         first: u16,
         second: u16,
         second_op: u8,
+    },
+    /// One of `A AN O ON` on an image bit, then `=`, `S` or `R` of an image bit; the first
+    /// `u8` packs the logic and the bit as in `LogicPair`, the second the write (bits 3–4)
+    /// and the bit.
+    LogicWrite {
+        logic_op: u8,
+        scanned: u16,
+        written: u16,
+        write_op: u8,
     },
     /// `L` of an image word, then `L` of a 16-bit constant.
     LoadWordConstant {

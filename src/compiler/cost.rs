@@ -69,6 +69,7 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         // Never compiled: their ops are timed one by one.
         Op::End
         | Op::LogicPair { .. }
+        | Op::LogicWrite { .. }
         | Op::LoadWordConstant { .. }
         | Op::LoadWords { .. }
         | Op::ArithmeticTransferWord { .. } => 0,

@@ -6,7 +6,7 @@
 //! `i`, fused with op `i + 1` where they pair; op `i + 1` keeps its own place, so a jump to it
 //! still finds it. The stepping loop and operation points run the plain ops.
 
-use super::bytecode::{ImageBit, Logic, Op};
+use super::bytecode::{ImageBit, Logic, Op, Write};
 
 /// `code` with every op that pairs with the next one replaced by the pair.
 pub fn fuse(code: &[Op]) -> Vec<Op> {
@@ -37,6 +37,16 @@ fn pair(first: Op, second: Op) -> Option<Op> {
             stack: true,
             byte,
         },
+        _ if bit_logic(first).is_some() && bit_write(second).is_some() => {
+            let (logic, scanned) = bit_logic(first)?;
+            let (write, written) = bit_write(second)?;
+            Op::LogicWrite {
+                logic_op: pack(logic, scanned),
+                scanned: scanned.byte,
+                written: written.byte,
+                write_op: (write as u8) << 3 | written.bit & 7,
+            }
+        }
         _ => {
             let (first_logic, first) = bit_logic(first)?;
             let (second_logic, second) = bit_logic(second)?;
@@ -60,8 +70,34 @@ fn bit_logic(op: Op) -> Option<(Logic, ImageBit)> {
     }
 }
 
+fn bit_write(op: Op) -> Option<(Write, ImageBit)> {
+    match op {
+        Op::Assign(bit) => Some((Write::Assign, bit)),
+        Op::Set(bit) => Some((Write::Set, bit)),
+        Op::Reset(bit) => Some((Write::Reset, bit)),
+        _ => None,
+    }
+}
+
 fn pack(logic: Logic, bit: ImageBit) -> u8 {
     (logic as u8) << 3 | bit.bit & 7
+}
+
+/// The write and the bit of the second half of a [`Op::LogicWrite`].
+#[inline(always)]
+pub fn unpack_write(packed: u8, byte: u16) -> (Write, ImageBit) {
+    let write = match packed >> 3 & 3 {
+        0 => Write::Assign,
+        1 => Write::Set,
+        _ => Write::Reset,
+    };
+    (
+        write,
+        ImageBit {
+            byte,
+            bit: packed & 7,
+        },
+    )
 }
 
 /// The logic and the bit of a packed half of a [`Op::LogicPair`].
@@ -93,6 +129,30 @@ mod tests {
                 let image = ImageBit { byte: 300, bit };
                 assert_eq!(unpack(pack(logic, image), 300), (logic, image));
             }
+        }
+    }
+
+    #[test]
+    fn a_packed_write_unpacks_to_its_write_and_bit() {
+        for write in [Write::Assign, Write::Set, Write::Reset] {
+            for bit in 0..8 {
+                let image = ImageBit { byte: 7, bit };
+                let Op::LogicWrite {
+                    write_op, written, ..
+                } = pair(Op::And(image), write_op_of(write, image)).unwrap()
+                else {
+                    panic!("a logic write");
+                };
+                assert_eq!(unpack_write(write_op, written), (write, image));
+            }
+        }
+    }
+
+    fn write_op_of(write: Write, bit: ImageBit) -> Op {
+        match write {
+            Write::Assign => Op::Assign(bit),
+            Write::Set => Op::Set(bit),
+            Write::Reset => Op::Reset(bit),
         }
     }
 

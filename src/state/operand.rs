@@ -130,6 +130,7 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::Stop
         | Op::End
         | Op::LogicPair { .. }
+        | Op::LogicWrite { .. }
         | Op::LoadWordConstant { .. }
         | Op::LoadWords { .. }
         | Op::ArithmeticTransferWord { .. }

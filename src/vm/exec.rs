@@ -486,6 +486,7 @@ impl Cpu {
             | Op::Formal { .. }
             | Op::End
             | Op::LogicPair { .. }
+            | Op::LogicWrite { .. }
             | Op::LoadWordConstant { .. }
             | Op::LoadWords { .. }
             | Op::ArithmeticTransferWord { .. } => {

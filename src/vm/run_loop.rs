@@ -446,6 +446,26 @@ impl Cpu {
                         status.scanned(logic, self.image_bit(bit));
                         pc += 1;
                     }
+                    Op::LogicWrite {
+                        logic_op,
+                        scanned,
+                        written,
+                        write_op,
+                    } => {
+                        split_if_due!('dispatch, op);
+                        let (logic, bit) = fuse::unpack(logic_op, scanned);
+                        status.scanned(logic, self.image_bit(bit));
+                        let (write, bit) = fuse::unpack_write(write_op, written);
+                        let rlo = status.rlo();
+                        match write {
+                            Write::Assign => self.write_image_bit(bit, rlo),
+                            Write::Set if rlo => self.write_image_bit(bit, true),
+                            Write::Reset if rlo => self.write_image_bit(bit, false),
+                            Write::Set | Write::Reset => {}
+                        }
+                        status.end_string();
+                        pc += 1;
+                    }
                     Op::LoadWordConstant { byte, value } => {
                         split_if_due!('dispatch, op);
                         accu2 = self.read_image(Width::Word, byte);
