@@ -16,6 +16,7 @@ pub mod frontend;
 pub mod lexer;
 pub mod mnemonics;
 pub mod parser;
+pub mod playground;
 pub mod profile;
 pub mod program_status;
 pub mod report;

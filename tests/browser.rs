@@ -3,51 +3,11 @@
 //! shows a mark's details (the page's `#selftest`), and draws a screenshot that is not blank.
 //! `.ci/run` installs Debian's `chromium`; elsewhere the test says why it is skipped.
 
-use std::path::{Path, PathBuf};
+mod common;
+
 use std::process::Command;
 
-fn chromium() -> Option<PathBuf> {
-    ["chromium", "chromium-browser", "google-chrome"]
-        .into_iter()
-        .find_map(|name| {
-            let found = Command::new("which").arg(name).output().ok()?;
-            let path = String::from_utf8_lossy(&found.stdout).trim().to_string();
-            (found.status.success() && !path.is_empty()).then(|| PathBuf::from(path))
-        })
-}
-
-fn headless(browser: &Path, profile: &Path, args: &[&str]) -> (String, String) {
-    let output = Command::new(browser)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--disable-quic",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--enable-logging=stderr",
-            "--v=0",
-            "--virtual-time-budget=5000",
-        ])
-        .arg(format!("--user-data-dir={}", profile.display()))
-        .args(args)
-        .output()
-        .expect("chromium starts");
-    (
-        String::from_utf8_lossy(&output.stdout).to_string(),
-        String::from_utf8_lossy(&output.stderr).to_string(),
-    )
-}
-
-/// Console messages and uncaught exceptions in Chromium's log: the page writes none, so any
-/// is an error (Chromium logs `console.error` at the same level as `console.log`).
-fn console_errors(log: &str) -> Vec<&str> {
-    log.lines()
-        .filter(|line| line.contains(":CONSOLE") || line.contains("Uncaught"))
-        .collect()
-}
+use common::browser::{chromium, console_errors, headless};
 
 #[test]
 fn the_html_timeline_works_in_a_headless_browser() {
@@ -70,7 +30,11 @@ fn the_html_timeline_works_in_a_headless_browser() {
     );
     let url = format!("file://{}#selftest", page.display());
 
-    let (dom, log) = headless(&browser, &dir.join("profile-dom"), &["--dump-dom", &url]);
+    let (dom, log) = headless(
+        &browser,
+        &dir.join("profile-dom"),
+        &["--virtual-time-budget=5000", "--dump-dom", &url],
+    );
     assert!(
         console_errors(&log).is_empty(),
         "{:?}",
@@ -95,6 +59,7 @@ fn the_html_timeline_works_in_a_headless_browser() {
         &browser,
         &dir.join("profile-shot"),
         &[
+            "--virtual-time-budget=5000",
             &format!("--screenshot={}", shot.display()),
             "--window-size=1400,600",
             &format!("file://{}", page.display()),

@@ -7,6 +7,8 @@ pub mod command;
 pub mod input;
 mod show;
 
+pub use show::force;
+
 use std::cell::RefCell;
 use std::io::Write;
 use std::rc::Rc;
@@ -70,6 +72,8 @@ pub struct Session {
     pub failed_commands: u64,
     /// `quit`, the end of the commands, or an output that is gone.
     pub quit: bool,
+    /// Where the session's words go when they are not printed (the playground shows them).
+    transcript: Option<String>,
 }
 
 fn say(text: &str) -> bool {
@@ -91,18 +95,47 @@ impl Session {
             last_resume: None,
             failed_commands: 0,
             quit: false,
+            transcript: None,
         }
     }
 
+    /// A session on a script whose words are kept for [`Session::take_transcript`], not
+    /// printed.
+    pub fn recording(commands: &str, mnemonics: MnemonicSet) -> Self {
+        Session {
+            transcript: Some(String::new()),
+            ..Session::new(Input::script(commands), mnemonics, || false)
+        }
+    }
+
+    /// What a recording session said so far.
+    pub fn take_transcript(&mut self) -> String {
+        self.transcript
+            .as_mut()
+            .map(std::mem::take)
+            .unwrap_or_default()
+    }
+
     fn out(&mut self, text: &str) {
-        if !say(text) {
-            self.quit = true;
+        match &mut self.transcript {
+            Some(transcript) => transcript.push_str(text),
+            None => {
+                if !say(text) {
+                    self.quit = true;
+                }
+            }
         }
     }
 
     fn fail(&mut self, error: CommandError) {
         self.failed_commands += 1;
-        let _ = writeln!(std::io::stderr(), "{:?}", Report::new(error));
+        let report = Report::new(error);
+        match &mut self.transcript {
+            Some(transcript) => transcript.push_str(&crate::diagnostics::render_plain(&report)),
+            None => {
+                let _ = writeln!(std::io::stderr(), "{report:?}");
+            }
+        }
     }
 
     /// Why the CPU pauses before the operation it is at, if it does.
@@ -180,9 +213,10 @@ impl Session {
 
     /// The next command, `None` when the line held none (or could not be parsed).
     fn next_command(&mut self) -> Option<Command> {
-        let line = match self.input.next_line(&mut |echo| {
-            say(echo);
-        }) {
+        let mut echoed = String::new();
+        let line = self.input.next_line(&mut |echo| echoed.push_str(echo));
+        self.out(&echoed);
+        let line = match line {
             Line::Text(line) => line,
             Line::Cancelled => return None,
             Line::End => {

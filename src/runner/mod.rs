@@ -29,7 +29,7 @@ use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
 use crate::vm::interrupts::{Engine, EngineConfig};
 
-pub use stop_report::stop_report;
+pub use stop_report::{cpu_stop_report, stop_report};
 pub use warnings::RunWarning;
 
 /// The default run length when neither the command line nor the scenario gives one.

@@ -4,6 +4,7 @@ use miette::Report;
 
 use crate::diagnostics;
 use crate::source::Span;
+use crate::vm::Cpu;
 use crate::vm::stop::{StackEntry, Stop, StopCause, StopDetail, StopError};
 
 use super::Ran;
@@ -86,7 +87,12 @@ fn watchdog_text(cycle_ns: u64, watchdog_ns: u64) -> String {
 
 /// The STOP as a miette report with the source line.
 pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
-    let program = &ran.cpu.program;
+    cpu_stop_report(&ran.cpu, stop)
+}
+
+/// The STOP of `cpu` (one still running on, as the playground's live mode keeps it).
+pub fn cpu_stop_report(cpu: &Cpu, stop: &Stop) -> Report {
+    let program = &cpu.program;
     // Between cycles in a program without OB 1 there is no block: the label goes to the start
     // of the first file.
     let (at, name) = match stop.block.map(|index| &program.blocks[usize::from(index)]) {
@@ -103,7 +109,7 @@ pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
             "the operating system (between cycles)".to_string(),
         ),
     };
-    let levels = crate::state::levels(&ran.cpu, stop);
+    let levels = crate::state::levels(cpu, stop);
     let stack = if levels.is_empty() {
         stack_text(stop)
     } else {
@@ -190,5 +196,5 @@ pub fn stop_report(ran: &Ran, stop: &Stop) -> Report {
             stack,
         },
     };
-    diagnostics::with_source(&ran.frontend.sources, at, error)
+    diagnostics::with_source(&cpu.sources, at, error)
 }

@@ -1,7 +1,12 @@
 //! The modes and the cycle: STOP → STARTUP (startup OB) → RUN, then cycles of read PII, OB 1,
 //! write PIQ, operating-system time, and the cycle boundary, until the run's limit.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+#[cfg(not(target_arch = "wasm32"))]
+use std::time::Instant;
+#[cfg(target_arch = "wasm32")]
+use web_time::Instant;
 
 use super::io_trace::Modules;
 use crate::profile::InterruptPoints;
@@ -274,7 +279,8 @@ impl Cpu {
     }
 
     /// As [`Cpu::run`], asking `go_on` at every cycle boundary whether to go on (progress
-    /// display, Ctrl-C); a `false` halts the run there.
+    /// display, Ctrl-C); a `false` halts the run there. A CPU in RUN goes on from where it is
+    /// (the playground's live mode runs a slice of time at a time).
     pub fn run_watched(
         &mut self,
         limit: RunLimit,
@@ -282,7 +288,12 @@ impl Cpu {
     ) -> RunOutcome {
         let started = Instant::now();
         let mut halted = false;
-        let result = self.startup().and_then(|()| {
+        let start = if self.mode == Mode::Run {
+            Ok(())
+        } else {
+            self.startup()
+        };
+        let result = start.and_then(|()| {
             while !self.limit_reached(limit) {
                 if !go_on(self) {
                     halted = true;

@@ -1,7 +1,9 @@
 //! Helpers shared by the integration tests: run STL text on a CPU and look at the result.
 #![allow(dead_code)]
 
-use std::path::PathBuf;
+pub mod browser;
+
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use awl::frontend;
@@ -160,4 +162,41 @@ pub fn sample_scenarios() -> Vec<PathBuf> {
         .collect();
     scenarios.sort();
     scenarios
+}
+
+/// Every file of `programs/` and `web/examples/`, named as the playground names them
+/// (`fig5_2.awl`, `bench/calls.toml`, `mistakes.awl`).
+pub fn playground_files() -> std::collections::BTreeMap<String, String> {
+    let mut files = std::collections::BTreeMap::new();
+    for root in ["programs", "web/examples"] {
+        add_files(Path::new(root), Path::new(root), &mut files);
+    }
+    files
+}
+
+fn add_files(root: &Path, dir: &Path, files: &mut std::collections::BTreeMap<String, String>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            add_files(root, &path, files);
+        } else if let Ok(text) = std::fs::read_to_string(&path) {
+            let name = path.strip_prefix(root).unwrap().to_string_lossy();
+            files.insert(name.replace('\\', "/"), text);
+        }
+    }
+}
+
+/// What `awl run --scenario programs/NAME` prints on stdout, the wall time and rate cut from
+/// its last line.
+pub fn cli_summary(scenario: &str) -> String {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_awl"))
+        .args(["run", "--scenario"])
+        .arg(Path::new("programs").join(scenario))
+        .output()
+        .unwrap();
+    String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .map(|line| line.split("   wall:").next().unwrap())
+        .map(|line| format!("{line}\n"))
+        .collect()
 }
