@@ -134,9 +134,9 @@ impl Live {
         let now = cpu.clock;
         let from = now.saturating_sub(window_ns);
         let caption = format!(
-            "live — {}, the last {}",
+            "live — {}, the last {} ms",
             cpu.profile.name,
-            format_ms(window_ns)
+            window_ns as f64 / 1e6
         );
         let window = TraceFilter::all().window(Some(from), Some(now.max(from + 1)));
         let mut recorder = Recorder::new(window, trace::levels(cpu.profile, &cpu.program), caption);

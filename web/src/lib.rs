@@ -1,0 +1,117 @@
+//! The playground's WebAssembly module: awl's `playground` functions with JSON in and out for
+//! the page's script (web/page.js). Everything it does is in the library, tested natively.
+
+use awl::playground::{self, Live, Outcome, Request};
+use serde_json::json;
+use wasm_bindgen::prelude::*;
+
+mod examples {
+    include!(concat!(env!("OUT_DIR"), "/examples.rs"));
+}
+
+/// The request the page sent, or the outcome that says it is malformed (a bug of the page).
+fn request(json: &str) -> Result<Request, String> {
+    serde_json::from_str(json).map_err(|error| {
+        let outcome = Outcome {
+            summary: format!("not run: the page sent a malformed request ({error})\n"),
+            ..Outcome::default()
+        };
+        to_json(&outcome)
+    })
+}
+
+fn to_json(value: &impl serde::Serialize) -> String {
+    serde_json::to_string(value).expect("plain data")
+}
+
+/// Every example file by name (`fig5_2.awl`, `bench/calls.toml`, …), the CPU profiles and the
+/// words the editor colours.
+#[wasm_bindgen]
+pub fn catalogue() -> String {
+    let files: serde_json::Map<String, serde_json::Value> = examples::FILES
+        .iter()
+        .map(|(name, text)| ((*name).to_string(), json!(text)))
+        .collect();
+    let cpus: Vec<_> = playground::cpus()
+        .into_iter()
+        .map(|(name, title)| json!({ "name": name, "title": title }))
+        .collect();
+    json!({ "files": files, "cpus": cpus, "words": playground::words() }).to_string()
+}
+
+/// Runs a request (JSON) to its end; the outcome as JSON.
+#[wasm_bindgen]
+pub fn run(request_json: &str) -> String {
+    match request(request_json) {
+        Ok(request) => to_json(&playground::run(&request)),
+        Err(outcome) => outcome,
+    }
+}
+
+/// Runs a request under the debugger with these commands, one per line.
+#[wasm_bindgen]
+pub fn debug(request_json: &str, commands: &str) -> String {
+    match request(request_json) {
+        Ok(request) => to_json(&playground::debug(&request, commands)),
+        Err(outcome) => outcome,
+    }
+}
+
+/// A live run; `start` tells whether it could start, else `refusal` says why.
+#[wasm_bindgen]
+pub struct LiveRun {
+    live: Option<Live>,
+    refusal: String,
+}
+
+#[wasm_bindgen]
+impl LiveRun {
+    #[wasm_bindgen(constructor)]
+    pub fn new(request_json: &str) -> LiveRun {
+        let started = request(request_json)
+            .and_then(|request| Live::start(&request).map_err(|outcome| to_json(&*outcome)));
+        match started {
+            Ok(live) => LiveRun {
+                live: Some(live),
+                refusal: String::new(),
+            },
+            Err(refusal) => LiveRun {
+                live: None,
+                refusal,
+            },
+        }
+    }
+
+    /// The outcome (JSON) of a run that could not start; empty when it started.
+    pub fn refusal(&self) -> String {
+        self.refusal.clone()
+    }
+
+    /// Runs on by `ns` of simulated time, keeping the events of the last `keep_ns`.
+    pub fn advance(&mut self, ns: f64, keep_ns: f64) {
+        if let Some(live) = &mut self.live {
+            live.advance(ns as u64, keep_ns as u64);
+        }
+    }
+
+    /// Flips an input; the reason when it cannot be set.
+    pub fn set_input(&mut self, operand: &str, on: bool) -> String {
+        match &mut self.live {
+            Some(live) => live.set_input(operand, on).err().unwrap_or_default(),
+            None => "not running".to_string(),
+        }
+    }
+
+    /// Requests an interrupt OB; whether the request is pending.
+    pub fn request(&mut self, ob: u8) -> bool {
+        self.live.as_mut().is_some_and(|live| live.request(ob))
+    }
+
+    /// The I/O panel, the clock and the timeline of the last `window_ns` (JSON).
+    pub fn view(&self, window_ns: f64) -> String {
+        match &self.live {
+            Some(live) => to_json(&live.view(window_ns as u64)),
+            None => "null".to_string(),
+        }
+    }
+}
