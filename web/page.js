@@ -768,6 +768,7 @@ function wire() {
   for (const editor of [program, scenario]) {
     editor.onEdit = () => {
       leaveDebug();
+      stopLive();
       showNames();
     };
     editor.textarea.addEventListener("keydown", (event) => {
