@@ -7,7 +7,7 @@ mod common;
 
 use std::process::Command;
 
-use common::browser::{chromium, console_errors, headless};
+use common::browser::{assert_screenshot_shows_the_timeline, chromium, console_errors, headless};
 
 #[test]
 fn the_html_timeline_works_in_a_headless_browser() {
@@ -54,33 +54,7 @@ fn the_html_timeline_works_in_a_headless_browser() {
         assert!(!html.contains(outside), "the page loads nothing: {outside}");
     }
 
-    let shot = dir.join("shot.png");
-    let (_, log) = headless(
-        &browser,
-        &dir.join("profile-shot"),
-        &[
-            "--virtual-time-budget=5000",
-            &format!("--screenshot={}", shot.display()),
-            "--window-size=1400,600",
-            &format!("file://{}", page.display()),
-        ],
-    );
-    assert!(
-        console_errors(&log).is_empty(),
-        "{:?}",
-        console_errors(&log)
-    );
-    let pixmap = resvg::tiny_skia::Pixmap::load_png(&shot).expect("a PNG screenshot");
-    let pixels = pixmap.pixels();
-    let lane_blue = pixels
-        .iter()
-        .filter(|p| (p.red(), p.green(), p.blue()) == (0x4e, 0x79, 0xa7))
-        .count();
-    let drawn = pixels
-        .iter()
-        .filter(|p| (p.red(), p.green(), p.blue()) != (255, 255, 255))
-        .count();
-    assert!(drawn * 20 > pixels.len(), "the screenshot is blank");
-    assert!(lane_blue > 50, "OB 1's lane colour is on the screen");
+    let url = format!("file://{}", page.display());
+    assert_screenshot_shows_the_timeline(&browser, &dir, "1400,600", &url);
     let _ = std::fs::remove_dir_all(dir);
 }

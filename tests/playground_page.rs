@@ -10,7 +10,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::browser::{chromium, console_errors, headless};
+use common::browser::{assert_screenshot_shows_the_timeline, chromium, console_errors, headless};
 
 /// Whether the wasm32 target is installed (`.ci/run` installs it through web/build.sh).
 fn wasm_target_installed() -> bool {
@@ -147,7 +147,11 @@ fn the_playground_runs_in_a_headless_browser() {
     assert!(dom.contains(r#"data-selftest="passed""#), "{dom}");
 
     the_browser_gives_the_native_summaries(&browser.open("samples"));
-    the_screenshot_is_not_blank(&browser);
+    let url = format!(
+        "file://{}#example=fig5_2_interrupt&run",
+        browser.page.display()
+    );
+    assert_screenshot_shows_the_timeline(&browser.path, &dir, "1400,1200", &url);
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -168,39 +172,4 @@ fn the_browser_gives_the_native_summaries(dom: &str) {
             "{name}"
         );
     }
-}
-
-fn the_screenshot_is_not_blank(browser: &Browser) {
-    let shot = browser.dir.join("shot.png");
-    let url = format!(
-        "file://{}#example=fig5_2_interrupt&run",
-        browser.page.display()
-    );
-    let (_, log) = headless(
-        &browser.path,
-        &browser.dir.join("profile-shot"),
-        &[
-            "--virtual-time-budget=10000",
-            &format!("--screenshot={}", shot.display()),
-            "--window-size=1400,1200",
-            &url,
-        ],
-    );
-    assert!(
-        console_errors(&log).is_empty(),
-        "{:?}",
-        console_errors(&log)
-    );
-    let pixmap = resvg::tiny_skia::Pixmap::load_png(&shot).expect("a PNG screenshot");
-    let pixels = pixmap.pixels();
-    let drawn = pixels
-        .iter()
-        .filter(|p| (p.red(), p.green(), p.blue()) != (255, 255, 255))
-        .count();
-    assert!(drawn * 20 > pixels.len(), "the screenshot is blank");
-    let lane_blue = pixels
-        .iter()
-        .filter(|p| (p.red(), p.green(), p.blue()) == (0x4e, 0x79, 0xa7))
-        .count();
-    assert!(lane_blue > 50, "the timeline's OB 1 lane is on the screen");
 }

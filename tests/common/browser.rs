@@ -47,3 +47,37 @@ pub fn console_errors(log: &str) -> Vec<&str> {
         .filter(|line| line.contains(":CONSOLE") || line.contains("Uncaught"))
         .collect()
 }
+
+/// Takes a screenshot of `url` in a window of `size` ("1400,600") and checks it: no console
+/// error, not blank (a twentieth of it drawn), and OB 1's lane colour on the screen (the
+/// timeline is drawn).
+pub fn assert_screenshot_shows_the_timeline(browser: &Path, dir: &Path, size: &str, url: &str) {
+    let shot = dir.join("shot.png");
+    let (_, log) = headless(
+        browser,
+        &dir.join("profile-shot"),
+        &[
+            "--virtual-time-budget=10000",
+            &format!("--screenshot={}", shot.display()),
+            &format!("--window-size={size}"),
+            url,
+        ],
+    );
+    assert!(
+        console_errors(&log).is_empty(),
+        "{:?}",
+        console_errors(&log)
+    );
+    let pixmap = resvg::tiny_skia::Pixmap::load_png(&shot).expect("a PNG screenshot");
+    let pixels = pixmap.pixels();
+    let count = |colour: fn((u8, u8, u8)) -> bool| {
+        pixels
+            .iter()
+            .filter(|p| colour((p.red(), p.green(), p.blue())))
+            .count()
+    };
+    let drawn = count(|rgb| rgb != (255, 255, 255));
+    assert!(drawn * 20 > pixels.len(), "the screenshot is blank");
+    let lane_blue = count(|rgb| rgb == (0x4e, 0x79, 0xa7));
+    assert!(lane_blue > 50, "OB 1's lane colour is on the screen");
+}
