@@ -276,3 +276,4 @@ fn the_editor_colours_the_words_of_both_sets() {
     assert!(words.blocks.contains(&"PB"));
     assert!(words.keywords.contains(&"BEZ"));
 }
+

@@ -220,7 +220,9 @@ impl Session {
             Line::Text(line) => line,
             Line::Cancelled => return None,
             Line::End => {
-                if self.input.is_script() {
+                // A recording session pauses where its commands end: the playground goes on
+                // from there with the next command.
+                if self.input.is_script() && self.transcript.is_none() {
                     self.out("(end of commands: quit)\n");
                 }
                 self.quit = true;
