@@ -276,4 +276,3 @@ fn the_editor_colours_the_words_of_both_sets() {
     assert!(words.blocks.contains(&"PB"));
     assert!(words.keywords.contains(&"BEZ"));
 }
-

@@ -54,6 +54,16 @@ fn element(dom: &str, id: &str) -> String {
         .replace("&amp;", "&")
 }
 
+/// `text` as a value in an address fragment.
+fn encoded(text: &str) -> String {
+    text.bytes()
+        .map(|byte| match byte {
+            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'.' => char::from(byte).to_string(),
+            _ => format!("%{byte:02X}"),
+        })
+        .collect()
+}
+
 struct Browser {
     path: PathBuf,
     page: PathBuf,
@@ -142,6 +152,12 @@ fn the_playground_runs_in_a_headless_browser() {
         dom.contains(r#"class="line stopped""#),
         "the STOP line is marked"
     );
+
+    let program = "OB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n";
+    let shared = format!("pname=mine.awl&program={}&cpu=speed7&run", encoded(program));
+    let dom = browser.open(&shared);
+    assert!(element(&dom, "summary").contains("cpu: speed7"), "{dom}");
+    assert!(element(&dom, "program-name").contains("mine.awl"));
 
     let dom = browser.open("selftest");
     assert!(dom.contains(r#"data-selftest="passed""#), "{dom}");
