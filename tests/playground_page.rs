@@ -153,6 +153,11 @@ fn the_playground_runs_in_a_headless_browser() {
         "the STOP line is marked"
     );
 
+    // The address the page writes after a run names the example's file.
+    let dom = browser.open("example=fig5_2.awl&run");
+    assert!(element(&dom, "summary").contains("simulated: 1000."), "{dom}");
+    assert!(element(&dom, "scenario-name").is_empty());
+
     let program = "OB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n";
     let shared = format!("pname=mine.awl&program={}&cpu=speed7&run", encoded(program));
     let dom = browser.open(&shared);

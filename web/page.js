@@ -199,7 +199,7 @@ let catalogue = null;
 let program = null;
 let scenario = null;
 const current = { example: "", programName: "program.awl", scenarioName: "" };
-const debugging = { commands: [], active: false };
+const debugging = { commands: [] };
 
 function directoryOf(name) {
   const slash = name.lastIndexOf("/");
@@ -243,15 +243,18 @@ function fillExamples() {
   }
 }
 
-/** The example a fragment's `example=NAME` means: the scenario of that stem, else the program. */
+/** The example a fragment's `example=NAME` means: a file of that name (`fig5_2.awl`, as the
+ *  page writes it), else the scenario of that stem, else the program. */
 function exampleNamed(stem) {
   const files = exampleFiles();
+  if (files.includes(stem)) return stem;
   const of = (extension) => files.find((file) => file === stem + extension || stemOf(file) === stem && file.endsWith(extension));
   return of(".toml") || of(".awl") || null;
 }
 
 function loadExample(name) {
   leaveDebug();
+  stopLive();
   current.example = name;
   if (name.endsWith(".toml")) {
     current.scenarioName = name;
@@ -271,6 +274,7 @@ function loadExample(name) {
 
 function loadShared(params) {
   leaveDebug();
+  stopLive();
   current.example = "";
   current.programName = params.get("pname") || "program.awl";
   current.scenarioName = params.get("sname") || "";
@@ -554,7 +558,6 @@ function breakpointCommands() {
 }
 
 function debugWith(command) {
-  debugging.active = true;
   debugging.commands.push(command);
   const script = breakpointCommands().concat(debugging.commands).join("\n") + "\n";
   const result = JSON.parse(awl.debug(JSON.stringify(request()), script));
@@ -565,7 +568,6 @@ function debugWith(command) {
   if (result.outcome) {
     showOutcome(result.outcome);
     debugging.commands = [];
-    debugging.active = false;
     $("paused").textContent = result.outcome.ran ? "the run has ended" : "the program cannot run";
     return;
   }
@@ -584,7 +586,6 @@ function debugWith(command) {
 
 function leaveDebug() {
   debugging.commands = [];
-  debugging.active = false;
   $("paused").textContent = "";
   $("debug-box").hidden = true;
   if (program) {
