@@ -155,7 +155,10 @@ fn the_playground_runs_in_a_headless_browser() {
 
     // The address the page writes after a run names the example's file.
     let dom = browser.open("example=fig5_2.awl&run");
-    assert!(element(&dom, "summary").contains("simulated: 1000."), "{dom}");
+    assert!(
+        element(&dom, "summary").contains("simulated: 1000."),
+        "{dom}"
+    );
     assert!(element(&dom, "scenario-name").is_empty());
 
     let program = "OB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n";
