@@ -276,3 +276,42 @@ fn the_editor_colours_the_words_of_both_sets() {
     assert!(words.blocks.contains(&"PB"));
     assert!(words.keywords.contains(&"BEZ"));
 }
+
+#[test]
+fn json_requests_run_and_malformed_ones_are_refused() {
+    let request = serde_json::json!({ "files": catalogue(), "scenario": "fig5_2_interrupt.toml" });
+    let outcome: serde_json::Value =
+        serde_json::from_str(&playground::json::run(&request.to_string())).unwrap();
+    assert!(outcome["summary"].as_str().unwrap().contains("serviced 1"));
+    assert!(outcome["timeline"].as_str().unwrap().starts_with("<svg"));
+
+    for malformed in [
+        "",
+        "{",
+        r#"{"files": {}, "colour": "red"}"#,
+        r#"{"files": 3}"#,
+    ] {
+        let refused: serde_json::Value =
+            serde_json::from_str(&playground::json::run(malformed)).unwrap();
+        assert_eq!(refused["ran"], false, "{malformed}");
+        let summary = refused["summary"].as_str().unwrap();
+        assert!(
+            summary.starts_with("not run: the page sent a malformed request"),
+            "{summary}"
+        );
+        let debugged = playground::json::debug(malformed, "step\n");
+        assert!(debugged.contains("malformed request"), "{debugged}");
+        let live = playground::json::start_live(malformed).err().unwrap();
+        assert!(live.contains("malformed request"), "{live}");
+    }
+}
+
+#[test]
+fn the_catalogue_lists_files_profiles_and_words() {
+    let catalogue: serde_json::Value =
+        serde_json::from_str(&playground::json::catalogue(&[("a.awl", "OB 1\nBE\n")])).unwrap();
+    assert_eq!(catalogue["files"]["a.awl"], "OB 1\nBE\n");
+    let cpus = catalogue["cpus"].as_array().unwrap();
+    assert!(cpus.iter().any(|cpu| cpu["name"] == "sinumerik-840c"));
+    assert!(catalogue["words"]["operations"].as_array().unwrap().len() > 50);
+}

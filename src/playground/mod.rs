@@ -5,6 +5,7 @@
 
 mod debug;
 mod diagnostic;
+pub mod json;
 mod live;
 mod words;
 

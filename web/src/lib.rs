@@ -1,60 +1,30 @@
 //! The playground's WebAssembly module: awl's `playground` functions with JSON in and out for
 //! the page's script (web/page.js). Everything it does is in the library, tested natively.
 
-use awl::playground::{self, Live, Outcome, Request};
-use serde_json::json;
+use awl::playground::{Live, json};
 use wasm_bindgen::prelude::*;
 
 mod examples {
     include!(concat!(env!("OUT_DIR"), "/examples.rs"));
 }
 
-/// The request the page sent, or the outcome that says it is malformed (a bug of the page).
-fn request(json: &str) -> Result<Request, String> {
-    serde_json::from_str(json).map_err(|error| {
-        let outcome = Outcome {
-            summary: format!("not run: the page sent a malformed request ({error})\n"),
-            ..Outcome::default()
-        };
-        to_json(&outcome)
-    })
-}
-
-fn to_json(value: &impl serde::Serialize) -> String {
-    serde_json::to_string(value).expect("plain data")
-}
-
 /// Every example file by name (`fig5_2.awl`, `bench/calls.toml`, …), the CPU profiles and the
-/// words the editor colours.
+/// words the editor colours (JSON).
 #[wasm_bindgen]
 pub fn catalogue() -> String {
-    let files: serde_json::Map<String, serde_json::Value> = examples::FILES
-        .iter()
-        .map(|(name, text)| ((*name).to_string(), json!(text)))
-        .collect();
-    let cpus: Vec<_> = playground::cpus()
-        .into_iter()
-        .map(|(name, title)| json!({ "name": name, "title": title }))
-        .collect();
-    json!({ "files": files, "cpus": cpus, "words": playground::words() }).to_string()
+    json::catalogue(examples::FILES)
 }
 
 /// Runs a request (JSON) to its end; the outcome as JSON.
 #[wasm_bindgen]
 pub fn run(request_json: &str) -> String {
-    match request(request_json) {
-        Ok(request) => to_json(&playground::run(&request)),
-        Err(outcome) => outcome,
-    }
+    json::run(request_json)
 }
 
 /// Runs a request under the debugger with these commands, one per line.
 #[wasm_bindgen]
 pub fn debug(request_json: &str, commands: &str) -> String {
-    match request(request_json) {
-        Ok(request) => to_json(&playground::debug(&request, commands)),
-        Err(outcome) => outcome,
-    }
+    json::debug(request_json, commands)
 }
 
 /// A live run; `start` tells whether it could start, else `refusal` says why.
@@ -68,9 +38,7 @@ pub struct LiveRun {
 impl LiveRun {
     #[wasm_bindgen(constructor)]
     pub fn new(request_json: &str) -> LiveRun {
-        let started = request(request_json)
-            .and_then(|request| Live::start(&request).map_err(|outcome| to_json(&*outcome)));
-        match started {
+        match json::start_live(request_json) {
             Ok(live) => LiveRun {
                 live: Some(live),
                 refusal: String::new(),
@@ -110,7 +78,7 @@ impl LiveRun {
     /// The I/O panel, the clock and the timeline of the last `window_ns` (JSON).
     pub fn view(&self, window_ns: f64) -> String {
         match &self.live {
-            Some(live) => to_json(&live.view(window_ns as u64)),
+            Some(live) => json::to_json(&live.view(window_ns as u64)),
             None => "null".to_string(),
         }
     }
