@@ -32,24 +32,26 @@ impl Cpu {
     /// Runs the current level; `operation_points` makes every operation an interrupt point.
     /// With a probe set, the stepping variant shows it every operation.
     pub fn execute(&mut self, operation_points: bool) -> Exit {
-        if self.probe.is_some() {
-            return self.execute_stepping(operation_points);
+        if self.probe.is_some() || self.tracer.enabled {
+            return self.execute_watched(operation_points);
         }
         if operation_points {
-            self.run_loop::<true, false>()
+            self.run_loop::<true, false, false>()
         } else {
-            self.run_loop::<false, false>()
+            self.run_loop::<false, false, false>()
         }
     }
 
-    /// The stepping variants, kept out of line so the plain loops compile as they would alone.
+    /// The variants that show a probe every operation or trace the block changes, kept out of
+    /// line so the plain loops compile as they would alone (no call in their paths).
     #[cold]
     #[inline(never)]
-    fn execute_stepping(&mut self, operation_points: bool) -> Exit {
-        if operation_points {
-            self.run_loop::<true, true>()
-        } else {
-            self.run_loop::<false, true>()
+    fn execute_watched(&mut self, operation_points: bool) -> Exit {
+        match (operation_points, self.probe.is_some()) {
+            (true, true) => self.run_loop::<true, true, true>(),
+            (false, true) => self.run_loop::<false, true, true>(),
+            (true, false) => self.run_loop::<true, false, true>(),
+            (false, false) => self.run_loop::<false, false, true>(),
         }
     }
 
@@ -119,7 +121,11 @@ impl Cpu {
         }
     }
 
-    fn run_loop<const OPERATION_POINTS: bool, const STEPPING: bool>(&mut self) -> Exit {
+    /// `TRACING`: block changes may be traced (the tracer is asked); without it the loop has
+    /// no trace code at all — a run that traces nothing at its start traces nothing later.
+    fn run_loop<const OPERATION_POINTS: bool, const STEPPING: bool, const TRACING: bool>(
+        &mut self,
+    ) -> Exit {
         let program = Arc::clone(&self.program);
         let arena = &program.arena;
         // Every body in one array: `pc` is a position in it, `start` where the running body
@@ -238,7 +244,7 @@ impl Cpu {
                 let end_pc = at!();
                 let clock = now!();
                 let level_end = self.frames.len() == self.level.level_base;
-                if self.tracer.enabled {
+                if TRACING && self.tracer.enabled {
                     self.clock = clock;
                     self.trace_end(ended);
                 }
@@ -403,7 +409,7 @@ impl Cpu {
                         move_to!(entry, entry);
                         let clock = now!();
                         self.mark_point(clock, caller, call_pc);
-                        if self.tracer.enabled {
+                        if TRACING && self.tracer.enabled {
                             self.clock = clock;
                             self.trace_call(caller, target);
                         }
