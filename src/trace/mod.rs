@@ -228,12 +228,15 @@ impl Tracer {
         }
         self.held.sort_by_key(|(t, arrival, _)| (*t, *arrival));
         let ready = self.held.partition_point(|(t, _, _)| *t <= t_ns);
-        let held = std::mem::take(&mut self.held);
-        let mut rest = held.into_iter();
-        for (t, _, event) in rest.by_ref().take(ready) {
+        // Taken out while its events are handed on, then put back: it keeps its room, so
+        // settling allocates nothing.
+        let mut held = std::mem::take(&mut self.held);
+        for (t, _, event) in held.drain(..ready) {
             self.hand_on(t, &event);
         }
-        self.held = rest.collect();
+        if self.enabled {
+            self.held = held;
+        }
     }
 
     fn hand_on(&mut self, t_ns: u64, event: &Event) {
