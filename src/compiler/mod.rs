@@ -81,6 +81,8 @@ pub struct Program {
     /// The assignment list's symbols, to show operands by name.
     pub symbols: crate::symbols::Symbols,
     index: HashMap<BlockId, u16>,
+    /// Every block's name, `"PB 3"`, made once: trace events share it without allocating.
+    pub names: Vec<std::sync::Arc<str>>,
     /// The code as the VM runs it, with the FB bodies specialised for their actuals.
     pub arena: arena::Arena,
 }
@@ -138,6 +140,10 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
         (span.file, span.start)
     });
     let arena = arena::Arena::build(&blocks, &compiler.param_lists, compiler.layout, true);
+    let names = blocks
+        .iter()
+        .map(|block| std::sync::Arc::from(block.id.to_string()))
+        .collect();
     Compiled {
         program: Program {
             profile,
@@ -148,6 +154,7 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
             indirect_templates: compiler.templates,
             symbols: crate::symbols::Symbols::default(),
             index: compiler.index,
+            names,
             arena,
         },
         diagnostics: compiler.diagnostics,

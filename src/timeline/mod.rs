@@ -205,7 +205,7 @@ fn span_item(span: &Span) -> Option<(RowKey, Item)> {
             end,
         } => {
             let depth = u8::try_from(*depth).unwrap_or(u8::MAX);
-            ((Mark::Block, *ob, depth), start, end, name.clone())
+            ((Mark::Block, *ob, depth), start, end, name.to_string())
         }
         Span::System { what, start, end } => {
             let mark = if *what == OS_TIME {

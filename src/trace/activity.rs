@@ -3,7 +3,7 @@
 //! work. The text trace indents by it; the Chrome trace and the timeline picture draw its
 //! spans.
 
-use super::Event;
+use super::{BlockName, Event};
 
 /// A stretch of time something ran or was open.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -15,7 +15,7 @@ pub enum Span {
         ob: u8,
         /// 1 for a block the level's OB called, 2 for one that block called, …
         depth: usize,
-        name: String,
+        name: BlockName,
         start: u64,
         end: u64,
     },
@@ -37,7 +37,7 @@ struct Level {
     /// The text trace's indent of the level's OB.
     base: usize,
     /// The called blocks open on it: name and call time.
-    blocks: Vec<(String, u64)>,
+    blocks: Vec<(BlockName, u64)>,
     /// When it started: the service, or for OB 1 the first time it had the CPU.
     since: Option<u64>,
     /// Its OB has ended; the level waits for its end (an interrupt data cycle may come).
@@ -102,7 +102,7 @@ impl Activity {
             Event::OsTime { duration_ns } => self.system(t_ns, *duration_ns, OS_TIME, spans),
             Event::BlockCall { to, .. } => {
                 if let Some(level) = self.levels.last_mut() {
-                    level.blocks.push((to.clone(), t_ns));
+                    level.blocks.push((BlockName::clone(to), t_ns));
                 }
             }
             Event::BlockEnd { .. } => self.block_end(t_ns, spans),
@@ -259,7 +259,7 @@ mod tests {
 
     fn call(to: &str) -> Event {
         Event::BlockCall {
-            from: String::new(),
+            from: "".into(),
             to: to.into(),
             depth: 0,
         }
@@ -267,7 +267,7 @@ mod tests {
 
     fn end() -> Event {
         Event::BlockEnd {
-            block: String::new(),
+            block: "".into(),
             depth: 0,
         }
     }

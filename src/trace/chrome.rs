@@ -166,7 +166,14 @@ impl Chrome {
                 start,
                 end,
                 ..
-            } => (Kind::Blocks, name, start, end, u32::from(ob), "block"),
+            } => (
+                Kind::Blocks,
+                name.to_string(),
+                start,
+                end,
+                u32::from(ob),
+                "block",
+            ),
             Span::Level { ob, start, end } => (
                 Kind::Blocks,
                 format!("OB {ob}"),

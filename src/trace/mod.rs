@@ -27,6 +27,10 @@ pub enum TraceFormat {
     Chrome,
 }
 
+/// A block's name in an event, `"PB 3"`: shared, so an event names a block without
+/// allocating.
+pub type BlockName = std::sync::Arc<str>;
+
 /// The trace events; `programs/README.md` documents every field. Block names are written
 /// `"PB 3"`.
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -46,12 +50,12 @@ pub enum Event {
         cycle_time_ns: u64,
     },
     BlockCall {
-        from: String,
-        to: String,
+        from: BlockName,
+        to: BlockName,
         depth: usize,
     },
     BlockEnd {
-        block: String,
+        block: BlockName,
         depth: usize,
     },
     IrqRequest {

@@ -40,10 +40,11 @@ impl Text {
         let mut event = event.clone();
         match &mut event {
             Event::BlockCall { from, to, .. } => {
-                *from = name(from);
-                *to = name(to);
+                *from = name(from).into();
+                *to = name(to).into();
             }
-            Event::BlockEnd { block, .. } | Event::Stop { block, .. } => *block = name(block),
+            Event::BlockEnd { block, .. } => *block = name(block).into(),
+            Event::Stop { block, .. } => *block = name(block),
             Event::IrqRequest {
                 block: Some(block), ..
             }

@@ -26,7 +26,7 @@ use crate::compiler::bytecode::NO_PARAMS;
 use crate::compiler::{Program, Resolved};
 use crate::profile::{Nesting, Profile};
 use crate::source::SourceSet;
-use crate::trace::Tracer;
+use crate::trace::{BlockName, Tracer};
 
 use block_stack::BlockStack;
 use counters::Counter;
@@ -293,6 +293,11 @@ impl Cpu {
 
     pub fn block_id(&self, index: u16) -> BlockId {
         self.program.blocks[usize::from(index)].id
+    }
+
+    /// The name of block `index` for a trace event.
+    pub fn block_name(&self, index: u16) -> BlockName {
+        BlockName::clone(&self.program.names[usize::from(index)])
     }
 
     /// Source line of an op.

@@ -95,8 +95,8 @@ impl Cpu {
     #[cold]
     fn trace_call(&mut self, from: u16, to: u16) {
         let event = Event::BlockCall {
-            from: self.block_id(from).to_string(),
-            to: self.block_id(to).to_string(),
+            from: self.block_name(from),
+            to: self.block_name(to),
             depth: self.depth(),
         };
         self.trace_block_change(event);
@@ -106,7 +106,7 @@ impl Cpu {
     #[cold]
     fn trace_end(&mut self, block: u16) {
         let event = Event::BlockEnd {
-            block: self.block_id(block).to_string(),
+            block: self.block_name(block),
             depth: self.depth(),
         };
         self.trace_block_change(event);
