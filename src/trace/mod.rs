@@ -251,9 +251,9 @@ impl Tracer {
                 output.error = Some(error);
             }
         }
+        // With every output failed, nothing more is traced (`settle` drops what it held).
         if self.outputs.iter().all(|output| output.error.is_some()) {
             self.enabled = false;
-            self.held.clear();
         }
     }
 
