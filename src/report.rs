@@ -213,7 +213,34 @@ fn checks(out: &mut String, ran: &crate::runner::Ran) {
     }
 }
 
+/// The summary `awl run` prints, ending with the instruction count, wall time and rate.
 pub fn summary(ran: &crate::runner::Ran) -> String {
+    let mut out = summary_of_the_run(ran);
+    let outcome = &ran.outcome;
+    let wall = outcome.wall.as_secs_f64();
+    let rate = if wall > 0.0 {
+        outcome.instructions as f64 / wall / 1e6
+    } else {
+        0.0
+    };
+    let _ = writeln!(
+        out,
+        "instructions: {}   wall: {wall:.4} s   rate: {rate:.1} M instr/s",
+        outcome.instructions
+    );
+    out
+}
+
+/// The summary with the instruction count alone on its last line: no wall time or rate,
+/// which differ from machine to machine and run to run (the playground shows this one).
+pub fn summary_on_simulated_time(ran: &crate::runner::Ran) -> String {
+    let mut out = summary_of_the_run(ran);
+    let _ = writeln!(out, "instructions: {}", ran.outcome.instructions);
+    out
+}
+
+/// Every line of the summary but the last.
+fn summary_of_the_run(ran: &crate::runner::Ran) -> String {
     let mut out = String::new();
     let outcome = &ran.outcome;
     let cpu = &ran.cpu;
@@ -293,17 +320,6 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
         cpu.profile.name,
         outcome.mode.name(),
         outcome.cycles
-    );
-    let wall = outcome.wall.as_secs_f64();
-    let rate = if wall > 0.0 {
-        outcome.instructions as f64 / wall / 1e6
-    } else {
-        0.0
-    };
-    let _ = writeln!(
-        out,
-        "instructions: {}   wall: {wall:.4} s   rate: {rate:.1} M instr/s",
-        outcome.instructions
     );
     out
 }

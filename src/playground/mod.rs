@@ -169,7 +169,7 @@ fn finished(ran: &Ran) -> Outcome {
     let state = State::capture(&ran.cpu, stop);
     Outcome {
         ran: true,
-        summary: summary_without_wall_time(ran),
+        summary: crate::report::summary_on_simulated_time(ran),
         diagnostics: ran.warnings.iter().map(Diagnostic::of).collect(),
         stop: stop.map(|stop| render_plain(&runner::stop_report(ran, stop))),
         stop_at: stop.and_then(|stop| Place::of_op(&ran.cpu, stop.block?, stop.pc)),
@@ -177,19 +177,6 @@ fn finished(ran: &Ran) -> Outcome {
         watch: (!ran.watch.is_empty()).then(|| ran.watch.render()),
         timeline: None,
     }
-}
-
-/// The summary of `awl run`; its last line (instructions, wall time, rate) says how fast this
-/// machine ran, which differs from run to run, so it is kept apart: the instruction count stays.
-fn summary_without_wall_time(ran: &Ran) -> String {
-    crate::report::summary(ran)
-        .lines()
-        .map(|line| match line.split_once("   wall:") {
-            Some((instructions, _)) => instructions,
-            None => line,
-        })
-        .map(|line| format!("{line}\n"))
-        .collect()
 }
 
 /// Why a request did not run, as an outcome.
