@@ -181,3 +181,74 @@ OB 3
 ";
     assert_same("passing.awl", source, "sinumerik-840c", 50);
 }
+
+#[test]
+fn conditional_calls_taken_or_not_and_nesting_to_its_limit_run_the_same_optimised() {
+    // `JC` taken and not taken, `JU` of blocks with and without parameters; from the 20th
+    // cycle on, PB 4 calls itself until the nesting limit stops the CPU (STUEB).
+    let source = "
+OB 1
+      A  I 0.0
+      JC PB 1
+      A  I 0.2
+      JC PB 2
+      JU FB 1
+NAME :ADD
+IN   :KF +3
+      L  FW 10
+      L  KF +20
+      >=F
+      JC PB 4
+      BE
+
+PB 1
+      L  FW 10
+      L  KF +1
+      +F
+      T  FW 10
+      A  I 0.1
+      JC SB 1
+      BE
+
+PB 2
+      S  F 2.0
+      BE
+
+SB 1
+      L  FW 12
+      L  KF +2
+      +F
+      T  FW 12
+      BE
+
+FB 1
+NAME :ADD
+DES  :IN   D KF
+      L  FW 14
+      L  =IN
+      +F
+      T  FW 14
+      BE
+
+PB 4
+      L  FW 16
+      L  KF +1
+      +F
+      T  FW 16
+      JU PB 4
+      BE
+";
+    // `run` sets every input byte to 0101_0011: I 0.0 and I 0.1 are 1, I 0.2 is 0.
+    for cpu in ["sinumerik-840c", "s5-95f"] {
+        assert_same("conditional_calls.awl", source, cpu, 30);
+        let built =
+            frontend::build_text("conditional_calls.awl", source, profile::find(cpu).unwrap());
+        let outcome = run(
+            built.compiled.program,
+            &built.sources,
+            30,
+            InterruptPoints::Block,
+        );
+        assert!(outcome.contains("Some(Stueb)"), "{cpu}: {outcome}");
+    }
+}

@@ -81,10 +81,31 @@ impl Arena {
                 }
             })
             .collect();
+        if optimised {
+            for op in &mut ops {
+                *op = arena.located(*op);
+            }
+        }
         arena.ops = ops.into_boxed_slice();
         arena.plain = plain.into_boxed_slice();
         arena.times = times.into_boxed_slice();
         arena
+    }
+
+    /// A call without actual parameters as the call that knows where its callee starts.
+    fn located(&self, op: Op) -> Op {
+        match op {
+            Op::Call {
+                block,
+                conditional,
+                params: NO_PARAMS,
+            } => Op::CallAt {
+                block,
+                conditional,
+                entry: self.start(block, NO_PARAMS) as u32,
+            },
+            other => other,
+        }
     }
 
     /// Where the body block `block` runs with actual-parameter list `params` starts (both
@@ -97,5 +118,40 @@ impl Arena {
             self.list_start.get(usize::from(params))
         };
         start.map_or(0, |start| *start as usize)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_call_without_parameters_knows_where_its_callee_starts() {
+        let source = "OB 1\n JU PB 1\n JC PB 1\n JU FB 2\nNAME :F\nX    :I 0.0\n BE\n\
+                      PB 1\n NOP 0\n BE\n\
+                      FB 2\nNAME :F\nDES  :X    I BI\n A  =X\n BE\n";
+        let profile = crate::profile::find("sinumerik-840c").expect("a profile");
+        let built = crate::frontend::build_text("calls.awl", source, profile);
+        assert!(!built.has_errors(), "{:#?}", built.diagnostics);
+        let program = built.compiled.program;
+        let id = crate::ast::BlockId {
+            kind: crate::mnemonics::BlockKind::Pb,
+            number: 1,
+        };
+        let pb = program.block_index(id).expect("PB 1");
+        let entry = program.arena.start(pb, NO_PARAMS) as u32;
+        let located = |conditional| Op::CallAt {
+            block: pb,
+            conditional,
+            entry,
+        };
+        assert_eq!(program.arena.ops[0], located(false));
+        assert_eq!(program.arena.ops[1], located(true));
+        // A call with actual parameters finds its body by its list; the stepping loop and the
+        // program as compiled show the calls as written.
+        assert!(matches!(program.arena.ops[2], Op::Call { params: 0, .. }));
+        assert!(matches!(program.arena.plain[0], Op::Call { .. }));
+        let as_compiled = program.unoptimised();
+        assert!(matches!(as_compiled.arena.ops[0], Op::Call { .. }));
     }
 }

@@ -185,6 +185,13 @@ pub enum Op {
         conditional: bool,
         params: u16,
     },
+    /// A `Call` without actual parameters, with where the callee's body starts in the arena, so
+    /// the call finds it without a lookup. Only in the arena's fused code (see `arena`).
+    CallAt {
+        block: u16,
+        conditional: bool,
+        entry: u32,
+    },
     /// A call of a block that is not loaded: STOP when taken.
     CallMissing {
         kind: BlockKind,

@@ -49,7 +49,7 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         Op::Arithmetic(Arith::Mul) | Op::ArithmeticStack(Arith::Mul) => t.multiply,
         Op::Arithmetic(Arith::Div) | Op::ArithmeticStack(Arith::Div) => t.divide,
         Op::Compare(_) => t.compare,
-        Op::Call { .. } | Op::CallMissing { .. } => t.block_call,
+        Op::Call { .. } | Op::CallAt { .. } | Op::CallMissing { .. } => t.block_call,
         Op::BlockEnd | Op::BlockEndConditional | Op::BlockEndUnconditional => t.block_end,
         Op::OpenDb(_) | Op::GenerateDb(_) => t.open_db,
         Op::Jump(..) => t.jump,

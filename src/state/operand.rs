@@ -121,6 +121,7 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::ArithmeticStack(_)
         | Op::Compare(_)
         | Op::Call { .. }
+        | Op::CallAt { .. }
         | Op::CallMissing { .. }
         | Op::OpenDb(_)
         | Op::BlockEnd

@@ -479,6 +479,7 @@ impl Cpu {
             | Op::Compare(_)
             | Op::Jump(..)
             | Op::Call { .. }
+            | Op::CallAt { .. }
             | Op::BlockEnd
             | Op::BlockEndConditional
             | Op::BlockEndUnconditional

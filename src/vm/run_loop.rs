@@ -272,6 +272,52 @@ impl Cpu {
                 }
             }};
         }
+        // A block call (of op `$op` at `$op_pc`, for the probe): `$target` with actual-parameter
+        // list `$params`, whose body starts at `$entry`.
+        macro_rules! call {
+            ($run:lifetime, $op_pc:expr, $op:expr,
+             $target:expr, $conditional:expr, $params:expr, $entry:expr) => {{
+                let (target, conditional, params, entry): (u16, bool, u16, usize) =
+                    ($target, $conditional, $params, $entry);
+                if conditional && !status.rlo() {
+                    status.after_jump();
+                    probe_after!($run, $op_pc, $op);
+                    continue $run;
+                }
+                status.after_jump();
+                if self.frames.len() >= self.level.frame_limit {
+                    sync!();
+                    break $run Leave::Stop(StopCause::Stueb, at!());
+                }
+                probe_after!($run, $op_pc, $op);
+                let caller = self.level.block;
+                let call_pc = at!();
+                let pushed = self.frames.push(Frame {
+                    block: caller,
+                    pc: call_pc + 1,
+                    open_db: self.level.open_db,
+                    params: self.level.params,
+                    resume: pc as u32,
+                });
+                if !pushed {
+                    break $run Leave::Stop(StopCause::Stueb, call_pc);
+                }
+                self.level.block = target;
+                self.level.params = params;
+                move_to!(entry, entry);
+                let clock = now!();
+                self.mark_point(clock, caller, call_pc);
+                if TRACING && self.tracer.enabled {
+                    self.clock = clock;
+                    self.trace_call(caller, target);
+                }
+                if clock >= self.attention_at {
+                    self.last_op = (caller, call_pc);
+                    break $run Leave::Point(Point::BlockCall);
+                }
+                continue $run;
+            }};
+        }
         // Why the loop ended; a fault's detail waits in `detail` (the loop carries no report).
         let mut detail = StopDetail::None;
         // With operation points: the op that just ran ended at a point (the check of it is made
@@ -380,45 +426,14 @@ impl Cpu {
                         conditional,
                         params,
                     } => {
-                        if conditional && !status.rlo() {
-                            status.after_jump();
-                            probe_after!('run, op_pc, op);
-                            continue 'run;
-                        }
-                        status.after_jump();
-                        if self.frames.len() >= self.level.frame_limit {
-                            sync!();
-                            break 'run Leave::Stop(StopCause::Stueb, at!());
-                        }
-                        probe_after!('run, op_pc, op);
-                        let caller = self.level.block;
-                        let call_pc = at!();
-                        let pushed = self.frames.push(Frame {
-                            block: caller,
-                            pc: call_pc + 1,
-                            open_db: self.level.open_db,
-                            params: self.level.params,
-                            resume: pc as u32,
-                        });
-                        if !pushed {
-                            break 'run Leave::Stop(StopCause::Stueb, call_pc);
-                        }
-                        self.level.block = target;
-                        self.level.params = params;
                         let entry = arena.start(target, params);
-                        move_to!(entry, entry);
-                        let clock = now!();
-                        self.mark_point(clock, caller, call_pc);
-                        if TRACING && self.tracer.enabled {
-                            self.clock = clock;
-                            self.trace_call(caller, target);
-                        }
-                        if clock >= self.attention_at {
-                            self.last_op = (caller, call_pc);
-                            break 'run Leave::Point(Point::BlockCall);
-                        }
-                        continue 'run;
+                        call!('run, op_pc, op, target, conditional, params, entry);
                     }
+                    Op::CallAt {
+                        block: target,
+                        conditional,
+                        entry,
+                    } => call!('run, op_pc, op, target, conditional, NO_PARAMS, entry as usize),
                     Op::BlockEnd => {
                         status.end_string();
                         block_end!('run, op);
