@@ -39,12 +39,19 @@ use timers::Timer;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Frame {
     pub block: u16,
-    pub pc: u32,
     pub open_db: Option<u8>,
     pub params: u16,
-    /// `pc` as a position in the program's arena, where the loop resumes: kept so a block end
-    /// needs no lookup.
+    /// Where the calling block's body starts in the program's arena, and where the loop resumes
+    /// in it: kept so a block end needs no lookup.
+    pub start: u32,
     pub resume: u32,
+}
+
+impl Frame {
+    /// The op of the calling block the loop resumes at.
+    pub fn pc(&self) -> u32 {
+        self.resume - self.start
+    }
 }
 
 /// The registers and position of a processing level: what an interrupt OB saves and restores.
@@ -374,7 +381,7 @@ impl Cpu {
         self.frames[frames]
             .iter()
             .rev()
-            .map(|frame| (frame.block, frame.pc.saturating_sub(1)))
+            .map(|frame| (frame.block, frame.pc().saturating_sub(1)))
     }
 
     /// The block stack, innermost first: the running block, then each return point.

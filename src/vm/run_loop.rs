@@ -258,14 +258,14 @@ impl Cpu {
                     self.last_op = (ended, end_pc);
                     break $run Leave::LevelEnd;
                 }
-                let Some(frame) = self.frames.pop() else {
+                let Some(&frame) = self.frames.pop() else {
                     unreachable!("a frame above the level base");
                 };
                 self.level.block = frame.block;
                 self.level.open_db = frame.open_db;
                 self.level.params = frame.params;
                 let resume = frame.resume as usize;
-                move_to!(resume, resume - frame.pc as usize);
+                move_to!(resume, frame.start as usize);
                 if clock >= self.attention_at {
                     self.last_op = (ended, end_pc);
                     break $run Leave::Point(Point::BlockEnd);
@@ -294,9 +294,9 @@ impl Cpu {
                 let call_pc = at!();
                 let pushed = self.frames.push(Frame {
                     block: caller,
-                    pc: call_pc + 1,
                     open_db: self.level.open_db,
                     params: self.level.params,
+                    start: start as u32,
                     resume: pc as u32,
                 });
                 if !pushed {
@@ -304,8 +304,13 @@ impl Cpu {
                 }
                 self.level.block = target;
                 self.level.params = params;
-                move_to!(entry, entry);
+                // Every body's op times start at 0: its clock base is the clock.
                 let clock = now!();
+                count_base = count_base.wrapping_add(pc as u64).wrapping_sub(entry as u64);
+                start = entry;
+                pc = entry;
+                time_base = clock;
+                rebase!();
                 self.mark_point(clock, caller, call_pc);
                 if TRACING && self.tracer.enabled {
                     self.clock = clock;
