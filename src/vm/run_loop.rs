@@ -167,7 +167,7 @@ impl Cpu {
         macro_rules! split_if_due {
             ($dispatch:lifetime, $op:ident) => {
                 if OPERATION_POINTS && times[pc] >= deadline {
-                    $op = plain[pc - 1];
+                    $op = &plain[pc - 1];
                     continue $dispatch;
                 }
             };
@@ -215,7 +215,7 @@ impl Cpu {
             ($run:lifetime, $pc:expr, $op:expr) => {
                 if STEPPING {
                     sync!();
-                    let (block, at, op) = (self.level.block, $pc, $op);
+                    let (block, at, op) = (self.level.block, $pc, *$op);
                     let flow =
                         self.with_probe(Flow::Go, |probe, cpu| probe.after(cpu, block, at, op));
                     if flow == Flow::Halt {
@@ -338,17 +338,22 @@ impl Cpu {
             }
             probe_before!('run);
             // Every body ends in `End`, so this finds an op; past the arena it stops all the same.
-            let Some(&fetched) = code.get(pc) else {
+            let Some(fetched) = code.get(pc) else {
                 detail = StopDetail::Text("the block has no BE".into());
                 break 'run Leave::Stop(StopCause::Bcf, (pc - start) as u32);
             };
             pc += 1;
+            // Matched through a reference, so each arm loads only the fields it uses and no
+            // register carries an op's fields into every arm (`resolved` holds a formal
+            // operand's or a `DO`'s op).
             let mut op = fetched;
-            // The op's own position, for the probe: after a `DO`, the op it ran.
-            let mut op_pc = at!();
+            let mut resolved: Op;
+            // The op's own position, for the probe: after a `DO`, the op it ran. Only the
+            // stepping loop shows it; elsewhere it would cost a register at every dispatch.
+            let mut op_pc = if STEPPING { at!() } else { 0 };
             // A formal operand or a `DO` is resolved, then its op dispatched again.
             'dispatch: loop {
-                match op {
+                match *op {
                     Op::And(bit) => status.scanned(Logic::And, self.image_bit(bit)),
                     Op::AndNot(bit) => status.scanned(Logic::AndNot, self.image_bit(bit)),
                     Op::Or(bit) => status.scanned(Logic::Or, self.image_bit(bit)),
@@ -522,7 +527,7 @@ impl Cpu {
                     }
                     Op::Formal { .. } | Op::Indirect { .. } => {
                         sync!();
-                        match self.concrete(op) {
+                        match self.concrete(*op) {
                             Ok((concrete, consumes_next)) => {
                                 if consumes_next {
                                     probe_after!('run, op_pc, op);
@@ -533,7 +538,8 @@ impl Cpu {
                                     }
                                 }
                                 reload!();
-                                op = concrete;
+                                resolved = concrete;
+                                op = &resolved;
                                 continue 'dispatch;
                             }
                             Err((cause, fault)) => {
@@ -583,7 +589,7 @@ impl Cpu {
                     | Op::DisableInterrupts
                     | Op::EnableInterrupts => {
                         sync!();
-                        let result = self.execute_other(op, at!());
+                        let result = self.execute_other(*op, at!());
                         reload!();
                         if let Err((cause, fault)) = result {
                             detail = fault;
