@@ -237,8 +237,8 @@ pub enum Op {
         second_op: u8,
     },
     /// One of `A AN O ON` on an image bit, then `=`, `S` or `R` of an image bit; the first
-    /// `u8` packs the logic and the bit as in `LogicPair`, the second the write (bits 3–4)
-    /// and the bit.
+    /// `u8` packs the logic and the bit as in `LogicPair`, the second the bit and what the
+    /// write does to it for each RLO (see `fuse::apply_write`).
     LogicWrite {
         logic_op: u8,
         scanned: u16,

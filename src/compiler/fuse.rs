@@ -44,7 +44,7 @@ fn pair(first: Op, second: Op) -> Option<Op> {
                 logic_op: pack(logic, scanned),
                 scanned: scanned.byte,
                 written: written.byte,
-                write_op: (write as u8) << 3 | written.bit & 7,
+                write_op: pack_write(write, written),
             }
         }
         _ => {
@@ -83,21 +83,29 @@ fn pack(logic: Logic, bit: ImageBit) -> u8 {
     (logic as u8) << 3 | bit.bit & 7
 }
 
-/// The write and the bit of the second half of a [`Op::LogicWrite`].
-#[inline(always)]
-pub fn unpack_write(packed: u8, byte: u16) -> (Write, ImageBit) {
-    let write = match packed >> 3 & 3 {
-        0 => Write::Assign,
-        1 => Write::Set,
-        _ => Write::Reset,
+/// What a write does to its bit for one value of the RLO: clear it…
+const CLEAR: u8 = 1;
+/// …or set it (with neither, leave it).
+const SET: u8 = 2;
+
+/// The second half of a [`Op::LogicWrite`]: the bit (bits 0–2), then what the write does to it
+/// when the RLO is 0 (bits 3–4) and when it is 1 (bits 5–6), so the loop applies it without
+/// branching on the kind of write.
+fn pack_write(write: Write, bit: ImageBit) -> u8 {
+    let (when_0, when_1) = match write {
+        Write::Assign => (CLEAR, SET),
+        Write::Set => (0, SET),
+        Write::Reset => (0, CLEAR),
     };
-    (
-        write,
-        ImageBit {
-            byte,
-            bit: packed & 7,
-        },
-    )
+    when_1 << 5 | when_0 << 3 | bit.bit & 7
+}
+
+/// `byte` after the packed write of a [`Op::LogicWrite`] with RLO `rlo`.
+#[inline(always)]
+pub fn apply_write(packed: u8, rlo: bool, byte: u8) -> u8 {
+    let action = packed >> (3 + 2 * u8::from(rlo)) & 3;
+    let bit = packed & 7;
+    byte & !((action & CLEAR) << bit) | (action >> 1) << bit
 }
 
 /// The logic and the bit of a packed half of a [`Op::LogicPair`].
@@ -133,7 +141,7 @@ mod tests {
     }
 
     #[test]
-    fn a_packed_write_unpacks_to_its_write_and_bit() {
+    fn a_packed_write_does_what_its_op_does() {
         for write in [Write::Assign, Write::Set, Write::Reset] {
             for bit in 0..8 {
                 let image = ImageBit { byte: 7, bit };
@@ -143,7 +151,23 @@ mod tests {
                 else {
                     panic!("a logic write");
                 };
-                assert_eq!(unpack_write(write_op, written), (write, image));
+                assert_eq!(written, 7);
+                for (byte, rlo) in [0x00u8, 0xFF, 0x5A, 0xA5]
+                    .into_iter()
+                    .flat_map(|byte| [(byte, false), (byte, true)])
+                {
+                    let mask = 1u8 << bit;
+                    let expected = match (write, rlo) {
+                        (Write::Assign | Write::Set, true) => byte | mask,
+                        (Write::Assign, false) | (Write::Reset, true) => byte & !mask,
+                        (Write::Set | Write::Reset, false) => byte,
+                    };
+                    assert_eq!(
+                        apply_write(write_op, rlo, byte),
+                        expected,
+                        "{write:?} {rlo}"
+                    );
+                }
             }
         }
     }

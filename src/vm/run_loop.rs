@@ -486,14 +486,8 @@ impl Cpu {
                         split_if_due!('dispatch, op);
                         let (logic, bit) = fuse::unpack(logic_op, scanned);
                         status.scanned(logic, self.image_bit(bit));
-                        let (write, bit) = fuse::unpack_write(write_op, written);
-                        let rlo = status.rlo();
-                        match write {
-                            Write::Assign => self.write_image_bit(bit, rlo),
-                            Write::Set if rlo => self.write_image_bit(bit, true),
-                            Write::Reset if rlo => self.write_image_bit(bit, false),
-                            Write::Set | Write::Reset => {}
-                        }
+                        let byte = &mut self.image[usize::from(written)];
+                        *byte = fuse::apply_write(write_op, status.rlo(), *byte);
                         status.end_string();
                         pc += 1;
                     }
