@@ -305,6 +305,7 @@ impl Cpu {
                 self.level.block = target;
                 self.level.params = params;
                 // Every body's op times start at 0: its clock base is the clock.
+                debug_assert_eq!(times[entry], 0, "a body's first op starts at 0");
                 let clock = now!();
                 count_base = count_base.wrapping_add(pc as u64).wrapping_sub(entry as u64);
                 start = entry;
