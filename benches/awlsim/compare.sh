@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Measures awl and awlsim side by side on the same machine, pair by pair, and prints the ratio.
-# awl runs programs/bench/logic_loop (STEP 5, release build); awlsim (installed from PyPI into
+# awl runs programs/bench/logic_loop (STEP 5, release build); awlsim (installed with pip into
 # a virtual environment under target/) runs the same loop in S7 form, logic_loop_s7.awl, and
 # reports its own statement rate. Usage: benches/awlsim/compare.sh [pairs] [awlsim seconds]
 set -euo pipefail
@@ -30,7 +30,7 @@ awlsim_rate() {
         | awk '{ print ($2 == "k") ? $1 / 1000 : $1 }'
 }
 
-echo "awlsim $awlsim_version (PyPI, pure Python) vs awl, logic loop, M operations/s"
+echo "awlsim $awlsim_version (pip, pure Python) vs awl, logic loop, M operations/s"
 printf '%-6s %12s %12s %10s\n' pair awl awlsim ratio
 for pair in $(seq "$pairs"); do
     ours=$(awl_rate)
