@@ -117,7 +117,7 @@ impl Cpu {
     fn trace_block_change(&mut self, event: Event) {
         self.tracer.emit(self.clock, event);
         if self.clock < self.engine.next_due() {
-            self.tracer.settle(self.clock);
+            self.settle_trace();
         }
     }
 

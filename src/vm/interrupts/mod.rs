@@ -24,6 +24,7 @@ use crate::profile::{Family, InterruptPoints, Profile};
 use crate::trace::Event;
 
 use super::io_trace::Modules;
+use super::place::Place;
 use super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, IDLE, Mode, Point, StretchKind};
 
@@ -233,6 +234,11 @@ pub trait Rules {
     /// Requests for `ob` these rules hold outside the pending list.
     fn held(&self, _ob: u8) -> u64 {
         0
+    }
+    /// The time of the earliest event these rules have taken in but not traced yet, because
+    /// what it becomes is decided later; the trace is held back from that time on.
+    fn untraced_since(&self) -> u64 {
+        u64::MAX
     }
 }
 
@@ -530,9 +536,20 @@ impl Cpu {
             }
         }
         if self.tracer.enabled {
-            self.tracer.settle(self.clock);
+            self.settle_trace();
         }
         Ok(())
+    }
+
+    /// Hands on the trace up to now, short of the events the rules have yet to trace: every
+    /// event is written in time order, those of STARTUP too.
+    pub(super) fn settle_trace(&mut self) {
+        let untraced_since = self.engine.rules.rules().untraced_since();
+        if untraced_since > self.clock {
+            self.tracer.settle(self.clock);
+        } else if let Some(before) = untraced_since.checked_sub(1) {
+            self.tracer.settle(before);
+        }
     }
 
     /// The scheduled item `index` happens (read in place: a schedule is never copied).
@@ -590,10 +607,22 @@ impl Cpu {
         at: u64,
         hardware: Option<HardwareSource>,
     ) -> Request {
+        self.announce_placed(ob, at, hardware, None)
+    }
+
+    /// As [`Cpu::announce`], for a request taken in earlier, at `place` (the last stretch no
+    /// longer holds its moment).
+    pub(super) fn announce_placed(
+        &mut self,
+        ob: u8,
+        at: u64,
+        hardware: Option<HardwareSource>,
+        place: Option<Place>,
+    ) -> Request {
         let id = self.engine.new_id();
         self.engine.stats_mut(ob).requested += 1;
         self.emit(at, |cpu| {
-            let place = cpu.place_of(at);
+            let place = place.unwrap_or_else(|| cpu.place_of(at));
             let (module, channel) = hardware.map_or((None, None), |source| {
                 (Some(source.module), Some(source.channel))
             });

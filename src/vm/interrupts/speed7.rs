@@ -20,6 +20,8 @@
 
 use crate::trace::Event;
 
+use super::super::place::Place;
+
 use super::super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, EngineConfig, Happening, HardwareSource, Request, Rules, Scheduled, Wait};
 
@@ -40,8 +42,9 @@ pub struct Speed7 {
     held: Vec<Held>,
     /// Held events released by an acknowledgement, while they are judged.
     released: Vec<Held>,
-    /// Events of the STARTUP, judged at the transition to RUN.
-    startup_events: Vec<(u64, u8, HardwareSource)>,
+    /// Events of the STARTUP, judged at the transition to RUN, with where the CPU was when
+    /// each came (when a trace is written).
+    startup_events: Vec<(u64, u8, HardwareSource, Option<Place>)>,
 }
 
 const SAME_CHANNEL: &str = "same channel between identification and acknowledgement \
@@ -90,10 +93,17 @@ impl Speed7 {
 
     /// A hardware event from before RUN: in STARTUP none is produced (it is no request), and
     /// one still active at the transition to RUN is lost.
-    fn before_run(&mut self, cpu: &mut Cpu, at: u64, ob: u8, source: HardwareSource) {
+    fn before_run(
+        &mut self,
+        cpu: &mut Cpu,
+        at: u64,
+        ob: u8,
+        source: HardwareSource,
+        place: Option<Place>,
+    ) {
         let run_started = cpu.run_started_at().unwrap_or(cpu.clock);
         if source.active_until > run_started {
-            let request = cpu.announce(ob, at, Some(source));
+            let request = cpu.announce_placed(ob, at, Some(source), place);
             cpu.lose(run_started, request, TRANSITION);
         } else {
             cpu.emit(at, |_| Event::ModuleEvent {
@@ -182,11 +192,12 @@ impl Rules for Speed7 {
         };
         match cpu.run_started_at() {
             None => {
-                self.startup_events.push((at, ob, source));
+                let place = cpu.tracer.enabled.then(|| cpu.place_of(at));
+                self.startup_events.push((at, ob, source, place));
                 return Ok(());
             }
             Some(started) if at < started => {
-                self.before_run(cpu, at, ob, source);
+                self.before_run(cpu, at, ob, source, None);
                 return Ok(());
             }
             Some(_) => {}
@@ -225,8 +236,8 @@ impl Rules for Speed7 {
 
     fn start_run(&mut self, cpu: &mut Cpu) -> Result<(), Stop> {
         let mut events = std::mem::take(&mut self.startup_events);
-        for (at, ob, source) in events.drain(..) {
-            self.before_run(cpu, at, ob, source);
+        for (at, ob, source, place) in events.drain(..) {
+            self.before_run(cpu, at, ob, source, place);
         }
         self.startup_events = events;
         Ok(())
@@ -243,5 +254,15 @@ impl Rules for Speed7 {
             .iter()
             .filter(|held| held.request.ob == ob)
             .count() as u64
+    }
+
+    /// The events of STARTUP are traced at the transition to RUN, which decides whether they
+    /// were requests (lost) or not.
+    fn untraced_since(&self) -> u64 {
+        self.startup_events
+            .iter()
+            .map(|(at, ..)| *at)
+            .min()
+            .unwrap_or(u64::MAX)
     }
 }
