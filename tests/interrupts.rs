@@ -695,6 +695,34 @@ fn seed002_interrupt_output_cycle_writes_the_bytes_ob13_wrote() {
     expectations_met(&ran);
 }
 
+/// Seed 002: what OB 13 transferred reaches the modules in the interrupt output data cycle
+/// right after OB 13, "before 'normal' program processing resumes": a digital byte there and
+/// not only at the cycle's PIQ write (T PY wrote the normal PIQ too), and a byte beyond the
+/// process image, which only that data cycle outputs, at all.
+#[test]
+fn seed002_what_ob13_wrote_reaches_the_modules_right_after_ob13() {
+    let program = "OB 1\n      BE\nOB 13\n      L  KH 0081\n      T  PY 1\n      L  KB 77\n      T  PY 130\n      BE\n";
+    let scenario = "cpu = \"s5-95f\"\nrun = { for = \"12ms\" }\n[ob13]\ninterval = \"10ms\"\n[expect]\n\"PY 130\" = 77\n";
+    let (ran, events) = traced("s002_output_cycle", program, scenario);
+    expectations_met(&ran);
+    let end = of(&events, "irq_end")[0]["t_ns"].as_u64().unwrap();
+    let outputs_at_end: Vec<&str> = of(&events, "output")
+        .into_iter()
+        .filter(|e| e["t_ns"].as_u64() == Some(end))
+        .map(|e| e["operand"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        outputs_at_end,
+        ["Q 1.0", "Q 1.7", "PY 130"],
+        "at OB 13's end"
+    );
+    let cycle = of(&events, "data_cycle")
+        .into_iter()
+        .find(|e| e["kind"] == "interrupt_output")
+        .unwrap();
+    assert_eq!(cycle["t_ns"].as_u64(), Some(end));
+}
+
 /// A request noticed inside a loop (block points: not an interrupt point) is serviced at the
 /// next block change, the loop's block end, not later.
 #[test]
