@@ -1,11 +1,32 @@
 //! The playground's functions (what the browser page calls through WebAssembly), run natively:
 //! every sample gives the summary `awl run` prints, diagnostics point at their lines, the
-//! debugger steps, and live mode flips inputs, lights outputs and services requested OBs.
+//! debugger steps, live mode flips inputs, lights outputs and services requested OBs, and a long
+//! run reports its progress from inside a cycle without changing its outcome.
 
 mod common;
 
-use awl::playground::{self, Live, Place, Request};
+use std::cell::RefCell;
+use std::rc::Rc;
+use std::time::Duration;
+
+use awl::playground::{self, Live, Place, Progress, Pulse, Request};
 use common::{cli_summary, playground_files as catalogue};
+
+/// A pulse that reports at every look (the looks come every microsecond of simulated time, the
+/// closest they come), and what it heard.
+fn listening() -> (Pulse, Rc<RefCell<Vec<Progress>>>) {
+    let heard = Rc::new(RefCell::new(Vec::new()));
+    let listener = Rc::clone(&heard);
+    let pulse = Pulse::new(
+        Duration::ZERO,
+        Box::new(move |progress| listener.borrow_mut().push(progress)),
+    );
+    (pulse, heard)
+}
+
+fn silent() -> Pulse {
+    Pulse::new(Duration::MAX, Box::new(|_| {}))
+}
 
 fn scenario(name: &str) -> Request {
     Request {
@@ -189,6 +210,84 @@ fn the_debugger_steps_and_stops_at_a_breakpoint() {
     assert!(outcome.summary.contains("OB 3: requested 1, serviced 1"));
 }
 
+/// A loop that never ends its cycle: the watchdog (here 20 ms) ends it with STOP ZYK.
+fn endless(cpu: &str, points: &str) -> Request {
+    let mut files = catalogue();
+    files.insert(
+        "endless.awl".into(),
+        "OB 1\n      JU FB 1\nNAME :LOOP\n      BE\nFB 1\nNAME :LOOP\nM001: L  KF +1\n      JU =M001\n      BE\n".into(),
+    );
+    files.insert(
+        "endless.toml".into(),
+        format!("program = \"endless.awl\"\ncpu = \"{cpu}\"\ninterrupt_points = \"{points}\"\nwatchdog = \"20ms\"\n"),
+    );
+    Request {
+        files,
+        scenario: Some("endless.toml".into()),
+        ..Request::default()
+    }
+}
+
+/// The pulse is heard from inside a level that never ends: the clock moves on in cycle 1, at
+/// backward jumps (block points) and after operations (operation points).
+#[test]
+fn a_loop_in_a_level_reports_its_progress() {
+    for (cpu, points) in [("sinumerik-840c", "block"), ("speed7", "operation")] {
+        let (pulse, heard) = listening();
+        let outcome = playground::run_reporting(&endless(cpu, points), pulse);
+        assert!(outcome.summary.contains("STOP"), "{}", outcome.summary);
+        let heard = heard.borrow();
+        let in_cycle_1 = heard.iter().filter(|progress| progress.cycle == 1).count();
+        assert!(
+            in_cycle_1 > 100,
+            "{cpu}: heard {in_cycle_1} times in cycle 1"
+        );
+        assert!(heard.iter().all(|progress| progress.cycle <= 1), "{cpu}");
+        assert!(
+            heard
+                .windows(2)
+                .all(|two| two[0].clock_ns < two[1].clock_ns),
+            "{cpu}: the clock moves on"
+        );
+        let last = heard.last().unwrap().clock_ns;
+        assert!(last > 19_000_000 && last <= 20_000_000, "{cpu}: {last}");
+    }
+}
+
+/// Listening changes nothing: every sample ends as it does without a pulse (summary, STOP,
+/// state, watch table, timeline), and so does a debugger session. (The benchmarks are left
+/// out: millions of looks at the clock take long in a test build.)
+#[test]
+fn a_run_with_a_pulse_ends_as_one_without() {
+    let scenarios: Vec<String> = catalogue()
+        .into_keys()
+        .filter(|name| name.ends_with(".toml") && !name.starts_with("bench/"))
+        .collect();
+    std::thread::scope(|scope| {
+        for name in &scenarios {
+            scope.spawn(move || {
+                let request = scenario(name);
+                let (pulse, heard) = listening();
+                let reported = playground::run_reporting(&request, pulse);
+                assert!(!heard.borrow().is_empty(), "{name}");
+                let plain = playground::run(&request);
+                assert_eq!(
+                    serde_json::to_value(&reported).unwrap(),
+                    serde_json::to_value(&plain).unwrap(),
+                    "{name}"
+                );
+            });
+        }
+    });
+    let request = scenario("fig5_2_interrupt.toml");
+    let commands = "break PB 3 line 21\ncontinue\nstep\ncontinue\n";
+    let (pulse, _) = listening();
+    assert_eq!(
+        serde_json::to_value(playground::debug_reporting(&request, commands, pulse)).unwrap(),
+        serde_json::to_value(playground::debug(&request, commands)).unwrap()
+    );
+}
+
 #[test]
 fn the_debugger_reports_a_request_it_cannot_run() {
     let debugged = playground::debug(&program("mistakes.awl"), "step\n");
@@ -281,7 +380,7 @@ fn the_editor_colours_the_words_of_both_sets() {
 fn json_requests_run_and_malformed_ones_are_refused() {
     let request = serde_json::json!({ "files": catalogue(), "scenario": "fig5_2_interrupt.toml" });
     let outcome: serde_json::Value =
-        serde_json::from_str(&playground::json::run(&request.to_string())).unwrap();
+        serde_json::from_str(&playground::json::run(&request.to_string(), silent())).unwrap();
     assert!(outcome["summary"].as_str().unwrap().contains("serviced 1"));
     assert!(outcome["timeline"].as_str().unwrap().starts_with("<svg"));
 
@@ -292,14 +391,14 @@ fn json_requests_run_and_malformed_ones_are_refused() {
         r#"{"files": 3}"#,
     ] {
         let refused: serde_json::Value =
-            serde_json::from_str(&playground::json::run(malformed)).unwrap();
+            serde_json::from_str(&playground::json::run(malformed, silent())).unwrap();
         assert_eq!(refused["ran"], false, "{malformed}");
         let summary = refused["summary"].as_str().unwrap();
         assert!(
             summary.starts_with("not run: the page sent a malformed request"),
             "{summary}"
         );
-        let debugged = playground::json::debug(malformed, "step\n");
+        let debugged = playground::json::debug(malformed, "step\n", silent());
         assert!(debugged.contains("malformed request"), "{debugged}");
         let live = playground::json::start_live(malformed).err().unwrap();
         assert!(live.contains("malformed request"), "{live}");

@@ -2,15 +2,18 @@
 //! WebAssembly), headless Chromium opens it from the file system and runs examples through the
 //! address fragment — one that services an interrupt, one with source errors, one that goes to
 //! STOP — then drives the step controls and live mode (`#selftest`), runs every sample in the
-//! browser to compare its summary with the native one, and takes a screenshot that is not blank.
+//! browser to compare its summary with the native one, stops a run that would go on for an
+//! hour while the page stays responsive, and takes a screenshot that is not blank. Runs go to a
+//! worker, so the page is driven in real time through the DevTools protocol.
 //! Skipped, with the reason printed, only where Chromium or the wasm32 target is missing.
 
 mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::time::Duration;
 
-use common::browser::{assert_screenshot_shows_the_timeline, chromium, console_errors, headless};
+use common::browser::{DevTools, assert_shows_the_timeline, chromium};
 
 /// Whether the wasm32 target is installed (`.ci/run` installs it through web/build.sh).
 fn wasm_target_installed() -> bool {
@@ -64,29 +67,32 @@ fn encoded(text: &str) -> String {
         .collect()
 }
 
+/// Long enough for every sample to run in the browser.
+const READY_WITHIN: Duration = Duration::from_secs(120);
+
 struct Browser {
-    path: PathBuf,
+    devtools: DevTools,
     page: PathBuf,
-    dir: PathBuf,
 }
 
 impl Browser {
+    fn url(&self, fragment: &str) -> String {
+        format!("file://{}#{fragment}", self.page.display())
+    }
+
     /// The DOM after the page has done what the fragment asks; fails on any console error or
     /// uncaught exception.
-    fn open(&self, fragment: &str) -> String {
-        let url = format!("file://{}#{fragment}", self.page.display());
-        let profile = self.dir.join(format!("profile-{}", fragment.len()));
-        let (dom, log) = headless(
-            &self.path,
-            &profile,
-            &["--virtual-time-budget=10000", "--dump-dom", &url],
-        );
+    fn open(&mut self, fragment: &str) -> String {
+        let url = self.url(fragment);
+        let mut tab = self.devtools.open(&url);
+        tab.wait_for("document.body.dataset.ready === 'yes'", READY_WITHIN);
+        let dom = tab.eval("document.documentElement.outerHTML");
         assert!(
-            console_errors(&log).is_empty(),
+            tab.problems().is_empty(),
             "{fragment}: {:?}",
-            console_errors(&log)
+            tab.problems()
         );
-        assert!(dom.contains(r#"data-ready="yes""#), "{fragment}: {log}");
+        let dom = dom.as_str().expect("the page's HTML").to_string();
         assert!(
             !dom.contains("data-error="),
             "{fragment}: a script error: {dom}"
@@ -109,10 +115,9 @@ fn the_playground_runs_in_a_headless_browser() {
     }
     let dir = std::env::temp_dir().join(format!("awl-playground-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let browser = Browser {
-        path,
+    let mut browser = Browser {
+        devtools: DevTools::start(&path, &dir.join("profile"), "1400,1200"),
         page: build(),
-        dir: dir.clone(),
     };
     let html = std::fs::read_to_string(&browser.page).unwrap();
     for outside in [
@@ -171,12 +176,112 @@ fn the_playground_runs_in_a_headless_browser() {
     assert!(dom.contains(r#"data-selftest="passed""#), "{dom}");
 
     the_browser_gives_the_native_summaries(&browser.open("samples"));
-    let url = format!(
-        "file://{}#example=fig5_2_interrupt&run",
-        browser.page.display()
-    );
-    assert_screenshot_shows_the_timeline(&browser.path, &dir, "1400,1200", &url);
+    stop_ends_a_long_run_and_the_page_stays_responsive(&mut browser);
+
+    let url = browser.url("example=fig5_2_interrupt&run");
+    let mut tab = browser.devtools.open(&url);
+    tab.wait_for("document.body.dataset.ready === 'yes'", READY_WITHIN);
+    assert_shows_the_timeline(&tab.screenshot());
+    drop(tab);
+    drop(browser);
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A program whose every cycle loops for 4.5 s of simulated time (under a watchdog of 6 s),
+/// for an hour: in the browser it would run for many minutes.
+const LONG_PROGRAM: &str = "OB 1
+      JU FB 1
+NAME :WAIT
+      BE
+FB 1
+NAME :WAIT
+      L  KF +5000
+      T  FW 2
+M001: L  KF +30000
+M002: L  KF +1
+      -F
+      JN =M002
+      L  FW 2
+      L  KF +1
+      -F
+      T  FW 2
+      JN =M001
+      BE
+";
+
+const LONG_SCENARIO: &str =
+    "program = \"long.awl\"\ncpu = \"speed7\"\nwatchdog = \"6s\"\nrun = { for = \"3600s\" }\n";
+
+/// The simulated milliseconds the status line shows while a run goes on.
+const SIMULATED_MS: &str =
+    "(/^running: ([\\d,.]+) ms simulated/.exec($('status').textContent) || [])[1]";
+
+fn simulated_ms(shown: &serde_json::Value) -> f64 {
+    shown.as_str().unwrap().replace(',', "").parse().unwrap()
+}
+
+/// The long run goes to the worker: the page's timers fire and its progress line moves while it
+/// runs, Stop ends it at once and says where, and the next run works. Esc stops a debugger's
+/// `continue` the same way.
+fn stop_ends_a_long_run_and_the_page_stays_responsive(browser: &mut Browser) {
+    let fragment = format!(
+        "pname=long.awl&program={}&sname=long.toml&scenario={}",
+        encoded(LONG_PROGRAM),
+        encoded(LONG_SCENARIO)
+    );
+    let url = browser.url(&format!("{fragment}&run"));
+    let mut tab = browser.devtools.open(&url);
+    let first = simulated_ms(&tab.wait_for(SIMULATED_MS, Duration::from_secs(30)));
+    tab.eval("window.ticks = 0; setInterval(() => window.ticks++, 10); true");
+    std::thread::sleep(Duration::from_millis(500));
+    let ticks = tab.eval("window.ticks").as_u64().unwrap();
+    assert!(
+        ticks >= 10,
+        "the page's timer fired {ticks} times in 0.5 s of the run"
+    );
+    let later = simulated_ms(&tab.eval(SIMULATED_MS));
+    assert!(
+        later > first,
+        "the progress line moves on: {first} ms, then {later} ms"
+    );
+
+    tab.eval("$('stop-run').click(); true");
+    let stopped =
+        tab.eval("[$('status').textContent, $('summary').textContent, $('stop-run').hidden]");
+    let status = stopped[0].as_str().unwrap().to_string();
+    assert!(status.starts_with("stopped at "), "{stopped}");
+    assert!(status.contains(" ms simulated, cycle "), "{stopped}");
+    assert_eq!(stopped[1], format!("not finished: {status}\n"));
+    assert_eq!(stopped[2], true, "the Stop button goes away");
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(
+        tab.eval("$('status').textContent"),
+        status.as_str(),
+        "no word from the stopped run"
+    );
+
+    tab.eval("$('examples').value = 'fig5_2_interrupt.toml'; $('examples').dispatchEvent(new Event('change')); $('run').click(); true");
+    let summary = "$('summary').textContent.includes('OB 3: requested 1, serviced 1')";
+    tab.wait_for(summary, Duration::from_secs(30));
+    assert!(tab.problems().is_empty(), "{:?}", tab.problems());
+    drop(tab);
+
+    let url = browser.url(&fragment);
+    let mut tab = browser.devtools.open(&url);
+    tab.wait_for("document.body.dataset.ready === 'yes'", READY_WITHIN);
+    tab.eval("$('continue').click(); true");
+    tab.wait_for(SIMULATED_MS, Duration::from_secs(30));
+    tab.eval("document.dispatchEvent(new KeyboardEvent('keydown', { key: 'Escape' })); true");
+    let status = tab.eval("$('status').textContent");
+    assert!(
+        status
+            .as_str()
+            .unwrap()
+            .ends_with(": the debugger is where it was"),
+        "{status}"
+    );
+    assert!(tab.problems().is_empty(), "{:?}", tab.problems());
+    assert_eq!(tab.eval("document.body.dataset.error || ''"), "");
 }
 
 /// The wasm build and the native build run the same code: every sample prints the same.

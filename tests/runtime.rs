@@ -227,6 +227,30 @@ fn stops_at_points_name_the_operation_that_led_there() {
     );
 }
 
+/// With operation points a taken jump ends at a point like any operation: a watchdog found
+/// there names the jump, also when it goes back to the block's first operation.
+#[test]
+fn a_jump_that_ends_at_a_point_is_the_operation_named() {
+    for target in ["M000", "M001"] {
+        let program = format!(
+            "OB 1\n      JU FB 1\nNAME :LOOP\n      BE\nFB 1\nNAME :LOOP\n\
+             M000: L  KF +1\nM001: I  1\n      JU ={target}\n      BE\n"
+        );
+        let result = ran(run_scenario(
+            "zyk_at_jump",
+            &program,
+            "cpu = \"speed7\"\nwatchdog = \"21us\"\n",
+        ));
+        let stop = result.outcome.stop.as_ref().expect("ZYK");
+        assert_eq!(stop.cause.code(), "ZYK");
+        assert_eq!(
+            (stop.stack[0].block.as_str(), stop.stack[0].line),
+            ("FB 1", 9),
+            "the jump to {target} ran past 21 us"
+        );
+    }
+}
+
 /// Of two blocks with the same longest stretch, the summary names the first one reached.
 #[test]
 fn longest_block_is_the_first_of_equals() {

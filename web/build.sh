@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the playground: target/web/awl-playground.html, one file with the page, its script,
-# its styles and awl compiled to WebAssembly, to open from file:// with no server or network.
+# its worker's script, its styles and awl compiled to WebAssembly, to open from file:// with no
+# server or network.
 # Installs what it needs: the wasm32 target (rustup) and the wasm-bindgen CLI of the version
 # web/Cargo.toml pins.
 set -euo pipefail
@@ -27,6 +28,7 @@ while IFS= read -r line; do
     case "$line" in
         "{{STYLE}}") cat web/page.css ;;
         "{{GLUE}}") cat "$build/bindgen/awl_playground.js" ;;
+        "{{WORKER}}") cat web/worker.js ;;
         "{{SCRIPT}}") cat web/page.js ;;
         *"{{WASM}}"*)
             printf '%s' "${line%%\{\{WASM\}\}*}"

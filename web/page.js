@@ -1,5 +1,6 @@
 // The playground page: editors, the examples menu, runs, the debugger and live mode. Every
 // answer comes from awl's WebAssembly module (JSON in, JSON out); this script only shows it.
+// Runs and debugger sessions go to a worker (web/worker.js), so the page never freezes.
 "use strict";
 
 window.addEventListener("error", function (event) {
@@ -255,6 +256,7 @@ function exampleNamed(stem) {
 function loadExample(name) {
   leaveDebug();
   stopLive();
+  stopRun();
   current.example = name;
   if (name.endsWith(".toml")) {
     current.scenarioName = name;
@@ -275,6 +277,7 @@ function loadExample(name) {
 function loadShared(params) {
   leaveDebug();
   stopLive();
+  stopRun();
   current.example = "";
   current.programName = params.get("pname") || "program.awl";
   current.scenarioName = params.get("sname") || "";
@@ -387,23 +390,100 @@ function status(text) {
   $("status").textContent = text;
 }
 
-function run() {
+// ---------------------------------------------------------------------------------------------
+// The worker: one job at a time. Its progress fills the status line; Stop (or Esc) ends the
+// worker at once, and a new one, made from the module already compiled, waits for the next job.
+
+const runner = { module: null, source: "", worker: null, job: null, jobs: 0 };
+/** What the last button started, for the self-test to wait on. */
+let lastAction = Promise.resolve();
+
+/** The worker's script: the glue and web/worker.js, both in this page, as a Blob URL (a worker
+ *  from a file would not load from file://). */
+function workerSource() {
+  const text = $("awl-glue").textContent + "\n" + $("awl-worker").textContent;
+  return URL.createObjectURL(new Blob([text], { type: "text/javascript" }));
+}
+
+function newWorker() {
+  const worker = new Worker(runner.source);
+  worker.onmessage = (event) => heard(event.data);
+  worker.onerror = (event) => {
+    document.body.setAttribute("data-error", String(event.message));
+    status(`the run failed: ${event.message}`);
+    endJob();
+  };
+  worker.postMessage({ module: runner.module });
+  return worker;
+}
+
+/** Hands the worker a job; the answer (parsed), or null if it was stopped. A job started while
+ *  another runs stops that one. */
+function ask(job) {
+  stopRun();
+  job.id = ++runner.jobs;
+  job.progress = null;
+  job.done = new Promise((resolve) => {
+    job.resolve = resolve;
+  });
+  runner.job = job;
+  runner.worker.postMessage({ id: job.id, kind: job.kind, request: job.request, commands: job.commands });
+  $("stop-run").hidden = false;
+  status("running…");
+  return job.done;
+}
+
+function heard(message) {
+  const job = runner.job;
+  if (!job || message.id !== job.id) return;
+  if (message.progress) {
+    job.progress = message.progress;
+    status(`running: ${progressText(job.progress)} — Stop (Esc) ends it`);
+    return;
+  }
+  runner.job = null;
+  $("stop-run").hidden = true;
+  job.resolve(JSON.parse(message.answer));
+}
+
+function progressText(progress) {
+  const ms = (progress.clockNs / MS).toLocaleString("en", { minimumFractionDigits: 1, maximumFractionDigits: 1 });
+  return `${ms} ms simulated, cycle ${progress.cycle.toLocaleString("en")}`;
+}
+
+/** Ends the running job (its worker with it); it answers null. */
+function endJob() {
+  const job = runner.job;
+  if (!job) return null;
+  runner.worker.terminate();
+  runner.worker = newWorker();
+  runner.job = null;
+  $("stop-run").hidden = true;
+  job.resolve(null);
+  return job;
+}
+
+function stopRun() {
+  const job = endJob();
+  if (!job) return;
+  const where = job.progress ? ` at ${progressText(job.progress)}` : "";
+  if (job.kind === "debug") {
+    status(`stopped${where}: the debugger is where it was`);
+    return;
+  }
+  status(`stopped${where}`);
+  showOutcome({ summary: `not finished: stopped${where}\n`, diagnostics: [] });
+}
+
+async function run() {
   leaveDebug();
   const started = performance.now();
-  const outcome = JSON.parse(awl.run(JSON.stringify(request())));
+  const outcome = await ask({ kind: "run", request: JSON.stringify(request()) });
+  if (!outcome) return null;
   showOutcome(outcome);
   status(`${outcome.ran ? "ran" : "not run"} in ${Math.round(performance.now() - started)} ms`);
   keepInAddress();
   return outcome;
-}
-
-/** Runs after the status has been painted, so a long run shows that it is running. */
-function runSoon(then) {
-  status("running…");
-  setTimeout(() => {
-    run();
-    if (then) then();
-  }, 20);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -465,10 +545,10 @@ function applyAddress() {
     loadShared(params);
   } else {
     loadExample(exampleNamed("fig5_2_interrupt"));
-    return runSoon(ready);
+    return run().then(ready);
   }
   if (params.has("live")) startLive();
-  if (params.has("run")) return runSoon(ready);
+  if (params.has("run")) return run().then(ready);
   ready();
 }
 
@@ -478,11 +558,11 @@ function ready() {
 
 /** `#samples`: runs every sample scenario; what `awl run` would print (the watch table, then
  *  the summary) as JSON for a test to compare. */
-function runSamples() {
+async function runSamples() {
   const summaries = {};
   for (const name of exampleFiles().filter((file) => file.endsWith(".toml"))) {
     loadExample(name);
-    const outcome = run();
+    const outcome = await run();
     summaries[name] = (outcome.watch || "") + outcome.summary;
   }
   $("samples").textContent = JSON.stringify(summaries);
@@ -491,22 +571,26 @@ function runSamples() {
 
 /** `#selftest`: uses the step controls and live mode as a person would; the verdict goes into
  *  the body's data-selftest for a headless browser to read. */
-function selfTest() {
+async function selfTest() {
   const failures = [];
   const expect = (what, ok) => {
     if (!ok) failures.push(what);
   };
+  const click = (id) => {
+    $(id).click();
+    return lastAction;
+  };
   loadExample("fig5_2_interrupt.toml");
-  $("step").click();
-  $("step").click();
+  await click("step");
+  await click("step");
   expect("two steps pause", /^paused before fig5_2_interrupt\.awl:\d+$/.test($("paused").textContent));
   program.gutter.querySelector('[data-line="21"]').click();
   expect("the gutter sets a breakpoint", program.gutter.querySelector(".breakpoint") !== null);
-  $("continue").click();
+  await click("continue");
   expect("continue stops at the breakpoint", $("paused").textContent === "paused before fig5_2_interrupt.awl:21");
   expect("the paused line is marked", program.colours.querySelector(".line.paused") !== null);
   program.gutter.querySelector('[data-line="21"]').click();
-  $("continue").click();
+  await click("continue");
   expect("the run ends", $("paused").textContent === "the run has ended");
   expect("the summary follows", $("summary").textContent.includes("OB 3: requested 1, serviced 1"));
 
@@ -557,10 +641,14 @@ function breakpointCommands() {
     .map(([line, block]) => `break ${block} line ${line}`);
 }
 
-function debugWith(command) {
-  debugging.commands.push(command);
-  const script = breakpointCommands().concat(debugging.commands).join("\n") + "\n";
-  const result = JSON.parse(awl.debug(JSON.stringify(request()), script));
+async function debugWith(command) {
+  const given = debugging.commands.concat(command);
+  const commands = breakpointCommands().concat(given).join("\n") + "\n";
+  const result = await ask({ kind: "debug", request: JSON.stringify(request()), commands });
+  // A command stopped before it ended is forgotten: the debugger stays where it was.
+  if (!result) return;
+  debugging.commands = given;
+  status("");
   $("debug-box").hidden = false;
   $("debug").textContent = result.transcript;
   $("debug").scrollTop = $("debug").scrollHeight;
@@ -775,7 +863,7 @@ function wire() {
     editor.textarea.addEventListener("keydown", (event) => {
       if (event.key === "Enter" && (event.ctrlKey || event.metaKey)) {
         event.preventDefault();
-        runSoon();
+        lastAction = run();
       }
     });
   }
@@ -789,38 +877,44 @@ function wire() {
     if ($("examples").value) loadExample($("examples").value);
     else loadShared(new URLSearchParams());
   });
-  $("run").addEventListener("click", () => runSoon());
+  const act = (action) => () => {
+    lastAction = action();
+  };
+  $("run").addEventListener("click", act(run));
+  $("stop-run").addEventListener("click", stopRun);
+  document.addEventListener("keydown", (event) => {
+    if (event.key === "Escape" && runner.job) stopRun();
+  });
   $("share").addEventListener("click", share);
-  $("step").addEventListener("click", () => debugWith("step"));
-  $("next").addEventListener("click", () => debugWith("next"));
-  $("continue").addEventListener("click", () => debugWith("continue"));
+  $("step").addEventListener("click", act(() => debugWith("step")));
+  $("next").addEventListener("click", act(() => debugWith("next")));
+  $("continue").addEventListener("click", act(() => debugWith("continue")));
   $("reset-debug").addEventListener("click", leaveDebug);
   $("live").addEventListener("click", startLive);
   $("live-close").addEventListener("click", stopLive);
   $("pause").addEventListener("click", togglePause);
 }
 
-// Compiled synchronously where the browser allows it for a module of this size (current ones
-// do): an asynchronous start would race a headless browser's virtual clock, which does not
-// wait for it. Older browsers compile it asynchronously.
+// Compiled once, synchronously where the browser allows it for a module of this size (current
+// ones do), else asynchronously; the page and each worker instantiate the same module.
 function start() {
   const bytes = wasmBytes();
-  let compiled = true;
+  let module = null;
   try {
-    wasm_bindgen.initSync({ module: bytes });
+    module = new WebAssembly.Module(bytes);
   } catch (refused) {
-    compiled = false;
-  }
-  if (compiled) {
-    begin();
-  } else {
     status("loading…");
-    wasm_bindgen({ module_or_path: bytes }).then(begin);
+    WebAssembly.compile(bytes).then(begin);
   }
+  if (module) begin(module);
 }
 
-function begin() {
+function begin(module) {
+  wasm_bindgen.initSync({ module });
   awl = wasm_bindgen;
+  runner.module = module;
+  runner.source = workerSource();
+  runner.worker = newWorker();
   catalogue = JSON.parse(awl.catalogue());
   wire();
   status("");

@@ -10,7 +10,7 @@ use serde::Serialize;
 use crate::debug::{Debugger, Session};
 use crate::state::{self, State};
 
-use super::{Outcome, Place, Request, finished};
+use super::{Outcome, Place, Pulse, Request, finished};
 
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct DebugOutcome {
@@ -24,7 +24,17 @@ pub struct DebugOutcome {
     pub outcome: Option<Outcome>,
 }
 
+/// Runs the request under the debugger with these commands, one per line.
 pub fn debug(request: &Request, commands: &str) -> DebugOutcome {
+    debug_with(request, commands, None)
+}
+
+/// As [`debug`], the pulse telling how far the run has come (a `continue` may run long).
+pub fn debug_reporting(request: &Request, commands: &str, pulse: Pulse) -> DebugOutcome {
+    debug_with(request, commands, Some(pulse))
+}
+
+fn debug_with(request: &Request, commands: &str, pulse: Option<Pulse>) -> DebugOutcome {
     let mut prepared = match request.prepare() {
         Ok(prepared) => prepared,
         Err(outcome) => {
@@ -39,6 +49,9 @@ pub fn debug(request: &Request, commands: &str) -> DebugOutcome {
         prepared.mnemonics,
     )));
     prepared.cpu.probe = Some(Box::new(Debugger(Rc::clone(&session))));
+    if let Some(pulse) = pulse {
+        prepared.cpu.set_pulse(pulse);
+    }
     let ran = prepared.run(&mut |_| true);
     let mut session = session.borrow_mut();
     if ran.outcome.halted {

@@ -5,7 +5,7 @@
 use serde::Serialize;
 use serde_json::json;
 
-use super::{Live, Outcome, Request};
+use super::{Live, Outcome, Pulse, Request};
 
 /// The example files (name, text), the CPU profiles and the words the editor colours.
 pub fn catalogue(files: &[(&str, &str)]) -> String {
@@ -34,16 +34,19 @@ pub fn to_json(value: &impl Serialize) -> String {
     serde_json::to_string(value).expect("plain data")
 }
 
-/// [`super::run`]: the outcome as JSON.
-pub fn run(json: &str) -> String {
-    request(json).map_or_else(|refused| refused, |request| to_json(&super::run(&request)))
-}
-
-/// [`super::debug`] with these commands, one per line: the outcome as JSON.
-pub fn debug(json: &str, commands: &str) -> String {
+/// [`super::run_reporting`]: the outcome as JSON.
+pub fn run(json: &str, pulse: Pulse) -> String {
     request(json).map_or_else(
         |refused| refused,
-        |request| to_json(&super::debug(&request, commands)),
+        |request| to_json(&super::run_reporting(&request, pulse)),
+    )
+}
+
+/// [`super::debug_reporting`] with these commands, one per line: the outcome as JSON.
+pub fn debug(json: &str, commands: &str, pulse: Pulse) -> String {
+    request(json).map_or_else(
+        |refused| refused,
+        |request| to_json(&super::debug_reporting(&request, commands, pulse)),
     )
 }
 

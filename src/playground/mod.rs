@@ -28,10 +28,12 @@ use crate::timeline;
 use crate::trace::{self, TraceFilter};
 use crate::vm::Cpu;
 
-pub use debug::{DebugOutcome, debug};
+pub use debug::{DebugOutcome, debug, debug_reporting};
 pub use diagnostic::{Diagnostic, Place};
 pub use live::{IoBit, Live, LiveView};
 pub use words::{Words, words};
+
+pub use crate::vm::pulse::{Progress, Pulse};
 
 /// A run as the page asks for it: its files by name, which of them to run, and the selectors.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -152,10 +154,23 @@ impl Request {
 
 /// Runs the request to its end (the scenario's length, else a second) or a STOP.
 pub fn run(request: &Request) -> Outcome {
+    run_with(request, None)
+}
+
+/// Runs the request as [`run`] does, the pulse telling how far it has come (the page's
+/// progress line); the outcome is the same.
+pub fn run_reporting(request: &Request, pulse: Pulse) -> Outcome {
+    run_with(request, Some(pulse))
+}
+
+fn run_with(request: &Request, pulse: Option<Pulse>) -> Outcome {
     let mut prepared = match request.prepare() {
         Ok(prepared) => prepared,
         Err(outcome) => return *outcome,
     };
+    if let Some(pulse) = pulse {
+        prepared.cpu.set_pulse(pulse);
+    }
     let picture = add_timeline(&mut prepared.cpu);
     let ran = prepared.run(&mut |_| true);
     let mut outcome = finished(&ran);

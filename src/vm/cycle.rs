@@ -85,6 +85,11 @@ impl Cpu {
         let operation_points = self.engine.config.points == InterruptPoints::Operation;
         loop {
             let exit = self.execute(operation_points);
+            if matches!(exit, Exit::Point(_)) && self.clock < self.engine_attention_at {
+                // The loop left only for the pulse: the engine does not see this point.
+                self.pulse_at(self.clock);
+                continue;
+            }
             if operation_points {
                 self.operation_boundary(&exit);
             }
@@ -295,6 +300,7 @@ impl Cpu {
         };
         let result = start.and_then(|()| {
             while !self.limit_reached(limit) {
+                self.pulse_at(self.clock);
                 if !go_on(self) {
                     halted = true;
                     break;

@@ -14,6 +14,7 @@ pub mod interrupts;
 mod io_trace;
 pub mod place;
 pub mod probe;
+pub mod pulse;
 mod run_loop;
 pub mod status;
 pub mod stop;
@@ -210,6 +211,8 @@ pub struct Cpu {
     pub clock: u64,
     /// The loop hands control to the engine at an interrupt point once `clock` reaches this.
     pub attention_at: u64,
+    /// When the engine itself has to look; `attention_at` is earlier when the pulse looks first.
+    pub engine_attention_at: u64,
     pub instructions: u64,
     pub cycle: u64,
     pub cycle_started_at: u64,
@@ -231,6 +234,8 @@ pub struct Cpu {
     pub cycle_times: cycle::CycleTimes,
     /// An observer of single operations (program status, the debugger); see [`probe`].
     pub probe: Option<Box<dyn probe::Probe>>,
+    /// A listener told how far a long run has come; see [`pulse`].
+    pub pulse: Option<pulse::Pulse>,
 }
 
 impl Cpu {
@@ -279,6 +284,7 @@ impl Cpu {
             mode: Mode::Stop,
             clock: 0,
             attention_at: u64::MAX,
+            engine_attention_at: u64::MAX,
             instructions: 0,
             cycle: 0,
             cycle_started_at: 0,
@@ -292,6 +298,7 @@ impl Cpu {
             tracer: Tracer::off(),
             cycle_times: cycle::CycleTimes::default(),
             probe: None,
+            pulse: None,
             profile,
             program,
             sources,

@@ -421,7 +421,17 @@ impl Cpu {
                             let to = start + target as usize;
                             let backward = to < pc;
                             move_to!(to, start);
-                            if !OPERATION_POINTS && backward {
+                            if OPERATION_POINTS {
+                                // The op that ended at this point is the jump, not the one
+                                // before its target: the point is checked here.
+                                probe_after!('run, op_pc, op);
+                                if times[pc] >= deadline {
+                                    self.last_op = (self.level.block, jump_pc);
+                                    break 'run Leave::Point(Point::Operation);
+                                }
+                                continue 'run;
+                            }
+                            if backward {
                                 let clock = now!();
                                 if clock >= self.attention_at {
                                     let start = pass_start.max(self.last_point_at);

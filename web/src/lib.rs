@@ -1,7 +1,10 @@
 //! The playground's WebAssembly module: awl's `playground` functions with JSON in and out for
-//! the page's script (web/page.js). Everything it does is in the library, tested natively.
+//! the page's script (web/page.js) and its worker (web/worker.js). Everything it does is in the
+//! library, tested natively.
 
-use awl::playground::{Live, json};
+use std::time::Duration;
+
+use awl::playground::{Live, Pulse, json};
 use wasm_bindgen::prelude::*;
 
 mod examples {
@@ -15,16 +18,39 @@ pub fn catalogue() -> String {
     json::catalogue(examples::FILES)
 }
 
-/// Runs a request (JSON) to its end; the outcome as JSON.
 #[wasm_bindgen]
-pub fn run(request_json: &str) -> String {
-    json::run(request_json)
+extern "C" {
+    /// Whoever hears how far a run has come: the worker, which posts it to the page.
+    pub type Listener;
+
+    #[wasm_bindgen(method)]
+    fn progress(this: &Listener, clock_ns: f64, cycle: f64);
+}
+
+/// How often a long run tells how far it has come: often enough for a progress line that
+/// moves, seldom enough that the messages cost nothing.
+const REPORT_EVERY: Duration = Duration::from_millis(100);
+
+fn pulse(listener: Listener) -> Pulse {
+    Pulse::new(
+        REPORT_EVERY,
+        Box::new(move |progress| {
+            listener.progress(progress.clock_ns as f64, progress.cycle as f64)
+        }),
+    )
+}
+
+/// Runs a request (JSON) to its end, telling `listener` how far it has come; the outcome as
+/// JSON.
+#[wasm_bindgen]
+pub fn run(request_json: &str, listener: Listener) -> String {
+    json::run(request_json, pulse(listener))
 }
 
 /// Runs a request under the debugger with these commands, one per line.
 #[wasm_bindgen]
-pub fn debug(request_json: &str, commands: &str) -> String {
-    json::debug(request_json, commands)
+pub fn debug(request_json: &str, commands: &str, listener: Listener) -> String {
+    json::debug(request_json, commands, pulse(listener))
 }
 
 /// A live run; `start` tells whether it could start, else `refusal` says why.

@@ -13,8 +13,8 @@
 //!
 //! The execution loop reports interrupt points only when `clock >= attention_at`; the engine
 //! keeps `attention_at` at the next moment something is due (a scheduled event, OB 13, the
-//! watchdog), or at 0 while a pending request outranks the running level. With nothing pending
-//! the loop pays one comparison per block change.
+//! watchdog, a look of the run's pulse), or at 0 while a pending request outranks the running
+//! level. With nothing pending the loop pays one comparison per block change.
 
 pub mod s5_95f;
 pub mod sinumerik840c;
@@ -439,7 +439,8 @@ impl Cpu {
         stop
     }
 
-    /// Keeps `attention_at` at the next moment the engine has to look.
+    /// Keeps `attention_at` at the next moment the engine has to look (or the pulse, see
+    /// [`super::pulse`]).
     pub fn update_attention(&mut self) {
         let running = self.running_priority();
         let serviceable = self.mode == Mode::Run
@@ -452,11 +453,12 @@ impl Cpu {
         let watchdog = self
             .cycle_started_at
             .saturating_add(self.engine.config.watchdog_ns);
-        self.attention_at = if serviceable {
+        self.engine_attention_at = if serviceable {
             0
         } else {
             self.engine.next_due().min(watchdog)
         };
+        self.attention_at = self.engine_attention_at.min(self.next_look_ns());
     }
 
     /// RUN begins: the rules judge what came before it and start their own timing.
