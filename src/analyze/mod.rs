@@ -9,6 +9,7 @@
 mod calls;
 pub mod flow;
 mod text;
+pub mod warnings;
 
 use serde::Serialize;
 

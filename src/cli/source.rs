@@ -2,6 +2,7 @@
 
 use miette::Report;
 
+use crate::analyze::warnings::program_warnings;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend};
 
@@ -42,9 +43,10 @@ fn build(options: &SourceOptions, console: &mut Console) -> Option<Frontend> {
     Some(built)
 }
 
-fn count_summary(built: &Frontend) -> String {
+/// "0 errors, 2 warnings in 1 file": the front end's diagnostics and `more_warnings` besides.
+fn count_summary(built: &Frontend, more_warnings: usize) -> String {
     let errors = built.diagnostics.iter().filter(|d| !d.is_warning()).count();
-    let warnings = built.diagnostics.len() - errors;
+    let warnings = built.diagnostics.len() - errors + more_warnings;
     format!(
         "{}, {} in {}",
         plural(errors as u64, "error"),
@@ -59,16 +61,17 @@ pub fn check(options: &SourceOptions, console: &mut Console) -> u8 {
     };
     let blocks = built.compiled.program.blocks.len() + built.compiled.program.data_blocks.len();
     if built.has_errors() {
-        console.err(&format!("awl check: {}\n", count_summary(&built)));
-        EXIT_SOURCE_ERRORS
-    } else {
-        console.out(&format!(
-            "awl check: ok, {}, {}\n",
-            plural(blocks as u64, "block"),
-            count_summary(&built)
-        ));
-        EXIT_OK
+        console.err(&format!("awl check: {}\n", count_summary(&built, 0)));
+        return EXIT_SOURCE_ERRORS;
     }
+    let warnings = program_warnings(&built.compiled.program, &built.sources);
+    console.reports(&warnings);
+    console.out(&format!(
+        "awl check: ok, {}, {}\n",
+        plural(blocks as u64, "block"),
+        count_summary(&built, warnings.len())
+    ));
+    EXIT_OK
 }
 
 pub fn dump(args: &DumpArgs, console: &mut Console) -> u8 {
@@ -77,7 +80,7 @@ pub fn dump(args: &DumpArgs, console: &mut Console) -> u8 {
         return EXIT_SOURCE_ERRORS;
     };
     if built.has_errors() {
-        console.err(&format!("awl dump: {}\n", count_summary(&built)));
+        console.err(&format!("awl dump: {}\n", count_summary(&built, 0)));
         return EXIT_SOURCE_ERRORS;
     }
     if args.listing {

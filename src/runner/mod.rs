@@ -12,6 +12,7 @@ use std::sync::Arc;
 use miette::{Diagnostic, Report};
 use thiserror::Error;
 
+use crate::analyze;
 use crate::compiler::Program;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend};
@@ -343,9 +344,8 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         return Err(NotRun::SourceErrors(warnings));
     }
     let program = Arc::new(built.compiled.program.clone());
-    if program.ob(1).is_none() {
-        warnings.push(Report::new(RunWarning::NoOb1));
-    }
+    warnings.extend(analyze::warnings::no_ob1(&program));
+    warnings.extend(analyze::warnings::obs_not_on_cpu(&program, &built.sources));
     let set = built
         .mnemonics
         .first()

@@ -1,5 +1,6 @@
-//! Warnings about a run's setup: what the program holds that this CPU, mode and scenario will
-//! never run, and what the run could not finish (its trace).
+//! Warnings about a run's setup: what the program holds that this mode and scenario will never
+//! run, and what the run could not finish (its trace). What the CPU alone never runs is in
+//! [`crate::analyze::warnings`].
 
 use miette::{Diagnostic, Report};
 use thiserror::Error;
@@ -14,14 +15,6 @@ use crate::vm::interrupts::sinumerik840c::{NORMAL_MODE, normal_mode_skips};
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum RunWarning {
-    #[error("the program has no OB 1: the cycles run no user program")]
-    #[diagnostic(
-        code(awl::run::no_ob1),
-        severity(Warning),
-        help("OB 1 is the cyclic program; add it, or load the file that holds it")
-    )]
-    NoOb1,
-
     #[error("the program calls {ob}, which normal mode does not process")]
     #[diagnostic(
         code(awl::run::ob_call_normal_mode),
@@ -70,14 +63,9 @@ fn never_runs(
     if ob == 1 || profile.startup_obs.contains(&ob) {
         return None;
     }
+    // An OB the CPU does not have at all is the program's warning (`awl check` prints it too).
     if profile.interrupt_ob(ob).is_none() {
-        return Some((
-            format!("not an OB the {} starts", profile.name),
-            Some(format!(
-                "`awl cpus` lists the OBs of the {}; a program call (JU OB {ob}) runs it as an ordinary block",
-                profile.name
-            )),
-        ));
+        return None;
     }
     match profile.family {
         Family::Sinumerik840c if !config.special_mode && normal_mode_skips(ob) => Some((
