@@ -11,6 +11,7 @@ pub mod cli;
 pub mod compiler;
 pub mod debug;
 pub mod diagnostics;
+pub mod docs;
 pub mod dump;
 pub mod frontend;
 pub mod lexer;

@@ -174,6 +174,32 @@ fn time_controlled_response(out: &mut String, cpu: &Cpu) {
 
 /// The summary of `awl run`; it ends with the `cpu:` and `instructions:` lines scripts read.
 /// `n thing` or `n things`.
+/// One line per trace or timeline file: "trace: 1204 events written to run.jsonl (88.1 KiB)".
+pub fn written(ran: &crate::runner::Ran) -> String {
+    ran.written
+        .iter()
+        .map(|file| {
+            format!(
+                "{}: {} written to {} ({})\n",
+                file.what,
+                plural(file.events, "event"),
+                file.path,
+                size(file.bytes)
+            )
+        })
+        .collect()
+}
+
+/// A file's size: bytes, KiB or MiB.
+fn size(bytes: u64) -> String {
+    const KIB: u64 = 1024;
+    match bytes {
+        0..KIB => plural(bytes, "byte"),
+        KIB..1_048_576 => format!("{:.1} KiB", bytes as f64 / KIB as f64),
+        _ => format!("{:.1} MiB", bytes as f64 / (KIB * KIB) as f64),
+    }
+}
+
 pub fn plural(n: impl Into<u64>, word: &str) -> String {
     let n = n.into();
     format!("{n} {word}{}", if n == 1 { "" } else { "s" })

@@ -96,7 +96,13 @@ fn run(
     machine.tracer = Tracer::new(TraceFormat::Jsonl, Box::new(buffer.clone()));
     let outcome = machine.run(RunLimit::Duration(12_000_000));
     assert!(outcome.stop.is_none(), "{:?}", outcome.stop);
-    assert!(machine.tracer.finish(machine.clock).is_empty());
+    assert!(
+        machine
+            .tracer
+            .finish(machine.clock)
+            .iter()
+            .all(|output| output.error.is_none())
+    );
     (buffer.events(), analysis)
 }
 

@@ -321,7 +321,13 @@ fn run(
         machine.tracer = Tracer::new(TraceFormat::Jsonl, Box::new(trace.clone()));
     }
     let outcome = machine.run(RunLimit::Cycles(4));
-    assert!(machine.tracer.finish(machine.clock).is_empty());
+    assert!(
+        machine
+            .tracer
+            .finish(machine.clock)
+            .iter()
+            .all(|output| output.error.is_none())
+    );
     assert!(
         outcome.stop.is_none(),
         "the run stopped: {:?}\n{source}",

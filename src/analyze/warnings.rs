@@ -42,7 +42,9 @@ pub enum ProgramWarning {
     #[diagnostic(
         code(awl::program::never_called),
         severity(Warning),
-        help("no OB the CPU starts reaches them through block calls; `awl analyze` shows the rest")
+        help(
+            "no OB the CPU starts reaches them through block calls; `awl analyze` shows the rest"
+        )
     )]
     NeverCalled { blocks: String },
 }

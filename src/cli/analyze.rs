@@ -18,7 +18,7 @@ pub enum AnalyzeFormat {
 pub struct AnalyzeArgs {
     #[command(flatten)]
     pub program: ProgramArgs,
-    /// A table to read, or one JSON object (its fields are in programs/README.md)
+    /// A table to read, or one JSON object (`awl help analysis` describes its fields)
     #[arg(long, value_enum, default_value = "text")]
     pub format: AnalyzeFormat,
 }

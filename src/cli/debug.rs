@@ -12,7 +12,7 @@ use crate::debug::input::Input;
 use crate::debug::{Debugger, Session};
 use crate::runner;
 
-use super::run::{ProgramArgs, not_run, program_options};
+use super::run::{ProgramArgs, RunLength, not_run, program_options};
 use super::watch::{install_handler, take_interrupt};
 use super::{Console, EXIT_OK, EXIT_STOP, EXIT_USAGE};
 
@@ -20,8 +20,10 @@ use super::{Console, EXIT_OK, EXIT_STOP, EXIT_USAGE};
 pub struct DebugArgs {
     #[command(flatten)]
     pub program: ProgramArgs,
+    #[command(flatten)]
+    pub length: RunLength,
     /// Run the commands in FILE, one per line, echoed, instead of prompting (standard input
-    /// that is no terminal is read the same way)
+    /// that is no terminal is read the same way) [default: a prompt on a terminal]
     #[arg(long, value_name = "FILE")]
     pub commands: Option<PathBuf>,
 }
@@ -58,7 +60,11 @@ pub fn debug(args: &DebugArgs, console: &mut Console) -> u8 {
             return EXIT_USAGE;
         }
     };
-    let mut prepared = match runner::prepare(&program_options(&args.program)) {
+    let options = runner::RunOptions {
+        limit: args.length.limit(),
+        ..program_options(&args.program)
+    };
+    let mut prepared = match runner::prepare(&options) {
         Ok(prepared) => prepared,
         Err(reason) => return not_run(reason, console),
     };

@@ -1,9 +1,10 @@
-//! The command line: `awl check | dump | run | status | debug | test | cpus`. Each command reports through a
+//! The command line: `awl check | dump | run | status | debug | analyze | test | cpus | help`. Each command reports through a
 //! [`Console`], so no output failure can panic.
 
 mod analyze;
 mod console;
 mod debug;
+mod help;
 mod run;
 mod source;
 mod status;
@@ -24,7 +25,9 @@ pub use console::Console;
     name = "awl",
     version,
     about = "Run STEP 5 STL (AWL) programs on a simulated S5 CPU with interrupts",
-    after_help = "Scenario files and trace formats are documented in programs/README.md."
+    after_help = "The formats (scenario files, traces, listings, symbols, …): `awl help` lists them, \
+        `awl help scenario` prints one.",
+    disable_help_subcommand = true
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -52,13 +55,13 @@ pub struct SourceOptions {
     /// STL source files (.awl)
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// CPU profile (see `awl cpus`)
+    /// CPU profile (see `awl cpus`) [default: sinumerik-840c]
     #[arg(long, value_parser = profile::names())]
     pub cpu: Option<String>,
-    /// Mnemonic set, instead of detecting it per file
+    /// Mnemonic set, instead of detecting it per file [default: detected per file]
     #[arg(long, value_enum)]
     pub mnemonics: Option<Mnemonics>,
-    /// Assignment list giving operands names (`-START`); repeatable
+    /// Assignment list giving operands names (`-START`); repeatable [default: none]
     #[arg(long = "symbols", value_name = "FILE")]
     pub symbols: Vec<PathBuf>,
 }
@@ -68,7 +71,7 @@ pub struct DumpArgs {
     #[command(flatten)]
     pub source: SourceOptions,
     /// Print the program as a STEP 5 PG listing (segments, statement numbers, `***`) that
-    /// parses back to the same bytecode
+    /// parses back to the same bytecode [default: off: the bytecode with annotations]
     #[arg(long)]
     pub listing: bool,
 }
@@ -89,10 +92,13 @@ pub enum Command {
     /// The worst cases from the program, before it runs: each block's time and longest
     /// stretch, the response bounds, the nesting, the wake-up and watchdog risks
     Analyze(analyze::AnalyzeArgs),
-    /// Run scenario files and check their [expect] tables
+    /// Run scenario files and check their [expect] and [[check]] tables
     Test(run::TestArgs),
     /// List the CPU profiles with their rules and timings
     Cpus,
+    /// Print a format (`awl help scenario`, `trace`, `listing`, `symbols`, …) or a command's
+    /// help (`awl help run`)
+    Help(help::HelpArgs),
 }
 
 pub const EXIT_OK: u8 = 0;
@@ -111,6 +117,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Debug(args) => debug::debug(&args, &mut console),
         Command::Test(args) => run::test(&args, &mut console),
         Command::Analyze(args) => analyze::analyze(&args, &mut console),
+        Command::Help(args) => help::help(&args, &mut console),
         Command::Cpus => {
             console.out(&crate::report::cpus());
             EXIT_OK

@@ -57,37 +57,57 @@ pub enum StateFormat {
     Json,
 }
 
-/// What every command that runs a program shares: the program, the scenario, the CPU and how
-/// long to run.
+/// What every command that sets up a CPU with a program shares: the program, the scenario and
+/// the CPU.
 #[derive(Debug, clap::Args)]
 pub struct ProgramArgs {
     /// STL source files (.awl); optional with a scenario that names them
     #[arg(required_unless_present = "scenario")]
     pub files: Vec<PathBuf>,
-    /// Scenario file (TOML; its keys are documented in programs/README.md)
+    /// Scenario file (TOML; `awl help scenario` describes its keys) [default: none: no
+    /// events, the CPU's own settings]
     #[arg(long)]
     pub scenario: Option<PathBuf>,
-    /// CPU profile (see `awl cpus`); overrides the scenario's
+    /// CPU profile (see `awl cpus`); overrides the scenario's [default: the scenario's, else
+    /// sinumerik-840c]
     #[arg(long, value_parser = profile::names())]
     pub cpu: Option<String>,
-    /// Run this many cycles (at least 1)
-    #[arg(long, conflicts_with = "duration", value_parser = clap::value_parser!(u64).range(1..))]
-    pub cycles: Option<u64>,
-    /// Run for this much simulated time, e.g. 250ms (ends at the next cycle end)
-    #[arg(long = "for", value_name = "DURATION", value_parser = parse_duration_arg)]
-    pub duration: Option<u64>,
-    /// Where interrupts are serviced
+    /// Where interrupts are serviced [default: the scenario's, else the CPU's: block on the
+    /// S5 CPUs, operation on speed7]
     #[arg(long, value_enum)]
     pub interrupt_points: Option<Points>,
-    /// SINUMERIK 840C mode: normal ignores OB 2 and OB 5, special runs them
+    /// SINUMERIK 840C mode: normal ignores OB 2 and OB 5, special runs them [default: the
+    /// scenario's, else normal]
     #[arg(long, value_enum)]
     pub mode: Option<CpuMode>,
-    /// Mnemonic set, instead of detecting it per file
+    /// Mnemonic set, instead of detecting it per file [default: detected per file]
     #[arg(long, value_enum)]
     pub mnemonics: Option<Mnemonics>,
     /// Assignment list giving operands names (`-START`); repeatable, added to the scenario's
+    /// [default: the scenario's, else none]
     #[arg(long = "symbols", value_name = "FILE")]
     pub symbols: Vec<PathBuf>,
+}
+
+/// How long a command that runs the program runs it.
+#[derive(Debug, clap::Args)]
+pub struct RunLength {
+    /// Run this many cycles (at least 1) [default: the scenario's run, else 1 s]
+    #[arg(long, conflicts_with = "duration", value_parser = clap::value_parser!(u64).range(1..))]
+    pub cycles: Option<u64>,
+    /// Run for this much simulated time, e.g. 250ms (ends at the next cycle end) [default: the
+    /// scenario's run, else 1 s]
+    #[arg(long = "for", value_name = "DURATION", value_parser = parse_duration_arg)]
+    pub duration: Option<u64>,
+}
+
+impl RunLength {
+    /// The limit given on the command line, if any.
+    pub fn limit(&self) -> Option<RunLimit> {
+        self.cycles
+            .map(RunLimit::Cycles)
+            .or(self.duration.map(RunLimit::Duration))
+    }
 }
 
 #[derive(Debug, clap::Args)]
@@ -95,13 +115,17 @@ pub struct ProgramArgs {
 pub struct RunArgs {
     #[command(flatten)]
     pub program: ProgramArgs,
-    /// Write a trace to FILE (`-` for stdout); programs/README.md describes its events
+    #[command(flatten)]
+    pub length: RunLength,
+    /// Write a trace to FILE (`-` for stdout); `awl help trace` describes its events [default:
+    /// no trace]
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
     /// Trace format [default: jsonl]
     #[arg(long, value_enum, requires = "trace")]
     pub trace_format: Option<Format>,
     /// Only these kinds of events in the trace (comma list); mode changes and a STOP always
+    /// [default: all]
     #[arg(
         long,
         value_enum,
@@ -111,33 +135,46 @@ pub struct RunArgs {
     )]
     pub trace_filter: Vec<TraceKind>,
     /// Draw the run's timeline into FILE: `.svg`, or `.html` with pan, zoom and hover details
+    /// [default: no timeline]
     #[arg(long, value_name = "FILE")]
     pub timeline: Option<PathBuf>,
-    /// The trace and the timeline start at this simulated time, e.g. 10ms
+    /// The trace and the timeline start at this simulated time, e.g. 10ms [default: 0, the
+    /// run's start]
     #[arg(long, value_name = "TIME", value_parser = parse_time_arg, requires = "outputs")]
     pub from: Option<u64>,
-    /// The trace and the timeline end at this simulated time, e.g. 20ms
+    /// The trace and the timeline end at this simulated time, e.g. 20ms [default: the run's
+    /// end]
     #[arg(long, value_name = "TIME", value_parser = parse_time_arg, requires = "outputs")]
     pub to: Option<u64>,
     /// Print the CPU's state at the end: ACCUs, status word, images, timers, counters, DBs
+    /// [default: off]
     #[arg(long)]
     pub state: bool,
     /// The state as text after the summary, or as JSON alone on stdout (the summary then goes
-    /// to stderr); implies --state
+    /// to stderr); implies --state [default: text]
     #[arg(long, value_enum)]
     pub state_format: Option<StateFormat>,
     /// Watch operands (STATUS VAR), e.g. "Q 4.0, FW 10, T 1, C 2, DB 10 DW 3": a row each time
-    /// one changed at a cycle end
+    /// one changed at a cycle end [default: the scenario's `watch`, else none]
     #[arg(long, value_name = "OPERANDS")]
     pub watch: Option<String>,
     /// A watch row every DURATION of simulated time (at the next cycle end) instead of on change
+    /// [default: a row on each change]
     #[arg(long, value_name = "DURATION", value_parser = parse_duration_arg)]
     pub watch_every: Option<u64>,
 }
 
 #[derive(Debug, clap::Args)]
+#[command(
+    after_long_help = "Each scenario runs its program as `awl run --scenario FILE` \
+would: its [[event]]s set inputs and request interrupts at their times (`every` repeats one), \
+and it passes when its [expect] table holds at the run's end and each [[check]] table at its \
+time (`at`). `awl test` prints PASS or FAIL per scenario; the watch table of a scenario's \
+`watch` list is what `awl run --scenario FILE` prints. `awl help scenario` describes every key."
+)]
 pub struct TestArgs {
-    /// Scenario files (TOML)
+    /// Scenario files (TOML): each with its program, events, [expect] table and [[check]]
+    /// tables
     #[arg(required = true)]
     pub scenarios: Vec<PathBuf>,
 }
@@ -167,10 +204,6 @@ pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
         files: args.files.clone(),
         scenario: args.scenario.clone(),
         cpu: args.cpu.as_deref().map(|name| selected_profile(Some(name))),
-        limit: args
-            .cycles
-            .map(RunLimit::Cycles)
-            .or(args.duration.map(RunLimit::Duration)),
         points: args.interrupt_points.map(|points| match points {
             Points::Block => InterruptPoints::Block,
             Points::Operation => InterruptPoints::Operation,
@@ -203,6 +236,7 @@ fn run_options(args: &RunArgs) -> RunOptions {
             .map(str::to_string)
             .collect(),
         watch_every_ns: args.watch_every,
+        limit: args.length.limit(),
         ..program_options(&args.program)
     }
 }
@@ -303,6 +337,7 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
             )),
         }
     }
+    console.err(&crate::report::written(&ran));
     if halted {
         EXIT_HALTED
     } else if ran.failed() {

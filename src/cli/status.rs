@@ -5,10 +5,10 @@ use miette::Report;
 use crate::ast::BlockId;
 use crate::mnemonics::BlockKind;
 use crate::program_status::{self, Recorder, StatusError, Window};
-use crate::runner::{self, Prepared};
+use crate::runner::{self, Prepared, Ran, RunOptions};
 use crate::vm::cycle::RunLimit;
 
-use super::run::{ProgramArgs, not_run, program_options, watched};
+use super::run::{ProgramArgs, RunLength, not_run, program_options, watched};
 use super::watch::EXIT_HALTED;
 use super::{Console, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_STOP, EXIT_USAGE};
 
@@ -19,13 +19,16 @@ const LOOK_AFTER_AT_NS: u64 = 1_000_000_000;
 pub struct StatusArgs {
     #[command(flatten)]
     pub program: ProgramArgs,
+    #[command(flatten)]
+    pub length: RunLength,
     /// The block to show, e.g. "PB 3", or its symbol, e.g. "-FILL"
     #[arg(long, value_parser = parse_block, allow_hyphen_values = true)]
     pub block: BlockRef,
     /// Its first invocation in this cycle [default: its first in the run]
     #[arg(long, conflicts_with = "at", value_parser = clap::value_parser!(u64).range(1..))]
     pub cycle: Option<u64>,
-    /// Its first invocation that begins at or after this simulated time, e.g. 250ms
+    /// Its first invocation that begins at or after this simulated time, e.g. 250ms [default:
+    /// the run's start]
     #[arg(long, value_name = "TIME", value_parser = parse_time)]
     pub at: Option<u64>,
 }
@@ -95,8 +98,38 @@ fn logic_block(prepared: &Prepared, id: BlockId) -> Result<u16, StatusError> {
         })
 }
 
+/// Why the block was not shown: the window lies past the run's end, or the block was not
+/// invoked in it.
+fn did_not_run(args: &StatusArgs, window: Window, ran: &Ran, halted: bool) -> StatusError {
+    let (cycles, clock_ns) = (ran.outcome.cycles, ran.outcome.clock_ns);
+    let ended = crate::trace::format_ms(clock_ns);
+    if window.after(cycles, clock_ns) && !halted {
+        return StatusError::PastTheEnd {
+            window: window.name(),
+            cycles: super::plural(cycles, "cycle"),
+            ended: format!("ended at {ended}"),
+            why: if args.length.limit().is_some() {
+                "the command line's `--cycles`/`--for` set the run's length".into()
+            } else {
+                "the scenario's `run` sets the run's length".into()
+            },
+        };
+    }
+    StatusError::DidNotRun {
+        block: match &args.block {
+            BlockRef::Id(id) => id.to_string(),
+            BlockRef::Symbol(name) => format!("-{name}"),
+        },
+        window: window.describe(),
+        ended: format!("{ended} after {}", super::plural(cycles, "cycle")),
+    }
+}
+
 pub fn status(args: &StatusArgs, console: &mut Console) -> u8 {
-    let options = program_options(&args.program);
+    let options = RunOptions {
+        limit: args.length.limit(),
+        ..program_options(&args.program)
+    };
     let mut prepared = match runner::prepare(&options) {
         Ok(prepared) => prepared,
         Err(reason) => return not_run(reason, console),
@@ -113,7 +146,8 @@ pub fn status(args: &StatusArgs, console: &mut Console) -> u8 {
         (Some(cycle), _) => Window::Cycle(cycle),
         (None, at) => Window::At(at.unwrap_or(0)),
     };
-    if options.limit.is_none() {
+    // Without a run length (command line or scenario), the run lasts until the window.
+    if !prepared.limit_given {
         prepared.limit = match window {
             Window::Cycle(cycle) => RunLimit::Cycles(cycle),
             Window::At(0) => prepared.limit,
@@ -131,18 +165,7 @@ pub fn status(args: &StatusArgs, console: &mut Console) -> u8 {
             console.err(&format!("{:?}\n", runner::stop_report(&ran, stop)));
             return EXIT_STOP;
         }
-        let error = StatusError::DidNotRun {
-            block: match &args.block {
-                BlockRef::Id(id) => id.to_string(),
-                BlockRef::Symbol(name) => format!("-{name}"),
-            },
-            window: window.describe(),
-            ended: format!(
-                "{} after {}",
-                crate::trace::format_ms(ran.outcome.clock_ns),
-                super::plural(ran.outcome.cycles, "cycle")
-            ),
-        };
+        let error = did_not_run(args, window, &ran, halted);
         console.report(&Report::new(error));
         return if halted {
             EXIT_HALTED

@@ -88,7 +88,10 @@ impl Live {
     pub fn start(request: &Request) -> Result<Live, Box<Outcome>> {
         let mut prepared = request.prepare()?;
         let recent = Recent::default();
-        prepared.cpu.tracer.add("live", Box::new(recent.clone()));
+        prepared
+            .cpu
+            .tracer
+            .add("live", Box::new(recent.clone()), TraceFilter::all());
         let (inputs, outputs) = io_bits(&prepared.cpu);
         Ok(Live {
             cpu: prepared.cpu,

@@ -256,7 +256,7 @@ fn add_timeline(cpu: &mut Cpu) -> Picture {
         levels,
         caption,
     );
-    cpu.tracer.add("timeline", sink);
+    cpu.tracer.add("timeline", sink, TraceFilter::all());
     picture
 }
 

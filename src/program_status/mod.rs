@@ -221,9 +221,37 @@ pub enum StatusError {
         window: String,
         ended: String,
     },
+    #[error("{window} is past the end of the run: it ran {cycles} ({ended})")]
+    #[diagnostic(
+        code(awl::status::past_the_end),
+        help("{why}; ask for a longer run with `--cycles` or `--for`")
+    )]
+    PastTheEnd {
+        window: String,
+        cycles: String,
+        ended: String,
+        /// What set the run's length.
+        why: String,
+    },
 }
 
 impl Window {
+    /// Whether the window begins after a run that ended after `cycles` cycles at `clock_ns`.
+    pub fn after(self, cycles: u64, clock_ns: u64) -> bool {
+        match self {
+            Window::Cycle(cycle) => cycle > cycles,
+            Window::At(ns) => ns > clock_ns,
+        }
+    }
+
+    /// "cycle 3", "250.000 ms": the window as the start of a sentence names it.
+    pub fn name(self) -> String {
+        match self {
+            Window::Cycle(cycle) => format!("cycle {cycle}"),
+            Window::At(ns) => crate::trace::format_ms(ns),
+        }
+    }
+
     /// "in cycle 3", "at or after 250.000 ms".
     pub fn describe(self) -> String {
         match self {

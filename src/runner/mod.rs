@@ -5,7 +5,7 @@ mod stop_report;
 pub mod warnings;
 
 use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, ErrorKind, Write};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -131,6 +131,18 @@ pub struct Ran {
     pub watch: WatchTable,
     /// The scenario's `[[check]]` tables, verified or not reached.
     pub checks: Vec<CheckOutcome>,
+    /// The trace and timeline files written to the end.
+    pub written: Vec<Written>,
+}
+
+/// A trace or timeline file written to the end: what it is, where, how many events and bytes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Written {
+    /// `trace` or `timeline`.
+    pub what: &'static str,
+    pub path: String,
+    pub events: u64,
+    pub bytes: u64,
 }
 
 impl Ran {
@@ -206,12 +218,12 @@ fn add_outputs(
         let filter = window.kinds(&options.trace_filter);
         let symbols = cpu.program.symbols.clone();
         let sink = trace::trace_sink(format, open_trace(path)?, filter, levels.clone(), symbols);
-        cpu.tracer.add(&path.display().to_string(), sink);
+        cpu.tracer.add(&path.display().to_string(), sink, filter);
     }
     if let Some(path) = &options.timeline {
         let out = open_timeline(path)?;
         let sink = timeline::sink(timeline::Format::of(path), out, window, levels, caption);
-        cpu.tracer.add(&path.display().to_string(), sink);
+        cpu.tracer.add(&path.display().to_string(), sink, window);
     }
     Ok(())
 }
@@ -261,6 +273,8 @@ pub struct Prepared {
     pub frontend: Frontend,
     pub cpu: Cpu,
     pub limit: RunLimit,
+    /// Whether the command line or the scenario set the limit (else it is [`DEFAULT_RUN`]).
+    pub limit_given: bool,
     /// The mnemonic set operands are written in (the first file's).
     pub mnemonics: MnemonicSet,
     scenario: Option<Scenario>,
@@ -401,10 +415,7 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         warnings.extend(warnings::normal_mode_calls(&program, &built.sources));
     }
     warnings.extend(warnings::obs_never_run(&program, &built.sources, &config));
-    let limit = options
-        .limit
-        .or(scenario.as_ref().and_then(|s| s.limit))
-        .unwrap_or(DEFAULT_RUN);
+    let given_limit = options.limit.or(scenario.as_ref().and_then(|s| s.limit));
     let sources = Arc::new(built.sources.clone());
     let levels = trace::levels(profile, &program);
     let caption = caption(options, &files, &config, profile);
@@ -418,7 +429,8 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     Ok(Prepared {
         frontend: built,
         cpu,
-        limit,
+        limit: given_limit.unwrap_or(DEFAULT_RUN),
+        limit_given: given_limit.is_some(),
         mnemonics: set,
         scenario,
         expectations,
@@ -470,19 +482,29 @@ impl Prepared {
             warnings.extend(scenario.events_after(outcome.clock_ns));
         }
         let mut trace_closed = false;
-        for failed in cpu.tracer.finish(cpu.clock) {
-            if failed.name == "-" && failed.error.kind() == std::io::ErrorKind::BrokenPipe {
-                trace_closed = true;
-                continue;
-            }
+        let mut written = Vec::new();
+        for finished in cpu.tracer.finish(cpu.clock) {
             let is_timeline = timeline
                 .as_ref()
-                .is_some_and(|path| path.display().to_string() == failed.name);
-            warnings.push(Report::new(RunWarning::TraceIncomplete {
-                what: if is_timeline { "timeline" } else { "trace" },
-                path: failed.name,
-                reason: failed.error.to_string(),
-            }));
+                .is_some_and(|path| path.display().to_string() == finished.name);
+            let what = if is_timeline { "timeline" } else { "trace" };
+            match finished.error {
+                Some(error) if finished.name == "-" && error.kind() == ErrorKind::BrokenPipe => {
+                    trace_closed = true;
+                }
+                Some(error) => warnings.push(Report::new(RunWarning::TraceIncomplete {
+                    what,
+                    path: finished.name,
+                    reason: error.to_string(),
+                })),
+                None if finished.name == "-" => {}
+                None => written.push(Written {
+                    what,
+                    bytes: std::fs::metadata(&finished.name).map_or(0, |file| file.len()),
+                    path: finished.name,
+                    events: finished.events,
+                }),
+            }
         }
         let mismatches = expect::check(&cpu, &outcome, &expectations);
         Ran {
@@ -497,6 +519,7 @@ impl Prepared {
             trace_closed,
             watch,
             checks: checker.finish(),
+            written,
         }
     }
 }

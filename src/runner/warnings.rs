@@ -64,9 +64,7 @@ fn never_runs(
         return None;
     }
     // An OB the CPU does not have at all is the program's warning (`awl check` prints it too).
-    if profile.interrupt_ob(ob).is_none() {
-        return None;
-    }
+    profile.interrupt_ob(ob)?;
     match profile.family {
         Family::Sinumerik840c if !config.special_mode && normal_mode_skips(ob) => Some((
             NORMAL_MODE.to_string(),

@@ -13,7 +13,7 @@ pub enum ScenarioError {
     #[diagnostic(
         code(awl::scenario::syntax),
         help(
-            "programs/README.md lists the keys a scenario has: program, cpu, mode, interrupt_points, run, watchdog, [ob13], [[hw_module]], [[event]], [expect]"
+            "the keys a scenario has: program, symbols, cpu, mode, interrupt_points, run, watchdog, watch, [ob13], [[hw_module]], [[event]], [expect], [[check]]; `awl help scenario` describes them"
         )
     )]
     Syntax {

@@ -173,7 +173,7 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
                 key: other.to_string(),
                 at: span_of(key.span()),
                 help: super::did_you_mean(other, KEYS.iter().copied()).map(|known| {
-                    format!("did you mean `{known}`? The keys are listed in programs/README.md")
+                    format!("did you mean `{known}`? `awl help scenario` lists the keys")
                 }),
             }),
         }

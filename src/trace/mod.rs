@@ -161,15 +161,19 @@ pub trait Sink {
 struct Output {
     name: String,
     sink: Box<dyn Sink>,
+    /// The events the output shows (its kinds and window), counted as they are handed on.
+    shows: TraceFilter,
+    events: u64,
     error: Option<std::io::Error>,
 }
 
-/// An output that could not be written to the end.
+/// An output at the run's end: how many events it took, and whether it was written to the end.
 #[derive(Debug)]
-pub struct OutputError {
+pub struct Finished {
     /// The name the output was added with (its path).
     pub name: String,
-    pub error: std::io::Error,
+    pub events: u64,
+    pub error: Option<std::io::Error>,
 }
 
 /// Hands events to the outputs; `enabled` is the one flag the loop tests.
@@ -201,15 +205,18 @@ impl Tracer {
             Vec::new(),
             Default::default(),
         );
-        tracer.add("trace", sink);
+        tracer.add("trace", sink, TraceFilter::all());
         tracer
     }
 
-    /// Adds an output; `name` identifies it in [`OutputError`].
-    pub fn add(&mut self, name: &str, sink: Box<dyn Sink>) {
+    /// Adds an output that shows the events `shows` lets through; `name` identifies it in
+    /// [`Finished`].
+    pub fn add(&mut self, name: &str, sink: Box<dyn Sink>, shows: TraceFilter) {
         self.outputs.push(Output {
             name: name.to_string(),
             sink,
+            shows,
+            events: 0,
             error: None,
         });
         self.enabled = true;
@@ -245,10 +252,12 @@ impl Tracer {
 
     fn hand_on(&mut self, t_ns: u64, event: &Event) {
         for output in &mut self.outputs {
-            if output.error.is_none()
-                && let Err(error) = output.sink.event(t_ns, event)
-            {
-                output.error = Some(error);
+            if output.error.is_some() {
+                continue;
+            }
+            match output.sink.event(t_ns, event) {
+                Ok(()) => output.events += u64::from(output.shows.shows(t_ns, event)),
+                Err(error) => output.error = Some(error),
             }
         }
         // With every output failed, nothing more is traced (`settle` drops what it held).
@@ -257,22 +266,22 @@ impl Tracer {
         }
     }
 
-    /// Hands on what is held and finishes every output at the run's end; the outputs that
-    /// could not be written to the end.
-    pub fn finish(&mut self, end_ns: u64) -> Vec<OutputError> {
+    /// Hands on what is held and finishes every output at the run's end.
+    pub fn finish(&mut self, end_ns: u64) -> Vec<Finished> {
         self.settle(u64::MAX);
         self.enabled = false;
         std::mem::take(&mut self.outputs)
             .into_iter()
-            .filter_map(|mut output| {
+            .map(|mut output| {
                 let error = match output.error.take() {
                     Some(error) => Some(error),
                     None => output.sink.finish(end_ns).err(),
                 };
-                error.map(|error| OutputError {
+                Finished {
                     name: output.name,
+                    events: output.events,
                     error,
-                })
+                }
             })
             .collect()
     }
