@@ -133,15 +133,17 @@ impl Scenario {
         report(&self.path, &self.text, error)
     }
 
-    /// The span of a table key without its quotes (`"I 0.0" = 1`).
+    /// The span of a table key without its quotes (`"I 0.0" = 1`); a key cut off by the end
+    /// of the file has no closing quote to leave out.
     fn key_span(&self, key: &Spanned<String>) -> SourceSpan {
         let range = key.span();
-        let quoted = self.text[range.clone()].starts_with(['"', '\'']) && range.len() >= 2;
-        if quoted {
-            (range.start + 1, range.len() - 2).into()
-        } else {
-            span(key)
-        }
+        let written = &self.text[range.clone()];
+        let Some(quote) = written.chars().next().filter(|c| matches!(c, '"' | '\'')) else {
+            return span(key);
+        };
+        let closed = written.len() >= 2 && written.ends_with(quote);
+        let end = if closed { range.end - 1 } else { range.end };
+        (range.start + 1, end - range.start - 1).into()
     }
 
     fn reports(&self, errors: Vec<ScenarioError>) -> Vec<Report> {
