@@ -4,6 +4,9 @@
 //! (bytecode) → [`vm`] (executes) with the interrupt engine in [`vm::interrupts`] → [`trace`] and
 //! [`report`].
 
+// No unsafe code anywhere: the fuzz targets run without AddressSanitizer on that ground.
+#![forbid(unsafe_code)]
+
 pub mod analyze;
 pub mod ast;
 #[cfg(not(target_arch = "wasm32"))]

@@ -339,3 +339,35 @@ proptest! {
         }
     }
 }
+
+/// Found by the `scenario` fuzz target: a string cut off by the end of the file (`"RUN` and two
+/// bytes that are no UTF-8, read as two replacement characters) used as an operand was labelled
+/// as if it had its closing quote, so the label split the last character.
+#[test]
+fn an_operand_cut_off_by_the_end_of_the_file_is_labelled_on_whole_characters() {
+    let bytes = std::fs::read("tests/inputs/fuzz_cut_off_string.toml").unwrap();
+    let text = String::from_utf8_lossy(&bytes).into_owned();
+    let (scenario, mut reports) =
+        awl::scenario::Scenario::parse(std::path::Path::new("cut.toml"), &text, None);
+    let built = frontend::build_text("p.awl", "OB 1\n      BE\n", scenario.profile);
+    let set = awl::mnemonics::MnemonicSet::English;
+    let program = &built.compiled.program;
+    reports.extend(scenario.schedule(program, set).err().into_iter().flatten());
+    reports.extend(
+        scenario
+            .expectations(program, set)
+            .err()
+            .into_iter()
+            .flatten(),
+    );
+    assert!(!reports.is_empty());
+    for report in &reports {
+        for label in report.labels().into_iter().flatten() {
+            let (start, end) = (label.offset(), label.offset() + label.len());
+            assert!(
+                text.is_char_boundary(start) && text.is_char_boundary(end),
+                "{report:?}: {start}..{end}"
+            );
+        }
+    }
+}

@@ -133,15 +133,17 @@ impl Scenario {
         report(&self.path, &self.text, error)
     }
 
-    /// The span of a table key without its quotes (`"I 0.0" = 1`).
+    /// The span of a table key without its quotes (`"I 0.0" = 1`); a key cut off by the end
+    /// of the file has no closing quote to leave out.
     fn key_span(&self, key: &Spanned<String>) -> SourceSpan {
         let range = key.span();
-        let quoted = self.text[range.clone()].starts_with(['"', '\'']) && range.len() >= 2;
-        if quoted {
-            (range.start + 1, range.len() - 2).into()
-        } else {
-            span(key)
-        }
+        let written = &self.text[range.clone()];
+        let Some(quote) = written.chars().next().filter(|c| matches!(c, '"' | '\'')) else {
+            return span(key);
+        };
+        let closed = written.len() >= 2 && written.ends_with(quote);
+        let end = if closed { range.end - 1 } else { range.end };
+        (range.start + 1, end - range.start - 1).into()
     }
 
     fn reports(&self, errors: Vec<ScenarioError>) -> Vec<Report> {
@@ -288,6 +290,17 @@ impl Scenario {
         program: &Program,
         set: MnemonicSet,
     ) -> Result<Vec<Scheduled>, Vec<Report>> {
+        self.schedule_at_most(program, set, MAX_EVENTS)
+    }
+
+    /// [`Scenario::schedule`] holding at most `max_events` events: a caller that must bound
+    /// what one scenario costs (a fuzz target) sets it below [`MAX_EVENTS`].
+    pub fn schedule_at_most(
+        &self,
+        program: &Program,
+        set: MnemonicSet,
+        max_events: usize,
+    ) -> Result<Vec<Scheduled>, Vec<Report>> {
         let mut errors = Errors::default();
         let mut schedule = Vec::new();
         for event in &self.events {
@@ -319,12 +332,12 @@ impl Scenario {
             } else {
                 None
             };
-            let times = at_ns.and_then(|at_ns| errors.keep(occurrences(event, at_ns)));
+            let times = at_ns.and_then(|at_ns| errors.keep(occurrences(event, at_ns, max_events)));
             if let (Some(times), Some(what)) = (times, what) {
-                if schedule.len() + times.len() > MAX_EVENTS {
+                if schedule.len() + times.len() > max_events {
                     errors.push(invalid(
                         format!(
-                            "this event repeats {} times; a scenario holds at most {MAX_EVENTS} events",
+                            "this event repeats {} times; a scenario holds at most {max_events} events",
                             times.len()
                         ),
                         event_span,
@@ -694,8 +707,8 @@ pub fn input_change(target: Target, program: &Program, value: u32) -> Option<Inp
 }
 
 /// The moments of an event: `at`, and with `every` its repetitions, `count` in all or up to
-/// `until`.
-fn occurrences(event: &RawEvent, at_ns: u64) -> Result<Vec<u64>, ScenarioError> {
+/// `until`; at most `max_events` of them.
+fn occurrences(event: &RawEvent, at_ns: u64, max_events: usize) -> Result<Vec<u64>, ScenarioError> {
     let Some(every) = &event.every else {
         if let Some(count) = &event.count {
             return Err(invalid(
@@ -758,10 +771,10 @@ fn occurrences(event: &RawEvent, at_ns: u64) -> Result<Vec<u64>, ScenarioError> 
         }
     };
     let times = (last - at_ns) / every_ns + 1;
-    if times > MAX_EVENTS as u64 {
+    if times > max_events as u64 {
         return Err(invalid(
             format!(
-                "this event repeats {times} times; a scenario holds at most {MAX_EVENTS} events"
+                "this event repeats {times} times; a scenario holds at most {max_events} events"
             ),
             span(every),
             "too many repetitions",
