@@ -40,7 +40,10 @@ pub fn run(built: Frontend, setup: Setup) {
     let max_cycles = setup.max_cycles;
     let outcome = cpu.run_watched(setup.limit, &mut |cpu| cpu.cycle < max_cycles);
     assert!(
-        cpu.tracer.finish(cpu.clock).is_empty(),
+        cpu.tracer
+            .finish(cpu.clock)
+            .iter()
+            .all(|output| output.error.is_none()),
         "a sink takes everything"
     );
     assert_eq!(outcome.stop.is_some(), outcome.mode == Mode::Stop);
@@ -64,6 +67,7 @@ pub fn run(built: Frontend, setup: Setup) {
         trace_closed: false,
         watch: awl::state::watch::WatchTable::default(),
         checks: Vec::new(),
+        written: Vec::new(),
     };
     assert!(!awl::report::summary(&ran).is_empty());
     if let Some(stop) = &ran.outcome.stop {
