@@ -1,6 +1,6 @@
 //! How many 16-bit words each statement takes in MC5, the STEP 5 machine code, so a listing
-//! numbers its statements by word address as the PG does (`0001 :L KF +20` takes two words, the
-//! next statement is `0003`). `grammar/README.md` ("Statement addresses") has the table and
+//! numbers its statements by word address as the PG does (`0000 :L KF +20` takes two words, the
+//! next statement is `0002`). `grammar/README.md` ("Statement addresses") has the table and
 //! where each length comes from.
 
 use crate::ast::{Operand, Statement};
@@ -14,8 +14,8 @@ pub const BLOCK_HEADER_WORDS: u32 = 5;
 pub const SEGMENT_END_WORDS: u32 = 1;
 
 /// The words before a function block's first statement: the jump over the description (one
-/// word), the block's name (four words) and three words per formal parameter (kind and format,
-/// then the four-character name).
+/// word; CPU 928B Programming Guide, 8.3.2), the block's name (four words: eight characters)
+/// and three words per formal parameter (kind and format, then the four-character name).
 pub fn function_block_description(params: usize) -> u32 {
     5 + 3 * params as u32
 }
@@ -41,12 +41,11 @@ pub fn calls_function_block(statement: &Statement) -> bool {
 
 fn operation_words(op: OpCode, operand: &Operand) -> u32 {
     match (op, operand) {
-        // `L KB`: the byte rides in the operation word; 16-bit constants take a word of their
-        // own, 32-bit ones (`KG`, `DH`) two.
+        // `L KB`: the byte rides in the operation word; every other constant follows it in
+        // words of its own.
         (OpCode::Load, Operand::Constant(constant)) => match constant.format {
             ConstFormat::Byte => 1,
-            ConstFormat::Float | ConstFormat::DoubleHex => 3,
-            _ => 2,
+            format => 1 + u32::from(format.words()),
         },
         (
             OpCode::SetUnconditional

@@ -132,13 +132,9 @@ fn data_words(out: &mut String, sources: &SourceSet, data: &DataBlockImage, writ
 
 /// The words one data line fills: 32-bit formats take two per value, a long `KS` string one per
 /// two characters.
-pub(crate) fn data_words_of(word: &DataWord) -> usize {
+fn data_words_of(word: &DataWord) -> usize {
     let values = 1 + word.constant.extra_words.len();
-    let wide = matches!(
-        word.constant.format,
-        crate::mnemonics::ConstFormat::DoubleHex | crate::mnemonics::ConstFormat::Float
-    );
-    if wide { 2 * values } else { values }
+    values * usize::from(word.constant.format.words())
 }
 
 /// A data line's constant without its word number: `3:  KF +5` → `KF +5`.
