@@ -5,7 +5,7 @@
 use crate::ast::{CallParam, ParamDecl, Statement};
 use crate::compiler::bytecode::{
     Arith, BitSource, BitTarget, Comparison, DataPart, ImageBit, IndirectSource, JumpCondition,
-    Logic, NO_PARAMS, Op, TimerKind, Width, WordLogic, Write,
+    Logic, Op, TimerKind, Width, WordLogic, Write,
 };
 use crate::compiler::{Layout, Program};
 use crate::mnemonics::{self, Area, MnemonicSet, OpCode};
@@ -110,7 +110,10 @@ impl Context<'_> {
     /// `EIN I 0.0, AUS Q 4.0 (-LAMP)`: an FB call's actual parameters.
     fn actuals(self, params: &[CallParam]) -> String {
         let actual = |param: &CallParam| {
-            let written = self.sources.get(param.actual_span.file).slice(param.actual_span);
+            let written = self
+                .sources
+                .get(param.actual_span.file)
+                .slice(param.actual_span);
             let text = crate::symbols::operand_text(&param.actual, self.set)
                 .map_or_else(|| written.to_string(), |text| self.named(text));
             format!("{} = {text}", param.name.text)
@@ -376,14 +379,12 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
         }
         Op::Compare(comparison) => format!("{} (fixed-point)", comparison_verb(comparison)),
         Op::Call {
-            block,
-            conditional,
-            params,
+            block, conditional, ..
         } => {
             let verb = if conditional { "call if RLO 1" } else { "call" };
             let callee = context.block(block);
             match statement {
-                Some(statement) if params != NO_PARAMS => format!(
+                Some(statement) if !statement.call_params.is_empty() => format!(
                     "{verb} {callee} with {}",
                     context.actuals(&statement.call_params)
                 ),
