@@ -145,8 +145,12 @@ impl<'a> Writer<'a, '_> {
                 address: first_statement_address(block),
                 name_at: None,
             });
-            if body.statements.first().is_none_or(|first| first.segment == 0) {
-                self.segment_heading("SEGMENT", "1", 0);
+            if body
+                .statements
+                .first()
+                .is_none_or(|first| first.segment == 0)
+            {
+                self.segment_heading("SEGMENT", "1", 0, "");
             }
         }
     }
@@ -161,9 +165,7 @@ impl<'a> Writer<'a, '_> {
                     .windows(2)
                     .filter(|pair| pair[0].segment != pair[1].segment)
                     .count() as u32;
-                first_statement_address(block)
-                    + statements
-                    + segment_ends * mc5::SEGMENT_END_WORDS
+                first_statement_address(block) + statements + segment_ends * mc5::SEGMENT_END_WORDS
             }
             BlockBody::Data(_) => self.data_lengths.get(&block.id).copied().unwrap_or(0) as u32,
         }
@@ -182,7 +184,10 @@ impl<'a> Writer<'a, '_> {
         let words = mc5::statement_words(statement);
         state.address += words;
         state.written = index + 1;
-        let label = statement.label.as_ref().map_or("", |label| label.text.as_str());
+        let label = statement
+            .label
+            .as_ref()
+            .map_or("", |label| label.text.as_str());
         let text = &self.file.text[statement.op_span.start as usize..statement.span.end as usize];
         let _ = writeln!(
             self.out,
@@ -252,7 +257,7 @@ impl<'a> Writer<'a, '_> {
         if let Some(state) = &self.block {
             if let Some((word, number)) = segment_heading(text) {
                 let word = word.to_ascii_uppercase();
-                self.segment(&word, number);
+                self.segment(&word, number, line_comment(text));
                 return;
             }
             if is_segment_end(without_address(text)) {
@@ -272,8 +277,9 @@ impl<'a> Writer<'a, '_> {
     }
 
     /// A segment heading in the source: the `***` that ends the segment before it (a word of
-    /// its own), then the heading with the address where the new segment starts.
-    fn segment(&mut self, word: &str, number: &str) {
+    /// its own), then the heading with the address where the new segment starts, and its
+    /// comment.
+    fn segment(&mut self, word: &str, number: &str, comment: &str) {
         let Some(state) = self.block.as_mut() else {
             return;
         };
@@ -288,12 +294,16 @@ impl<'a> Writer<'a, '_> {
             state.address += mc5::SEGMENT_END_WORDS;
         }
         let address = if written == 0 { 0 } else { state.address };
-        self.segment_heading(word, number, address);
+        self.segment_heading(word, number, address, comment);
     }
 
-    fn segment_heading(&mut self, word: &str, number: &str, address: u32) {
+    fn segment_heading(&mut self, word: &str, number: &str, address: u32, comment: &str) {
         let heading = format!("{word} {number}");
-        let _ = writeln!(self.out, "{heading:<RIGHT_COLUMN$}{address:04X}");
+        let _ = writeln!(
+            self.out,
+            "{heading:<RIGHT_COLUMN$}{address:04X}{}",
+            self::comment(comment)
+        );
     }
 
     /// What follows `span` on its line: the blanks and the comment, as written.
@@ -324,6 +334,15 @@ fn comment(tail: &str) -> String {
     }
 }
 
+/// The comment of a line that holds no string constant: from `;` or `//` to the end.
+fn line_comment(text: &str) -> &str {
+    let start = [text.find(';'), text.find("//")]
+        .into_iter()
+        .flatten()
+        .min();
+    start.map_or("", |start| &text[start..])
+}
+
 fn is_blank_or_comment(text: &str) -> bool {
     text.is_empty() || text.starts_with(';') || text.starts_with("//")
 }
@@ -349,7 +368,9 @@ fn is_segment_end(text: &str) -> bool {
 fn is_name_line(text: &str) -> bool {
     text.get(..mnemonics::NAME_WORD.len())
         .is_some_and(|word| word.eq_ignore_ascii_case(mnemonics::NAME_WORD))
-        && text[mnemonics::NAME_WORD.len()..].trim_start().starts_with(':')
+        && text[mnemonics::NAME_WORD.len()..]
+            .trim_start()
+            .starts_with(':')
 }
 
 /// The text without an old statement address and the blanks after it.
