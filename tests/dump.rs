@@ -186,3 +186,30 @@ fn data_words_are_shown_as_written() {
     let german = dump("tests/inputs/every_op_de.awl");
     assert!(shown(&german, "0", "KZ 500"), "{german}");
 }
+
+/// The README's `awl dump` examples are what the binary prints: each block after a
+/// `cargo run --release -- dump …` command is a part of that command's output.
+#[test]
+fn the_readme_s_dump_examples_are_true() {
+    let readme = std::fs::read_to_string("README.md").unwrap();
+    let blocks: Vec<&str> = readme.split("```").skip(1).step_by(2).collect();
+    let mut checked = 0;
+    for pair in blocks.windows(2) {
+        let Some(args) = pair[0].trim().strip_prefix("cargo run --release -- dump") else {
+            continue;
+        };
+        let output = Command::new(env!("CARGO_BIN_EXE_awl"))
+            .arg("dump")
+            .args(args.split_whitespace())
+            .output()
+            .expect("awl runs");
+        let stdout = String::from_utf8(output.stdout).unwrap();
+        let example = pair[1].trim_start_matches('\n');
+        assert!(
+            stdout.contains(example),
+            "README example of `dump{args}` is not its output:\n{example}\n\nactual:\n{stdout}"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 2, "{checked} examples");
+}
