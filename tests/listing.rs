@@ -383,3 +383,19 @@ SEGMENT 2                             0003
 "
     );
 }
+
+/// The samples written as PG listings carry the addresses and lengths the PG would print:
+/// `awl dump --listing` gives each of them back unchanged.
+#[test]
+fn the_sample_listings_are_true_to_the_pg() {
+    for (program, symbols) in [
+        ("programs/filling_de.awl", "programs/filling_de.seq"),
+        ("programs/press_en.awl", "programs/press_en.csv"),
+    ] {
+        let text = std::fs::read_to_string(program).unwrap();
+        let list = std::fs::read_to_string(symbols).unwrap();
+        let built = build(&[(program, &text)], &[(symbols, &list)]);
+        assert!(!built.has_errors(), "{:#?}", built.diagnostics);
+        assert_eq!(awl::dump::listing::listing(&built), text, "{program}");
+    }
+}
