@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use miette::Diagnostic;
 use thiserror::Error;
 
+use crate::ast::SourceUnit;
 use crate::compiler::{self, Compiled};
 use crate::diagnostics::SourceDiagnostic;
 use crate::mnemonics::MnemonicSet;
@@ -47,6 +48,9 @@ pub struct Frontend {
     pub diagnostics: Vec<SourceDiagnostic>,
     /// The mnemonic set of each file, detected or forced.
     pub mnemonics: Vec<MnemonicSet>,
+    /// The parsed program files with their symbols resolved: what each statement was written
+    /// as (`awl dump` shows constants and labels as written).
+    pub units: Vec<SourceUnit>,
 }
 
 impl Frontend {
@@ -191,6 +195,7 @@ pub fn build_with_symbols(
         compiled,
         diagnostics,
         mnemonics,
+        units,
     }
 }
 

@@ -772,6 +772,16 @@ pub enum ConstFormat {
     DoubleHex,
 }
 
+impl ConstFormat {
+    /// The 16-bit words one value of the format fills: two for the 32-bit formats (`KG`, `DH`).
+    pub fn words(self) -> u16 {
+        match self {
+            ConstFormat::Float | ConstFormat::DoubleHex => 2,
+            _ => 1,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy)]
 pub struct ConstInfo {
     pub format: ConstFormat,

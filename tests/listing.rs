@@ -278,3 +278,124 @@ fn mnemonics_of_a_listing_are_detected() {
     let built = build(&[("en.awl", LISTING_EN)], &[]);
     assert_eq!(built.mnemonics, [MnemonicSet::English]);
 }
+
+/// `awl dump --listing` numbers statements by word address as the PG does: a constant after
+/// `L` (other than `KB`) takes a word of its own, a 32-bit one two; an FB call takes a jump word
+/// (the `NAME :` line) and a word per parameter; `SU` on a data bit takes two words; a function
+/// block's statements start after its description (jump, name, three words a parameter); the
+/// header carries the block's length with its five-word header.
+#[test]
+fn statements_are_numbered_by_their_word_address() {
+    let source = "\
+OB 1
+      L  KF +20
+      L  KB 7
+      T  FW 10
+      JU FB 5
+NAME :MOTOR
+EIN  :I 0.0
+AUS  :Q 4.0
+      L  DH 0000FFFF
+      BE
+FB 5
+NAME :MOTOR
+DES  :EIN  I BI
+DES  :AUS  Q BI
+      A  =EIN
+      SU D 1.0
+      =  =AUS
+      BE
+";
+    let expected = "\
+OB 1                                  LEN=17
+SEGMENT 1                             0000
+0000      :L  KF +20
+0002      :L  KB 7
+0003      :T  FW 10
+0004      :JU FB 5
+0005 NAME :MOTOR
+0006 EIN  :I 0.0
+0007 AUS  :Q 4.0
+0008      :L  DH 0000FFFF
+000B      :BE
+FB 5                                  LEN=21
+SEGMENT 1                             0000
+NAME :MOTOR
+DES  :EIN  I BI
+DES  :AUS  Q BI
+000B      :A  =EIN
+000C      :SU D 1.0
+000E      :=  =AUS
+000F      :BE
+";
+    let built = build(&[("addresses.awl", source)], &[]);
+    assert!(!built.has_errors(), "{:#?}", built.diagnostics);
+    assert_eq!(awl::dump::listing::listing(&built), expected);
+    round_trip(&[("addresses.awl", source)], &[]);
+    let again = build(&[("listing.awl", expected)], &[]);
+    assert_eq!(awl::dump::listing::listing(&again), expected);
+}
+
+/// Each constant format after `L` in words: `KB` rides in the operation word, the 16-bit
+/// formats take one more word, `KG` and `DH` two more.
+#[test]
+fn every_constant_format_has_its_length() {
+    let formats = [
+        ("KB 10", 1),
+        ("KF -100", 2),
+        ("KH 00FF", 2),
+        ("KM 0000000011110000", 2),
+        ("KY 12,34", 2),
+        ("KT 050.1", 2),
+        ("KC 500", 2),
+        ("KS 'AB'", 2),
+        ("KG +1234567+02", 3),
+        ("DH 0000FFFF", 3),
+    ];
+    for (constant, words) in formats {
+        let source = format!("PB 1\n      L  {constant}\n      BE\n");
+        let built = build(&[("constant.awl", &source)], &[]);
+        assert!(!built.has_errors(), "{constant}: {:#?}", built.diagnostics);
+        let listing = awl::dump::listing::listing(&built);
+        assert!(
+            listing.contains(&format!("{words:04X}      :BE")),
+            "{constant} should take {words} words:\n{listing}"
+        );
+    }
+}
+
+/// A segment ends with `***`, a word of its own, and the next heading carries the address
+/// where its segment starts; a heading's comment stays.
+#[test]
+fn segment_ends_take_a_word_and_headings_keep_their_comments() {
+    let source = "PB 3\nSEGMENT 1 ; filling\n      L  KF +1\nSEGMENT 2\n      BE\n";
+    let built = build(&[("segments.awl", source)], &[]);
+    let listing = awl::dump::listing::listing(&built);
+    assert_eq!(
+        listing,
+        "\
+PB 3                                  LEN=9
+SEGMENT 1                             0000  ; filling
+0000      :L  KF +1
+0002      :***
+SEGMENT 2                             0003
+0003      :BE
+"
+    );
+}
+
+/// The samples written as PG listings carry the addresses and lengths the PG would print:
+/// `awl dump --listing` gives each of them back unchanged.
+#[test]
+fn the_sample_listings_are_true_to_the_pg() {
+    for (program, symbols) in [
+        ("programs/filling_de.awl", "programs/filling_de.seq"),
+        ("programs/press_en.awl", "programs/press_en.csv"),
+    ] {
+        let text = std::fs::read_to_string(program).unwrap();
+        let list = std::fs::read_to_string(symbols).unwrap();
+        let built = build(&[(program, &text)], &[(symbols, &list)]);
+        assert!(!built.has_errors(), "{:#?}", built.diagnostics);
+        assert_eq!(awl::dump::listing::listing(&built), text, "{program}");
+    }
+}

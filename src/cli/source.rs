@@ -86,7 +86,7 @@ pub fn dump(args: &DumpArgs, console: &mut Console) -> u8 {
     if args.listing {
         console.out(&crate::dump::listing::listing(&built));
     } else {
-        console.out(&crate::dump::dump(&built.compiled.program, &built.sources));
+        console.out(&crate::dump::dump(&built));
     }
     EXIT_OK
 }

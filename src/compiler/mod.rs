@@ -167,10 +167,7 @@ fn data_image(block: &Block) -> DataBlockImage {
         for word in data {
             let values = std::iter::once(word.constant.value)
                 .chain(word.constant.extra_words.iter().map(|w| u32::from(*w)));
-            let wide = matches!(
-                word.constant.format,
-                mnemonics::ConstFormat::DoubleHex | mnemonics::ConstFormat::Float
-            );
+            let wide = word.constant.format.words() == 2;
             let mut at = usize::from(word.index);
             for value in values {
                 let parts: &[u16] = if wide {

@@ -1,255 +1,32 @@
-//! `awl dump`: each block's bytecode with source line numbers.
+//! `awl dump`: each block's bytecode with source line numbers, each op with what it does in the
+//! user's terms (see `annotate`), each data word as written.
 
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use crate::compiler::bytecode::{
-    BitSource, BitTarget, DataPart, ImageBit, IndirectSource, Op, Width,
-};
-use crate::compiler::{Layout, Program};
-use crate::mnemonics::{self, Area, MnemonicSet};
-use crate::source::SourceSet;
+use crate::ast::{Block, BlockBody, BlockId, DataWord, Statement};
+use crate::compiler::DataBlockImage;
+use crate::frontend::Frontend;
+use crate::source::{SourceSet, Span};
 
+pub mod annotate;
 pub mod listing;
+pub mod mc5;
 
-/// Operand names in the block's mnemonic set: `I 0.0` or `E 0.0`, `FW 10` or `MW 10`, with
-/// the assignment list's symbol after them: `E 1.0 (-START)`.
-#[derive(Clone, Copy)]
-struct Names<'a> {
-    layout: Layout,
-    set: MnemonicSet,
-    symbols: &'a crate::symbols::Symbols,
-}
+pub use annotate::op_text;
 
-impl Names<'_> {
-    /// `text` with its symbol, if it has one.
-    fn named(self, text: String) -> String {
-        match self.symbols.name_of(&text) {
-            Some(name) => format!("{text} (-{name})"),
-            None => text,
-        }
-    }
-
-    fn word(self, area: Area) -> &'static str {
-        mnemonics::area_word(self.set, area)
-    }
-
-    /// The bit area of an image byte offset and the byte's number in it.
-    fn image(self, byte: u16) -> (Area, u16) {
-        let layout = self.layout;
-        if byte >= layout.flag_base() {
-            (Area::Flag, byte - layout.flag_base())
-        } else if byte >= layout.output_base() {
-            (Area::Output, byte - layout.output_base())
-        } else {
-            (Area::Input, byte)
-        }
-    }
-
-    /// `IW 2`, `MB 10`, `FD 4` for a sized image access.
-    fn sized(self, width: Width, byte: u16) -> String {
-        let (area, number) = self.image(byte);
-        let sized = match (area, width) {
-            (Area::Input, Width::Byte) => Area::InputByte,
-            (Area::Input, _) => Area::InputWord,
-            (Area::Output, Width::Byte) => Area::OutputByte,
-            (Area::Output, _) => Area::OutputWord,
-            (_, Width::Byte) => Area::FlagByte,
-            (_, Width::Word) => Area::FlagWord,
-            (_, Width::Double) => Area::FlagDouble,
-        };
-        self.named(format!("{} {number}", self.word(sized)))
-    }
-
-    fn bit(self, bit: ImageBit) -> String {
-        let (area, number) = self.image(bit.byte);
-        self.named(format!("{} {number}.{}", self.word(area), bit.bit))
-    }
-
-    fn data_bit(self, word: u16, bit: u8) -> String {
-        format!("{} {word}.{bit}", self.word(Area::DataBit))
-    }
-
-    fn bit_target(self, target: BitTarget) -> String {
-        match target {
-            BitTarget::Image(bit) => self.bit(bit),
-            BitTarget::Data { word, bit } => self.data_bit(word, bit),
-        }
-    }
-}
-
-/// A compact, readable form of one op.
-/// `params` are the declarations of the block the op is in (for formal operands).
-/// The operand words are the block's mnemonic set's; the verbs are English.
-pub fn op_text(
-    op: Op,
-    program: &Program,
-    set: MnemonicSet,
-    params: &[crate::ast::ParamDecl],
-) -> String {
-    let names = Names {
-        layout: program.layout,
-        set,
-        symbols: &program.symbols,
-    };
-    match op {
-        Op::And(bit) => format!("and {}", names.bit(bit)),
-        Op::AndNot(bit) => format!("and-not {}", names.bit(bit)),
-        Op::Or(bit) => format!("or {}", names.bit(bit)),
-        Op::OrNot(bit) => format!("or-not {}", names.bit(bit)),
-        Op::Assign(bit) => format!("assign {}", names.bit(bit)),
-        Op::Set(bit) => format!("set {}", names.bit(bit)),
-        Op::Reset(bit) => format!("reset {}", names.bit(bit)),
-        Op::LogicOther(logic, source) => {
-            let source = match source {
-                BitSource::Data { word, bit } => names.data_bit(word, bit),
-                BitSource::Timer(n) => names.named(format!("{} {n}", names.word(Area::Timer))),
-                BitSource::Counter(n) => names.named(format!("{} {n}", names.word(Area::Counter))),
-            };
-            format!("{} {source}", format!("{logic:?}").to_lowercase())
-        }
-        Op::WriteData { write, word, bit } => format!(
-            "{} {}",
-            format!("{write:?}").to_lowercase(),
-            names.data_bit(word, bit)
-        ),
-        Op::LoadImageByte(byte) => format!("load {}", names.sized(Width::Byte, byte)),
-        Op::LoadImageWord(byte) => format!("load {}", names.sized(Width::Word, byte)),
-        Op::LoadImageDouble(byte) => format!("load {}", names.sized(Width::Double, byte)),
-        Op::TransferImageByte(byte) => format!("transfer {}", names.sized(Width::Byte, byte)),
-        Op::TransferImageWord(byte) => format!("transfer {}", names.sized(Width::Word, byte)),
-        Op::TransferImageDouble(byte) => {
-            format!("transfer {}", names.sized(Width::Double, byte))
-        }
-        Op::LoadConstant(value) => format!("load-constant {value:#06X}"),
-        Op::Call {
-            block,
-            conditional,
-            params,
-        } => {
-            let id = names.named(program.blocks[usize::from(block)].id.to_string());
-            let kind = if conditional { "call-if-rlo" } else { "call" };
-            if params == crate::compiler::bytecode::NO_PARAMS {
-                format!("{kind} {id}")
-            } else {
-                format!(
-                    "{kind} {id} with {} parameters",
-                    program.param_lists[usize::from(params)].len()
-                )
-            }
-        }
-        Op::CallMissing { kind, number, .. } => {
-            format!("call-missing {} {number} (STOP)", kind.name())
-        }
-        Op::Jump(condition, target) => format!("jump-{condition:?} -> {target}").to_lowercase(),
-        Op::Indirect { source, .. } => match source {
-            IndirectSource::FlagWord(byte) => format!("do {}", names.sized(Width::Word, byte)),
-            IndirectSource::DataWord(word) => format!("do {} {word}", names.word(Area::DataWord)),
-        },
-        Op::SetUnconditional(target) => {
-            format!("set-unconditional {}", names.bit_target(target))
-        }
-        Op::ResetUnconditional(target) => {
-            format!("reset-unconditional {}", names.bit_target(target))
-        }
-        Op::TestBit { negate, target } => {
-            format!(
-                "{} {}",
-                if negate { "test-bit-not" } else { "test-bit" },
-                names.bit_target(target)
-            )
-        }
-        Op::Formal { op, param } => {
-            let name = params
-                .get(usize::from(param))
-                .map_or("?", |decl| decl.name.text.as_str());
-            format!(
-                "{} ={name} (parameter {})",
-                kebab(&format!("{op:?}")),
-                param + 1
-            )
-        }
-        Op::LoadPeripheral {
-            width,
-            byte,
-            extended,
-        }
-        | Op::TransferPeripheral {
-            width,
-            byte,
-            extended,
-        } => {
-            let verb = if matches!(op, Op::LoadPeripheral { .. }) {
-                "load"
-            } else {
-                "transfer"
-            };
-            let area = match (extended, width) {
-                (false, Width::Byte) => Area::PeripheralByte,
-                (false, _) => Area::PeripheralWord,
-                (true, Width::Byte) => Area::ExtendedByte,
-                (true, _) => Area::ExtendedWord,
-            };
-            format!(
-                "{verb} {}",
-                names.named(format!("{} {byte}", names.word(area)))
-            )
-        }
-        Op::LoadData(part, word) | Op::TransferData(part, word) => {
-            let verb = if matches!(op, Op::LoadData(..)) {
-                "load"
-            } else {
-                "transfer"
-            };
-            let area = match part {
-                DataPart::Left => Area::DataLeft,
-                DataPart::Right => Area::DataRight,
-                DataPart::Word => Area::DataWord,
-                DataPart::Double => Area::DataDouble,
-            };
-            format!("{verb} {} {word}", names.word(area))
-        }
-        Op::OpenDb(number) => format!("open DB {number}"),
-        Op::ArithmeticStack(kind) => {
-            format!(
-                "arithmetic {}, ACCU 3/4 up",
-                format!("{kind:?}").to_lowercase()
-            )
-        }
-        Op::GenerateDb(number) => format!("generate DB {number}"),
-        other => kebab(&format!("{other:?}")),
-    }
-}
-
-/// `StartTimer(OnDelay, 1)` → `start-timer on-delay 1`: Debug names made readable.
-fn kebab(debug: &str) -> String {
-    let mut out = String::new();
-    let mut previous_lower = false;
-    for c in debug.chars() {
-        match c {
-            '(' | ',' => out.push(' '),
-            ')' => {}
-            c if c.is_ascii_uppercase() => {
-                if previous_lower {
-                    out.push('-');
-                }
-                out.push(c.to_ascii_lowercase());
-            }
-            c => out.push(c),
-        }
-        previous_lower = c.is_ascii_lowercase();
-    }
-    out.split_whitespace().collect::<Vec<_>>().join(" ")
+/// The parsed blocks of every program file, by block.
+pub(crate) fn parsed_blocks(built: &Frontend) -> HashMap<BlockId, &Block> {
+    built
+        .units
+        .iter()
+        .flat_map(|unit| &unit.blocks)
+        .map(|block| (block.id, block))
+        .collect()
 }
 
 /// `PB 3  (file.awl:12, 4 ops)`
-fn header(
-    out: &mut String,
-    sources: &SourceSet,
-    id: crate::ast::BlockId,
-    at: crate::source::Span,
-    count: usize,
-    unit: &str,
-) {
+fn header(out: &mut String, sources: &SourceSet, id: BlockId, at: Span, count: usize, unit: &str) {
     let file = sources.get(at.file);
     let _ = writeln!(
         out,
@@ -259,8 +36,11 @@ fn header(
     );
 }
 
-/// The whole dump: a header line per block, then one line per op.
-pub fn dump(program: &Program, sources: &SourceSet) -> String {
+/// The whole dump: a header line per block, then one line per op or data word.
+pub fn dump(built: &Frontend) -> String {
+    let program = &built.compiled.program;
+    let sources = &built.sources;
+    let parsed = parsed_blocks(built);
     let mut out = String::new();
     for block in &program.blocks {
         header(
@@ -271,6 +51,19 @@ pub fn dump(program: &Program, sources: &SourceSet) -> String {
             block.code.len(),
             "ops",
         );
+        let statements: &[Statement] = match parsed.get(&block.id).map(|parsed| &parsed.body) {
+            Some(BlockBody::Logic(body)) if body.statements.len() == block.code.len() => {
+                &body.statements
+            }
+            _ => &[],
+        };
+        let context = annotate::Context {
+            program,
+            sources,
+            set: block.mnemonics,
+            params: &block.params,
+            statements,
+        };
         for (pc, (op, span)) in block.code.iter().zip(&block.spans).enumerate() {
             if let Some(&(_, segment)) = block
                 .segments
@@ -286,7 +79,7 @@ pub fn dump(program: &Program, sources: &SourceSet) -> String {
                 out,
                 "  {pc:>4}  line {line:>4}  {:<28} {}",
                 text,
-                op_text(*op, program, block.mnemonics, &block.params)
+                op_text(*op, pc, context)
             );
         }
         out.push('\n');
@@ -300,10 +93,56 @@ pub fn dump(program: &Program, sources: &SourceSet) -> String {
             data.words.len(),
             "words",
         );
-        for (index, word) in data.words.iter().enumerate() {
-            let _ = writeln!(out, "  DW {index:>4}  {word:#06X}  {}", *word as i16);
-        }
+        let words = match parsed.get(&data.id).map(|parsed| &parsed.body) {
+            Some(BlockBody::Data(words)) => words.as_slice(),
+            _ => &[],
+        };
+        data_words(&mut out, sources, data, words);
         out.push('\n');
     }
     out
+}
+
+/// One line per data word: the constant that starts there as written, or what covers it.
+fn data_words(out: &mut String, sources: &SourceSet, data: &DataBlockImage, written: &[DataWord]) {
+    // Data word → the line that wrote it and whether the word is that constant's first.
+    let mut by_word: HashMap<usize, (&DataWord, bool)> = HashMap::new();
+    for word in written {
+        let first = usize::from(word.index);
+        for at in first..first + data_words_of(word) {
+            by_word.insert(at, (word, at == first));
+        }
+    }
+    for index in 0..data.words.len() {
+        let text = match by_word.get(&index) {
+            Some((word, true)) => {
+                let file = sources.get(word.span.file);
+                format!(
+                    "line {:>4}  {}",
+                    file.line_of(word.span.start),
+                    annotate::written_constant(data_constant_text(file.slice(word.span)))
+                )
+            }
+            Some((word, false)) => format!("           (continues DW {})", word.index),
+            None => "           (not written: 0)".to_string(),
+        };
+        let _ = writeln!(out, "  DW {index:>4}  {text}");
+    }
+}
+
+/// The words one data line fills: 32-bit formats take two per value, a long `KS` string one per
+/// two characters.
+fn data_words_of(word: &DataWord) -> usize {
+    let values = 1 + word.constant.extra_words.len();
+    values * usize::from(word.constant.format.words())
+}
+
+/// A data line's constant without its word number: `3:  KF +5` → `KF +5`.
+pub(crate) fn data_constant_text(line: &str) -> &str {
+    let line = line.trim_start();
+    let digits = line.len() - line.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+    match line[digits..].trim_start().strip_prefix(':') {
+        Some(rest) if digits > 0 => rest.trim_start(),
+        _ => line,
+    }
 }
