@@ -193,6 +193,18 @@ fn data_block_images() {
     );
 }
 
+/// A wide constant without a word number moves the next unnumbered word on by two, so the next
+/// value does not overwrite its low word.
+#[test]
+fn an_unnumbered_wide_constant_takes_two_words() {
+    let built = build(
+        "sinumerik-840c",
+        "DB 5\n     DH 12345678\n     KF +7\n     KG +5000000+01\n     KF +8\n",
+    );
+    let words = &built.compiled.program.data_blocks[0].words;
+    assert_eq!(words, &[0x1234, 0x5678, 7, 0x0350, 0x0000, 8]);
+}
+
 fn call(params: &str) -> String {
     format!(
         "OB 1\n      JU FB 2\nNAME :TWO\n{params}      BE\nFB 2\nNAME :TWO\nDES  :EIN I BI\nDES  :BYT I BY\n      A  =EIN\n      L  =BYT\n      T  FY 9\n      BE\n"

@@ -281,7 +281,8 @@ impl<'a> Builder<'a> {
                     other => other,
                 })?;
         let index = index.unwrap_or(self.next_data_word);
-        self.next_data_word = index.saturating_add(1 + constant.extra_words.len() as u16);
+        let values = 1 + constant.extra_words.len() as u16;
+        self.next_data_word = index.saturating_add(values * constant.format.words());
         if let Some(Block {
             body: BlockBody::Data(words),
             ..
