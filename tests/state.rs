@@ -129,3 +129,70 @@ fn watch_rows_are_trace_events() {
     assert_eq!(rows[3]["values"]["Q 4.2"], "1");
     assert_eq!(rows[3]["values"]["C 1"], "KZ 001 (1)");
 }
+
+/// The lines of `--state` after its header: the images and data blocks.
+fn state_lines(program: &str) -> Vec<String> {
+    let (stdout, stderr) = awl(&["run", program, "--cycles", "1", "--state"]);
+    assert!(stderr.is_empty(), "{stderr}");
+    stdout
+        .lines()
+        .skip_while(|line| !line.starts_with("  open DB"))
+        .skip(1)
+        .map(|line| line.trim().to_string())
+        .collect()
+}
+
+#[test]
+fn the_state_shows_words_and_double_words_where_the_program_wrote_them_in_address_order() {
+    let lines = state_lines("tests/inputs/state_widths.awl");
+    assert_eq!(
+        lines,
+        [
+            "QW 4    = KF -2 = KH FFFE",
+            "FW 0    = KF +750 = KH 02EE",
+            "FY 2    = KH 07 = 0000 0111",
+            "FD 4    = DH 00010002 = +65538",
+            "FY 10   = KH 07 = 0000 0111",
+            "FY 20   = KH 07 = 0000 0111",
+            "DB 2 DW 1    = KF +4 = KH 0004",
+            "DB 10 DW 0    = KF +1 = KH 0001",
+            "DB 10 DW 2    = KF +5 = KH 0005",
+            "DB 10 DD 4    = DH 00030004 = +196612",
+            "DB 10 DW 11   = KF +4 = KH 0004",
+        ]
+    );
+}
+
+#[test]
+fn the_json_state_keeps_its_bytes_and_words() {
+    let (stdout, _) = awl(&[
+        "run",
+        "tests/inputs/state_widths.awl",
+        "--cycles",
+        "1",
+        "--state-format",
+        "json",
+    ]);
+    let state: Value = serde_json::from_str(&stdout).expect("JSON");
+    let flags = &state["images"]["F"];
+    assert_eq!(
+        (flags["0"].as_u64(), flags["1"].as_u64()),
+        (Some(2), Some(0xEE))
+    );
+    assert_eq!(state["images"]["Q"]["4"].as_u64(), Some(0xFF));
+    let db10 = &state["data_blocks"]["DB 10"];
+    assert_eq!((db10["4"].as_u64(), db10["5"].as_u64()), (Some(3), Some(4)));
+    assert!(state.get("widths").is_none());
+}
+
+#[test]
+fn the_readme_s_state_example_is_what_awl_prints() {
+    let readme = std::fs::read_to_string("README.md").unwrap();
+    let command =
+        "cargo run --release -- run --scenario programs/mixer_de.toml --state\n```\n```\n";
+    let start = readme.find(command).expect("the README's example") + command.len();
+    let shown = &readme[start..start + readme[start..].find("```").unwrap()];
+    let (stdout, _) = awl(&["run", "--scenario", "programs/mixer_de.toml", "--state"]);
+    let state = &stdout[stdout.find("state at the end").expect("the state")..];
+    assert_eq!(shown, state);
+}

@@ -6,6 +6,7 @@
 pub mod operand;
 pub mod text;
 pub mod watch;
+pub mod widths;
 
 use std::collections::BTreeMap;
 
@@ -101,6 +102,9 @@ pub struct State {
     /// At a STOP: the running level first, then the interrupted ones.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub levels: Option<Vec<LevelView>>,
+    /// The widths the program uses its addresses in, for the text (JSON keeps bytes).
+    #[serde(skip)]
+    pub widths: widths::Widths,
 }
 
 /// ACCU 1 and 2 of a level, and 3 and 4 on the CPUs that have four.
@@ -286,6 +290,7 @@ impl State {
             levels: stop
                 .filter(|_| cpu.mode == Mode::Stop)
                 .map(|stop| levels(cpu, stop)),
+            widths: widths::Widths::of(&cpu.program),
         }
     }
 }

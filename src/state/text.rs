@@ -1,6 +1,7 @@
 //! The state as text, in STEP 5 notation: `FY 10 = KH 7B = 0111 1011`,
 //! `DB 10 DW 3 = KF +123 = KH 007B`, `T 1 = KT 250.1`.
 
+use std::collections::BTreeMap;
 use std::fmt::Write;
 
 use super::{LevelView, State, StatusBits};
@@ -11,6 +12,66 @@ fn bits(byte: u8) -> String {
 
 fn word(value: u16) -> String {
     format!("KF {:+} = KH {value:04X}", value as i16)
+}
+
+fn double(value: u32) -> String {
+    format!("DH {value:08X} = {:+}", value as i32)
+}
+
+/// A map keyed by numbers written as text (`"10"`, `"DB 10"`), in numeric order.
+fn in_order<'a, V>(map: &'a BTreeMap<String, V>, prefix: &str) -> Vec<(u16, &'a str, &'a V)> {
+    let mut entries: Vec<_> = map
+        .iter()
+        .filter_map(|(key, value)| {
+            let number = key.strip_prefix(prefix)?.parse().ok()?;
+            Some((number, key.as_str(), value))
+        })
+        .collect();
+    entries.sort_by_key(|(number, ..)| *number);
+    entries
+}
+
+/// The non-zero bytes of an image area in address order, each in the width the program used
+/// it in: `FW 0 = KF +750 = KH 02EE`, `FY 10 = KH 7B = 0111 1011`.
+fn image_area(out: &mut String, state: &State, area: &'static str, names: [&str; 3]) {
+    let bytes = &state.images[area];
+    let byte = |at: u16| bytes.get(&at.to_string()).copied().unwrap_or(0);
+    let used = in_order(bytes, "").into_iter().map(|(at, ..)| at);
+    for (at, width) in state.widths.image_ranges(area, used) {
+        let value =
+            (at..at.saturating_add(width)).fold(0u32, |value, at| value << 8 | u32::from(byte(at)));
+        let line = match width {
+            1 => format!(
+                "{} {at:<4} = KH {value:02X} = {}",
+                names[0],
+                bits(value as u8)
+            ),
+            2 => format!("{} {at:<4} = {}", names[1], word(value as u16)),
+            _ => format!("{} {at:<4} = {}", names[2], double(value)),
+        };
+        let _ = writeln!(out, "  {line}");
+    }
+}
+
+/// The non-zero words of a data block in address order; double words where the program
+/// transferred one: `DB 10 DW 3 = KF +123 = KH 007B`, `DB 10 DD 4 = DH 00010002 = +65538`.
+fn data_block(out: &mut String, state: &State, db: &str, words: &[(u16, &str, &u16)]) {
+    let word_at = |at: u16| {
+        words
+            .iter()
+            .find(|(n, ..)| *n == at)
+            .map_or(0, |(_, _, value)| **value)
+    };
+    let used = words.iter().map(|(at, ..)| *at);
+    for (at, width) in state.widths.data_ranges(used) {
+        let line = if width == 2 {
+            let value = u32::from(word_at(at)) << 16 | u32::from(word_at(at.saturating_add(1)));
+            format!("DD {at:<4} = {}", double(value))
+        } else {
+            format!("DW {at:<4} = {}", word(word_at(at)))
+        };
+        let _ = writeln!(out, "  {db} {line}");
+    }
 }
 
 pub fn accu(value: u32) -> String {
@@ -56,14 +117,12 @@ pub fn render_titled(state: &State, title: &str) -> String {
     }
     let _ = writeln!(out, "  status   {}", status(&state.status));
     let _ = writeln!(out, "  open DB  {}", open_db(state.open_db));
-    for (area, prefix) in [("I", "IB"), ("Q", "QB"), ("F", "FY")] {
-        for (byte, value) in &state.images[area] {
-            let _ = writeln!(
-                out,
-                "  {prefix} {byte:<4} = KH {value:02X} = {}",
-                bits(*value)
-            );
-        }
+    for (area, names) in [
+        ("I", ["IB", "IW", "ID"]),
+        ("Q", ["QB", "QW", "QD"]),
+        ("F", ["FY", "FW", "FD"]),
+    ] {
+        image_area(&mut out, state, area, names);
     }
     for timer in &state.timers {
         let _ = writeln!(
@@ -87,10 +146,8 @@ pub fn render_titled(state: &State, title: &str) -> String {
             u8::from(counter.bit)
         );
     }
-    for (db, words) in &state.data_blocks {
-        for (n, value) in words {
-            let _ = writeln!(out, "  {db} DW {n:<4} = {}", word(*value));
-        }
+    for (_, db, words) in in_order(&state.data_blocks, "DB ") {
+        data_block(&mut out, state, db, &in_order(words, ""));
     }
     if let Some(levels) = &state.levels {
         out.push_str(&istack_text(levels));
