@@ -196,3 +196,12 @@ fn the_readme_s_state_example_is_what_awl_prints() {
     let state = &stdout[stdout.find("state at the end").expect("the state")..];
     assert_eq!(shown, state);
 }
+
+#[test]
+fn an_fb_s_word_parameter_and_a_word_to_an_output_module_are_words() {
+    let lines = state_lines("tests/inputs/state_widths_fb.awl");
+    assert_eq!(
+        lines,
+        ["QW 6    = KF +300 = KH 012C", "FW 8    = KF -2 = KH FFFE"]
+    );
+}

@@ -1,5 +1,5 @@
 //! The widths the program gives its addresses, read from its code: `T FW 0` makes flag bytes 0
-//! and 1 one word, `T FD 4` bytes 4 to 7 one double word, `L IW 2` input bytes 2 and 3 one
+//! and 1 one word, `T PW 4` output bytes 4 and 5, `T FD 4` bytes 4 to 7 one double word, `L IW 2` input bytes 2 and 3 one
 //! word, `T DD 3` data words 3 and 4 one double word. `--state` shows each address in the width
 //! the program used: the VM need not record anything while it runs.
 
@@ -27,10 +27,22 @@ impl Widths {
     pub fn of(program: &Program) -> Widths {
         let layout = program.layout;
         let mut widths = Widths::default();
-        for op in program.blocks.iter().flat_map(|block| &block.code) {
+        // The arena's plain code: every block's body and the FB bodies specialised for their
+        // actual parameters (`T =OUT` with `OUT :FW 6` is a `T FW 6` there).
+        for op in program.arena.plain.iter() {
             match *op {
                 Op::TransferImageWord(at) => widths.image_width(layout, at, 2),
                 Op::TransferImageDouble(at) => widths.image_width(layout, at, 4),
+                // A transfer to an output module within the image's range updates the PIQ too.
+                Op::TransferPeripheral {
+                    width,
+                    byte,
+                    extended: false,
+                } if width.bytes() > 1
+                    && usize::from(byte) + width.bytes() <= usize::from(layout.image_bytes) =>
+                {
+                    widths.image_width(layout, layout.output_base() + byte, width.bytes() as u16)
+                }
                 Op::LoadImageWord(at) if at < layout.image_bytes => {
                     widths.image_width(layout, at, 2)
                 }
