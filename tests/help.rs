@@ -53,6 +53,12 @@ fn each_topic_prints_the_repository_s_text_of_it() {
 }
 
 #[test]
+fn the_listing_topic_says_how_statements_are_numbered() {
+    let (_, listing, _) = awl(&["help", "listing"]);
+    assert!(listing.contains("### Statement addresses"), "{listing}");
+}
+
+#[test]
 fn every_topic_has_text_and_the_list_names_it() {
     let (ok, list, _) = awl(&["help"]);
     assert!(ok);
