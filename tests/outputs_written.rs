@@ -1,36 +1,43 @@
 //! Nothing silent: `awl run --trace FILE` and `--timeline FILE` end with one line on standard
 //! error saying what was written where, with its events and size.
 
-use std::path::PathBuf;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn temp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("awl-written-{}-{name}", std::process::id()))
 }
 
+/// Runs the Fig. 5.2 interrupt scenario with `outputs`; whether it succeeded, and its stderr.
+fn run_fig5_2<I: AsRef<OsStr>>(outputs: impl IntoIterator<Item = I>) -> (bool, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_awl"))
+        .args(["run", "--scenario", "programs/fig5_2_interrupt.toml"])
+        .args(outputs)
+        .output()
+        .expect("awl runs");
+    let stderr = String::from_utf8(output.stderr).expect("UTF-8");
+    (output.status.success(), stderr)
+}
+
+/// The lines of a file and its size in bytes.
+fn lines_and_bytes(path: &Path) -> (usize, u64) {
+    let text = std::fs::read_to_string(path).expect("the file written");
+    (text.lines().count(), text.len() as u64)
+}
+
 #[test]
 fn a_trace_and_a_timeline_each_end_with_what_was_written_where() {
     let (trace, picture) = (temp("run.jsonl"), temp("run.svg"));
-    let output = Command::new(env!("CARGO_BIN_EXE_awl"))
-        .args([
-            "run",
-            "--scenario",
-            "programs/fig5_2_interrupt.toml",
-            "--trace",
-        ])
-        .arg(&trace)
-        .arg("--timeline")
-        .arg(&picture)
-        .output()
-        .expect("awl runs");
-    assert!(output.status.success());
-    let stderr = String::from_utf8(output.stderr).expect("UTF-8");
-    let events = std::fs::read_to_string(&trace)
-        .expect("the trace")
-        .lines()
-        .count();
-    let trace_bytes = std::fs::metadata(&trace).expect("the trace").len();
-    let picture_bytes = std::fs::metadata(&picture).expect("the picture").len();
+    let (ok, stderr) = run_fig5_2([
+        OsStr::new("--trace"),
+        trace.as_os_str(),
+        OsStr::new("--timeline"),
+        picture.as_os_str(),
+    ]);
+    assert!(ok);
+    let (events, trace_bytes) = lines_and_bytes(&trace);
+    let (_, picture_bytes) = lines_and_bytes(&picture);
     let lines: Vec<&str> = stderr.lines().collect();
     assert_eq!(
         lines[lines.len() - 2..],
@@ -55,18 +62,13 @@ fn a_trace_and_a_timeline_each_end_with_what_was_written_where() {
 #[test]
 fn a_filtered_trace_counts_the_events_it_holds() {
     let trace = temp("interrupts.jsonl");
-    let output = Command::new(env!("CARGO_BIN_EXE_awl"))
-        .args(["run", "--scenario", "programs/fig5_2_interrupt.toml"])
-        .args(["--trace-filter", "interrupts", "--trace"])
-        .arg(&trace)
-        .output()
-        .expect("awl runs");
-    let stderr = String::from_utf8(output.stderr).expect("UTF-8");
-    let events = std::fs::read_to_string(&trace)
-        .expect("the trace")
-        .lines()
-        .count();
-    let bytes = std::fs::metadata(&trace).expect("the trace").len();
+    let (_, stderr) = run_fig5_2([
+        OsStr::new("--trace-filter"),
+        OsStr::new("interrupts"),
+        OsStr::new("--trace"),
+        trace.as_os_str(),
+    ]);
+    let (events, bytes) = lines_and_bytes(&trace);
     assert!(bytes < 1024);
     assert_eq!(
         stderr.lines().last(),
@@ -83,16 +85,6 @@ fn a_filtered_trace_counts_the_events_it_holds() {
 
 #[test]
 fn a_trace_on_standard_output_adds_no_line() {
-    let output = Command::new(env!("CARGO_BIN_EXE_awl"))
-        .args([
-            "run",
-            "--scenario",
-            "programs/fig5_2_interrupt.toml",
-            "--trace",
-            "-",
-        ])
-        .output()
-        .expect("awl runs");
-    let stderr = String::from_utf8(output.stderr).expect("UTF-8");
+    let (_, stderr) = run_fig5_2(["--trace", "-"]);
     assert!(!stderr.contains("written to"), "{stderr}");
 }

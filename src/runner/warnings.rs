@@ -60,10 +60,8 @@ fn never_runs(
     profile: &Profile,
     config: &EngineConfig,
 ) -> Option<(String, Option<String>)> {
-    if ob == 1 || profile.startup_obs.contains(&ob) {
-        return None;
-    }
-    // An OB the CPU does not have at all is the program's warning (`awl check` prints it too).
+    // Only interrupt OBs depend on the setup: OB 1 and the start-up OBs always run, and an OB
+    // the CPU does not have at all is the program's warning (`awl check` prints it too).
     profile.interrupt_ob(ob)?;
     match profile.family {
         Family::Sinumerik840c if !config.special_mode && normal_mode_skips(ob) => Some((

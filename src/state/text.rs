@@ -18,26 +18,19 @@ fn double(value: u32) -> String {
     format!("DH {value:08X} = {:+}", value as i32)
 }
 
-/// A map keyed by numbers written as text (`"10"`, `"DB 10"`), in numeric order.
-fn in_order<'a, V>(map: &'a BTreeMap<String, V>, prefix: &str) -> Vec<(u16, &'a str, &'a V)> {
-    let mut entries: Vec<_> = map
-        .iter()
-        .filter_map(|(key, value)| {
-            let number = key.strip_prefix(prefix)?.parse().ok()?;
-            Some((number, key.as_str(), value))
-        })
-        .collect();
-    entries.sort_by_key(|(number, ..)| *number);
-    entries
+/// A map keyed by numbers written as text (`"10"`, `"DB 10"`), keyed by the numbers.
+fn numeric<'a, V>(map: &'a BTreeMap<String, V>, prefix: &str) -> BTreeMap<u16, &'a V> {
+    map.iter()
+        .filter_map(|(key, value)| Some((key.strip_prefix(prefix)?.parse().ok()?, value)))
+        .collect()
 }
 
 /// The non-zero bytes of an image area in address order, each in the width the program used
 /// it in: `FW 0 = KF +750 = KH 02EE`, `FY 10 = KH 7B = 0111 1011`.
 fn image_area(out: &mut String, state: &State, area: &'static str, names: [&str; 3]) {
-    let bytes = &state.images[area];
-    let byte = |at: u16| bytes.get(&at.to_string()).copied().unwrap_or(0);
-    let used = in_order(bytes, "").into_iter().map(|(at, ..)| at);
-    for (at, width) in state.widths.image_ranges(area, used) {
+    let bytes = numeric(&state.images[area], "");
+    let byte = |at: u16| bytes.get(&at).map_or(0, |value| **value);
+    for (at, width) in state.widths.image_ranges(area, bytes.keys().copied()) {
         let value =
             (at..at.saturating_add(width)).fold(0u32, |value, at| value << 8 | u32::from(byte(at)));
         let line = match width {
@@ -53,24 +46,19 @@ fn image_area(out: &mut String, state: &State, area: &'static str, names: [&str;
     }
 }
 
-/// The non-zero words of a data block in address order; double words where the program
+/// The non-zero words of data block `db` in address order; double words where the program
 /// transferred one: `DB 10 DW 3 = KF +123 = KH 007B`, `DB 10 DD 4 = DH 00010002 = +65538`.
-fn data_block(out: &mut String, state: &State, db: &str, words: &[(u16, &str, &u16)]) {
-    let word_at = |at: u16| {
-        words
-            .iter()
-            .find(|(n, ..)| *n == at)
-            .map_or(0, |(_, _, value)| **value)
-    };
-    let used = words.iter().map(|(at, ..)| *at);
-    for (at, width) in state.widths.data_ranges(used) {
+fn data_block(out: &mut String, state: &State, db: u16, words: &BTreeMap<String, u16>) {
+    let words = numeric(words, "");
+    let word_at = |at: u16| words.get(&at).map_or(0, |value| **value);
+    for (at, width) in state.widths.data_ranges(words.keys().copied()) {
         let line = if width == 2 {
             let value = u32::from(word_at(at)) << 16 | u32::from(word_at(at.saturating_add(1)));
             format!("DD {at:<4} = {}", double(value))
         } else {
             format!("DW {at:<4} = {}", word(word_at(at)))
         };
-        let _ = writeln!(out, "  {db} {line}");
+        let _ = writeln!(out, "  DB {db} {line}");
     }
 }
 
@@ -146,8 +134,8 @@ pub fn render_titled(state: &State, title: &str) -> String {
             u8::from(counter.bit)
         );
     }
-    for (_, db, words) in in_order(&state.data_blocks, "DB ") {
-        data_block(&mut out, state, db, &in_order(words, ""));
+    for (db, words) in numeric(&state.data_blocks, "DB ") {
+        data_block(&mut out, state, db, words);
     }
     if let Some(levels) = &state.levels {
         out.push_str(&istack_text(levels));
