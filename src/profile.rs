@@ -12,6 +12,24 @@ pub enum Family {
     Speed7,
 }
 
+/// A group of operations that only some CPUs have, as their programming guides list them.
+/// An operation outside every group runs on every profile.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Feature {
+    /// S5 floating point: `+G -G XG :G`, the `G` comparisons, `FDG GFD`.
+    FloatingPoint,
+    /// 32-bit BCD conversions `DED DUD`.
+    DoubleBcd,
+    /// 16-to-32-bit conversions `DEF DUF`.
+    DoubleConversions,
+    /// `ADD KB/KF/DH`.
+    AddConstant,
+    /// System operations on absolute addresses: `TNB LIR TIR`.
+    SystemOperations,
+    /// Register and page operations: `MBA MAB MSA MAS ABR LRB TRB`.
+    RegisterOperations,
+}
+
 /// What the block nesting limit counts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Nesting {
@@ -117,11 +135,17 @@ pub struct Profile {
     pub default_points: InterruptPoints,
     /// FX and DX blocks.
     pub extended_blocks: bool,
+    /// The operation groups beyond those every CPU has.
+    pub features: &'static [Feature],
     pub timings: Timings,
     pub rules: &'static [&'static str],
 }
 
 impl Profile {
+    pub fn has(&self, feature: Feature) -> bool {
+        self.features.contains(&feature)
+    }
+
     pub fn interrupt_ob(&self, ob: u8) -> Option<&InterruptOb> {
         self.interrupt_obs.iter().find(|entry| entry.ob == ob)
     }
@@ -280,6 +304,14 @@ pub static PROFILES: &[Profile] = &[
         ],
         default_points: InterruptPoints::Block,
         extended_blocks: true,
+        features: &[
+            Feature::FloatingPoint,
+            Feature::DoubleBcd,
+            Feature::DoubleConversions,
+            Feature::AddConstant,
+            Feature::SystemOperations,
+            Feature::RegisterOperations,
+        ],
         timings: SINUMERIK_840C_TIMES,
         rules: &[
             "normal mode: the cyclic program is interrupted only at block changes (a block call or \
@@ -338,6 +370,7 @@ pub static PROFILES: &[Profile] = &[
         ],
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
+        features: &[],
         timings: S5_95F_TIMES,
         rules: &[
             "OB 13 can interrupt the cyclic program after any STEP 5 statement; OB 2 and OB 3 can \
@@ -407,6 +440,7 @@ pub static PROFILES: &[Profile] = &[
         ],
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
+        features: &[],
         timings: SPEED7_TIMES,
         rules: &[
             "a module's hardware interrupt starts its OB ([[hw_module]]) if the OB's priority is \
