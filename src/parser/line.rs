@@ -1,7 +1,6 @@
 //! The grammar of one line (see `grammar/stl.ebnf`), as nom parsers over the line's tokens.
 
 use nom::Parser;
-use nom::branch::alt;
 use nom::combinator::opt;
 use nom::sequence::{pair, terminated};
 
@@ -106,13 +105,20 @@ pub fn name_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<
     move |input: Tokens<'a>| {
         let (rest, _) = keyword(context, &[mnemonics::NAME_WORD], "NAME")(input)?;
         let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
-        let (rest, name) = kind(TokenKind::Word, "the block's name")(rest)?;
-        let (rest, _) = end_of_line(rest)?;
+        // The PG takes any characters in a name (`RAD:GP`, `RLG:AE`): the rest of the line.
+        let (Some(first), Some(last)) = (rest.first(), rest.tokens.last().copied()) else {
+            return Err(nom::Err::Error(LineError {
+                at: None,
+                expected: "the block's name",
+                diagnostic: None,
+            }));
+        };
+        let span = context.span_of(first, last);
         Ok((
-            rest,
+            Tokens::new(&[]),
             Name {
-                text: context.text(name).to_string(),
-                span: context.span(name),
+                text: context.source[span.start as usize..span.end as usize].to_string(),
+                span,
             },
         ))
     }
@@ -271,8 +277,10 @@ pub fn statement<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<
             kind(TokenKind::Colon, "`:`"),
         ))
         .parse(input)?;
-        let (rest, op) =
-            alt((divide(context), preceded_colon(context), operation(context))).parse(rest)?;
+        let (rest, op) = match divide(context)(rest) {
+            Ok(parsed) => parsed,
+            Err(_) => operation(context)(without_colon(rest))?,
+        };
         let (rest, (operand, operand_span)) = match op.inline_operand.clone() {
             Some(inline) => Ok((rest, inline)),
             None => operand_for(context, op.info, op.last)(rest),
@@ -349,11 +357,11 @@ fn divide<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, Par
     }
 }
 
-/// The leading `:` of a PG listing before the operation.
-fn preceded_colon<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParsedOp> {
-    move |input: Tokens<'a>| {
-        let (rest, _) = kind(TokenKind::Colon, "`:`")(input)?;
-        operation(context)(rest)
+/// The line without the leading `:` of a PG listing before the operation.
+fn without_colon(input: Tokens<'_>) -> Tokens<'_> {
+    match input.first() {
+        Some(colon) if colon.kind == TokenKind::Colon => Tokens::new(&input.tokens[1..]),
+        _ => input,
     }
 }
 
@@ -373,7 +381,8 @@ fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, 
         let word: std::borrow::Cow<'a, str> = match first.kind {
             TokenKind::Word => {
                 let text = context.text(first);
-                if let Ok((after, paren)) = touching(first, TokenKind::LParen, "(")(rest) {
+                // `A(` as the PG prints it, `A (` as people type it.
+                if let Ok((after, paren)) = kind(TokenKind::LParen, "(")(rest) {
                     rest = after;
                     last = paren;
                     format!("{text}(").into()
@@ -552,6 +561,12 @@ pub fn operand<'a>(
                 let name = context.text(first)[1..].to_string();
                 Ok((rest, (Operand::Symbol(name), context.span(first))))
             }
+            // `JC = M001`, `A = EIN`: a blank after the `=`.
+            TokenKind::Equals => {
+                let (rest, name) = kind(TokenKind::Word, "a name after `=`")(rest)?;
+                let text = context.text(name).to_string();
+                Ok((rest, (Operand::Symbol(text), context.span_of(first, name))))
+            }
             TokenKind::SymbolRef => {
                 let name = context.text(first)[1..].to_string();
                 Ok((rest, (Operand::Assigned(name), context.span(first))))
@@ -644,13 +659,83 @@ fn word_operand<'a>(
         (_, Some(area)) => address(context, area, word, rest),
         _ => match mnemonics::constant_format(context.set, text) {
             Some(format) => constant_operand(context, format, word, rest),
-            None => Err(nom::Err::Error(LineError {
-                at: Some(word),
-                expected: "an operand",
-                diagnostic: None,
-            })),
+            None => glued_operand(context, op, word, rest),
         },
     }
+}
+
+/// An operand written without its blank: `DW10`, `DB105`, `T1`, `KT050.0`, `F67.1`. The word
+/// is split where its digits start and read as the two tokens it stands for. A bit address
+/// needs its `.bit` (`F1` could be meant as `F 1.0` or `FY 1`).
+fn glued_operand<'a>(
+    context: Context<'a>,
+    op: Option<OpCode>,
+    word: Token,
+    rest: Tokens<'a>,
+) -> LineResult<'a, (Operand, Span)> {
+    let not_an_operand = || {
+        nom::Err::Error(LineError {
+            at: Some(word),
+            expected: "an operand",
+            diagnostic: None,
+        })
+    };
+    let text = context.text(word);
+    let split = text
+        .find(|c: char| c.is_ascii_digit())
+        .filter(|at| *at > 0)
+        .ok_or_else(not_an_operand)?;
+    let (letters, digits) = text.split_at(split);
+    let is_constant = mnemonics::constant_format(context.set, letters).is_some();
+    if !is_constant && !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(not_an_operand());
+    }
+    if mnemonics::area(context.set, letters).is_some_and(|area| area.is_bit())
+        && BlockKind::from_word(letters).is_none()
+        && rest.first().is_none_or(|dot| dot.kind != TokenKind::Dot)
+    {
+        return Err(nom::Err::Failure(LineError {
+            at: Some(word),
+            expected: "an operand",
+            diagnostic: Some(Box::new(ParseError::UnknownOperand {
+                word: text.to_string(),
+                at: context.span(word),
+                set: context.set.name(),
+                help: Some(format!(
+                    "`{letters}` is a bit operand: write `{letters} {digits}.0` (byte {digits}, bit 0)"
+                )),
+            })),
+        }));
+    }
+    let middle = word.start + split as u32;
+    let tokens: Vec<Token> = [
+        Token {
+            kind: TokenKind::Word,
+            start: word.start,
+            end: middle,
+        },
+        Token {
+            kind: TokenKind::Number,
+            start: middle,
+            end: word.end,
+        },
+    ]
+    .into_iter()
+    .chain(rest.tokens.iter().copied())
+    .collect();
+    let (after, operand) = word_operand(context, op, tokens[0], Tokens::new(&tokens[1..]))
+        .map_err(|error| match error {
+            nom::Err::Error(_) => not_an_operand(),
+            other => other,
+        })?;
+    let left = after.tokens.len();
+    if left > rest.tokens.len() {
+        return Err(not_an_operand());
+    }
+    Ok((
+        Tokens::new(&rest.tokens[rest.tokens.len() - left..]),
+        operand,
+    ))
 }
 
 fn constant_operand<'a>(

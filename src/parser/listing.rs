@@ -53,6 +53,11 @@ pub fn segment_end(input: Tokens<'_>) -> LineResult<'_, ()> {
     end_of_line(rest)
 }
 
+/// A lone `:`: an empty statement line of a PG printout.
+pub fn empty_statement(line: &[Token]) -> bool {
+    matches!(line, [colon] if colon.kind == TokenKind::Colon)
+}
+
 /// A hexadecimal statement address: `0000`, `001A` (a word of hex digits only when `words`).
 fn is_hex_address(text: &str) -> bool {
     (1..=4).contains(&text.len()) && text.chars().all(|c| c.is_ascii_hexdigit())

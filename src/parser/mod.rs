@@ -170,7 +170,8 @@ impl<'a> Builder<'a> {
     }
 
     fn line(&mut self, line: &'a [Token]) {
-        if let Some(invalid) = line.iter().find(|token| token.kind == TokenKind::Invalid) {
+        let invalid = line.iter().find(|token| token.kind == TokenKind::Invalid);
+        if let Some(invalid) = invalid.filter(|_| !self.is_name_line(line)) {
             self.errors.push(ParseError::UnexpectedCharacter {
                 found: invalid.text(self.source).to_string(),
                 at: Span {
@@ -222,6 +223,13 @@ impl<'a> Builder<'a> {
             self.errors.push(error);
             self.end_on_bad_block_end(line);
         }
+    }
+
+    /// `NAME :…`: the PG takes any characters in a block's name.
+    fn is_name_line(&self, line: &[Token]) -> bool {
+        matches!(line, [name, colon, ..]
+            if colon.kind == TokenKind::Colon
+                && name.text(self.source).eq_ignore_ascii_case(mnemonics::NAME_WORD))
     }
 
     /// A `BE` line with something wrong after it still ends the block, so the error is not
@@ -306,7 +314,7 @@ impl<'a> Builder<'a> {
             self.segment = number;
             return Ok(());
         }
-        if listing::segment_end(Tokens::new(line)).is_ok() {
+        if listing::segment_end(Tokens::new(line)).is_ok() || listing::empty_statement(line) {
             return Ok(());
         }
         let Some(Block {
