@@ -13,6 +13,7 @@ pub mod ast;
 pub mod cli;
 pub mod compiler;
 pub mod debug;
+pub mod dialect;
 pub mod diagnostics;
 pub mod docs;
 pub mod dump;

@@ -146,6 +146,19 @@ pub enum ParseError {
         at: Span,
         reason: String,
     },
+
+    #[error("this is STEP 7 STL (S7), not STEP 5")]
+    #[diagnostic(
+        code(awl::parse::step7_source),
+        help(
+            "awl reads STEP 5 STL: a block starts with a header such as `OB 1` or `FB 10` and ends with `BE`; operands are written `T 1`, `KT 200.0`, `D 0.1`, `DW 4`. Rewrite the blocks in STEP 5 form; nothing else in this file was checked"
+        )
+    )]
+    Step7Source {
+        #[label("{what}")]
+        at: Span,
+        what: &'static str,
+    },
 }
 
 impl ParseError {
@@ -163,7 +176,8 @@ impl ParseError {
             | ParseError::BadConstant { at, .. }
             | ParseError::ConstantRange { at, .. }
             | ParseError::BadDeclaration { at, .. }
-            | ParseError::BadDataWord { at, .. } => *at,
+            | ParseError::BadDataWord { at, .. }
+            | ParseError::Step7Source { at, .. } => *at,
         }
     }
 }

@@ -11,6 +11,7 @@ pub use constant::{bcd, to_s5_float};
 pub use error::ParseError;
 
 use crate::ast::{Block, BlockBody, BlockId, DataWord, LogicBody, Operand, SourceUnit};
+use crate::dialect;
 use crate::lexer::{Token, TokenKind, lex};
 use crate::mnemonics::{self, MnemonicSet, OpCode, Position};
 use crate::source::{FileId, Span};
@@ -28,6 +29,9 @@ pub struct ParsedFile {
 /// Parses one file. `forced` overrides the mnemonic set detected from the file's words.
 pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> ParsedFile {
     let tokens = lex(source);
+    if let Some(evidence) = dialect::detect(source, &tokens) {
+        return step7_file(file, forced, evidence);
+    }
     let lines: Vec<&[Token]> = tokens
         .split(|token| token.kind == TokenKind::Newline)
         .filter(|line| !line.is_empty())
@@ -60,6 +64,26 @@ pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> Pa
         builder.line(line);
     }
     builder.finish()
+}
+
+/// A STEP 7 source: one error at its first evidence, and no blocks (checking it line by line as
+/// STEP 5 would report every line).
+fn step7_file(file: FileId, forced: Option<MnemonicSet>, evidence: dialect::Evidence) -> ParsedFile {
+    ParsedFile {
+        unit: SourceUnit {
+            file,
+            mnemonics: forced.unwrap_or(MnemonicSet::English),
+            blocks: Vec::new(),
+        },
+        errors: vec![ParseError::Step7Source {
+            at: Span {
+                file,
+                start: evidence.start,
+                end: evidence.end,
+            },
+            what: evidence.what,
+        }],
+    }
 }
 
 /// Decides the mnemonic set from the words that only one set has in their position: the set with
