@@ -31,8 +31,17 @@ impl SourceDiagnostic {
         }
     }
 
+    /// A warning or a note: printed, and `check` still passes.
     pub fn is_warning(&self) -> bool {
-        matches!(self, SourceDiagnostic::Check(error) if error.is_warning())
+        matches!(
+            self.severity(),
+            Some(miette::Severity::Warning | miette::Severity::Advice)
+        )
+    }
+
+    /// A note (miette's advice): says how the text was read.
+    pub fn is_note(&self) -> bool {
+        self.severity() == Some(miette::Severity::Advice)
     }
 }
 

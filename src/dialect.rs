@@ -77,7 +77,11 @@ fn step7_in_line(source: &str, line: &[Token]) -> Option<Evidence> {
         let (a, b) = (pair[0], pair[1]);
         let hash = |token: Token| token.kind == TokenKind::Invalid && token.text(source) == "#";
         if hash(b) && a.touches(b) && a.kind == TokenKind::Word {
-            return Some(evidence(a, b, "a STEP 7 constant such as `S5T#2S` or `W#16#FF`"));
+            return Some(evidence(
+                a,
+                b,
+                "a STEP 7 constant such as `S5T#2S` or `W#16#FF`",
+            ));
         }
         if hash(a) && a.touches(b) && b.kind == TokenKind::Word {
             return Some(evidence(a, b, "a STEP 7 local variable (`#name`)"));

@@ -9,6 +9,7 @@ use thiserror::Error;
 use crate::ast::SourceUnit;
 use crate::compiler::{self, Compiled};
 use crate::diagnostics::SourceDiagnostic;
+use crate::fragment;
 use crate::mnemonics::MnemonicSet;
 use crate::parser;
 use crate::profile::Profile;
@@ -153,11 +154,15 @@ pub fn build_with_symbols(
     let mut diagnostics = Vec::new();
     let programs = sources.files.len();
     let mut units = Vec::with_capacity(programs);
+    let mut fragments = Vec::with_capacity(programs);
     for (id, file) in sources.files.iter().enumerate() {
         let parsed = parser::parse_file(id as u16, &file.text, forced);
         diagnostics.extend(parsed.errors.into_iter().map(SourceDiagnostic::Parse));
         units.push(parsed.unit);
+        fragments.push(parsed.fragment);
     }
+    let placed = fragment::place(&mut units, &fragments);
+    diagnostics.extend(placed.into_iter().map(SourceDiagnostic::Parse));
     for file in symbol_files {
         sources.add(file);
     }

@@ -46,9 +46,14 @@ fn build(options: &SourceOptions, console: &mut Console) -> Option<Frontend> {
 /// "0 errors, 2 warnings in 1 file": the front end's diagnostics and `more_warnings` besides.
 fn count_summary(built: &Frontend, more_warnings: usize) -> String {
     let errors = built.diagnostics.iter().filter(|d| !d.is_warning()).count();
-    let warnings = built.diagnostics.len() - errors + more_warnings;
+    let notes = built.diagnostics.iter().filter(|d| d.is_note()).count();
+    let warnings = built.diagnostics.len() - errors - notes + more_warnings;
+    let notes = match notes {
+        0 => String::new(),
+        _ => format!(", {}", plural(notes as u64, "note")),
+    };
     format!(
-        "{}, {} in {}",
+        "{}, {}{notes} in {}",
         plural(errors as u64, "error"),
         plural(warnings as u64, "warning"),
         plural(built.sources.files.len() as u64, "file")

@@ -15,6 +15,7 @@ pub mod specialise;
 use std::collections::HashMap;
 
 pub use bytecode::Op;
+pub use calls::describe_decl;
 pub use error::CheckError;
 pub use lower::{Layout, Resolved};
 pub use ranges::{address_in_range, check_address};

@@ -159,6 +159,26 @@ pub enum ParseError {
         at: Span,
         what: &'static str,
     },
+
+    #[error("statements before any block header are taken as {block}")]
+    #[diagnostic(code(awl::parse::fragment), severity(Advice))]
+    Fragment {
+        block: String,
+        #[label("{block} starts here")]
+        at: Span,
+        #[help]
+        help: String,
+    },
+
+    #[error("formal operand `={name}` is not declared")]
+    #[diagnostic(code(awl::parse::undeclared_formal))]
+    UndeclaredFormal {
+        name: String,
+        #[label("first use; no `DES` line declares it")]
+        at: Span,
+        #[help]
+        help: String,
+    },
 }
 
 impl ParseError {
@@ -177,7 +197,9 @@ impl ParseError {
             | ParseError::ConstantRange { at, .. }
             | ParseError::BadDeclaration { at, .. }
             | ParseError::BadDataWord { at, .. }
-            | ParseError::Step7Source { at, .. } => *at,
+            | ParseError::Step7Source { at, .. }
+            | ParseError::Fragment { at, .. }
+            | ParseError::UndeclaredFormal { at, .. } => *at,
         }
     }
 }

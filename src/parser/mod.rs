@@ -24,6 +24,9 @@ use tokens::{Context, LineError, Tokens};
 pub struct ParsedFile {
     pub unit: SourceUnit,
     pub errors: Vec<ParseError>,
+    /// The file starts with statements before any block header: `unit.blocks[0]` holds them,
+    /// as a provisional FB 0 until [`crate::fragment::place`] gives them their block.
+    pub fragment: bool,
 }
 
 /// Parses one file. `forced` overrides the mnemonic set detected from the file's words.
@@ -58,6 +61,7 @@ pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> Pa
         segment: 0,
         listing: false,
         foreign: None,
+        fragment: false,
         errors: Vec::new(),
     };
     for line in lines {
@@ -68,7 +72,11 @@ pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> Pa
 
 /// A STEP 7 source: one error at its first evidence, and no blocks (checking it line by line as
 /// STEP 5 would report every line).
-fn step7_file(file: FileId, forced: Option<MnemonicSet>, evidence: dialect::Evidence) -> ParsedFile {
+fn step7_file(
+    file: FileId,
+    forced: Option<MnemonicSet>,
+    evidence: dialect::Evidence,
+) -> ParsedFile {
     ParsedFile {
         unit: SourceUnit {
             file,
@@ -83,6 +91,7 @@ fn step7_file(file: FileId, forced: Option<MnemonicSet>, evidence: dialect::Evid
             },
             what: evidence.what,
         }],
+        fragment: false,
     }
 }
 
@@ -172,6 +181,8 @@ struct Builder<'a> {
     /// The first word of the other mnemonic set.
     /// The first word of the other set, and whether it stands in the operation's place.
     foreign: Option<(Span, bool)>,
+    /// The file started with statements before any header (see [`ParsedFile::fragment`]).
+    fragment: bool,
     errors: Vec<ParseError>,
 }
 
@@ -221,6 +232,16 @@ impl<'a> Builder<'a> {
                 return;
             }
             Err(_) => {}
+        }
+        if self.current.is_none() && self.blocks.is_empty() {
+            // Statements before any header, as forum posts and manuals show them: an FB until
+            // the front end knows all files (so `NAME` and `DES` lines are read as in an FB).
+            self.fragment = true;
+            let id = BlockId {
+                kind: mnemonics::BlockKind::Fb,
+                number: 0,
+            };
+            self.start_block(id, self.span_of(line));
         }
         let in_block = match &self.current {
             Some(block) => matches!(block.body, BlockBody::Data(_)) || !self.ended,
@@ -498,6 +519,7 @@ impl<'a> Builder<'a> {
                 blocks: self.blocks,
             },
             errors: self.errors,
+            fragment: self.fragment,
         }
     }
 }

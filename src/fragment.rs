@@ -1,0 +1,279 @@
+//! Fragments: statements before any block header, as forum posts, knowledge-base articles and
+//! manuals print them. They are taken as a block they can live in, so they are checked like any
+//! other: OB 1 when no file defines it, otherwise a PB with a number no other block uses. A
+//! fragment that uses supplementary operations (jumps to labels, `DO`, formal operands) can only
+//! be an FB: it gets a free FB number, and a generated OB 1 calls it (`JU FB n`) when no file
+//! defines OB 1 and the FB has no parameters. A fragment needs no `BE`. A note says which block
+//! it became; its statements keep their spans, so every error points at the user's line.
+
+use std::collections::HashSet;
+
+use crate::ast::{
+    Block, BlockBody, BlockId, LogicBody, Name, Operand, ParamDecl, ParamFormat, SourceUnit,
+    Statement,
+};
+use crate::compiler::describe_decl;
+use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode, ParamKind};
+use crate::parser::ParseError;
+use crate::source::Span;
+
+const OB_1: BlockId = BlockId {
+    kind: BlockKind::Ob,
+    number: 1,
+};
+
+/// Gives each file's fragment (`fragments[i]`: file `i` starts with one, in `blocks[0]`) its
+/// block, and returns the notes and the errors of undeclared formal operands.
+pub fn place(units: &mut [SourceUnit], fragments: &[bool]) -> Vec<ParseError> {
+    let is_fragment = |file: usize, index: usize| index == 0 && fragments[file];
+    let mut used = HashSet::new();
+    for (file, unit) in units.iter().enumerate() {
+        for (index, block) in unit.blocks.iter().enumerate() {
+            if !is_fragment(file, index) {
+                used.insert(block.id);
+            }
+            if let BlockBody::Logic(body) = &block.body {
+                used.extend(body.statements.iter().filter_map(
+                    |statement| match statement.operand {
+                        Operand::Block(id) => Some(id),
+                        _ => None,
+                    },
+                ));
+            }
+        }
+    }
+    let mut ob1_taken = units.iter().enumerate().any(|(file, unit)| {
+        unit.blocks
+            .iter()
+            .enumerate()
+            .any(|(index, block)| block.id == OB_1 && !is_fragment(file, index))
+    });
+    let mut diagnostics = Vec::new();
+    for (file, unit) in units.iter_mut().enumerate() {
+        if !fragments[file] {
+            continue;
+        }
+        let set = unit.mnemonics;
+        let block = &mut unit.blocks[0];
+        let BlockBody::Logic(body) = &mut block.body else {
+            continue;
+        };
+        let needs_fb = needs_function_block(body);
+        if needs_fb {
+            diagnostics.extend(declare_undeclared(body, set));
+        }
+        end_block(body, block.header);
+        let mut calls = false;
+        let (id, reason) = if needs_fb {
+            let id = free(&mut used, BlockKind::Fb);
+            calls = !ob1_taken && body.params.is_empty();
+            ob1_taken |= calls;
+            (id, fb_reason(body, set, id, calls))
+        } else if !ob1_taken {
+            ob1_taken = true;
+            (
+                OB_1,
+                "add a header line such as `PB 1` above them to put them in a block of your choice"
+                    .to_string(),
+            )
+        } else {
+            let id = free(&mut used, BlockKind::Pb);
+            (
+                id,
+                format!(
+                    "OB 1 is defined, so they are checked as {id}, a number no other block uses; add a header line above them to choose the block"
+                ),
+            )
+        };
+        block.id = id;
+        let header = block.header;
+        if calls {
+            unit.blocks.insert(1, generated_ob1(id, header));
+        }
+        diagnostics.push(ParseError::Fragment {
+            block: id.to_string(),
+            at: header,
+            help: reason,
+        });
+    }
+    diagnostics
+}
+
+/// Supplementary operations, jumps to labels and formal operands exist in FBs only.
+fn needs_function_block(body: &LogicBody) -> bool {
+    !body.params.is_empty()
+        || body.statements.iter().any(|statement| {
+            mnemonics::op_info(statement.op).supplementary
+                || matches!(statement.operand, Operand::Symbol(_))
+        })
+}
+
+fn fb_reason(body: &LogicBody, set: MnemonicSet, id: BlockId, calls: bool) -> String {
+    let ju = mnemonics::op_word(set, OpCode::JumpUnconditional);
+    if !body.params.is_empty() {
+        let example = first_use(body, set, |statement| {
+            matches!(statement.operand, Operand::Symbol(_)) && !is_label_jump(statement.op)
+        });
+        return format!(
+            "they use parameters{example}, so they are a function block; call {id} from OB 1 with `{ju} {id}` and a line per parameter"
+        );
+    }
+    let example = first_use(body, set, |statement| {
+        mnemonics::op_info(statement.op).supplementary
+            || matches!(statement.operand, Operand::Symbol(_))
+    });
+    let caller = if calls {
+        format!("a generated OB 1 calls {id} with `{ju} {id}`")
+    } else {
+        format!("OB 1 is defined, so call {id} from it with `{ju} {id}`")
+    };
+    format!(
+        "they use supplementary operations{example}, which STEP 5 allows in function blocks only; {caller}"
+    )
+}
+
+/// ` (`A =EIN`)`: the first statement that shows why, as written in the file's set.
+fn first_use(body: &LogicBody, set: MnemonicSet, shows: impl Fn(&Statement) -> bool) -> String {
+    let Some(statement) = body.statements.iter().find(|statement| shows(statement)) else {
+        return String::new();
+    };
+    let word = mnemonics::op_word(set, statement.op);
+    match &statement.operand {
+        Operand::Symbol(name) => format!(" (`{word} ={name}`)"),
+        _ => format!(" (`{word}`)"),
+    }
+}
+
+/// The lowest number of `kind` no block has or calls, taken.
+fn free(used: &mut HashSet<BlockId>, kind: BlockKind) -> BlockId {
+    let id = (1..=255)
+        .chain(std::iter::once(0))
+        .map(|number| BlockId { kind, number })
+        .find(|id| !used.contains(id))
+        .unwrap_or(BlockId { kind, number: 255 });
+    used.insert(id);
+    id
+}
+
+/// A fragment needs no `BE`: one is added after its last statement.
+fn end_block(body: &mut LogicBody, header: Span) {
+    if body.end.is_some() {
+        return;
+    }
+    let last = body.statements.last();
+    let end = last.map_or(header.end, |statement| statement.span.end);
+    let at = Span {
+        start: end,
+        end,
+        ..header
+    };
+    body.statements.push(Statement {
+        label: None,
+        op: OpCode::BlockEnd,
+        op_span: at,
+        operand: Operand::None,
+        operand_span: at,
+        call_params: Vec::new(),
+        segment: last.map_or(0, |statement| statement.segment),
+        span: at,
+    });
+    body.end = Some(at);
+}
+
+/// OB 1 that calls the fragment's FB, made where the fragment starts.
+fn generated_ob1(fb: BlockId, at: Span) -> Block {
+    let statement = |op, operand| Statement {
+        label: None,
+        op,
+        op_span: at,
+        operand,
+        operand_span: at,
+        call_params: Vec::new(),
+        segment: 0,
+        span: at,
+    };
+    Block {
+        id: OB_1,
+        header: at,
+        body: BlockBody::Logic(LogicBody {
+            statements: vec![
+                statement(OpCode::JumpUnconditional, Operand::Block(fb)),
+                statement(OpCode::BlockEnd, Operand::None),
+            ],
+            end: Some(at),
+            ..LogicBody::default()
+        }),
+    }
+}
+
+/// Formal operands `=NAME` the fragment uses without a `DES` line: one error per name, with the
+/// line to add; the name is then declared with the kind its first use implies, so its uses are
+/// not reported again. A jump's `=M001` is a label, not a formal operand.
+fn declare_undeclared(body: &mut LogicBody, set: MnemonicSet) -> Vec<ParseError> {
+    let mut errors = Vec::new();
+    for index in 0..body.statements.len() {
+        let statement = &body.statements[index];
+        let Operand::Symbol(name) = &statement.operand else {
+            continue;
+        };
+        let declared = body
+            .params
+            .iter()
+            .any(|param| param.name.text.eq_ignore_ascii_case(name));
+        if declared || is_label_jump(statement.op) {
+            continue;
+        }
+        let (kind, format) = implied_kind(statement.op);
+        let decl = ParamDecl {
+            name: Name {
+                text: name.clone(),
+                span: statement.operand_span,
+            },
+            kind,
+            format,
+            span: statement.operand_span,
+        };
+        let des = match set {
+            MnemonicSet::English => mnemonics::DECLARATION_EN,
+            MnemonicSet::German => mnemonics::DECLARATION_DE,
+        };
+        errors.push(ParseError::UndeclaredFormal {
+            name: name.clone(),
+            at: statement.operand_span,
+            help: format!(
+                "declare it before the first statement: `{des} :{name} {}`",
+                describe_decl(&decl, set)
+            ),
+        });
+        body.params.push(decl);
+    }
+    errors
+}
+
+fn is_label_jump(op: OpCode) -> bool {
+    matches!(
+        op,
+        OpCode::JumpUnconditional
+            | OpCode::JumpConditional
+            | OpCode::JumpZero
+            | OpCode::JumpNotZero
+            | OpCode::JumpPositive
+            | OpCode::JumpMinus
+            | OpCode::JumpOverflow
+    )
+}
+
+/// The parameter kind a use implies: a bit input for scanning, a bit output for `=`, `S`, `R`,
+/// a word for `L` and `T`, a timer or counter for their operations.
+fn implied_kind(op: OpCode) -> (ParamKind, Option<ParamFormat>) {
+    use OpCode::*;
+    match op {
+        And | AndNot | Or | OrNot => (ParamKind::Input, Some(ParamFormat::Bit)),
+        Assign | Set | Reset => (ParamKind::Output, Some(ParamFormat::Bit)),
+        Transfer => (ParamKind::Output, Some(ParamFormat::Word)),
+        TimerPulse | TimerExtendedPulse | TimerOnDelay | TimerStoredOnDelay | TimerOffDelay
+        | Enable => (ParamKind::Timer, None),
+        CountUp | CountDown => (ParamKind::Counter, None),
+        _ => (ParamKind::Input, Some(ParamFormat::Word)),
+    }
+}
