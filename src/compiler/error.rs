@@ -98,6 +98,21 @@ pub enum CheckError {
         at: Span,
     },
 
+    #[error("jump labels need a function block (FB)")]
+    #[diagnostic(
+        code(awl::check::label_outside_fb),
+        help(
+            "STEP 5 allows jumps to labels (`{op} ={name}`) in FBs only: move this logic into an FB and call it with `JU FB n`, or write it without the jump"
+        )
+    )]
+    LabelOutsideFb {
+        op: &'static str,
+        name: String,
+        #[label("jump to `{name}` in {block}, which is no FB")]
+        at: Span,
+        block: String,
+    },
+
     #[error("label `{name}` is defined twice")]
     #[diagnostic(
         code(awl::check::duplicate_label),
@@ -261,6 +276,7 @@ impl CheckError {
             | CheckError::OperandRange { at, .. }
             | CheckError::UndefinedSymbol { at, .. }
             | CheckError::FormalOutsideFb { at, .. }
+            | CheckError::LabelOutsideFb { at, .. }
             | CheckError::DuplicateLabel { at, .. }
             | CheckError::LabelTooLong { at, .. }
             | CheckError::ParamCount { at, .. }

@@ -513,10 +513,10 @@ impl<'a> Compiler<'a> {
         );
         if !context.id.kind.is_function() {
             if is_label_jump {
-                let op = format!("{} =", mnemonics::op_word(context.set, statement.op));
-                return self.fail(CheckError::Supplementary {
-                    op,
-                    at: statement.op_span,
+                return self.fail(CheckError::LabelOutsideFb {
+                    op: mnemonics::op_word(context.set, statement.op),
+                    name: name.to_string(),
+                    at,
                     block: context.id.to_string(),
                 });
             }

@@ -431,7 +431,7 @@ fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, 
                 at: Some(first),
                 expected: "an operation",
                 diagnostic: Some(Box::new(ParseError::UnknownOperation {
-                    help: suggest_operation(context.set, &word.to_ascii_uppercase()),
+                    help: suggest_operation(context, &word, rest.first()),
                     word: word.into_owned(),
                     at: span,
                     set: context.set.name(),
@@ -441,12 +441,51 @@ fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, 
     }
 }
 
-fn suggest_operation(set: mnemonics::MnemonicSet, word: &str) -> Option<String> {
+/// What to write instead of an unknown operation: the operation and its operand without their
+/// blank (`T1`), a label without its `:` (`M001 A I 1.0`), or a close spelling (`JUU`).
+fn suggest_operation(context: Context<'_>, word: &str, next: Option<Token>) -> Option<String> {
+    let set = context.set;
+    let upper = word.to_ascii_uppercase();
+    if upper.ends_with('(') {
+        return Some(format!(
+            "STEP 5 opens brackets with `{}` and `{}` only",
+            mnemonics::op_word(set, OpCode::AndBracket),
+            mnemonics::op_word(set, OpCode::OrBracket)
+        ));
+    }
+    if let Some(split) = upper
+        .find(|c: char| c.is_ascii_digit())
+        .filter(|at| *at > 0)
+    {
+        let (op, operand) = upper.split_at(split);
+        if mnemonics::operation(set, op).is_some() {
+            return Some(format!(
+                "a blank separates the operation from its operand: write `{op} {operand}`"
+            ));
+        }
+    }
+    let label_shaped = word.len() <= 4 && word.ends_with(|c: char| c.is_ascii_digit());
+    if let Some(next) = next.filter(|next| next.kind == TokenKind::Word && label_shaped)
+        && mnemonics::operation(set, context.text(next)).is_some()
+    {
+        return Some(format!(
+            "a label ends with `:`: write `{word} :{}`",
+            context.text(next)
+        ));
+    }
+    // A close spelling that starts with the same letter: `JUU` → `JU`, but `XG` is no `G`.
     let best = mnemonics::operation_words(set)
-        .map(|candidate| (strsim::damerau_levenshtein(word, candidate), candidate))
+        .filter(|candidate| candidate.chars().next() == upper.chars().next())
+        .map(|candidate| (strsim::damerau_levenshtein(&upper, candidate), candidate))
         .filter(|(distance, candidate)| *distance <= 1 + usize::from(candidate.len() > 3))
-        .min_by_key(|(distance, _)| *distance)?;
-    Some(format!("did you mean `{}`?", best.1))
+        .min_by_key(|(distance, _)| *distance);
+    Some(match best {
+        Some((_, candidate)) => format!("did you mean `{candidate}`?"),
+        None => format!(
+            "`awl help language` lists the operations of the {} set",
+            set.name()
+        ),
+    })
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]

@@ -10,7 +10,7 @@ pub mod tokens;
 pub use constant::{bcd, to_s5_float};
 pub use error::ParseError;
 
-use crate::ast::{Block, BlockBody, BlockId, DataWord, LogicBody, Operand, SourceUnit};
+use crate::ast::{Block, BlockBody, BlockId, DataWord, LogicBody, Operand, SourceUnit, Statement};
 use crate::dialect;
 use crate::lexer::{Token, TokenKind, lex};
 use crate::mnemonics::{self, MnemonicSet, OpCode, Position};
@@ -267,6 +267,36 @@ impl<'a> Builder<'a> {
         if let Err(error) = result {
             self.errors.push(error);
             self.end_on_bad_block_end(line);
+            self.open_on_bad_bracket(line);
+        }
+    }
+
+    /// A bad line that opens a bracket (`AN(`, `A( X`) still opens it, so its `)` is not
+    /// reported as well: one error per bad bracket. The block has an error, so it never runs.
+    fn open_on_bad_bracket(&mut self, line: &[Token]) {
+        let context = self.context(self.set);
+        let line = listing::without_address(context, line, self.listing);
+        let opens = matches!(strip_label(line), [word, paren, ..]
+            if word.kind == TokenKind::Word && paren.kind == TokenKind::LParen);
+        let span = self.span_of(line);
+        let Some(Block {
+            body: BlockBody::Logic(body),
+            ..
+        }) = &mut self.current
+        else {
+            return;
+        };
+        if opens && !self.ended {
+            body.statements.push(Statement {
+                label: None,
+                op: OpCode::AndBracket,
+                op_span: span,
+                operand: Operand::None,
+                operand_span: span,
+                call_params: Vec::new(),
+                segment: self.segment,
+                span,
+            });
         }
     }
 
