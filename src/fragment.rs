@@ -277,3 +277,102 @@ fn implied_kind(op: OpCode) -> (ParamKind, Option<ParamFormat>) {
         _ => (ParamKind::Input, Some(ParamFormat::Word)),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::frontend::{Frontend, build};
+    use crate::profile;
+    use crate::source::{SourceFile, SourceSet};
+
+    fn check(files: &[&str]) -> Frontend {
+        let mut sources = SourceSet::default();
+        for (index, text) in files.iter().enumerate() {
+            sources.add(SourceFile::new(&format!("f{index}.awl"), *text));
+        }
+        build(sources, None, profile::find("sinumerik-840c").unwrap())
+    }
+
+    fn codes_and_messages(built: &Frontend) -> Vec<String> {
+        built
+            .diagnostics
+            .iter()
+            .map(|d| format!("{}: {d}", miette::Diagnostic::code(d).unwrap()))
+            .collect()
+    }
+
+    fn blocks(built: &Frontend) -> Vec<String> {
+        let program = &built.compiled.program;
+        program.blocks.iter().map(|b| b.id.to_string()).collect()
+    }
+
+    #[test]
+    fn a_fragment_is_ob1_and_needs_no_be() {
+        let built = check(&["      A I 0.0\n      = Q 4.0\n"]);
+        assert_eq!(
+            codes_and_messages(&built),
+            ["awl::parse::fragment: statements before any block header are taken as OB 1"]
+        );
+        assert!(!built.has_errors());
+        assert_eq!(blocks(&built), ["OB 1"]);
+    }
+
+    #[test]
+    fn with_ob1_defined_a_fragment_is_a_pb_no_block_uses() {
+        let built = check(&[
+            "      A I 0.0\n      = Q 4.0\n",
+            "OB 1\n      JU PB 1\n      BE\nPB 1\n      BE\n",
+        ]);
+        assert_eq!(
+            codes_and_messages(&built),
+            ["awl::parse::fragment: statements before any block header are taken as PB 2"]
+        );
+    }
+
+    #[test]
+    fn label_jumps_make_an_fb_that_a_generated_ob1_calls() {
+        let built = check(&["      A I 0.0\n      JC =M001\n      = Q 4.0\nM001 :A I 0.1\n"]);
+        assert_eq!(
+            codes_and_messages(&built),
+            ["awl::parse::fragment: statements before any block header are taken as FB 1"]
+        );
+        assert!(!built.has_errors());
+        assert_eq!(blocks(&built), ["FB 1", "OB 1"]);
+    }
+
+    #[test]
+    fn every_other_error_is_still_reported() {
+        let built = check(&["      A I 0.0\n      XYZ\n      = Q 400.0\n      L KH 12345\n"]);
+        let codes = codes_and_messages(&built);
+        assert_eq!(codes.len(), 4, "{codes:#?}");
+        assert!(codes[0].starts_with("awl::parse::fragment"));
+    }
+
+    #[test]
+    fn undeclared_formal_operands_are_reported_once_per_name() {
+        let built =
+            check(&["      A =EIN\n      AN =EIN\n      = =AUS\n      JC =M001\nM001 :BE\n"]);
+        let codes = codes_and_messages(&built);
+        assert_eq!(
+            codes,
+            [
+                "awl::parse::fragment: statements before any block header are taken as FB 1",
+                "awl::parse::undeclared_formal: formal operand `=EIN` is not declared",
+                "awl::parse::undeclared_formal: formal operand `=AUS` is not declared",
+            ]
+        );
+        let help = |index: usize| {
+            miette::Diagnostic::help(&built.diagnostics[index])
+                .unwrap()
+                .to_string()
+        };
+        assert!(help(1).ends_with("`DES :EIN I BI`"), "{}", help(1));
+        assert!(help(2).ends_with("`DES :AUS Q BI`"), "{}", help(2));
+    }
+
+    #[test]
+    fn german_fragments_get_german_declarations() {
+        let built = check(&["      U =EIN\n      = A 4.0\n"]);
+        let help = miette::Diagnostic::help(&built.diagnostics[1]).unwrap();
+        assert!(help.to_string().ends_with("`BEZ :EIN E BI`"), "{help}");
+    }
+}

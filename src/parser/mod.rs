@@ -5,6 +5,8 @@ mod constant;
 pub mod error;
 pub mod line;
 pub mod listing;
+#[cfg(test)]
+mod spellings;
 pub mod tokens;
 
 pub use constant::{bcd, to_s5_float};
