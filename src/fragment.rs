@@ -287,7 +287,7 @@ mod tests {
     fn check(files: &[&str]) -> Frontend {
         let mut sources = SourceSet::default();
         for (index, text) in files.iter().enumerate() {
-            sources.add(SourceFile::new(&format!("f{index}.awl"), *text));
+            sources.add(SourceFile::new(format!("f{index}.awl"), *text));
         }
         build(sources, None, profile::find("sinumerik-840c").unwrap())
     }
