@@ -124,7 +124,23 @@ pub fn name_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<
     }
 }
 
-/// `DES :EIN I BI`
+/// The PG prints each choice of a declaration with its legend: `E/A/D/B/T/Z: E`,
+/// `BI/BY/W/D: BI`. The legend, up to and including its `:`, is skipped.
+fn without_legend(input: Tokens<'_>) -> Tokens<'_> {
+    let tokens = input.tokens;
+    let legend = tokens
+        .iter()
+        .take_while(|token| matches!(token.kind, TokenKind::Word | TokenKind::Invalid))
+        .count();
+    match tokens.get(legend) {
+        Some(colon) if legend > 0 && colon.kind == TokenKind::Colon => {
+            Tokens::new(&tokens[legend + 1..])
+        }
+        _ => input,
+    }
+}
+
+/// `DES :EIN I BI`, or as the PG prints it, `DES :EIN  I/Q/D/B/T/C: I  BI/BY/W/D: BI`
 pub fn declaration<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParamDecl> {
     move |input: Tokens<'a>| {
         let words = &[mnemonics::DECLARATION_EN, mnemonics::DECLARATION_DE];
@@ -140,6 +156,7 @@ pub fn declaration<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResul
             kind(TokenKind::Colon, "`:`")(rest).map_err(|_| bad("`:` expected", line_span))?;
         let (rest, name) = kind(TokenKind::Word, "name")(rest)
             .map_err(|_| bad("parameter name expected", line_span))?;
+        let rest = without_legend(rest);
         let (rest, kind_token) = kind(TokenKind::Word, "kind")(rest)
             .map_err(|_| bad("kind expected (I Q D B T C)", line_span))?;
         let param_kind =
@@ -149,7 +166,8 @@ pub fn declaration<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResul
                     context.span(kind_token),
                 )
             })?;
-        let (rest, format_token) = opt(kind(TokenKind::Word, "format")).parse(rest)?;
+        let (rest, format_token) =
+            opt(kind(TokenKind::Word, "format")).parse(without_legend(rest))?;
         if let Some(extra) = rest.first() {
             return Err(bad("end of line expected", context.span(extra)));
         }

@@ -303,10 +303,17 @@ impl<'a> Builder<'a> {
     }
 
     /// `NAME :…`: the PG takes any characters in a block's name.
+    /// A `NAME` line (any characters in the name) or a declaration line (the PG's legend
+    /// `E/A/D/B/T/Z:` has slashes).
     fn is_name_line(&self, line: &[Token]) -> bool {
+        let words = [
+            mnemonics::NAME_WORD,
+            mnemonics::DECLARATION_EN,
+            mnemonics::DECLARATION_DE,
+        ];
         matches!(line, [name, colon, ..]
             if colon.kind == TokenKind::Colon
-                && name.text(self.source).eq_ignore_ascii_case(mnemonics::NAME_WORD))
+                && words.iter().any(|word| name.text(self.source).eq_ignore_ascii_case(word)))
     }
 
     /// A `BE` line with something wrong after it still ends the block, so the error is not

@@ -91,3 +91,30 @@ fn block_names_take_pg_characters() {
         assert_eq!(body.name.as_ref().unwrap().text, name);
     }
 }
+
+#[test]
+fn declarations_as_the_pg_prints_them_with_their_legend() {
+    let params = |declarations: &str| {
+        let parsed = parse_text(&format!("FB 1\nNAME :X\n{declarations}      BE\n"));
+        assert!(parsed.errors.is_empty(), "{:?}", parsed.errors);
+        let BlockBody::Logic(body) = &parsed.unit.blocks[0].body else {
+            panic!("a logic block");
+        };
+        body.params
+            .iter()
+            .map(|p| (p.name.text.clone(), p.kind, p.format))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        params(
+            "BEZ :EIN   E/A/D/B/T/Z: E   BI/BY/W/D: BI\n\
+             BEZ :ZEIT  E/A/D/B/T/Z: T\n\
+             BEZ :WERT  E/A/D/B/T/Z: D   KM/KH/KY/KS/KF/KT/KZ/KG: KF\n"
+        ),
+        params("BEZ :EIN E BI\nBEZ :ZEIT T\nBEZ :WERT D KF\n")
+    );
+    assert_eq!(
+        params("DES :IN    I/Q/D/B/T/C: I   BI/BY/W/D: W\n"),
+        params("DES :IN I W\n")
+    );
+}
