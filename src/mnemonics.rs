@@ -5,6 +5,8 @@
 
 use std::sync::OnceLock;
 
+use crate::profile::Feature;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum MnemonicSet {
     English,
@@ -102,6 +104,21 @@ pub enum OpCode {
     DisableInterrupts,
     EnableInterrupts,
     GenerateDb,
+    ResetBinary,
+    ResetDigital,
+    LoadBitPattern,
+    LoadDecimal,
+    AddConstant,
+    TransferBytes,
+    LoadIndirect,
+    TransferIndirect,
+    MoveBrToAccu,
+    MoveAccuToBr,
+    MoveSaToAccu,
+    MoveAccuToSa,
+    AddToBr,
+    LoadRelativeBr,
+    TransferRelativeBr,
 }
 
 /// One row of the operation table.
@@ -531,7 +548,142 @@ pub static OPERATIONS: &[OpInfo] = &[
         "DB 20",
         "DB 20",
     ),
+    // The formal-operand operations: each takes `=NAME` only, and runs as the basic operation
+    // its actual parameter decides (see `compiler::specialise::formal_meaning`).
+    supp(
+        ResetBinary,
+        "RB",
+        "RB",
+        "reset a formal operand bit (I, Q parameter) when the RLO is 1",
+        "=X",
+        "=X",
+    ),
+    supp(
+        ResetDigital,
+        "RD",
+        "RD",
+        "reset a formal operand timer or counter when the RLO is 1",
+        "=TIM",
+        "=TIM",
+    ),
+    supp(
+        LoadBitPattern,
+        "LW",
+        "LW",
+        "load the constant of a D parameter into ACCU 1 as a bit pattern",
+        "=KON",
+        "=KON",
+    ),
+    supp(
+        LoadDecimal,
+        "LD",
+        "LD",
+        "load the constant of a D parameter into ACCU 1",
+        "=KON",
+        "=KON",
+    ),
+    supp(
+        AddConstant,
+        "ADD",
+        "ADD",
+        "add a constant to ACCU 1 (KB, KF: low word; DH: 32 bits)",
+        "KF +5",
+        "KF +5",
+    ),
+    // System and register operations on absolute addresses: parsed and timed, but running one
+    // stops the CPU (awl has no S5 memory map; see grammar/README.md).
+    supp(
+        TransferBytes,
+        "TNB",
+        "TNB",
+        "transfer a field of n bytes between absolute addresses (not simulated)",
+        "10",
+        "10",
+    ),
+    supp(
+        LoadIndirect,
+        "LIR",
+        "LIR",
+        "load register n from the absolute address in ACCU 1 (not simulated)",
+        "2",
+        "2",
+    ),
+    supp(
+        TransferIndirect,
+        "TIR",
+        "TIR",
+        "transfer register n to the absolute address in ACCU 1 (not simulated)",
+        "2",
+        "2",
+    ),
+    supp(
+        MoveBrToAccu,
+        "MBA",
+        "MBA",
+        "move the base address register BR to ACCU 1 (not simulated)",
+        "",
+        "",
+    ),
+    supp(
+        MoveAccuToBr,
+        "MAB",
+        "MAB",
+        "move ACCU 1 to the base address register BR (not simulated)",
+        "",
+        "",
+    ),
+    supp(
+        MoveSaToAccu,
+        "MSA",
+        "MSA",
+        "move the STEP address counter SA to ACCU 1 (not simulated)",
+        "",
+        "",
+    ),
+    supp(
+        MoveAccuToSa,
+        "MAS",
+        "MAS",
+        "move ACCU 1 to the STEP address counter SA (not simulated)",
+        "",
+        "",
+    ),
+    supp(
+        AddToBr,
+        "ABR",
+        "ABR",
+        "add n to the base address register BR (not simulated)",
+        "4",
+        "4",
+    ),
+    supp(
+        LoadRelativeBr,
+        "LRB",
+        "LRB",
+        "load ACCU 1 from the word at BR + n (not simulated)",
+        "4",
+        "4",
+    ),
+    supp(
+        TransferRelativeBr,
+        "TRB",
+        "TRB",
+        "transfer ACCU 1 to the word at BR + n (not simulated)",
+        "4",
+        "4",
+    ),
 ];
+
+/// The CPU feature an operation needs, for the operations only some CPUs have.
+pub fn supplementary_feature(op: OpCode) -> Option<Feature> {
+    match op {
+        AddConstant => Some(Feature::AddConstant),
+        TransferBytes | LoadIndirect | TransferIndirect => Some(Feature::SystemOperations),
+        MoveBrToAccu | MoveAccuToBr | MoveSaToAccu | MoveAccuToSa | AddToBr | LoadRelativeBr
+        | TransferRelativeBr => Some(Feature::RegisterOperations),
+        _ => None,
+    }
+}
 
 /// Operand areas.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

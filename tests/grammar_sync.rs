@@ -21,7 +21,7 @@ fn program_with(set: MnemonicSet, info: &OpInfo) -> String {
         "M001 :NOP 0\n      BE\n"
     };
     format!(
-        "FB 1\nNAME :TEST\n{des} :X {input} BI\n{before}      {op} {operand}\n{after}{tail}{SUPPORT}"
+        "FB 1\nNAME :TEST\n{des} :X {input} BI\n{des} :TIM T\n{des} :KON D KF\n{before}      {op} {operand}\n{after}{tail}{SUPPORT}"
     )
 }
 
@@ -83,7 +83,7 @@ fn detection_picks_the_set_without_override() {
     {
         let (before, after) = bracket_partners(MnemonicSet::German, info.op);
         let german = format!(
-            "FB 1\nNAME :TEST\nBEZ :X E BI\n      U E 0.0\n{before}      {} {}\n{after}M001 :NOP 0\n      BE\n{SUPPORT}",
+            "FB 1\nNAME :TEST\nBEZ :X E BI\nBEZ :TIM T\nBEZ :KON D KF\n      U E 0.0\n{before}      {} {}\n{after}M001 :NOP 0\n      BE\n{SUPPORT}",
             info.de, info.example_de
         );
         let built = frontend::build_text("de.awl", &german, cpu);

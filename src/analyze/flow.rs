@@ -54,7 +54,8 @@ pub fn step(op: Op) -> Step {
         Op::BlockEnd | Op::BlockEndUnconditional => Step::End { conditional: false },
         Op::BlockEndConditional => Step::End { conditional: true },
         Op::Formal {
-            op: op @ (OpCode::JumpUnconditional | OpCode::JumpConditional),
+            // `DO =BLK` (German `B =BLK`) calls the block the parameter names, or opens a DB.
+            op: op @ (OpCode::JumpUnconditional | OpCode::JumpConditional | OpCode::Indirect),
             ..
         } => Step::Call {
             callee: Callee::Parameter,

@@ -272,6 +272,16 @@ pub enum Op {
         op: OpCode,
         param: u8,
     },
+    /// `ADD KB/KF n` (`double` false: the low word of ACCU 1) or `ADD DH n` (all 32 bits).
+    AddConstant {
+        value: u32,
+        double: bool,
+    },
+    /// A system or register operation on absolute addresses: running it stops the CPU.
+    NotSimulated {
+        op: OpCode,
+        operand: u16,
+    },
 }
 
 impl Op {

@@ -82,16 +82,20 @@ fn representative(decl: &ParamDecl) -> Resolved {
 pub fn formal_op(op: OpCode, decl: &ParamDecl, layout: Layout) -> Option<Op> {
     if decl.kind == ParamKind::Block {
         return match op {
-            OpCode::JumpUnconditional | OpCode::JumpConditional => Some(Op::Call {
-                block: 0,
-                conditional: false,
-                params: bytecode::NO_PARAMS,
-            }),
+            OpCode::JumpUnconditional | OpCode::JumpConditional | OpCode::Indirect => {
+                Some(Op::Call {
+                    block: 0,
+                    conditional: false,
+                    params: bytecode::NO_PARAMS,
+                })
+            }
             OpCode::OpenDb => Some(Op::OpenDb(0)),
             _ => None,
         };
     }
-    lower::lower(op, representative(decl), layout, bytecode::NO_PARAMS)
+    let actual = representative(decl);
+    let op = super::specialise::formal_meaning(op, actual)?;
+    lower::lower(op, actual, layout, bytecode::NO_PARAMS)
 }
 
 fn accepts(decl: &ParamDecl, actual: &Operand) -> bool {

@@ -63,6 +63,8 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         | Op::Increment(_)
         | Op::Decrement(_) => t.accumulator,
         Op::Indirect { .. } => t.load_word + t.other,
+        Op::AddConstant { .. } => t.accumulator,
+        Op::NotSimulated { .. } => t.other,
         Op::Nop | Op::Stop | Op::DisableInterrupts | Op::EnableInterrupts | Op::Formal { .. } => {
             t.other
         }

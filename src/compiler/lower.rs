@@ -357,6 +357,18 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
         },
         (DisableInterrupts, R::None) => Op::DisableInterrupts,
         (EnableInterrupts, R::None) => Op::EnableInterrupts,
+        (TransferBytes, R::Number(operand)) if (1..=255).contains(&operand) => {
+            Op::NotSimulated { op, operand }
+        }
+        (LoadIndirect | TransferIndirect, R::Number(operand)) if operand <= 15 => {
+            Op::NotSimulated { op, operand }
+        }
+        (AddToBr | LoadRelativeBr | TransferRelativeBr, R::Number(operand)) => {
+            Op::NotSimulated { op, operand }
+        }
+        (MoveBrToAccu | MoveAccuToBr | MoveSaToAccu | MoveAccuToSa, R::None) => {
+            Op::NotSimulated { op, operand: 0 }
+        }
         _ => return None,
     })
 }
@@ -390,5 +402,10 @@ fn formal_allowed(op: OpCode) -> bool {
             | ResetUnconditional
             | TestBit
             | TestBitNot
+            | ResetBinary
+            | ResetDigital
+            | LoadBitPattern
+            | LoadDecimal
+            | Indirect
     )
 }

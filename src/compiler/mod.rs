@@ -1,6 +1,7 @@
 //! Compiler: checked blocks of statements to per-block bytecode, with the static checks of the
 //! front end (operand ranges, labels, FB parameters, operation sets, block existence).
 
+mod add_constant;
 pub mod arena;
 mod brackets;
 pub mod bytecode;
@@ -373,7 +374,12 @@ impl<'a> Compiler<'a> {
             }
             _ => bytecode::NO_PARAMS,
         };
-        let Some(mut op) = lower::lower(statement.op, resolved, self.layout, params) else {
+        let lowered = if statement.op == OpCode::AddConstant {
+            add_constant::lower(&statement.operand)
+        } else {
+            lower::lower(statement.op, resolved, self.layout, params)
+        };
+        let Some(mut op) = lowered else {
             return self.fail(self.not_allowed(context, statement, resolved));
         };
         let four_accumulators = self.profile.accumulators == 4;

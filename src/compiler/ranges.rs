@@ -59,6 +59,8 @@ pub fn number_range(op: OpCode) -> Option<&'static str> {
         OpCode::Nop => Some("NOP 0 or NOP 1"),
         OpCode::Display | OpCode::Increment | OpCode::Decrement => Some("0…255"),
         OpCode::ShiftLeft | OpCode::ShiftRight => Some("0…15"),
+        OpCode::TransferBytes => Some("1…255"),
+        OpCode::LoadIndirect | OpCode::TransferIndirect => Some("0…15"),
         _ => None,
     }
 }

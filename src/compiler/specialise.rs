@@ -4,6 +4,8 @@
 //! the VM runs it like any other op. Positions, times and spans stay those of the FB's own code;
 //! an operation that cannot be substituted keeps its formal op and fails at run time as before.
 
+use crate::mnemonics::{Area, OpCode};
+
 use super::bytecode::{NO_PARAMS, Op};
 use super::lower::{self, Layout, Resolved};
 
@@ -33,6 +35,33 @@ fn substituted(code: &[Op], list: &[Resolved], layout: Layout) -> Box<[Op]> {
 
 /// The op an operation on a formal operand runs as with `actual`: what the VM substitutes at
 /// run time too. `None` when the actual does not fit the operation.
-pub fn formal_op(code: crate::mnemonics::OpCode, actual: Resolved, layout: Layout) -> Option<Op> {
+pub fn formal_op(code: OpCode, actual: Resolved, layout: Layout) -> Option<Op> {
+    let code = formal_meaning(code, actual)?;
     lower::lower(code, actual, layout, NO_PARAMS).filter(|op| !op.resolved_at_run_time())
+}
+
+/// The basic operation a formal-operand operation runs as with `actual`: `RB =` resets a bit,
+/// `RD =` a timer or counter, `LW =` and `LD =` load a D parameter's constant, `DO =` (German
+/// `B =`) opens the DB or calls the block the parameter names. `None` when the actual does not
+/// fit the operation; every other operation runs as itself.
+pub fn formal_meaning(code: OpCode, actual: Resolved) -> Option<OpCode> {
+    let area = match actual {
+        Resolved::Address(address) => Some(address.area),
+        _ => None,
+    };
+    match code {
+        OpCode::ResetBinary => area.filter(|area| area.is_bit()).map(|_| OpCode::Reset),
+        OpCode::ResetDigital => area
+            .filter(|area| matches!(area, Area::Timer | Area::Counter))
+            .map(|_| OpCode::Reset),
+        OpCode::LoadBitPattern | OpCode::LoadDecimal => {
+            matches!(actual, Resolved::Constant(_)).then_some(OpCode::Load)
+        }
+        OpCode::Indirect => match actual {
+            Resolved::Block { kind, .. } if kind.is_data() => Some(OpCode::OpenDb),
+            Resolved::Block { .. } => Some(OpCode::JumpUnconditional),
+            _ => None,
+        },
+        other => Some(other),
+    }
 }

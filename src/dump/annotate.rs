@@ -205,6 +205,21 @@ pub fn verb(op: OpCode) -> &'static str {
         DisableInterrupts => "disable interrupts",
         EnableInterrupts => "enable interrupts",
         GenerateDb => "generate",
+        ResetBinary => "reset the formal operand bit",
+        ResetDigital => "reset the formal operand timer or counter",
+        LoadBitPattern => "load the bit pattern of",
+        LoadDecimal => "load the constant of",
+        AddConstant => "add to ACCU 1",
+        TransferBytes => "transfer bytes between absolute addresses (not simulated), count",
+        LoadIndirect => "load indirectly from an absolute address (not simulated), register",
+        TransferIndirect => "transfer indirectly to an absolute address (not simulated), register",
+        MoveBrToAccu => "move BR to ACCU 1 (not simulated)",
+        MoveAccuToBr => "move ACCU 1 to BR (not simulated)",
+        MoveSaToAccu => "move the STEP address counter to ACCU 1 (not simulated)",
+        MoveAccuToSa => "move ACCU 1 to the STEP address counter (not simulated)",
+        AddToBr => "add to BR (not simulated)",
+        LoadRelativeBr => "load relative to BR (not simulated), offset",
+        TransferRelativeBr => "transfer relative to BR (not simulated), offset",
     }
 }
 
@@ -441,6 +456,28 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
             format!("{} {}", verb(op), context.bit_target(target))
         }
         Op::DisableInterrupts => verb(OpCode::DisableInterrupts).to_string(),
+        Op::AddConstant { value, double } => {
+            let shown = if double {
+                format!("DH {value:08X}")
+            } else {
+                format!("{}", value as u16 as i16)
+            };
+            format!("{} {shown}", verb(OpCode::AddConstant))
+        }
+        Op::NotSimulated { op, operand } => {
+            let takes_none = matches!(
+                op,
+                OpCode::MoveBrToAccu
+                    | OpCode::MoveAccuToBr
+                    | OpCode::MoveSaToAccu
+                    | OpCode::MoveAccuToSa
+            );
+            if takes_none {
+                format!("{}: STOP when run", verb(op))
+            } else {
+                format!("{} {operand}: STOP when run", verb(op))
+            }
+        }
         Op::EnableInterrupts => verb(OpCode::EnableInterrupts).to_string(),
         Op::Indirect { source, .. } => {
             let operand = match source {
@@ -454,7 +491,11 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
                 .params
                 .get(usize::from(param))
                 .map_or("?", |decl| decl.name.text.as_str());
-            format!("{} ={name} (parameter {})", verb(op), param + 1)
+            let verb = match op {
+                OpCode::Indirect => "process (open the DB or call the block in)",
+                other => verb(other),
+            };
+            format!("{verb} ={name} (parameter {})", param + 1)
         }
         // Only in the VM's arena (fused pairs, direct calls, the end marker): never in a
         // compiled block, which is what the dump shows.

@@ -43,10 +43,12 @@ fn operation_words(op: OpCode, operand: &Operand) -> u32 {
     match (op, operand) {
         // `L KB`: the byte rides in the operation word; every other constant follows it in
         // words of its own.
-        (OpCode::Load, Operand::Constant(constant)) => match constant.format {
-            ConstFormat::Byte => 1,
-            format => 1 + u32::from(format.words()),
-        },
+        (OpCode::Load | OpCode::AddConstant, Operand::Constant(constant)) => {
+            match constant.format {
+                ConstFormat::Byte => 1,
+                format => 1 + u32::from(format.words()),
+            }
+        }
         (
             OpCode::SetUnconditional
             | OpCode::ResetUnconditional
@@ -54,6 +56,8 @@ fn operation_words(op: OpCode, operand: &Operand) -> u32 {
             | OpCode::TestBitNot,
             _,
         ) => 2,
+        // A 16-bit displacement does not fit beside the operation code.
+        (OpCode::AddToBr | OpCode::LoadRelativeBr | OpCode::TransferRelativeBr, _) => 2,
         // Bit operations on data bits have no one-word form.
         (_, Operand::Address(address)) if address.area == Area::DataBit => 2,
         // The extended blocks: `JU FX`, `C DX`, `G DX`.

@@ -542,8 +542,15 @@ fn shape(op: OpCode) -> Shape {
         | Swap
         | Enter
         | DisableInterrupts
-        | EnableInterrupts => Shape::Nothing,
-        Nop | Display | ShiftLeft | ShiftRight | Increment | Decrement => Shape::Number,
+        | EnableInterrupts
+        | MoveBrToAccu
+        | MoveAccuToBr
+        | MoveSaToAccu
+        | MoveAccuToSa => Shape::Nothing,
+        Nop | Display | ShiftLeft | ShiftRight | Increment | Decrement | TransferBytes
+        | LoadIndirect | TransferIndirect | AddToBr | LoadRelativeBr | TransferRelativeBr => {
+            Shape::Number
+        }
         Or => Shape::Optional,
         _ => Shape::Required,
     }

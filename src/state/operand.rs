@@ -149,6 +149,8 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::EnableInterrupts
         | Op::GenerateDb(_)
         | Op::Indirect { .. }
-        | Op::Formal { .. } => return None,
+        | Op::Formal { .. }
+        | Op::AddConstant { .. }
+        | Op::NotSimulated { .. } => return None,
     })
 }

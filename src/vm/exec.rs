@@ -12,6 +12,7 @@ use super::arith;
 use super::interrupts::FamilyRules;
 use super::interrupts::s5_95f::S595f;
 use super::stop::{StopCause, StopDetail};
+use super::system_ops;
 
 impl Cpu {
     #[inline(always)]
@@ -455,6 +456,10 @@ impl Cpu {
                 self.level.status.load(value != negate);
             }
             Op::DisableInterrupts => self.level.interrupts_enabled = false,
+            Op::AddConstant { value, double } => {
+                system_ops::add_constant(&mut self.level.accu1, value, double)
+            }
+            Op::NotSimulated { op, operand } => return Err(system_ops::not_simulated(op, operand)),
             Op::EnableInterrupts => {
                 self.level.interrupts_enabled = true;
                 self.update_attention();

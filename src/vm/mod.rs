@@ -18,6 +18,7 @@ pub mod pulse;
 mod run_loop;
 pub mod status;
 pub mod stop;
+pub mod system_ops;
 pub mod timers;
 
 use std::sync::Arc;

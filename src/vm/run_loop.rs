@@ -592,6 +592,8 @@ impl Cpu {
                     | Op::ResetUnconditional(_)
                     | Op::TestBit { .. }
                     | Op::DisableInterrupts
+                    | Op::AddConstant { .. }
+                    | Op::NotSimulated { .. }
                     | Op::EnableInterrupts => {
                         sync!();
                         let result = self.execute_other(*op, at!());
