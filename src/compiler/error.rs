@@ -42,15 +42,14 @@ pub enum CheckError {
     },
 
     #[error("`{op}` is a supplementary operation, allowed in function blocks only")]
-    #[diagnostic(
-        code(awl::check::supplementary_outside_fb),
-        help("move this logic into an FB, or use a basic operation")
-    )]
+    #[diagnostic(code(awl::check::supplementary_outside_fb))]
     Supplementary {
         op: String,
         #[label("not allowed in {block}")]
         at: Span,
         block: String,
+        #[help]
+        help: String,
     },
 
     #[error("`{op}` cannot take this operand")]

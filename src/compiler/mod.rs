@@ -357,6 +357,7 @@ impl<'a> Compiler<'a> {
                 op: op_word.to_string(),
                 at: statement.op_span,
                 block: context.id.to_string(),
+                help: supplementary_help(context.set, statement),
             });
         }
         let resolved = self.resolve(context, statement)?;
@@ -635,4 +636,20 @@ struct BlockContext<'b> {
     set: MnemonicSet,
     params: &'b [ParamDecl],
     labels: &'b HashMap<String, (u32, Span)>,
+}
+
+/// What to write instead of a supplementary operation outside an FB: a load of a constant with
+/// `LW`/`LD` is what `L` does; anything else moves into an FB.
+fn supplementary_help(set: MnemonicSet, statement: &Statement) -> String {
+    let loads_constant = matches!(statement.op, OpCode::LoadBitPattern | OpCode::LoadDecimal)
+        && matches!(statement.operand, Operand::Constant(_));
+    if loads_constant {
+        let load = mnemonics::op_word(set, OpCode::Load);
+        format!(
+            "`{}` loads a formal operand (`=NAME`) in an FB; to load a constant, write `{load}`",
+            mnemonics::op_word(set, statement.op)
+        )
+    } else {
+        "move this logic into an FB, or use a basic operation".to_string()
+    }
 }
