@@ -5,6 +5,8 @@
 
 use std::sync::OnceLock;
 
+use crate::profile::Feature;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum MnemonicSet {
     English,
@@ -102,6 +104,22 @@ pub enum OpCode {
     DisableInterrupts,
     EnableInterrupts,
     GenerateDb,
+    AddFloat,
+    SubFloat,
+    MulFloat,
+    DivFloat,
+    CmpEqFloat,
+    CmpNeFloat,
+    CmpGtFloat,
+    CmpGeFloat,
+    CmpLtFloat,
+    CmpLeFloat,
+    FixedToFloat,
+    FloatToFixed,
+    BcdToFixed,
+    FixedToBcd,
+    BcdToFixedDouble,
+    FixedToBcdDouble,
 }
 
 /// One row of the operation table.
@@ -116,6 +134,8 @@ pub struct OpInfo {
     /// A typical operand in each set, empty when the operation takes none.
     pub example_en: &'static str,
     pub example_de: &'static str,
+    /// The operation group only some CPUs have (`None`: every CPU has it).
+    pub feature: Option<Feature>,
 }
 
 const fn basic(
@@ -134,6 +154,7 @@ const fn basic(
         summary,
         example_en,
         example_de,
+        feature: None,
     }
 }
 
@@ -153,9 +174,31 @@ const fn supp(
         summary,
         example_en,
         example_de,
+        feature: None,
     }
 }
 
+/// An operation without operand of a group only some CPUs have; the same word in both sets.
+const fn featured(
+    op: OpCode,
+    word: &'static str,
+    supplementary: bool,
+    summary: &'static str,
+    feature: Feature,
+) -> OpInfo {
+    OpInfo {
+        op,
+        en: word,
+        de: word,
+        supplementary,
+        summary,
+        example_en: "",
+        example_de: "",
+        feature: Some(feature),
+    }
+}
+
+use Feature::{DoubleBcd, DoubleConversions, FloatingPoint};
 use OpCode::*;
 
 pub static OPERATIONS: &[OpInfo] = &[
@@ -530,6 +573,120 @@ pub static OPERATIONS: &[OpInfo] = &[
         "generate a data block of ACCU 1 words",
         "DB 20",
         "DB 20",
+    ),
+    // CPU 928B programming guide, table 3-7 (arithmetic, basic operations) and table 3-21
+    // (conversion operations, supplementary); the G comparisons sit with the F comparisons.
+    featured(
+        AddFloat,
+        "+G",
+        false,
+        "floating-point add: ACCU 2 + ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        SubFloat,
+        "-G",
+        false,
+        "floating-point subtract: ACCU 2 - ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        MulFloat,
+        "X G",
+        false,
+        "floating-point multiply: ACCU 2 * ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        DivFloat,
+        ":G",
+        false,
+        "floating-point divide: ACCU 2 / ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpEqFloat,
+        "!=G",
+        false,
+        "floating-point compare ACCU 2 = ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpNeFloat,
+        "><G",
+        false,
+        "floating-point compare ACCU 2 <> ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpGtFloat,
+        ">G",
+        false,
+        "floating-point compare ACCU 2 > ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpGeFloat,
+        ">=G",
+        false,
+        "floating-point compare ACCU 2 >= ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpLtFloat,
+        "<G",
+        false,
+        "floating-point compare ACCU 2 < ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpLeFloat,
+        "<=G",
+        false,
+        "floating-point compare ACCU 2 <= ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        FixedToFloat,
+        "FDG",
+        true,
+        "ACCU 1: 32-bit fixed point to floating point",
+        FloatingPoint,
+    ),
+    featured(
+        FloatToFixed,
+        "GFD",
+        true,
+        "ACCU 1: floating point to 32-bit fixed point",
+        FloatingPoint,
+    ),
+    featured(
+        BcdToFixed,
+        "DEF",
+        true,
+        "ACCU 1-L: 16-bit BCD to fixed point",
+        DoubleConversions,
+    ),
+    featured(
+        FixedToBcd,
+        "DUF",
+        true,
+        "ACCU 1-L: 16-bit fixed point to BCD",
+        DoubleConversions,
+    ),
+    featured(
+        BcdToFixedDouble,
+        "DED",
+        true,
+        "ACCU 1: 32-bit BCD to fixed point",
+        DoubleBcd,
+    ),
+    featured(
+        FixedToBcdDouble,
+        "DUD",
+        true,
+        "ACCU 1: 32-bit fixed point to BCD",
+        DoubleBcd,
     ),
 ];
 

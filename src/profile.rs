@@ -16,11 +16,13 @@ pub enum Family {
 /// An operation outside every group runs on every profile.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Feature {
-    /// S5 floating point: `+G -G XG :G`, the `G` comparisons, `FDG GFD`.
+    /// S5 floating point: `+G -G XG :G`, the `G` comparisons, `FDG GFD` (CPU 928B programming
+    /// guide, tables 3-7 and 3-21).
     FloatingPoint,
-    /// 32-bit BCD conversions `DED DUD`.
+    /// 32-bit BCD ↔ fixed-point conversions `DED DUD` (CPU 928B programming guide, table 3-21).
     DoubleBcd,
-    /// 16-to-32-bit conversions `DEF DUF`.
+    /// 16-bit BCD ↔ fixed-point conversions `DEF DUF` (CPU 928B programming guide, table
+    /// 3-21); the name is kept from when the group was planned.
     DoubleConversions,
     /// `ADD KB/KF/DH`.
     AddConstant,
@@ -28,6 +30,20 @@ pub enum Feature {
     SystemOperations,
     /// Register and page operations: `MBA MAB MSA MAS ABR LRB TRB`.
     RegisterOperations,
+}
+
+impl Feature {
+    /// The group in words, for "`XG` needs floating point".
+    pub fn name(self) -> &'static str {
+        match self {
+            Feature::FloatingPoint => "floating point",
+            Feature::DoubleBcd => "32-bit BCD conversion",
+            Feature::DoubleConversions => "16-bit BCD conversion",
+            Feature::AddConstant => "adding a constant",
+            Feature::SystemOperations => "system operations",
+            Feature::RegisterOperations => "register operations",
+        }
+    }
 }
 
 /// What the block nesting limit counts.

@@ -379,6 +379,9 @@ impl<'a> Compiler<'a> {
         let four_accumulators = self.profile.accumulators == 4;
         match op {
             Op::Arithmetic(kind) if four_accumulators => op = Op::ArithmeticStack(kind),
+            Op::FloatArithmetic { kind, .. } if four_accumulators => {
+                op = Op::FloatArithmetic { kind, stack: true }
+            }
             Op::Enter if !four_accumulators => {
                 return self.fail(CheckError::NotOnCpu {
                     op: op_word.to_string(),

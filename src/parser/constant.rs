@@ -138,9 +138,7 @@ pub fn parse_constant(
         }
         ConstFormat::Float => match float(&texts, &kinds) {
             Some(Ok(value)) => word(value),
-            Some(Err(_)) => Err(out_of_range(
-                "±0.1469368 × 10⁻³⁸ … ±0.1701412 × 10³⁹, or 0",
-            )),
+            Some(Err(_)) => Err(out_of_range("±0.1469368 × 10⁻³⁸ … ±0.1701412 × 10³⁹, or 0")),
             None => Err(bad(
                 "±mantissa±exponent, e.g. +1234567+02 (0.1234567 × 10²)",
             )),
@@ -208,7 +206,12 @@ fn float(texts: &[&str], kinds: &[TokenKind]) -> Option<Result<u32, f64>> {
 }
 
 /// `+`, `1234567`, `-`, `02` as the decimal text `+0.1234567e-02`.
-fn pg_float_text(sign: &str, mantissa: &str, exponent_sign: &str, exponent: &str) -> Option<String> {
+fn pg_float_text(
+    sign: &str,
+    mantissa: &str,
+    exponent_sign: &str,
+    exponent: &str,
+) -> Option<String> {
     let digits = |text: &str, max: usize| {
         (1..=max).contains(&text.len()) && text.bytes().all(|b| b.is_ascii_digit())
     };
@@ -231,7 +234,11 @@ pub fn pg_float_form(negative: bool, integer: &str, fraction: &str) -> String {
     if digits.trim_end_matches('0').is_empty() {
         return format!("{sign}0000000+00");
     }
-    let mantissa: String = digits.chars().chain(std::iter::repeat('0')).take(7).collect();
+    let mantissa: String = digits
+        .chars()
+        .chain(std::iter::repeat('0'))
+        .take(7)
+        .collect();
     let exponent_sign = if exponent < 0 { '-' } else { '+' };
     format!("{sign}{mantissa}{exponent_sign}{:02}", exponent.abs())
 }
@@ -250,7 +257,10 @@ pub fn decimal_float_warnings(file: FileId, source: &str, tokens: &[Token]) -> V
             rest = &rest[1..];
         }
         let negative = rest.first().is_some_and(|next| next.kind == Minus);
-        if rest.first().is_some_and(|next| matches!(next.kind, Plus | Minus)) {
+        if rest
+            .first()
+            .is_some_and(|next| matches!(next.kind, Plus | Minus))
+        {
             rest = &rest[1..];
         }
         if let [integer, dot, fraction, ..] = rest {
@@ -263,11 +273,7 @@ pub fn decimal_float_warnings(file: FileId, source: &str, tokens: &[Token]) -> V
                         start: token.start,
                         end: fraction.end,
                     },
-                    pg_form: pg_float_form(
-                        negative,
-                        integer.text(source),
-                        fraction.text(source),
-                    ),
+                    pg_form: pg_float_form(negative, integer.text(source), fraction.text(source)),
                 });
             }
         }
@@ -301,9 +307,15 @@ mod tests {
         let unsigned = kg(&["1234567", "+", "3"], &[Number, Plus, Number]);
         assert!((unsigned - 123.4567).abs() < 1e-4);
         // Truncated, not rounded: just below 2457.6.
-        assert_eq!(kg(&["2457", ".", "6"], &[Number, Dot, Number]), 2457.599609375);
+        assert_eq!(
+            kg(&["2457", ".", "6"], &[Number, Dot, Number]),
+            2457.599609375
+        );
         assert_eq!(kg(&["-", "2"], &[Minus, Number]), -2.0);
-        assert_eq!(float(&["12345678", "+", "1"], &[Number, Plus, Number]), None);
+        assert_eq!(
+            float(&["12345678", "+", "1"], &[Number, Plus, Number]),
+            None
+        );
         assert_eq!(
             float(&["+", "9", "+", "99"], &[Plus, Number, Plus, Number]),
             Some(Err(0.9e99))
