@@ -386,6 +386,8 @@ pub static PROFILES: &[Profile] = &[
         ],
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
+        // The S5-95F manual at hand names no floating-point or BCD conversion operations (its
+        // operation set is the S5-95U's basic and supplementary operations).
         features: &[],
         timings: S5_95F_TIMES,
         rules: &[
@@ -456,6 +458,8 @@ pub static PROFILES: &[Profile] = &[
         ],
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
+        // A SPEED7 CPU runs STEP 7 operations: IEEE floating point (`+R`) and `BTD`/`DTB`, not
+        // the S5 groups; its STEP 5 operations are the common ones.
         features: &[],
         timings: SPEED7_TIMES,
         rules: &[
@@ -483,6 +487,15 @@ pub fn find(name: &str) -> Option<&'static Profile> {
     PROFILES
         .iter()
         .find(|profile| profile.name.eq_ignore_ascii_case(name))
+}
+
+/// The names of the profiles that have `feature`.
+pub fn having(feature: Feature) -> Vec<&'static str> {
+    PROFILES
+        .iter()
+        .filter(|profile| profile.has(feature))
+        .map(|profile| profile.name)
+        .collect()
 }
 
 pub fn names() -> Vec<&'static str> {

@@ -22,7 +22,7 @@ pub use ranges::{address_in_range, check_address};
 
 use crate::ast::{Block, BlockBody, BlockId, LogicBody, Operand, ParamDecl, SourceUnit, Statement};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
-use crate::profile::Profile;
+use crate::profile::{self, Profile};
 use crate::source::{SourceSet, Span};
 
 /// One compiled logic block.
@@ -351,6 +351,15 @@ impl<'a> Compiler<'a> {
     ) -> Option<(Op, Op)> {
         let info = mnemonics::op_info(statement.op);
         let op_word = mnemonics::op_word(context.set, statement.op);
+        if let Some(feature) = info.feature.filter(|feature| !self.profile.has(*feature)) {
+            return self.fail(CheckError::OperationNotOnCpu {
+                op: op_word.to_string(),
+                at: statement.op_span,
+                cpu: self.profile.name,
+                feature: feature.name(),
+                profiles: profile::having(feature).join(", "),
+            });
+        }
         if info.supplementary && !context.id.kind.is_function() {
             return self.fail(CheckError::Supplementary {
                 op: op_word.to_string(),
