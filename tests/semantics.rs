@@ -521,7 +521,9 @@ fn floating_point_arithmetic_gives_the_s5_bits() {
     let body: String = operations
         .iter()
         .map(|(op, at)| {
-            format!("      L  KG +1250000+02\n      L  KG -2500000+01\n      {op}\n      T  FD {at}\n")
+            format!(
+                "      L  KG +1250000+02\n      L  KG -2500000+01\n      {op}\n      T  FD {at}\n"
+            )
         })
         .collect();
     let (cpu, _) = run_once(&fb(&body));
