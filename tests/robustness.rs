@@ -189,6 +189,7 @@ fn random_fb(picks: &[(usize, bool)], cpu: &profile::Profile) -> String {
         let two_accumulators = cpu.accumulators == 2;
         if info.op == awl::mnemonics::OpCode::BlockEnd
             || (info.op == awl::mnemonics::OpCode::Enter && two_accumulators)
+            || info.feature.is_some_and(|feature| !cpu.has(feature))
         {
             continue;
         }
