@@ -204,6 +204,24 @@ pub fn build_with_symbols(
     }
 }
 
+/// The profiles on which the program compiles without errors, each checked as with `--cpu`;
+/// `awl check` without `--cpu` names them. Every error counts, so an operation or a block a
+/// CPU lacks rules that CPU out.
+pub fn profiles_without_errors(
+    sources: &SourceSet,
+    symbol_files: &[SourceFile],
+    forced: Option<MnemonicSet>,
+) -> Vec<&'static str> {
+    crate::profile::PROFILES
+        .iter()
+        .filter(|profile| {
+            !build_with_symbols(sources.clone(), symbol_files.to_vec(), forced, profile)
+                .has_errors()
+        })
+        .map(|profile| profile.name)
+        .collect()
+}
+
 /// Parses and compiles source text held in memory (tests, benchmarks, fuzzing).
 pub fn build_text(name: &str, text: &str, profile: &'static Profile) -> Frontend {
     let mut sources = SourceSet::default();

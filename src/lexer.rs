@@ -24,11 +24,13 @@ pub enum TokenKind {
     /// `=NAME`: a formal operand or a jump label inside an FB.
     #[regex(r"=[A-Za-z_\u{C0}-\u{FF}][A-Za-z0-9_\u{C0}-\u{FF}]*")]
     FormalRef,
-    /// A fixed-point comparison: `!=F`, `><F`, `>F`, `>=F`, `<F`, `<=F`.
-    #[regex(r"(!=|><|>=|<=|>|<)[Ff]")]
+    /// A fixed-point or floating-point comparison: `!=F`, `><F`, `>F`, `>=F`, `<F`, `<=F`,
+    /// and the same with `G`.
+    #[regex(r"(!=|><|>=|<=|>|<)[FfGg]")]
     Compare,
-    /// Fixed-point addition or subtraction: `+F`, `-F` (before a symbol of the same length).
-    #[regex(r"[+\-][Ff]", priority = 10)]
+    /// Fixed- or floating-point addition or subtraction: `+F`, `-F`, `+G`, `-G` (before a
+    /// symbol of the same length).
+    #[regex(r"[+\-][FfGg]", priority = 10)]
     AddSub,
     /// `-NAME`: a symbol of the assignment list standing for an operand.
     #[regex(r"-[A-Za-z_\u{C0}-\u{FF}][A-Za-z0-9_\u{C0}-\u{FF}]*")]
@@ -126,6 +128,7 @@ mod tests {
         assert_eq!(kinds("U -START"), [Word, SymbolRef]);
         assert_eq!(kinds("SPA -FILL"), [Word, SymbolRef]);
         assert_eq!(kinds("-F +F"), [AddSub, AddSub]);
+        assert_eq!(kinds("-G +g >=G"), [AddSub, AddSub, Compare]);
         assert_eq!(kinds("0003 :***"), [Number, Colon, SegmentEnd]);
     }
 

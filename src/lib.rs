@@ -27,6 +27,7 @@ pub mod profile;
 pub mod program_status;
 pub mod report;
 pub mod runner;
+pub mod s5_float;
 pub mod scenario;
 pub mod source;
 pub mod state;

@@ -119,6 +119,22 @@ pub enum OpCode {
     AddToBr,
     LoadRelativeBr,
     TransferRelativeBr,
+    AddFloat,
+    SubFloat,
+    MulFloat,
+    DivFloat,
+    CmpEqFloat,
+    CmpNeFloat,
+    CmpGtFloat,
+    CmpGeFloat,
+    CmpLtFloat,
+    CmpLeFloat,
+    FixedToFloat,
+    FloatToFixed,
+    BcdToFixed,
+    FixedToBcd,
+    BcdToFixedDouble,
+    FixedToBcdDouble,
 }
 
 /// One row of the operation table.
@@ -133,6 +149,8 @@ pub struct OpInfo {
     /// A typical operand in each set, empty when the operation takes none.
     pub example_en: &'static str,
     pub example_de: &'static str,
+    /// The operation group only some CPUs have (`None`: every CPU has it).
+    pub feature: Option<Feature>,
 }
 
 const fn basic(
@@ -151,6 +169,7 @@ const fn basic(
         summary,
         example_en,
         example_de,
+        feature: None,
     }
 }
 
@@ -170,9 +189,39 @@ const fn supp(
         summary,
         example_en,
         example_de,
+        feature: None,
     }
 }
 
+/// `info`, on the CPUs with `feature` only.
+const fn needs(info: OpInfo, feature: Feature) -> OpInfo {
+    OpInfo {
+        feature: Some(feature),
+        ..info
+    }
+}
+
+/// An operation without operand of a group only some CPUs have; the same word in both sets.
+const fn featured(
+    op: OpCode,
+    word: &'static str,
+    supplementary: bool,
+    summary: &'static str,
+    feature: Feature,
+) -> OpInfo {
+    OpInfo {
+        op,
+        en: word,
+        de: word,
+        supplementary,
+        summary,
+        example_en: "",
+        example_de: "",
+        feature: Some(feature),
+    }
+}
+
+use Feature::{BcdConversions, DoubleBcd, FloatingPoint};
 use OpCode::*;
 
 pub static OPERATIONS: &[OpInfo] = &[
@@ -582,108 +631,244 @@ pub static OPERATIONS: &[OpInfo] = &[
         "=KON",
         "=KON",
     ),
-    supp(
-        AddConstant,
-        "ADD",
-        "ADD",
-        "add a constant to ACCU 1 (KB, KF: low word; DH: 32 bits)",
-        "KF +5",
-        "KF +5",
+    needs(
+        supp(
+            AddConstant,
+            "ADD",
+            "ADD",
+            "add a constant to ACCU 1 (KB, KF: low word; DH: 32 bits)",
+            "KF +5",
+            "KF +5",
+        ),
+        Feature::AddConstant,
     ),
     // System and register operations on absolute addresses: parsed and timed, but running one
     // stops the CPU (awl has no S5 memory map; see grammar/README.md).
-    supp(
-        TransferBytes,
-        "TNB",
-        "TNB",
-        "transfer a field of n bytes between absolute addresses (not simulated)",
-        "10",
-        "10",
+    needs(
+        supp(
+            TransferBytes,
+            "TNB",
+            "TNB",
+            "transfer a field of n bytes between absolute addresses (not simulated)",
+            "10",
+            "10",
+        ),
+        Feature::SystemOperations,
     ),
-    supp(
-        LoadIndirect,
-        "LIR",
-        "LIR",
-        "load register n from the absolute address in ACCU 1 (not simulated)",
-        "2",
-        "2",
+    needs(
+        supp(
+            LoadIndirect,
+            "LIR",
+            "LIR",
+            "load register n from the absolute address in ACCU 1 (not simulated)",
+            "2",
+            "2",
+        ),
+        Feature::SystemOperations,
     ),
-    supp(
-        TransferIndirect,
-        "TIR",
-        "TIR",
-        "transfer register n to the absolute address in ACCU 1 (not simulated)",
-        "2",
-        "2",
+    needs(
+        supp(
+            TransferIndirect,
+            "TIR",
+            "TIR",
+            "transfer register n to the absolute address in ACCU 1 (not simulated)",
+            "2",
+            "2",
+        ),
+        Feature::SystemOperations,
     ),
-    supp(
-        MoveBrToAccu,
-        "MBA",
-        "MBA",
-        "move the base address register BR to ACCU 1 (not simulated)",
-        "",
-        "",
+    needs(
+        supp(
+            MoveBrToAccu,
+            "MBA",
+            "MBA",
+            "move the base address register BR to ACCU 1 (not simulated)",
+            "",
+            "",
+        ),
+        Feature::RegisterOperations,
     ),
-    supp(
-        MoveAccuToBr,
-        "MAB",
-        "MAB",
-        "move ACCU 1 to the base address register BR (not simulated)",
-        "",
-        "",
+    needs(
+        supp(
+            MoveAccuToBr,
+            "MAB",
+            "MAB",
+            "move ACCU 1 to the base address register BR (not simulated)",
+            "",
+            "",
+        ),
+        Feature::RegisterOperations,
     ),
-    supp(
-        MoveSaToAccu,
-        "MSA",
-        "MSA",
-        "move the STEP address counter SA to ACCU 1 (not simulated)",
-        "",
-        "",
+    needs(
+        supp(
+            MoveSaToAccu,
+            "MSA",
+            "MSA",
+            "move the STEP address counter SA to ACCU 1 (not simulated)",
+            "",
+            "",
+        ),
+        Feature::RegisterOperations,
     ),
-    supp(
-        MoveAccuToSa,
-        "MAS",
-        "MAS",
-        "move ACCU 1 to the STEP address counter SA (not simulated)",
-        "",
-        "",
+    needs(
+        supp(
+            MoveAccuToSa,
+            "MAS",
+            "MAS",
+            "move ACCU 1 to the STEP address counter SA (not simulated)",
+            "",
+            "",
+        ),
+        Feature::RegisterOperations,
     ),
-    supp(
-        AddToBr,
-        "ABR",
-        "ABR",
-        "add n to the base address register BR (not simulated)",
-        "4",
-        "4",
+    needs(
+        supp(
+            AddToBr,
+            "ABR",
+            "ABR",
+            "add n to the base address register BR (not simulated)",
+            "4",
+            "4",
+        ),
+        Feature::RegisterOperations,
     ),
-    supp(
-        LoadRelativeBr,
-        "LRB",
-        "LRB",
-        "load ACCU 1 from the word at BR + n (not simulated)",
-        "4",
-        "4",
+    needs(
+        supp(
+            LoadRelativeBr,
+            "LRB",
+            "LRB",
+            "load ACCU 1 from the word at BR + n (not simulated)",
+            "4",
+            "4",
+        ),
+        Feature::RegisterOperations,
     ),
-    supp(
-        TransferRelativeBr,
-        "TRB",
-        "TRB",
-        "transfer ACCU 1 to the word at BR + n (not simulated)",
-        "4",
-        "4",
+    needs(
+        supp(
+            TransferRelativeBr,
+            "TRB",
+            "TRB",
+            "transfer ACCU 1 to the word at BR + n (not simulated)",
+            "4",
+            "4",
+        ),
+        Feature::RegisterOperations,
+    ),
+    // CPU 928B programming guide, table 3-7 (arithmetic, basic operations) and table 3-21
+    // (conversion operations, supplementary); the G comparisons sit with the F comparisons.
+    featured(
+        AddFloat,
+        "+G",
+        false,
+        "floating-point add: ACCU 2 + ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        SubFloat,
+        "-G",
+        false,
+        "floating-point subtract: ACCU 2 - ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        MulFloat,
+        "X G",
+        false,
+        "floating-point multiply: ACCU 2 * ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        DivFloat,
+        ":G",
+        false,
+        "floating-point divide: ACCU 2 / ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpEqFloat,
+        "!=G",
+        false,
+        "floating-point compare ACCU 2 = ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpNeFloat,
+        "><G",
+        false,
+        "floating-point compare ACCU 2 <> ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpGtFloat,
+        ">G",
+        false,
+        "floating-point compare ACCU 2 > ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpGeFloat,
+        ">=G",
+        false,
+        "floating-point compare ACCU 2 >= ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpLtFloat,
+        "<G",
+        false,
+        "floating-point compare ACCU 2 < ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        CmpLeFloat,
+        "<=G",
+        false,
+        "floating-point compare ACCU 2 <= ACCU 1",
+        FloatingPoint,
+    ),
+    featured(
+        FixedToFloat,
+        "FDG",
+        true,
+        "ACCU 1: 32-bit fixed point to floating point",
+        FloatingPoint,
+    ),
+    featured(
+        FloatToFixed,
+        "GFD",
+        true,
+        "ACCU 1: floating point to 32-bit fixed point",
+        FloatingPoint,
+    ),
+    featured(
+        BcdToFixed,
+        "DEF",
+        true,
+        "ACCU 1-L: 16-bit BCD to fixed point",
+        BcdConversions,
+    ),
+    featured(
+        FixedToBcd,
+        "DUF",
+        true,
+        "ACCU 1-L: 16-bit fixed point to BCD",
+        BcdConversions,
+    ),
+    featured(
+        BcdToFixedDouble,
+        "DED",
+        true,
+        "ACCU 1: 32-bit BCD to fixed point",
+        DoubleBcd,
+    ),
+    featured(
+        FixedToBcdDouble,
+        "DUD",
+        true,
+        "ACCU 1: 32-bit fixed point to BCD",
+        DoubleBcd,
     ),
 ];
-
-/// The CPU feature an operation needs, for the operations only some CPUs have.
-pub fn supplementary_feature(op: OpCode) -> Option<Feature> {
-    match op {
-        AddConstant => Some(Feature::AddConstant),
-        TransferBytes | LoadIndirect | TransferIndirect => Some(Feature::SystemOperations),
-        MoveBrToAccu | MoveAccuToBr | MoveSaToAccu | MoveAccuToSa | AddToBr | LoadRelativeBr
-        | TransferRelativeBr => Some(Feature::RegisterOperations),
-        _ => None,
-    }
-}
 
 /// Operand areas.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

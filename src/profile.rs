@@ -16,18 +16,34 @@ pub enum Family {
 /// An operation outside every group runs on every profile.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Feature {
-    /// S5 floating point: `+G -G XG :G`, the `G` comparisons, `FDG GFD`.
+    /// S5 floating point: `+G -G XG :G`, the `G` comparisons, `FDG GFD` (CPU 928B programming
+    /// guide, tables 3-7 and 3-21).
     FloatingPoint,
-    /// 32-bit BCD conversions `DED DUD`.
+    /// 32-bit BCD ↔ fixed-point conversions `DED DUD` (CPU 928B programming guide, table 3-21).
     DoubleBcd,
-    /// 16-to-32-bit conversions `DEF DUF`.
-    DoubleConversions,
+    /// 16-bit BCD ↔ fixed-point conversions `DEF DUF` (CPU 928B programming guide, table
+    /// 3-21).
+    BcdConversions,
     /// `ADD KB/KF/DH`.
     AddConstant,
     /// System operations on absolute addresses: `TNB LIR TIR`.
     SystemOperations,
     /// Register and page operations: `MBA MAB MSA MAS ABR LRB TRB`.
     RegisterOperations,
+}
+
+impl Feature {
+    /// The group in words, for "`XG` needs floating point".
+    pub fn name(self) -> &'static str {
+        match self {
+            Feature::FloatingPoint => "floating point",
+            Feature::DoubleBcd => "32-bit BCD conversion",
+            Feature::BcdConversions => "16-bit BCD conversion",
+            Feature::AddConstant => "adding a constant",
+            Feature::SystemOperations => "system operations",
+            Feature::RegisterOperations => "register operations",
+        }
+    }
 }
 
 /// What the block nesting limit counts.
@@ -307,7 +323,7 @@ pub static PROFILES: &[Profile] = &[
         features: &[
             Feature::FloatingPoint,
             Feature::DoubleBcd,
-            Feature::DoubleConversions,
+            Feature::BcdConversions,
             Feature::AddConstant,
             Feature::SystemOperations,
             Feature::RegisterOperations,
@@ -370,6 +386,8 @@ pub static PROFILES: &[Profile] = &[
         ],
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
+        // The S5-95F manual at hand names no floating-point or BCD conversion operations (its
+        // operation set is the S5-95U's basic and supplementary operations).
         features: &[],
         timings: S5_95F_TIMES,
         rules: &[
@@ -440,6 +458,8 @@ pub static PROFILES: &[Profile] = &[
         ],
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
+        // A SPEED7 CPU runs STEP 7 operations: IEEE floating point (`+R`) and `BTD`/`DTB`, not
+        // the S5 groups; its STEP 5 operations are the common ones.
         features: &[],
         timings: SPEED7_TIMES,
         rules: &[
@@ -467,6 +487,15 @@ pub fn find(name: &str) -> Option<&'static Profile> {
     PROFILES
         .iter()
         .find(|profile| profile.name.eq_ignore_ascii_case(name))
+}
+
+/// The names of the profiles that have `feature`.
+pub fn having(feature: Feature) -> Vec<&'static str> {
+    PROFILES
+        .iter()
+        .filter(|profile| profile.has(feature))
+        .map(|profile| profile.name)
+        .collect()
 }
 
 pub fn names() -> Vec<&'static str> {

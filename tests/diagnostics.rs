@@ -181,6 +181,16 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
             "FB 1\nNAME :X\n      ENT\n      BE\n".into(),
         ),
         (
+            "awl::check::operation_not_on_cpu",
+            "s5-95f",
+            "OB 1\n      L  KG +1000000+01\n      L  KG +2000000+01\n      +G\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::decimal_float",
+            "sinumerik-840c",
+            "OB 1\n      L  KG 2457.6\n      BE\n".into(),
+        ),
+        (
             "awl::check::indirect_target",
             "sinumerik-840c",
             "FB 1\nNAME :X\n      DO FW 10\n      BE\n".into(),

@@ -189,6 +189,7 @@ fn random_fb(picks: &[(usize, bool)], cpu: &profile::Profile) -> String {
         let two_accumulators = cpu.accumulators == 2;
         if info.op == awl::mnemonics::OpCode::BlockEnd
             || (info.op == awl::mnemonics::OpCode::Enter && two_accumulators)
+            || info.feature.is_some_and(|feature| !cpu.has(feature))
         {
             continue;
         }
@@ -220,7 +221,7 @@ fn random_fb(picks: &[(usize, bool)], cpu: &profile::Profile) -> String {
     }
     body.push_str(&"      )\n".repeat(usize::from(open)));
     format!(
-        "OB 1\n      C  DB 10\n      JU FB 1\nNAME :R\nX    :I 0.0\n      BE\nFB 1\nNAME :R\nDES  :X I BI\n{body}M001 :NOP 0\n      BE\nPB 3\n      BE\nFB 5\n      BE\nDB 10\n 0: KF +1\n 1: KF +2\n 2: KF +3\n"
+        "OB 1\n      C  DB 10\n      JU FB 1\nNAME :R\nX    :I 0.0\nTIM  :T 1\nKON  :KF +5\n      BE\nFB 1\nNAME :R\nDES  :X I BI\nDES  :TIM T\nDES  :KON D KF\n{body}M001 :NOP 0\n      BE\nPB 3\n      BE\nFB 5\n      BE\nDB 10\n 0: KF +1\n 1: KF +2\n 2: KF +3\n"
     )
 }
 

@@ -512,3 +512,61 @@ fn twos_complement_sets_the_condition_codes() {
     let (cpu, _) = run_once(&fb(body));
     assert_eq!(fw(&cpu, 10), 1);
 }
+
+/// S5 floating point (CPU 928B programming guide, 2.2 and table 3-7): 12.5 and −2.5 as the PG
+/// writes them, each result's bits in FD.
+#[test]
+fn floating_point_arithmetic_gives_the_s5_bits() {
+    let operations = [("+G", 0), ("-G", 4), ("X G", 8), (":G", 12)];
+    let body: String = operations
+        .iter()
+        .map(|(op, at)| {
+            format!(
+                "      L  KG +1250000+02\n      L  KG -2500000+01\n      {op}\n      T  FD {at}\n"
+            )
+        })
+        .collect();
+    let (cpu, _) = run_once(&fb(&body));
+    assert_eq!(fd(&cpu, 0), 0x0450_0000, "10.0");
+    assert_eq!(fd(&cpu, 4), 0x0478_0000, "15.0");
+    assert_eq!(fd(&cpu, 8), 0x0583_0000, "-31.25");
+    assert_eq!(fd(&cpu, 12), 0x03B0_0000, "-5.0");
+}
+
+#[test]
+fn floating_point_comparisons_and_overflow() {
+    let body = "      L  KG +2500000+01\n      L  KG -1000000+01\n      >G\n      =  F 20.0\n      <=G\n      =  F 20.1\n      !=G\n      =  F 20.2\n      L  KG +1000000+38\n      L  KG +1000000+38\n      X G\n      T  FD 24\n      JO =OVF\n      BEU\nOVF  :L  KF +1\n      T  FW 30";
+    let (cpu, _) = run_once(&fb(body));
+    assert!(flag(&cpu, 20, 0), "2.5 > -1");
+    assert!(!flag(&cpu, 20, 1));
+    assert!(!flag(&cpu, 20, 2));
+    assert_eq!(fw(&cpu, 30), 1, "10^37 × 10^37 overflows: OV");
+    assert_eq!(fd(&cpu, 24), 0x7F7F_FFFF, "the largest number");
+}
+
+#[test]
+fn conversions_of_accu_1() {
+    let body = "      L  DH FFFFFB2E\n      FDG\n      T  FD 0\n      GFD\n      T  FD 4\n      L  KH F123\n      DEF\n      T  FW 8\n      L  DH 0012D687\n      DUD\n      T  FD 12\n      L  DH F7654321\n      DED\n      T  FD 16\n      L  KF -45\n      DUF\n      T  FW 20";
+    let (cpu, _) = run_once(&fb(body));
+    assert_eq!(awl::s5_float::decode(fd(&cpu, 0)), -1234.0, "FDG");
+    assert_eq!(fd(&cpu, 4) as i32, -1234, "GFD");
+    assert_eq!(fw(&cpu, 8), -123, "DEF");
+    assert_eq!(fd(&cpu, 12), 0x0123_4567, "DUD");
+    assert_eq!(fd(&cpu, 16) as i32, -7_654_321, "DED");
+    assert_eq!(fw(&cpu, 20) as u16, 0xF045, "DUF");
+}
+
+#[test]
+fn floating_point_is_an_error_on_a_cpu_without_it() {
+    let program = "OB 1\n      L  KG +1000000+01\n      L  KG +2000000+01\n      +G\n      T  FD 0\n      BE\n";
+    let profile = awl::profile::find("s5-95f").unwrap();
+    let built = awl::frontend::build_text("fp.awl", program, profile);
+    let messages: Vec<String> = built
+        .diagnostics
+        .iter()
+        .map(|diagnostic| diagnostic.to_string())
+        .collect();
+    assert_eq!(messages, ["`+G` needs floating point: sinumerik-840c"]);
+    let default = awl::profile::find(awl::profile::DEFAULT_PROFILE).unwrap();
+    assert!(!awl::frontend::build_text("fp.awl", program, default).has_errors());
+}

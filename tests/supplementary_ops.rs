@@ -237,8 +237,9 @@ fn system_operation_numbers_are_range_checked() {
 
 #[test]
 fn each_new_operation_names_its_feature() {
-    use awl::mnemonics::{OpCode, supplementary_feature};
+    use awl::mnemonics::{OpCode, op_info};
     use awl::profile::Feature;
+    let supplementary_feature = |op| op_info(op).feature;
     assert_eq!(
         supplementary_feature(OpCode::AddConstant),
         Some(Feature::AddConstant)

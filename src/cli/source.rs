@@ -10,8 +10,13 @@ use super::{
     Console, DumpArgs, EXIT_OK, EXIT_SOURCE_ERRORS, SourceOptions, plural, selected_profile,
 };
 
-/// Runs the front end and prints its diagnostics; `None` when a file could not be read.
-fn build(options: &SourceOptions, console: &mut Console) -> Option<Frontend> {
+/// Runs the front end and prints its diagnostics; `None` when a file could not be read. With
+/// `with_profiles` and no `--cpu`, also the profiles the program compiles on without errors.
+fn build(
+    options: &SourceOptions,
+    console: &mut Console,
+    with_profiles: bool,
+) -> Option<(Frontend, Option<Vec<&'static str>>)> {
     let sources = match frontend::read_sources(&options.files) {
         Ok(sources) => sources,
         Err(errors) => {
@@ -31,16 +36,26 @@ fn build(options: &SourceOptions, console: &mut Console) -> Option<Frontend> {
         }
     };
     let profile = selected_profile(options.cpu.as_deref());
-    let built = frontend::build_with_symbols(
-        sources,
-        symbol_files,
-        options.mnemonics.map(Into::into),
-        profile,
-    );
+    let forced = options.mnemonics.map(Into::into);
+    let runs_on = (with_profiles && options.cpu.is_none())
+        .then(|| frontend::profiles_without_errors(&sources, &symbol_files, forced));
+    let built = frontend::build_with_symbols(sources, symbol_files, forced, profile);
     for diagnostic in &built.diagnostics {
         console.report(&diagnostics::report(&built.sources, diagnostic));
     }
-    Some(built)
+    Some((built, runs_on))
+}
+
+/// "runs on: …" after `awl check` without `--cpu`.
+fn runs_on_note(profiles: &[&str]) -> String {
+    if profiles.is_empty() {
+        "note: no CPU profile compiles it without errors\n".to_string()
+    } else {
+        format!(
+            "note: compiles without errors for --cpu {}\n",
+            profiles.join(", ")
+        )
+    }
 }
 
 /// "0 errors, 2 warnings in 1 file": the front end's diagnostics and `more_warnings` besides.
@@ -61,12 +76,15 @@ fn count_summary(built: &Frontend, more_warnings: usize) -> String {
 }
 
 pub fn check(options: &SourceOptions, console: &mut Console) -> u8 {
-    let Some(built) = build(options, console) else {
+    let Some((built, runs_on)) = build(options, console, true) else {
         return EXIT_SOURCE_ERRORS;
     };
     let blocks = built.compiled.program.blocks.len() + built.compiled.program.data_blocks.len();
     if built.has_errors() {
         console.err(&format!("awl check: {}\n", count_summary(&built, 0)));
+        if let Some(profiles) = runs_on {
+            console.err(&runs_on_note(&profiles));
+        }
         return EXIT_SOURCE_ERRORS;
     }
     let warnings = program_warnings(&built.compiled.program, &built.sources);
@@ -76,12 +94,15 @@ pub fn check(options: &SourceOptions, console: &mut Console) -> u8 {
         plural(blocks as u64, "block"),
         count_summary(&built, warnings.len())
     ));
+    if let Some(profiles) = runs_on {
+        console.out(&runs_on_note(&profiles));
+    }
     EXIT_OK
 }
 
 pub fn dump(args: &DumpArgs, console: &mut Console) -> u8 {
     let options = &args.source;
-    let Some(built) = build(options, console) else {
+    let Some((built, _)) = build(options, console, false) else {
         return EXIT_SOURCE_ERRORS;
     };
     if built.has_errors() {

@@ -94,6 +94,36 @@ pub enum Comparison {
     Le,
 }
 
+/// The conversions of ACCU 1 (CPU 928B programming guide, table 3-21).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Conversion {
+    /// `FDG`
+    FixedToFloat,
+    /// `GFD`
+    FloatToFixed,
+    /// `DEF`
+    BcdToFixed,
+    /// `DUF`
+    FixedToBcd,
+    /// `DED`
+    BcdToFixedDouble,
+    /// `DUD`
+    FixedToBcdDouble,
+}
+
+impl Conversion {
+    pub fn op_code(self) -> OpCode {
+        match self {
+            Conversion::FixedToFloat => OpCode::FixedToFloat,
+            Conversion::FloatToFixed => OpCode::FloatToFixed,
+            Conversion::BcdToFixed => OpCode::BcdToFixed,
+            Conversion::FixedToBcd => OpCode::FixedToBcd,
+            Conversion::BcdToFixedDouble => OpCode::BcdToFixedDouble,
+            Conversion::FixedToBcdDouble => OpCode::FixedToBcdDouble,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum JumpCondition {
     Always,
@@ -179,6 +209,14 @@ pub enum Op {
     /// Fixed-point arithmetic on CPUs with four accumulators: ACCU 3 and 4 move up after it.
     ArithmeticStack(Arith),
     Compare(Comparison),
+    /// S5 floating-point arithmetic `+G -G XG :G` (`stack`: on four accumulators, ACCU 3 and 4
+    /// move up after it).
+    FloatArithmetic {
+        kind: Arith,
+        stack: bool,
+    },
+    FloatCompare(Comparison),
+    Convert(Conversion),
     /// `JU`/`JC` to a block: its index in the program, and its actual-parameter list.
     Call {
         block: u16,

@@ -48,7 +48,19 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         }
         Op::Arithmetic(Arith::Mul) | Op::ArithmeticStack(Arith::Mul) => t.multiply,
         Op::Arithmetic(Arith::Div) | Op::ArithmeticStack(Arith::Div) => t.divide,
-        Op::Compare(_) => t.compare,
+        Op::Compare(_) | Op::FloatCompare(_) => t.compare,
+        // The profiles time floating point in their fixed-point classes.
+        Op::FloatArithmetic {
+            kind: Arith::Add | Arith::Sub,
+            ..
+        } => t.add_sub,
+        Op::FloatArithmetic {
+            kind: Arith::Mul, ..
+        } => t.multiply,
+        Op::FloatArithmetic {
+            kind: Arith::Div, ..
+        } => t.divide,
+        Op::Convert(_) => t.add_sub,
         Op::Call { .. } | Op::CallAt { .. } | Op::CallMissing { .. } => t.block_call,
         Op::BlockEnd | Op::BlockEndConditional | Op::BlockEndUnconditional => t.block_end,
         Op::OpenDb(_) | Op::GenerateDb(_) => t.open_db,

@@ -207,6 +207,21 @@ pub enum CheckError {
         reason: &'static str,
     },
 
+    #[error("`{op}` needs {feature}: {profiles}")]
+    #[diagnostic(
+        code(awl::check::operation_not_on_cpu),
+        help("choose a CPU that has it with `--cpu NAME` (`awl cpus` lists them)")
+    )]
+    OperationNotOnCpu {
+        op: String,
+        #[label("the {cpu} profile has no {feature}")]
+        at: Span,
+        cpu: &'static str,
+        feature: &'static str,
+        /// The profiles that have it, by name.
+        profiles: String,
+    },
+
     #[error("`{op}` must be followed by the operation it modifies")]
     #[diagnostic(
         code(awl::check::indirect_target),
@@ -285,6 +300,7 @@ impl CheckError {
             | CheckError::UndefinedDb { at, .. }
             | CheckError::IndirectTarget { at, .. }
             | CheckError::NotOnCpu { at, .. }
+            | CheckError::OperationNotOnCpu { at, .. }
             | CheckError::UnclosedBracket { at, .. }
             | CheckError::UnopenedBracket { at, .. }
             | CheckError::BracketDepth { at, .. } => *at,

@@ -64,6 +64,11 @@ impl Layout {
     }
 }
 
+/// `+G -G XG :G`; the compiler sets `stack` on CPUs with four accumulators.
+fn float_arithmetic(kind: Arith) -> Op {
+    Op::FloatArithmetic { kind, stack: false }
+}
+
 fn image_bit(layout: Layout, address: Address) -> Option<ImageBit> {
     matches!(address.area, Area::Input | Area::Output | Area::Flag).then(|| ImageBit {
         byte: layout.image_byte(address.area, address.index).unwrap_or(0),
@@ -274,6 +279,22 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
         (CmpGe, R::None) => Op::Compare(Comparison::Ge),
         (CmpLt, R::None) => Op::Compare(Comparison::Lt),
         (CmpLe, R::None) => Op::Compare(Comparison::Le),
+        (AddFloat, R::None) => float_arithmetic(Arith::Add),
+        (SubFloat, R::None) => float_arithmetic(Arith::Sub),
+        (MulFloat, R::None) => float_arithmetic(Arith::Mul),
+        (DivFloat, R::None) => float_arithmetic(Arith::Div),
+        (CmpEqFloat, R::None) => Op::FloatCompare(Comparison::Eq),
+        (CmpNeFloat, R::None) => Op::FloatCompare(Comparison::Ne),
+        (CmpGtFloat, R::None) => Op::FloatCompare(Comparison::Gt),
+        (CmpGeFloat, R::None) => Op::FloatCompare(Comparison::Ge),
+        (CmpLtFloat, R::None) => Op::FloatCompare(Comparison::Lt),
+        (CmpLeFloat, R::None) => Op::FloatCompare(Comparison::Le),
+        (FixedToFloat, R::None) => Op::Convert(Conversion::FixedToFloat),
+        (FloatToFixed, R::None) => Op::Convert(Conversion::FloatToFixed),
+        (BcdToFixed, R::None) => Op::Convert(Conversion::BcdToFixed),
+        (FixedToBcd, R::None) => Op::Convert(Conversion::FixedToBcd),
+        (BcdToFixedDouble, R::None) => Op::Convert(Conversion::BcdToFixedDouble),
+        (FixedToBcdDouble, R::None) => Op::Convert(Conversion::FixedToBcdDouble),
         (
             JumpUnconditional | JumpConditional,
             R::Block {

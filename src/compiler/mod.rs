@@ -23,7 +23,7 @@ pub use ranges::{address_in_range, check_address};
 
 use crate::ast::{Block, BlockBody, BlockId, LogicBody, Operand, ParamDecl, SourceUnit, Statement};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
-use crate::profile::Profile;
+use crate::profile::{self, Profile};
 use crate::source::{SourceSet, Span};
 
 /// One compiled logic block.
@@ -352,6 +352,15 @@ impl<'a> Compiler<'a> {
     ) -> Option<(Op, Op)> {
         let info = mnemonics::op_info(statement.op);
         let op_word = mnemonics::op_word(context.set, statement.op);
+        if let Some(feature) = info.feature.filter(|feature| !self.profile.has(*feature)) {
+            return self.fail(CheckError::OperationNotOnCpu {
+                op: op_word.to_string(),
+                at: statement.op_span,
+                cpu: self.profile.name,
+                feature: feature.name(),
+                profiles: profile::having(feature).join(", "),
+            });
+        }
         if info.supplementary && !context.id.kind.is_function() {
             return self.fail(CheckError::Supplementary {
                 op: op_word.to_string(),
@@ -386,6 +395,9 @@ impl<'a> Compiler<'a> {
         let four_accumulators = self.profile.accumulators == 4;
         match op {
             Op::Arithmetic(kind) if four_accumulators => op = Op::ArithmeticStack(kind),
+            Op::FloatArithmetic { kind, .. } if four_accumulators => {
+                op = Op::FloatArithmetic { kind, stack: true }
+            }
             Op::Enter if !four_accumulators => {
                 return self.fail(CheckError::NotOnCpu {
                     op: op_word.to_string(),

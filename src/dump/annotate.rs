@@ -220,6 +220,22 @@ pub fn verb(op: OpCode) -> &'static str {
         AddToBr => "add to BR (not simulated)",
         LoadRelativeBr => "load relative to BR (not simulated), offset",
         TransferRelativeBr => "transfer relative to BR (not simulated), offset",
+        AddFloat => "floating-point add",
+        SubFloat => "floating-point subtract",
+        MulFloat => "floating-point multiply",
+        DivFloat => "floating-point divide",
+        CmpEqFloat => "compare ACCU 2 = ACCU 1 (floating point)",
+        CmpNeFloat => "compare ACCU 2 <> ACCU 1 (floating point)",
+        CmpGtFloat => "compare ACCU 2 > ACCU 1 (floating point)",
+        CmpGeFloat => "compare ACCU 2 >= ACCU 1 (floating point)",
+        CmpLtFloat => "compare ACCU 2 < ACCU 1 (floating point)",
+        CmpLeFloat => "compare ACCU 2 <= ACCU 1 (floating point)",
+        FixedToFloat => "convert ACCU 1 from 32-bit fixed point to floating point",
+        FloatToFixed => "convert ACCU 1 from floating point to 32-bit fixed point",
+        BcdToFixed => "convert ACCU 1-L from BCD to fixed point",
+        FixedToBcd => "convert ACCU 1-L from fixed point to BCD",
+        BcdToFixedDouble => "convert ACCU 1 from 32-bit BCD to fixed point",
+        FixedToBcdDouble => "convert ACCU 1 from 32-bit fixed point to BCD",
     }
 }
 
@@ -393,6 +409,23 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
             format!("{}, ACCU 3 and 4 move up", arithmetic_verb(kind))
         }
         Op::Compare(comparison) => format!("{} (fixed-point)", comparison_verb(comparison)),
+        Op::FloatArithmetic { kind, stack } => {
+            let verb = verb(match kind {
+                Arith::Add => OpCode::AddFloat,
+                Arith::Sub => OpCode::SubFloat,
+                Arith::Mul => OpCode::MulFloat,
+                Arith::Div => OpCode::DivFloat,
+            });
+            if stack {
+                format!("{verb}, ACCU 3 and 4 move up")
+            } else {
+                verb.to_string()
+            }
+        }
+        Op::FloatCompare(comparison) => {
+            format!("{} (floating point)", comparison_verb(comparison))
+        }
+        Op::Convert(conversion) => verb(conversion.op_code()).to_string(),
         Op::Call {
             block, conditional, ..
         } => {

@@ -4,6 +4,8 @@
 use crate::ast::Constant;
 use crate::lexer::{Token, TokenKind};
 use crate::mnemonics::ConstFormat;
+use crate::s5_float;
+use crate::source::{FileId, Span};
 
 use super::error::ParseError;
 use super::tokens::Context;
@@ -134,13 +136,13 @@ pub fn parse_constant(
             };
             chars(&text).ok_or_else(|| bad("ISO-8859-1 characters"))
         }
-        ConstFormat::Float => float(&texts, &kinds)
-            .ok_or_else(|| bad("±mantissa±exponent, e.g. +1234567+02 (0.1234567 × 10²)"))
-            .map(|value| Constant {
-                format,
-                value,
-                extra_words: Vec::new(),
-            }),
+        ConstFormat::Float => match float(&texts, &kinds) {
+            Some(Ok(value)) => word(value),
+            Some(Err(_)) => Err(out_of_range("±0.1469368 × 10⁻³⁸ … ±0.1701412 × 10³⁹, or 0")),
+            None => Err(bad(
+                "±mantissa±exponent, e.g. +1234567+02 (0.1234567 × 10²)",
+            )),
+        },
     }
 }
 
@@ -178,38 +180,105 @@ fn chars(text: &str) -> Option<Constant> {
     })
 }
 
-/// `+1234567+02` means 0.1234567 × 10^2. The S5 format holds an 8-bit two's-complement exponent
-/// in bits 31–24 and a 24-bit two's-complement mantissa, value = mantissa / 2^23 × 2^exponent.
-fn float(texts: &[&str], kinds: &[TokenKind]) -> Option<u32> {
-    use TokenKind::{Minus, Number, Plus};
-    let sign = |kind: TokenKind| if kind == Minus { -1.0 } else { 1.0 };
-    let (mantissa_sign, mantissa, exponent_sign, exponent) = match kinds {
+/// A `KG` constant as the PG writes it, `±mantissa±exponent` (`+1234567+02` is 0.1234567 × 10²;
+/// a shorter mantissa is filled with zeros on the right: `-5-2` is −0.5 × 10⁻², CPU 928B
+/// programming guide, 2.2), or as a plain decimal (`2457.6`, which [`decimal_float_warnings`]
+/// reports). `None` when it is neither; `Err` with the value when it is out of range.
+fn float(texts: &[&str], kinds: &[TokenKind]) -> Option<Result<u32, f64>> {
+    use TokenKind::{Dot, Minus, Number, Plus};
+    let sign = |kind: &TokenKind| if *kind == Minus { "-" } else { "+" };
+    let text = match kinds {
         [s1 @ (Plus | Minus), Number, s2 @ (Plus | Minus), Number] => {
-            (sign(*s1), texts[1], sign(*s2), texts[3])
+            pg_float_text(sign(s1), texts[1], sign(s2), texts[3])?
+        }
+        [Number, s2 @ (Plus | Minus), Number] => pg_float_text("+", texts[0], sign(s2), texts[2])?,
+        [Number] | [Number, Dot, Number] => texts.concat(),
+        [s1 @ (Plus | Minus), Number] | [s1 @ (Plus | Minus), Number, Dot, Number] => {
+            format!("{}{}", sign(s1), texts[1..].concat())
         }
         _ => return None,
     };
-    if mantissa.len() > 7 || exponent.len() > 2 {
-        return None;
+    let value: f64 = text.parse().ok()?;
+    match s5_float::encode(value) {
+        (bits, s5_float::Outcome::Exact) => Some(Ok(bits)),
+        _ => Some(Err(value)),
     }
-    let fraction: f64 = format!("0.{mantissa}").parse().ok()?;
-    let decimal_exponent: i32 = exponent.parse().ok()?;
-    let value = mantissa_sign * fraction * 10f64.powi(exponent_sign as i32 * decimal_exponent);
-    Some(to_s5_float(value))
 }
 
-pub fn to_s5_float(value: f64) -> u32 {
-    if value == 0.0 {
-        return 0x8000_0000;
+/// `+`, `1234567`, `-`, `02` as the decimal text `+0.1234567e-02`.
+fn pg_float_text(
+    sign: &str,
+    mantissa: &str,
+    exponent_sign: &str,
+    exponent: &str,
+) -> Option<String> {
+    let digits = |text: &str, max: usize| {
+        (1..=max).contains(&text.len()) && text.bytes().all(|b| b.is_ascii_digit())
+    };
+    (digits(mantissa, 7) && digits(exponent, 2))
+        .then(|| format!("{sign}0.{mantissa}e{exponent_sign}{exponent}"))
+}
+
+/// The PG's form of a decimal number: `2457.6` is `+2457600+04` (0.2457600 × 10⁴); digits after
+/// the seventh significant one are cut off, as the PG keeps seven.
+pub fn pg_float_form(negative: bool, integer: &str, fraction: &str) -> String {
+    let integer = integer.trim_start_matches('0');
+    let (digits, exponent) = if integer.is_empty() {
+        let significant = fraction.trim_start_matches('0');
+        let zeros = fraction.len() - significant.len();
+        (significant.to_string(), -(zeros as i64))
+    } else {
+        (format!("{integer}{fraction}"), integer.len() as i64)
+    };
+    let sign = if negative { '-' } else { '+' };
+    if digits.trim_end_matches('0').is_empty() {
+        return format!("{sign}0000000+00");
     }
-    let mut exponent = value.abs().log2().floor() as i32 + 1;
-    let mut mantissa = (value / 2f64.powi(exponent) * f64::from(1 << 23)).round() as i64;
-    if mantissa.abs() >= 1 << 23 {
-        mantissa /= 2;
-        exponent += 1;
+    let mantissa: String = digits
+        .chars()
+        .chain(std::iter::repeat('0'))
+        .take(7)
+        .collect();
+    let exponent_sign = if exponent < 0 { '-' } else { '+' };
+    format!("{sign}{mantissa}{exponent_sign}{:02}", exponent.abs())
+}
+
+/// A warning for each `KG` written as a plain decimal (`KG 2457.6`): awl reads it, the PG
+/// writes `KG +2457600+04`.
+pub fn decimal_float_warnings(file: FileId, source: &str, tokens: &[Token]) -> Vec<ParseError> {
+    use TokenKind::{Dot, Equals, Minus, Number, Plus, Word};
+    let mut warnings = Vec::new();
+    for (at, token) in tokens.iter().enumerate() {
+        if token.kind != Word || !token.text(source).eq_ignore_ascii_case("KG") {
+            continue;
+        }
+        let mut rest = &tokens[at + 1..];
+        if rest.first().is_some_and(|next| next.kind == Equals) {
+            rest = &rest[1..];
+        }
+        let negative = rest.first().is_some_and(|next| next.kind == Minus);
+        if rest
+            .first()
+            .is_some_and(|next| matches!(next.kind, Plus | Minus))
+        {
+            rest = &rest[1..];
+        }
+        if let [integer, dot, fraction, ..] = rest {
+            let decimal = integer.kind == Number && dot.kind == Dot && fraction.kind == Number;
+            let digits = |token: &Token| token.text(source).bytes().all(|b| b.is_ascii_digit());
+            if decimal && digits(integer) && digits(fraction) {
+                warnings.push(ParseError::DecimalFloat {
+                    at: Span {
+                        file,
+                        start: token.start,
+                        end: fraction.end,
+                    },
+                    pg_form: pg_float_form(negative, integer.text(source), fraction.text(source)),
+                });
+            }
+        }
     }
-    let exponent = exponent.clamp(-128, 127) as i8 as u8 as u32;
-    exponent << 24 | (mantissa as u32 & 0x00FF_FFFF)
+    warnings
 }
 
 #[cfg(test)]
@@ -222,11 +291,42 @@ mod tests {
         assert_eq!(bcd(0), 0);
     }
 
+    fn kg(texts: &[&str], kinds: &[TokenKind]) -> f64 {
+        s5_float::decode(float(texts, kinds).unwrap().unwrap())
+    }
+
+    /// The CPU 928B programming guide's examples (2.2): `+1234567+02` is 12.34567, `-5-2` is
+    /// −0.005; a plain decimal reads as its value.
     #[test]
-    fn float_of_twelve_point_three_four() {
-        let packed = to_s5_float(12.34567);
-        assert_eq!(packed >> 24, 4);
-        let mantissa = (packed & 0xFF_FFFF) as f64 / f64::from(1 << 23);
-        assert!((mantissa * 16.0 - 12.34567).abs() < 1e-5);
+    fn kg_forms() {
+        use TokenKind::{Dot, Minus, Number, Plus};
+        let twelve = kg(&["+", "1234567", "+", "02"], &[Plus, Number, Plus, Number]);
+        assert!((twelve - 12.34567).abs() < 1e-5);
+        let small = kg(&["-", "5", "-", "2"], &[Minus, Number, Minus, Number]);
+        assert!((small + 0.005).abs() < 1e-9);
+        let unsigned = kg(&["1234567", "+", "3"], &[Number, Plus, Number]);
+        assert!((unsigned - 123.4567).abs() < 1e-4);
+        // Truncated, not rounded: just below 2457.6.
+        assert_eq!(
+            kg(&["2457", ".", "6"], &[Number, Dot, Number]),
+            2457.599609375
+        );
+        assert_eq!(kg(&["-", "2"], &[Minus, Number]), -2.0);
+        assert_eq!(
+            float(&["12345678", "+", "1"], &[Number, Plus, Number]),
+            None
+        );
+        assert_eq!(
+            float(&["+", "9", "+", "99"], &[Plus, Number, Plus, Number]),
+            Some(Err(0.9e99))
+        );
+    }
+
+    #[test]
+    fn the_pg_form_of_a_decimal() {
+        assert_eq!(pg_float_form(false, "2457", "6"), "+2457600+04");
+        assert_eq!(pg_float_form(true, "0", "005"), "-5000000-02");
+        assert_eq!(pg_float_form(false, "12", "345678"), "+1234567+02");
+        assert_eq!(pg_float_form(false, "0", "0"), "+0000000+00");
     }
 }

@@ -170,6 +170,22 @@ pub enum ParseError {
         help: String,
     },
 
+    #[error("`KG` as a plain decimal: the PG writes it `KG {pg_form}`")]
+    #[diagnostic(
+        code(awl::parse::decimal_float),
+        severity(Warning),
+        help(
+            "awl reads the decimal as its value; the PG's form is ±mantissa±exponent, seven \
+             mantissa digits read as 0.ddddddd times ten to the exponent (CPU 928B programming \
+             guide, 2.2)"
+        )
+    )]
+    DecimalFloat {
+        #[label("the PG writes `{pg_form}`")]
+        at: Span,
+        pg_form: String,
+    },
+
     #[error("formal operand `={name}` is not declared")]
     #[diagnostic(code(awl::parse::undeclared_formal))]
     UndeclaredFormal {
@@ -199,6 +215,7 @@ impl ParseError {
             | ParseError::BadDataWord { at, .. }
             | ParseError::Step7Source { at, .. }
             | ParseError::Fragment { at, .. }
+            | ParseError::DecimalFloat { at, .. }
             | ParseError::UndeclaredFormal { at, .. } => *at,
         }
     }

@@ -345,7 +345,7 @@ struct ParsedOp {
     inline_operand: Option<(Operand, Span)>,
 }
 
-/// `:F` written right after the leading colon of a PG listing, or alone.
+/// `:F` or `:G` written right after the leading colon of a PG listing, or alone.
 fn divide<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParsedOp> {
     move |input: Tokens<'a>| {
         let (rest, _) = opt(pair(
@@ -355,14 +355,19 @@ fn divide<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, Par
         .parse(input)?;
         let (rest, colon) = kind(TokenKind::Colon, "`:F`")(rest)?;
         let (rest, f) = touching(colon, TokenKind::Word, "`:F`")(rest)?;
-        if !context.text(f).eq_ignore_ascii_case("F") || !rest.is_empty() {
+        let op = match context.text(f) {
+            "F" | "f" => Some(OpCode::DivFixed),
+            "G" | "g" => Some(OpCode::DivFloat),
+            _ => None,
+        };
+        let Some(op) = op.filter(|_| rest.is_empty()) else {
             return Err(nom::Err::Error(LineError {
                 at: Some(colon),
                 expected: "",
                 diagnostic: None,
             }));
-        }
-        let info = *mnemonics::op_info(OpCode::DivFixed);
+        };
+        let info = *mnemonics::op_info(op);
         Ok((
             rest,
             ParsedOp {
@@ -404,13 +409,13 @@ fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, 
                     rest = after;
                     last = paren;
                     format!("{text}(").into()
-                } else if text.eq_ignore_ascii_case("X") || text.eq_ignore_ascii_case("XF") {
-                    if text.eq_ignore_ascii_case("X") {
-                        let (after, f) = keyword(context, &["F"], "`X F`")(rest)?;
-                        rest = after;
-                        last = f;
-                    }
-                    "X F".into()
+                } else if text.eq_ignore_ascii_case("X") {
+                    let (after, f) = keyword(context, &["F", "G"], "`X F` or `X G`")(rest)?;
+                    rest = after;
+                    last = f;
+                    format!("X {}", context.text(f).to_ascii_uppercase()).into()
+                } else if text.eq_ignore_ascii_case("XF") || text.eq_ignore_ascii_case("XG") {
+                    format!("X {}", &text[1..].to_ascii_uppercase()).into()
                 } else {
                     if let Ok((after, equals)) = touching(first, TokenKind::Equals, "=")(rest) {
                         let (after, target) = kind(TokenKind::Word, "a label after `=`")(after)?;
@@ -530,6 +535,22 @@ fn shape(op: OpCode) -> Shape {
         | CmpGe
         | CmpLt
         | CmpLe
+        | AddFloat
+        | SubFloat
+        | MulFloat
+        | DivFloat
+        | CmpEqFloat
+        | CmpNeFloat
+        | CmpGtFloat
+        | CmpGeFloat
+        | CmpLtFloat
+        | CmpLeFloat
+        | FixedToFloat
+        | FloatToFixed
+        | BcdToFixed
+        | FixedToBcd
+        | BcdToFixedDouble
+        | FixedToBcdDouble
         | BlockEnd
         | BlockEndConditional
         | BlockEndUnconditional

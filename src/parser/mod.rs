@@ -9,7 +9,7 @@ pub mod listing;
 mod spellings;
 pub mod tokens;
 
-pub use constant::{bcd, to_s5_float};
+pub use constant::bcd;
 pub use error::ParseError;
 
 use crate::ast::{Block, BlockBody, BlockId, DataWord, LogicBody, Operand, SourceUnit, Statement};
@@ -69,7 +69,11 @@ pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> Pa
     for line in lines {
         builder.line(line);
     }
-    builder.finish()
+    let mut parsed = builder.finish();
+    parsed
+        .errors
+        .extend(constant::decimal_float_warnings(file, source, &tokens));
+    parsed
 }
 
 /// A STEP 7 source: one error at its first evidence, and no blocks (checking it line by line as

@@ -117,6 +117,9 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::OrBracket
         | Op::CloseBracket
         | Op::LoadConstant(_)
+        | Op::FloatArithmetic { .. }
+        | Op::FloatCompare(_)
+        | Op::Convert(_)
         | Op::Arithmetic(_)
         | Op::ArithmeticStack(_)
         | Op::Compare(_)

@@ -9,6 +9,7 @@ use super::io_trace::Modules;
 
 use super::Cpu;
 use super::arith;
+use super::float;
 use super::interrupts::FamilyRules;
 use super::interrupts::s5_95f::S595f;
 use super::stop::{StopCause, StopDetail};
@@ -446,6 +447,27 @@ impl Cpu {
             Op::Enter => {
                 self.level.accu4 = self.level.accu3;
                 self.level.accu3 = self.level.accu2;
+            }
+            Op::FloatArithmetic { kind, stack } => {
+                float::arithmetic(
+                    kind,
+                    &mut self.level.accu1,
+                    self.level.accu2,
+                    &mut self.level.status,
+                );
+                if stack {
+                    self.level.accu2 = self.level.accu3;
+                    self.level.accu3 = self.level.accu4;
+                }
+            }
+            Op::FloatCompare(kind) => float::compare(
+                kind,
+                self.level.accu1,
+                self.level.accu2,
+                &mut self.level.status,
+            ),
+            Op::Convert(conversion) => {
+                float::convert(conversion, &mut self.level.accu1, &mut self.level.status)
             }
             Op::Increment(n) => arith::increment(&mut self.level.accu1, i16::from(n)),
             Op::Decrement(n) => arith::increment(&mut self.level.accu1, -i16::from(n)),

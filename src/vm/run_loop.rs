@@ -586,6 +586,9 @@ impl Cpu {
                     | Op::TwosComplement
                     | Op::Swap
                     | Op::Enter
+                    | Op::FloatArithmetic { .. }
+                    | Op::FloatCompare(_)
+                    | Op::Convert(_)
                     | Op::Increment(_)
                     | Op::Decrement(_)
                     | Op::SetUnconditional(_)
