@@ -77,6 +77,18 @@ pub fn encode(value: f64) -> (u32, Outcome) {
     normalize(mantissa, exponent - 40)
 }
 
+/// `value` rounded to the nearest number of the format: how a decimal constant (`KG`) becomes
+/// binary, so that `KG +2457600+04` × `KG +2500000+01` is 6144, as the decimals say. The
+/// arithmetic truncates (`encode`); the conversion of what the programmer wrote rounds.
+pub fn encode_nearest(value: f64) -> (u32, Outcome) {
+    if value == 0.0 || !value.is_finite() {
+        return (ZERO, Outcome::Exact);
+    }
+    let exponent = value.abs().log2().floor() as i32 + 1;
+    let mantissa = (value * 2f64.powi(MANTISSA_BITS - exponent)).round() as i128;
+    normalize(mantissa, exponent)
+}
+
 /// Packs a mantissa of any size (the value is mantissa × 2^(exponent − 23)) into the format:
 /// shifted until normalized, the bits shifted out on the right cut off (toward zero).
 fn normalize(mut mantissa: i128, mut exponent: i32) -> (u32, Outcome) {
@@ -233,6 +245,18 @@ mod tests {
         assert_eq!(multiply(tiny, tiny), (ZERO, Outcome::Underflow));
         assert_eq!(encode(1.0e39).1, Outcome::Overflow);
         assert_eq!(encode(1.0e-40), (ZERO, Outcome::Underflow));
+    }
+
+    #[test]
+    fn constants_round_to_the_nearest_number() {
+        // 0.6 = 0.1001 1001 1001 … : truncated 4CCCCC, rounded 4CCCCD.
+        assert_eq!(encode(2457.6).0, 0x0C4C_CCCC);
+        assert_eq!(encode_nearest(2457.6).0, 0x0C4C_CCCD);
+        assert_eq!(encode_nearest(-2457.6).0, 0x0CB3_3333);
+        let product = multiply(encode_nearest(2457.6).0, encode_nearest(2.5).0).0;
+        assert_eq!(to_fixed(product), Some(6144));
+        // Rounding up to a whole power of two renormalizes: 1 − 2^-30 is 1.0.
+        assert_eq!(encode_nearest(1.0 - 2f64.powi(-30)).0, encode(1.0).0);
     }
 
     #[test]

@@ -199,7 +199,7 @@ fn float(texts: &[&str], kinds: &[TokenKind]) -> Option<Result<u32, f64>> {
         _ => return None,
     };
     let value: f64 = text.parse().ok()?;
-    match s5_float::encode(value) {
+    match s5_float::encode_nearest(value) {
         (bits, s5_float::Outcome::Exact) => Some(Ok(bits)),
         _ => Some(Err(value)),
     }
