@@ -306,10 +306,10 @@ mod tests {
         assert!((small + 0.005).abs() < 1e-9);
         let unsigned = kg(&["1234567", "+", "3"], &[Number, Plus, Number]);
         assert!((unsigned - 123.4567).abs() < 1e-4);
-        // Truncated, not rounded: just below 2457.6.
+        // Rounded to the nearest number of the format: just above 2457.6.
         assert_eq!(
             kg(&["2457", ".", "6"], &[Number, Dot, Number]),
-            2457.599609375
+            2457.60009765625
         );
         assert_eq!(kg(&["-", "2"], &[Minus, Number]), -2.0);
         assert_eq!(
