@@ -1,6 +1,12 @@
 //! CPU profiles: operand ranges, limits, per-operation execution times and interrupt rules of the
 //! three CPUs the manuals describe. `awl cpus` prints them with where each figure comes from.
 
+mod s5_115u;
+mod s5_135u;
+mod s5_155u;
+mod s5_common;
+mod s5_small;
+
 /// The CPUs whose interrupt rules differ; each has its rules in `vm::interrupts`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Family {
@@ -10,6 +16,9 @@ pub enum Family {
     S5_95f,
     /// VIPA SPEED7 with hardware interrupt OBs 40/41: VIPA SPEED7 operation list.
     Speed7,
+    /// The S5 CPUs of `profile::s5_*`: the generic engine with the profile's OBs, interrupt
+    /// requests from the scenario (their manuals are cited per profile).
+    S5,
 }
 
 /// A group of operations that only some CPUs have, as their programming guides list them.
@@ -63,6 +72,13 @@ impl InterruptPoints {
 pub struct InterruptOb {
     pub ob: u8,
     pub priority: u8,
+    pub summary: &'static str,
+}
+
+/// A system OB a program may call (`JU OB 160`), as the CPU's manual lists it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SystemOb {
+    pub ob: u8,
     pub summary: &'static str,
 }
 
@@ -137,6 +153,10 @@ pub struct Profile {
     pub extended_blocks: bool,
     /// The operation groups beyond those every CPU has.
     pub features: &'static [Feature],
+    /// The integral FBs built into the CPU (FB 240–243, 250, 251 of the S5-115U).
+    pub integral_fbs: &'static [u8],
+    /// The system OBs the CPU's manual documents for calls from the program.
+    pub system_obs: &'static [SystemOb],
     pub timings: Timings,
     pub rules: &'static [&'static str],
 }
@@ -148,6 +168,14 @@ impl Profile {
 
     pub fn interrupt_ob(&self, ob: u8) -> Option<&InterruptOb> {
         self.interrupt_obs.iter().find(|entry| entry.ob == ob)
+    }
+
+    pub fn has_integral_fb(&self, fb: u8) -> bool {
+        self.integral_fbs.contains(&fb)
+    }
+
+    pub fn system_ob(&self, ob: u8) -> Option<&SystemOb> {
+        self.system_obs.iter().find(|entry| entry.ob == ob)
     }
 }
 
@@ -312,6 +340,8 @@ pub static PROFILES: &[Profile] = &[
             Feature::SystemOperations,
             Feature::RegisterOperations,
         ],
+        integral_fbs: &[],
+        system_obs: &[],
         timings: SINUMERIK_840C_TIMES,
         rules: &[
             "normal mode: the cyclic program is interrupted only at block changes (a block call or \
@@ -371,6 +401,8 @@ pub static PROFILES: &[Profile] = &[
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
         features: &[],
+        integral_fbs: &[],
+        system_obs: &[],
         timings: S5_95F_TIMES,
         rules: &[
             "OB 13 can interrupt the cyclic program after any STEP 5 statement; OB 2 and OB 3 can \
@@ -441,6 +473,8 @@ pub static PROFILES: &[Profile] = &[
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
         features: &[],
+        integral_fbs: &[],
+        system_obs: &[],
         timings: SPEED7_TIMES,
         rules: &[
             "a module's hardware interrupt starts its OB ([[hw_module]]) if the OB's priority is \
@@ -459,16 +493,64 @@ pub static PROFILES: &[Profile] = &[
             "interrupt points: after every operation, as S7 CPUs do",
         ],
     },
+    s5_small::S5_95U,
+    s5_small::S5_100U_103,
+    s5_115u::CPU_941,
+    s5_115u::CPU_942,
+    s5_115u::CPU_943,
+    s5_115u::CPU_944,
+    s5_115u::CPU_945,
+    s5_135u::CPU_922,
+    s5_135u::CPU_928,
+    s5_135u::CPU_928B,
+    s5_155u::CPU_946_947,
+    s5_155u::CPU_948,
+];
+
+/// Short names for the CPU most programs of a family were written for.
+pub const ALIASES: &[(&str, &str)] = &[
+    ("s5-100u", "s5-100u-103"),
+    ("s5-115u", "s5-115u-944"),
+    ("s5-135u", "s5-135u-928b"),
+    ("s5-155u", "s5-155u-948"),
 ];
 
 pub const DEFAULT_PROFILE: &str = "sinumerik-840c";
 
+/// The profile of a name or an alias.
 pub fn find(name: &str) -> Option<&'static Profile> {
+    let name = ALIASES
+        .iter()
+        .find(|(alias, _)| alias.eq_ignore_ascii_case(name))
+        .map_or(name, |(_, target)| target);
     PROFILES
         .iter()
         .find(|profile| profile.name.eq_ignore_ascii_case(name))
 }
 
+/// Every profile's name, then the aliases.
 pub fn names() -> Vec<&'static str> {
-    PROFILES.iter().map(|profile| profile.name).collect()
+    PROFILES
+        .iter()
+        .map(|profile| profile.name)
+        .chain(ALIASES.iter().map(|(alias, _)| *alias))
+        .collect()
+}
+
+/// The profiles that have integral FB `fb`, by name.
+pub fn with_integral_fb(fb: u8) -> Vec<&'static str> {
+    PROFILES
+        .iter()
+        .filter(|profile| profile.has_integral_fb(fb))
+        .map(|profile| profile.name)
+        .collect()
+}
+
+/// The profiles whose manual documents system OB `ob`, by name.
+pub fn with_system_ob(ob: u8) -> Vec<&'static str> {
+    PROFILES
+        .iter()
+        .filter(|profile| profile.system_ob(ob).is_some())
+        .map(|profile| profile.name)
+        .collect()
 }

@@ -10,6 +10,7 @@ pub mod bound;
 pub mod counters;
 pub mod cycle;
 pub mod exec;
+mod integral;
 pub mod interrupts;
 mod io_trace;
 pub mod place;
