@@ -132,9 +132,13 @@ fn bound_lines(out: &mut String, cpu: &Cpu) {
         InterruptPoints::Block => {
             let block = cpu.longest_block;
             if block.ns > 0 {
+                let why = match cpu.profile.family {
+                    Family::S5 => "the worst case with interrupt points at block boundaries",
+                    _ => "the worst case in normal mode: SINUMERIK 840C PLC manual, 5.3.2",
+                };
                 let _ = writeln!(
                     out,
-                    "longest block: {}, {:.3} ms (the worst case in normal mode: SINUMERIK 840C PLC manual, 5.3.2)",
+                    "longest block: {}, {:.3} ms ({why})",
                     stretch_text(cpu, block.kind),
                     block.ns as f64 / 1e6
                 );

@@ -136,8 +136,12 @@ impl Cpu {
     pub(super) fn run_builtin(&mut self, block: Builtin, params: u16) -> Result<(), Fault> {
         let fb = match block {
             Builtin::SystemOb(ob) => {
-                let text = format!("OB {ob}: a system OB of the CPU that awl does not simulate");
-                return Err((StopCause::LzfBlock, StopDetail::Text(text)));
+                let summary = self.profile.system_ob(ob).map_or("", |entry| entry.summary);
+                let text = format!(
+                    "OB {ob} ({summary}) is a system OB of {} that awl does not simulate",
+                    self.profile.name
+                );
+                return Err((StopCause::Bcf, StopDetail::Text(text)));
             }
             Builtin::Integral(fb) => fb,
         };
