@@ -554,3 +554,60 @@ pub fn with_system_ob(ob: u8) -> Vec<&'static str> {
         .map(|profile| profile.name)
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn aliases_name_the_cpu_most_programs_were_written_for() {
+        assert_eq!(find("s5-115u").unwrap().name, "s5-115u-944");
+        assert_eq!(find("S5-135U").unwrap().name, "s5-135u-928b");
+        assert_eq!(find("s5-155u").unwrap().name, "s5-155u-948");
+        assert_eq!(find("s5-100u").unwrap().name, "s5-100u-103");
+        assert!(names().contains(&"s5-115u"));
+        assert!(ALIASES.iter().all(|(_, target)| find(target).is_some()));
+    }
+
+    #[test]
+    fn every_profile_has_a_unique_name_and_sane_limits() {
+        for profile in PROFILES {
+            let same = PROFILES.iter().filter(|other| other.name == profile.name);
+            assert_eq!(same.count(), 1, "{}", profile.name);
+            let s = &profile.sizes;
+            assert!(s.image_bytes > 0 && s.flag_bytes > 0 && s.timers > 0, "{}", profile.name);
+            assert!(profile.nesting_limit >= 16 && profile.bracket_depth == 7);
+            assert!(!profile.rules.is_empty() && !profile.manual.is_empty());
+            assert!(profile.timings.bit_image > 0, "{}", profile.name);
+            if profile.family == Family::S5 {
+                let mut priorities: Vec<u8> =
+                    profile.interrupt_obs.iter().map(|ob| ob.priority).collect();
+                priorities.dedup();
+                assert_eq!(priorities.len(), profile.interrupt_obs.len(), "{}", profile.name);
+            }
+        }
+    }
+
+    #[test]
+    fn the_s5_profiles_as_their_manuals_list_them() {
+        let cpu_944 = find("s5-115u-944").unwrap();
+        assert!(cpu_944.has_integral_fb(250) && cpu_944.system_ob(254).is_some());
+        assert_eq!(cpu_944.sizes.timers, 256);
+        assert_eq!(find("s5-115u-941").unwrap().sizes.timers, 128);
+        assert!(find("s5-155u-948").unwrap().system_ob(125).is_some());
+        assert!(find("s5-135u-928").unwrap().system_ob(125).is_none());
+        assert!(find("s5-135u").unwrap().interrupt_ob(18).is_some());
+        assert!(find("s5-115u").unwrap().interrupt_ob(18).is_none());
+        assert_eq!(find("s5-135u-922").unwrap().startup_obs, &[20, 21, 22]);
+        assert!(!find("sinumerik-840c").unwrap().has_integral_fb(250));
+        assert_eq!(with_integral_fb(250).len(), 5);
+        assert!(find("s5-135u-928b").unwrap().has(Feature::FloatingPoint));
+        assert!(!find("s5-115u-941").unwrap().has(Feature::FloatingPoint));
+        let time_controlled = TIME_CONTROLLED_TEXT;
+        for profile in PROFILES.iter().filter(|profile| profile.family == Family::S5) {
+            assert!(profile.rules.iter().any(|rule| rule.contains(time_controlled)));
+        }
+    }
+
+    const TIME_CONTROLLED_TEXT: &str = "do not fire on their own";
+}
