@@ -575,7 +575,11 @@ mod tests {
             let same = PROFILES.iter().filter(|other| other.name == profile.name);
             assert_eq!(same.count(), 1, "{}", profile.name);
             let s = &profile.sizes;
-            assert!(s.image_bytes > 0 && s.flag_bytes > 0 && s.timers > 0, "{}", profile.name);
+            assert!(
+                s.image_bytes > 0 && s.flag_bytes > 0 && s.timers > 0,
+                "{}",
+                profile.name
+            );
             assert!(profile.nesting_limit >= 16 && profile.bracket_depth == 7);
             assert!(!profile.rules.is_empty() && !profile.manual.is_empty());
             assert!(profile.timings.bit_image > 0, "{}", profile.name);
@@ -583,7 +587,12 @@ mod tests {
                 let mut priorities: Vec<u8> =
                     profile.interrupt_obs.iter().map(|ob| ob.priority).collect();
                 priorities.dedup();
-                assert_eq!(priorities.len(), profile.interrupt_obs.len(), "{}", profile.name);
+                assert_eq!(
+                    priorities.len(),
+                    profile.interrupt_obs.len(),
+                    "{}",
+                    profile.name
+                );
             }
         }
     }
@@ -604,8 +613,16 @@ mod tests {
         assert!(find("s5-135u-928b").unwrap().has(Feature::FloatingPoint));
         assert!(!find("s5-115u-941").unwrap().has(Feature::FloatingPoint));
         let time_controlled = TIME_CONTROLLED_TEXT;
-        for profile in PROFILES.iter().filter(|profile| profile.family == Family::S5) {
-            assert!(profile.rules.iter().any(|rule| rule.contains(time_controlled)));
+        for profile in PROFILES
+            .iter()
+            .filter(|profile| profile.family == Family::S5)
+        {
+            assert!(
+                profile
+                    .rules
+                    .iter()
+                    .any(|rule| rule.contains(time_controlled))
+            );
         }
     }
 
