@@ -1,6 +1,12 @@
 //! CPU profiles: operand ranges, limits, per-operation execution times and interrupt rules of the
 //! three CPUs the manuals describe. `awl cpus` prints them with where each figure comes from.
 
+mod s5_115u;
+mod s5_135u;
+mod s5_155u;
+mod s5_common;
+mod s5_small;
+
 /// The CPUs whose interrupt rules differ; each has its rules in `vm::interrupts`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Family {
@@ -10,6 +16,9 @@ pub enum Family {
     S5_95f,
     /// VIPA SPEED7 with hardware interrupt OBs 40/41: VIPA SPEED7 operation list.
     Speed7,
+    /// The S5 CPUs of `profile::s5_*`: the generic engine with the profile's OBs, interrupt
+    /// requests from the scenario (their manuals are cited per profile).
+    S5,
 }
 
 /// A group of operations that only some CPUs have, as their programming guides list them.
@@ -79,6 +88,13 @@ impl InterruptPoints {
 pub struct InterruptOb {
     pub ob: u8,
     pub priority: u8,
+    pub summary: &'static str,
+}
+
+/// A system OB a program may call (`JU OB 160`), as the CPU's manual lists it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SystemOb {
+    pub ob: u8,
     pub summary: &'static str,
 }
 
@@ -153,6 +169,10 @@ pub struct Profile {
     pub extended_blocks: bool,
     /// The operation groups beyond those every CPU has.
     pub features: &'static [Feature],
+    /// The integral FBs built into the CPU (FB 240–243, 250, 251 of the S5-115U).
+    pub integral_fbs: &'static [u8],
+    /// The system OBs the CPU's manual documents for calls from the program.
+    pub system_obs: &'static [SystemOb],
     pub timings: Timings,
     pub rules: &'static [&'static str],
 }
@@ -164,6 +184,14 @@ impl Profile {
 
     pub fn interrupt_ob(&self, ob: u8) -> Option<&InterruptOb> {
         self.interrupt_obs.iter().find(|entry| entry.ob == ob)
+    }
+
+    pub fn has_integral_fb(&self, fb: u8) -> bool {
+        self.integral_fbs.contains(&fb)
+    }
+
+    pub fn system_ob(&self, ob: u8) -> Option<&SystemOb> {
+        self.system_obs.iter().find(|entry| entry.ob == ob)
     }
 }
 
@@ -328,6 +356,8 @@ pub static PROFILES: &[Profile] = &[
             Feature::SystemOperations,
             Feature::RegisterOperations,
         ],
+        integral_fbs: &[],
+        system_obs: &[],
         timings: SINUMERIK_840C_TIMES,
         rules: &[
             "normal mode: the cyclic program is interrupted only at block changes (a block call or \
@@ -389,6 +419,8 @@ pub static PROFILES: &[Profile] = &[
         // The S5-95F manual at hand names no floating-point or BCD conversion operations (its
         // operation set is the S5-95U's basic and supplementary operations).
         features: &[],
+        integral_fbs: &[],
+        system_obs: &[],
         timings: S5_95F_TIMES,
         rules: &[
             "OB 13 can interrupt the cyclic program after any STEP 5 statement; OB 2 and OB 3 can \
@@ -461,6 +493,8 @@ pub static PROFILES: &[Profile] = &[
         // A SPEED7 CPU runs STEP 7 operations: IEEE floating point (`+R`) and `BTD`/`DTB`, not
         // the S5 groups; its STEP 5 operations are the common ones.
         features: &[],
+        integral_fbs: &[],
+        system_obs: &[],
         timings: SPEED7_TIMES,
         rules: &[
             "a module's hardware interrupt starts its OB ([[hw_module]]) if the OB's priority is \
@@ -479,11 +513,36 @@ pub static PROFILES: &[Profile] = &[
             "interrupt points: after every operation, as S7 CPUs do",
         ],
     },
+    s5_small::S5_95U,
+    s5_small::S5_100U_103,
+    s5_115u::CPU_941,
+    s5_115u::CPU_942,
+    s5_115u::CPU_943,
+    s5_115u::CPU_944,
+    s5_115u::CPU_945,
+    s5_135u::CPU_922,
+    s5_135u::CPU_928,
+    s5_135u::CPU_928B,
+    s5_155u::CPU_946_947,
+    s5_155u::CPU_948,
+];
+
+/// Short names for the CPU most programs of a family were written for.
+pub const ALIASES: &[(&str, &str)] = &[
+    ("s5-100u", "s5-100u-103"),
+    ("s5-115u", "s5-115u-944"),
+    ("s5-135u", "s5-135u-928b"),
+    ("s5-155u", "s5-155u-948"),
 ];
 
 pub const DEFAULT_PROFILE: &str = "sinumerik-840c";
 
+/// The profile of a name or an alias.
 pub fn find(name: &str) -> Option<&'static Profile> {
+    let name = ALIASES
+        .iter()
+        .find(|(alias, _)| alias.eq_ignore_ascii_case(name))
+        .map_or(name, |(_, target)| target);
     PROFILES
         .iter()
         .find(|profile| profile.name.eq_ignore_ascii_case(name))
@@ -498,6 +557,103 @@ pub fn having(feature: Feature) -> Vec<&'static str> {
         .collect()
 }
 
+/// Every profile's name, then the aliases.
 pub fn names() -> Vec<&'static str> {
-    PROFILES.iter().map(|profile| profile.name).collect()
+    PROFILES
+        .iter()
+        .map(|profile| profile.name)
+        .chain(ALIASES.iter().map(|(alias, _)| *alias))
+        .collect()
+}
+
+/// The profiles that have integral FB `fb`, by name.
+pub fn with_integral_fb(fb: u8) -> Vec<&'static str> {
+    PROFILES
+        .iter()
+        .filter(|profile| profile.has_integral_fb(fb))
+        .map(|profile| profile.name)
+        .collect()
+}
+
+/// The profiles whose manual documents system OB `ob`, by name.
+pub fn with_system_ob(ob: u8) -> Vec<&'static str> {
+    PROFILES
+        .iter()
+        .filter(|profile| profile.system_ob(ob).is_some())
+        .map(|profile| profile.name)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn aliases_name_the_cpu_most_programs_were_written_for() {
+        assert_eq!(find("s5-115u").unwrap().name, "s5-115u-944");
+        assert_eq!(find("S5-135U").unwrap().name, "s5-135u-928b");
+        assert_eq!(find("s5-155u").unwrap().name, "s5-155u-948");
+        assert_eq!(find("s5-100u").unwrap().name, "s5-100u-103");
+        assert!(names().contains(&"s5-115u"));
+        assert!(ALIASES.iter().all(|(_, target)| find(target).is_some()));
+    }
+
+    #[test]
+    fn every_profile_has_a_unique_name_and_sane_limits() {
+        for profile in PROFILES {
+            let same = PROFILES.iter().filter(|other| other.name == profile.name);
+            assert_eq!(same.count(), 1, "{}", profile.name);
+            let s = &profile.sizes;
+            assert!(
+                s.image_bytes > 0 && s.flag_bytes > 0 && s.timers > 0,
+                "{}",
+                profile.name
+            );
+            assert!(profile.nesting_limit >= 16 && profile.bracket_depth == 7);
+            assert!(!profile.rules.is_empty() && !profile.manual.is_empty());
+            assert!(profile.timings.bit_image > 0, "{}", profile.name);
+            if profile.family == Family::S5 {
+                let mut priorities: Vec<u8> =
+                    profile.interrupt_obs.iter().map(|ob| ob.priority).collect();
+                priorities.dedup();
+                assert_eq!(
+                    priorities.len(),
+                    profile.interrupt_obs.len(),
+                    "{}",
+                    profile.name
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_s5_profiles_as_their_manuals_list_them() {
+        let cpu_944 = find("s5-115u-944").unwrap();
+        assert!(cpu_944.has_integral_fb(250) && cpu_944.system_ob(254).is_some());
+        assert_eq!(cpu_944.sizes.timers, 256);
+        assert_eq!(find("s5-115u-941").unwrap().sizes.timers, 128);
+        assert!(find("s5-155u-948").unwrap().system_ob(125).is_some());
+        assert!(find("s5-135u-928").unwrap().system_ob(125).is_none());
+        assert!(find("s5-135u").unwrap().interrupt_ob(18).is_some());
+        assert!(find("s5-115u").unwrap().interrupt_ob(18).is_none());
+        assert_eq!(find("s5-135u-922").unwrap().startup_obs, &[20, 21, 22]);
+        assert!(!find("sinumerik-840c").unwrap().has_integral_fb(250));
+        assert_eq!(with_integral_fb(250).len(), 5);
+        assert!(find("s5-135u-928b").unwrap().has(Feature::FloatingPoint));
+        assert!(!find("s5-115u-941").unwrap().has(Feature::FloatingPoint));
+        let time_controlled = TIME_CONTROLLED_TEXT;
+        for profile in PROFILES
+            .iter()
+            .filter(|profile| profile.family == Family::S5)
+        {
+            assert!(
+                profile
+                    .rules
+                    .iter()
+                    .any(|rule| rule.contains(time_controlled))
+            );
+        }
+    }
+
+    const TIME_CONTROLLED_TEXT: &str = "do not fire on their own";
 }

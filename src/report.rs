@@ -11,6 +11,34 @@ fn micros(ns: u32) -> String {
     format!("{:.2} µs", f64::from(ns) / 1000.0)
 }
 
+/// The aliases, integral FBs and system OBs of a profile, for those that have any.
+fn write_builtins(out: &mut String, p: &profile::Profile) {
+    let aliases: Vec<&str> = profile::ALIASES
+        .iter()
+        .filter(|(_, target)| *target == p.name)
+        .map(|(alias, _)| *alias)
+        .collect();
+    if !aliases.is_empty() {
+        let _ = writeln!(out, "  also called: {}", aliases.join(", "));
+    }
+    if !p.integral_fbs.is_empty() {
+        let fbs: Vec<String> = p
+            .integral_fbs
+            .iter()
+            .map(|fb| format!("FB {fb} {}", crate::compiler::builtin::name(*fb)))
+            .collect();
+        let _ = writeln!(out, "  integral FBs: {}", fbs.join(", "));
+    }
+    if !p.system_obs.is_empty() {
+        let obs: Vec<String> = p
+            .system_obs
+            .iter()
+            .map(|ob| format!("OB {} ({})", ob.ob, ob.summary))
+            .collect();
+        let _ = writeln!(out, "  system OBs: {}", obs.join(", "));
+    }
+}
+
 /// `awl cpus`: every profile with its rules, priorities, limits, timings and their sources.
 pub fn cpus() -> String {
     let mut out = format!("the cycle, on every CPU: {}\n\n", profile::CYCLE_MODEL);
@@ -39,6 +67,7 @@ pub fn cpus() -> String {
         );
         let startup: Vec<String> = p.startup_obs.iter().map(|ob| format!("OB {ob}")).collect();
         let _ = writeln!(out, "  startup OB: {}", startup.join(" / "));
+        write_builtins(&mut out, p);
         let s = &p.sizes;
         let _ = writeln!(
             out,
@@ -103,9 +132,13 @@ fn bound_lines(out: &mut String, cpu: &Cpu) {
         InterruptPoints::Block => {
             let block = cpu.longest_block;
             if block.ns > 0 {
+                let why = match cpu.profile.family {
+                    Family::S5 => "the worst case with interrupt points at block boundaries",
+                    _ => "the worst case in normal mode: SINUMERIK 840C PLC manual, 5.3.2",
+                };
                 let _ = writeln!(
                     out,
-                    "longest block: {}, {:.3} ms (the worst case in normal mode: SINUMERIK 840C PLC manual, 5.3.2)",
+                    "longest block: {}, {:.3} ms ({why})",
                     stretch_text(cpu, block.kind),
                     block.ns as f64 / 1e6
                 );

@@ -374,6 +374,7 @@ fn requests(cpu: &Profile, baseline: &Outcome, picks: &[(u64, u64, bool)]) -> Ve
                     active_for_ns: offset % 50_000,
                 },
                 Family::S5_95f => Happening::Interrupt { ob: 3 },
+                Family::S5 => Happening::Interrupt { ob: 2 },
                 Family::Sinumerik840c => Happening::Interrupt {
                     ob: 2 + (which % 6) as u8,
                 },

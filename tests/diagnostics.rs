@@ -206,6 +206,11 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
             "PB 1\n      A  I 0.0\n      )\n      =  Q 4.0\n      BE\n".into(),
         ),
         (
+            "awl::check::block_not_on_cpu",
+            "sinumerik-840c",
+            "OB 1\n      JU OB 254\n      BE\n".into(),
+        ),
+        (
             "awl::check::bracket_depth",
             "s5-95f",
             format!(

@@ -566,7 +566,9 @@ fn floating_point_is_an_error_on_a_cpu_without_it() {
         .iter()
         .map(|diagnostic| diagnostic.to_string())
         .collect();
-    assert_eq!(messages, ["`+G` needs floating point: sinumerik-840c"]);
+    let having = awl::profile::having(awl::profile::Feature::FloatingPoint).join(", ");
+    assert!(having.starts_with("sinumerik-840c, "), "{having}");
+    assert_eq!(messages, [format!("`+G` needs floating point: {having}")]);
     let default = awl::profile::find(awl::profile::DEFAULT_PROFILE).unwrap();
     assert!(!awl::frontend::build_text("fp.awl", program, default).has_errors());
 }

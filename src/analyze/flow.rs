@@ -4,6 +4,7 @@
 //! backward jump is a loop, bounded by a `; @bound N` comment on its first line (N passes at
 //! most) or unbounded.
 
+use crate::compiler::builtin::Builtin;
 use crate::compiler::bytecode::JumpCondition;
 use crate::compiler::{CompiledBlock, Op};
 use crate::mnemonics::OpCode;
@@ -50,7 +51,12 @@ pub fn step(op: Op) -> Step {
             callee: Callee::Block(block),
             conditional,
         },
-        Op::CallMissing { conditional, .. } => Step::Stop { conditional },
+        Op::CallMissing { conditional, .. }
+        | Op::Builtin {
+            block: Builtin::SystemOb(_),
+            conditional,
+            ..
+        } => Step::Stop { conditional },
         Op::BlockEnd | Op::BlockEndUnconditional => Step::End { conditional: false },
         Op::BlockEndConditional => Step::End { conditional: true },
         Op::Formal {

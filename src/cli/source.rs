@@ -50,6 +50,8 @@ fn build(
 fn runs_on_note(profiles: &[&str]) -> String {
     if profiles.is_empty() {
         "note: no CPU profile compiles it without errors\n".to_string()
+    } else if profiles.len() == crate::profile::PROFILES.len() {
+        "note: compiles without errors for every CPU profile (`awl cpus`)\n".to_string()
     } else {
         format!(
             "note: compiles without errors for --cpu {}\n",

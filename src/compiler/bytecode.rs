@@ -230,6 +230,13 @@ pub enum Op {
         conditional: bool,
         entry: u32,
     },
+    /// `JU`/`JC` to a block the CPU has built in (an integral FB, a system OB), with its
+    /// actual-parameter list.
+    Builtin {
+        block: super::builtin::Builtin,
+        conditional: bool,
+        params: u16,
+    },
     /// A call of a block that is not loaded: STOP when taken.
     CallMissing {
         kind: BlockKind,

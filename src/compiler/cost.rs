@@ -62,6 +62,8 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         } => t.divide,
         Op::Convert(_) => t.add_sub,
         Op::Call { .. } | Op::CallAt { .. } | Op::CallMissing { .. } => t.block_call,
+        // An estimate: the call, its end, and about forty operations of the block's body.
+        Op::Builtin { .. } => t.block_call + t.block_end + 40 * t.load_word,
         Op::BlockEnd | Op::BlockEndConditional | Op::BlockEndUnconditional => t.block_end,
         Op::OpenDb(_) | Op::GenerateDb(_) => t.open_db,
         Op::Jump(..) => t.jump,

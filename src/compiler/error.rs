@@ -182,6 +182,21 @@ pub enum CheckError {
         at: Span,
     },
 
+    #[error("{id} is built into other CPUs, not into {cpu}")]
+    #[diagnostic(
+        code(awl::check::block_not_on_cpu),
+        help(
+            "the profiles that have it: {profiles}; choose one with `--cpu`, or add the block's source"
+        )
+    )]
+    BlockNotOnCpu {
+        id: String,
+        #[label("not built into {cpu}, and the program does not define it")]
+        at: Span,
+        cpu: &'static str,
+        profiles: String,
+    },
+
     #[error("{id} is opened but defined nowhere")]
     #[diagnostic(
         code(awl::check::undefined_db),
@@ -297,6 +312,7 @@ impl CheckError {
             | CheckError::ParamMismatch { at, .. }
             | CheckError::UnknownParam { at, .. }
             | CheckError::UndefinedBlock { at, .. }
+            | CheckError::BlockNotOnCpu { at, .. }
             | CheckError::UndefinedDb { at, .. }
             | CheckError::IndirectTarget { at, .. }
             | CheckError::NotOnCpu { at, .. }

@@ -4,6 +4,7 @@
 mod add_constant;
 pub mod arena;
 mod brackets;
+pub mod builtin;
 pub mod bytecode;
 mod calls;
 pub mod cost;
@@ -25,6 +26,7 @@ use crate::ast::{Block, BlockBody, BlockId, LogicBody, Operand, ParamDecl, Sourc
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
 use crate::profile::{self, Profile};
 use crate::source::{SourceSet, Span};
+use builtin::{Builtin, IntegralFb};
 
 /// One compiled logic block.
 #[derive(Debug, Clone)]
@@ -265,7 +267,58 @@ impl<'a> Compiler<'a> {
                 }
             }
         }
+        self.declare_integral_fbs();
         (logic, data)
+    }
+
+    /// The integral FBs of the profile that the program does not define, so their calls are
+    /// checked like calls of the program's own FBs.
+    fn declare_integral_fbs(&mut self) {
+        for &number in self.profile.integral_fbs {
+            let id = BlockId {
+                kind: BlockKind::Fb,
+                number,
+            };
+            if let (false, Some(fb)) = (self.index.contains_key(&id), IntegralFb::of(number)) {
+                self.fb_params.insert(id, fb.declarations());
+            }
+        }
+    }
+
+    /// The built-in block a call of `id` runs: one of the profile's, not defined by the
+    /// program.
+    fn builtin(&self, id: BlockId) -> Option<Builtin> {
+        if self.index.contains_key(&id) {
+            return None;
+        }
+        match id.kind {
+            BlockKind::Fb if self.profile.has_integral_fb(id.number) => {
+                IntegralFb::of(id.number).map(Builtin::Integral)
+            }
+            BlockKind::Ob if self.profile.system_ob(id.number).is_some() => {
+                Some(Builtin::SystemOb(id.number))
+            }
+            _ => None,
+        }
+    }
+
+    /// A call of a built-in block: its op, its parameters checked.
+    fn builtin_call(
+        &mut self,
+        context: &BlockContext<'_>,
+        statement: &Statement,
+        id: BlockId,
+        block: Builtin,
+    ) -> Option<Op> {
+        let params = match block {
+            Builtin::Integral(_) => self.call_params(context, statement, id)?,
+            Builtin::SystemOb(_) => bytecode::NO_PARAMS,
+        };
+        Some(Op::Builtin {
+            block,
+            conditional: statement.op == OpCode::JumpConditional,
+            params,
+        })
     }
 
     fn compile_block(&mut self, block: &Block, set: MnemonicSet) -> CompiledBlock {
@@ -370,6 +423,13 @@ impl<'a> Compiler<'a> {
             });
         }
         let resolved = self.resolve(context, statement)?;
+        if let (Operand::Block(id), OpCode::JumpUnconditional | OpCode::JumpConditional) =
+            (&statement.operand, statement.op)
+            && let Some(block) = self.builtin(*id)
+        {
+            let op = self.builtin_call(context, statement, *id, block)?;
+            return Some((op, op));
+        }
         let params = match resolved {
             Resolved::Block {
                 kind,
@@ -497,11 +557,21 @@ impl<'a> Compiler<'a> {
         let known_data = self.data_numbers.contains(&id) || self.generated_dbs.contains(&id.number);
         match op {
             OpCode::JumpUnconditional | OpCode::JumpConditional
-                if index.is_none() && !id.kind.is_data() =>
+                if index.is_none() && !id.kind.is_data() && self.builtin(id).is_none() =>
             {
-                self.diagnostics.push(CheckError::UndefinedBlock {
-                    id: id.to_string(),
-                    at,
+                let elsewhere = builtin::profiles_with(id);
+                self.diagnostics.push(if elsewhere.is_empty() {
+                    CheckError::UndefinedBlock {
+                        id: id.to_string(),
+                        at,
+                    }
+                } else {
+                    CheckError::BlockNotOnCpu {
+                        id: id.to_string(),
+                        at,
+                        cpu: self.profile.name,
+                        profiles: elsewhere.join(", "),
+                    }
                 });
             }
             OpCode::OpenDb if id.kind.is_data() && !known_data => {

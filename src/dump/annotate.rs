@@ -3,6 +3,7 @@
 //! constant as it was written (`load constant KF +20`), jump targets by their label.
 
 use crate::ast::{CallParam, ParamDecl, Statement};
+use crate::compiler::builtin::Builtin;
 use crate::compiler::bytecode::{
     Arith, BitSource, BitTarget, Comparison, DataPart, ImageBit, IndirectSource, JumpCondition,
     Logic, Op, TimerKind, Width, WordLogic, Write,
@@ -446,6 +447,17 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
         } => {
             let verb = if conditional { "call if RLO 1" } else { "call" };
             format!("{verb} {} {number}, which is not loaded: STOP", kind.name())
+        }
+        Op::Builtin {
+            block, conditional, ..
+        } => {
+            let verb = if conditional { "call if RLO 1" } else { "call" };
+            match block {
+                Builtin::Integral(fb) => format!("{verb} the CPU's integral {}", fb.name()),
+                Builtin::SystemOb(ob) => {
+                    format!("{verb} system OB {ob}, which awl does not simulate: STOP")
+                }
+            }
         }
         Op::OpenDb(number) => format!("open {}", context.named(format!("DB {number}"))),
         Op::GenerateDb(number) => format!("generate {}", context.named(format!("DB {number}"))),

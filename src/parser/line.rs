@@ -259,6 +259,12 @@ pub fn data_word<'a>(
 pub fn param_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, CallParam> {
     move |input: Tokens<'a>| {
         let (rest, name) = kind(TokenKind::Word, "parameter name")(input)?;
+        // `Z3=0`: the integral FBs' names for "result is zero" (S5-115U manual, FB 242/243).
+        let (rest, zero_test) = opt(pair(
+            kind(TokenKind::Equals, "`=`"),
+            kind(TokenKind::Number, "number"),
+        ))
+        .parse(rest)?;
         let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
         let (rest, (actual, actual_span)) = operand(context, None)(rest)?;
         if actual == Operand::None || matches!(actual, Operand::Number(_)) {
@@ -270,9 +276,15 @@ pub fn param_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult
         }
         let (rest, _) = end_of_line(rest)?;
         let span = remaining_span(context, input.tokens).unwrap_or_default();
-        let name = Name {
-            text: context.text(name).to_string(),
-            span: context.span(name),
+        let name = match zero_test {
+            Some((_, number)) => Name {
+                text: format!("{}={}", context.text(name), context.text(number)),
+                span: context.span_of(name, number),
+            },
+            None => Name {
+                text: context.text(name).to_string(),
+                span: context.span(name),
+            },
         };
         Ok((
             rest,

@@ -434,13 +434,13 @@ impl Scenario {
             .filter(|ob| match profile.family {
                 Family::S5_95f => *ob != 13,
                 Family::Speed7 => false,
-                Family::Sinumerik840c => true,
+                Family::Sinumerik840c | Family::S5 => true,
             })
             .collect();
         let help = match profile.family {
             Family::Speed7 => "SPEED7 interrupts come from modules: use `hw_interrupt = { module, channel, active_for }`".to_string(),
             Family::S5_95f => "OB 13 runs at its [ob13] interval; `interrupt` requests OB 2 or OB 3".to_string(),
-            Family::Sinumerik840c => format!(
+            Family::Sinumerik840c | Family::S5 => format!(
                 "the interrupt OBs are: {}",
                 allowed.iter().map(|ob| format!("OB {ob}")).collect::<Vec<_>>().join(", ")
             ),

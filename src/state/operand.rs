@@ -126,6 +126,7 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::Call { .. }
         | Op::CallAt { .. }
         | Op::CallMissing { .. }
+        | Op::Builtin { .. }
         | Op::OpenDb(_)
         | Op::BlockEnd
         | Op::BlockEndConditional

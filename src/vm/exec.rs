@@ -134,7 +134,7 @@ impl Cpu {
     }
 
     /// Why data word `word` cannot be reached: no DB open, or past its end.
-    fn data_fault(&self, word: u16) -> (StopCause, StopDetail) {
+    pub(super) fn data_fault(&self, word: u16) -> (StopCause, StopDetail) {
         let problem = match self.level.open_db {
             None => format!("DW {word} accessed with no data block open"),
             Some(db) => {
@@ -147,7 +147,11 @@ impl Cpu {
         (StopCause::LzfData, StopDetail::Text(problem))
     }
 
-    fn read_data(&self, part: DataPart, word: u16) -> Result<u32, (StopCause, StopDetail)> {
+    pub(super) fn read_data(
+        &self,
+        part: DataPart,
+        word: u16,
+    ) -> Result<u32, (StopCause, StopDetail)> {
         let fault = || self.data_fault(word);
         let value = u32::from(self.data_word(word).ok_or_else(fault)?);
         Ok(match part {
@@ -160,7 +164,7 @@ impl Cpu {
         })
     }
 
-    fn write_data(
+    pub(super) fn write_data(
         &mut self,
         part: DataPart,
         word: u16,
@@ -190,11 +194,11 @@ impl Cpu {
         Ok(())
     }
 
-    fn data_bit(&self, word: u16, bit: u8) -> Result<bool, (StopCause, StopDetail)> {
+    pub(super) fn data_bit(&self, word: u16, bit: u8) -> Result<bool, (StopCause, StopDetail)> {
         Ok(self.read_data(DataPart::Word, word)? >> bit & 1 != 0)
     }
 
-    fn write_data_bit(
+    pub(super) fn write_data_bit(
         &mut self,
         word: u16,
         bit: u8,
@@ -236,7 +240,7 @@ impl Cpu {
     }
 
     /// The periphery a load reaches: in the S5-95F's OB 13, the interrupt PII.
-    fn read_periphery(&mut self, width: Width, byte: u16, extended: bool) -> u32 {
+    pub(super) fn read_periphery(&mut self, width: Width, byte: u16, extended: bool) -> u32 {
         let (at, count) = (usize::from(byte), width.bytes());
         if extended {
             return read_bytes(&self.extended_inputs, at, count);
@@ -249,7 +253,7 @@ impl Cpu {
 
     /// The periphery a transfer reaches: the output module, or in the S5-95F's OB 13 the
     /// interrupt PIQ; the normal PIQ follows a direct output to a digital module.
-    fn write_periphery(&mut self, width: Width, byte: u16, value: u32, extended: bool) {
+    pub(super) fn write_periphery(&mut self, width: Width, byte: u16, value: u32, extended: bool) {
         let (at, count) = (usize::from(byte), width.bytes());
         let before = self.modules_before(Modules::Outputs, extended, at, count);
         if extended {
@@ -397,6 +401,16 @@ impl Cpu {
                         StopCause::LzfBlock,
                         StopDetail::Text(format!("{} {number}", kind.name())),
                     ));
+                }
+                self.level.status.after_jump();
+            }
+            Op::Builtin {
+                block,
+                conditional,
+                params,
+            } => {
+                if !conditional || rlo {
+                    self.run_builtin(block, params)?;
                 }
                 self.level.status.after_jump();
             }

@@ -11,6 +11,7 @@ pub mod counters;
 pub mod cycle;
 pub mod exec;
 pub mod float;
+mod integral;
 pub mod interrupts;
 mod io_trace;
 pub mod place;

@@ -575,6 +575,7 @@ impl Cpu {
                     | Op::ResetCounter(_)
                     | Op::EnableCounter(_)
                     | Op::CallMissing { .. }
+                    | Op::Builtin { .. }
                     | Op::OpenDb(_)
                     | Op::GenerateDb(_)
                     | Op::Nop

@@ -4,7 +4,8 @@
 //! - [`s5_95f`]: OB 13 with its delay, interrupt process images and wake-up error (S5-95F
 //!   manual, "Introduction to STEP 5", 7.4.4 and 7.4.5);
 //! - [`speed7`]: hardware interrupts by module and channel (VIPA SPEED7 operation list,
-//!   OB 40/OB 41).
+//!   OB 40/OB 41);
+//! - [`s5`]: the other S5 CPUs, with nothing beyond the generic engine.
 //!
 //! The rules every CPU shares (SINUMERIK 840C PLC manual, 5.3.2): a pending request is serviced
 //! at the next interrupt point when its OB's priority is above the running level's; of several,
@@ -16,6 +17,7 @@
 //! watchdog, a look of the run's pulse), or at 0 while a pending request outranks the running
 //! level. With nothing pending the loop pays one comparison per block change.
 
+pub mod s5;
 pub mod s5_95f;
 pub mod sinumerik840c;
 pub mod speed7;
@@ -28,6 +30,7 @@ use super::place::Place;
 use super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, IDLE, Mode, Point, StretchKind};
 
+use s5::S5;
 use s5_95f::S595f;
 use sinumerik840c::Sinumerik840c;
 use speed7::Speed7;
@@ -248,6 +251,7 @@ pub enum FamilyRules {
     Sinumerik840c(Sinumerik840c),
     S595f(S595f),
     Speed7(Speed7),
+    S5(S5),
     /// Taken out while one of its hooks runs (see `Cpu::with_rules`).
     #[default]
     Taken,
@@ -264,6 +268,7 @@ impl FamilyRules {
             Family::Sinumerik840c => FamilyRules::Sinumerik840c(Sinumerik840c::new(config)),
             Family::S5_95f => FamilyRules::S595f(S595f::new(profile, config)),
             Family::Speed7 => FamilyRules::Speed7(Speed7::new(config, schedule)),
+            Family::S5 => FamilyRules::S5(S5),
         }
     }
 
@@ -272,6 +277,7 @@ impl FamilyRules {
             FamilyRules::Sinumerik840c(rules) => rules,
             FamilyRules::S595f(rules) => rules,
             FamilyRules::Speed7(rules) => rules,
+            FamilyRules::S5(rules) => rules,
             FamilyRules::Taken => &Taken,
         }
     }
@@ -281,6 +287,7 @@ impl FamilyRules {
             FamilyRules::Sinumerik840c(rules) => rules,
             FamilyRules::S595f(rules) => rules,
             FamilyRules::Speed7(rules) => rules,
+            FamilyRules::S5(rules) => rules,
             // A box of a zero-sized type allocates nothing.
             FamilyRules::Taken => Box::leak(Box::new(Taken)),
         }

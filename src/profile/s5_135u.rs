@@ -1,0 +1,109 @@
+//! The S5-135U with CPU 922 (R processor), CPU 928 and CPU 928B.
+
+use super::s5_common::*;
+use super::{Family, Feature, InterruptPoints, Nesting, Profile};
+
+const PRIORITY_ORDER: &str = "priority OB 2 > OB 3 > OB 4 > OB 5 > OB 6 > OB 10 > OB 11 > … > \
+     OB 18 > OB 1";
+
+const RULES_922: &[&str] = &[
+    PRIORITY_ORDER,
+    PRIORITIES,
+    BLOCK_POINTS,
+    INTERRUPT_REQUESTS,
+    SYSTEM_OB_CALLS,
+    STARTUP,
+    "operation groups beyond the basic set: ADD constants, system and register operations \
+     (S5-135U CPU 922 programming guide, operation set)",
+];
+
+const RULES_928: &[&str] = &[
+    PRIORITY_ORDER,
+    PRIORITIES,
+    BLOCK_POINTS,
+    INTERRUPT_REQUESTS,
+    SYSTEM_OB_CALLS,
+    STARTUP,
+    "operation groups beyond the basic set: all (floating point, 32-bit BCD and conversions, \
+     ADD constants, system and register operations) (S5-135U CPU 928 and 928B programming \
+     guides, operation set)",
+];
+
+const RULES_928B: &[&str] = &[
+    PRIORITY_ORDER,
+    PRIORITIES,
+    BLOCK_POINTS,
+    INTERRUPT_REQUESTS,
+    SYSTEM_OB_CALLS,
+    STARTUP,
+    RULES_928[6],
+    "four accumulators (CPU 928B programming guide, table 3-7)",
+];
+
+pub(super) const ALL_FEATURES: &[Feature] = &[
+    Feature::FloatingPoint,
+    Feature::DoubleBcd,
+    Feature::BcdConversions,
+    Feature::AddConstant,
+    Feature::SystemOperations,
+    Feature::RegisterOperations,
+];
+
+pub const CPU_922: Profile = Profile {
+    name: "s5-135u-922",
+    family: Family::S5,
+    title: "S5-135U with CPU 922 (R processor)",
+    manual: "S5-135U CPU 922 programming guide and S5-135U system manual: organization \
+             blocks, interrupt processing, technical data",
+    sizes: LARGE_SIZES,
+    nesting_limit: 32,
+    nesting: Nesting::PerLevel,
+    accumulators: 2,
+    bracket_depth: 7,
+    watchdog_ns: 500_000_000,
+    startup_obs: &[20, 21, 22],
+    interrupt_obs: INTERRUPTS_135U_155U,
+    default_points: InterruptPoints::Block,
+    extended_blocks: true,
+    features: &[
+        Feature::AddConstant,
+        Feature::SystemOperations,
+        Feature::RegisterOperations,
+    ],
+    integral_fbs: &[],
+    system_obs: SYSTEM_OBS_135U,
+    timings: estimated_times(
+        2000,
+        1_000_000,
+        "estimates of the CPU 922 class (about 2 µs per bit operation, 1 ms \
+         operating-system time)",
+    ),
+    rules: RULES_922,
+};
+
+pub const CPU_928: Profile = Profile {
+    name: "s5-135u-928",
+    title: "S5-135U with CPU 928",
+    manual: "S5-135U CPU 928 programming guide and S5-135U system manual: organization \
+             blocks, interrupt processing, technical data",
+    features: ALL_FEATURES,
+    timings: estimated_times(
+        800,
+        600_000,
+        "estimates of the CPU 928 class (about 0.8 µs per bit operation, 0.6 ms \
+         operating-system time)",
+    ),
+    rules: RULES_928,
+    ..CPU_922
+};
+
+pub const CPU_928B: Profile = Profile {
+    name: "s5-135u-928b",
+    title: "S5-135U with CPU 928B",
+    manual: "S5-135U CPU 928B programming guide and S5-135U system manual: organization \
+             blocks, interrupt processing, technical data",
+    accumulators: 4,
+    timings: super::SINUMERIK_840C_TIMES,
+    rules: RULES_928B,
+    ..CPU_928
+};
