@@ -182,7 +182,7 @@ pub const PRIORITIES: &str = "a pending request is serviced at the next interrup
      its OB's priority is above the running level's; of several, the highest first; a second \
      request for an OB still pending is lost";
 pub const BLOCK_POINTS: &str = "interrupt points: block boundaries (block calls and ends) and \
-     the cycle's points by default; `points = \"operation\"` in a scenario makes every \
+     the cycle's points by default; `interrupt_points = \"operation\"` in a scenario makes every \
      operation one, as the CPU's setting for interruption at operation boundaries does";
 pub const SYSTEM_OB_CALLS: &str = "`JU OB n` of a system OB the manual lists is accepted by \
      `check`; awl does not simulate system OBs: running one is a STOP naming it";
