@@ -89,6 +89,8 @@ pub struct InterruptOb {
     pub ob: u8,
     pub priority: u8,
     pub summary: &'static str,
+    /// A time-controlled OB the S5 CPU calls on its own at this interval (0: requested only).
+    pub every_ms: u32,
 }
 
 /// A system OB a program may call (`JU OB 160`), as the CPU's manual lists it.
@@ -319,31 +321,37 @@ pub static PROFILES: &[Profile] = &[
                 ob: 2,
                 priority: 7,
                 summary: "interrupt (special mode only)",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 3,
                 priority: 6,
                 summary: "interrupt",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 4,
                 priority: 5,
                 summary: "interrupt",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 5,
                 priority: 4,
                 summary: "interrupt (special mode only)",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 6,
                 priority: 3,
                 summary: "interrupt",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 7,
                 priority: 2,
                 summary: "interrupt",
+                every_ms: 0,
             },
         ],
         default_points: InterruptPoints::Block,
@@ -402,16 +410,19 @@ pub static PROFILES: &[Profile] = &[
                 ob: 2,
                 priority: 4,
                 summary: "process interrupt (interrupt inputs)",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 3,
                 priority: 3,
                 summary: "process interrupt",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 13,
                 priority: 2,
                 summary: "time-controlled at [ob13].interval",
+                every_ms: 0,
             },
         ],
         default_points: InterruptPoints::Operation,
@@ -471,21 +482,25 @@ pub static PROFILES: &[Profile] = &[
                 ob: 82,
                 priority: 26,
                 summary: "diagnostic interrupt",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 85,
                 priority: 26,
                 summary: "program execution error (no OB for a module)",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 41,
                 priority: 17,
                 summary: "hardware interrupt",
+                every_ms: 0,
             },
             InterruptOb {
                 ob: 40,
                 priority: 16,
                 summary: "hardware interrupt",
+                every_ms: 0,
             },
         ],
         default_points: InterruptPoints::Operation,
@@ -655,5 +670,5 @@ mod tests {
         }
     }
 
-    const TIME_CONTROLLED_TEXT: &str = "do not fire on their own";
+    const TIME_CONTROLLED_TEXT: &str = "called at their intervals";
 }

@@ -848,3 +848,24 @@ fn seed001_the_transition_to_run_is_an_instant() {
         );
     }
 }
+
+/// The S5-135U calls the time-controlled OBs the program has at their intervals from the start
+/// of RUN (OB 10 every 10 ms, OB 13 every 100 ms); OB 11, which the program lacks, is never
+/// requested; a process interrupt OB still runs only on request.
+#[test]
+fn s5_time_controlled_obs_are_called_at_their_intervals() {
+    let program = "OB 1\n      JU PB 1\n      BE\nPB 1\n      L  KF +1\n      BE\nOB 10\n      L  FW 2\n      L  KF +1\n      +F\n      T  FW 2\n      BE\nOB 13\n      BE\nOB 2\n      BE\n";
+    let scenario = "cpu = \"s5-135u\"\nrun = { for = \"1s\" }\n[expect]\nmode = \"RUN\"\n";
+    let (ran, events) = traced("s5_timed", program, scenario);
+    expectations_met(&ran);
+    let requested = |ob| ran.cpu.engine.stats(ob).requested;
+    assert_eq!((requested(10), requested(13)), (100, 10));
+    assert_eq!((requested(11), requested(2)), (0, 0));
+    assert_eq!(fw(&ran.cpu, 2), 100);
+    let first_ob10 = of(&events, "irq_request")
+        .into_iter()
+        .find(|event| event["ob"] == 10)
+        .expect("OB 10 requested")["t_ns"]
+        .as_u64();
+    assert_eq!(first_ob10, Some(10_000_000), "10 ms after RUN began");
+}

@@ -71,14 +71,17 @@ const fn process(ob: u8, priority: u8) -> InterruptOb {
         ob,
         priority,
         summary: "process interrupt",
+        every_ms: 0,
     }
 }
 
-const fn timed(ob: u8, priority: u8, summary: &'static str) -> InterruptOb {
+/// A time-controlled OB, called every `every_ms` once the program has it.
+const fn timed(ob: u8, priority: u8, summary: &'static str, every_ms: u32) -> InterruptOb {
     InterruptOb {
         ob,
         priority,
         summary,
+        every_ms,
     }
 }
 
@@ -86,11 +89,14 @@ const CLOCK: InterruptOb = InterruptOb {
     ob: 6,
     priority: 11,
     summary: "clock-time interrupt",
+    every_ms: 0,
 };
 
 /// S5-95U, S5-100U and S5-115U CPU 941–943: one process interrupt OB and OB 13.
-pub const SMALL_INTERRUPTS: &[InterruptOb] =
-    &[process(2, 3), timed(13, 2, "time-controlled, every 100 ms")];
+pub const SMALL_INTERRUPTS: &[InterruptOb] = &[
+    process(2, 3),
+    timed(13, 2, "time-controlled, every 100 ms", 100),
+];
 
 /// S5-115U CPU 944 and 945: process interrupts A–D, the clock and OB 10–13.
 pub const INTERRUPTS_115U: &[InterruptOb] = &[
@@ -99,10 +105,10 @@ pub const INTERRUPTS_115U: &[InterruptOb] = &[
     process(4, 13),
     process(5, 12),
     CLOCK,
-    timed(10, 10, "time-controlled, every 10 ms"),
-    timed(11, 9, "time-controlled, every 20 ms"),
-    timed(12, 8, "time-controlled, every 50 ms"),
-    timed(13, 7, "time-controlled, every 100 ms"),
+    timed(10, 10, "time-controlled, every 10 ms", 10),
+    timed(11, 9, "time-controlled, every 20 ms", 20),
+    timed(12, 8, "time-controlled, every 50 ms", 50),
+    timed(13, 7, "time-controlled, every 100 ms", 100),
 ];
 
 /// S5-135U and S5-155U: process interrupts A–D, the clock and OB 10–18.
@@ -112,15 +118,15 @@ pub const INTERRUPTS_135U_155U: &[InterruptOb] = &[
     process(4, 13),
     process(5, 12),
     CLOCK,
-    timed(10, 10, "time-controlled, every 10 ms"),
-    timed(11, 9, "time-controlled, every 20 ms"),
-    timed(12, 8, "time-controlled, every 50 ms"),
-    timed(13, 7, "time-controlled, every 100 ms"),
-    timed(14, 6, "time-controlled, every 200 ms"),
-    timed(15, 5, "time-controlled, every 500 ms"),
-    timed(16, 4, "time-controlled, every 1 s"),
-    timed(17, 3, "time-controlled, every 2 s"),
-    timed(18, 2, "time-controlled, every 5 s"),
+    timed(10, 10, "time-controlled, every 10 ms", 10),
+    timed(11, 9, "time-controlled, every 20 ms", 20),
+    timed(12, 8, "time-controlled, every 50 ms", 50),
+    timed(13, 7, "time-controlled, every 100 ms", 100),
+    timed(14, 6, "time-controlled, every 200 ms", 200),
+    timed(15, 5, "time-controlled, every 500 ms", 500),
+    timed(16, 4, "time-controlled, every 1 s", 1000),
+    timed(17, 3, "time-controlled, every 2 s", 2000),
+    timed(18, 2, "time-controlled, every 5 s", 5000),
 ];
 
 /// FB 240–243, 250 and 251, built into the S5-115U.
@@ -175,9 +181,10 @@ pub const SYSTEM_OBS_948: &[SystemOb] = &[
 ];
 
 /// The rules every S5 profile shares, after its own.
-pub const INTERRUPT_REQUESTS: &str = "process interrupts, the clock-time interrupt and the \
-     time-controlled OBs run when a scenario's `interrupt` event requests them; the \
-     time-controlled OBs do not fire on their own at their interval in this version";
+pub const INTERRUPT_REQUESTS: &str = "the time-controlled OBs the program has are called at \
+     their intervals from the start of RUN (a call while the last one of the same OB is still \
+     pending is lost); process interrupts and the clock-time interrupt run when a scenario's \
+     `interrupt` event requests them, and an event may request a time-controlled OB as well";
 pub const PRIORITIES: &str = "a pending request is serviced at the next interrupt point when \
      its OB's priority is above the running level's; of several, the highest first; a second \
      request for an OB still pending is lost";

@@ -268,7 +268,7 @@ impl FamilyRules {
             Family::Sinumerik840c => FamilyRules::Sinumerik840c(Sinumerik840c::new(config)),
             Family::S5_95f => FamilyRules::S595f(S595f::new(profile, config)),
             Family::Speed7 => FamilyRules::Speed7(Speed7::new(config, schedule)),
-            Family::S5 => FamilyRules::S5(S5),
+            Family::S5 => FamilyRules::S5(S5::new(profile)),
         }
     }
 
