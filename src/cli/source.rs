@@ -60,6 +60,18 @@ fn runs_on_note(profiles: &[&str]) -> String {
     }
 }
 
+/// Whether the errors are ones no choice of CPU removes: the text itself does not parse, or an
+/// assignment list is wrong. The "compiles for --cpu" note is then left out.
+fn cpu_cannot_help(built: &Frontend) -> bool {
+    built.diagnostics.iter().any(|diagnostic| {
+        !diagnostic.is_warning()
+            && matches!(
+                diagnostic,
+                diagnostics::SourceDiagnostic::Parse(_) | diagnostics::SourceDiagnostic::Symbol(_)
+            )
+    })
+}
+
 /// "0 errors, 2 warnings in 1 file": the front end's diagnostics and `more_warnings` besides.
 fn count_summary(built: &Frontend, more_warnings: usize) -> String {
     let errors = built.diagnostics.iter().filter(|d| !d.is_warning()).count();
@@ -84,7 +96,7 @@ pub fn check(options: &SourceOptions, console: &mut Console) -> u8 {
     let blocks = built.compiled.program.blocks.len() + built.compiled.program.data_blocks.len();
     if built.has_errors() {
         console.err(&format!("awl check: {}\n", count_summary(&built, 0)));
-        if let Some(profiles) = runs_on {
+        if let Some(profiles) = runs_on.filter(|_| !cpu_cannot_help(&built)) {
             console.err(&runs_on_note(&profiles));
         }
         return EXIT_SOURCE_ERRORS;
