@@ -11,8 +11,16 @@ fn micros(ns: u32) -> String {
     format!("{:.2} µs", f64::from(ns) / 1000.0)
 }
 
-/// The aliases, integral FBs and system OBs of a profile, for those that have any.
+/// The operation groups of a profile beyond the common set, then its aliases, integral FBs and
+/// system OBs, for those that have any.
 fn write_builtins(out: &mut String, p: &profile::Profile) {
+    let groups: Vec<&str> = p.features.iter().map(|feature| feature.name()).collect();
+    let groups = if groups.is_empty() {
+        "none".to_string()
+    } else {
+        groups.join(", ")
+    };
+    let _ = writeln!(out, "  operation groups beyond the common set: {groups}");
     let aliases: Vec<&str> = profile::ALIASES
         .iter()
         .filter(|(_, target)| *target == p.name)

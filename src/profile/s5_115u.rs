@@ -19,8 +19,6 @@ const RULES_941_943: &[&str] = &[
     INTEGRAL_RULE,
     SYSTEM_OB_CALLS,
     STARTUP,
-    "operation groups beyond the basic set: ADD constants, system operations (S5-115U \
-     manual, operation set of the CPU 941–944)",
 ];
 
 const RULES_944: &[&str] = &[
@@ -31,21 +29,6 @@ const RULES_944: &[&str] = &[
     INTEGRAL_RULE,
     SYSTEM_OB_CALLS,
     STARTUP,
-    "operation groups beyond the basic set: ADD constants, system operations (S5-115U \
-     manual, operation set of the CPU 941–944)",
-];
-
-const RULES_945: &[&str] = &[
-    RULES_944[0],
-    PRIORITIES,
-    BLOCK_POINTS,
-    INTERRUPT_REQUESTS,
-    INTEGRAL_RULE,
-    SYSTEM_OB_CALLS,
-    STARTUP,
-    "operation groups beyond the basic set: floating point, 32-bit BCD and 16-to-32-bit \
-     conversions, ADD constants, system operations (S5-115U manual, operation set of the \
-     CPU 945)",
 ];
 
 const BASIC_FEATURES: &[Feature] = &[Feature::AddConstant, Feature::SystemOperations];
@@ -132,6 +115,5 @@ pub const CPU_945: Profile = Profile {
         "estimates of the CPU 945 class (about 0.1 µs per bit operation, 0.3 ms \
          operating-system time)",
     ),
-    rules: RULES_945,
     ..CPU_944
 };

@@ -3,40 +3,22 @@
 use super::s5_common::*;
 use super::{Family, Feature, InterruptPoints, Nesting, Profile};
 
-const PRIORITY_ORDER: &str = "priority OB 2 > OB 3 > OB 4 > OB 5 > OB 6 > OB 10 > OB 11 > … > \
-     OB 18 > OB 1";
-
-const RULES_922: &[&str] = &[
-    PRIORITY_ORDER,
+const RULES: &[&str] = &[
+    PRIORITY_ORDER_135U_155U,
     PRIORITIES,
     BLOCK_POINTS,
     INTERRUPT_REQUESTS,
     SYSTEM_OB_CALLS,
     STARTUP,
-    "operation groups beyond the basic set: ADD constants, system and register operations \
-     (S5-135U CPU 922 programming guide, operation set)",
-];
-
-const RULES_928: &[&str] = &[
-    PRIORITY_ORDER,
-    PRIORITIES,
-    BLOCK_POINTS,
-    INTERRUPT_REQUESTS,
-    SYSTEM_OB_CALLS,
-    STARTUP,
-    "operation groups beyond the basic set: all (floating point, 32-bit BCD and conversions, \
-     ADD constants, system and register operations) (S5-135U CPU 928 and 928B programming \
-     guides, operation set)",
 ];
 
 const RULES_928B: &[&str] = &[
-    PRIORITY_ORDER,
+    PRIORITY_ORDER_135U_155U,
     PRIORITIES,
     BLOCK_POINTS,
     INTERRUPT_REQUESTS,
     SYSTEM_OB_CALLS,
     STARTUP,
-    RULES_928[6],
     "four accumulators (CPU 928B programming guide, table 3-7)",
 ];
 
@@ -78,7 +60,7 @@ pub const CPU_922: Profile = Profile {
         "estimates of the CPU 922 class (about 2 µs per bit operation, 1 ms \
          operating-system time)",
     ),
-    rules: RULES_922,
+    rules: RULES,
 };
 
 pub const CPU_928: Profile = Profile {
@@ -93,7 +75,7 @@ pub const CPU_928: Profile = Profile {
         "estimates of the CPU 928 class (about 0.8 µs per bit operation, 0.6 ms \
          operating-system time)",
     ),
-    rules: RULES_928,
+    rules: RULES,
     ..CPU_922
 };
 

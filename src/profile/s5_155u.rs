@@ -5,15 +5,12 @@ use super::s5_common::*;
 use super::{Family, InterruptPoints, Nesting, Profile};
 
 const RULES: &[&str] = &[
-    "priority OB 2 > OB 3 > OB 4 > OB 5 > OB 6 > OB 10 > OB 11 > … > OB 18 > OB 1",
+    PRIORITY_ORDER_135U_155U,
     PRIORITIES,
     BLOCK_POINTS,
     INTERRUPT_REQUESTS,
     SYSTEM_OB_CALLS,
     STARTUP,
-    "operation groups beyond the basic set: all (floating point, 32-bit BCD and conversions, \
-     ADD constants, system and register operations) (S5-155U CPU 946/947 and CPU 948 \
-     programming guides, operation set)",
     "four accumulators",
 ];
 

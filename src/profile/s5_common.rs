@@ -111,6 +111,10 @@ pub const INTERRUPTS_115U: &[InterruptOb] = &[
     timed(13, 7, "time-controlled, every 100 ms", 100),
 ];
 
+/// The priorities of [`INTERRUPTS_135U_155U`], as a rule line.
+pub const PRIORITY_ORDER_135U_155U: &str = "priority OB 2 > OB 3 > OB 4 > OB 5 > OB 6 > OB 10 > \
+     OB 11 > … > OB 18 > OB 1";
+
 /// S5-135U and S5-155U: process interrupts A–D, the clock and OB 10–18.
 pub const INTERRUPTS_135U_155U: &[InterruptOb] = &[
     process(2, 15),

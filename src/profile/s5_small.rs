@@ -11,7 +11,6 @@ const SMALL_RULES: &[&str] = &[
     SYSTEM_OB_CALLS,
     STARTUP,
     "block nesting depth at most 16, interrupt levels included",
-    "operation groups beyond the basic set: ADD constants only",
 ];
 
 const SMALL: Profile = Profile {

@@ -65,7 +65,11 @@ fn multiply_divide(op: Arith, accu1: &mut u32, a: i32, b: i32, status: &mut Stat
 
 /// `!=F ><F >F >=F <F <=F`: ACCU 2 compared with ACCU 1 gives the RLO.
 pub fn compare(op: Comparison, accu1: u32, accu2: u32, status: &mut Status) {
-    let (a, b) = (low(accu2), low(accu1));
+    compare_values(op, low(accu2), low(accu1), status);
+}
+
+/// ACCU 2's value `a` compared with ACCU 1's `b`: the RLO, and CC 1/CC 0 for `a > b`/`a < b`.
+pub fn compare_values<T: PartialOrd>(op: Comparison, a: T, b: T, status: &mut Status) {
     let result = match op {
         Comparison::Eq => a == b,
         Comparison::Ne => a != b,

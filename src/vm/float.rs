@@ -44,16 +44,7 @@ fn set_sign(status: &mut Status, sign: i32) {
 pub fn compare(kind: Comparison, accu1: u32, accu2: u32, status: &mut Status) {
     // Both values are exact in an f64 (24-bit mantissas, exponents within ±151).
     let (a, b) = (s5_float::decode(accu2), s5_float::decode(accu1));
-    let result = match kind {
-        Comparison::Eq => a == b,
-        Comparison::Ne => a != b,
-        Comparison::Gt => a > b,
-        Comparison::Ge => a >= b,
-        Comparison::Lt => a < b,
-        Comparison::Le => a <= b,
-    };
-    status.set_condition(a > b, a < b);
-    status.load(result);
+    super::arith::compare_values(kind, a, b, status);
 }
 
 /// `FDG GFD DEF DUF DED DUD`.
