@@ -31,6 +31,7 @@ pub mod s5_float;
 pub mod scenario;
 pub mod source;
 pub mod state;
+pub mod step7;
 pub mod symbols;
 pub mod timeline;
 pub mod trace;

@@ -1,0 +1,5 @@
+//! STEP 7 STL: the second dialect. Its source form, operations and parameter passing differ from
+//! STEP 5's; this module is where those differences live: [`ast`] is what the S7 front end
+//! produces, and what the compiler turns into the same VM's bytecode.
+
+pub mod ast;
