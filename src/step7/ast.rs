@@ -97,7 +97,7 @@ pub struct VarSection {
     pub span: Span,
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct VarDecl {
     pub name: Name,
     pub ty: DataType,
