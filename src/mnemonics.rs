@@ -1053,6 +1053,8 @@ pub enum BlockKind {
     Fx,
     Db,
     Dx,
+    /// STEP 7's function (the dialect's own block; not in [`BlockKind::ALL`]).
+    Fc,
 }
 
 impl BlockKind {
@@ -1075,6 +1077,7 @@ impl BlockKind {
             BlockKind::Fx => "FX",
             BlockKind::Db => "DB",
             BlockKind::Dx => "DX",
+            BlockKind::Fc => "FC",
         }
     }
 

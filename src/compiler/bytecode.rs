@@ -322,6 +322,8 @@ pub enum Op {
         value: u32,
         double: bool,
     },
+    /// A STEP 7 operation STEP 5 does not have, run out of line.
+    S7(crate::step7::bytecode::S7Code),
     /// A system or register operation on absolute addresses: running it stops the CPU.
     NotSimulated {
         op: OpCode,

@@ -79,6 +79,7 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         Op::Indirect { .. } => t.load_word + t.other,
         Op::AddConstant { .. } => t.accumulator,
         Op::NotSimulated { .. } => t.other,
+        Op::S7(code) => crate::step7::bytecode::cost(code, t),
         Op::Nop | Op::Stop | Op::DisableInterrupts | Op::EnableInterrupts | Op::Formal { .. } => {
             t.other
         }

@@ -23,6 +23,8 @@ pub enum Resolved {
     Number(u16),
     /// The n-th formal parameter of the running FB.
     Formal(u8),
+    /// A STEP 7 actual parameter: its place in the program's S7 tables, in the caller.
+    S7(u16),
 }
 
 /// Where the areas lie in the VM's flat image memory.

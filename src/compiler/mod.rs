@@ -43,6 +43,8 @@ pub struct CompiledBlock {
     pub elapsed: Vec<u64>,
     /// Where the segments of a PG listing start: (first op, segment number), in order.
     pub segments: Vec<(u32, u16)>,
+    /// STEP 7: the block's local data bytes on the L stack.
+    pub local_bytes: u32,
 }
 
 impl CompiledBlock {
@@ -89,9 +91,45 @@ pub struct Program {
     pub names: Vec<std::sync::Arc<str>>,
     /// The code as the VM runs it, with the FB bodies specialised for their actuals.
     pub arena: arena::Arena,
+    /// Each block's bytes of local data on the L stack (STEP 7; 0 for STEP 5 blocks).
+    pub local_bytes: Vec<u32>,
+    /// The tables of the STEP 7 operations (empty for a STEP 5 program).
+    pub s7: crate::step7::bytecode::S7Tables,
 }
 
 impl Program {
+    /// The program of compiled blocks: their names made once and the arena built.
+    pub fn assemble(
+        profile: &'static Profile,
+        blocks: Vec<CompiledBlock>,
+        data_blocks: Vec<DataBlockImage>,
+        param_lists: Vec<Vec<Resolved>>,
+        index: HashMap<BlockId, u16>,
+        s7: crate::step7::bytecode::S7Tables,
+    ) -> Program {
+        let layout = Layout::new(&profile.sizes);
+        let arena = arena::Arena::build(&blocks, &param_lists, layout, true);
+        let names = blocks
+            .iter()
+            .map(|block| std::sync::Arc::from(block.id.to_string()))
+            .collect();
+        let local_bytes = blocks.iter().map(|block| block.local_bytes).collect();
+        Program {
+            profile,
+            layout,
+            blocks,
+            data_blocks,
+            param_lists,
+            indirect_templates: Vec::new(),
+            symbols: crate::symbols::Symbols::default(),
+            index,
+            names,
+            arena,
+            local_bytes,
+            s7,
+        }
+    }
+
     pub fn block_index(&self, id: BlockId) -> Option<u16> {
         self.index.get(&id).copied()
     }
@@ -102,6 +140,14 @@ impl Program {
     pub fn unoptimised(mut self) -> Self {
         self.arena = arena::Arena::build(&self.blocks, &self.param_lists, self.layout, false);
         self
+    }
+
+    /// The local data bytes of block `index`.
+    pub fn local_bytes(&self, index: u16) -> u32 {
+        self.local_bytes
+            .get(usize::from(index))
+            .copied()
+            .unwrap_or(0)
     }
 
     pub fn ob(&self, number: u8) -> Option<u16> {
@@ -143,24 +189,18 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
         let span = diagnostic.span();
         (span.file, span.start)
     });
-    let arena = arena::Arena::build(&blocks, &compiler.param_lists, compiler.layout, true);
-    let names = blocks
-        .iter()
-        .map(|block| std::sync::Arc::from(block.id.to_string()))
-        .collect();
+    let program = Program::assemble(
+        profile,
+        blocks,
+        data_blocks,
+        compiler.param_lists,
+        compiler.index,
+        crate::step7::bytecode::S7Tables::default(),
+    );
+    let mut program = program;
+    program.indirect_templates = compiler.templates;
     Compiled {
-        program: Program {
-            profile,
-            layout: compiler.layout,
-            blocks,
-            data_blocks,
-            param_lists: compiler.param_lists,
-            indirect_templates: compiler.templates,
-            symbols: crate::symbols::Symbols::default(),
-            index: compiler.index,
-            names,
-            arena,
-        },
+        program,
         diagnostics: compiler.diagnostics,
     }
 }
@@ -343,6 +383,7 @@ impl<'a> Compiler<'a> {
             spans: Vec::with_capacity(body.statements.len()),
             elapsed: Vec::with_capacity(body.statements.len() + 1),
             segments: Vec::new(),
+            local_bytes: 0,
         };
         compiled.elapsed.push(0);
         let context = BlockContext {

@@ -509,6 +509,7 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
             };
             format!("{} {shown}", verb(OpCode::AddConstant))
         }
+        Op::S7(code) => format!("{code:?}"),
         Op::NotSimulated { op, operand } => {
             let takes_none = matches!(
                 op,

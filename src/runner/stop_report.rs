@@ -164,6 +164,11 @@ pub fn cpu_stop_report(cpu: &Cpu, stop: &Stop) -> Report {
             stack,
         },
         (StopCause::Stp, _) => StopError::StopOperation { at, stack },
+        (StopCause::Assert, _) => StopError::AssertionFailed {
+            problem: detail,
+            at,
+            stack,
+        },
         (StopCause::Weck, StopDetail::Ob(ob)) => StopError::WakeUp { ob: *ob, at, stack },
         (
             StopCause::Weck,

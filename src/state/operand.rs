@@ -155,6 +155,7 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::Indirect { .. }
         | Op::Formal { .. }
         | Op::AddConstant { .. }
-        | Op::NotSimulated { .. } => return None,
+        | Op::NotSimulated { .. }
+        | Op::S7(_) => return None,
     })
 }

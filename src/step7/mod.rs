@@ -3,3 +3,4 @@
 //! produces, and what the compiler turns into the same VM's bytecode.
 
 pub mod ast;
+pub mod bytecode;

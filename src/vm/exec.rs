@@ -496,6 +496,9 @@ impl Cpu {
                 system_ops::add_constant(&mut self.level.accu1, value, double)
             }
             Op::NotSimulated { op, operand } => return Err(system_ops::not_simulated(op, operand)),
+            Op::S7(code) => {
+                self.execute_s7(code, pc)?;
+            }
             Op::EnableInterrupts => {
                 self.level.interrupts_enabled = true;
                 self.update_attention();

@@ -18,6 +18,7 @@ pub mod place;
 pub mod probe;
 pub mod pulse;
 mod run_loop;
+pub mod s7;
 pub mod status;
 pub mod stop;
 pub mod system_ops;
@@ -45,6 +46,10 @@ pub struct Frame {
     pub block: u16,
     pub open_db: Option<u8>,
     pub params: u16,
+    /// STEP 7: the calling block's DB and DI registers and where its local data start.
+    pub db: u16,
+    pub di: u16,
+    pub local_base: u32,
     /// Where the calling block's body starts in the program's arena, and where the loop resumes
     /// in it: kept so a block end needs no lookup.
     pub start: u32,
@@ -79,6 +84,13 @@ pub struct LevelState {
     pub interrupts_enabled: bool,
     /// S5-95F: this level is OB 13, so `L PY`/`T PY` reach the interrupt process images.
     pub interrupt_images: bool,
+    /// STEP 7: the address registers, the DB and DI registers (0: none open) and where the
+    /// running block's local data start on the L stack.
+    pub ar1: u32,
+    pub ar2: u32,
+    pub db: u16,
+    pub di: u16,
+    pub local_base: u32,
 }
 
 /// The operating mode.
@@ -204,6 +216,12 @@ pub struct Cpu {
     pub counters: Vec<Counter>,
     /// Data blocks by number.
     pub data_blocks: Vec<Option<Vec<u16>>>,
+    /// STEP 7 data blocks by number, byte-addressed.
+    pub s7_data: Vec<Option<Vec<u8>>>,
+    /// STEP 7: the L stack.
+    pub local: Vec<u8>,
+    /// STEP 7: the DB, DI and AR2 registers each `CALL FB` saved.
+    pub fb_saves: Vec<(u16, u16, u32)>,
     /// The running level's registers and position.
     pub level: LevelState,
     pub frames: BlockStack,
@@ -265,6 +283,13 @@ impl Cpu {
             timers: vec![Timer::default(); usize::from(sizes.timers)],
             counters: vec![Counter::default(); usize::from(sizes.counters)],
             data_blocks,
+            s7_data: s7::initial_data(&program),
+            local: if program.s7.is_empty() {
+                Vec::new()
+            } else {
+                vec![0; s7::memory::LOCAL_BYTES]
+            },
+            fb_saves: Vec::new(),
             level: LevelState {
                 accu1: 0,
                 accu2: 0,
@@ -281,6 +306,11 @@ impl Cpu {
                 frame_limit: usize::from(profile.nesting_limit).saturating_sub(1),
                 interrupts_enabled: true,
                 interrupt_images: false,
+                ar1: 0,
+                ar2: 0,
+                db: 0,
+                di: 0,
+                local_base: 0,
             },
             frames: BlockStack::with_room(usize::from(profile.nesting_limit) * levels_capacity + 1),
             levels: Vec::with_capacity(levels_capacity),
@@ -372,6 +402,15 @@ impl Cpu {
         self.level.status = Status::default();
         self.level.brackets = Brackets::default();
         self.level.interrupt_images = false;
+        self.level.db = 0;
+        self.level.di = 0;
+        self.level.local_base = self.levels.last().map_or(0, |outer| {
+            if outer.block == IDLE {
+                0
+            } else {
+                outer.local_base + self.program.local_bytes(outer.block)
+            }
+        });
         let limit = usize::from(self.profile.nesting_limit);
         self.level.frame_limit = match self.profile.nesting {
             Nesting::PerLevel => self.level.level_base + limit - 1,

@@ -264,6 +264,9 @@ impl Cpu {
                 self.level.block = frame.block;
                 self.level.open_db = frame.open_db;
                 self.level.params = frame.params;
+                self.level.db = frame.db;
+                self.level.di = frame.di;
+                self.level.local_base = frame.local_base;
                 let resume = frame.resume as usize;
                 move_to!(resume, frame.start as usize);
                 if clock >= self.attention_at {
@@ -272,6 +275,8 @@ impl Cpu {
                 }
             }};
         }
+        // Why the loop ended; a fault's detail waits in `detail` (the loop carries no report).
+        let mut detail = StopDetail::None;
         // A block call (of op `$op` at `$op_pc`, for the probe): `$target` with actual-parameter
         // list `$params`, whose body starts at `$entry`.
         macro_rules! call {
@@ -296,10 +301,20 @@ impl Cpu {
                     block: caller,
                     open_db: self.level.open_db,
                     params: self.level.params,
+                    db: self.level.db,
+                    di: self.level.di,
+                    local_base: self.level.local_base,
                     start: start as u32,
                     resume: pc as u32,
                 });
                 if !pushed {
+                    break $run Leave::Stop(StopCause::Stueb, call_pc);
+                }
+                // STEP 7: the callee's local data follow the caller's on the L stack.
+                self.level.local_base += program.local_bytes[usize::from(caller)];
+                let local_end = self.level.local_base + program.local_bytes[usize::from(target)];
+                if local_end as usize > self.local.len() {
+                    detail = StopDetail::Text("the L stack overflows".into());
                     break $run Leave::Stop(StopCause::Stueb, call_pc);
                 }
                 self.level.block = target;
@@ -324,8 +339,6 @@ impl Cpu {
                 continue $run;
             }};
         }
-        // Why the loop ended; a fault's detail waits in `detail` (the loop carries no report).
-        let mut detail = StopDetail::None;
         // With operation points: the op that just ran ended at a point (the check of it is made
         // here, at the top, so every arm goes straight back to one place).
         let mut ended_op = false;
@@ -529,6 +542,41 @@ impl Cpu {
                         pc -= 1;
                         detail = StopDetail::Text("the block has no BE".into());
                         break 'run Leave::Stop(StopCause::Bcf, (pc - start) as u32);
+                    }
+                    Op::S7(code) => {
+                        sync!();
+                        let flow = self.execute_s7(code, at!());
+                        reload!();
+                        match flow {
+                            Ok(super::s7::exec::Flow::Next) => {}
+                            Ok(super::s7::exec::Flow::Jump(target)) => {
+                                let jump_pc = at!();
+                                let to = start + target as usize;
+                                let backward = to < pc;
+                                move_to!(to, start);
+                                if OPERATION_POINTS {
+                                    probe_after!('run, op_pc, op);
+                                    if times[pc] >= deadline {
+                                        self.last_op = (self.level.block, jump_pc);
+                                        break 'run Leave::Point(Point::Operation);
+                                    }
+                                    continue 'run;
+                                }
+                                if backward {
+                                    let clock = now!();
+                                    if clock >= self.attention_at {
+                                        let start = pass_start.max(self.last_point_at);
+                                        self.note_stretch(jump_pc, start, clock);
+                                        break 'run Leave::Point(Point::Loop);
+                                    }
+                                    pass_start = clock;
+                                }
+                            }
+                            Err((cause, fault)) => {
+                                detail = fault;
+                                break 'run Leave::Stop(cause, at!());
+                            }
+                        }
                     }
                     Op::Formal { .. } | Op::Indirect { .. } => {
                         sync!();

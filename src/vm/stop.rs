@@ -26,14 +26,17 @@ pub enum StopCause {
     Weck,
     /// A hardware interrupt for a module without OB, and no OB 85.
     Ob85,
+    /// An awlsim test assertion (`__ASSERT==` …) did not hold.
+    Assert,
     /// No STOP: a probe (program status, the debugger) ended the run here.
     Halt,
 }
 
 impl StopCause {
     /// Every code [`StopCause::code`] gives.
-    pub const CODES: &'static [&'static str] =
-        &["ZYK", "STUEB", "LZF", "BCF", "STP", "WECK", "OB85"];
+    pub const CODES: &'static [&'static str] = &[
+        "ZYK", "STUEB", "LZF", "BCF", "STP", "WECK", "OB85", "ASSERT",
+    ];
 
     /// The cause as the PG shows it (and as scenario files expect it).
     pub fn code(self) -> &'static str {
@@ -45,6 +48,7 @@ impl StopCause {
             StopCause::Stp => "STP",
             StopCause::Weck => "WECK",
             StopCause::Ob85 => "OB85",
+            StopCause::Assert => "ASSERT",
             StopCause::Halt => "HALT",
         }
     }
@@ -135,6 +139,18 @@ pub enum StopError {
         stack: String,
     },
 
+    #[error("STOP: {problem}")]
+    #[diagnostic(
+        code(awl::stop::assert),
+        help("{stack}\nthe test's expectation does not hold at this line")
+    )]
+    AssertionFailed {
+        problem: String,
+        #[label("this assertion")]
+        at: Span,
+        stack: String,
+    },
+
     #[error("STOP WECK: OB {ob} was due again before it had finished")]
     #[diagnostic(
         code(awl::stop::weck),
@@ -192,6 +208,7 @@ impl StopError {
             | StopError::DataAccess { at, .. }
             | StopError::Operation { at, .. }
             | StopError::StopOperation { at, .. }
+            | StopError::AssertionFailed { at, .. }
             | StopError::WakeUp { at, .. }
             | StopError::IntervalNotAboveDelay { at, .. }
             | StopError::MissingOb85 { at, .. } => *at,

@@ -1,0 +1,345 @@
+//! The STEP 7 operations the VM runs out of line, as one `Copy` op inside [`Op::S7`], and the
+//! tables they index: the places (addresses, parameters, pointers) and the FB calls.
+//!
+//! STEP 7 operations that mean the same as a STEP 5 one (`A I 0.0`, `L MW 10`, `JU`, `JC`,
+//! timers, counters, `+I` on two accumulators …) compile to the shared ops and run inline; what
+//! only STEP 7 has — the L stack, byte-addressed data blocks, parameters passed as pointers,
+//! address registers, REAL arithmetic — is here.
+//!
+//! [`Op::S7`]: crate::compiler::Op::S7
+
+use super::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
+
+/// A STEP 7 operation with its operand decoded: small and `Copy`, so [`crate::compiler::Op`]
+/// stays at 8 bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum S7Code {
+    /// A bit, load, transfer, timer or counter operation on a place of [`S7Tables::places`].
+    Mem {
+        op: MemOp,
+        place: u16,
+    },
+    /// An operation on the accumulators and the status word alone (`+R`, `ITD`, `TAK`, `NOT` …).
+    Accu(S7Op),
+    /// A shift or rotate by a count written with it (`SLW 3`); without one the count is in
+    /// ACCU 2 and the op is an [`S7Code::Accu`].
+    Shift {
+        op: S7Op,
+        count: u8,
+    },
+    /// Word logic with a constant (`AW W#16#00FF`): the constant's index in
+    /// [`S7Tables::constants`].
+    WordConstant {
+        op: S7Op,
+        constant: u16,
+    },
+    /// `+ L#100000` and other 32-bit additions (16-bit ones are [`crate::compiler::Op::AddConstant`]).
+    AddDouble {
+        constant: u16,
+    },
+    /// A conditional jump STEP 5 does not have, to op `target` of the block.
+    Jump {
+        op: S7Op,
+        target: u16,
+    },
+    /// `LOOP label`
+    Loop {
+        target: u16,
+    },
+    /// `JL label`: the next `entries` ops are the list's `JU`s; past them, `target`.
+    JumpList {
+        entries: u16,
+        target: u16,
+    },
+    /// `A(` … `XN(` that STEP 5 does not have.
+    Bracket(S7Op),
+    /// `)` closing any bracket (S7 brackets keep BR).
+    CloseBracket,
+    /// `A ==0`, `O OV`, `AN BR`: a status condition as a bit operand.
+    Condition {
+        logic: MemOp,
+        condition: Condition,
+    },
+    /// `OPN DB n` / `OPN DI n`.
+    OpenDb {
+        instance: bool,
+        number: u16,
+    },
+    /// `OPN DB [MW 2]`, `OPN #db_param`: the number from a place.
+    OpenDbFrom {
+        instance: bool,
+        place: u16,
+    },
+    ExchangeDbRegisters,
+    /// `L DBNO` …
+    LoadDbRegister(DbRegister),
+    /// `LAR1`/`LAR2` from ACCU 1 (`ar` 1 or 2).
+    LoadAr(u8),
+    /// `LAR1 P#…`: from a constant.
+    LoadArConstant {
+        ar: u8,
+        constant: u16,
+    },
+    /// `LAR1 AR2`
+    LoadAr1FromAr2,
+    /// `TAR1`/`TAR2` to ACCU 1.
+    TransferAr(u8),
+    /// `TAR1 AR2`
+    TransferAr1ToAr2,
+    /// `CAR` (German `TAR`): exchange AR1 and AR2.
+    SwapAr,
+    /// `+AR1`/`+AR2`: add ACCU 1-L (a byte.bit offset), or a `P#` constant.
+    AddAr {
+        ar: u8,
+        constant: Option<u16>,
+    },
+    /// `CALL FB n, DB m`, before the call: copy the inputs into the instance DB, save the DB
+    /// and DI registers and AR2, open the instance DB. Indexes [`S7Tables::fb_calls`].
+    FbEnter {
+        call: u16,
+    },
+    /// After the call: copy the outputs back, restore the registers.
+    FbLeave {
+        call: u16,
+    },
+    /// `CALL SFC n` (with its parameter places in [`S7Tables::sfc_calls`]).
+    Sfc {
+        call: u16,
+    },
+    /// `__ASSERT== a, b`: the two places' indexes are `left` and `left + 1`.
+    Assert {
+        cmp: Cmp,
+        left: u16,
+    },
+    /// `__STWRST`
+    ResetStatusWord,
+    /// `__SLEEP ms`: simulated time passes.
+    Sleep {
+        ms: u16,
+    },
+    /// `__FEATURE target[, value]`
+    Feature {
+        target: u8,
+        value: Option<u8>,
+    },
+}
+
+/// What an [`S7Code::Mem`] does with its place.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MemOp {
+    And,
+    AndNot,
+    Or,
+    OrNot,
+    Xor,
+    XorNot,
+    Assign,
+    Set,
+    Reset,
+    EdgePositive,
+    EdgeNegative,
+    Load,
+    /// `LC T`/`LC C`: the BCD value.
+    LoadCoded,
+    Transfer,
+    TimerPulse,
+    TimerExtendedPulse,
+    TimerOnDelay,
+    TimerRetentiveOnDelay,
+    TimerOffDelay,
+    Enable,
+    CountUp,
+    CountDown,
+    /// `S C n`: preset a counter from ACCU 1.
+    SetCounter,
+    /// `R T n`/`R C n`.
+    ResetTimerCounter,
+    /// `LAR1 MD 10`: load AR1/AR2 from the place.
+    LoadAr1,
+    LoadAr2,
+    TransferAr1,
+    TransferAr2,
+    /// `UC FC [MW 4]`, a `BLOCK_FC` parameter: not in part 1.
+    CallFrom,
+}
+
+/// A status condition read as a bit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Condition {
+    Zero,
+    NotZero,
+    Positive,
+    Negative,
+    PositiveOrZero,
+    NegativeOrZero,
+    Unordered,
+    Overflow,
+    StoredOverflow,
+    BinaryResult,
+}
+
+/// Where an S7 operation reads or writes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Place {
+    pub target: Target,
+    pub width: AccessWidth,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Target {
+    /// PII, PIQ, flags at their offset in the image memory.
+    Image {
+        byte: u16,
+        bit: u8,
+    },
+    /// Peripheral inputs (`PIW`) or outputs (`PQW`).
+    Peripheral {
+        output: bool,
+        byte: u16,
+    },
+    Local {
+        byte: u32,
+        bit: u8,
+    },
+    PreviousLocal {
+        byte: u32,
+        bit: u8,
+    },
+    /// The open DB (DB register) or instance DB (DI register).
+    Data {
+        instance: bool,
+        byte: u32,
+        bit: u8,
+    },
+    /// `DB5.DBW 4`: opens DB 5 (the DB register) and accesses it.
+    NumberedData {
+        db: u16,
+        byte: u32,
+        bit: u8,
+    },
+    /// FC parameter `param` (a pointer to the caller's actual), `offset` bytes/bits into it
+    /// for a member of a structure.
+    Parameter {
+        param: u8,
+        byte: u32,
+        bit: u8,
+    },
+    /// Memory-indirect: the pointer is read from `pointer` (a place index): a double word
+    /// area-internal pointer for bits and bytes, a word for timers, counters and DB numbers.
+    MemoryIndirect {
+        area: IndirectArea,
+        pointer: u16,
+    },
+    /// Register-indirect: AR1/AR2 plus `offset` (a pointer value). `area` is `None` when the
+    /// area comes from the register (area-crossing).
+    RegisterIndirect {
+        area: Option<IndirectArea>,
+        ar: u8,
+        offset: u32,
+    },
+    Timer(u16),
+    Counter(u16),
+    Constant(u32),
+    /// A timer or counter number passed as a parameter (`T 12`, in an FB's instance data).
+    TimerFrom {
+        place: u16,
+    },
+    CounterFrom {
+        place: u16,
+    },
+    /// awlsim's test operands.
+    Extension(Extension),
+    DbRegister(DbRegister),
+}
+
+/// The areas an indirect address may name before its brackets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IndirectArea {
+    Input,
+    Output,
+    Flag,
+    Local,
+    PreviousLocal,
+    Data,
+    Instance,
+    PeripheralInput,
+    PeripheralOutput,
+    Timer,
+    Counter,
+}
+
+/// One `CALL FB n, DB m (…)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FbCall {
+    pub instance_db: u16,
+    /// (actual place, byte/bit offset in the instance DB, width) of each input and in/out.
+    pub inputs: Vec<ParamCopy>,
+    /// (actual place, offset, width) of each output and in/out.
+    pub outputs: Vec<ParamCopy>,
+}
+
+/// One parameter copied between an actual and the instance DB.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParamCopy {
+    pub actual: u16,
+    pub byte: u32,
+    pub bit: u8,
+    pub width: AccessWidth,
+}
+
+/// One `CALL SFC n (…)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SfcCall {
+    pub number: u16,
+    /// The parameters' places, by name as written.
+    pub params: Vec<(String, u16)>,
+}
+
+/// The tables S7 ops index, shared by the whole program.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct S7Tables {
+    pub places: Vec<Place>,
+    pub constants: Vec<u32>,
+    pub fb_calls: Vec<FbCall>,
+    pub sfc_calls: Vec<SfcCall>,
+    /// The data blocks' initial bytes, by DB number.
+    pub data_blocks: Vec<(u16, Vec<u8>)>,
+    /// The awlsim test instructions may run (`awl conformance`, `--extended`).
+    pub extensions: bool,
+    /// The program is a STEP 7 program (it has an L stack and byte-addressed DBs).
+    pub step7: bool,
+}
+
+impl S7Tables {
+    /// No STEP 7 program: the VM needs no L stack.
+    pub fn is_empty(&self) -> bool {
+        !self.step7
+    }
+
+    pub fn place(&mut self, place: Place) -> u16 {
+        self.places.push(place);
+        (self.places.len() - 1) as u16
+    }
+
+    pub fn constant(&mut self, value: u32) -> u16 {
+        self.constants.push(value);
+        (self.constants.len() - 1) as u16
+    }
+}
+
+/// The execution time of an S7 op, from the profile's classes.
+pub fn cost(code: S7Code, t: &crate::profile::Timings) -> u32 {
+    match code {
+        S7Code::Mem { .. } => t.load_word,
+        S7Code::Accu(_) | S7Code::Shift { .. } | S7Code::AddDouble { .. } => t.accumulator,
+        S7Code::WordConstant { .. } => t.word_logic,
+        S7Code::Jump { .. } | S7Code::Loop { .. } | S7Code::JumpList { .. } => t.jump,
+        S7Code::Bracket(_) | S7Code::CloseBracket | S7Code::Condition { .. } => t.bit_image,
+        S7Code::OpenDb { .. } | S7Code::OpenDbFrom { .. } | S7Code::ExchangeDbRegisters => {
+            t.open_db
+        }
+        S7Code::FbEnter { .. } | S7Code::FbLeave { .. } => t.load_word,
+        S7Code::Sfc { .. } => t.block_call + t.block_end,
+        _ => t.other,
+    }
+}

@@ -1,0 +1,438 @@
+//! Runs the STEP 7 operations the loop does not run inline.
+
+use crate::compiler::bytecode::{Op, TimerKind};
+use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
+use crate::step7::bytecode::{MemOp, S7Code, Target};
+use crate::vm::Cpu;
+use crate::vm::stop::{StopCause, StopDetail};
+
+use super::bridge;
+use super::memory::{Fault, Located};
+
+/// What the loop does after an S7 operation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flow {
+    Next,
+    /// Go on at op `target` of the running block.
+    Jump(u32),
+}
+
+fn fault(text: impl Into<String>) -> Fault {
+    (StopCause::Bcf, StopDetail::Text(text.into()))
+}
+
+impl Cpu {
+    /// Runs `code`, op `pc` of the running block; ACCU 1/2 and the status are in `self.level`.
+    #[inline(never)]
+    pub(crate) fn execute_s7(&mut self, code: S7Code, pc: u32) -> Result<Flow, Fault> {
+        match code {
+            S7Code::Mem { op, place } => self.memory_op(op, place, pc)?,
+            S7Code::Accu(op) => {
+                bridge::accumulator(&mut self.level, op, self.profile.accumulators)?
+            }
+            S7Code::Shift { op, count } => bridge::shift(&mut self.level, op, Some(count)),
+            S7Code::WordConstant { op, constant } => {
+                let value = self.program.s7.constants[usize::from(constant)];
+                bridge::word_logic(&mut self.level, op, value);
+            }
+            S7Code::AddDouble { constant } => {
+                let value = self.program.s7.constants[usize::from(constant)];
+                self.level.accu1 = self.level.accu1.wrapping_add(value);
+            }
+            S7Code::Jump { op, target } => {
+                if bridge::jump_taken(&mut self.level.status, op) {
+                    return Ok(Flow::Jump(u32::from(target)));
+                }
+            }
+            S7Code::Loop { target } => {
+                let low = (self.level.accu1 as u16).wrapping_sub(1);
+                self.level.accu1 = self.level.accu1 & 0xFFFF_0000 | u32::from(low);
+                if low != 0 {
+                    return Ok(Flow::Jump(u32::from(target)));
+                }
+            }
+            S7Code::JumpList { entries, target } => {
+                let index = self.level.accu1 & 0xFF;
+                return Ok(Flow::Jump(if index < u32::from(entries) {
+                    pc + 1 + index
+                } else {
+                    u32::from(target)
+                }));
+            }
+            S7Code::Bracket(op) => {
+                let depth = self.profile.bracket_depth;
+                if !bridge::open_bracket(&mut self.level, op, depth) {
+                    return Err(fault(format!("more than {depth} nested brackets")));
+                }
+            }
+            S7Code::CloseBracket => {
+                if !bridge::close_bracket(&mut self.level) {
+                    return Err(fault("`)` without an open bracket"));
+                }
+            }
+            S7Code::Condition { logic, condition } => {
+                let value = bridge::condition(self.level.status, condition);
+                bridge::combine(&mut self.level.status, logic, value);
+            }
+            S7Code::OpenDb { instance, number } => self.open_s7_db(instance, number)?,
+            S7Code::OpenDbFrom { instance, place } => {
+                let (located, _) = self.locate_index(place)?;
+                let number = self.fetch(located, AccessWidth::Word)? as u16;
+                self.open_s7_db(instance, number)?;
+            }
+            S7Code::ExchangeDbRegisters => {
+                std::mem::swap(&mut self.level.db, &mut self.level.di);
+            }
+            S7Code::LoadDbRegister(register) => {
+                let value = self.db_register(register);
+                self.load_s7(value);
+            }
+            S7Code::LoadAr(ar) => self.set_ar(ar, self.level.accu1),
+            S7Code::LoadArConstant { ar, constant } => {
+                let value = self.program.s7.constants[usize::from(constant)];
+                self.set_ar(ar, value);
+            }
+            S7Code::LoadAr1FromAr2 => self.level.ar1 = self.level.ar2,
+            S7Code::TransferAr(ar) => {
+                self.level.accu1 = if ar == 1 {
+                    self.level.ar1
+                } else {
+                    self.level.ar2
+                };
+            }
+            S7Code::TransferAr1ToAr2 => self.level.ar2 = self.level.ar1,
+            S7Code::SwapAr => std::mem::swap(&mut self.level.ar1, &mut self.level.ar2),
+            S7Code::AddAr { ar, constant } => {
+                let offset = match constant {
+                    Some(index) => self.program.s7.constants[usize::from(index)],
+                    // ACCU 1-L as a signed bit offset.
+                    None => self.level.accu1 as u16 as i16 as i32 as u32,
+                };
+                let register = if ar == 1 {
+                    &mut self.level.ar1
+                } else {
+                    &mut self.level.ar2
+                };
+                let address = (*register & 0x00FF_FFFF).wrapping_add(offset) & 0x00FF_FFFF;
+                *register = *register & 0xFF00_0000 | address;
+            }
+            S7Code::FbEnter { call } => self.fb_enter(call)?,
+            S7Code::FbLeave { call } => self.fb_leave(call)?,
+            S7Code::Sfc { call } => self.system_function(call)?,
+            S7Code::Assert { cmp, left } => self.assert(cmp, left)?,
+            S7Code::ResetStatusWord => bridge::reset_status_word(&mut self.level),
+            S7Code::Sleep { ms } => self.clock += u64::from(ms) * 1_000_000,
+            S7Code::Feature { target, value } => {
+                let current = match (target, value) {
+                    (0, Some(accus)) if accus == self.profile.accumulators => u32::from(accus),
+                    (0, Some(accus)) => {
+                        return Err(fault(format!(
+                            "this CPU has {} accumulators, not {accus}",
+                            self.profile.accumulators
+                        )));
+                    }
+                    (0, None) => u32::from(self.profile.accumulators),
+                    (_, Some(value)) => u32::from(value),
+                    (_, None) => 0,
+                };
+                self.level.accu1 = current;
+            }
+        }
+        Ok(Flow::Next)
+    }
+
+    fn load_s7(&mut self, value: u32) {
+        self.level.accu2 = self.level.accu1;
+        self.level.accu1 = value;
+    }
+
+    fn set_ar(&mut self, ar: u8, value: u32) {
+        if ar == 1 {
+            self.level.ar1 = value;
+        } else {
+            self.level.ar2 = value;
+        }
+    }
+
+    fn open_s7_db(&mut self, instance: bool, number: u16) -> Result<(), Fault> {
+        if number != 0 && !matches!(self.s7_data.get(usize::from(number)), Some(Some(_))) {
+            return Err((
+                StopCause::LzfBlock,
+                StopDetail::Text(format!("DB {number}")),
+            ));
+        }
+        if instance {
+            self.level.di = number;
+        } else {
+            self.level.db = number;
+        }
+        Ok(())
+    }
+
+    fn db_register(&self, register: DbRegister) -> u32 {
+        let length = |db: u16| {
+            self.s7_data
+                .get(usize::from(db))
+                .and_then(Option::as_ref)
+                .map_or(0, |bytes| bytes.len() as u32)
+        };
+        match register {
+            DbRegister::DbNumber => u32::from(self.level.db),
+            DbRegister::DbLength => length(self.level.db),
+            DbRegister::DiNumber => u32::from(self.level.di),
+            DbRegister::DiLength => length(self.level.di),
+        }
+    }
+
+    fn memory_op(&mut self, op: MemOp, place: u16, pc: u32) -> Result<(), Fault> {
+        let (located, width) = self.locate_index(place)?;
+        let rlo = self.level.status.rlo();
+        match op {
+            MemOp::And | MemOp::AndNot | MemOp::Or | MemOp::OrNot | MemOp::Xor | MemOp::XorNot => {
+                let value = self.fetch_bit(located)?;
+                bridge::combine(&mut self.level.status, op, value);
+            }
+            MemOp::Assign => {
+                self.store_bit(located, rlo)?;
+                bridge::after_assignment(&mut self.level.status);
+            }
+            MemOp::Set | MemOp::Reset => {
+                match located {
+                    Located::Timer(_) | Located::Counter(_) if op == MemOp::Reset => {
+                        return self.timer_counter_op(located, MemOp::ResetTimerCounter, pc);
+                    }
+                    Located::Counter(_) => {
+                        return self.timer_counter_op(located, MemOp::SetCounter, pc);
+                    }
+                    _ => {}
+                }
+                if rlo {
+                    self.store_bit(located, op == MemOp::Set)?;
+                }
+                bridge::after_assignment(&mut self.level.status);
+            }
+            MemOp::EdgePositive | MemOp::EdgeNegative => {
+                let memory = self.fetch_bit(located)?;
+                let (result, stored) =
+                    bridge::edge(&mut self.level.status, op == MemOp::EdgePositive, memory);
+                self.store_bit(located, stored)?;
+                let _ = result;
+            }
+            MemOp::Load | MemOp::LoadCoded => match located {
+                Located::Timer(_) | Located::Counter(_) => {
+                    return self.timer_counter_op(located, op, pc);
+                }
+                other => {
+                    let value = self.fetch(other, width)?;
+                    self.load_s7(value);
+                }
+            },
+            MemOp::Transfer => self.store(located, width, self.level.accu1)?,
+            MemOp::TimerPulse
+            | MemOp::TimerExtendedPulse
+            | MemOp::TimerOnDelay
+            | MemOp::TimerRetentiveOnDelay
+            | MemOp::TimerOffDelay
+            | MemOp::Enable
+            | MemOp::CountUp
+            | MemOp::CountDown
+            | MemOp::SetCounter
+            | MemOp::ResetTimerCounter => return self.timer_counter_op(located, op, pc),
+            MemOp::LoadAr1 | MemOp::LoadAr2 => {
+                let value = self.fetch(located, AccessWidth::Double)?;
+                self.set_ar(if op == MemOp::LoadAr1 { 1 } else { 2 }, value);
+            }
+            MemOp::TransferAr1 | MemOp::TransferAr2 => {
+                let value = if op == MemOp::TransferAr1 {
+                    self.level.ar1
+                } else {
+                    self.level.ar2
+                };
+                self.store(located, AccessWidth::Double, value)?;
+            }
+            MemOp::CallFrom => return Err(fault("a call through a block parameter")),
+        }
+        Ok(())
+    }
+
+    /// A timer or counter operation on a located timer or counter: the STEP 5 op runs it.
+    fn timer_counter_op(&mut self, located: Located, op: MemOp, pc: u32) -> Result<(), Fault> {
+        let shared = match (located, op) {
+            (Located::Timer(n), MemOp::Load) => Op::LoadTimer(n),
+            (Located::Timer(n), MemOp::LoadCoded) => Op::LoadTimerCoded(n),
+            (Located::Counter(n), MemOp::Load) => Op::LoadCounter(n),
+            (Located::Counter(n), MemOp::LoadCoded) => Op::LoadCounterCoded(n),
+            (Located::Timer(n), MemOp::TimerPulse) => Op::StartTimer(TimerKind::Pulse, n),
+            (Located::Timer(n), MemOp::TimerExtendedPulse) => {
+                Op::StartTimer(TimerKind::ExtendedPulse, n)
+            }
+            (Located::Timer(n), MemOp::TimerOnDelay) => Op::StartTimer(TimerKind::OnDelay, n),
+            (Located::Timer(n), MemOp::TimerRetentiveOnDelay) => {
+                Op::StartTimer(TimerKind::StoredOnDelay, n)
+            }
+            (Located::Timer(n), MemOp::TimerOffDelay) => Op::StartTimer(TimerKind::OffDelay, n),
+            (Located::Timer(n), MemOp::Enable) => Op::EnableTimer(n),
+            (Located::Timer(n), MemOp::ResetTimerCounter) => Op::ResetTimer(n),
+            (Located::Counter(n), MemOp::Enable) => Op::EnableCounter(n),
+            (Located::Counter(n), MemOp::CountUp) => Op::CountUp(n),
+            (Located::Counter(n), MemOp::CountDown) => Op::CountDown(n),
+            (Located::Counter(n), MemOp::SetCounter) => Op::SetCounter(n),
+            (Located::Counter(n), MemOp::ResetTimerCounter) => Op::ResetCounter(n),
+            (other, op) => return Err(fault(format!("{op:?} on {other:?}"))),
+        };
+        let (number, count) = match located {
+            Located::Timer(n) => (n, self.timers.len()),
+            Located::Counter(n) => (n, self.counters.len()),
+            _ => (0, 0),
+        };
+        if usize::from(number) >= count {
+            return Err(fault(format!(
+                "timer or counter {number} is past the CPU's {count}"
+            )));
+        }
+        self.execute_other(shared, pc)
+    }
+
+    /// `CALL FB n, DB m`, before the call: the inputs into the instance DB, the registers saved.
+    fn fb_enter(&mut self, call: u16) -> Result<(), Fault> {
+        let program = std::sync::Arc::clone(&self.program);
+        let call = &program.s7.fb_calls[usize::from(call)];
+        if !matches!(
+            self.s7_data.get(usize::from(call.instance_db)),
+            Some(Some(_))
+        ) {
+            return Err((
+                StopCause::LzfBlock,
+                StopDetail::Text(format!("DB {}", call.instance_db)),
+            ));
+        }
+        for copy in &call.inputs {
+            let (from, _) = self.locate_index(copy.actual)?;
+            let value = self.fetch(from, copy.width)?;
+            let to = Located::Data {
+                db: call.instance_db,
+                byte: copy.byte as usize,
+                bit: copy.bit,
+            };
+            self.store(to, copy.width, value)?;
+        }
+        self.fb_saves
+            .push((self.level.db, self.level.di, self.level.ar2));
+        self.level.di = call.instance_db;
+        self.level.ar2 = 0x8500_0000;
+        Ok(())
+    }
+
+    /// After the FB: the registers restored, the outputs copied to their actuals.
+    fn fb_leave(&mut self, call: u16) -> Result<(), Fault> {
+        let program = std::sync::Arc::clone(&self.program);
+        let call = &program.s7.fb_calls[usize::from(call)];
+        let Some((db, di, ar2)) = self.fb_saves.pop() else {
+            return Err(fault("an FB's return without its call"));
+        };
+        let mut values = Vec::with_capacity(call.outputs.len());
+        for copy in &call.outputs {
+            let from = Located::Data {
+                db: call.instance_db,
+                byte: copy.byte as usize,
+                bit: copy.bit,
+            };
+            values.push(self.fetch(from, copy.width)?);
+        }
+        self.level.db = db;
+        self.level.di = di;
+        self.level.ar2 = ar2;
+        for (copy, value) in call.outputs.iter().zip(values) {
+            let (to, _) = self.locate_index(copy.actual)?;
+            self.store(to, copy.width, value)?;
+        }
+        Ok(())
+    }
+
+    fn system_function(&mut self, call: u16) -> Result<(), Fault> {
+        let number = self.program.s7.sfc_calls[usize::from(call)].number;
+        match number {
+            46 => Err((StopCause::Stp, StopDetail::Text("CALL SFC 46 (STP)".into()))),
+            other => Err(fault(format!("SFC {other} is not simulated"))),
+        }
+    }
+
+    /// The value of an operand of `__ASSERT`, with its width in bits.
+    fn assert_operand(&mut self, place: u16) -> Result<u32, Fault> {
+        let (located, width) = self.locate_index(place)?;
+        match located {
+            Located::Special(Target::Extension(extension)) => Ok(self.extension_value(extension)),
+            Located::Special(Target::DbRegister(register)) => Ok(self.db_register(register)),
+            Located::Timer(_) | Located::Counter(_) => Ok(u32::from(self.fetch_bit(located)?)),
+            other => self.fetch(other, width),
+        }
+    }
+
+    fn extension_value(&self, extension: Extension) -> u32 {
+        match extension {
+            Extension::StatusBit(bit) => bridge::status_word(&self.level) >> bit & 1,
+            Extension::StatusWord => bridge::status_word(&self.level),
+            Extension::Accu(1) => self.level.accu1,
+            Extension::Accu(2) => self.level.accu2,
+            Extension::Accu(3) => self.level.accu3,
+            Extension::Accu(_) => self.level.accu4,
+            Extension::AddressRegister(1) => self.level.ar1,
+            Extension::AddressRegister(_) => self.level.ar2,
+            Extension::DbRegister(1) => u32::from(self.level.db),
+            Extension::DbRegister(_) => u32::from(self.level.di),
+            Extension::Pi => std::f32::consts::PI.to_bits(),
+            Extension::E => std::f32::consts::E.to_bits(),
+            Extension::PositiveInfinity => f32::INFINITY.to_bits(),
+            Extension::NegativeInfinity => f32::NEG_INFINITY.to_bits(),
+            Extension::PositiveNan => 0x7FFF_FFFF,
+            Extension::NegativeNan => 0xFFFF_FFFF,
+        }
+    }
+
+    /// `__ASSERT`: both operands compared as unsigned bit patterns, as awlsim's harness does.
+    fn assert(&mut self, cmp: Cmp, left: u16) -> Result<(), Fault> {
+        let a = self.assert_operand(left)?;
+        let b = self.assert_operand(left + 1)?;
+        let holds = match cmp {
+            Cmp::Eq => a == b,
+            Cmp::Ne => a != b,
+            Cmp::Gt => a > b,
+            Cmp::Lt => a < b,
+            Cmp::Ge => a >= b,
+            Cmp::Le => a <= b,
+        };
+        if holds {
+            bridge::after_assert(&mut self.level.status);
+            return Ok(());
+        }
+        let sign = match cmp {
+            Cmp::Eq => "==",
+            Cmp::Ne => "<>",
+            Cmp::Gt => ">",
+            Cmp::Lt => "<",
+            Cmp::Ge => ">=",
+            Cmp::Le => "<=",
+        };
+        Err((
+            StopCause::Assert,
+            StopDetail::Text(format!(
+                "__ASSERT{sign} failed: left is {a} ({a:#X}), right is {b} ({b:#X})"
+            )),
+        ))
+    }
+}
+
+/// Whether an op is one of the S7 operations `S7Op` lists as a shift or rotate.
+pub fn is_shift(op: S7Op) -> bool {
+    matches!(
+        op,
+        S7Op::ShiftSignedInt
+            | S7Op::ShiftSignedDint
+            | S7Op::ShiftLeftWord
+            | S7Op::ShiftRightWord
+            | S7Op::ShiftLeftDouble
+            | S7Op::ShiftRightDouble
+            | S7Op::RotateLeftDouble
+            | S7Op::RotateRightDouble
+    )
+}

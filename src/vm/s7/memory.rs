@@ -1,0 +1,497 @@
+//! Where a STEP 7 operand is at run time: the L stack of the running block or of its caller,
+//! the DB and DI registers, an FC parameter (a pointer to the caller's actual), a memory- or
+//! register-indirect address. [`Cpu::locate`] turns a compiled [`Place`] into a [`Located`]
+//! byte and bit; the reads and writes then check it against the memory it is in.
+
+use crate::compiler::Resolved;
+use crate::step7::ast::AccessWidth;
+use crate::step7::bytecode::{IndirectArea, Place, Target};
+use crate::vm::Cpu;
+use crate::vm::stop::{StopCause, StopDetail};
+
+pub type Fault = (StopCause, StopDetail);
+
+/// The bytes of the L stack every level's blocks share.
+pub const LOCAL_BYTES: usize = 64 * 1024;
+
+/// A place made concrete.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Located {
+    Image {
+        byte: usize,
+        bit: u8,
+    },
+    Peripheral {
+        output: bool,
+        byte: u16,
+    },
+    Local {
+        byte: usize,
+        bit: u8,
+    },
+    Data {
+        db: u16,
+        byte: usize,
+        bit: u8,
+    },
+    Timer(u16),
+    Counter(u16),
+    Constant(u32),
+    /// A test operand or a register: read by the executor.
+    Special(Target),
+}
+
+/// The registers a place is resolved against: the running block's, or a caller's for the
+/// actual of a parameter.
+#[derive(Debug, Clone, Copy)]
+pub struct Context {
+    pub local_base: u32,
+    /// The calling block's local data (V), if there is a caller on this level.
+    pub previous_local: Option<u32>,
+    pub db: u16,
+    pub di: u16,
+    pub params: u16,
+    /// Frames on the block stack below this context's block.
+    pub frames: usize,
+}
+
+/// Area-pointer area codes (bits 24–26 of a pointer).
+pub fn area_code(area: IndirectArea) -> u32 {
+    match area {
+        IndirectArea::PeripheralInput | IndirectArea::PeripheralOutput => 0,
+        IndirectArea::Input => 1,
+        IndirectArea::Output => 2,
+        IndirectArea::Flag => 3,
+        IndirectArea::Data => 4,
+        IndirectArea::Instance => 5,
+        IndirectArea::Local => 6,
+        IndirectArea::PreviousLocal => 7,
+        IndirectArea::Timer | IndirectArea::Counter => 0,
+    }
+}
+
+fn area_of_code(code: u32) -> Option<IndirectArea> {
+    Some(match code {
+        0 => IndirectArea::PeripheralInput,
+        1 => IndirectArea::Input,
+        2 => IndirectArea::Output,
+        3 => IndirectArea::Flag,
+        4 => IndirectArea::Data,
+        5 => IndirectArea::Instance,
+        6 => IndirectArea::Local,
+        7 => IndirectArea::PreviousLocal,
+        _ => return None,
+    })
+}
+
+fn fault(text: String) -> Fault {
+    (StopCause::Bcf, StopDetail::Text(text))
+}
+
+fn data_fault(text: String) -> Fault {
+    (StopCause::LzfData, StopDetail::Text(text))
+}
+
+impl Cpu {
+    /// The registers of the running block.
+    pub fn running_context(&self) -> Context {
+        let frames = self.frames.len();
+        let previous_local = (frames > self.level.level_base)
+            .then(|| self.frames.get(frames - 1).map(|frame| frame.local_base))
+            .flatten();
+        Context {
+            local_base: self.level.local_base,
+            previous_local,
+            db: self.level.db,
+            di: self.level.di,
+            params: self.level.params,
+            frames,
+        }
+    }
+
+    /// The registers of the block that called the block of `context`.
+    fn caller_context(&self, context: Context) -> Option<Context> {
+        if context.frames <= self.level.level_base {
+            return None;
+        }
+        let frame = self.frames.get(context.frames - 1)?;
+        let below = context.frames - 1;
+        let previous_local = (below > self.level.level_base)
+            .then(|| self.frames.get(below - 1).map(|frame| frame.local_base))
+            .flatten();
+        Some(Context {
+            local_base: frame.local_base,
+            previous_local,
+            db: frame.db,
+            di: frame.di,
+            params: frame.params,
+            frames: below,
+        })
+    }
+
+    pub fn locate_index(&mut self, place: u16) -> Result<(Located, AccessWidth), Fault> {
+        let place = self.program.s7.places[usize::from(place)];
+        let context = self.running_context();
+        Ok((self.locate(place, context)?, place.width))
+    }
+
+    /// Where `place` is, resolved in `context`.
+    pub fn locate(&mut self, place: Place, context: Context) -> Result<Located, Fault> {
+        Ok(match place.target {
+            Target::Image { byte, bit } => Located::Image {
+                byte: usize::from(byte),
+                bit,
+            },
+            Target::Peripheral { output, byte } => Located::Peripheral { output, byte },
+            Target::Local { byte, bit } => Located::Local {
+                byte: (context.local_base + byte) as usize,
+                bit,
+            },
+            Target::PreviousLocal { byte, bit } => {
+                let Some(base) = context.previous_local else {
+                    return Err(fault(
+                        "V (the caller's local data) in a block without caller".into(),
+                    ));
+                };
+                Located::Local {
+                    byte: (base + byte) as usize,
+                    bit,
+                }
+            }
+            Target::Data {
+                instance,
+                byte,
+                bit,
+            } => Located::Data {
+                db: if instance { context.di } else { context.db },
+                byte: byte as usize,
+                bit,
+            },
+            Target::NumberedData { db, byte, bit } => {
+                if context.frames == self.frames.len() {
+                    self.level.db = db;
+                }
+                Located::Data {
+                    db,
+                    byte: byte as usize,
+                    bit,
+                }
+            }
+            Target::Parameter { param, byte, bit } => {
+                self.locate_parameter(param, byte, bit, context)?
+            }
+            Target::MemoryIndirect { area, pointer } => {
+                let pointer_place = self.program.s7.places[usize::from(pointer)];
+                let located = self.locate(pointer_place, context)?;
+                let value = self.fetch(located, pointer_place.width)?;
+                self.locate_pointer(area, value, context)?
+            }
+            Target::RegisterIndirect { area, ar, offset } => {
+                let register = if ar == 1 {
+                    self.level.ar1
+                } else {
+                    self.level.ar2
+                };
+                let sum = (register & 0x0007_FFFF).wrapping_add(offset & 0x0007_FFFF) & 0x0007_FFFF;
+                let area = match area {
+                    Some(area) => area,
+                    None => area_of_code(register >> 24 & 7)
+                        .ok_or_else(|| fault(format!("AR{ar} holds no area")))?,
+                };
+                self.locate_pointer(area, sum, context)?
+            }
+            Target::Timer(n) => Located::Timer(n),
+            Target::Counter(n) => Located::Counter(n),
+            Target::Constant(value) => Located::Constant(value),
+            Target::TimerFrom { place: number } | Target::CounterFrom { place: number } => {
+                let number_place = self.program.s7.places[usize::from(number)];
+                let located = self.locate(number_place, context)?;
+                let number = match located {
+                    Located::Timer(n) | Located::Counter(n) => n,
+                    other => self.fetch(other, AccessWidth::Word)? as u16,
+                };
+                match place.target {
+                    Target::TimerFrom { .. } => Located::Timer(number),
+                    _ => Located::Counter(number),
+                }
+            }
+            Target::Extension(_) | Target::DbRegister(_) => Located::Special(place.target),
+        })
+    }
+
+    /// An FC parameter: the caller's actual, resolved where the caller stands.
+    fn locate_parameter(
+        &mut self,
+        param: u8,
+        byte: u32,
+        bit: u8,
+        context: Context,
+    ) -> Result<Located, Fault> {
+        let actual = self
+            .program
+            .param_lists
+            .get(usize::from(context.params))
+            .and_then(|list| list.get(usize::from(param)))
+            .copied();
+        let Some(actual) = actual else {
+            return Err(fault(format!("parameter {} has no actual", param + 1)));
+        };
+        match actual {
+            Resolved::Constant(value) => Ok(Located::Constant(value)),
+            Resolved::S7(index) => {
+                let Some(caller) = self.caller_context(context) else {
+                    return Err(fault("a parameter outside a called block".into()));
+                };
+                let place = self.program.s7.places[usize::from(index)];
+                let located = self.locate(place, caller)?;
+                Ok(offset(located, byte, bit))
+            }
+            _ => Err(fault(format!("parameter {} cannot be reached", param + 1))),
+        }
+    }
+
+    /// The address a pointer value (byte << 3 | bit) gives in `area`.
+    fn locate_pointer(
+        &mut self,
+        area: IndirectArea,
+        pointer: u32,
+        context: Context,
+    ) -> Result<Located, Fault> {
+        let byte = (pointer >> 3 & 0xFFFF) as usize;
+        let bit = (pointer & 7) as u8;
+        let layout = self.program.layout;
+        let image = |base: u16, size: u16| -> Result<Located, Fault> {
+            if byte >= usize::from(size) {
+                return Err(fault(format!(
+                    "indirect address byte {byte} is past the area's {size} bytes"
+                )));
+            }
+            Ok(Located::Image {
+                byte: usize::from(base) + byte,
+                bit,
+            })
+        };
+        match area {
+            IndirectArea::Input => image(layout.input_base(), layout.image_bytes),
+            IndirectArea::Output => image(layout.output_base(), layout.image_bytes),
+            IndirectArea::Flag => image(layout.flag_base(), layout.flag_bytes),
+            IndirectArea::Local => Ok(Located::Local {
+                byte: context.local_base as usize + byte,
+                bit,
+            }),
+            IndirectArea::PreviousLocal => match context.previous_local {
+                Some(base) => Ok(Located::Local {
+                    byte: base as usize + byte,
+                    bit,
+                }),
+                None => Err(fault(
+                    "V (the caller's local data) in a block without caller".into(),
+                )),
+            },
+            IndirectArea::Data => Ok(Located::Data {
+                db: context.db,
+                byte,
+                bit,
+            }),
+            IndirectArea::Instance => Ok(Located::Data {
+                db: context.di,
+                byte,
+                bit,
+            }),
+            IndirectArea::PeripheralInput => Ok(Located::Peripheral {
+                output: false,
+                byte: byte as u16,
+            }),
+            IndirectArea::PeripheralOutput => Ok(Located::Peripheral {
+                output: true,
+                byte: byte as u16,
+            }),
+            IndirectArea::Timer => Ok(Located::Timer(pointer as u16)),
+            IndirectArea::Counter => Ok(Located::Counter(pointer as u16)),
+        }
+    }
+
+    fn bytes_of(&mut self, located: Located, count: usize) -> Result<&mut [u8], Fault> {
+        match located {
+            Located::Image { byte, .. } => self
+                .image
+                .get_mut(byte..byte + count)
+                .ok_or_else(|| fault(format!("image byte {byte} is out of range"))),
+            Located::Local { byte, .. } => self
+                .local
+                .get_mut(byte..byte + count)
+                .ok_or_else(|| fault("the L stack overflows".into())),
+            Located::Data { db, byte, .. } => {
+                if db == 0 {
+                    return Err(data_fault(format!(
+                        "data byte {byte} accessed with no data block open"
+                    )));
+                }
+                let Some(Some(data)) = self.s7_data.get_mut(usize::from(db)) else {
+                    return Err((StopCause::LzfBlock, StopDetail::Text(format!("DB {db}"))));
+                };
+                let length = data.len();
+                data.get_mut(byte..byte + count).ok_or_else(|| {
+                    data_fault(format!(
+                        "DB {db} byte {byte} is past the end of its {length} bytes"
+                    ))
+                })
+            }
+            other => Err(fault(format!("{other:?} is not memory"))),
+        }
+    }
+
+    /// Reads a byte, word or double word (bits: 0 or 1).
+    pub fn fetch(&mut self, located: Located, width: AccessWidth) -> Result<u32, Fault> {
+        if width == AccessWidth::Bit {
+            return self.fetch_bit(located).map(u32::from);
+        }
+        match located {
+            Located::Constant(value) => Ok(value),
+            Located::Peripheral { output, byte } => {
+                let width = io_width(width);
+                if output {
+                    Err(fault(format!(
+                        "peripheral output byte {byte} cannot be read"
+                    )))
+                } else {
+                    Ok(self.read_periphery(width, byte, false))
+                }
+            }
+            Located::Timer(n) => Ok(u32::from(n)),
+            Located::Counter(n) => Ok(u32::from(n)),
+            Located::Special(_) => Err(fault("not readable".into())),
+            memory => {
+                let count = byte_count(width);
+                let bytes = self.bytes_of(memory, count)?;
+                Ok(bytes
+                    .iter()
+                    .fold(0u32, |value, byte| value << 8 | u32::from(*byte)))
+            }
+        }
+    }
+
+    pub fn store(&mut self, located: Located, width: AccessWidth, value: u32) -> Result<(), Fault> {
+        if width == AccessWidth::Bit {
+            return self.store_bit(located, value & 1 != 0);
+        }
+        match located {
+            Located::Peripheral { output: true, byte } => {
+                self.write_periphery(io_width(width), byte, value, false);
+                Ok(())
+            }
+            Located::Peripheral {
+                output: false,
+                byte,
+            } => Err(fault(format!(
+                "peripheral input byte {byte} cannot be written"
+            ))),
+            Located::Constant(_) => Err(fault("a constant cannot be written".into())),
+            Located::Timer(_) | Located::Counter(_) | Located::Special(_) => {
+                Err(fault("not writable".into()))
+            }
+            memory => {
+                let count = byte_count(width);
+                let bytes = self.bytes_of(memory, count)?;
+                let all = value.to_be_bytes();
+                bytes.copy_from_slice(&all[4 - count..]);
+                Ok(())
+            }
+        }
+    }
+
+    pub fn fetch_bit(&mut self, located: Located) -> Result<bool, Fault> {
+        match located {
+            Located::Constant(value) => Ok(value & 1 != 0),
+            Located::Timer(n) => {
+                let now = self.clock;
+                let timer = self
+                    .timers
+                    .get_mut(usize::from(n))
+                    .ok_or_else(|| fault(format!("T {n} is past the CPU's timers")))?;
+                Ok(timer.bit(now))
+            }
+            Located::Counter(n) => self
+                .counters
+                .get(usize::from(n))
+                .map(|counter| counter.bit())
+                .ok_or_else(|| fault(format!("C {n} is past the CPU's counters"))),
+            Located::Peripheral { byte, .. } => {
+                Err(fault(format!("peripheral byte {byte} has no bit access")))
+            }
+            Located::Special(_) => Err(fault("not a bit".into())),
+            memory => {
+                let bit = bit_of(memory);
+                let bytes = self.bytes_of(memory, 1)?;
+                Ok(bytes[0] >> bit & 1 != 0)
+            }
+        }
+    }
+
+    pub fn store_bit(&mut self, located: Located, value: bool) -> Result<(), Fault> {
+        match located {
+            Located::Image { .. } | Located::Local { .. } | Located::Data { .. } => {
+                let bit = bit_of(located);
+                let bytes = self.bytes_of(located, 1)?;
+                let mask = 1u8 << bit;
+                if value {
+                    bytes[0] |= mask;
+                } else {
+                    bytes[0] &= !mask;
+                }
+                Ok(())
+            }
+            other => Err(fault(format!("{other:?} cannot be written as a bit"))),
+        }
+    }
+}
+
+fn bit_of(located: Located) -> u8 {
+    match located {
+        Located::Image { bit, .. } | Located::Local { bit, .. } | Located::Data { bit, .. } => bit,
+        _ => 0,
+    }
+}
+
+/// A member `byte`/`bit` into a located actual: a structure's member, or the actual itself
+/// (0, 0) with its own bit.
+fn offset(located: Located, byte: u32, bit: u8) -> Located {
+    let byte = byte as usize;
+    match located {
+        Located::Image { byte: at, bit: own } => Located::Image {
+            byte: at + byte,
+            bit: own + bit,
+        },
+        Located::Local { byte: at, bit: own } => Located::Local {
+            byte: at + byte,
+            bit: own + bit,
+        },
+        Located::Data {
+            db,
+            byte: at,
+            bit: own,
+        } => Located::Data {
+            db,
+            byte: at + byte,
+            bit: own + bit,
+        },
+        other => other,
+    }
+}
+
+fn byte_count(width: AccessWidth) -> usize {
+    match width {
+        AccessWidth::Bit | AccessWidth::Byte => 1,
+        AccessWidth::Word => 2,
+        AccessWidth::Double => 4,
+    }
+}
+
+fn io_width(width: AccessWidth) -> crate::compiler::bytecode::Width {
+    use crate::compiler::bytecode::Width;
+    match width {
+        AccessWidth::Bit | AccessWidth::Byte => Width::Byte,
+        AccessWidth::Word => Width::Word,
+        AccessWidth::Double => Width::Double,
+    }
+}
