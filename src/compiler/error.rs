@@ -292,6 +292,48 @@ pub enum CheckError {
         at: Span,
         nth: usize,
     },
+    #[error("`#{name}` is not declared in {block}")]
+    #[diagnostic(code(awl::check::undeclared_local))]
+    UndeclaredLocal {
+        name: String,
+        block: String,
+        #[label("not in the block's interface")]
+        at: Span,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("jump to `{name}`, a label {block} does not have")]
+    #[diagnostic(
+        code(awl::check::undefined_label),
+        help("labels are written `NAME:` before a statement of the same block")
+    )]
+    UndefinedLabel {
+        name: String,
+        block: String,
+        #[label("no such label")]
+        at: Span,
+    },
+
+    #[error("{what} is not simulated")]
+    #[diagnostic(code(awl::check::not_simulated), help("{why}"))]
+    NotSimulated {
+        what: String,
+        why: String,
+        #[label("awl cannot run this")]
+        at: Span,
+    },
+
+    #[error("{id}: awl numbers blocks up to 255")]
+    #[diagnostic(
+        code(awl::check::block_number),
+        help("renumber the block; awl's block numbers are one byte")
+    )]
+    BlockNumber {
+        id: String,
+        #[label("number too large")]
+        at: Span,
+    },
 }
 
 impl CheckError {
@@ -319,7 +361,11 @@ impl CheckError {
             | CheckError::OperationNotOnCpu { at, .. }
             | CheckError::UnclosedBracket { at, .. }
             | CheckError::UnopenedBracket { at, .. }
-            | CheckError::BracketDepth { at, .. } => *at,
+            | CheckError::BracketDepth { at, .. }
+            | CheckError::UndeclaredLocal { at, .. }
+            | CheckError::UndefinedLabel { at, .. }
+            | CheckError::NotSimulated { at, .. }
+            | CheckError::BlockNumber { at, .. } => *at,
         }
     }
 

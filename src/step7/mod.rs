@@ -4,3 +4,4 @@
 
 pub mod ast;
 pub mod bytecode;
+pub mod compile;

@@ -1,0 +1,178 @@
+//! The initial bytes of STEP 7 data blocks: the declared initial values (`:= 5` in the
+//! interface or `STRUCT`), then the assignments after `BEGIN`.
+
+use std::collections::HashMap;
+
+use crate::compiler::CheckError;
+use crate::step7::ast::{DataType, InitialValue, PathPart, S7Constant, VarDecl};
+
+use super::layout::{self, BitOffset, Interface, struct_layout};
+
+/// Writes `value` as a value of `ty` at bit `at` of `bytes`, growing them as needed.
+pub fn put(bytes: &mut Vec<u8>, at: u32, ty: &DataType, value: &S7Constant) {
+    let start = (at / 8) as usize;
+    let size = (layout::size_bits(ty, &HashMap::new()).max(1)).div_ceil(8) as usize;
+    if bytes.len() < start + size {
+        bytes.resize(start + size, 0);
+    }
+    match layout::width_of(ty) {
+        Some(crate::step7::ast::AccessWidth::Bit) => {
+            let mask = 1u8 << (at % 8);
+            if value.value & 1 != 0 {
+                bytes[start] |= mask;
+            } else {
+                bytes[start] &= !mask;
+            }
+        }
+        Some(width) => {
+            let count = match width {
+                crate::step7::ast::AccessWidth::Byte => 1,
+                crate::step7::ast::AccessWidth::Word => 2,
+                _ => 4,
+            };
+            let all = value.value.to_be_bytes();
+            bytes[start..start + count].copy_from_slice(&all[4 - count..]);
+        }
+        None => match ty {
+            DataType::String(max) => {
+                let text = &value.bytes;
+                let length = text.len().min(usize::from(*max));
+                bytes[start] = *max;
+                bytes[start + 1] = length as u8;
+                bytes[start + 2..start + 2 + length].copy_from_slice(&text[..length]);
+            }
+            _ => {
+                let length = value.bytes.len().min(size);
+                bytes[start..start + length].copy_from_slice(&value.bytes[..length]);
+            }
+        },
+    }
+}
+
+/// The declared initial values of `members` laid out from bit `base`.
+fn put_declared(
+    bytes: &mut Vec<u8>,
+    base: u32,
+    members: &[VarDecl],
+    offsets: &[BitOffset],
+    udts: &HashMap<u16, Vec<VarDecl>>,
+) {
+    for (member, offset) in members.iter().zip(offsets) {
+        let at = base + offset.0;
+        match &member.ty {
+            DataType::Struct(inner) => {
+                let (inner_offsets, _) = struct_layout(inner, udts);
+                put_declared(bytes, at, inner, &inner_offsets, udts);
+            }
+            DataType::Udt(number) => {
+                if let Some(inner) = udts.get(number) {
+                    let (inner_offsets, _) = struct_layout(inner, udts);
+                    put_declared(bytes, at, inner, &inner_offsets, udts);
+                }
+            }
+            DataType::Array { element, .. } => {
+                let stride = match **element {
+                    DataType::Bool => 1,
+                    DataType::Byte | DataType::Char => 8,
+                    ref other => layout::size_bits(other, udts).div_ceil(16) * 16,
+                };
+                for (index, value) in member.initial.iter().enumerate() {
+                    put(bytes, at + index as u32 * stride, element, value);
+                }
+            }
+            ty => {
+                if let Some(value) = member.initial.first() {
+                    put(bytes, at, ty, value);
+                }
+            }
+        }
+    }
+}
+
+/// A global DB: its `STRUCT`, then the assignments after `BEGIN`.
+pub fn global_image(
+    members: &[VarDecl],
+    initial: &[InitialValue],
+    udts: &HashMap<u16, Vec<VarDecl>>,
+    errors: &mut Vec<CheckError>,
+) -> Vec<u8> {
+    let (offsets, size) = struct_layout(members, udts);
+    let mut bytes = vec![0u8; (size / 8) as usize];
+    put_declared(&mut bytes, 0, members, &offsets, udts);
+    let as_struct = DataType::Struct(members.to_vec());
+    assign(&mut bytes, &as_struct, initial, udts, errors);
+    bytes
+}
+
+/// An instance DB of an FB with the interface `interface` (its declared initial values), then
+/// the assignments after `BEGIN`.
+pub fn instance_image(
+    interface: &Interface,
+    initial: &[InitialValue],
+    udts: &HashMap<u16, Vec<VarDecl>>,
+    errors: &mut Vec<CheckError>,
+) -> Vec<u8> {
+    let mut bytes = vec![0u8; interface.instance_bytes as usize];
+    let mut members = Vec::new();
+    for variable in interface.variables.values() {
+        if let layout::Home::Instance(at) = variable.home {
+            put_declared(
+                &mut bytes,
+                at.0,
+                std::slice::from_ref(&variable.declaration),
+                &[BitOffset(0)],
+                udts,
+            );
+            members.push((at, variable));
+        }
+    }
+    for value in initial {
+        let Some(PathPart::Member(first)) = value.path.first() else {
+            continue;
+        };
+        let Some(variable) = interface.variables.get(&first.text.to_ascii_uppercase()) else {
+            errors.push(unknown_member(&first.text, value));
+            continue;
+        };
+        let layout::Home::Instance(at) = variable.home else {
+            continue;
+        };
+        match layout::member(&variable.ty, &value.path[1..], udts) {
+            Ok((offset, ty)) => put(&mut bytes, at.0 + offset, &ty, &value.value),
+            Err(problem) => errors.push(bad_member(problem, value)),
+        }
+    }
+    bytes
+}
+
+fn assign(
+    bytes: &mut Vec<u8>,
+    whole: &DataType,
+    initial: &[InitialValue],
+    udts: &HashMap<u16, Vec<VarDecl>>,
+    errors: &mut Vec<CheckError>,
+) {
+    for value in initial {
+        match layout::member(whole, &value.path, udts) {
+            Ok((offset, ty)) => put(bytes, offset, &ty, &value.value),
+            Err(problem) => errors.push(bad_member(problem, value)),
+        }
+    }
+}
+
+fn unknown_member(name: &str, value: &InitialValue) -> CheckError {
+    CheckError::UndeclaredLocal {
+        name: name.to_string(),
+        block: "the data block".into(),
+        at: value.span,
+        help: None,
+    }
+}
+
+fn bad_member(problem: String, value: &InitialValue) -> CheckError {
+    CheckError::OperandNotAllowed {
+        op: ":=".into(),
+        at: value.span,
+        help: Some(problem),
+    }
+}

@@ -1,0 +1,1001 @@
+//! One STEP 7 logic block's statements to ops. What STEP 5 has too runs as the shared op; the
+//! rest as [`S7Code`]s.
+
+use std::collections::HashMap;
+
+use crate::ast::BlockId;
+use crate::compiler::bytecode::{BitSource, JumpCondition, Logic, NO_PARAMS, Op, TimerKind, Width};
+use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
+use crate::mnemonics::{BlockKind, MnemonicSet};
+use crate::source::Span;
+use crate::step7::ast::{
+    AccessWidth, CallSpec, ConstKind, S7Area, S7Block, S7BlockKind, S7BlockRef, S7Body, S7Op,
+    S7Operand, S7Statement, VarKind,
+};
+use crate::step7::bytecode::{FbCall, MemOp, ParamCopy, Place, S7Code, SfcCall, Target};
+
+use super::layout::Home;
+use super::operand::{Scope, constant_value, not_an_operand};
+
+/// The code of a block as it is emitted.
+struct Emitter {
+    code: Vec<Op>,
+    spans: Vec<Span>,
+    elapsed: Vec<u64>,
+    segments: Vec<(u32, u16)>,
+    labels: HashMap<String, u32>,
+    /// Jumps to patch: (op, label, where it was written).
+    fixups: Vec<(usize, String, Span)>,
+}
+
+impl Emitter {
+    fn emit(&mut self, op: Op, span: Span, timings: &crate::profile::Timings) {
+        let before = *self.elapsed.last().unwrap_or(&0);
+        self.code.push(op);
+        self.spans.push(span);
+        self.elapsed
+            .push(before + u64::from(cost::cost(op, timings)));
+    }
+}
+
+fn width_of(width: AccessWidth) -> Width {
+    match width {
+        AccessWidth::Bit | AccessWidth::Byte => Width::Byte,
+        AccessWidth::Word => Width::Word,
+        AccessWidth::Double => Width::Double,
+    }
+}
+
+fn timer_kind(op: S7Op) -> Option<TimerKind> {
+    Some(match op {
+        S7Op::TimerPulse => TimerKind::Pulse,
+        S7Op::TimerExtendedPulse => TimerKind::ExtendedPulse,
+        S7Op::TimerOnDelay => TimerKind::OnDelay,
+        S7Op::TimerRetentiveOnDelay => TimerKind::StoredOnDelay,
+        S7Op::TimerOffDelay => TimerKind::OffDelay,
+        _ => return None,
+    })
+}
+
+fn mem_op(op: S7Op) -> Option<MemOp> {
+    Some(match op {
+        S7Op::And => MemOp::And,
+        S7Op::AndNot => MemOp::AndNot,
+        S7Op::Or => MemOp::Or,
+        S7Op::OrNot => MemOp::OrNot,
+        S7Op::Xor => MemOp::Xor,
+        S7Op::XorNot => MemOp::XorNot,
+        S7Op::Assign => MemOp::Assign,
+        S7Op::Set => MemOp::Set,
+        S7Op::Reset => MemOp::Reset,
+        S7Op::EdgePositive => MemOp::EdgePositive,
+        S7Op::EdgeNegative => MemOp::EdgeNegative,
+        S7Op::Load => MemOp::Load,
+        S7Op::LoadCoded => MemOp::LoadCoded,
+        S7Op::Transfer => MemOp::Transfer,
+        S7Op::TimerPulse => MemOp::TimerPulse,
+        S7Op::TimerExtendedPulse => MemOp::TimerExtendedPulse,
+        S7Op::TimerOnDelay => MemOp::TimerOnDelay,
+        S7Op::TimerRetentiveOnDelay => MemOp::TimerRetentiveOnDelay,
+        S7Op::TimerOffDelay => MemOp::TimerOffDelay,
+        S7Op::Enable => MemOp::Enable,
+        S7Op::CountUp => MemOp::CountUp,
+        S7Op::CountDown => MemOp::CountDown,
+        S7Op::LoadAr1 => MemOp::LoadAr1,
+        S7Op::LoadAr2 => MemOp::LoadAr2,
+        S7Op::TransferAr1 => MemOp::TransferAr1,
+        S7Op::TransferAr2 => MemOp::TransferAr2,
+        _ => return None,
+    })
+}
+
+/// Operations on the accumulators and the status word alone.
+fn accumulator_only(op: S7Op) -> bool {
+    use S7Op::*;
+    matches!(
+        op,
+        SetRlo
+            | ClearRlo
+            | Not
+            | Save
+            | LoadStatusWord
+            | TransferStatusWord
+            | AddInt
+            | SubInt
+            | MulInt
+            | DivInt
+            | AddDint
+            | SubDint
+            | MulDint
+            | DivDint
+            | ModDint
+            | AddReal
+            | SubReal
+            | MulReal
+            | DivReal
+            | Abs
+            | Sqr
+            | Sqrt
+            | Exp
+            | Ln
+            | Sin
+            | Cos
+            | Tan
+            | Asin
+            | Acos
+            | Atan
+            | NegInt
+            | NegDint
+            | NegReal
+            | InvInt
+            | InvDint
+            | CmpInt(_)
+            | CmpDint(_)
+            | CmpReal(_)
+            | IntToDint
+            | IntToBcd
+            | BcdToInt
+            | BcdToDint
+            | DintToBcd
+            | DintToReal
+            | Round
+            | RoundUp
+            | RoundDown
+            | Truncate
+            | SwapBytesWord
+            | SwapBytesDouble
+            | SwapAccus
+            | Push
+            | Pop
+            | Enter
+            | Leave
+            | Increment
+            | Decrement
+    )
+}
+
+fn is_word_logic(op: S7Op) -> bool {
+    matches!(
+        op,
+        S7Op::AndWord
+            | S7Op::OrWord
+            | S7Op::XorWord
+            | S7Op::AndDouble
+            | S7Op::OrDouble
+            | S7Op::XorDouble
+    )
+}
+
+impl super::Compiler<'_> {
+    pub(super) fn compile_block(&mut self, block: &S7Block, id: BlockId) -> CompiledBlock {
+        let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
+        let scope = Scope {
+            interface: &interface,
+            block: id.to_string(),
+        };
+        let mut out = Emitter {
+            code: Vec::new(),
+            spans: Vec::new(),
+            elapsed: vec![0],
+            segments: Vec::new(),
+            labels: HashMap::new(),
+            fixups: Vec::new(),
+        };
+        let S7Body::Logic(statements) = &block.body else {
+            unreachable!("only logic blocks are compiled")
+        };
+        let mut network = 0;
+        let mut label_spans = HashMap::new();
+        for (index, statement) in statements.iter().enumerate() {
+            if statement.network != network {
+                network = statement.network;
+                out.segments.push((out.code.len() as u32, network));
+            }
+            if let Some(label) = &statement.label {
+                let name = label.text.to_ascii_uppercase();
+                if let Some(first) = label_spans.insert(name.clone(), label.span) {
+                    self.errors.push(CheckError::DuplicateLabel {
+                        name: label.text.clone(),
+                        at: label.span,
+                        first,
+                    });
+                }
+                out.labels.insert(name, out.code.len() as u32);
+            }
+            let following_jumps = statements[index + 1..]
+                .iter()
+                .take_while(|s| s.op == S7Op::JumpAlways && s.label.is_none())
+                .count();
+            if let Err(error) = self.lower(statement, &scope, &mut out, following_jumps) {
+                self.errors.push(error);
+            }
+        }
+        // The block's end: `BE` as STEP 7 places it after the last network.
+        let end = block.end.unwrap_or(block.header);
+        out.emit(Op::BlockEnd, end, &self.profile.timings);
+        for (at, label, span) in std::mem::take(&mut out.fixups) {
+            let Some(&target) = out.labels.get(&label.to_ascii_uppercase()) else {
+                self.errors.push(CheckError::UndefinedLabel {
+                    name: label,
+                    block: id.to_string(),
+                    at: span,
+                });
+                continue;
+            };
+            out.code[at] = match out.code[at] {
+                Op::Jump(condition, _) => Op::Jump(condition, target),
+                Op::S7(S7Code::Jump { op, .. }) => Op::S7(S7Code::Jump {
+                    op,
+                    target: target as u16,
+                }),
+                Op::S7(S7Code::Loop { .. }) => Op::S7(S7Code::Loop {
+                    target: target as u16,
+                }),
+                Op::S7(S7Code::JumpList { entries, .. }) => Op::S7(S7Code::JumpList {
+                    entries,
+                    target: target as u16,
+                }),
+                other => other,
+            };
+        }
+        CompiledBlock {
+            id,
+            header: block.header,
+            mnemonics: MnemonicSet::English,
+            params: Vec::new(),
+            code: out.code,
+            spans: out.spans,
+            elapsed: out.elapsed,
+            segments: out.segments,
+            local_bytes: interface.local_bytes,
+        }
+    }
+
+    fn emit(&self, out: &mut Emitter, op: Op, span: Span) {
+        out.emit(op, span, &self.profile.timings);
+    }
+
+    fn mem(&mut self, out: &mut Emitter, op: MemOp, place: Place, span: Span) {
+        let place = self.tables.place(place);
+        self.emit(out, Op::S7(S7Code::Mem { op, place }), span);
+    }
+
+    fn jump(&self, out: &mut Emitter, op: Op, statement: &S7Statement) -> Result<(), CheckError> {
+        let S7Operand::Label(label) = &statement.operand else {
+            return Err(not_an_operand(
+                statement.operand_span,
+                "a jump needs a label; this",
+            ));
+        };
+        out.fixups
+            .push((out.code.len(), label.text.clone(), label.span));
+        self.emit(out, op, statement.span);
+        Ok(())
+    }
+
+    fn lower(
+        &mut self,
+        statement: &S7Statement,
+        scope: &Scope<'_>,
+        out: &mut Emitter,
+        following_jumps: usize,
+    ) -> Result<(), CheckError> {
+        let span = statement.span;
+        let at = statement.operand_span;
+        let op = statement.op;
+        let operand = &statement.operand;
+        match op {
+            S7Op::And | S7Op::AndNot | S7Op::Or | S7Op::OrNot => {
+                let logic = match op {
+                    S7Op::And => Logic::And,
+                    S7Op::AndNot => Logic::AndNot,
+                    S7Op::Or => Logic::Or,
+                    _ => Logic::OrNot,
+                };
+                if let (S7Op::Or, S7Operand::None) = (op, operand) {
+                    self.emit(out, Op::OrAlone, span);
+                    return Ok(());
+                }
+                if let S7Operand::Address(address) = operand {
+                    if let Some(bit) = self.image_bit(address) {
+                        let shared = match logic {
+                            Logic::And => Op::And(bit),
+                            Logic::AndNot => Op::AndNot(bit),
+                            Logic::Or => Op::Or(bit),
+                            Logic::OrNot => Op::OrNot(bit),
+                        };
+                        self.emit(out, shared, span);
+                        return Ok(());
+                    }
+                    if matches!(address.area, S7Area::Timer | S7Area::Counter) {
+                        let place = self.address_place(address, at)?;
+                        let source = match place.target {
+                            Target::Timer(n) => BitSource::Timer(n),
+                            Target::Counter(n) => BitSource::Counter(n),
+                            _ => unreachable!("a timer or counter address"),
+                        };
+                        self.emit(out, Op::LogicOther(logic, source), span);
+                        return Ok(());
+                    }
+                }
+                self.memory(out, op, operand, at, span, scope)
+            }
+            S7Op::Assign | S7Op::Set | S7Op::Reset => {
+                if let S7Operand::Address(address) = operand {
+                    if let Some(bit) = self.image_bit(address) {
+                        let shared = match op {
+                            S7Op::Assign => Op::Assign(bit),
+                            S7Op::Set => Op::Set(bit),
+                            _ => Op::Reset(bit),
+                        };
+                        self.emit(out, shared, span);
+                        return Ok(());
+                    }
+                    if matches!(address.area, S7Area::Timer | S7Area::Counter) {
+                        let place = self.address_place(address, at)?;
+                        let shared = match (op, place.target) {
+                            (S7Op::Reset, Target::Timer(n)) => Op::ResetTimer(n),
+                            (S7Op::Reset, Target::Counter(n)) => Op::ResetCounter(n),
+                            (S7Op::Set, Target::Counter(n)) => Op::SetCounter(n),
+                            _ => return Err(not_an_operand(at, "a timer or counter")),
+                        };
+                        self.emit(out, shared, span);
+                        return Ok(());
+                    }
+                }
+                self.memory(out, op, operand, at, span, scope)
+            }
+            S7Op::Xor | S7Op::XorNot | S7Op::EdgePositive | S7Op::EdgeNegative => {
+                self.memory(out, op, operand, at, span, scope)
+            }
+            S7Op::AndBracket
+            | S7Op::AndNotBracket
+            | S7Op::OrBracket
+            | S7Op::OrNotBracket
+            | S7Op::XorBracket
+            | S7Op::XorNotBracket => {
+                self.emit(out, Op::S7(S7Code::Bracket(op)), span);
+                Ok(())
+            }
+            S7Op::CloseBracket => {
+                self.emit(out, Op::S7(S7Code::CloseBracket), span);
+                Ok(())
+            }
+            S7Op::OrAlone => {
+                self.emit(out, Op::OrAlone, span);
+                Ok(())
+            }
+            S7Op::Load => self.load(out, operand, at, span, scope),
+            S7Op::Transfer => {
+                if let S7Operand::Address(address) = operand
+                    && address.width != AccessWidth::Bit
+                    && let Some(byte) = self.image_byte(address)
+                {
+                    self.emit(out, Op::transfer_image(width_of(address.width), byte), span);
+                    return Ok(());
+                }
+                self.memory(out, op, operand, at, span, scope)
+            }
+            S7Op::LoadCoded => self.memory(out, op, operand, at, span, scope),
+            S7Op::TimerPulse
+            | S7Op::TimerExtendedPulse
+            | S7Op::TimerOnDelay
+            | S7Op::TimerRetentiveOnDelay
+            | S7Op::TimerOffDelay => {
+                if let S7Operand::Address(address) = operand
+                    && address.area == S7Area::Timer
+                {
+                    let place = self.address_place(address, at)?;
+                    if let (Target::Timer(n), Some(kind)) = (place.target, timer_kind(op)) {
+                        self.emit(out, Op::StartTimer(kind, n), span);
+                        return Ok(());
+                    }
+                }
+                self.memory(out, op, operand, at, span, scope)
+            }
+            S7Op::Enable | S7Op::CountUp | S7Op::CountDown => {
+                self.memory(out, op, operand, at, span, scope)
+            }
+            S7Op::LoadAr1 | S7Op::LoadAr2 => {
+                let ar = if op == S7Op::LoadAr1 { 1 } else { 2 };
+                let code = match operand {
+                    S7Operand::None => S7Code::LoadAr(ar),
+                    S7Operand::AddressRegister(2) if ar == 1 => S7Code::LoadAr1FromAr2,
+                    S7Operand::Constant(constant) => S7Code::LoadArConstant {
+                        ar,
+                        constant: self.tables.constant(constant.value),
+                    },
+                    _ => return self.memory(out, op, operand, at, span, scope),
+                };
+                self.emit(out, Op::S7(code), span);
+                Ok(())
+            }
+            S7Op::TransferAr1 | S7Op::TransferAr2 => {
+                let ar = if op == S7Op::TransferAr1 { 1 } else { 2 };
+                let code = match operand {
+                    S7Operand::None => S7Code::TransferAr(ar),
+                    S7Operand::AddressRegister(2) if ar == 1 => S7Code::TransferAr1ToAr2,
+                    _ => return self.memory(out, op, operand, at, span, scope),
+                };
+                self.emit(out, Op::S7(code), span);
+                Ok(())
+            }
+            S7Op::SwapAr => {
+                self.emit(out, Op::S7(S7Code::SwapAr), span);
+                Ok(())
+            }
+            S7Op::AddAr1 | S7Op::AddAr2 => {
+                let ar = if op == S7Op::AddAr1 { 1 } else { 2 };
+                let constant = match operand {
+                    S7Operand::Constant(constant) => Some(self.tables.constant(constant.value)),
+                    _ => None,
+                };
+                self.emit(out, Op::S7(S7Code::AddAr { ar, constant }), span);
+                Ok(())
+            }
+            S7Op::AddConstant => {
+                let S7Operand::Constant(constant) = operand else {
+                    return Err(not_an_operand(at, "`+` needs a constant; this"));
+                };
+                let shared = match constant.kind {
+                    ConstKind::Dint => Op::S7(S7Code::AddDouble {
+                        constant: self.tables.constant(constant.value),
+                    }),
+                    _ => Op::AddConstant {
+                        value: constant_value(constant),
+                        double: false,
+                    },
+                };
+                self.emit(out, shared, span);
+                Ok(())
+            }
+            S7Op::ShiftSignedInt
+            | S7Op::ShiftSignedDint
+            | S7Op::ShiftLeftWord
+            | S7Op::ShiftRightWord
+            | S7Op::ShiftLeftDouble
+            | S7Op::ShiftRightDouble
+            | S7Op::RotateLeftDouble
+            | S7Op::RotateRightDouble => {
+                let code = match operand {
+                    S7Operand::Number(count) => S7Code::Shift {
+                        op,
+                        count: (*count).clamp(0, 255) as u8,
+                    },
+                    S7Operand::Constant(constant) => S7Code::Shift {
+                        op,
+                        count: constant.value.min(255) as u8,
+                    },
+                    _ => S7Code::Accu(op),
+                };
+                self.emit(out, Op::S7(code), span);
+                Ok(())
+            }
+            S7Op::RotateLeftViaCc1 | S7Op::RotateRightViaCc1 => {
+                self.emit(out, Op::S7(S7Code::Accu(op)), span);
+                Ok(())
+            }
+            op if is_word_logic(op) => {
+                let code = match operand {
+                    S7Operand::Constant(constant) => S7Code::WordConstant {
+                        op,
+                        constant: self.tables.constant(constant.value),
+                    },
+                    _ => S7Code::Accu(op),
+                };
+                self.emit(out, Op::S7(code), span);
+                Ok(())
+            }
+            S7Op::Increment | S7Op::Decrement => {
+                let count = match operand {
+                    S7Operand::Number(n) => (*n).clamp(0, 255) as u8,
+                    S7Operand::Constant(constant) => constant.value as u8,
+                    _ => 1,
+                };
+                let shared = Op::S7(S7Code::Shift { op, count });
+                self.emit(out, shared, span);
+                Ok(())
+            }
+            op if accumulator_only(op) => {
+                self.emit(out, Op::S7(S7Code::Accu(op)), span);
+                Ok(())
+            }
+            S7Op::JumpAlways => self.jump(out, Op::Jump(JumpCondition::Always, 0), statement),
+            S7Op::JumpIfRlo
+            | S7Op::JumpIfNotRlo
+            | S7Op::JumpIfRloSave
+            | S7Op::JumpIfNotRloSave
+            | S7Op::JumpIfBr
+            | S7Op::JumpIfNotBr
+            | S7Op::JumpIfOverflow
+            | S7Op::JumpIfStoredOverflow
+            | S7Op::JumpIfZero
+            | S7Op::JumpIfNotZero
+            | S7Op::JumpIfPositive
+            | S7Op::JumpIfMinus
+            | S7Op::JumpIfPositiveOrZero
+            | S7Op::JumpIfMinusOrZero
+            | S7Op::JumpIfUnordered => {
+                self.jump(out, Op::S7(S7Code::Jump { op, target: 0 }), statement)
+            }
+            S7Op::Loop => self.jump(out, Op::S7(S7Code::Loop { target: 0 }), statement),
+            S7Op::JumpList => self.jump(
+                out,
+                Op::S7(S7Code::JumpList {
+                    entries: following_jumps as u16,
+                    target: 0,
+                }),
+                statement,
+            ),
+            S7Op::OpenDb | S7Op::OpenInstanceDb => {
+                let instance = op == S7Op::OpenInstanceDb;
+                let code = match operand {
+                    S7Operand::Block(S7BlockRef::Number { number, .. }) => {
+                        if !self.has_db(*number) {
+                            self.errors.push(CheckError::UndefinedDb {
+                                id: format!("DB {number}"),
+                                at,
+                            });
+                        }
+                        S7Code::OpenDb {
+                            instance,
+                            number: *number,
+                        }
+                    }
+                    other => {
+                        let place = self.place(other, at, scope)?;
+                        S7Code::OpenDbFrom {
+                            instance,
+                            place: self.tables.place(Place {
+                                width: AccessWidth::Word,
+                                ..place
+                            }),
+                        }
+                    }
+                };
+                self.emit(out, Op::S7(code), span);
+                Ok(())
+            }
+            S7Op::ExchangeDbRegisters => {
+                self.emit(out, Op::S7(S7Code::ExchangeDbRegisters), span);
+                Ok(())
+            }
+            S7Op::Call => {
+                let Some(call) = &statement.call else {
+                    return match operand {
+                        S7Operand::Block(reference) => {
+                            self.plain_call(out, reference, false, at, span)
+                        }
+                        _ => Err(not_an_operand(at, "`CALL` needs a block; this")),
+                    };
+                };
+                self.call(out, call, at, span, scope)
+            }
+            S7Op::CallUnconditional | S7Op::CallConditional => {
+                let S7Operand::Block(reference) = operand else {
+                    return Err(not_an_operand(at, "`UC`/`CC` need an FC or FB; this"));
+                };
+                self.plain_call(out, reference, op == S7Op::CallConditional, at, span)
+            }
+            S7Op::BlockEnd => {
+                self.emit(out, Op::BlockEndUnconditional, span);
+                Ok(())
+            }
+            S7Op::BlockEndUnconditional => {
+                self.emit(out, Op::BlockEndUnconditional, span);
+                Ok(())
+            }
+            S7Op::BlockEndConditional => {
+                self.emit(out, Op::BlockEndConditional, span);
+                Ok(())
+            }
+            S7Op::McrActivate | S7Op::McrDeactivate | S7Op::McrOpen | S7Op::McrClose => {
+                Err(CheckError::NotSimulated {
+                    what: "the master control relay".into(),
+                    why: "MCRA, MCRD, MCR( and )MCR are not simulated yet".into(),
+                    at: statement.op_span,
+                })
+            }
+            S7Op::Nop | S7Op::Display => {
+                self.emit(out, Op::Nop, span);
+                Ok(())
+            }
+            S7Op::Assert(cmp) => {
+                let S7Operand::Pair(left, right) = operand else {
+                    return Err(not_an_operand(at, "`__ASSERT` needs two operands; this"));
+                };
+                let left = self.place(left, at, scope)?;
+                let right = self.place(right, at, scope)?;
+                let index = self.tables.place(left);
+                self.tables.place(right);
+                self.emit(out, Op::S7(S7Code::Assert { cmp, left: index }), span);
+                Ok(())
+            }
+            S7Op::ResetStatusWord => {
+                self.emit(out, Op::S7(S7Code::ResetStatusWord), span);
+                Ok(())
+            }
+            S7Op::Sleep => {
+                let ms = match operand {
+                    S7Operand::Number(n) => *n,
+                    S7Operand::Constant(constant) => i64::from(constant.value),
+                    _ => 0,
+                };
+                self.emit(
+                    out,
+                    Op::S7(S7Code::Sleep {
+                        ms: ms.clamp(0, i64::from(u16::MAX)) as u16,
+                    }),
+                    span,
+                );
+                Ok(())
+            }
+            S7Op::Feature => {
+                let number = |operand: &S7Operand| match operand {
+                    S7Operand::Number(n) => Some(*n as u8),
+                    S7Operand::Constant(constant) => Some(constant.value as u8),
+                    _ => None,
+                };
+                let (target, value) = match operand {
+                    S7Operand::Pair(a, b) => (number(a).unwrap_or(0), number(b)),
+                    other => (number(other).unwrap_or(0), None),
+                };
+                self.emit(out, Op::S7(S7Code::Feature { target, value }), span);
+                Ok(())
+            }
+            other => Err(CheckError::NotSimulated {
+                what: format!("`{other:?}`"),
+                why: "this STEP 7 operation is not simulated yet".into(),
+                at: statement.op_span,
+            }),
+        }
+    }
+
+    /// An operation on the place its operand names.
+    fn memory(
+        &mut self,
+        out: &mut Emitter,
+        op: S7Op,
+        operand: &S7Operand,
+        at: Span,
+        span: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(), CheckError> {
+        let Some(mem) = mem_op(op) else {
+            return Err(not_an_operand(at, "this operand"));
+        };
+        let place = self.place(operand, at, scope)?;
+        self.mem(out, mem, place, span);
+        Ok(())
+    }
+
+    fn load(
+        &mut self,
+        out: &mut Emitter,
+        operand: &S7Operand,
+        at: Span,
+        span: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(), CheckError> {
+        match operand {
+            S7Operand::Constant(constant) if constant.bytes.len() <= 4 => {
+                self.emit(out, Op::LoadConstant(constant_value(constant)), span);
+                Ok(())
+            }
+            S7Operand::Address(address)
+                if address.width != AccessWidth::Bit && self.image_byte(address).is_some() =>
+            {
+                let byte = self.image_byte(address).expect("checked");
+                self.emit(out, Op::load_image(width_of(address.width), byte), span);
+                Ok(())
+            }
+            S7Operand::DbRegister(register) => {
+                self.emit(out, Op::S7(S7Code::LoadDbRegister(*register)), span);
+                Ok(())
+            }
+            other => self.memory(out, S7Op::Load, other, at, span, scope),
+        }
+    }
+
+    /// `UC FC 1`, `CC FB 2`, `CALL FC 1` without parameters.
+    fn plain_call(
+        &mut self,
+        out: &mut Emitter,
+        reference: &S7BlockRef,
+        conditional: bool,
+        at: Span,
+        span: Span,
+    ) -> Result<(), CheckError> {
+        if let S7BlockRef::Number {
+            kind: S7BlockKind::Sfc,
+            number,
+        } = reference
+        {
+            let call = self.sfc(*number, Vec::new());
+            self.emit(out, Op::S7(S7Code::Sfc { call }), span);
+            return Ok(());
+        }
+        let Some(id) = self.block_id(reference, at) else {
+            return Ok(());
+        };
+        let op = match self.index.get(&id) {
+            Some(&block) => Op::Call {
+                block,
+                conditional,
+                params: NO_PARAMS,
+            },
+            None => {
+                self.errors.push(CheckError::UndefinedBlock {
+                    id: id.to_string(),
+                    at,
+                });
+                Op::CallMissing {
+                    kind: id.kind,
+                    number: id.number,
+                    conditional,
+                }
+            }
+        };
+        self.emit(out, op, span);
+        Ok(())
+    }
+
+    fn sfc(&mut self, number: u16, params: Vec<(String, u16)>) -> u16 {
+        self.tables.sfc_calls.push(SfcCall { number, params });
+        (self.tables.sfc_calls.len() - 1) as u16
+    }
+
+    /// `CALL FC n (…)`, `CALL FB n, DB m (…)`, `CALL SFC n (…)`.
+    fn call(
+        &mut self,
+        out: &mut Emitter,
+        call: &CallSpec,
+        at: Span,
+        span: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(), CheckError> {
+        if call.multi_instance.is_some() {
+            return Err(CheckError::NotSimulated {
+                what: "a multi-instance call".into(),
+                why: "`CALL #instance` is not simulated yet".into(),
+                at,
+            });
+        }
+        if let S7BlockRef::Number {
+            kind: S7BlockKind::Sfc | S7BlockKind::Sfb,
+            number,
+        } = call.block
+        {
+            let mut params = Vec::new();
+            for param in &call.params {
+                let place = self.place(&param.actual, param.actual_span, scope)?;
+                params.push((
+                    param.name.text.to_ascii_uppercase(),
+                    self.tables.place(place),
+                ));
+            }
+            let index = self.sfc(number, params);
+            if matches!(
+                call.block,
+                S7BlockRef::Number {
+                    kind: S7BlockKind::Sfb,
+                    ..
+                }
+            ) || number != 46
+            {
+                return Err(CheckError::NotSimulated {
+                    what: format!(
+                        "{} {number}",
+                        if matches!(
+                            call.block,
+                            S7BlockRef::Number {
+                                kind: S7BlockKind::Sfb,
+                                ..
+                            }
+                        ) {
+                            "SFB"
+                        } else {
+                            "SFC"
+                        }
+                    ),
+                    why: "of the system blocks, awl runs SFC 46 (STP) so far".into(),
+                    at,
+                });
+            }
+            self.emit(out, Op::S7(S7Code::Sfc { call: index }), span);
+            return Ok(());
+        }
+        let Some(id) = self.block_id(&call.block, at) else {
+            return Ok(());
+        };
+        let Some(&block) = self.index.get(&id) else {
+            self.errors.push(CheckError::UndefinedBlock {
+                id: id.to_string(),
+                at,
+            });
+            self.emit(
+                out,
+                Op::CallMissing {
+                    kind: id.kind,
+                    number: id.number,
+                    conditional: false,
+                },
+                span,
+            );
+            return Ok(());
+        };
+        let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
+        match id.kind {
+            BlockKind::Fb => self.call_fb(out, call, id, block, &interface, at, span, scope),
+            _ => self.call_fc(out, call, id, block, &interface, span, scope),
+        }
+    }
+
+    fn call_fc(
+        &mut self,
+        out: &mut Emitter,
+        call: &CallSpec,
+        id: BlockId,
+        block: u16,
+        interface: &super::layout::Interface,
+        span: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(), CheckError> {
+        let mut actuals = vec![None; interface.parameters.len()];
+        for param in &call.params {
+            let name = param.name.text.to_ascii_uppercase();
+            let Some(position) = interface.parameters.iter().position(|p| *p == name) else {
+                self.errors.push(CheckError::UnknownParam {
+                    name: param.name.text.clone(),
+                    fb: id.to_string(),
+                    at: param.name.span,
+                    help: Some(format!("{id} has {}", interface.parameters.join(", "))),
+                });
+                continue;
+            };
+            let resolved = match &param.actual {
+                S7Operand::Constant(constant) => Resolved::Constant(constant_value(constant)),
+                actual => match self.place(actual, param.actual_span, scope) {
+                    Ok(place) => Resolved::S7(self.tables.place(place)),
+                    Err(error) => {
+                        self.errors.push(error);
+                        continue;
+                    }
+                },
+            };
+            actuals[position] = Some(resolved);
+        }
+        let missing: Vec<&str> = interface
+            .parameters
+            .iter()
+            .zip(&actuals)
+            .filter(|(_, actual)| actual.is_none())
+            .map(|(name, _)| name.as_str())
+            .collect();
+        if !missing.is_empty() {
+            return Err(CheckError::ParamCount {
+                fb: id.to_string(),
+                expected: interface.parameters.len(),
+                found: interface.parameters.len() - missing.len(),
+                at: span,
+                help: Some(format!(
+                    "an FC needs every parameter; missing: {}",
+                    missing.join(", ")
+                )),
+            });
+        }
+        let list = actuals
+            .into_iter()
+            .map(|actual| actual.unwrap_or(Resolved::None))
+            .collect();
+        self.param_lists.push(list);
+        let params = (self.param_lists.len() - 1) as u16;
+        self.emit(
+            out,
+            Op::Call {
+                block,
+                conditional: false,
+                params,
+            },
+            span,
+        );
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn call_fb(
+        &mut self,
+        out: &mut Emitter,
+        call: &CallSpec,
+        id: BlockId,
+        block: u16,
+        interface: &super::layout::Interface,
+        at: Span,
+        span: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(), CheckError> {
+        let Some(S7BlockRef::Number { number: db, .. }) = &call.instance else {
+            return Err(CheckError::NotSimulated {
+                what: format!("a call of {id} without an instance DB"),
+                why: "write `CALL FB n, DB m`".into(),
+                at,
+            });
+        };
+        if !self.has_db(*db) {
+            self.errors.push(CheckError::UndefinedDb {
+                id: format!("DB {db}"),
+                at,
+            });
+        }
+        let mut inputs = Vec::new();
+        let mut outputs = Vec::new();
+        for param in &call.params {
+            let name = param.name.text.to_ascii_uppercase();
+            let variable = interface.variables.get(&name).filter(|variable| {
+                matches!(
+                    variable.kind,
+                    VarKind::Input | VarKind::Output | VarKind::InOut
+                )
+            });
+            let Some(variable) = variable else {
+                self.errors.push(CheckError::UnknownParam {
+                    name: param.name.text.clone(),
+                    fb: id.to_string(),
+                    at: param.name.span,
+                    help: None,
+                });
+                continue;
+            };
+            let (Home::Instance(offset), Some(width)) =
+                (variable.home, super::layout::width_of(&variable.ty))
+            else {
+                self.errors.push(CheckError::NotSimulated {
+                    what: format!(
+                        "the parameter `{}` of type {:?}",
+                        param.name.text, variable.ty
+                    ),
+                    why: "FB parameters of elementary types are simulated so far".into(),
+                    at: param.span,
+                });
+                continue;
+            };
+            let place = match self.place(&param.actual, param.actual_span, scope) {
+                Ok(place) => place,
+                Err(error) => {
+                    self.errors.push(error);
+                    continue;
+                }
+            };
+            let copy = ParamCopy {
+                actual: self.tables.place(place),
+                byte: offset.byte(),
+                bit: offset.bit(),
+                width,
+            };
+            if matches!(variable.kind, VarKind::Input | VarKind::InOut) {
+                inputs.push(copy);
+            }
+            if matches!(variable.kind, VarKind::Output | VarKind::InOut) {
+                outputs.push(copy);
+            }
+        }
+        self.tables.fb_calls.push(FbCall {
+            instance_db: *db,
+            inputs,
+            outputs,
+        });
+        let index = (self.tables.fb_calls.len() - 1) as u16;
+        self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
+        self.emit(
+            out,
+            Op::Call {
+                block,
+                conditional: false,
+                params: NO_PARAMS,
+            },
+            span,
+        );
+        self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
+        Ok(())
+    }
+}

@@ -1,0 +1,235 @@
+//! The STEP 7 compiler: parsed S7 units to the same [`Program`] the STEP 5 compiler makes.
+//! Blocks are registered first (so calls find their callees' interfaces), the interfaces laid
+//! out, the data blocks' initial bytes made, then each logic block's statements lowered.
+
+mod data;
+mod layout;
+mod lower;
+mod operand;
+
+use std::collections::HashMap;
+
+use crate::ast::BlockId;
+use crate::compiler::{CheckError, Compiled, Program, Resolved};
+use crate::mnemonics::BlockKind;
+use crate::profile::Profile;
+use crate::source::{SourceSet, Span};
+use crate::step7::ast::{S7Block, S7BlockKind, S7BlockRef, S7Body, S7Unit, VarDecl, VarKind};
+use crate::step7::bytecode::S7Tables;
+
+use layout::Interface;
+
+/// Compiles every STEP 7 unit of a program together; `extensions` allows awlsim's test
+/// instructions.
+pub fn compile(
+    units: &[S7Unit],
+    sources: &SourceSet,
+    profile: &'static Profile,
+    extensions: bool,
+) -> Compiled {
+    let mut compiler = Compiler {
+        profile,
+        sources,
+        index: HashMap::new(),
+        interfaces: HashMap::new(),
+        udts: HashMap::new(),
+        data_blocks: HashMap::new(),
+        tables: S7Tables {
+            extensions,
+            step7: true,
+            ..S7Tables::default()
+        },
+        param_lists: Vec::new(),
+        errors: Vec::new(),
+    };
+    let logic = compiler.collect(units);
+    compiler.make_data_blocks(units);
+    let blocks = logic
+        .iter()
+        .map(|(block, id)| compiler.compile_block(block, *id))
+        .collect();
+    compiler.errors.sort_by_key(|error| {
+        let span = error.span();
+        (span.file, span.start)
+    });
+    let mut data: Vec<(u16, Vec<u8>)> = compiler.data_blocks.into_iter().collect();
+    data.sort_by_key(|(number, _)| *number);
+    compiler.tables.data_blocks = data;
+    let program = Program::assemble(
+        profile,
+        blocks,
+        Vec::new(),
+        compiler.param_lists,
+        compiler.index,
+        compiler.tables,
+    );
+    Compiled {
+        program,
+        diagnostics: compiler.errors,
+    }
+}
+
+struct Compiler<'a> {
+    profile: &'static Profile,
+    sources: &'a SourceSet,
+    index: HashMap<BlockId, u16>,
+    interfaces: HashMap<BlockId, Interface>,
+    udts: HashMap<u16, Vec<VarDecl>>,
+    data_blocks: HashMap<u16, Vec<u8>>,
+    tables: S7Tables,
+    param_lists: Vec<Vec<Resolved>>,
+    errors: Vec<CheckError>,
+}
+
+/// The block kind awl files an S7 block under.
+fn block_kind(kind: S7BlockKind) -> Option<BlockKind> {
+    Some(match kind {
+        S7BlockKind::Ob => BlockKind::Ob,
+        S7BlockKind::Fc => BlockKind::Fc,
+        S7BlockKind::Fb => BlockKind::Fb,
+        S7BlockKind::Db => BlockKind::Db,
+        _ => return None,
+    })
+}
+
+impl<'a> Compiler<'a> {
+    fn where_is(&self, span: Span) -> String {
+        let file = self.sources.get(span.file);
+        format!("{}:{}", file.name, file.line_of(span.start))
+    }
+
+    /// The block id of a reference, or an error at `span`.
+    fn block_id(&mut self, reference: &S7BlockRef, span: Span) -> Option<BlockId> {
+        match reference {
+            S7BlockRef::Number { kind, number } => {
+                let kind = block_kind(*kind)?;
+                match u8::try_from(*number) {
+                    Ok(number) => Some(BlockId { kind, number }),
+                    Err(_) => {
+                        self.errors.push(CheckError::BlockNumber {
+                            id: format!("{} {number}", kind.name()),
+                            at: span,
+                        });
+                        None
+                    }
+                }
+            }
+            S7BlockRef::Symbol(name) => {
+                self.errors.push(CheckError::NotSimulated {
+                    what: format!("the block name \"{}\"", name.text),
+                    why: "name blocks by number (`FC 1`); STEP 7 symbol tables are not read yet"
+                        .into(),
+                    at: name.span,
+                });
+                None
+            }
+        }
+    }
+
+    /// Registers every block; lays out the interfaces of the logic blocks.
+    fn collect<'u>(&mut self, units: &'u [S7Unit]) -> Vec<(&'u S7Block, BlockId)> {
+        for block in units.iter().flat_map(|unit| &unit.blocks) {
+            if let (S7BlockKind::Udt, S7BlockRef::Number { number, .. }, S7Body::Type(members)) =
+                (block.kind, &block.name, &block.body)
+            {
+                self.udts.insert(*number, members.clone());
+            }
+        }
+        let mut first_seen: HashMap<BlockId, Span> = HashMap::new();
+        let mut logic = Vec::new();
+        for block in units.iter().flat_map(|unit| &unit.blocks) {
+            if block.kind == S7BlockKind::Udt {
+                continue;
+            }
+            let Some(id) = self.block_id(&block.name, block.header) else {
+                continue;
+            };
+            if let Some(first) = first_seen.get(&id) {
+                self.errors.push(CheckError::DuplicateBlock {
+                    id: id.to_string(),
+                    at: block.header,
+                    first: self.where_is(*first),
+                });
+                continue;
+            }
+            first_seen.insert(id, block.header);
+            if let S7Body::Logic(_) = block.body {
+                self.index.insert(id, logic.len() as u16);
+                self.interfaces.insert(id, self.interface(block));
+                logic.push((block, id));
+            }
+        }
+        logic
+    }
+
+    fn interface(&self, block: &S7Block) -> Interface {
+        let mut sections: Vec<(VarKind, &[VarDecl])> = block
+            .interface
+            .iter()
+            .map(|section| (section.kind, section.vars.as_slice()))
+            .collect();
+        let return_value;
+        if let Some(ty) = &block.return_type {
+            return_value = [VarDecl {
+                name: crate::ast::Name {
+                    text: "RET_VAL".into(),
+                    span: block.header,
+                },
+                ty: ty.clone(),
+                initial: Vec::new(),
+                span: block.header,
+            }];
+            sections.push((VarKind::Output, &return_value));
+            return Interface::build(&sections, block.kind == S7BlockKind::Fb, &self.udts);
+        }
+        Interface::build(&sections, block.kind == S7BlockKind::Fb, &self.udts)
+    }
+
+    fn make_data_blocks(&mut self, units: &[S7Unit]) {
+        for block in units.iter().flat_map(|unit| &unit.blocks) {
+            let S7Body::Data {
+                instance_of,
+                members,
+                initial,
+            } = &block.body
+            else {
+                continue;
+            };
+            let S7BlockRef::Number { number, .. } = block.name else {
+                continue;
+            };
+            let mut errors = Vec::new();
+            let bytes = match instance_of {
+                None => data::global_image(members, initial, &self.udts, &mut errors),
+                Some(fb) => {
+                    let Some(id) = self.block_id(fb, block.header) else {
+                        continue;
+                    };
+                    match self.interfaces.get(&id) {
+                        Some(interface) => {
+                            data::instance_image(interface, initial, &self.udts, &mut errors)
+                        }
+                        None => {
+                            self.errors.push(CheckError::UndefinedBlock {
+                                id: id.to_string(),
+                                at: block.header,
+                            });
+                            Vec::new()
+                        }
+                    }
+                }
+            };
+            self.errors.extend(errors);
+            self.data_blocks.insert(number, bytes);
+        }
+    }
+
+    /// Whether the program defines data block `number`.
+    fn has_db(&self, number: u16) -> bool {
+        self.data_blocks.contains_key(&number)
+    }
+
+    fn udts(&self) -> &HashMap<u16, Vec<VarDecl>> {
+        &self.udts
+    }
+}

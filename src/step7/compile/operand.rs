@@ -1,0 +1,339 @@
+//! STEP 7 operands to places: absolute addresses, locals and parameters by name, indirect
+//! addresses, constants and awlsim's test operands.
+
+use crate::compiler::CheckError;
+use crate::compiler::bytecode::ImageBit;
+use crate::source::Span;
+use crate::step7::ast::{
+    AccessWidth, ConstKind, DataType, IndirectPointer, S7Address, S7Area, S7Constant, S7Operand,
+};
+use crate::step7::bytecode::{IndirectArea, Place, Target};
+
+use super::layout::{self, Home, Interface};
+
+/// What the block compiles against: its interface, its name for messages.
+pub struct Scope<'i> {
+    pub interface: &'i Interface,
+    pub block: String,
+}
+
+/// The value a constant loads into ACCU 1: awl, like awlsim, loads a 16-bit constant into
+/// ACCU 1-L with ACCU 1-H 0.
+pub fn constant_value(constant: &S7Constant) -> u32 {
+    match constant.kind {
+        ConstKind::Int
+        | ConstKind::Word
+        | ConstKind::S5Time
+        | ConstKind::Counter
+        | ConstKind::Date => constant.value & 0xFFFF,
+        ConstKind::Byte | ConstKind::Char => constant.value & 0xFF,
+        _ => constant.value,
+    }
+}
+
+fn indirect_area(area: S7Area) -> IndirectArea {
+    match area {
+        S7Area::Input => IndirectArea::Input,
+        S7Area::Output => IndirectArea::Output,
+        S7Area::Flag => IndirectArea::Flag,
+        S7Area::Local => IndirectArea::Local,
+        S7Area::PreviousLocal => IndirectArea::PreviousLocal,
+        S7Area::Data => IndirectArea::Data,
+        S7Area::Instance => IndirectArea::Instance,
+        S7Area::PeripheralInput => IndirectArea::PeripheralInput,
+        S7Area::PeripheralOutput => IndirectArea::PeripheralOutput,
+        S7Area::Timer => IndirectArea::Timer,
+        S7Area::Counter => IndirectArea::Counter,
+    }
+}
+
+impl super::Compiler<'_> {
+    /// The image bit of `I`/`Q`/`M` bit address, when it is one.
+    pub fn image_bit(&self, address: &S7Address) -> Option<ImageBit> {
+        if address.width != AccessWidth::Bit {
+            return None;
+        }
+        let byte = self.image_byte(address)?;
+        Some(ImageBit {
+            byte,
+            bit: address.bit,
+        })
+    }
+
+    /// The image memory offset of an `I`/`Q`/`M` address (any width), when in range.
+    pub fn image_byte(&self, address: &S7Address) -> Option<u16> {
+        let layout = crate::compiler::Layout::new(&self.profile.sizes);
+        let (base, size) = match address.area {
+            S7Area::Input => (layout.input_base(), layout.image_bytes),
+            S7Area::Output => (layout.output_base(), layout.image_bytes),
+            S7Area::Flag => (layout.flag_base(), layout.flag_bytes),
+            _ => return None,
+        };
+        let end = address.byte + bytes(address.width);
+        (end <= u32::from(size)).then(|| base + address.byte as u16)
+    }
+
+    fn range_error(&self, address: &S7Address, at: Span) -> CheckError {
+        let layout = crate::compiler::Layout::new(&self.profile.sizes);
+        let (name, size) = match address.area {
+            S7Area::Input => ("I", layout.image_bytes),
+            S7Area::Output => ("Q", layout.image_bytes),
+            _ => ("M", layout.flag_bytes),
+        };
+        CheckError::OperandRange {
+            what: format!("{name} byte {}", address.byte),
+            at,
+            range: format!("{name} bytes 0 to {}", size.saturating_sub(1)),
+            cpu: self.profile.name,
+        }
+    }
+
+    /// The place of an absolute address.
+    pub fn address_place(&mut self, address: &S7Address, at: Span) -> Result<Place, CheckError> {
+        let width = address.width;
+        let target = match address.area {
+            S7Area::Input | S7Area::Output | S7Area::Flag => match self.image_byte(address) {
+                Some(byte) => Target::Image {
+                    byte,
+                    bit: address.bit,
+                },
+                None => return Err(self.range_error(address, at)),
+            },
+            S7Area::PeripheralInput | S7Area::PeripheralOutput => Target::Peripheral {
+                output: address.area == S7Area::PeripheralOutput,
+                byte: address.byte.min(u32::from(u16::MAX)) as u16,
+            },
+            S7Area::Local => Target::Local {
+                byte: address.byte,
+                bit: address.bit,
+            },
+            S7Area::PreviousLocal => Target::PreviousLocal {
+                byte: address.byte,
+                bit: address.bit,
+            },
+            S7Area::Data | S7Area::Instance => match address.db {
+                Some(db) => {
+                    if !self.has_db(db) {
+                        self.errors.push(CheckError::UndefinedDb {
+                            id: format!("DB {db}"),
+                            at,
+                        });
+                    }
+                    Target::NumberedData {
+                        db,
+                        byte: address.byte,
+                        bit: address.bit,
+                    }
+                }
+                None => Target::Data {
+                    instance: address.area == S7Area::Instance,
+                    byte: address.byte,
+                    bit: address.bit,
+                },
+            },
+            S7Area::Timer | S7Area::Counter => {
+                let (count, name) = if address.area == S7Area::Timer {
+                    (self.profile.sizes.timers, "T")
+                } else {
+                    (self.profile.sizes.counters, "C")
+                };
+                if address.byte >= u32::from(count) {
+                    return Err(CheckError::OperandRange {
+                        what: format!("{name} {}", address.byte),
+                        at,
+                        range: format!("{name} 0 to {}", count.saturating_sub(1)),
+                        cpu: self.profile.name,
+                    });
+                }
+                if address.area == S7Area::Timer {
+                    Target::Timer(address.byte as u16)
+                } else {
+                    Target::Counter(address.byte as u16)
+                }
+            }
+        };
+        Ok(Place { target, width })
+    }
+
+    /// The place of any operand that names one.
+    pub fn place(
+        &mut self,
+        operand: &S7Operand,
+        at: Span,
+        scope: &Scope<'_>,
+    ) -> Result<Place, CheckError> {
+        match operand {
+            S7Operand::Address(address) => self.address_place(address, at),
+            S7Operand::Local(path) => self.local_place(path, at, scope),
+            S7Operand::Constant(constant) => Ok(Place {
+                target: Target::Constant(constant_value(constant)),
+                width: match constant.kind {
+                    ConstKind::Bool => AccessWidth::Bit,
+                    ConstKind::Byte | ConstKind::Char => AccessWidth::Byte,
+                    ConstKind::Int
+                    | ConstKind::Word
+                    | ConstKind::S5Time
+                    | ConstKind::Counter
+                    | ConstKind::Date => AccessWidth::Word,
+                    _ => AccessWidth::Double,
+                },
+            }),
+            S7Operand::Indirect {
+                area,
+                width,
+                pointer,
+            } => {
+                let target = match *pointer {
+                    IndirectPointer::Memory(address) => {
+                        let pointer_place = self.address_place(&address, at)?;
+                        Target::MemoryIndirect {
+                            area: indirect_area(*area),
+                            pointer: self.tables.place(pointer_place),
+                        }
+                    }
+                    IndirectPointer::Register { ar, offset } => Target::RegisterIndirect {
+                        area: Some(indirect_area(*area)),
+                        ar,
+                        offset,
+                    },
+                };
+                Ok(Place {
+                    target,
+                    width: *width,
+                })
+            }
+            S7Operand::Extension(extension) => Ok(Place {
+                target: Target::Extension(*extension),
+                width: AccessWidth::Double,
+            }),
+            S7Operand::DbRegister(register) => Ok(Place {
+                target: Target::DbRegister(*register),
+                width: AccessWidth::Word,
+            }),
+            S7Operand::Block(reference) => match reference {
+                crate::step7::ast::S7BlockRef::Number { number, .. } => Ok(Place {
+                    target: Target::Constant(u32::from(*number)),
+                    width: AccessWidth::Word,
+                }),
+                crate::step7::ast::S7BlockRef::Symbol(_) => {
+                    Err(not_an_operand(at, "a block symbol"))
+                }
+            },
+            S7Operand::Symbol { name, .. } => Err(CheckError::NotSimulated {
+                what: format!("the symbol \"{}\"", name.text),
+                why: "write the absolute address; STEP 7 symbol tables are not read yet".into(),
+                at,
+            }),
+            _ => Err(not_an_operand(at, "this operand")),
+        }
+    }
+
+    /// `#name.member[3]`: a variable of the block's interface.
+    pub fn local_place(
+        &mut self,
+        path: &[crate::step7::ast::PathPart],
+        at: Span,
+        scope: &Scope<'_>,
+    ) -> Result<Place, CheckError> {
+        let (variable, ty, offset) = self.resolve_local(path, at, scope)?;
+        let width = layout::width_of(&ty).unwrap_or(AccessWidth::Byte);
+        let (byte, bit) = (offset / 8, (offset % 8) as u8);
+        let target = match variable.home {
+            Home::Instance(base) => {
+                let at_bits = base.0 + offset;
+                Target::Data {
+                    instance: true,
+                    byte: at_bits / 8,
+                    bit: (at_bits % 8) as u8,
+                }
+            }
+            Home::Local(base) => {
+                let at_bits = base.0 + offset;
+                Target::Local {
+                    byte: at_bits / 8,
+                    bit: (at_bits % 8) as u8,
+                }
+            }
+            Home::Parameter(param) => Target::Parameter { param, byte, bit },
+        };
+        // An FB keeps a TIMER or COUNTER parameter as its number in the instance DB.
+        let target = match (&ty, variable.home) {
+            (DataType::Timer, Home::Instance(_) | Home::Local(_)) => Target::TimerFrom {
+                place: self.tables.place(Place {
+                    target,
+                    width: AccessWidth::Word,
+                }),
+            },
+            (DataType::Counter, Home::Instance(_) | Home::Local(_)) => Target::CounterFrom {
+                place: self.tables.place(Place {
+                    target,
+                    width: AccessWidth::Word,
+                }),
+            },
+            _ => target,
+        };
+        Ok(Place { target, width })
+    }
+
+    pub fn resolve_local(
+        &self,
+        path: &[crate::step7::ast::PathPart],
+        at: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(layout::Variable, DataType, u32), CheckError> {
+        let Some(crate::step7::ast::PathPart::Member(first)) = path.first() else {
+            return Err(not_an_operand(at, "this name"));
+        };
+        let Some(variable) = scope
+            .interface
+            .variables
+            .get(&first.text.to_ascii_uppercase())
+        else {
+            let known: Vec<&str> = scope
+                .interface
+                .variables
+                .values()
+                .map(|v| v.declaration.name.text.as_str())
+                .collect();
+            let close = known
+                .iter()
+                .find(|name| strsim_close(name, &first.text))
+                .map(|name| format!("did you mean `#{name}`?"));
+            return Err(CheckError::UndeclaredLocal {
+                name: first.text.clone(),
+                block: scope.block.clone(),
+                at,
+                help: close,
+            });
+        };
+        let (offset, ty) = layout::member(&variable.ty, &path[1..], self.udts())
+            .map_err(|problem| not_an_operand(at, &problem))?;
+        Ok((variable.clone(), ty, offset))
+    }
+}
+
+/// Two names that differ in case or by one character.
+fn strsim_close(a: &str, b: &str) -> bool {
+    let (a, b) = (a.to_ascii_uppercase(), b.to_ascii_uppercase());
+    if a.len().abs_diff(b.len()) > 1 {
+        return false;
+    }
+    let differences = a.chars().zip(b.chars()).filter(|(x, y)| x != y).count();
+    differences + a.len().abs_diff(b.len()) <= 1
+}
+
+pub fn not_an_operand(at: Span, what: &str) -> CheckError {
+    CheckError::OperandNotAllowed {
+        op: "this operation".into(),
+        at,
+        help: Some(format!("{what} cannot be used here")),
+    }
+}
+
+pub fn bytes(width: AccessWidth) -> u32 {
+    match width {
+        AccessWidth::Bit | AccessWidth::Byte => 1,
+        AccessWidth::Word => 2,
+        AccessWidth::Double => 4,
+    }
+}
