@@ -210,6 +210,8 @@ pub enum S7Operand {
     Block(S7BlockRef),
     /// A number where the operation takes one: `SLW 3`, `+AR1 P#…` is a constant instead.
     Number(i64),
+    /// `A ==0`, `O OV`, `AN BR`: a status condition as a bit operand.
+    Status(StatusCondition),
     /// `L DBNO`, `L DBLG`, `L DINO`, `L DILG`.
     DbRegister(DbRegister),
     /// `LAR1 AR2`, `TAR1 AR2`: an address register as the operand.
@@ -218,6 +220,22 @@ pub enum S7Operand {
     Extension(Extension),
     /// `__ASSERT== a, b`: two operands.
     Pair(Box<S7Operand>, Box<S7Operand>),
+}
+
+/// A status condition read as a bit: `==0`, `<>0`, `>0`, `<0`, `>=0`, `<=0`, `UO`, `OV`,
+/// `OS`, `BR` (German `BIE`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StatusCondition {
+    Zero,
+    NotZero,
+    Positive,
+    Negative,
+    PositiveOrZero,
+    NegativeOrZero,
+    Unordered,
+    Overflow,
+    StoredOverflow,
+    BinaryResult,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

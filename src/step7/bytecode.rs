@@ -163,20 +163,7 @@ pub enum MemOp {
     CallFrom,
 }
 
-/// A status condition read as a bit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Condition {
-    Zero,
-    NotZero,
-    Positive,
-    Negative,
-    PositiveOrZero,
-    NegativeOrZero,
-    Unordered,
-    Overflow,
-    StoredOverflow,
-    BinaryResult,
-}
+pub use super::ast::StatusCondition as Condition;
 
 /// Where an S7 operation reads or writes.
 #[derive(Debug, Clone, Copy, PartialEq)]
