@@ -15,6 +15,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
+use crate::dialect::Dialect;
+use crate::frontend::Language;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Profile};
 
@@ -49,6 +51,49 @@ impl From<Mnemonics> for MnemonicSet {
     }
 }
 
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum DialectName {
+    /// STEP 5 STL
+    S5,
+    /// STEP 7 STL
+    S7,
+}
+
+impl From<DialectName> for Dialect {
+    fn from(value: DialectName) -> Self {
+        match value {
+            DialectName::S5 => Dialect::Step5,
+            DialectName::S7 => Dialect::Step7,
+        }
+    }
+}
+
+/// How the source files are read: every command that reads them shares these.
+#[derive(Debug, clap::Args)]
+pub struct LanguageArgs {
+    /// Mnemonic set, instead of detecting it per file [default: detected per file]
+    #[arg(long, value_enum)]
+    pub mnemonics: Option<Mnemonics>,
+    /// STL dialect: STEP 5 or STEP 7, instead of detecting it per file [default: detected per
+    /// file]
+    #[arg(long, value_enum)]
+    pub dialect: Option<DialectName>,
+    /// Accept awlsim's test operations (`__ASSERT==`, `__STWRST` and the like), which no real
+    /// CPU knows [default: off]
+    #[arg(long)]
+    pub extended: bool,
+}
+
+impl LanguageArgs {
+    pub fn language(&self) -> Language {
+        Language {
+            mnemonics: self.mnemonics.map(Into::into),
+            dialect: self.dialect.map(Into::into),
+            extensions: self.extended,
+        }
+    }
+}
+
 /// Options every command that reads source files shares.
 #[derive(Debug, clap::Args)]
 pub struct SourceOptions {
@@ -58,9 +103,8 @@ pub struct SourceOptions {
     /// CPU profile (see `awl cpus`) [default: sinumerik-840c]
     #[arg(long, value_parser = profile::names())]
     pub cpu: Option<String>,
-    /// Mnemonic set, instead of detecting it per file [default: detected per file]
-    #[arg(long, value_enum)]
-    pub mnemonics: Option<Mnemonics>,
+    #[command(flatten)]
+    pub language: LanguageArgs,
     /// Assignment list giving operands names (`-START`); repeatable [default: none]
     #[arg(long = "symbols", value_name = "FILE")]
     pub symbols: Vec<PathBuf>,
