@@ -1,7 +1,8 @@
-//! The command line: `awl check | dump | run | status | debug | analyze | test | cpus | help`. Each command reports through a
-//! [`Console`], so no output failure can panic.
+//! The command line: `awl check | dump | run | status | debug | analyze | test | conformance |
+//! cpus | help`. Each command reports through a [`Console`], so no output failure can panic.
 
 mod analyze;
+mod conformance;
 mod console;
 mod debug;
 mod help;
@@ -138,6 +139,9 @@ pub enum Command {
     Analyze(analyze::AnalyzeArgs),
     /// Run scenario files and check their [expect] and [[check]] tables
     Test(run::TestArgs),
+    /// Run awlsim's test files (STEP 7 STL with `__ASSERT…`) as awlsim's harness does: PASS or
+    /// FAIL per file
+    Conformance(conformance::ConformanceArgs),
     /// List the CPU profiles with their rules and timings
     Cpus,
     /// Print a format (`awl help scenario`, `trace`, `listing`, `symbols`, …) or a command's
@@ -160,6 +164,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Status(args) => status::status(&args, &mut console),
         Command::Debug(args) => debug::debug(&args, &mut console),
         Command::Test(args) => run::test(&args, &mut console),
+        Command::Conformance(args) => conformance::conformance(&args, &mut console),
         Command::Analyze(args) => analyze::analyze(&args, &mut console),
         Command::Help(args) => help::help(&args, &mut console),
         Command::Cpus => {
