@@ -280,7 +280,7 @@ fn implied_kind(op: OpCode) -> (ParamKind, Option<ParamFormat>) {
 
 #[cfg(test)]
 mod tests {
-    use crate::frontend::{Frontend, build};
+    use crate::frontend::{Frontend, Language, build};
     use crate::profile;
     use crate::source::{SourceFile, SourceSet};
 
@@ -289,7 +289,11 @@ mod tests {
         for (index, text) in files.iter().enumerate() {
             sources.add(SourceFile::new(format!("f{index}.awl"), *text));
         }
-        build(sources, None, profile::find("sinumerik-840c").unwrap())
+        build(
+            sources,
+            Language::default(),
+            profile::find("sinumerik-840c").unwrap(),
+        )
     }
 
     fn codes_and_messages(built: &Frontend) -> Vec<String> {

@@ -9,6 +9,7 @@ use thiserror::Error;
 use crate::ast::SourceUnit;
 use crate::compiler::{self, Compiled};
 use crate::diagnostics::SourceDiagnostic;
+use crate::dialect::Dialect;
 use crate::fragment;
 use crate::mnemonics::MnemonicSet;
 use crate::parser;
@@ -39,6 +40,29 @@ pub enum SourceError {
         help("join the files, or check them in parts")
     )]
     TooMany { count: usize },
+}
+
+/// What language the sources are read as: each choice left open (`None`, `false`) is the
+/// default, so `Language::default()` is what a file says by itself.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Language {
+    /// The mnemonic set (`--mnemonics`); `None`: detected per file.
+    pub mnemonics: Option<MnemonicSet>,
+    /// STEP 5 or STEP 7 STL (`--dialect`); `None`: detected per file.
+    pub dialect: Option<Dialect>,
+    /// awlsim's test operations (`__ASSERT==` and the like) are operations too
+    /// (`--extended`); off, they are unknown operations as on a real CPU.
+    pub extensions: bool,
+}
+
+impl Language {
+    /// The default language with the mnemonic set `set` forced.
+    pub fn with_mnemonics(set: MnemonicSet) -> Self {
+        Language {
+            mnemonics: Some(set),
+            ..Language::default()
+        }
+    }
 }
 
 /// The outcome of the front end.
@@ -134,12 +158,8 @@ pub fn read_sources_in(
 }
 
 /// Parses and compiles every file of the set.
-pub fn build(
-    sources: SourceSet,
-    forced: Option<MnemonicSet>,
-    profile: &'static Profile,
-) -> Frontend {
-    build_with_symbols(sources, Vec::new(), forced, profile)
+pub fn build(sources: SourceSet, language: Language, profile: &'static Profile) -> Frontend {
+    build_with_symbols(sources, Vec::new(), language, profile)
 }
 
 /// Parses every program file of `sources`, reads the assignment lists `symbol_files` (they
@@ -148,7 +168,7 @@ pub fn build(
 pub fn build_with_symbols(
     mut sources: SourceSet,
     symbol_files: Vec<SourceFile>,
-    forced: Option<MnemonicSet>,
+    language: Language,
     profile: &'static Profile,
 ) -> Frontend {
     let mut diagnostics = Vec::new();
@@ -156,7 +176,7 @@ pub fn build_with_symbols(
     let mut units = Vec::with_capacity(programs);
     let mut fragments = Vec::with_capacity(programs);
     for (id, file) in sources.files.iter().enumerate() {
-        let parsed = parser::parse_file(id as u16, &file.text, forced);
+        let parsed = parser::parse_file(id as u16, &file.text, language.mnemonics);
         diagnostics.extend(parsed.errors.into_iter().map(SourceDiagnostic::Parse));
         units.push(parsed.unit);
         fragments.push(parsed.fragment);
@@ -210,12 +230,12 @@ pub fn build_with_symbols(
 pub fn profiles_without_errors(
     sources: &SourceSet,
     symbol_files: &[SourceFile],
-    forced: Option<MnemonicSet>,
+    language: Language,
 ) -> Vec<&'static str> {
     crate::profile::PROFILES
         .iter()
         .filter(|profile| {
-            !build_with_symbols(sources.clone(), symbol_files.to_vec(), forced, profile)
+            !build_with_symbols(sources.clone(), symbol_files.to_vec(), language, profile)
                 .has_errors()
         })
         .map(|profile| profile.name)
@@ -224,9 +244,19 @@ pub fn profiles_without_errors(
 
 /// Parses and compiles source text held in memory (tests, benchmarks, fuzzing).
 pub fn build_text(name: &str, text: &str, profile: &'static Profile) -> Frontend {
+    build_text_with(name, text, Language::default(), profile)
+}
+
+/// [`build_text`] in the language `language`.
+pub fn build_text_with(
+    name: &str,
+    text: &str,
+    language: Language,
+    profile: &'static Profile,
+) -> Frontend {
     let mut sources = SourceSet::default();
     sources
         .add(SourceFile::new(name, text))
         .expect("one file fits");
-    build(sources, None, profile)
+    build(sources, language, profile)
 }

@@ -12,6 +12,8 @@ pub mod ast;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cli;
 pub mod compiler;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod conformance;
 pub mod debug;
 pub mod diagnostics;
 pub mod dialect;

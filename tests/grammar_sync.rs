@@ -48,7 +48,7 @@ fn every_operation_parses_and_compiles_in_both_sets() {
             let source = program_with(set, info);
             let mut sources = awl::source::SourceSet::default();
             sources.add(awl::source::SourceFile::new("op.awl", source.clone()));
-            let built = frontend::build(sources, Some(set), cpu);
+            let built = frontend::build(sources, frontend::Language::with_mnemonics(set), cpu);
             assert!(
                 built.diagnostics.is_empty(),
                 "{set:?} `{}`:\n{source}\n{:#?}",

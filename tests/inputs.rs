@@ -7,7 +7,11 @@ use awl::profile;
 
 fn rendered(path: &str) -> Vec<String> {
     let sources = frontend::read_sources(&[path]).unwrap();
-    let built = frontend::build(sources, None, profile::find("sinumerik-840c").unwrap());
+    let built = frontend::build(
+        sources,
+        frontend::Language::default(),
+        profile::find("sinumerik-840c").unwrap(),
+    );
     built
         .diagnostics
         .iter()

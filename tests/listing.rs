@@ -22,7 +22,7 @@ fn build_on(files: &[(&str, &str)], symbols: &[(&str, &str)], cpu: &str) -> Fron
         .map(|(name, text)| SourceFile::new(*name, *text))
         .collect();
     let cpu = profile::find(cpu).unwrap();
-    frontend::build_with_symbols(sources, symbol_files, None, cpu)
+    frontend::build_with_symbols(sources, symbol_files, frontend::Language::default(), cpu)
 }
 
 fn clean(files: &[(&str, &str)], symbols: &[(&str, &str)]) -> Program {

@@ -11,7 +11,7 @@ fn run_front_end(bytes: Vec<u8>) {
     for cpu in profile::PROFILES {
         let mut sources = SourceSet::default();
         sources.add(SourceFile::from_bytes("fuzz.awl", bytes.clone()));
-        let built = frontend::build(sources, None, cpu);
+        let built = frontend::build(sources, frontend::Language::default(), cpu);
         for diagnostic in &built.diagnostics {
             let span = diagnostic.span();
             assert!(span.end as usize <= built.sources.get(span.file).text.len());
@@ -109,7 +109,7 @@ proptest! {
         let program = "PB 3\n      A  -START\n      SPA -B\n      BE\n";
         let mut sources = SourceSet::default();
         sources.add(SourceFile::new("p.awl", program));
-        let built = frontend::build_with_symbols(sources, vec![SourceFile::new("s.seq", text)], None, cpu);
+        let built = frontend::build_with_symbols(sources, vec![SourceFile::new("s.seq", text)], frontend::Language::default(), cpu);
         for diagnostic in &built.diagnostics {
             let _ = awl::diagnostics::render_plain(&awl::diagnostics::report(&built.sources, diagnostic));
         }
@@ -129,7 +129,11 @@ fn crlf_and_latin1_files_parse() {
     let latin1: Vec<u8> = text.chars().map(|c| c as u32 as u8).collect();
     let mut sources = SourceSet::default();
     sources.add(SourceFile::from_bytes("crlf.awl", latin1));
-    let built = frontend::build(sources, None, profile::find("sinumerik-840c").unwrap());
+    let built = frontend::build(
+        sources,
+        frontend::Language::default(),
+        profile::find("sinumerik-840c").unwrap(),
+    );
     assert!(built.diagnostics.is_empty(), "{:#?}", built.diagnostics);
     assert_eq!(built.compiled.program.blocks[0].code.len(), 3);
 }

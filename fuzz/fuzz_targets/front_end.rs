@@ -14,7 +14,7 @@ fuzz_target!(
         let profile = awl_fuzz::cpu(bytes.first().copied().unwrap_or(0));
         let mut sources = SourceSet::default();
         sources.add(SourceFile::from_bytes("fuzz.awl", bytes.to_vec()));
-        let built = frontend::build(sources, None, profile);
+        let built = frontend::build(sources, frontend::Language::default(), profile);
         awl_fuzz::check_diagnostics(&built, awl_fuzz::renders_in_full(bytes));
     }
 );

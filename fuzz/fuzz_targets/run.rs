@@ -52,7 +52,7 @@ fuzz_target!(
         let flags = header.byte();
         let mut sources = SourceSet::default();
         sources.add(SourceFile::from_bytes("fuzz.awl", program.to_vec()));
-        let built = frontend::build(sources, None, profile);
+        let built = frontend::build(sources, frontend::Language::default(), profile);
         awl_fuzz::check_diagnostics(&built, render);
         if built.has_errors() {
             return;

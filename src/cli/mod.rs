@@ -1,7 +1,8 @@
-//! The command line: `awl check | dump | run | status | debug | analyze | test | cpus | help`. Each command reports through a
-//! [`Console`], so no output failure can panic.
+//! The command line: `awl check | dump | run | status | debug | analyze | test | conformance |
+//! cpus | help`. Each command reports through a [`Console`], so no output failure can panic.
 
 mod analyze;
+mod conformance;
 mod console;
 mod debug;
 mod help;
@@ -15,6 +16,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
+use crate::dialect::Dialect;
+use crate::frontend::Language;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Profile};
 
@@ -49,6 +52,49 @@ impl From<Mnemonics> for MnemonicSet {
     }
 }
 
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum DialectName {
+    /// STEP 5 STL
+    S5,
+    /// STEP 7 STL
+    S7,
+}
+
+impl From<DialectName> for Dialect {
+    fn from(value: DialectName) -> Self {
+        match value {
+            DialectName::S5 => Dialect::Step5,
+            DialectName::S7 => Dialect::Step7,
+        }
+    }
+}
+
+/// How the source files are read: every command that reads them shares these.
+#[derive(Debug, clap::Args)]
+pub struct LanguageArgs {
+    /// Mnemonic set, instead of detecting it per file [default: detected per file]
+    #[arg(long, value_enum)]
+    pub mnemonics: Option<Mnemonics>,
+    /// STL dialect: STEP 5 or STEP 7, instead of detecting it per file [default: detected per
+    /// file]
+    #[arg(long, value_enum)]
+    pub dialect: Option<DialectName>,
+    /// Accept awlsim's test operations (`__ASSERT==`, `__STWRST` and the like), which no real
+    /// CPU knows [default: off]
+    #[arg(long)]
+    pub extended: bool,
+}
+
+impl LanguageArgs {
+    pub fn language(&self) -> Language {
+        Language {
+            mnemonics: self.mnemonics.map(Into::into),
+            dialect: self.dialect.map(Into::into),
+            extensions: self.extended,
+        }
+    }
+}
+
 /// Options every command that reads source files shares.
 #[derive(Debug, clap::Args)]
 pub struct SourceOptions {
@@ -58,9 +104,8 @@ pub struct SourceOptions {
     /// CPU profile (see `awl cpus`) [default: sinumerik-840c]
     #[arg(long, value_parser = profile::names())]
     pub cpu: Option<String>,
-    /// Mnemonic set, instead of detecting it per file [default: detected per file]
-    #[arg(long, value_enum)]
-    pub mnemonics: Option<Mnemonics>,
+    #[command(flatten)]
+    pub language: LanguageArgs,
     /// Assignment list giving operands names (`-START`); repeatable [default: none]
     #[arg(long = "symbols", value_name = "FILE")]
     pub symbols: Vec<PathBuf>,
@@ -94,6 +139,9 @@ pub enum Command {
     Analyze(analyze::AnalyzeArgs),
     /// Run scenario files and check their [expect] and [[check]] tables
     Test(run::TestArgs),
+    /// Run awlsim's test files (STEP 7 STL with `__ASSERT…`) as awlsim's harness does: PASS or
+    /// FAIL per file
+    Conformance(conformance::ConformanceArgs),
     /// List the CPU profiles with their rules and timings
     Cpus,
     /// Print a format (`awl help scenario`, `trace`, `listing`, `symbols`, …) or a command's
@@ -116,6 +164,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Status(args) => status::status(&args, &mut console),
         Command::Debug(args) => debug::debug(&args, &mut console),
         Command::Test(args) => run::test(&args, &mut console),
+        Command::Conformance(args) => conformance::conformance(&args, &mut console),
         Command::Analyze(args) => analyze::analyze(&args, &mut console),
         Command::Help(args) => help::help(&args, &mut console),
         Command::Cpus => {

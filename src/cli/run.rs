@@ -12,7 +12,7 @@ use crate::vm::cycle::RunLimit;
 
 use super::watch::{EXIT_HALTED, Watch};
 use super::{
-    Console, EXIT_EXPECTATION, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_STOP, EXIT_USAGE, Mnemonics,
+    Console, EXIT_EXPECTATION, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_STOP, EXIT_USAGE, LanguageArgs,
     selected_profile,
 };
 
@@ -80,9 +80,8 @@ pub struct ProgramArgs {
     /// scenario's, else normal]
     #[arg(long, value_enum)]
     pub mode: Option<CpuMode>,
-    /// Mnemonic set, instead of detecting it per file [default: detected per file]
-    #[arg(long, value_enum)]
-    pub mnemonics: Option<Mnemonics>,
+    #[command(flatten)]
+    pub language: LanguageArgs,
     /// Assignment list giving operands names (`-START`); repeatable, added to the scenario's
     /// [default: the scenario's, else none]
     #[arg(long = "symbols", value_name = "FILE")]
@@ -209,7 +208,7 @@ pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
             Points::Operation => InterruptPoints::Operation,
         }),
         special_mode: args.mode.map(|mode| matches!(mode, CpuMode::Special)),
-        mnemonics: args.mnemonics.map(Into::into),
+        language: args.language.language(),
         symbols: args.symbols.clone(),
         ..RunOptions::default()
     }

@@ -36,10 +36,10 @@ fn build(
         }
     };
     let profile = selected_profile(options.cpu.as_deref());
-    let forced = options.mnemonics.map(Into::into);
+    let language = options.language.language();
     let runs_on = (with_profiles && options.cpu.is_none())
-        .then(|| frontend::profiles_without_errors(&sources, &symbol_files, forced));
-    let built = frontend::build_with_symbols(sources, symbol_files, forced, profile);
+        .then(|| frontend::profiles_without_errors(&sources, &symbol_files, language));
+    let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
     for diagnostic in &built.diagnostics {
         console.report(&diagnostics::report(&built.sources, diagnostic));
     }

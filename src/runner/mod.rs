@@ -15,7 +15,7 @@ use thiserror::Error;
 use crate::analyze;
 use crate::compiler::Program;
 use crate::diagnostics;
-use crate::frontend::{self, Frontend};
+use crate::frontend::{self, Frontend, Language};
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
 use crate::scenario::Scenario;
@@ -58,7 +58,11 @@ pub struct RunOptions {
     pub symbols: Vec<PathBuf>,
     /// Where the scenario, program and symbol files are read from.
     pub store: Files,
-    pub mnemonics: Option<MnemonicSet>,
+    /// The command line's language (`--mnemonics`, `--dialect`, `--extended`); a dialect it
+    /// leaves open is the scenario's `dialect`, else detected per file.
+    pub language: Language,
+    /// The cycle monitoring time, over the scenario's `watchdog` and the profile's.
+    pub watchdog_ns: Option<u64>,
     /// Operands to watch (`--watch "Q 4.0, FW 10"`), added to the scenario's `watch`.
     pub watch: Vec<String>,
     /// A watch row every this much simulated time instead of one per change.
@@ -347,7 +351,8 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         scenario_errors.extend(errors.into_iter().map(Report::new));
         NotRun::Failed(std::mem::take(&mut scenario_errors))
     })?;
-    let built = frontend::build_with_symbols(sources, symbol_files, options.mnemonics, profile);
+    let language = language(options.language, scenario.as_ref());
+    let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
     let mut warnings: Vec<Report> = built
         .diagnostics
         .iter()
@@ -406,9 +411,9 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
             .as_ref()
             .map(|s| s.hw_modules.clone())
             .unwrap_or_default(),
-        watchdog_ns: scenario
-            .as_ref()
-            .and_then(|s| s.watchdog_ns)
+        watchdog_ns: options
+            .watchdog_ns
+            .or(scenario.as_ref().and_then(|s| s.watchdog_ns))
             .unwrap_or(profile.watchdog_ns),
     };
     if profile.family == Family::Sinumerik840c && !special_mode {
@@ -524,6 +529,18 @@ impl Prepared {
     }
 }
 
+/// The language the program is read in: the command line's choices, and the scenario's where
+/// the command line leaves them open.
+fn language(command_line: Language, scenario: Option<&Scenario>) -> Language {
+    Language {
+        dialect: command_line
+            .dialect
+            .or(scenario.and_then(|scenario| scenario.dialect)),
+        extensions: command_line.extensions || scenario.is_some_and(|scenario| scenario.extended),
+        ..command_line
+    }
+}
+
 /// The watched operands: the scenario's `watch`, then the command line's.
 fn watched(
     options: &RunOptions,
@@ -547,4 +564,46 @@ fn watched(
         targets.push((operand.clone(), target));
     }
     Ok(targets)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::dialect::Dialect;
+
+    fn scenario(text: &str) -> Scenario {
+        let (scenario, errors) = Scenario::parse(Path::new("s.toml"), text, None);
+        assert!(errors.is_empty());
+        scenario
+    }
+
+    #[test]
+    fn the_command_line_s_dialect_wins_over_the_scenario_s() {
+        let s7 = scenario("dialect = \"s7\"\nextended = true\n");
+        let open = Language::default();
+        assert_eq!(
+            language(open, Some(&s7)),
+            Language {
+                dialect: Some(Dialect::Step7),
+                extensions: true,
+                mnemonics: None
+            }
+        );
+        let s5 = Language {
+            dialect: Some(Dialect::Step5),
+            mnemonics: Some(MnemonicSet::German),
+            extensions: false,
+        };
+        assert_eq!(
+            language(s5, Some(&s7)),
+            Language {
+                extensions: true,
+                ..s5
+            }
+        );
+        assert_eq!(language(s5, None), s5);
+        assert_eq!(language(open, Some(&scenario(""))), open);
+    }
 }

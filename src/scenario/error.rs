@@ -13,7 +13,7 @@ pub enum ScenarioError {
     #[diagnostic(
         code(awl::scenario::syntax),
         help(
-            "the keys a scenario has: program, symbols, cpu, mode, interrupt_points, run, watchdog, watch, [ob13], [[hw_module]], [[event]], [expect], [[check]]; `awl help scenario` describes them"
+            "the keys a scenario has: program, symbols, dialect, extended, cpu, mode, interrupt_points, run, watchdog, watch, [ob13], [[hw_module]], [[event]], [expect], [[check]]; `awl help scenario` describes them"
         )
     )]
     Syntax {

@@ -17,6 +17,7 @@ use miette::{NamedSource, Report, SourceSpan};
 use toml::Spanned;
 
 use crate::compiler::Program;
+use crate::dialect::Dialect;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
 use crate::vm::cycle::RunLimit;
@@ -46,6 +47,10 @@ pub struct Scenario {
     pub symbols: Vec<PathBuf>,
     /// The CPU the file names.
     pub cpu: Option<&'static Profile>,
+    /// The program's STL dialect (`dialect`), when the file names it.
+    pub dialect: Option<Dialect>,
+    /// awlsim's test operations are accepted (`extended = true`).
+    pub extended: bool,
     /// The CPU the run uses: the command line's, the file's, or the default.
     pub profile: &'static Profile,
     pub special_mode: Option<bool>,
@@ -224,6 +229,10 @@ impl Scenario {
         let profile = cpu_override
             .or(cpu)
             .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile"));
+        let dialect = raw
+            .dialect
+            .as_ref()
+            .and_then(|dialect| errors.keep(check_dialect(dialect)));
         let special_mode = raw
             .mode
             .as_ref()
@@ -248,6 +257,8 @@ impl Scenario {
             programs,
             symbols,
             cpu,
+            dialect,
+            extended: raw.extended.unwrap_or(false),
             profile,
             special_mode,
             points,
@@ -805,6 +816,21 @@ fn check_mode(mode: &Spanned<String>, profile: &Profile) -> Result<bool, Scenari
     }
 }
 
+fn check_dialect(dialect: &Spanned<String>) -> Result<Dialect, ScenarioError> {
+    match dialect.get_ref().as_str() {
+        "s5" => Ok(Dialect::Step5),
+        "s7" => Ok(Dialect::Step7),
+        other => Err(invalid(
+            format!("unknown dialect `{other}`"),
+            span(dialect),
+            "\"s5\" or \"s7\"",
+            Some(
+                "`dialect = \"s5\"` reads the program as STEP 5 STL, `\"s7\"` as STEP 7 STL".into(),
+            ),
+        )),
+    }
+}
+
 fn check_points(points: &Spanned<String>) -> Result<InterruptPoints, ScenarioError> {
     match points.get_ref().as_str() {
         "block" => Ok(InterruptPoints::Block),
@@ -952,5 +978,39 @@ mod tests {
         assert_eq!(parse_duration("5"), None);
         assert_eq!(parse_duration("-1ms"), None);
         assert_eq!(parse_duration("1h"), None);
+    }
+
+    fn parsed(text: &str) -> (Scenario, Vec<String>) {
+        let (scenario, reports) = Scenario::parse(Path::new("s.toml"), text, None);
+        let rendered = reports.iter().map(crate::diagnostics::render_plain);
+        (scenario, rendered.collect())
+    }
+
+    #[test]
+    fn dialect_and_extended_are_read() {
+        let (scenario, errors) = parsed("dialect = \"s7\"\nextended = true\n");
+        assert!(errors.is_empty(), "{errors:?}");
+        assert_eq!(scenario.dialect, Some(Dialect::Step7));
+        assert!(scenario.extended);
+        let (scenario, errors) = parsed("dialect = \"s5\"\n");
+        assert!(errors.is_empty(), "{errors:?}");
+        assert_eq!(scenario.dialect, Some(Dialect::Step5));
+        assert!(!scenario.extended);
+        let (scenario, _) = parsed("");
+        assert_eq!(scenario.dialect, None);
+    }
+
+    #[test]
+    fn an_unknown_dialect_is_an_error_at_its_value() {
+        let (scenario, errors) = parsed("dialect = \"step7\"\nextended = \"yes\"\n");
+        assert_eq!(scenario.dialect, None);
+        assert_eq!(errors.len(), 2, "{errors:?}");
+        assert!(
+            errors[0].contains("unknown dialect `step7`"),
+            "{}",
+            errors[0]
+        );
+        assert!(errors[0].contains("\"s5\" or \"s7\""), "{}", errors[0]);
+        assert!(errors[1].contains("extended = \"yes\""), "{}", errors[1]);
     }
 }

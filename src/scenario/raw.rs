@@ -29,6 +29,8 @@ pub const KEYS: &[&str] = &[
     "watch",
     "check",
     "symbols",
+    "dialect",
+    "extended",
 ];
 
 #[derive(Debug, Default)]
@@ -37,6 +39,10 @@ pub struct RawScenario {
     /// Assignment lists, relative to the scenario.
     pub symbols: Option<Spanned<ProgramList>>,
     pub cpu: Option<Spanned<String>>,
+    /// `"s5"` or `"s7"`: the program's STL dialect.
+    pub dialect: Option<Spanned<String>>,
+    /// awlsim's test operations are accepted.
+    pub extended: Option<bool>,
     pub mode: Option<Spanned<String>>,
     pub interrupt_points: Option<Spanned<String>>,
     pub run: Option<Spanned<RawRun>>,
@@ -159,6 +165,8 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "program" => keep(read(value).map(|v| raw.program = Some(v))),
             "symbols" => keep(read(value).map(|v| raw.symbols = Some(v))),
             "cpu" => keep(read(value).map(|v| raw.cpu = Some(v))),
+            "dialect" => keep(read(value).map(|v| raw.dialect = Some(v))),
+            "extended" => keep(read(value).map(|v| raw.extended = Some(v))),
             "mode" => keep(read(value).map(|v| raw.mode = Some(v))),
             "interrupt_points" => keep(read(value).map(|v| raw.interrupt_points = Some(v))),
             "run" => keep(read(value).map(|v| raw.run = Some(v))),
