@@ -41,10 +41,7 @@ impl S7BlockKind {
 /// `FC 1`, `DB 5`, or a symbol `"Motor"` that the symbol table turns into one.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum S7BlockRef {
-    Number {
-        kind: S7BlockKind,
-        number: u16,
-    },
+    Number { kind: S7BlockKind, number: u16 },
     Symbol(Name),
 }
 
