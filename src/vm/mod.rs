@@ -18,6 +18,7 @@ pub mod place;
 pub mod probe;
 pub mod pulse;
 mod run_loop;
+pub mod s7;
 pub mod status;
 pub mod stop;
 pub mod system_ops;
