@@ -4,7 +4,9 @@
 //!
 //! A comparison starts a new logic string with its result: RLO and STA = the result, OR = 0,
 //! /FC = 1. CC1 CC0 = 1 0 when ACCU 2 > ACCU 1, 0 1 when less, 0 0 when equal. The fixed-point
-//! comparisons clear OV.
+//! comparisons clear OV, and so do the REAL comparisons of two numbers (±infinity included:
+//! +infinity equals +infinity). A REAL comparison with a NaN is unordered: CC1 CC0 = 1 1, OV
+//! and OS, and every comparison is false, `<>R` too.
 
 use crate::compiler::bytecode::Comparison;
 use crate::vm::status::Status;
@@ -47,6 +49,18 @@ pub fn int(op: Comparison, accu1: u32, accu2: u32, status: &mut Status) {
 #[inline]
 pub fn dint(op: Comparison, accu1: u32, accu2: u32, status: &mut Status) {
     ordered(op, accu2 as i32, accu1 as i32, status);
+}
+
+/// `==R …`: ACCU 2 with ACCU 1 as REAL.
+#[inline]
+pub fn real(op: Comparison, accu1: u32, accu2: u32, status: &mut Status) {
+    let (a, b) = (f32::from_bits(accu2), f32::from_bits(accu1));
+    if a.is_nan() || b.is_nan() {
+        status.set_condition(true, true);
+        status.set_overflow(true);
+        return set_result(status, false);
+    }
+    ordered(op, a, b, status);
 }
 
 #[cfg(test)]
@@ -113,6 +127,43 @@ mod tests {
             run(dint, Eq, 0x1234_0001, 0x5678_0001),
             [0, 0, 1, 0, 0, 0, 1]
         );
+    }
+
+    fn real_bits(value: f32) -> u32 {
+        value.to_bits()
+    }
+
+    #[test]
+    fn real_comparisons() {
+        let (small, big) = (real_bits(-1.5), real_bits(1.5));
+        assert_eq!(run(real, Eq, big, big), [1, 0, 0, 0, 0, 1, 1]);
+        assert_eq!(run(real, Eq, small, big), [0, 0, 1, 0, 0, 0, 1]);
+        assert_eq!(run(real, Ne, small, big), [1, 0, 1, 0, 0, 1, 1]);
+        assert_eq!(run(real, Gt, big, small), [1, 1, 0, 0, 0, 1, 1]);
+        assert_eq!(run(real, Lt, big, small), [0, 1, 0, 0, 0, 0, 1]);
+        assert_eq!(run(real, Ge, small, small), [1, 0, 0, 0, 0, 1, 1]);
+        assert_eq!(run(real, Le, small, big), [1, 0, 1, 0, 0, 1, 1]);
+        assert_eq!(run(real, Eq, real_bits(0.0), real_bits(-0.0))[0], 1);
+        let infinity = real_bits(f32::INFINITY);
+        assert_eq!(run(real, Eq, infinity, infinity), [1, 0, 0, 0, 0, 1, 1]);
+        assert_eq!(
+            run(real, Gt, infinity, real_bits(f32::MAX)),
+            [1, 1, 0, 0, 0, 1, 1]
+        );
+    }
+
+    #[test]
+    fn real_comparisons_with_nan_are_unordered_and_false() {
+        for nan in [0x7FFF_FFFF, 0xFFFF_FFFF, 0x7FC0_0000] {
+            for op in [Eq, Ne, Gt, Lt, Ge, Le] {
+                let mut status = Status::default();
+                real(op, nan, nan, &mut status);
+                assert_eq!(bits(status), [0, 1, 1, 1, 0, 0, 1], "{op:?} {nan:#x}");
+                assert!(status.os());
+                real(op, real_bits(1.0), nan, &mut status);
+                assert!(!status.rlo() && status.cc1() && status.cc0());
+            }
+        }
     }
 
     #[test]

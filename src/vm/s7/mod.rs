@@ -4,7 +4,10 @@
 //! choices where it leaves one).
 //!
 //! - [`integer`]: `+I -I *I /I +D -D *D /D MOD NEGI NEGD INVI INVD`, `+ constant`.
-//! - [`compare`]: `==I … <=I`, `==D … <=D`.
+//! - [`real`]: `+R -R *R /R`, `SQR SQRT EXP LN SIN COS TAN ASIN ACOS ATAN`, `ABS NEGR`, and
+//!   the status of a REAL result.
+//! - [`compare`]: `==I … <=I`, `==D … <=D`, `==R … <=R`.
+//! - [`convert`]: `ITD ITB BTI BTD DTB DTR RND RND+ RND- TRUNC CAW CAD`.
 //! - [`word_logic`]: `AW OW XOW AD OD XOD`.
 //! - [`shift`]: `SSI SSD SLW SRW SLD SRD RLD RRD RLDA RRDA`.
 //! - [`accu`]: `TAK PUSH POP ENT LEAVE INC DEC`, and the move of ACCU 3/4 after arithmetic.
@@ -15,7 +18,9 @@
 
 pub mod accu;
 pub mod compare;
+pub mod convert;
 pub mod integer;
 pub mod jump;
+pub mod real;
 pub mod shift;
 pub mod word_logic;
