@@ -225,11 +225,84 @@ static SCANNED: [[u8; 512]; 4] = {
     tables
 };
 
+/// How a scanned bit, or a closed bracket's result, combines with the RLO. STEP 5 uses the
+/// first four (its table is [`Logic`]'s), STEP 7 all six.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[repr(u8)]
+pub enum Combination {
+    #[default]
+    And,
+    AndNot,
+    Or,
+    OrNot,
+    Xor,
+    XorNot,
+}
+
+/// STEP 7's scan of a bit operand with the signal state `value` ("Statement List (STL) for
+/// S7-300 and S7-400 Programming", the chapter on bit logic): STA = `value`, /FC = 1. `A`/`AN`
+/// keep the OR bit within a string and clear it at the first check; `O ON X XN` clear it.
+const fn step7_scan(bits: u16, combination: Combination, value: bool) -> u16 {
+    let first_check_done = bits & FIRST_CHECK_DONE != 0;
+    let rlo = bits & RLO != 0;
+    let or_bit = bits & OR_BIT != 0;
+    let (rlo, or_bit) = match combination {
+        Combination::And | Combination::AndNot => {
+            let operand = value ^ matches!(combination, Combination::AndNot);
+            let kept_or = or_bit & first_check_done;
+            (((rlo | !first_check_done) & operand) | kept_or, kept_or)
+        }
+        Combination::Or => ((rlo & first_check_done) | value, false),
+        Combination::OrNot => ((rlo & first_check_done) | !value, false),
+        Combination::Xor => ((rlo & first_check_done) ^ value, false),
+        Combination::XorNot => ((rlo & first_check_done) ^ !value, false),
+    };
+    bits & !(RLO | OR_BIT | STA)
+        | FIRST_CHECK_DONE
+        | rlo as u16
+        | if or_bit { OR_BIT } else { 0 }
+        | if value { STA } else { 0 }
+}
+
+/// The status after each of STEP 7's scans, by [`Combination`] and `status << 1 | value`.
+static STEP7_SCANNED: [[u8; 512]; 6] = {
+    let mut tables = [[0u8; 512]; 6];
+    let combinations = [
+        Combination::And,
+        Combination::AndNot,
+        Combination::Or,
+        Combination::OrNot,
+        Combination::Xor,
+        Combination::XorNot,
+    ];
+    let mut kind = 0;
+    while kind < 6 {
+        let mut index = 0;
+        while index < 512 {
+            let bits = (index >> 1) as u16;
+            tables[kind][index] = step7_scan(bits, combinations[kind], index & 1 != 0) as u8;
+            index += 1;
+        }
+        kind += 1;
+    }
+    tables
+};
+
+impl Status {
+    /// STEP 7's `A AN O ON X XN` with a bit operand whose signal state is `value`, in one
+    /// table lookup.
+    #[inline(always)]
+    pub fn scanned_step7(&mut self, combination: Combination, value: bool) {
+        let index = usize::from(self.bits & LOGIC_BYTE) << 1 | usize::from(value);
+        self.bits = self.bits & !LOGIC_BYTE | u16::from(STEP7_SCANNED[combination as usize][index]);
+    }
+}
+
 /// One open bracket: the status before it, and how its result combines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Bracket {
     pub status: Status,
-    pub or: bool,
+    pub function: Combination,
 }
 
 pub const MAX_BRACKETS: usize = 8;
@@ -247,13 +320,20 @@ impl Brackets {
         if self.depth >= limit.min(MAX_BRACKETS as u8) {
             return false;
         }
-        self.stack[usize::from(self.depth)] = Bracket {
-            status: *status,
-            or,
+        let function = if or {
+            Combination::Or
+        } else {
+            Combination::And
         };
-        self.depth += 1;
+        self.push(*status, function);
         status.end_string();
         true
+    }
+
+    #[inline(always)]
+    fn push(&mut self, status: Status, function: Combination) {
+        self.stack[usize::from(self.depth)] = Bracket { status, function };
+        self.depth += 1;
     }
 
     /// Closes a bracket and combines its result; `false` when none is open.
@@ -267,11 +347,39 @@ impl Brackets {
         let codes = *status;
         *status = outer.status;
         status.set_condition(codes.cc1(), codes.cc0());
-        if outer.or {
+        if outer.function == Combination::Or {
             status.or(inner)
         } else {
             status.and(inner)
         }
+        true
+    }
+
+    /// STEP 7's `A( AN( O( ON( X( XN(`: the entry keeps /FC, RLO, OR and BR with the
+    /// function; then OR = 0, STA = 1, /FC = 0 and the RLO stays. `false` when the stack is
+    /// full.
+    pub fn open_step7(&mut self, status: &mut Status, function: Combination, limit: u8) -> bool {
+        if self.depth >= limit.min(MAX_BRACKETS as u8) {
+            return false;
+        }
+        self.push(*status, function);
+        status.bits = status.bits & !(OR_BIT | FIRST_CHECK_DONE) | STA;
+        true
+    }
+
+    /// STEP 7's `)`: the bracket's RLO combines with the entry's RLO (and, for `A(`/`AN(`, its
+    /// OR bit) by the entry's function, as a scan would; STA = 1, /FC = 1, BR as in the entry.
+    /// The condition codes and overflow bits stay as the bracket left them. `false` when none
+    /// is open.
+    pub fn close_step7(&mut self, status: &mut Status) -> bool {
+        if self.depth == 0 {
+            return false;
+        }
+        self.depth -= 1;
+        let outer = self.stack[usize::from(self.depth)];
+        let combined = step7_scan(outer.status.bits, outer.function, status.rlo());
+        let logic = RLO | OR_BIT | FIRST_CHECK_DONE;
+        status.bits = status.bits & !(logic | BR) | combined & logic | outer.status.bits & BR | STA;
         true
     }
 }

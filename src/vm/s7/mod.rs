@@ -17,6 +17,7 @@
 //! The status word itself (BR, `L STW`/`T STW`) is [`super::status::Status`].
 
 pub mod accu;
+pub mod bit_logic;
 pub mod compare;
 pub mod convert;
 pub mod integer;
