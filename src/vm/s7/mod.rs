@@ -3,6 +3,8 @@
 //! Programming" is the reference; `grammar/README.md`, "STEP 7 operations", lists the
 //! choices where it leaves one).
 //!
+//! - [`bit_logic`]: `O` alone, `SET CLR NOT SAVE`, the end of a string by `= S R`, `FP FN`;
+//!   the scans `A AN O ON X XN` and the nesting stack are in [`super::status`].
 //! - [`integer`]: `+I -I *I /I +D -D *D /D MOD NEGI NEGD INVI INVD`, `+ constant`.
 //! - [`real`]: `+R -R *R /R`, `SQR SQRT EXP LN SIN COS TAN ASIN ACOS ATAN`, `ABS NEGR`, and
 //!   the status of a REAL result.
@@ -14,7 +16,11 @@
 //! - [`jump`]: whether each conditional jump jumps and what it does to the status; `LOOP`; the
 //!   status conditions `==0 <>0 >0 <0 >=0 <=0 UO OV OS BR` as bit operands.
 //!
-//! The status word itself (BR, `L STW`/`T STW`) is [`super::status::Status`].
+//! The status word itself (BR, `L STW`/`T STW` as [`Status::to_word`] and
+//! [`Status::from_word`], `__STWRST` as `Status::default()`) is [`super::status::Status`].
+//!
+//! [`Status::to_word`]: super::status::Status::to_word
+//! [`Status::from_word`]: super::status::Status::from_word
 
 pub mod accu;
 pub mod bit_logic;
