@@ -20,6 +20,9 @@ pub enum SourceDiagnostic {
     #[error(transparent)]
     #[diagnostic(transparent)]
     Symbol(#[from] SymbolError),
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Step7(#[from] crate::step7::parse::S7ParseError),
 }
 
 impl SourceDiagnostic {
@@ -28,6 +31,7 @@ impl SourceDiagnostic {
             SourceDiagnostic::Parse(error) => error.span(),
             SourceDiagnostic::Check(error) => error.span(),
             SourceDiagnostic::Symbol(error) => error.span(),
+            SourceDiagnostic::Step7(error) => error.span(),
         }
     }
 

@@ -171,6 +171,9 @@ pub fn build_with_symbols(
     language: Language,
     profile: &'static Profile,
 ) -> Frontend {
+    if is_step7(&sources, language) {
+        return build_step7(sources, language, profile);
+    }
     let mut diagnostics = Vec::new();
     let programs = sources.files.len();
     let mut units = Vec::with_capacity(programs);
@@ -221,6 +224,74 @@ pub fn build_with_symbols(
         diagnostics,
         mnemonics,
         units,
+    }
+}
+
+/// The CPU profile a program runs on when none is chosen: the S7 CPU for a STEP 7 program,
+/// else the default STEP 5 one.
+pub fn default_profile(sources: &SourceSet, language: Language) -> &'static Profile {
+    let name = if is_step7(sources, language) {
+        crate::profile::DEFAULT_STEP7_PROFILE
+    } else {
+        crate::profile::DEFAULT_PROFILE
+    };
+    crate::profile::find(name).expect("the default profiles exist")
+}
+
+/// Whether the program is read as STEP 7: as `--dialect` says, else when a file shows it.
+fn is_step7(sources: &SourceSet, language: Language) -> bool {
+    match language.dialect {
+        Some(dialect) => dialect == Dialect::Step7,
+        None => sources.files.iter().any(|file| {
+            let tokens = crate::lexer::lex(&file.text);
+            crate::dialect::detect(&file.text, &tokens).is_some()
+        }),
+    }
+}
+
+/// The STEP 7 front end: each file parsed as STEP 7, all compiled together.
+fn build_step7(sources: SourceSet, language: Language, profile: &'static Profile) -> Frontend {
+    let options = crate::step7::parse::ParseOptions {
+        mnemonics: language.mnemonics,
+        extensions: language.extensions,
+    };
+    let mut diagnostics = Vec::new();
+    let mut units = Vec::with_capacity(sources.files.len());
+    for (id, file) in sources.files.iter().enumerate() {
+        let parsed = crate::step7::parse::parse(id as u16, &file.text, options);
+        diagnostics.extend(parsed.errors.into_iter().map(SourceDiagnostic::Step7));
+        units.push(parsed.unit);
+    }
+    let compiled = crate::step7::compile::compile(&units, &sources, profile, language.extensions);
+    diagnostics.extend(
+        compiled
+            .diagnostics
+            .iter()
+            .cloned()
+            .map(SourceDiagnostic::Check),
+    );
+    if !profile.runs_step7()
+        && let Some(block) = units.iter().flat_map(|unit| &unit.blocks).next()
+    {
+        diagnostics.push(SourceDiagnostic::Check(
+            compiler::CheckError::Step7OnStep5Cpu {
+                cpu: profile.name,
+                profiles: crate::profile::step7_profiles().join(", "),
+                at: block.header,
+            },
+        ));
+    }
+    diagnostics.sort_by_key(|diagnostic| {
+        let span = diagnostic.span();
+        (span.file, span.start)
+    });
+    let mnemonics = units.iter().map(|unit| unit.mnemonics).collect();
+    Frontend {
+        sources,
+        compiled,
+        diagnostics,
+        mnemonics,
+        units: Vec::new(),
     }
 }
 

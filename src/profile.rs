@@ -180,6 +180,11 @@ pub struct Profile {
 }
 
 impl Profile {
+    /// An S7 CPU: it runs STEP 7 programs (and not STEP 5 ones).
+    pub fn runs_step7(&self) -> bool {
+        self.family == Family::Speed7
+    }
+
     pub fn has(&self, feature: Feature) -> bool {
         self.features.contains(&feature)
     }
@@ -551,6 +556,8 @@ pub const ALIASES: &[(&str, &str)] = &[
 ];
 
 pub const DEFAULT_PROFILE: &str = "sinumerik-840c";
+/// The profile a STEP 7 program runs on when none is chosen.
+pub const DEFAULT_STEP7_PROFILE: &str = "speed7";
 
 /// The profile of a name or an alias.
 pub fn find(name: &str) -> Option<&'static Profile> {
@@ -564,6 +571,15 @@ pub fn find(name: &str) -> Option<&'static Profile> {
 }
 
 /// The names of the profiles that have `feature`.
+/// The profiles of S7 CPUs, which run STEP 7 programs.
+pub fn step7_profiles() -> Vec<&'static str> {
+    PROFILES
+        .iter()
+        .filter(|profile| profile.runs_step7())
+        .map(|profile| profile.name)
+        .collect()
+}
+
 pub fn having(feature: Feature) -> Vec<&'static str> {
     PROFILES
         .iter()

@@ -71,6 +71,71 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
                 .into(),
         ),
         (
+            "awl::check::undeclared_local",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  #start;\n      =  Q 4.0;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::check::undefined_label",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      JU nix;\n      NOP 0;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::check::not_simulated",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      MCRA;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::check::block_number",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL FC 300;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::check::step7_on_step5_cpu",
+            "sinumerik-840c",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  I 0.0;\n      =  Q 4.0;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::s7::unknown_operation",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      JCC m1;\nm1:   NOP 0;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::s7::bad_operand",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  I 0.9;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::s7::bad_constant",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L  W#16#12345;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::s7::syntax",
+            "speed7",
+            "FUNCTION FC 1 : VOID\nVAR_INPUT\n  speed INT;\nEND_VAR\nBEGIN\n      NOP 0;\nEND_FUNCTION\n".into(),
+        ),
+        (
+            "awl::s7::unclosed_block",
+            "speed7",
+            "FUNCTION FC 1 : VOID\nBEGIN\n      NOP 0;\n".into(),
+        ),
+        (
+            "awl::s7::step5_spelling",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L  KF +5;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::s7::mixed_mnemonics",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  I 0.0;\n      SPB m1;\nm1:   NOP 0;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
+            "awl::s7::extension_not_enabled",
+            "speed7",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      __STWRST;\nEND_ORGANIZATION_BLOCK\n".into(),
+        ),
+        (
             "awl::parse::block_number",
             "sinumerik-840c",
             "PB 300\n      BE\n".into(),
@@ -225,7 +290,21 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
 #[test]
 fn every_front_end_code_renders() {
     for (code, cpu, source) in cases() {
-        let built = frontend::build_text("example.awl", &source, profile::find(cpu).unwrap());
+        // `awl::parse::step7_source` is what a STEP 7 text gives when read as STEP 5.
+        let language = if code == "awl::parse::step7_source" {
+            frontend::Language {
+                dialect: Some(awl::dialect::Dialect::Step5),
+                ..frontend::Language::default()
+            }
+        } else {
+            frontend::Language::default()
+        };
+        let built = frontend::build_text_with(
+            "example.awl",
+            &source,
+            language,
+            profile::find(cpu).unwrap(),
+        );
         let rendered: Vec<String> = built
             .diagnostics
             .iter()
@@ -269,6 +348,7 @@ fn cases_cover_the_front_end_codes() {
     {
         let front_end = code.starts_with("awl::lex")
             || code.starts_with("awl::parse")
+            || code.starts_with("awl::s7")
             || code.starts_with("awl::check");
         if front_end {
             assert!(covered.contains(&code), "{code} has no snapshot case");

@@ -35,8 +35,11 @@ fn build(
             return None;
         }
     };
-    let profile = selected_profile(options.cpu.as_deref());
     let language = options.language.language();
+    let profile = match options.cpu.as_deref() {
+        Some(name) => selected_profile(Some(name)),
+        None => frontend::default_profile(&sources, language),
+    };
     let runs_on = (with_profiles && options.cpu.is_none())
         .then(|| frontend::profiles_without_errors(&sources, &symbol_files, language));
     let built = frontend::build_with_symbols(sources, symbol_files, language, profile);

@@ -324,6 +324,18 @@ pub enum CheckError {
         at: Span,
     },
 
+    #[error("a STEP 7 program cannot run on the {cpu} CPU")]
+    #[diagnostic(
+        code(awl::check::step7_on_step5_cpu),
+        help("STEP 7 programs run on an S7 CPU: choose one with `--cpu` ({profiles})")
+    )]
+    Step7OnStep5Cpu {
+        cpu: &'static str,
+        profiles: String,
+        #[label("STEP 7 source")]
+        at: Span,
+    },
+
     #[error("{id}: awl numbers blocks up to 255")]
     #[diagnostic(
         code(awl::check::block_number),
@@ -365,7 +377,8 @@ impl CheckError {
             | CheckError::UndeclaredLocal { at, .. }
             | CheckError::UndefinedLabel { at, .. }
             | CheckError::NotSimulated { at, .. }
-            | CheckError::BlockNumber { at, .. } => *at,
+            | CheckError::BlockNumber { at, .. }
+            | CheckError::Step7OnStep5Cpu { at, .. } => *at,
         }
     }
 

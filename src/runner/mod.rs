@@ -17,7 +17,7 @@ use crate::compiler::Program;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend, Language};
 use crate::mnemonics::MnemonicSet;
-use crate::profile::{self, Family, InterruptPoints, Profile};
+use crate::profile::{Family, InterruptPoints, Profile};
 use crate::scenario::Scenario;
 use crate::scenario::check::{CheckOutcome, Checker};
 use crate::scenario::expect::{self, Mismatch};
@@ -263,10 +263,6 @@ fn caption(
     )
 }
 
-fn default_profile() -> &'static Profile {
-    profile::find(profile::DEFAULT_PROFILE).expect("default profile")
-}
-
 /// Builds and runs to the limit or a STOP.
 pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
     Ok(prepare(options)?.run(&mut |_| true))
@@ -304,11 +300,14 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         }
         None => (None, Vec::new()),
     };
-    let profile = match &scenario {
-        Some(scenario) => scenario.profile,
-        None => options.cpu.unwrap_or_else(default_profile),
+    let chosen = match &scenario {
+        Some(scenario) => Some(scenario.profile),
+        None => options.cpu,
     };
-    if options.special_mode.is_some() && profile.family != Family::Sinumerik840c {
+    if let Some(profile) = chosen
+        && options.special_mode.is_some()
+        && profile.family != Family::Sinumerik840c
+    {
         return Err(NotRun::Usage(Report::new(RunError::ModeNotForCpu {
             cpu: profile.name,
         })));
@@ -352,6 +351,12 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         NotRun::Failed(std::mem::take(&mut scenario_errors))
     })?;
     let language = language(options.language, scenario.as_ref());
+    let profile = chosen.unwrap_or_else(|| frontend::default_profile(&sources, language));
+    if options.special_mode.is_some() && profile.family != Family::Sinumerik840c {
+        return Err(NotRun::Usage(Report::new(RunError::ModeNotForCpu {
+            cpu: profile.name,
+        })));
+    }
     let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
     let mut warnings: Vec<Report> = built
         .diagnostics

@@ -237,6 +237,8 @@ pub enum Target {
     /// awlsim's test operands.
     Extension(Extension),
     DbRegister(DbRegister),
+    /// A status condition's value (an operand of `__ASSERT`).
+    Condition(Condition),
 }
 
 /// The areas an indirect address may name before its brackets.

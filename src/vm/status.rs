@@ -5,34 +5,47 @@
 //! first operation of a string loads it (first check). `O` alone ORs AND functions: it keeps the
 //! string so far in the OR bit and starts a new AND function. `=`, `S`, `R` end the string but
 //! keep the RLO for further assignments.
+//!
+//! STEP 7 adds the binary result BR above the byte; the bit logic's table lookup reads and writes
+//! the low byte only, so it costs the STEP 5 path nothing. [`Status::to_word`] and
+//! [`Status::from_word`] give the STEP 7 status word (`L STW`, `T STW`).
 
 use crate::compiler::bytecode::Logic;
 
-const RLO: u8 = 1;
+const RLO: u16 = 1;
 /// A logic string is in progress: the next `A`/`O` combines instead of loading.
-const FIRST_CHECK_DONE: u8 = 2;
-const OR_BIT: u8 = 4;
-const CC1: u8 = 8;
-const CC0: u8 = 16;
-const OV: u8 = 32;
+const FIRST_CHECK_DONE: u16 = 2;
+const OR_BIT: u16 = 4;
+const CC1: u16 = 8;
+const CC0: u16 = 16;
+const OV: u16 = 32;
 /// Overflow, stored until a jump on it.
-const OS: u8 = 64;
+const OS: u16 = 64;
 /// STA: the signal state of the last bit operand scanned.
-const STA: u8 = 128;
+const STA: u16 = 128;
+/// BR, the binary result (STEP 7 only): outside the byte the bit-logic tables index.
+const BR: u16 = 256;
+/// The bits the bit-logic tables cover.
+const LOGIC_BYTE: u16 = 0xFF;
+
+/// The STEP 7 status word's bits, in its order (`L STW`): /FC, RLO, STA, OR, OS, OV, CC0, CC1,
+/// BR are bits 0 to 8 ("Statement List (STL) for S7-300 and S7-400 Programming", the status
+/// word in the appendix on programming examples and the chapter on bit logic).
+const WORD_ORDER: [u16; 9] = [FIRST_CHECK_DONE, RLO, STA, OR_BIT, OS, OV, CC0, CC1, BR];
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Status {
-    bits: u8,
+    bits: u16,
 }
 
 impl Status {
     #[inline(always)]
-    fn get(self, bit: u8) -> bool {
+    fn get(self, bit: u16) -> bool {
         self.bits & bit != 0
     }
 
     #[inline(always)]
-    fn put(&mut self, bit: u8, value: bool) {
+    fn put(&mut self, bit: u16, value: bool) {
         self.bits = self.bits & !bit | if value { bit } else { 0 };
     }
 
@@ -60,6 +73,52 @@ impl Status {
     }
     pub fn or_bit(self) -> bool {
         self.get(OR_BIT)
+    }
+    /// BR, the binary result (STEP 7).
+    pub fn br(self) -> bool {
+        self.get(BR)
+    }
+
+    pub fn set_rlo(&mut self, value: bool) {
+        self.put(RLO, value);
+    }
+    pub fn set_first_check(&mut self, value: bool) {
+        self.put(FIRST_CHECK_DONE, value);
+    }
+    pub fn set_or_bit(&mut self, value: bool) {
+        self.put(OR_BIT, value);
+    }
+    pub fn set_sta(&mut self, value: bool) {
+        self.put(STA, value);
+    }
+    pub fn set_br(&mut self, value: bool) {
+        self.put(BR, value);
+    }
+    pub fn set_ov(&mut self, value: bool) {
+        self.put(OV, value);
+    }
+    pub fn set_os(&mut self, value: bool) {
+        self.put(OS, value);
+    }
+
+    /// The STEP 7 status word: /FC, RLO, STA, OR, OS, OV, CC0, CC1, BR in bits 0 to 8.
+    pub fn to_word(self) -> u16 {
+        WORD_ORDER
+            .iter()
+            .enumerate()
+            .fold(0, |word, (index, &bit)| {
+                word | u16::from(self.get(bit)) << index
+            })
+    }
+
+    /// The status from a STEP 7 status word's bits 0 to 8; the bits above are ignored.
+    pub fn from_word(word: u16) -> Status {
+        let bits = WORD_ORDER
+            .iter()
+            .enumerate()
+            .filter(|&(index, _)| word >> index & 1 == 1)
+            .fold(0, |bits, (_, &bit)| bits | bit);
+        Status { bits }
     }
 
     pub fn set_condition(&mut self, cc1: bool, cc0: bool) {
@@ -89,8 +148,8 @@ impl Status {
     /// and the combination in one table lookup, so the loop's bit logic does not branch.
     #[inline(always)]
     pub fn scanned(&mut self, logic: Logic, value: bool) {
-        let index = usize::from(self.bits) << 1 | usize::from(value);
-        self.bits = SCANNED[logic as usize][index];
+        let index = usize::from(self.bits & LOGIC_BYTE) << 1 | usize::from(value);
+        self.bits = self.bits & !LOGIC_BYTE | u16::from(SCANNED[logic as usize][index]);
     }
 
     /// `O` without an operand: OR of AND functions.
@@ -111,7 +170,7 @@ impl Status {
     /// An operation that forms the RLO on its own (comparison, bit test).
     #[inline(always)]
     pub fn load(&mut self, value: bool) {
-        self.bits = self.bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | u8::from(value);
+        self.bits = self.bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | u16::from(value);
     }
 
     /// After `JU`/`JC`, `BEC` and block ends the RLO is 1 and a new string starts.
@@ -134,20 +193,20 @@ impl Status {
     }
 }
 
-const fn and(bits: u8, value: bool) -> u8 {
+const fn and(bits: u16, value: bool) -> u16 {
     let rlo = bits & RLO != 0;
     let first = bits & FIRST_CHECK_DONE == 0;
     let combined = (rlo | first) & value | (bits & OR_BIT != 0);
-    bits & !RLO | FIRST_CHECK_DONE | combined as u8
+    bits & !RLO | FIRST_CHECK_DONE | combined as u16
 }
 
-const fn or(bits: u8, value: bool) -> u8 {
+const fn or(bits: u16, value: bool) -> u16 {
     let before = if bits & FIRST_CHECK_DONE != 0 {
         bits & RLO != 0
     } else {
         bits & OR_BIT != 0
     };
-    bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | (before | value) as u8
+    bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | (before | value) as u16
 }
 
 /// The status after each of [`Logic`]'s operations, by `status << 1 | signal state`.
@@ -156,21 +215,94 @@ static SCANNED: [[u8; 512]; 4] = {
     let mut index = 0;
     while index < 512 {
         let value = index & 1 != 0;
-        let bits = (index >> 1) as u8 & !STA | if value { STA } else { 0 };
-        tables[Logic::And as usize][index] = and(bits, value);
-        tables[Logic::AndNot as usize][index] = and(bits, !value);
-        tables[Logic::Or as usize][index] = or(bits, value);
-        tables[Logic::OrNot as usize][index] = or(bits, !value);
+        let bits = (index >> 1) as u16 & !STA | if value { STA } else { 0 };
+        tables[Logic::And as usize][index] = and(bits, value) as u8;
+        tables[Logic::AndNot as usize][index] = and(bits, !value) as u8;
+        tables[Logic::Or as usize][index] = or(bits, value) as u8;
+        tables[Logic::OrNot as usize][index] = or(bits, !value) as u8;
         index += 1;
     }
     tables
 };
 
+/// How a scanned bit, or a closed bracket's result, combines with the RLO. STEP 5 uses the
+/// first four (its table is [`Logic`]'s), STEP 7 all six.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[repr(u8)]
+pub enum Combination {
+    #[default]
+    And,
+    AndNot,
+    Or,
+    OrNot,
+    Xor,
+    XorNot,
+}
+
+/// STEP 7's scan of a bit operand with the signal state `value` ("Statement List (STL) for
+/// S7-300 and S7-400 Programming", the chapter on bit logic): STA = `value`, /FC = 1. `A`/`AN`
+/// keep the OR bit within a string and clear it at the first check; `O ON X XN` clear it.
+const fn step7_scan(bits: u16, combination: Combination, value: bool) -> u16 {
+    let first_check_done = bits & FIRST_CHECK_DONE != 0;
+    let rlo = bits & RLO != 0;
+    let or_bit = bits & OR_BIT != 0;
+    let (rlo, or_bit) = match combination {
+        Combination::And | Combination::AndNot => {
+            let operand = value ^ matches!(combination, Combination::AndNot);
+            let kept_or = or_bit & first_check_done;
+            (((rlo | !first_check_done) & operand) | kept_or, kept_or)
+        }
+        Combination::Or => ((rlo & first_check_done) | value, false),
+        Combination::OrNot => ((rlo & first_check_done) | !value, false),
+        Combination::Xor => ((rlo & first_check_done) ^ value, false),
+        Combination::XorNot => ((rlo & first_check_done) ^ !value, false),
+    };
+    bits & !(RLO | OR_BIT | STA)
+        | FIRST_CHECK_DONE
+        | rlo as u16
+        | if or_bit { OR_BIT } else { 0 }
+        | if value { STA } else { 0 }
+}
+
+/// The status after each of STEP 7's scans, by [`Combination`] and `status << 1 | value`.
+static STEP7_SCANNED: [[u8; 512]; 6] = {
+    let mut tables = [[0u8; 512]; 6];
+    let combinations = [
+        Combination::And,
+        Combination::AndNot,
+        Combination::Or,
+        Combination::OrNot,
+        Combination::Xor,
+        Combination::XorNot,
+    ];
+    let mut kind = 0;
+    while kind < 6 {
+        let mut index = 0;
+        while index < 512 {
+            let bits = (index >> 1) as u16;
+            tables[kind][index] = step7_scan(bits, combinations[kind], index & 1 != 0) as u8;
+            index += 1;
+        }
+        kind += 1;
+    }
+    tables
+};
+
+impl Status {
+    /// STEP 7's `A AN O ON X XN` with a bit operand whose signal state is `value`, in one
+    /// table lookup.
+    #[inline(always)]
+    pub fn scanned_step7(&mut self, combination: Combination, value: bool) {
+        let index = usize::from(self.bits & LOGIC_BYTE) << 1 | usize::from(value);
+        self.bits = self.bits & !LOGIC_BYTE | u16::from(STEP7_SCANNED[combination as usize][index]);
+    }
+}
+
 /// One open bracket: the status before it, and how its result combines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Bracket {
     pub status: Status,
-    pub or: bool,
+    pub function: Combination,
 }
 
 pub const MAX_BRACKETS: usize = 8;
@@ -188,13 +320,20 @@ impl Brackets {
         if self.depth >= limit.min(MAX_BRACKETS as u8) {
             return false;
         }
-        self.stack[usize::from(self.depth)] = Bracket {
-            status: *status,
-            or,
+        let function = if or {
+            Combination::Or
+        } else {
+            Combination::And
         };
-        self.depth += 1;
+        self.push(*status, function);
         status.end_string();
         true
+    }
+
+    #[inline(always)]
+    fn push(&mut self, status: Status, function: Combination) {
+        self.stack[usize::from(self.depth)] = Bracket { status, function };
+        self.depth += 1;
     }
 
     /// Closes a bracket and combines its result; `false` when none is open.
@@ -208,11 +347,39 @@ impl Brackets {
         let codes = *status;
         *status = outer.status;
         status.set_condition(codes.cc1(), codes.cc0());
-        if outer.or {
+        if outer.function == Combination::Or {
             status.or(inner)
         } else {
             status.and(inner)
         }
+        true
+    }
+
+    /// STEP 7's `A( AN( O( ON( X( XN(`: the entry keeps /FC, RLO, OR and BR with the
+    /// function; then OR = 0, STA = 1, /FC = 0 and the RLO stays. `false` when the stack is
+    /// full.
+    pub fn open_step7(&mut self, status: &mut Status, function: Combination, limit: u8) -> bool {
+        if self.depth >= limit.min(MAX_BRACKETS as u8) {
+            return false;
+        }
+        self.push(*status, function);
+        status.bits = status.bits & !(OR_BIT | FIRST_CHECK_DONE) | STA;
+        true
+    }
+
+    /// STEP 7's `)`: the bracket's RLO combines with the entry's RLO (and, for `A(`/`AN(`, its
+    /// OR bit) by the entry's function, as a scan would; STA = 1, /FC = 1, BR as in the entry.
+    /// The condition codes and overflow bits stay as the bracket left them. `false` when none
+    /// is open.
+    pub fn close_step7(&mut self, status: &mut Status) -> bool {
+        if self.depth == 0 {
+            return false;
+        }
+        self.depth -= 1;
+        let outer = self.stack[usize::from(self.depth)];
+        let combined = step7_scan(outer.status.bits, outer.function, status.rlo());
+        let logic = RLO | OR_BIT | FIRST_CHECK_DONE;
+        status.bits = status.bits & !(logic | BR) | combined & logic | outer.status.bits & BR | STA;
         true
     }
 }
@@ -221,9 +388,10 @@ impl Brackets {
 mod tests {
     use super::*;
 
+    /// Every status, BR included: the tables cover the low byte and leave BR as it was.
     #[test]
     fn the_scan_tables_are_the_scan_then_the_combination() {
-        for bits in 0..=u8::MAX {
+        for bits in 0..=(LOGIC_BYTE | BR) {
             for value in [false, true] {
                 let scanned = Status {
                     bits: bits & !STA | if value { STA } else { 0 },
@@ -236,11 +404,48 @@ mod tests {
                 ] {
                     let mut status = Status { bits };
                     status.scanned(logic, value);
-                    assert_eq!(status.bits, combined, "{logic:?} {value} on {bits:#010b}");
+                    assert_eq!(status.bits, combined, "{logic:?} {value} on {bits:#011b}");
                     assert_eq!(status.sta(), value);
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_status_word_has_the_step_7_bit_order() {
+        let mut status = Status::default();
+        status.set_first_check(true);
+        assert_eq!(status.to_word(), 0x001);
+        status = Status::default();
+        status.set_rlo(true);
+        assert_eq!(status.to_word(), 0x002);
+        status = Status::default();
+        status.set_sta(true);
+        status.set_or_bit(true);
+        assert_eq!(status.to_word(), 0x00C);
+        status = Status::default();
+        status.set_overflow(true);
+        assert_eq!(status.to_word(), 0x030, "OV sets OS");
+        status = Status::default();
+        status.set_condition(true, false);
+        assert_eq!(status.to_word(), 0x080);
+        status.set_condition(false, true);
+        assert_eq!(status.to_word(), 0x040);
+        status = Status::default();
+        status.set_br(true);
+        assert_eq!(status.to_word(), 0x100);
+    }
+
+    #[test]
+    fn the_status_word_round_trips() {
+        for word in 0..=0x1FF {
+            assert_eq!(Status::from_word(word).to_word(), word);
+        }
+        assert_eq!(
+            Status::from_word(0xFE00).to_word(),
+            0,
+            "bits 9 to 15 do not exist"
+        );
     }
 
     fn string(ops: &[(&str, bool)]) -> bool {

@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use crate::ast::BlockId;
-use crate::compiler::bytecode::{BitSource, JumpCondition, Logic, NO_PARAMS, Op, TimerKind, Width};
+use crate::compiler::bytecode::{JumpCondition, NO_PARAMS, Op, TimerKind, Width};
 use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
 use crate::source::Span;
@@ -16,6 +16,14 @@ use crate::step7::bytecode::{FbCall, MemOp, ParamCopy, Place, S7Code, SfcCall, T
 
 use super::layout::Home;
 use super::operand::{Scope, constant_value, not_an_operand};
+
+/// A called FC or FB: its id, its index in the program, its interface.
+#[derive(Clone, Copy)]
+struct Callee<'i> {
+    id: BlockId,
+    block: u16,
+    interface: &'i super::layout::Interface,
+}
 
 /// The code of a block as it is emitted.
 struct Emitter {
@@ -285,67 +293,60 @@ impl super::Compiler<'_> {
         let op = statement.op;
         let operand = &statement.operand;
         match op {
-            S7Op::And | S7Op::AndNot | S7Op::Or | S7Op::OrNot => {
-                let logic = match op {
-                    S7Op::And => Logic::And,
-                    S7Op::AndNot => Logic::AndNot,
-                    S7Op::Or => Logic::Or,
-                    _ => Logic::OrNot,
-                };
-                if let (S7Op::Or, S7Operand::None) = (op, operand) {
-                    self.emit(out, Op::OrAlone, span);
+            S7Op::Or if *operand == S7Operand::None => {
+                self.emit(out, Op::S7(S7Code::Accu(S7Op::OrAlone)), span);
+                Ok(())
+            }
+            S7Op::And
+            | S7Op::AndNot
+            | S7Op::Or
+            | S7Op::OrNot
+            | S7Op::Assign
+            | S7Op::Set
+            | S7Op::Reset => {
+                if let S7Operand::Status(condition) = operand {
+                    let logic = mem_op(op).unwrap_or(MemOp::And);
+                    self.emit(
+                        out,
+                        Op::S7(S7Code::Condition {
+                            logic,
+                            condition: *condition,
+                        }),
+                        span,
+                    );
                     return Ok(());
                 }
-                if let S7Operand::Address(address) = operand {
-                    if let Some(bit) = self.image_bit(address) {
-                        let shared = match logic {
-                            Logic::And => Op::And(bit),
-                            Logic::AndNot => Op::AndNot(bit),
-                            Logic::Or => Op::Or(bit),
-                            Logic::OrNot => Op::OrNot(bit),
-                        };
-                        self.emit(out, shared, span);
-                        return Ok(());
-                    }
-                    if matches!(address.area, S7Area::Timer | S7Area::Counter) {
-                        let place = self.address_place(address, at)?;
-                        let source = match place.target {
-                            Target::Timer(n) => BitSource::Timer(n),
-                            Target::Counter(n) => BitSource::Counter(n),
-                            _ => unreachable!("a timer or counter address"),
-                        };
-                        self.emit(out, Op::LogicOther(logic, source), span);
-                        return Ok(());
-                    }
+                if let (S7Op::Set | S7Op::Reset, S7Operand::Address(address)) = (op, operand)
+                    && matches!(address.area, S7Area::Timer | S7Area::Counter)
+                {
+                    let place = self.address_place(address, at)?;
+                    let shared = match (op, place.target) {
+                        (S7Op::Reset, Target::Timer(n)) => Op::ResetTimer(n),
+                        (S7Op::Reset, Target::Counter(n)) => Op::ResetCounter(n),
+                        (S7Op::Set, Target::Counter(n)) => Op::SetCounter(n),
+                        _ => return Err(not_an_operand(at, "a timer")),
+                    };
+                    self.emit(out, shared, span);
+                    return Ok(());
                 }
                 self.memory(out, op, operand, at, span, scope)
             }
-            S7Op::Assign | S7Op::Set | S7Op::Reset => {
-                if let S7Operand::Address(address) = operand {
-                    if let Some(bit) = self.image_bit(address) {
-                        let shared = match op {
-                            S7Op::Assign => Op::Assign(bit),
-                            S7Op::Set => Op::Set(bit),
-                            _ => Op::Reset(bit),
-                        };
-                        self.emit(out, shared, span);
-                        return Ok(());
-                    }
-                    if matches!(address.area, S7Area::Timer | S7Area::Counter) {
-                        let place = self.address_place(address, at)?;
-                        let shared = match (op, place.target) {
-                            (S7Op::Reset, Target::Timer(n)) => Op::ResetTimer(n),
-                            (S7Op::Reset, Target::Counter(n)) => Op::ResetCounter(n),
-                            (S7Op::Set, Target::Counter(n)) => Op::SetCounter(n),
-                            _ => return Err(not_an_operand(at, "a timer or counter")),
-                        };
-                        self.emit(out, shared, span);
-                        return Ok(());
-                    }
+            S7Op::Xor | S7Op::XorNot => {
+                if let S7Operand::Status(condition) = operand {
+                    let logic = mem_op(op).unwrap_or(MemOp::Xor);
+                    self.emit(
+                        out,
+                        Op::S7(S7Code::Condition {
+                            logic,
+                            condition: *condition,
+                        }),
+                        span,
+                    );
+                    return Ok(());
                 }
                 self.memory(out, op, operand, at, span, scope)
             }
-            S7Op::Xor | S7Op::XorNot | S7Op::EdgePositive | S7Op::EdgeNegative => {
+            S7Op::EdgePositive | S7Op::EdgeNegative => {
                 self.memory(out, op, operand, at, span, scope)
             }
             S7Op::AndBracket
@@ -362,7 +363,7 @@ impl super::Compiler<'_> {
                 Ok(())
             }
             S7Op::OrAlone => {
-                self.emit(out, Op::OrAlone, span);
+                self.emit(out, Op::S7(S7Code::Accu(S7Op::OrAlone)), span);
                 Ok(())
             }
             S7Op::Load => self.load(out, operand, at, span, scope),
@@ -825,9 +826,14 @@ impl super::Compiler<'_> {
             return Ok(());
         };
         let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
+        let callee = Callee {
+            id,
+            block,
+            interface: &interface,
+        };
         match id.kind {
-            BlockKind::Fb => self.call_fb(out, call, id, block, &interface, at, span, scope),
-            _ => self.call_fc(out, call, id, block, &interface, span, scope),
+            BlockKind::Fb => self.call_fb(out, call, callee, at, span, scope),
+            _ => self.call_fc(out, call, callee, span, scope),
         }
     }
 
@@ -835,12 +841,15 @@ impl super::Compiler<'_> {
         &mut self,
         out: &mut Emitter,
         call: &CallSpec,
-        id: BlockId,
-        block: u16,
-        interface: &super::layout::Interface,
+        callee: Callee<'_>,
         span: Span,
         scope: &Scope<'_>,
     ) -> Result<(), CheckError> {
+        let Callee {
+            id,
+            block,
+            interface,
+        } = callee;
         let mut actuals = vec![None; interface.parameters.len()];
         for param in &call.params {
             let name = param.name.text.to_ascii_uppercase();
@@ -902,18 +911,20 @@ impl super::Compiler<'_> {
         Ok(())
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn call_fb(
         &mut self,
         out: &mut Emitter,
         call: &CallSpec,
-        id: BlockId,
-        block: u16,
-        interface: &super::layout::Interface,
+        callee: Callee<'_>,
         at: Span,
         span: Span,
         scope: &Scope<'_>,
     ) -> Result<(), CheckError> {
+        let Callee {
+            id,
+            block,
+            interface,
+        } = callee;
         let Some(S7BlockRef::Number { number: db, .. }) = &call.instance else {
             return Err(CheckError::NotSimulated {
                 what: format!("a call of {id} without an instance DB"),

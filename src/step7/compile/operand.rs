@@ -2,7 +2,6 @@
 //! addresses, constants and awlsim's test operands.
 
 use crate::compiler::CheckError;
-use crate::compiler::bytecode::ImageBit;
 use crate::source::Span;
 use crate::step7::ast::{
     AccessWidth, ConstKind, DataType, IndirectPointer, S7Address, S7Area, S7Constant, S7Operand,
@@ -48,18 +47,6 @@ fn indirect_area(area: S7Area) -> IndirectArea {
 }
 
 impl super::Compiler<'_> {
-    /// The image bit of `I`/`Q`/`M` bit address, when it is one.
-    pub fn image_bit(&self, address: &S7Address) -> Option<ImageBit> {
-        if address.width != AccessWidth::Bit {
-            return None;
-        }
-        let byte = self.image_byte(address)?;
-        Some(ImageBit {
-            byte,
-            bit: address.bit,
-        })
-    }
-
     /// The image memory offset of an `I`/`Q`/`M` address (any width), when in range.
     pub fn image_byte(&self, address: &S7Address) -> Option<u16> {
         let layout = crate::compiler::Layout::new(&self.profile.sizes);
@@ -205,6 +192,10 @@ impl super::Compiler<'_> {
             S7Operand::Extension(extension) => Ok(Place {
                 target: Target::Extension(*extension),
                 width: AccessWidth::Double,
+            }),
+            S7Operand::Status(condition) => Ok(Place {
+                target: Target::Condition(*condition),
+                width: AccessWidth::Bit,
             }),
             S7Operand::DbRegister(register) => Ok(Place {
                 target: Target::DbRegister(*register),

@@ -13,6 +13,11 @@ fn constant(kind: ConstKind, value: u32) -> S7Constant {
 
 fn digits(text: &str, radix: u32) -> Option<u64> {
     let cleaned: String = text.chars().filter(|c| *c != '_').collect();
+    // awlsim also reads a C-style `0x` after `16#`.
+    let cleaned = match radix {
+        16 => cleaned.trim_start_matches("0X").to_string(),
+        _ => cleaned,
+    };
     if cleaned.is_empty() {
         return None;
     }
@@ -31,11 +36,25 @@ pub fn parse(text: &str) -> Result<S7Constant, Problem> {
     if let Some(inner) = text.strip_prefix('\'').and_then(|t| t.strip_suffix('\'')) {
         return Ok(string(inner));
     }
+    if let Some(number) = timer_or_counter(&upper) {
+        return Ok(number);
+    }
     if let Some(hash) = upper.find('#') {
         let (prefix, rest) = (&upper[..hash], &upper[hash + 1..]);
         return typed(prefix, rest, text);
     }
     number(&upper)
+}
+
+/// `T 5`, `C 3` (German `Z 3`): a timer or counter as a parameter value.
+fn timer_or_counter(upper: &str) -> Option<S7Constant> {
+    let (kind, rest) = match upper.chars().next()? {
+        'T' => (ConstKind::TimerNumber, &upper[1..]),
+        'C' | 'Z' => (ConstKind::CounterNumber, &upper[1..]),
+        _ => return None,
+    };
+    let number: u16 = rest.trim().parse().ok()?;
+    Some(constant(kind, u32::from(number)))
 }
 
 fn string(inner: &str) -> S7Constant {
@@ -399,6 +418,9 @@ mod tests {
         assert_eq!(value("2#0101_0101"), 0x55);
         assert_eq!(value("B#(1, 2)"), 0x0102);
         assert!(parse("B#16#100").is_err());
+        assert_eq!(value("DW#16#0xFFED2979"), 0xFFED_2979);
+        assert_eq!(parse("T 24").unwrap().kind, ConstKind::TimerNumber);
+        assert_eq!(value("Z 3"), 3);
     }
 
     #[test]

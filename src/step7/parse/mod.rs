@@ -725,9 +725,7 @@ impl Parser<'_> {
                 self.cursor.skip_blank();
             }
         }
-        let Some(op_start) = self.cursor.peek() else {
-            return None;
-        };
+        let op_start = self.cursor.peek()?;
         let (word, op_end) = self.cursor.take_run();
         let op_span = self.span(op_start.start, op_end);
         let Some(op) = self.operation(&word, op_span) else {
@@ -749,10 +747,7 @@ impl Parser<'_> {
             label.as_ref().map_or(op_start.start, |l| l.span.start),
             stop.max(op_end),
         );
-        let (op, operand) = match self.operand(op, operand_text, operand_span, &word) {
-            Some(parsed) => parsed,
-            None => return None,
-        };
+        let (op, operand) = self.operand(op, operand_text, operand_span, &word)?;
         Some(S7Statement {
             label,
             op,
@@ -837,6 +832,10 @@ impl Parser<'_> {
         };
         match operand::parse(op, &written) {
             Ok(operand) => Some((op, operand)),
+            Err(problem) if operand::looks_constant(&upper) => {
+                self.errors.push(S7ParseError::BadConstant { problem, at });
+                None
+            }
             Err(problem) => {
                 self.errors.push(S7ParseError::BadOperand {
                     text: text.trim().into(),

@@ -269,9 +269,10 @@ pub fn parse(op: S7Op, written: &Written<'_>) -> Result<S7Operand, String> {
     if let S7Op::Assert(_) | S7Op::Feature = op
         && let Some((left, right)) = split_pair(text)
     {
+        // An operand of `__ASSERT` may also be a status condition (`UO`, `==0`).
         let part = |t: &str| {
             parse(
-                S7Op::Load,
+                S7Op::And,
                 &Written {
                     text: t,
                     span: written.span,
@@ -324,12 +325,7 @@ pub fn parse(op: S7Op, written: &Written<'_>) -> Result<S7Operand, String> {
         "AR2" => return Ok(S7Operand::AddressRegister(2)),
         _ => {}
     }
-    let starts_constant = upper.contains('#')
-        || upper.starts_with('\'')
-        || upper == "TRUE"
-        || upper == "FALSE"
-        || upper.starts_with(|c: char| c.is_ascii_digit() || c == '+' || c == '-');
-    if starts_constant {
+    if looks_constant(&upper) {
         if matches!(
             op,
             S7Op::ShiftLeftWord
@@ -352,6 +348,15 @@ pub fn parse(op: S7Op, written: &Written<'_>) -> Result<S7Operand, String> {
         return literal::parse(text).map(S7Operand::Constant);
     }
     address(&upper, written)
+}
+
+/// Whether an operand is written as a constant (a typed literal, a number, a string).
+pub fn looks_constant(upper: &str) -> bool {
+    upper.contains('#')
+        || upper.starts_with('\'')
+        || upper == "TRUE"
+        || upper == "FALSE"
+        || upper.starts_with(|c: char| c.is_ascii_digit() || c == '+' || c == '-')
 }
 
 /// `a, b` at the top level (not inside brackets or parentheses).

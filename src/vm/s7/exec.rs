@@ -30,7 +30,7 @@ impl Cpu {
             S7Code::Accu(op) => {
                 bridge::accumulator(&mut self.level, op, self.profile.accumulators)?
             }
-            S7Code::Shift { op, count } => bridge::shift(&mut self.level, op, Some(count)),
+            S7Code::Shift { op, count } => bridge::shift(&mut self.level, op, count),
             S7Code::WordConstant { op, constant } => {
                 let value = self.program.s7.constants[usize::from(constant)];
                 bridge::word_logic(&mut self.level, op, value);
@@ -45,9 +45,7 @@ impl Cpu {
                 }
             }
             S7Code::Loop { target } => {
-                let low = (self.level.accu1 as u16).wrapping_sub(1);
-                self.level.accu1 = self.level.accu1 & 0xFFFF_0000 | u32::from(low);
-                if low != 0 {
+                if bridge::loop_taken(&mut self.level.accu1) {
                     return Ok(Flow::Jump(u32::from(target)));
                 }
             }
@@ -189,7 +187,10 @@ impl Cpu {
         let rlo = self.level.status.rlo();
         match op {
             MemOp::And | MemOp::AndNot | MemOp::Or | MemOp::OrNot | MemOp::Xor | MemOp::XorNot => {
-                let value = self.fetch_bit(located)?;
+                let value = match located {
+                    Located::Special(_) => self.special_value(located)? & 1 != 0,
+                    other => self.fetch_bit(other)?,
+                };
                 bridge::combine(&mut self.level.status, op, value);
             }
             MemOp::Assign => {
@@ -213,14 +214,21 @@ impl Cpu {
             }
             MemOp::EdgePositive | MemOp::EdgeNegative => {
                 let memory = self.fetch_bit(located)?;
-                let (result, stored) =
+                let stored =
                     bridge::edge(&mut self.level.status, op == MemOp::EdgePositive, memory);
                 self.store_bit(located, stored)?;
-                let _ = result;
             }
             MemOp::Load | MemOp::LoadCoded => match located {
                 Located::Timer(_) | Located::Counter(_) => {
                     return self.timer_counter_op(located, op, pc);
+                }
+                Located::Special(Target::Extension(extension)) => {
+                    let value = self.extension_value(extension);
+                    self.load_s7(value);
+                }
+                Located::Special(Target::DbRegister(register)) => {
+                    let value = self.db_register(register);
+                    self.load_s7(value);
                 }
                 other => {
                     let value = self.fetch(other, width)?;
@@ -357,14 +365,25 @@ impl Cpu {
         }
     }
 
-    /// The value of an operand of `__ASSERT`, with its width in bits.
+    /// The value of an operand of `__ASSERT`.
     fn assert_operand(&mut self, place: u16) -> Result<u32, Fault> {
         let (located, width) = self.locate_index(place)?;
         match located {
-            Located::Special(Target::Extension(extension)) => Ok(self.extension_value(extension)),
-            Located::Special(Target::DbRegister(register)) => Ok(self.db_register(register)),
+            Located::Special(_) => self.special_value(located),
             Located::Timer(_) | Located::Counter(_) => Ok(u32::from(self.fetch_bit(located)?)),
             other => self.fetch(other, width),
+        }
+    }
+
+    /// The value of a test operand, a DB register or a status condition.
+    fn special_value(&self, located: Located) -> Result<u32, Fault> {
+        match located {
+            Located::Special(Target::Extension(extension)) => Ok(self.extension_value(extension)),
+            Located::Special(Target::DbRegister(register)) => Ok(self.db_register(register)),
+            Located::Special(Target::Condition(condition)) => {
+                Ok(u32::from(bridge::condition(self.level.status, condition)))
+            }
+            other => Err(fault(format!("{other:?} has no value"))),
         }
     }
 

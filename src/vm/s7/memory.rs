@@ -215,7 +215,9 @@ impl Cpu {
                     _ => Located::Counter(number),
                 }
             }
-            Target::Extension(_) | Target::DbRegister(_) => Located::Special(place.target),
+            Target::Extension(_) | Target::DbRegister(_) | Target::Condition(_) => {
+                Located::Special(place.target)
+            }
         })
     }
 

@@ -1,9 +1,41 @@
-//! The STEP 7 operations the execution loop hands off ([`crate::step7::bytecode::S7Code`]):
-//! [`memory`] finds where an operand is, [`exec`] runs the operations.
+//! The STEP 7 (S7-300/S7-400) operations on the accumulators and the status word, as small
+//! pure functions the execution loop calls ("Statement List (STL) for S7-300 and S7-400
+//! Programming" is the reference; `grammar/README.md`, "STEP 7 operations", lists the
+//! choices where it leaves one).
+//!
+//! - [`bit_logic`]: `O` alone, `SET CLR NOT SAVE`, the end of a string by `= S R`, `FP FN`;
+//!   the scans `A AN O ON X XN` and the nesting stack are in [`super::status`].
+//! - [`integer`]: `+I -I *I /I +D -D *D /D MOD NEGI NEGD INVI INVD`, `+ constant`.
+//! - [`real`]: `+R -R *R /R`, `SQR SQRT EXP LN SIN COS TAN ASIN ACOS ATAN`, `ABS NEGR`, and
+//!   the status of a REAL result.
+//! - [`compare`]: `==I … <=I`, `==D … <=D`, `==R … <=R`.
+//! - [`convert`]: `ITD ITB BTI BTD DTB DTR RND RND+ RND- TRUNC CAW CAD`.
+//! - [`word_logic`]: `AW OW XOW AD OD XOD`.
+//! - [`shift`]: `SSI SSD SLW SRW SLD SRD RLD RRD RLDA RRDA`.
+//! - [`accu`]: `TAK PUSH POP ENT LEAVE INC DEC`, and the move of ACCU 3/4 after arithmetic.
+//! - [`jump`]: whether each conditional jump jumps and what it does to the status; `LOOP`; the
+//!   status conditions `==0 <>0 >0 <0 >=0 <=0 UO OV OS BR` as bit operands.
+//! - [`memory`]: where an operand is (L stack, DB/DI, parameters, indirect addresses);
+//!   [`exec`]: the out-of-line executor the loop calls for [`crate::step7::bytecode::S7Code`].
+//!
+//! The status word itself (BR, `L STW`/`T STW` as [`Status::to_word`] and
+//! [`Status::from_word`], `__STWRST` as `Status::default()`) is [`super::status::Status`].
+//!
+//! [`Status::to_word`]: super::status::Status::to_word
+//! [`Status::from_word`]: super::status::Status::from_word
 
+pub mod accu;
+pub mod bit_logic;
 mod bridge;
+pub mod compare;
+pub mod convert;
 pub mod exec;
+pub mod integer;
+pub mod jump;
 pub mod memory;
+pub mod real;
+pub mod shift;
+pub mod word_logic;
 
 use crate::compiler::Program;
 

@@ -1,0 +1,108 @@
+//! `AW OW XOW` (ACCU 1-L) and `AD OD XOD` (ACCU 1) with ACCU 2 or a constant: CC1 = the result
+//! is not zero, CC0 = 0, OV = 0; OS is kept ("Statement List (STL) for S7-300 and S7-400
+//! Programming", the chapter on word logic instructions).
+
+use crate::compiler::bytecode::WordLogic;
+use crate::vm::status::Status;
+
+#[inline(always)]
+fn combine(op: WordLogic, a: u32, b: u32) -> u32 {
+    match op {
+        WordLogic::And => a & b,
+        WordLogic::Or => a | b,
+        WordLogic::Xor => a ^ b,
+    }
+}
+
+#[inline(always)]
+fn set_codes(status: &mut Status, result: u32) {
+    status.set_condition(result != 0, false);
+    status.set_ov(false);
+}
+
+/// `AW OW XOW`: ACCU 1-L with the low word of `operand` (ACCU 2 or the constant); ACCU 1-H is
+/// kept.
+#[inline]
+pub fn word(op: WordLogic, accu1: &mut u32, operand: u32, status: &mut Status) {
+    let result = combine(op, *accu1, operand) & 0xFFFF;
+    set_codes(status, result);
+    *accu1 = *accu1 & 0xFFFF_0000 | result;
+}
+
+/// `AD OD XOD`: ACCU 1 with `operand` (ACCU 2 or the constant).
+#[inline]
+pub fn double(op: WordLogic, accu1: &mut u32, operand: u32, status: &mut Status) {
+    let result = combine(op, *accu1, operand);
+    set_codes(status, result);
+    *accu1 = result;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use WordLogic::{And, Or, Xor};
+
+    /// CC1, CC0, OV, OS.
+    fn flags(status: Status) -> [u8; 4] {
+        [status.cc1(), status.cc0(), status.ov(), status.os()].map(u8::from)
+    }
+
+    fn run(
+        f: fn(WordLogic, &mut u32, u32, &mut Status),
+        op: WordLogic,
+        accu1: u32,
+        operand: u32,
+    ) -> (u32, [u8; 4]) {
+        let mut status = Status::default();
+        status.set_condition(false, true);
+        status.set_overflow(true);
+        let mut accu = accu1;
+        f(op, &mut accu, operand, &mut status);
+        (accu, flags(status))
+    }
+
+    #[test]
+    fn word_operations_keep_accu_1_high() {
+        assert_eq!(
+            run(word, And, 0xFFFF_0F0F, 0xABCD_F0F0),
+            (0xFFFF_0000, [0, 0, 0, 1])
+        );
+        assert_eq!(
+            run(word, Or, 0x1234_0F00, 0xFFFF_00F0),
+            (0x1234_0FF0, [1, 0, 0, 1])
+        );
+        assert_eq!(run(word, Xor, 0x0000_FFFF, 0x0000_FFFF), (0, [0, 0, 0, 1]));
+        assert_eq!(
+            run(word, Xor, 0x0000_FF00, 0x0000_0FF0),
+            (0x0000_F0F0, [1, 0, 0, 1])
+        );
+    }
+
+    #[test]
+    fn the_word_result_decides_cc1_not_accu_1_high() {
+        assert_eq!(
+            run(word, And, 0xFFFF_0001, 0xFFFF_0002),
+            (0xFFFF_0000, [0, 0, 0, 1])
+        );
+    }
+
+    #[test]
+    fn double_operations() {
+        assert_eq!(
+            run(double, And, 0xFFFF_0001, 0x0001_0001),
+            (0x0001_0001, [1, 0, 0, 1])
+        );
+        assert_eq!(
+            run(double, And, 0xFFFF_0000, 0x0000_FFFF),
+            (0, [0, 0, 0, 1])
+        );
+        assert_eq!(
+            run(double, Or, 0x8000_0000, 0x0000_0001),
+            (0x8000_0001, [1, 0, 0, 1])
+        );
+        assert_eq!(
+            run(double, Xor, 0xF0F0_F0F0, 0xFFFF_0000),
+            (0x0F0F_F0F0, [1, 0, 0, 1])
+        );
+    }
+}
