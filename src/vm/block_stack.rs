@@ -19,9 +19,6 @@ impl BlockStack {
             start: 0,
             open_db: None,
             params: crate::compiler::bytecode::NO_PARAMS,
-            db: 0,
-            di: 0,
-            local_base: 0,
             resume: 0,
         };
         BlockStack {
@@ -80,9 +77,6 @@ mod tests {
             start: 0,
             open_db: None,
             params: 0,
-            db: 0,
-            di: 0,
-            local_base: 0,
             resume: pc,
         }
     }

@@ -46,10 +46,6 @@ pub struct Frame {
     pub block: u16,
     pub open_db: Option<u8>,
     pub params: u16,
-    /// STEP 7: the calling block's DB and DI registers and where its local data start.
-    pub db: u16,
-    pub di: u16,
-    pub local_base: u32,
     /// Where the calling block's body starts in the program's arena, and where the loop resumes
     /// in it: kept so a block end needs no lookup.
     pub start: u32,
@@ -61,6 +57,16 @@ impl Frame {
     pub fn pc(&self) -> u32 {
         self.resume - self.start
     }
+}
+
+/// What a STEP 7 block call saves beside its [`Frame`] (on a stack of its own, parallel to the
+/// block stack, so STEP 5 calls carry none of it): the calling block's DB and DI registers and
+/// where its local data start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct S7Frame {
+    pub db: u16,
+    pub di: u16,
+    pub local_base: u32,
 }
 
 /// The registers and position of a processing level: what an interrupt OB saves and restores.
@@ -222,6 +228,8 @@ pub struct Cpu {
     pub local: Vec<u8>,
     /// STEP 7: the DB, DI and AR2 registers each `CALL FB` saved.
     pub fb_saves: Vec<(u16, u16, u32)>,
+    /// STEP 7: what each frame of the block stack saved besides (see [`S7Frame`]).
+    pub s7_frames: Vec<S7Frame>,
     /// The running level's registers and position.
     pub level: LevelState,
     pub frames: BlockStack,
@@ -290,6 +298,7 @@ impl Cpu {
                 vec![0; s7::memory::LOCAL_BYTES]
             },
             fb_saves: Vec::new(),
+            s7_frames: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
             level: LevelState {
                 accu1: 0,
                 accu2: 0,

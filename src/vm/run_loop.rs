@@ -128,6 +128,8 @@ impl Cpu {
     ) -> Exit {
         let program = Arc::clone(&self.program);
         let arena = &program.arena;
+        // A STEP 7 program's calls also move the L stack and save the DB and DI registers.
+        let step7 = program.s7.step7;
         // Every body in one array: `pc` is a position in it, `start` where the running body
         // starts (so op `pc - start` of the block), `times` the op times as prefix sums.
         // The fused pairs run as one op, except in the stepping loop, which shows every op;
@@ -264,9 +266,9 @@ impl Cpu {
                 self.level.block = frame.block;
                 self.level.open_db = frame.open_db;
                 self.level.params = frame.params;
-                self.level.db = frame.db;
-                self.level.di = frame.di;
-                self.level.local_base = frame.local_base;
+                if step7 {
+                    self.leave_s7_block();
+                }
                 let resume = frame.resume as usize;
                 move_to!(resume, frame.start as usize);
                 if clock >= self.attention_at {
@@ -301,19 +303,13 @@ impl Cpu {
                     block: caller,
                     open_db: self.level.open_db,
                     params: self.level.params,
-                    db: self.level.db,
-                    di: self.level.di,
-                    local_base: self.level.local_base,
                     start: start as u32,
                     resume: pc as u32,
                 });
                 if !pushed {
                     break $run Leave::Stop(StopCause::Stueb, call_pc);
                 }
-                // STEP 7: the callee's local data follow the caller's on the L stack.
-                self.level.local_base += program.local_bytes[usize::from(caller)];
-                let local_end = self.level.local_base + program.local_bytes[usize::from(target)];
-                if local_end as usize > self.local.len() {
+                if step7 && !self.enter_s7_block(caller, target) {
                     detail = StopDetail::Text("the L stack overflows".into());
                     break $run Leave::Stop(StopCause::Stueb, call_pc);
                 }

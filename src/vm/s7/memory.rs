@@ -93,11 +93,35 @@ fn data_fault(text: String) -> Fault {
 }
 
 impl Cpu {
+    /// A STEP 7 block call (the frame is pushed): the caller's registers saved, the callee's
+    /// local data placed after the caller's. `false` when the L stack has no room for them.
+    #[inline]
+    pub(crate) fn enter_s7_block(&mut self, caller: u16, callee: u16) -> bool {
+        self.s7_frames.push(crate::vm::S7Frame {
+            db: self.level.db,
+            di: self.level.di,
+            local_base: self.level.local_base,
+        });
+        self.level.local_base += self.program.local_bytes(caller);
+        let end = self.level.local_base + self.program.local_bytes(callee);
+        end as usize <= self.local.len()
+    }
+
+    /// A STEP 7 block's end (its frame popped): the caller's registers back.
+    #[inline]
+    pub(crate) fn leave_s7_block(&mut self) {
+        if let Some(saved) = self.s7_frames.pop() {
+            self.level.db = saved.db;
+            self.level.di = saved.di;
+            self.level.local_base = saved.local_base;
+        }
+    }
+
     /// The registers of the running block.
     pub fn running_context(&self) -> Context {
         let frames = self.frames.len();
         let previous_local = (frames > self.level.level_base)
-            .then(|| self.frames.get(frames - 1).map(|frame| frame.local_base))
+            .then(|| self.s7_frames.get(frames - 1).map(|frame| frame.local_base))
             .flatten();
         Context {
             local_base: self.level.local_base,
@@ -115,15 +139,16 @@ impl Cpu {
             return None;
         }
         let frame = self.frames.get(context.frames - 1)?;
+        let saved = self.s7_frames.get(context.frames - 1)?;
         let below = context.frames - 1;
         let previous_local = (below > self.level.level_base)
-            .then(|| self.frames.get(below - 1).map(|frame| frame.local_base))
+            .then(|| self.s7_frames.get(below - 1).map(|frame| frame.local_base))
             .flatten();
         Some(Context {
-            local_base: frame.local_base,
+            local_base: saved.local_base,
             previous_local,
-            db: frame.db,
-            di: frame.di,
+            db: saved.db,
+            di: saved.di,
             params: frame.params,
             frames: below,
         })
