@@ -324,6 +324,10 @@ pub enum Op {
     },
     /// A STEP 7 operation STEP 5 does not have, run out of line.
     S7(crate::step7::bytecode::S7Code),
+    /// STEP 7's `A AN O ON X XN` on an image bit (their status rules differ from STEP 5's).
+    S7Scan(crate::vm::status::Combination, ImageBit),
+    /// STEP 7's `=`, `S`, `R` on an image bit (STA takes the RLO).
+    S7Write(Write, ImageBit),
     /// A system or register operation on absolute addresses: running it stops the CPU.
     NotSimulated {
         op: OpCode,

@@ -80,6 +80,7 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         Op::AddConstant { .. } => t.accumulator,
         Op::NotSimulated { .. } => t.other,
         Op::S7(code) => crate::step7::bytecode::cost(code, t),
+        Op::S7Scan(..) | Op::S7Write(..) => t.bit_image,
         Op::Nop | Op::Stop | Op::DisableInterrupts | Op::EnableInterrupts | Op::Formal { .. } => {
             t.other
         }

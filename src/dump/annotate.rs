@@ -510,6 +510,7 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
             format!("{} {shown}", verb(OpCode::AddConstant))
         }
         Op::S7(code) => format!("{code:?}"),
+        Op::S7Scan(..) | Op::S7Write(..) => format!("{op:?}"),
         Op::NotSimulated { op, operand } => {
             let takes_none = matches!(
                 op,

@@ -156,6 +156,8 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::Formal { .. }
         | Op::AddConstant { .. }
         | Op::NotSimulated { .. }
-        | Op::S7(_) => return None,
+        | Op::S7(_)
+        | Op::S7Scan(..)
+        | Op::S7Write(..) => return None,
     })
 }

@@ -499,6 +499,19 @@ impl Cpu {
             Op::S7(code) => {
                 self.execute_s7(code, pc)?;
             }
+            Op::S7Scan(combination, bit) => {
+                let value = self.image_bit(bit);
+                self.level.status.scanned_step7(combination, value);
+            }
+            Op::S7Write(write, bit) => {
+                match write {
+                    Write::Assign => self.write_image_bit(bit, rlo),
+                    Write::Set if rlo => self.write_image_bit(bit, true),
+                    Write::Reset if rlo => self.write_image_bit(bit, false),
+                    _ => {}
+                }
+                super::s7::bit_logic::assigned(&mut self.level.status, rlo);
+            }
             Op::EnableInterrupts => {
                 self.level.interrupts_enabled = true;
                 self.update_attention();

@@ -385,6 +385,19 @@ impl Cpu {
                         status.end_string();
                     }
                     Op::OrAlone => status.or_alone(),
+                    Op::S7Scan(combination, bit) => {
+                        status.scanned_step7(combination, self.image_bit(bit));
+                    }
+                    Op::S7Write(write, bit) => {
+                        let rlo = status.rlo();
+                        match write {
+                            Write::Assign => self.write_image_bit(bit, rlo),
+                            Write::Set if rlo => self.write_image_bit(bit, true),
+                            Write::Reset if rlo => self.write_image_bit(bit, false),
+                            _ => {}
+                        }
+                        super::s7::bit_logic::assigned(&mut status, rlo);
+                    }
                     Op::LoadImageByte(byte) => {
                         accu2 = accu1;
                         accu1 = u32::from(self.image[usize::from(byte)]);

@@ -4,15 +4,18 @@
 use std::collections::HashMap;
 
 use crate::ast::BlockId;
-use crate::compiler::bytecode::{JumpCondition, NO_PARAMS, Op, TimerKind, Width};
+use crate::compiler::bytecode::{
+    Arith, ImageBit, JumpCondition, NO_PARAMS, Op, TimerKind, Width, Write,
+};
 use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
 use crate::source::Span;
 use crate::step7::ast::{
-    AccessWidth, CallSpec, ConstKind, S7Area, S7Block, S7BlockKind, S7BlockRef, S7Body, S7Op,
-    S7Operand, S7Statement, VarKind,
+    AccessWidth, CallSpec, ConstKind, S7Address, S7Area, S7Block, S7BlockKind, S7BlockRef, S7Body,
+    S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{FbCall, MemOp, ParamCopy, Place, S7Code, SfcCall, Target};
+use crate::vm::status::Combination;
 
 use super::layout::Home;
 use super::operand::{Scope, constant_value, not_an_operand};
@@ -316,6 +319,12 @@ impl super::Compiler<'_> {
                     );
                     return Ok(());
                 }
+                if let S7Operand::Address(address) = operand
+                    && let Some(shared) = self.image_bit_op(op, address)
+                {
+                    self.emit(out, shared, span);
+                    return Ok(());
+                }
                 if let (S7Op::Set | S7Op::Reset, S7Operand::Address(address)) = (op, operand)
                     && matches!(address.area, S7Area::Timer | S7Area::Counter)
                 {
@@ -332,6 +341,12 @@ impl super::Compiler<'_> {
                 self.memory(out, op, operand, at, span, scope)
             }
             S7Op::Xor | S7Op::XorNot => {
+                if let S7Operand::Address(address) = operand
+                    && let Some(shared) = self.image_bit_op(op, address)
+                {
+                    self.emit(out, shared, span);
+                    return Ok(());
+                }
                 if let S7Operand::Status(condition) = operand {
                     let logic = mem_op(op).unwrap_or(MemOp::Xor);
                     self.emit(
@@ -497,23 +512,35 @@ impl super::Compiler<'_> {
                 self.emit(out, shared, span);
                 Ok(())
             }
+            // `+I`/`-I` mean what STEP 5's `+F`/`-F` mean (16 bits wrapped, CC1/CC0 by the
+            // wrapped result, OV and OS): the shared op, inline. Four accumulators move after.
+            S7Op::AddInt | S7Op::SubInt if self.profile.accumulators == 2 => {
+                let kind = if op == S7Op::AddInt {
+                    Arith::Add
+                } else {
+                    Arith::Sub
+                };
+                self.emit(out, Op::Arithmetic(kind), span);
+                Ok(())
+            }
             op if accumulator_only(op) => {
                 self.emit(out, Op::S7(S7Code::Accu(op)), span);
                 Ok(())
             }
             S7Op::JumpAlways => self.jump(out, Op::Jump(JumpCondition::Always, 0), statement),
+            // The jumps on the condition codes and OV change no status bit in either dialect.
+            S7Op::JumpIfZero => self.jump(out, Op::Jump(JumpCondition::Zero, 0), statement),
+            S7Op::JumpIfNotZero => self.jump(out, Op::Jump(JumpCondition::NotZero, 0), statement),
+            S7Op::JumpIfPositive => self.jump(out, Op::Jump(JumpCondition::Positive, 0), statement),
+            S7Op::JumpIfMinus => self.jump(out, Op::Jump(JumpCondition::Minus, 0), statement),
+            S7Op::JumpIfOverflow => self.jump(out, Op::Jump(JumpCondition::Overflow, 0), statement),
             S7Op::JumpIfRlo
             | S7Op::JumpIfNotRlo
             | S7Op::JumpIfRloSave
             | S7Op::JumpIfNotRloSave
             | S7Op::JumpIfBr
             | S7Op::JumpIfNotBr
-            | S7Op::JumpIfOverflow
             | S7Op::JumpIfStoredOverflow
-            | S7Op::JumpIfZero
-            | S7Op::JumpIfNotZero
-            | S7Op::JumpIfPositive
-            | S7Op::JumpIfMinus
             | S7Op::JumpIfPositiveOrZero
             | S7Op::JumpIfMinusOrZero
             | S7Op::JumpIfUnordered => {
@@ -650,6 +677,29 @@ impl super::Compiler<'_> {
                 at: statement.op_span,
             }),
         }
+    }
+
+    /// A bit operation on an `I`/`Q`/`M` bit, run inline.
+    fn image_bit_op(&self, op: S7Op, address: &S7Address) -> Option<Op> {
+        if address.width != AccessWidth::Bit {
+            return None;
+        }
+        let bit = ImageBit {
+            byte: self.image_byte(address)?,
+            bit: address.bit,
+        };
+        Some(match op {
+            S7Op::And => Op::S7Scan(Combination::And, bit),
+            S7Op::AndNot => Op::S7Scan(Combination::AndNot, bit),
+            S7Op::Or => Op::S7Scan(Combination::Or, bit),
+            S7Op::OrNot => Op::S7Scan(Combination::OrNot, bit),
+            S7Op::Xor => Op::S7Scan(Combination::Xor, bit),
+            S7Op::XorNot => Op::S7Scan(Combination::XorNot, bit),
+            S7Op::Assign => Op::S7Write(Write::Assign, bit),
+            S7Op::Set => Op::S7Write(Write::Set, bit),
+            S7Op::Reset => Op::S7Write(Write::Reset, bit),
+            _ => return None,
+        })
     }
 
     /// An operation on the place its operand names.
