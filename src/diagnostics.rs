@@ -6,6 +6,7 @@ use thiserror::Error;
 use crate::compiler::CheckError;
 use crate::parser::ParseError;
 use crate::source::{SourceSet, Span};
+use crate::step7::error::S7ParseError;
 use crate::symbols::SymbolError;
 
 /// A diagnostic of the front end, about one source file.
@@ -20,6 +21,9 @@ pub enum SourceDiagnostic {
     #[error(transparent)]
     #[diagnostic(transparent)]
     Symbol(#[from] SymbolError),
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Step7(#[from] S7ParseError),
 }
 
 impl SourceDiagnostic {
@@ -28,6 +32,7 @@ impl SourceDiagnostic {
             SourceDiagnostic::Parse(error) => error.span(),
             SourceDiagnostic::Check(error) => error.span(),
             SourceDiagnostic::Symbol(error) => error.span(),
+            SourceDiagnostic::Step7(error) => error.span(),
         }
     }
 

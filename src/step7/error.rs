@@ -227,7 +227,7 @@ impl S7ParseError {
     }
 
     /// The code, for tests and tools.
-    pub fn code(&self) -> String {
+    pub fn stable_code(&self) -> String {
         Diagnostic::code(self).map_or_else(String::new, |code| code.to_string())
     }
 }

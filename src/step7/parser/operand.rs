@@ -4,7 +4,6 @@
 
 use nom::Parser;
 use nom::branch::alt;
-use nom::combinator::opt;
 use nom::multi::separated_list1;
 use nom::sequence::{delimited, preceded};
 
@@ -48,6 +47,12 @@ pub fn operand<'a>(ctx: Ctx<'a>, expect: Expect) -> impl Fn(Tokens<'a>) -> PResu
         }
         match expect {
             Expect::Label if first.kind == TokenKind::Word => {
+                // `JU PB 3`: a STEP 5 block jump.
+                if input.second().is_some()
+                    && let Some(diagnostic) = step5::operand(ctx, input)
+                {
+                    return Err(Fail::with(diagnostic));
+                }
                 return Ok((input.skip(1), S7Operand::Label(name(ctx, first))));
             }
             Expect::Count if first.kind == TokenKind::Number => {
@@ -349,7 +354,7 @@ fn address_operand<'a>(ctx: Ctx<'a>, input: Tokens<'a>) -> Option<PResult<'a, S7
                 indirect(ctx, area, width, first, rest)
             }
             Some(token) if token.kind == TokenKind::Number => {
-                let (rest, (byte, bit)) = match location(ctx, width, token, rest.skip(1)) {
+                let (rest, (byte, bit)) = match location(ctx, width, first, token, rest.skip(1)) {
                     Ok(found) => found,
                     Err(error) => return Some(Err(error)),
                 };
@@ -418,6 +423,7 @@ fn bad_address(ctx: Ctx<'_>, first: Token, last: Token, width: AccessWidth) -> n
 fn location<'a>(
     ctx: Ctx<'a>,
     width: AccessWidth,
+    area: Token,
     token: Token,
     rest: Tokens<'a>,
 ) -> Result<(Tokens<'a>, (u32, u8)), nom::Err<Fail>> {
@@ -433,11 +439,7 @@ fn location<'a>(
     };
     match parsed {
         Some(found) => Ok((rest, found)),
-        None => Err(Fail::with(S7ParseError::BadAddress {
-            text: ctx.text(token).into(),
-            at: ctx.span(token),
-            expected: address_shape(width).into(),
-        })),
+        None => Err(bad_address(ctx, area, token, width)),
     }
 }
 
@@ -946,13 +948,25 @@ mod tests {
     #[test]
     fn bad_addresses() {
         let error = parse_in(MnemonicSet::English, "I 0.8", Expect::Value).unwrap_err();
-        assert_eq!(error.diagnostic.unwrap().code(), "awl::s7::bad_address");
+        assert_eq!(
+            error.diagnostic.unwrap().stable_code(),
+            "awl::s7::bad_address"
+        );
         let error = parse_in(MnemonicSet::English, "I 4", Expect::Value).unwrap_err();
-        assert_eq!(error.diagnostic.unwrap().code(), "awl::s7::bad_address");
+        assert_eq!(
+            error.diagnostic.unwrap().stable_code(),
+            "awl::s7::bad_address"
+        );
         let error = parse_in(MnemonicSet::English, "MW 1.0", Expect::Value).unwrap_err();
-        assert_eq!(error.diagnostic.unwrap().code(), "awl::s7::bad_address");
+        assert_eq!(
+            error.diagnostic.unwrap().stable_code(),
+            "awl::s7::bad_address"
+        );
         let error = parse_in(MnemonicSet::English, "XY 1", Expect::Value).unwrap_err();
-        assert_eq!(error.diagnostic.unwrap().code(), "awl::s7::unknown_operand");
+        assert_eq!(
+            error.diagnostic.unwrap().stable_code(),
+            "awl::s7::unknown_operand"
+        );
     }
 
     #[test]
@@ -1005,7 +1019,10 @@ mod tests {
             S7Operand::IndirectLocal { .. }
         ));
         let error = parse_in(MnemonicSet::English, "MW [MW 10]", Expect::Value).unwrap_err();
-        assert_eq!(error.diagnostic.unwrap().code(), "awl::s7::bad_address");
+        assert_eq!(
+            error.diagnostic.unwrap().stable_code(),
+            "awl::s7::bad_address"
+        );
     }
 
     #[test]

@@ -28,6 +28,13 @@ pub enum Line {
 /// Parses the tokens of one statement (without its `;` and line ends).
 pub fn statement(ctx: Ctx<'_>, tokens: &[Token]) -> Result<Line, S7ParseError> {
     let input = Tokens::new(tokens);
+    // `DES :EIN I BI` would read as a label `DES`.
+    let declaration = input.first().and_then(|first| ctx.word(first));
+    if matches!(declaration.as_deref(), Some("DES" | "BEZ"))
+        && let Some(diagnostic) = input.first().and_then(|first| step5::operation(ctx, first))
+    {
+        return Err(diagnostic);
+    }
     let (input, label) = label(ctx, input)?;
     let Some(first) = input.first() else {
         let label = label.expect("a statement has tokens");
