@@ -623,6 +623,12 @@ impl<'a> Parser<'a> {
                     (S7BlockRef::Number { kind, number }, rest)
                 }
                 _ => {
+                    if let Some(nom::Err::Failure(fail) | nom::Err::Error(fail)) =
+                        statement::negative_block_number(ctx, line)
+                        && let Some(diagnostic) = fail.diagnostic
+                    {
+                        return Err(*diagnostic);
+                    }
                     return Err(statement::unexpected(
                         ctx,
                         token,

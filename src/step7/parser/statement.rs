@@ -451,12 +451,28 @@ fn instance_block<'a>(ctx: Ctx<'a>, input: Tokens<'a>) -> PResult<'a, S7BlockRef
         }
         Some(_) => match block_number_tokens(ctx, input) {
             Some((Some((kind, number)), rest)) => Ok((rest, S7BlockRef::Number { kind, number })),
-            _ => Err(fail(
-                input,
-                "a block such as `FC 1`, `FB 2, DB 2` or `\"Name\"`",
-            )),
+            _ => Err(negative_block_number(ctx, input).unwrap_or_else(|| {
+                fail(input, "a block such as `FC 1`, `FB 2, DB 2` or `\"Name\"`")
+            })),
         },
         None => Err(fail(input, "a block such as `FC 1`")),
+    }
+}
+
+/// awlsim's internal blocks `SFC -1`, `SFB -1`: no block number of STEP 7.
+pub fn negative_block_number(ctx: Ctx<'_>, input: Tokens<'_>) -> Option<nom::Err<Fail>> {
+    match input.tokens {
+        [word, minus, number, ..]
+            if word.kind == TokenKind::Word
+                && minus.kind == TokenKind::Minus
+                && number.kind == TokenKind::Number =>
+        {
+            Some(Fail::with(S7ParseError::BlockNumber {
+                number: format!("-{}", ctx.text(*number)),
+                at: ctx.span_of(*minus, *number),
+            }))
+        }
+        _ => None,
     }
 }
 

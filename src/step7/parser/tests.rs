@@ -619,6 +619,7 @@ fn block_level_errors() {
 #[test]
 fn statement_errors() {
     assert_eq!(codes("LOOPS: NOP 0\n"), ["awl::s7::bad_label"]);
+    assert_eq!(codes("CALL SFC -1\n"), ["awl::s7::block_number"]);
     assert_eq!(codes("L\n"), ["awl::s7::missing_operand"]);
     assert_eq!(codes("A X 1.0\n"), ["awl::s7::unknown_operand"]);
     assert_eq!(codes("L 5 6\n"), ["awl::s7::unexpected_token"]);
