@@ -6,6 +6,7 @@ use thiserror::Error;
 use crate::compiler::CheckError;
 use crate::parser::ParseError;
 use crate::source::{SourceSet, Span};
+use crate::step7::error::S7ParseError;
 use crate::symbols::SymbolError;
 
 /// A diagnostic of the front end, about one source file.
@@ -22,7 +23,7 @@ pub enum SourceDiagnostic {
     Symbol(#[from] SymbolError),
     #[error(transparent)]
     #[diagnostic(transparent)]
-    Step7(#[from] crate::step7::parse::S7ParseError),
+    Step7(#[from] S7ParseError),
 }
 
 impl SourceDiagnostic {

@@ -251,14 +251,14 @@ fn is_step7(sources: &SourceSet, language: Language) -> bool {
 
 /// The STEP 7 front end: each file parsed as STEP 7, all compiled together.
 fn build_step7(sources: SourceSet, language: Language, profile: &'static Profile) -> Frontend {
-    let options = crate::step7::parse::ParseOptions {
+    let options = crate::step7::ParseOptions {
         mnemonics: language.mnemonics,
         extensions: language.extensions,
     };
     let mut diagnostics = Vec::new();
     let mut units = Vec::with_capacity(sources.files.len());
     for (id, file) in sources.files.iter().enumerate() {
-        let parsed = crate::step7::parse::parse(id as u16, &file.text, options);
+        let parsed = crate::step7::parse(id as u16, &file.text, options);
         diagnostics.extend(parsed.errors.into_iter().map(SourceDiagnostic::Step7));
         units.push(parsed.unit);
     }

@@ -96,46 +96,6 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
             "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  I 0.0;\n      =  Q 4.0;\nEND_ORGANIZATION_BLOCK\n".into(),
         ),
         (
-            "awl::s7::unknown_operation",
-            "speed7",
-            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      JCC m1;\nm1:   NOP 0;\nEND_ORGANIZATION_BLOCK\n".into(),
-        ),
-        (
-            "awl::s7::bad_operand",
-            "speed7",
-            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  I 0.9;\nEND_ORGANIZATION_BLOCK\n".into(),
-        ),
-        (
-            "awl::s7::bad_constant",
-            "speed7",
-            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L  W#16#12345;\nEND_ORGANIZATION_BLOCK\n".into(),
-        ),
-        (
-            "awl::s7::syntax",
-            "speed7",
-            "FUNCTION FC 1 : VOID\nVAR_INPUT\n  speed INT;\nEND_VAR\nBEGIN\n      NOP 0;\nEND_FUNCTION\n".into(),
-        ),
-        (
-            "awl::s7::unclosed_block",
-            "speed7",
-            "FUNCTION FC 1 : VOID\nBEGIN\n      NOP 0;\n".into(),
-        ),
-        (
-            "awl::s7::step5_spelling",
-            "speed7",
-            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L  KF +5;\nEND_ORGANIZATION_BLOCK\n".into(),
-        ),
-        (
-            "awl::s7::mixed_mnemonics",
-            "speed7",
-            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  I 0.0;\n      SPB m1;\nm1:   NOP 0;\nEND_ORGANIZATION_BLOCK\n".into(),
-        ),
-        (
-            "awl::s7::extension_not_enabled",
-            "speed7",
-            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      __STWRST;\nEND_ORGANIZATION_BLOCK\n".into(),
-        ),
-        (
             "awl::parse::block_number",
             "sinumerik-840c",
             "PB 300\n      BE\n".into(),
@@ -348,7 +308,6 @@ fn cases_cover_the_front_end_codes() {
     {
         let front_end = code.starts_with("awl::lex")
             || code.starts_with("awl::parse")
-            || code.starts_with("awl::s7")
             || code.starts_with("awl::check");
         if front_end {
             assert!(covered.contains(&code), "{code} has no snapshot case");

@@ -140,6 +140,44 @@ fn every_english_word_is_a_terminal_of_the_grammar() {
     }
 }
 
+#[test]
+fn every_step7_english_word_is_a_terminal_of_its_grammar() {
+    use awl::step7::mnemonics as s7;
+    let grammar = read("grammar/stl7.ebnf");
+    let words = s7::OPERATIONS
+        .iter()
+        .chain(s7::EXTENSION_OPERATIONS)
+        .map(|words| words.en)
+        .chain(s7::AREAS.iter().map(|area| area.en))
+        .chain(s7::CONDITIONS.iter().map(|(_, en, _)| *en));
+    for word in words {
+        assert!(
+            grammar.contains(&format!("\"{word}\"")),
+            "\"{word}\" is not in grammar/stl7.ebnf"
+        );
+    }
+}
+
+/// Every STEP 7 operation word of both sets is in the table of grammar/README.md.
+#[test]
+fn every_step7_word_is_in_the_readme_table() {
+    use awl::step7::mnemonics as s7;
+    let readme = read("grammar/README.md");
+    let table = &readme[readme.find("# STEP 7 STL").expect("the STEP 7 section")..];
+    for words in s7::OPERATIONS {
+        for word in [words.en, words.de] {
+            let listed = table.contains(&format!("`{word}`"))
+                || table.contains(&format!("`{word} "))
+                || table.contains(&format!(" {word} "))
+                || table.contains(&format!(" {word}`"));
+            assert!(
+                listed,
+                "`{word}` is not in the STEP 7 table of grammar/README.md"
+            );
+        }
+    }
+}
+
 /// Every `code(awl::…)` in the sources has a page in errors.md, and every page a code.
 #[test]
 fn every_error_code_has_a_page() {

@@ -210,8 +210,6 @@ pub enum S7Operand {
     Block(S7BlockRef),
     /// A number where the operation takes one: `SLW 3`, `+AR1 P#…` is a constant instead.
     Number(i64),
-    /// `A ==0`, `O OV`, `AN BR`: a status condition as a bit operand.
-    Status(StatusCondition),
     /// `L DBNO`, `L DBLG`, `L DINO`, `L DILG`.
     DbRegister(DbRegister),
     /// `LAR1 AR2`, `TAR1 AR2`: an address register as the operand.
@@ -220,21 +218,55 @@ pub enum S7Operand {
     Extension(Extension),
     /// `__ASSERT== a, b`: two operands.
     Pair(Box<S7Operand>, Box<S7Operand>),
+    /// `MW [#pointer]`, `DBX [#offset]`: memory-indirect through a block-local double word
+    /// (a word for timers and counters).
+    IndirectLocal {
+        area: S7Area,
+        width: AccessWidth,
+        pointer: Vec<PathPart>,
+    },
+    /// `DB1.member`, `DB1.values[2].on`: a member of a global data block by name.
+    DbMember {
+        db: u16,
+        path: Vec<PathPart>,
+    },
+    /// `P##local`, `P#DB1.member`, `P#"symbol"`: a pointer to what the operand names (an
+    /// area pointer, or an ANY pointer where the parameter is one).
+    PointerTo(Box<S7Operand>),
+    /// `A ==0`, `O OV`, `A BR` (German `BIE`): a status condition read by bit logic.
+    Condition(Condition),
+    /// `L W [AR1, P#0.0]`, `A [AR2, P#2.0]`: register-indirect and area-crossing, the area is
+    /// in the address register's pointer. `width` is `Bit` for the bit operations.
+    AreaCrossing {
+        width: AccessWidth,
+        ar: u8,
+        offset: u32,
+    },
 }
 
-/// A status condition read as a bit: `==0`, `<>0`, `>0`, `<0`, `>=0`, `<=0`, `UO`, `OV`,
-/// `OS`, `BR` (German `BIE`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum StatusCondition {
+/// The status conditions bit logic can read: the results of the last arithmetic or comparison
+/// (CC 1 and CC 0), overflow, stored overflow, unordered, and the binary result.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Condition {
+    /// `==0`: result zero.
     Zero,
+    /// `<>0`
     NotZero,
+    /// `>0`
     Positive,
+    /// `<0`
     Negative,
+    /// `>=0`
     PositiveOrZero,
+    /// `<=0`
     NegativeOrZero,
-    Unordered,
+    /// `OV`
     Overflow,
+    /// `OS`
     StoredOverflow,
+    /// `UO`: unordered (a REAL operation with an invalid number).
+    Unordered,
+    /// `BR` (German `BIE`)
     BinaryResult,
 }
 

@@ -163,7 +163,7 @@ pub enum MemOp {
     CallFrom,
 }
 
-pub use super::ast::StatusCondition as Condition;
+pub use super::ast::Condition;
 
 /// Where an S7 operation reads or writes.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -307,7 +307,7 @@ impl super::Compiler<'_> {
             | S7Op::Assign
             | S7Op::Set
             | S7Op::Reset => {
-                if let S7Operand::Status(condition) = operand {
+                if let S7Operand::Condition(condition) = operand {
                     let logic = mem_op(op).unwrap_or(MemOp::And);
                     self.emit(
                         out,
@@ -347,7 +347,7 @@ impl super::Compiler<'_> {
                     self.emit(out, shared, span);
                     return Ok(());
                 }
-                if let S7Operand::Status(condition) = operand {
+                if let S7Operand::Condition(condition) = operand {
                     let logic = mem_op(op).unwrap_or(MemOp::Xor);
                     self.emit(
                         out,

@@ -34,6 +34,7 @@ pub fn compile(
         interfaces: HashMap::new(),
         udts: HashMap::new(),
         data_blocks: HashMap::new(),
+        db_layouts: HashMap::new(),
         tables: S7Tables {
             extensions,
             step7: true,
@@ -76,6 +77,8 @@ struct Compiler<'a> {
     interfaces: HashMap<BlockId, Interface>,
     udts: HashMap<u16, Vec<VarDecl>>,
     data_blocks: HashMap<u16, Vec<u8>>,
+    /// Each data block's members and where they lie (for `DB5.speed`).
+    db_layouts: HashMap<u16, Interface>,
     tables: S7Tables,
     param_lists: Vec<Vec<Resolved>>,
     errors: Vec<CheckError>,
@@ -200,13 +203,19 @@ impl<'a> Compiler<'a> {
             };
             let mut errors = Vec::new();
             let bytes = match instance_of {
-                None => data::global_image(members, initial, &self.udts, &mut errors),
+                None => {
+                    let sections = [(VarKind::Static, members.as_slice())];
+                    let layout = Interface::build(&sections, true, &self.udts);
+                    self.db_layouts.insert(number, layout);
+                    data::global_image(members, initial, &self.udts, &mut errors)
+                }
                 Some(fb) => {
                     let Some(id) = self.block_id(fb, block.header) else {
                         continue;
                     };
                     match self.interfaces.get(&id) {
                         Some(interface) => {
+                            self.db_layouts.insert(number, interface.clone());
                             data::instance_image(interface, initial, &self.udts, &mut errors)
                         }
                         None => {

@@ -193,7 +193,7 @@ impl super::Compiler<'_> {
                 target: Target::Extension(*extension),
                 width: AccessWidth::Double,
             }),
-            S7Operand::Status(condition) => Ok(Place {
+            S7Operand::Condition(condition) => Ok(Place {
                 target: Target::Condition(*condition),
                 width: AccessWidth::Bit,
             }),
@@ -210,6 +210,33 @@ impl super::Compiler<'_> {
                     Err(not_an_operand(at, "a block symbol"))
                 }
             },
+            S7Operand::AreaCrossing { width, ar, offset } => Ok(Place {
+                target: Target::RegisterIndirect {
+                    area: None,
+                    ar: *ar,
+                    offset: *offset,
+                },
+                width: *width,
+            }),
+            S7Operand::IndirectLocal {
+                area,
+                width,
+                pointer,
+            } => {
+                let pointer_place = self.local_place(pointer, at, scope)?;
+                let pointer = self.tables.place(Place {
+                    width: AccessWidth::Double,
+                    ..pointer_place
+                });
+                Ok(Place {
+                    target: Target::MemoryIndirect {
+                        area: indirect_area(*area),
+                        pointer,
+                    },
+                    width: *width,
+                })
+            }
+            S7Operand::DbMember { db, path } => self.db_member_place(*db, path, at),
             S7Operand::Symbol { name, .. } => Err(CheckError::NotSimulated {
                 what: format!("the symbol \"{}\"", name.text),
                 why: "write the absolute address; STEP 7 symbol tables are not read yet".into(),
@@ -217,6 +244,38 @@ impl super::Compiler<'_> {
             }),
             _ => Err(not_an_operand(at, "this operand")),
         }
+    }
+
+    /// `DB5.speed`: a member of a data block declared in the program.
+    fn db_member_place(
+        &mut self,
+        db: u16,
+        path: &[crate::step7::ast::PathPart],
+        at: Span,
+    ) -> Result<Place, CheckError> {
+        let Some(layout) = self.db_layouts.get(&db).cloned() else {
+            return Err(CheckError::UndefinedDb {
+                id: format!("DB {db}"),
+                at,
+            });
+        };
+        let scope = Scope {
+            interface: &layout,
+            block: format!("DB {db}"),
+        };
+        let (variable, ty, offset) = self.resolve_local(path, at, &scope)?;
+        let Home::Instance(base) = variable.home else {
+            return Err(not_an_operand(at, "this member"));
+        };
+        let bits = base.0 + offset;
+        Ok(Place {
+            target: Target::NumberedData {
+                db,
+                byte: bits / 8,
+                bit: (bits % 8) as u8,
+            },
+            width: layout::width_of(&ty).unwrap_or(AccessWidth::Byte),
+        })
     }
 
     /// `#name.member[3]`: a variable of the block's interface.
