@@ -78,6 +78,9 @@ pub struct LevelState {
     pub accu3: u32,
     pub accu4: u32,
     pub status: Status,
+    /// STEP 7's binary result BR, beside the status so the status stays one byte for the
+    /// STEP 5 loop (see [`status`]).
+    pub br: bool,
     pub brackets: Brackets,
     pub open_db: Option<u8>,
     pub block: u16,
@@ -305,6 +308,7 @@ impl Cpu {
                 accu3: 0,
                 accu4: 0,
                 status: Status::default(),
+                br: false,
                 brackets: Brackets::default(),
                 open_db: None,
                 // No block runs before the first cycle; a STOP then names none.
@@ -409,6 +413,7 @@ impl Cpu {
         self.level.params = NO_PARAMS;
         self.level.open_db = None;
         self.level.status = Status::default();
+        self.level.br = false;
         self.level.brackets = Brackets::default();
         self.level.interrupt_images = false;
         self.level.db = 0;

@@ -6,46 +6,45 @@
 //! string so far in the OR bit and starts a new AND function. `=`, `S`, `R` end the string but
 //! keep the RLO for further assignments.
 //!
-//! STEP 7 adds the binary result BR above the byte; the bit logic's table lookup reads and writes
-//! the low byte only, so it costs the STEP 5 path nothing. [`Status::to_word`] and
-//! [`Status::from_word`] give the STEP 7 status word (`L STW`, `T STW`).
+//! STEP 7's binary result BR is not in the byte: it is `LevelState::br`, beside the status, and
+//! the STEP 7 operations that read or write it take it as an argument. A ninth bit would widen
+//! the status the STEP 5 loop keeps in a register, and that loop never uses it.
+//! [`Status::to_word`] and [`Status::from_word`] give the STEP 7 status word (`L STW`, `T STW`)
+//! with BR as its bit 8.
 
 use crate::compiler::bytecode::Logic;
 
-const RLO: u16 = 1;
+const RLO: u8 = 1;
 /// A logic string is in progress: the next `A`/`O` combines instead of loading.
-const FIRST_CHECK_DONE: u16 = 2;
-const OR_BIT: u16 = 4;
-const CC1: u16 = 8;
-const CC0: u16 = 16;
-const OV: u16 = 32;
+const FIRST_CHECK_DONE: u8 = 2;
+const OR_BIT: u8 = 4;
+const CC1: u8 = 8;
+const CC0: u8 = 16;
+const OV: u8 = 32;
 /// Overflow, stored until a jump on it.
-const OS: u16 = 64;
+const OS: u8 = 64;
 /// STA: the signal state of the last bit operand scanned.
-const STA: u16 = 128;
-/// BR, the binary result (STEP 7 only): outside the byte the bit-logic tables index.
-const BR: u16 = 256;
-/// The bits the bit-logic tables cover.
-const LOGIC_BYTE: u16 = 0xFF;
+const STA: u8 = 128;
 
-/// The STEP 7 status word's bits, in its order (`L STW`): /FC, RLO, STA, OR, OS, OV, CC0, CC1,
-/// BR are bits 0 to 8 ("Statement List (STL) for S7-300 and S7-400 Programming", the status
-/// word in the appendix on programming examples and the chapter on bit logic).
-const WORD_ORDER: [u16; 9] = [FIRST_CHECK_DONE, RLO, STA, OR_BIT, OS, OV, CC0, CC1, BR];
+/// The STEP 7 status word's bits, in its order (`L STW`): /FC, RLO, STA, OR, OS, OV, CC0, CC1
+/// are bits 0 to 7, BR is bit 8 ("Statement List (STL) for S7-300 and S7-400 Programming", the
+/// status word in the appendix on programming examples and the chapter on bit logic).
+const WORD_ORDER: [u8; 8] = [FIRST_CHECK_DONE, RLO, STA, OR_BIT, OS, OV, CC0, CC1];
+const WORD_BR: u16 = 1 << 8;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Status {
-    bits: u16,
+    bits: u8,
 }
 
 impl Status {
     #[inline(always)]
-    fn get(self, bit: u16) -> bool {
+    fn get(self, bit: u8) -> bool {
         self.bits & bit != 0
     }
 
     #[inline(always)]
-    fn put(&mut self, bit: u16, value: bool) {
+    fn put(&mut self, bit: u8, value: bool) {
         self.bits = self.bits & !bit | if value { bit } else { 0 };
     }
 
@@ -74,10 +73,6 @@ impl Status {
     pub fn or_bit(self) -> bool {
         self.get(OR_BIT)
     }
-    /// BR, the binary result (STEP 7).
-    pub fn br(self) -> bool {
-        self.get(BR)
-    }
 
     pub fn set_rlo(&mut self, value: bool) {
         self.put(RLO, value);
@@ -91,9 +86,6 @@ impl Status {
     pub fn set_sta(&mut self, value: bool) {
         self.put(STA, value);
     }
-    pub fn set_br(&mut self, value: bool) {
-        self.put(BR, value);
-    }
     pub fn set_ov(&mut self, value: bool) {
         self.put(OV, value);
     }
@@ -101,24 +93,27 @@ impl Status {
         self.put(OS, value);
     }
 
-    /// The STEP 7 status word: /FC, RLO, STA, OR, OS, OV, CC0, CC1, BR in bits 0 to 8.
-    pub fn to_word(self) -> u16 {
-        WORD_ORDER
+    /// The STEP 7 status word of this status and the binary result `br`: /FC, RLO, STA, OR,
+    /// OS, OV, CC0, CC1, BR in bits 0 to 8.
+    pub fn to_word(self, br: bool) -> u16 {
+        let word = WORD_ORDER
             .iter()
             .enumerate()
             .fold(0, |word, (index, &bit)| {
                 word | u16::from(self.get(bit)) << index
-            })
+            });
+        word | if br { WORD_BR } else { 0 }
     }
 
-    /// The status from a STEP 7 status word's bits 0 to 8; the bits above are ignored.
-    pub fn from_word(word: u16) -> Status {
+    /// The status and the binary result BR from a STEP 7 status word's bits 0 to 8; the bits
+    /// above are ignored.
+    pub fn from_word(word: u16) -> (Status, bool) {
         let bits = WORD_ORDER
             .iter()
             .enumerate()
             .filter(|&(index, _)| word >> index & 1 == 1)
             .fold(0, |bits, (_, &bit)| bits | bit);
-        Status { bits }
+        (Status { bits }, word & WORD_BR != 0)
     }
 
     pub fn set_condition(&mut self, cc1: bool, cc0: bool) {
@@ -148,8 +143,8 @@ impl Status {
     /// and the combination in one table lookup, so the loop's bit logic does not branch.
     #[inline(always)]
     pub fn scanned(&mut self, logic: Logic, value: bool) {
-        let index = usize::from(self.bits & LOGIC_BYTE) << 1 | usize::from(value);
-        self.bits = self.bits & !LOGIC_BYTE | u16::from(SCANNED[logic as usize][index]);
+        let index = usize::from(self.bits) << 1 | usize::from(value);
+        self.bits = SCANNED[logic as usize][index];
     }
 
     /// `O` without an operand: OR of AND functions.
@@ -170,7 +165,7 @@ impl Status {
     /// An operation that forms the RLO on its own (comparison, bit test).
     #[inline(always)]
     pub fn load(&mut self, value: bool) {
-        self.bits = self.bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | u16::from(value);
+        self.bits = self.bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | u8::from(value);
     }
 
     /// After `JU`/`JC`, `BEC` and block ends the RLO is 1 and a new string starts.
@@ -193,20 +188,20 @@ impl Status {
     }
 }
 
-const fn and(bits: u16, value: bool) -> u16 {
+const fn and(bits: u8, value: bool) -> u8 {
     let rlo = bits & RLO != 0;
     let first = bits & FIRST_CHECK_DONE == 0;
     let combined = (rlo | first) & value | (bits & OR_BIT != 0);
-    bits & !RLO | FIRST_CHECK_DONE | combined as u16
+    bits & !RLO | FIRST_CHECK_DONE | combined as u8
 }
 
-const fn or(bits: u16, value: bool) -> u16 {
+const fn or(bits: u8, value: bool) -> u8 {
     let before = if bits & FIRST_CHECK_DONE != 0 {
         bits & RLO != 0
     } else {
         bits & OR_BIT != 0
     };
-    bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | (before | value) as u16
+    bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | (before | value) as u8
 }
 
 /// The status after each of [`Logic`]'s operations, by `status << 1 | signal state`.
@@ -215,11 +210,11 @@ static SCANNED: [[u8; 512]; 4] = {
     let mut index = 0;
     while index < 512 {
         let value = index & 1 != 0;
-        let bits = (index >> 1) as u16 & !STA | if value { STA } else { 0 };
-        tables[Logic::And as usize][index] = and(bits, value) as u8;
-        tables[Logic::AndNot as usize][index] = and(bits, !value) as u8;
-        tables[Logic::Or as usize][index] = or(bits, value) as u8;
-        tables[Logic::OrNot as usize][index] = or(bits, !value) as u8;
+        let bits = (index >> 1) as u8 & !STA | if value { STA } else { 0 };
+        tables[Logic::And as usize][index] = and(bits, value);
+        tables[Logic::AndNot as usize][index] = and(bits, !value);
+        tables[Logic::Or as usize][index] = or(bits, value);
+        tables[Logic::OrNot as usize][index] = or(bits, !value);
         index += 1;
     }
     tables
@@ -242,7 +237,7 @@ pub enum Combination {
 /// STEP 7's scan of a bit operand with the signal state `value` ("Statement List (STL) for
 /// S7-300 and S7-400 Programming", the chapter on bit logic): STA = `value`, /FC = 1. `A`/`AN`
 /// keep the OR bit within a string and clear it at the first check; `O ON X XN` clear it.
-const fn step7_scan(bits: u16, combination: Combination, value: bool) -> u16 {
+const fn step7_scan(bits: u8, combination: Combination, value: bool) -> u8 {
     let first_check_done = bits & FIRST_CHECK_DONE != 0;
     let rlo = bits & RLO != 0;
     let or_bit = bits & OR_BIT != 0;
@@ -259,7 +254,7 @@ const fn step7_scan(bits: u16, combination: Combination, value: bool) -> u16 {
     };
     bits & !(RLO | OR_BIT | STA)
         | FIRST_CHECK_DONE
-        | rlo as u16
+        | rlo as u8
         | if or_bit { OR_BIT } else { 0 }
         | if value { STA } else { 0 }
 }
@@ -279,8 +274,8 @@ static STEP7_SCANNED: [[u8; 512]; 6] = {
     while kind < 6 {
         let mut index = 0;
         while index < 512 {
-            let bits = (index >> 1) as u16;
-            tables[kind][index] = step7_scan(bits, combinations[kind], index & 1 != 0) as u8;
+            let bits = (index >> 1) as u8;
+            tables[kind][index] = step7_scan(bits, combinations[kind], index & 1 != 0);
             index += 1;
         }
         kind += 1;
@@ -293,16 +288,18 @@ impl Status {
     /// table lookup.
     #[inline(always)]
     pub fn scanned_step7(&mut self, combination: Combination, value: bool) {
-        let index = usize::from(self.bits & LOGIC_BYTE) << 1 | usize::from(value);
-        self.bits = self.bits & !LOGIC_BYTE | u16::from(STEP7_SCANNED[combination as usize][index]);
+        let index = usize::from(self.bits) << 1 | usize::from(value);
+        self.bits = STEP7_SCANNED[combination as usize][index];
     }
 }
 
-/// One open bracket: the status before it, and how its result combines.
+/// One open bracket: the status before it, how its result combines, and (STEP 7) the binary
+/// result BR before it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Bracket {
     pub status: Status,
     pub function: Combination,
+    pub br: bool,
 }
 
 pub const MAX_BRACKETS: usize = 8;
@@ -325,14 +322,18 @@ impl Brackets {
         } else {
             Combination::And
         };
-        self.push(*status, function);
+        self.push(*status, function, false);
         status.end_string();
         true
     }
 
     #[inline(always)]
-    fn push(&mut self, status: Status, function: Combination) {
-        self.stack[usize::from(self.depth)] = Bracket { status, function };
+    fn push(&mut self, status: Status, function: Combination, br: bool) {
+        self.stack[usize::from(self.depth)] = Bracket {
+            status,
+            function,
+            br,
+        };
         self.depth += 1;
     }
 
@@ -355,23 +356,29 @@ impl Brackets {
         true
     }
 
-    /// STEP 7's `A( AN( O( ON( X( XN(`: the entry keeps /FC, RLO, OR and BR with the
+    /// STEP 7's `A( AN( O( ON( X( XN(`: the entry keeps /FC, RLO, OR and BR (`br`) with the
     /// function; then OR = 0, STA = 1, /FC = 0 and the RLO stays. `false` when the stack is
     /// full.
-    pub fn open_step7(&mut self, status: &mut Status, function: Combination, limit: u8) -> bool {
+    pub fn open_step7(
+        &mut self,
+        status: &mut Status,
+        br: bool,
+        function: Combination,
+        limit: u8,
+    ) -> bool {
         if self.depth >= limit.min(MAX_BRACKETS as u8) {
             return false;
         }
-        self.push(*status, function);
+        self.push(*status, function, br);
         status.bits = status.bits & !(OR_BIT | FIRST_CHECK_DONE) | STA;
         true
     }
 
     /// STEP 7's `)`: the bracket's RLO combines with the entry's RLO (and, for `A(`/`AN(`, its
-    /// OR bit) by the entry's function, as a scan would; STA = 1, /FC = 1, BR as in the entry.
-    /// The condition codes and overflow bits stay as the bracket left them. `false` when none
-    /// is open.
-    pub fn close_step7(&mut self, status: &mut Status) -> bool {
+    /// OR bit) by the entry's function, as a scan would; STA = 1, /FC = 1, `br` as in the
+    /// entry. The condition codes and overflow bits stay as the bracket left them. `false`
+    /// when none is open.
+    pub fn close_step7(&mut self, status: &mut Status, br: &mut bool) -> bool {
         if self.depth == 0 {
             return false;
         }
@@ -379,7 +386,8 @@ impl Brackets {
         let outer = self.stack[usize::from(self.depth)];
         let combined = step7_scan(outer.status.bits, outer.function, status.rlo());
         let logic = RLO | OR_BIT | FIRST_CHECK_DONE;
-        status.bits = status.bits & !(logic | BR) | combined & logic | outer.status.bits & BR | STA;
+        status.bits = status.bits & !logic | combined & logic | STA;
+        *br = outer.br;
         true
     }
 }
@@ -388,10 +396,9 @@ impl Brackets {
 mod tests {
     use super::*;
 
-    /// Every status, BR included: the tables cover the low byte and leave BR as it was.
     #[test]
     fn the_scan_tables_are_the_scan_then_the_combination() {
-        for bits in 0..=(LOGIC_BYTE | BR) {
+        for bits in 0..=u8::MAX {
             for value in [false, true] {
                 let scanned = Status {
                     bits: bits & !STA | if value { STA } else { 0 },
@@ -404,7 +411,7 @@ mod tests {
                 ] {
                     let mut status = Status { bits };
                     status.scanned(logic, value);
-                    assert_eq!(status.bits, combined, "{logic:?} {value} on {bits:#011b}");
+                    assert_eq!(status.bits, combined, "{logic:?} {value} on {bits:#010b}");
                     assert_eq!(status.sta(), value);
                 }
             }
@@ -415,37 +422,55 @@ mod tests {
     fn the_status_word_has_the_step_7_bit_order() {
         let mut status = Status::default();
         status.set_first_check(true);
-        assert_eq!(status.to_word(), 0x001);
+        assert_eq!(status.to_word(false), 0x001);
         status = Status::default();
         status.set_rlo(true);
-        assert_eq!(status.to_word(), 0x002);
+        assert_eq!(status.to_word(false), 0x002);
         status = Status::default();
         status.set_sta(true);
         status.set_or_bit(true);
-        assert_eq!(status.to_word(), 0x00C);
+        assert_eq!(status.to_word(false), 0x00C);
         status = Status::default();
         status.set_overflow(true);
-        assert_eq!(status.to_word(), 0x030, "OV sets OS");
+        assert_eq!(status.to_word(false), 0x030, "OV sets OS");
         status = Status::default();
         status.set_condition(true, false);
-        assert_eq!(status.to_word(), 0x080);
+        assert_eq!(status.to_word(false), 0x080);
         status.set_condition(false, true);
-        assert_eq!(status.to_word(), 0x040);
-        status = Status::default();
-        status.set_br(true);
-        assert_eq!(status.to_word(), 0x100);
+        assert_eq!(status.to_word(false), 0x040);
+        assert_eq!(Status::default().to_word(true), 0x100, "BR");
     }
 
     #[test]
     fn the_status_word_round_trips() {
         for word in 0..=0x1FF {
-            assert_eq!(Status::from_word(word).to_word(), word);
+            let (status, br) = Status::from_word(word);
+            assert_eq!(status.to_word(br), word);
         }
-        assert_eq!(
-            Status::from_word(0xFE00).to_word(),
-            0,
-            "bits 9 to 15 do not exist"
-        );
+        let (status, br) = Status::from_word(0xFE00);
+        assert_eq!(status.to_word(br), 0, "bits 9 to 15 do not exist");
+    }
+
+    /// BR lives beside the one-byte status: a bracket keeps it, and `L STW`/`T STW` carry it
+    /// as bit 8 of the status word.
+    #[test]
+    fn br_survives_brackets_and_the_status_word_beside_a_one_byte_status() {
+        assert_eq!(std::mem::size_of::<Status>(), 1);
+        for br_before in [false, true] {
+            let mut status = Status::default();
+            let mut br = br_before;
+            let mut brackets = Brackets::default();
+            assert!(brackets.open_step7(&mut status, br, Combination::And, 7));
+            br = !br_before;
+            status.scanned_step7(Combination::Or, true);
+            assert!(brackets.close_step7(&mut status, &mut br));
+            assert_eq!(br, br_before, "`)` gives BR back as `A(` found it");
+
+            let word = status.to_word(br);
+            assert_eq!(word & 0x100 != 0, br_before, "L STW: BR is bit 8");
+            let (loaded, loaded_br) = Status::from_word(word);
+            assert_eq!((loaded, loaded_br), (status, br_before), "T STW");
+        }
     }
 
     fn string(ops: &[(&str, bool)]) -> bool {

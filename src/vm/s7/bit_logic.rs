@@ -2,6 +2,9 @@
 //! `= S R` and `FP FN` do to /FC, RLO, STA, OR and BR ("Statement List (STL) for S7-300 and
 //! S7-400 Programming", the chapter on bit logic instructions).
 //!
+//! BR is not in [`Status`] (see [`crate::vm::status`]): `SAVE` and the nesting stack take it
+//! beside the status.
+//!
 //! The scans and the nesting stack are table lookups and bit operations on the status itself:
 //! [`Status::scanned_step7`], [`Brackets::open_step7`](crate::vm::status::Brackets::open_step7)
 //! and [`Brackets::close_step7`](crate::vm::status::Brackets::close_step7). Here are the
@@ -45,10 +48,10 @@ pub fn not(status: &mut Status) {
     status.set_sta(true);
 }
 
-/// `SAVE`.
+/// `SAVE`: the binary result `br` takes the RLO.
 #[inline]
-pub fn save(status: &mut Status) {
-    status.set_br(status.rlo());
+pub fn save(status: Status, br: &mut bool) {
+    *br = status.rlo();
 }
 
 /// `=`, `S` and `R` on a bit: the string ends; STA is `written` (the RLO, or 0 for `=` under
@@ -91,11 +94,11 @@ mod tests {
 
     /// The low nibble of the status word: OR, STA, RLO, /FC.
     fn nibble(status: Status) -> u16 {
-        status.to_word() & 0xF
+        status.to_word(false) & 0xF
     }
 
     fn with_nibble(nibble: u16) -> Status {
-        Status::from_word(nibble)
+        Status::from_word(nibble).0
     }
 
     /// After `A` with a 1 and with a 0, from each OR/STA/RLO/(FC) combination.
@@ -155,14 +158,15 @@ mod tests {
 
     #[test]
     fn the_scan_keeps_the_other_bits() {
-        let mut status = Status::from_word(0x1F0);
+        let (mut status, br) = Status::from_word(0x1F0);
         status.scanned_step7(Xor, true);
-        assert_eq!(status.to_word() & 0x1F0, 0x1F0);
+        assert_eq!(status.to_word(br) & 0x1F0, 0x1F0);
     }
 
     /// Evaluates a string of STEP 7 bit logic; `(` opens with the function of the next item.
     fn rlo_of(ops: &[(&str, bool)]) -> bool {
         let mut status = Status::default();
+        let mut br = false;
         let mut brackets = Brackets::default();
         for &(op, value) in ops {
             let combination = match op.trim_end_matches('(') {
@@ -173,7 +177,7 @@ mod tests {
                 "X" => Xor,
                 "XN" => XorNot,
                 ")" => {
-                    assert!(brackets.close_step7(&mut status));
+                    assert!(brackets.close_step7(&mut status, &mut br));
                     continue;
                 }
                 "O_" => {
@@ -183,7 +187,7 @@ mod tests {
                 _ => unreachable!("{op}"),
             };
             if op.ends_with('(') {
-                assert!(brackets.open_step7(&mut status, combination, 7));
+                assert!(brackets.open_step7(&mut status, br, combination, 7));
             } else {
                 status.scanned_step7(combination, value);
             }
@@ -253,9 +257,9 @@ mod tests {
             let mut status = Status::default();
             set_rlo(&mut status, !value);
             let mut brackets = Brackets::default();
-            assert!(brackets.open_step7(&mut status, And, 7));
+            assert!(brackets.open_step7(&mut status, false, And, 7));
             status.scanned_step7(And, value);
-            assert!(brackets.close_step7(&mut status));
+            assert!(brackets.close_step7(&mut status, &mut false));
             assert_eq!(status.rlo(), value);
         }
     }
@@ -281,28 +285,29 @@ mod tests {
 
     #[test]
     fn opening_and_closing_set_the_logic_bits() {
-        let mut status = Status::from_word(0b1011);
+        let mut status = with_nibble(0b1011);
         let mut brackets = Brackets::default();
-        assert!(brackets.open_step7(&mut status, Or, 7));
+        assert!(brackets.open_step7(&mut status, false, Or, 7));
         assert_eq!(nibble(status), 0b0110, "OR 0, STA 1, RLO kept, /FC 0");
         status.scanned_step7(And, false);
-        assert!(brackets.close_step7(&mut status));
+        assert!(brackets.close_step7(&mut status, &mut false));
         assert_eq!(nibble(status), 0b0111, "OR 0, STA 1, RLO 1 | 0, /FC 1");
     }
 
     #[test]
     fn closing_restores_br_and_keeps_the_codes() {
         let mut status = Status::default();
-        save(&mut status);
+        let mut br = true;
+        save(status, &mut br);
         let mut brackets = Brackets::default();
         set_rlo(&mut status, true);
-        assert!(brackets.open_step7(&mut status, And, 7));
-        save(&mut status);
+        assert!(brackets.open_step7(&mut status, br, And, 7));
+        save(status, &mut br);
         status.set_condition(true, false);
         status.set_overflow(true);
-        assert!(status.br());
-        assert!(brackets.close_step7(&mut status));
-        assert!(!status.br(), "BR as when the bracket opened");
+        assert!(br);
+        assert!(brackets.close_step7(&mut status, &mut br));
+        assert!(!br, "BR as when the bracket opened");
         assert!(status.cc1() && status.ov() && status.os());
     }
 
@@ -311,13 +316,13 @@ mod tests {
         let mut status = Status::default();
         let mut brackets = Brackets::default();
         for _ in 0..7 {
-            assert!(brackets.open_step7(&mut status, Xor, 7));
+            assert!(brackets.open_step7(&mut status, false, Xor, 7));
         }
-        assert!(!brackets.open_step7(&mut status, Xor, 7));
+        assert!(!brackets.open_step7(&mut status, false, Xor, 7));
         for _ in 0..7 {
-            assert!(brackets.close_step7(&mut status));
+            assert!(brackets.close_step7(&mut status, &mut false));
         }
-        assert!(!brackets.close_step7(&mut status));
+        assert!(!brackets.close_step7(&mut status, &mut false));
     }
 
     #[test]
@@ -336,31 +341,32 @@ mod tests {
 
     #[test]
     fn set_clr_not_save() {
-        let mut status = Status::from_word(0b1001);
+        let mut status = with_nibble(0b1001);
         set_rlo(&mut status, true);
         assert_eq!(nibble(status), 0b0110);
         set_rlo(&mut status, false);
         assert_eq!(nibble(status), 0b0000);
         not(&mut status);
         assert_eq!(nibble(status), 0b0110);
-        save(&mut status);
-        assert!(status.br());
+        let mut br = false;
+        save(status, &mut br);
+        assert!(br);
         not(&mut status);
         assert_eq!(nibble(status), 0b0100);
-        save(&mut status);
-        assert!(!status.br());
+        save(status, &mut br);
+        assert!(!br);
     }
 
     #[test]
     fn assignment_ends_the_string() {
-        let mut status = Status::from_word(0b1011);
+        let mut status = with_nibble(0b1011);
         let rlo = status.rlo();
         assigned(&mut status, rlo);
         assert_eq!(nibble(status), 0b0110, "OR 0, STA = RLO, RLO kept, /FC 0");
-        let mut status = Status::from_word(0b1011);
+        let mut status = with_nibble(0b1011);
         assigned(&mut status, false);
         assert_eq!(nibble(status), 0b0010, "under a switched-off MCR");
-        let mut status = Status::from_word(0b1101);
+        let mut status = with_nibble(0b1101);
         timer_counter_ended(&mut status);
         assert_eq!(nibble(status), 0b0100, "STA stays");
     }

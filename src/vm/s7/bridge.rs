@@ -53,6 +53,7 @@ pub fn accumulator(level: &mut LevelState, op: S7Op, count: u8) -> Result<(), Fa
         accu3,
         accu4,
         status,
+        br,
         ..
     } = level;
     let two = |kind: Arith| kind;
@@ -61,12 +62,12 @@ pub fn accumulator(level: &mut LevelState, op: S7Op, count: u8) -> Result<(), Fa
         S7Op::SetRlo => bit_logic::set_rlo(status, true),
         S7Op::ClearRlo => bit_logic::set_rlo(status, false),
         S7Op::Not => bit_logic::not(status),
-        S7Op::Save => bit_logic::save(status),
+        S7Op::Save => bit_logic::save(*status, br),
         S7Op::LoadStatusWord => {
             *accu2 = *accu1;
-            *accu1 = u32::from(status.to_word());
+            *accu1 = u32::from(status.to_word(*br));
         }
-        S7Op::TransferStatusWord => *status = Status::from_word(*accu1 as u16),
+        S7Op::TransferStatusWord => (*status, *br) = Status::from_word(*accu1 as u16),
         S7Op::AddInt | S7Op::SubInt | S7Op::MulInt | S7Op::DivInt => {
             let kind = match op {
                 S7Op::AddInt => Arith::Add,
@@ -242,8 +243,8 @@ fn jump_of(op: S7Op) -> Option<Jump> {
     })
 }
 
-pub fn jump_taken(status: &mut Status, op: S7Op) -> bool {
-    jump_of(op).is_some_and(|jump| jump::taken(jump, status))
+pub fn jump_taken(level: &mut LevelState, op: S7Op) -> bool {
+    jump_of(op).is_some_and(|jump| jump::taken(jump, &mut level.status, &mut level.br))
 }
 
 pub fn loop_taken(accu1: &mut u32) -> bool {
@@ -264,14 +265,14 @@ fn combination(op: S7Op) -> Combination {
 pub fn open_bracket(level: &mut LevelState, op: S7Op, depth: u8) -> bool {
     level
         .brackets
-        .open_step7(&mut level.status, combination(op), depth)
+        .open_step7(&mut level.status, level.br, combination(op), depth)
 }
 
 pub fn close_bracket(level: &mut LevelState) -> bool {
-    level.brackets.close_step7(&mut level.status)
+    level.brackets.close_step7(&mut level.status, &mut level.br)
 }
 
-pub fn condition(status: Status, condition: ast::Condition) -> bool {
+pub fn condition(level: &LevelState, condition: ast::Condition) -> bool {
     let condition = match condition {
         ast::Condition::Zero => Condition::Zero,
         ast::Condition::NotZero => Condition::NotZero,
@@ -284,7 +285,7 @@ pub fn condition(status: Status, condition: ast::Condition) -> bool {
         ast::Condition::StoredOverflow => Condition::StoredOverflow,
         ast::Condition::BinaryResult => Condition::BinaryResult,
     };
-    condition.holds(status)
+    condition.holds(level.status, level.br)
 }
 
 /// `A AN O ON X XN` with a bit whose signal state is `value`.
@@ -311,12 +312,15 @@ pub fn edge(status: &mut Status, rising: bool, memory: bool) -> bool {
     bit_logic::edge(status, rising, memory)
 }
 
+/// `__STWRST`: the whole status word, BR included, is 0.
 pub fn reset_status_word(level: &mut LevelState) {
     level.status = Status::default();
+    level.br = false;
 }
 
+/// The status word with BR as bit 8.
 pub fn status_word(level: &LevelState) -> u32 {
-    u32::from(level.status.to_word())
+    u32::from(level.status.to_word(level.br))
 }
 
 /// A passed `__ASSERT` clears /FC (a new logic string starts), as awlsim does.

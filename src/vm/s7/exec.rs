@@ -40,7 +40,7 @@ impl Cpu {
                 self.level.accu1 = self.level.accu1.wrapping_add(value);
             }
             S7Code::Jump { op, target } => {
-                if bridge::jump_taken(&mut self.level.status, op) {
+                if bridge::jump_taken(&mut self.level, op) {
                     return Ok(Flow::Jump(u32::from(target)));
                 }
             }
@@ -69,7 +69,7 @@ impl Cpu {
                 }
             }
             S7Code::Condition { logic, condition } => {
-                let value = bridge::condition(self.level.status, condition);
+                let value = bridge::condition(&self.level, condition);
                 bridge::combine(&mut self.level.status, logic, value);
             }
             S7Code::OpenDb { instance, number } => self.open_s7_db(instance, number)?,
@@ -381,7 +381,7 @@ impl Cpu {
             Located::Special(Target::Extension(extension)) => Ok(self.extension_value(extension)),
             Located::Special(Target::DbRegister(register)) => Ok(self.db_register(register)),
             Located::Special(Target::Condition(condition)) => {
-                Ok(u32::from(bridge::condition(self.level.status, condition)))
+                Ok(u32::from(bridge::condition(&self.level, condition)))
             }
             other => Err(fault(format!("{other:?} has no value"))),
         }

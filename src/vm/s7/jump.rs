@@ -10,6 +10,9 @@
 //! - The status conditions read CC1/CC0, OV, OS and BR and change nothing (`A OS` leaves OS);
 //!   `<>0` is CC1 or CC0, so it also holds after an unordered result, while `JN` jumps on
 //!   CC1 ≠ CC0 only.
+//!
+//! BR is not in [`Status`] (see [`crate::vm::status`]): the functions that read or write it
+//! take it beside the status.
 
 use crate::vm::status::Status;
 
@@ -40,9 +43,10 @@ pub enum Condition {
 }
 
 impl Condition {
-    /// The condition's signal state, for `A`, `AN`, `O`, `ON`, `X`, `XN` with it.
+    /// The condition's signal state, for `A`, `AN`, `O`, `ON`, `X`, `XN` with it; `br` is the
+    /// binary result.
     #[inline]
-    pub fn holds(self, status: Status) -> bool {
+    pub fn holds(self, status: Status, br: bool) -> bool {
         let (cc1, cc0) = (status.cc1(), status.cc0());
         match self {
             Condition::Zero => !cc1 && !cc0,
@@ -54,7 +58,7 @@ impl Condition {
             Condition::Unordered => cc1 && cc0,
             Condition::Overflow => status.ov(),
             Condition::StoredOverflow => status.os(),
-            Condition::BinaryResult => status.br(),
+            Condition::BinaryResult => br,
         }
     }
 }
@@ -104,14 +108,14 @@ fn after_rlo_jump(status: &mut Status) {
     status.set_rlo(true);
 }
 
-/// Whether `jump` jumps, with its effect on the status.
+/// Whether `jump` jumps, with its effect on the status and the binary result `br`.
 #[inline]
-pub fn taken(jump: Jump, status: &mut Status) -> bool {
+pub fn taken(jump: Jump, status: &mut Status, br: &mut bool) -> bool {
     let rlo = status.rlo();
     match jump {
         Jump::Rlo | Jump::NotRlo | Jump::RloSavingBr | Jump::NotRloSavingBr => {
             if matches!(jump, Jump::RloSavingBr | Jump::NotRloSavingBr) {
-                status.set_br(rlo);
+                *br = rlo;
             }
             after_rlo_jump(status);
             rlo == matches!(jump, Jump::Rlo | Jump::RloSavingBr)
@@ -120,7 +124,7 @@ pub fn taken(jump: Jump, status: &mut Status) -> bool {
             status.set_first_check(false);
             status.set_or_bit(false);
             status.set_sta(true);
-            status.br() == (jump == Jump::Br)
+            *br == (jump == Jump::Br)
         }
         Jump::Overflow => status.ov(),
         Jump::StoredOverflow => {
@@ -128,13 +132,13 @@ pub fn taken(jump: Jump, status: &mut Status) -> bool {
             status.set_os(false);
             os
         }
-        Jump::Zero => Condition::Zero.holds(*status),
+        Jump::Zero => Condition::Zero.holds(*status, *br),
         Jump::NotZero => status.cc1() != status.cc0(),
-        Jump::Positive => Condition::Positive.holds(*status),
-        Jump::Minus => Condition::Negative.holds(*status),
-        Jump::PositiveOrZero => Condition::PositiveOrZero.holds(*status),
-        Jump::MinusOrZero => Condition::NegativeOrZero.holds(*status),
-        Jump::Unordered => Condition::Unordered.holds(*status),
+        Jump::Positive => Condition::Positive.holds(*status, *br),
+        Jump::Minus => Condition::Negative.holds(*status, *br),
+        Jump::PositiveOrZero => Condition::PositiveOrZero.holds(*status, *br),
+        Jump::MinusOrZero => Condition::NegativeOrZero.holds(*status, *br),
+        Jump::Unordered => Condition::Unordered.holds(*status, *br),
     }
 }
 
@@ -172,7 +176,7 @@ mod tests {
         ];
         for (condition, expected) in table {
             let got = [(false, false), (false, true), (true, false), (true, true)]
-                .map(|(cc1, cc0)| condition.holds(codes(cc1, cc0)));
+                .map(|(cc1, cc0)| condition.holds(codes(cc1, cc0), false));
             assert_eq!(got, expected, "{condition:?}");
         }
     }
@@ -181,23 +185,26 @@ mod tests {
     fn overflow_conditions_read_without_clearing() {
         let mut status = Status::default();
         status.set_overflow(true);
-        status.set_br(true);
-        assert!(Condition::Overflow.holds(status));
-        assert!(Condition::StoredOverflow.holds(status));
-        assert!(Condition::BinaryResult.holds(status));
+        assert!(Condition::Overflow.holds(status, false));
+        assert!(Condition::StoredOverflow.holds(status, false));
+        assert!(Condition::BinaryResult.holds(status, true));
+        assert!(!Condition::BinaryResult.holds(status, false));
         assert!(status.os(), "A OS leaves OS");
         status.set_ov(false);
-        assert!(!Condition::Overflow.holds(status) && Condition::StoredOverflow.holds(status));
+        assert!(
+            !Condition::Overflow.holds(status, false)
+                && Condition::StoredOverflow.holds(status, false)
+        );
     }
 
     /// /FC, RLO, STA, OR, BR.
-    fn logic_bits(status: Status) -> [u8; 5] {
+    fn logic_bits(status: Status, br: bool) -> [u8; 5] {
         [
             status.first_check(),
             status.rlo(),
             status.sta(),
             status.or_bit(),
-            status.br(),
+            br,
         ]
         .map(u8::from)
     }
@@ -219,8 +226,9 @@ mod tests {
             (Jump::NotRlo, true, false),
         ] {
             let mut status = string_with_rlo(rlo);
-            assert_eq!(taken(jump, &mut status), jumps, "{jump:?} {rlo}");
-            assert_eq!(logic_bits(status), [0, 1, 1, 0, 0], "{jump:?} {rlo}");
+            let mut br = false;
+            assert_eq!(taken(jump, &mut status, &mut br), jumps, "{jump:?} {rlo}");
+            assert_eq!(logic_bits(status, br), [0, 1, 1, 0, 0], "{jump:?} {rlo}");
         }
     }
 
@@ -233,10 +241,10 @@ mod tests {
             (Jump::NotRloSavingBr, true, false),
         ] {
             let mut status = string_with_rlo(rlo);
-            status.set_br(!rlo);
-            assert_eq!(taken(jump, &mut status), jumps, "{jump:?} {rlo}");
+            let mut br = !rlo;
+            assert_eq!(taken(jump, &mut status, &mut br), jumps, "{jump:?} {rlo}");
             assert_eq!(
-                logic_bits(status),
+                logic_bits(status, br),
                 [0, 1, 1, 0, u8::from(rlo)],
                 "{jump:?} {rlo}"
             );
@@ -252,10 +260,10 @@ mod tests {
             (Jump::NotBr, true, false),
         ] {
             let mut status = string_with_rlo(false);
-            status.set_br(br);
-            assert_eq!(taken(jump, &mut status), jumps, "{jump:?} {br}");
+            let mut kept = br;
+            assert_eq!(taken(jump, &mut status, &mut kept), jumps, "{jump:?} {br}");
             assert_eq!(
-                logic_bits(status),
+                logic_bits(status, kept),
                 [0, 0, 1, 0, u8::from(br)],
                 "{jump:?} {br}"
             );
@@ -278,8 +286,9 @@ mod tests {
                 [(false, false), (false, true), (true, false), (true, true)].map(|(cc1, cc0)| {
                     let mut status = codes(cc1, cc0);
                     let before = status;
-                    let jumps = taken(jump, &mut status);
-                    assert_eq!(status, before, "{jump:?} changes nothing");
+                    let mut br = true;
+                    let jumps = taken(jump, &mut status, &mut br);
+                    assert_eq!((status, br), (before, true), "{jump:?} changes nothing");
                     jumps
                 });
             assert_eq!(got, expected, "{jump:?}");
@@ -289,14 +298,15 @@ mod tests {
     #[test]
     fn jo_keeps_os_and_jos_clears_it() {
         let mut status = Status::default();
-        assert!(!taken(Jump::Overflow, &mut status));
-        assert!(!taken(Jump::StoredOverflow, &mut status));
+        let br = &mut false;
+        assert!(!taken(Jump::Overflow, &mut status, br));
+        assert!(!taken(Jump::StoredOverflow, &mut status, br));
         status.set_overflow(true);
-        assert!(taken(Jump::Overflow, &mut status));
+        assert!(taken(Jump::Overflow, &mut status, br));
         assert!(status.os());
-        assert!(taken(Jump::StoredOverflow, &mut status));
+        assert!(taken(Jump::StoredOverflow, &mut status, br));
         assert!(!status.os() && status.ov(), "JOS clears OS only");
-        assert!(!taken(Jump::StoredOverflow, &mut status));
+        assert!(!taken(Jump::StoredOverflow, &mut status, br));
     }
 
     #[test]

@@ -18,8 +18,9 @@
 //! - [`memory`]: where an operand is (L stack, DB/DI, parameters, indirect addresses);
 //!   [`exec`]: the out-of-line executor the loop calls for [`crate::step7::bytecode::S7Code`].
 //!
-//! The status word itself (BR, `L STW`/`T STW` as [`Status::to_word`] and
-//! [`Status::from_word`], `__STWRST` as `Status::default()`) is [`super::status::Status`].
+//! The status word itself (`L STW`/`T STW` as [`Status::to_word`] and [`Status::from_word`],
+//! `__STWRST` as `Status::default()`) is [`super::status::Status`]; BR is beside it,
+//! [`super::LevelState::br`].
 //!
 //! [`Status::to_word`]: super::status::Status::to_word
 //! [`Status::from_word`]: super::status::Status::from_word
