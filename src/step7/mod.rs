@@ -7,3 +7,4 @@ pub mod bytecode;
 pub mod compile;
 pub mod mnemonics;
 pub mod parse;
+pub mod text;
