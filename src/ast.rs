@@ -11,13 +11,14 @@ pub struct BlockId {
 }
 
 impl BlockId {
-    /// `PB 3`, `pb3`, `OB 1`: a block as the command line names it.
+    /// `PB 3`, `pb3`, `OB 1`, STEP 7's `FC 1`: a block as the command line names it.
     pub fn parse(text: &str) -> Option<BlockId> {
         let text = text.trim();
         let split = text.find(|c: char| !c.is_ascii_alphabetic())?;
         let (kind, number) = text.split_at(split);
         let kind = BlockKind::ALL
             .into_iter()
+            .chain([BlockKind::Fc])
             .find(|k| k.name().eq_ignore_ascii_case(kind))?;
         Some(BlockId {
             kind,
@@ -151,4 +152,17 @@ pub struct DataWord {
     pub index: u16,
     pub constant: Constant,
     pub span: Span,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn command_line_blocks_include_step7_functions() {
+        let fc = BlockId::parse("fc 12").unwrap();
+        assert_eq!((fc.kind, fc.number), (BlockKind::Fc, 12));
+        assert_eq!(BlockId::parse("PB3").unwrap().kind, BlockKind::Pb);
+        assert!(BlockId::parse("XY 1").is_none());
+    }
 }

@@ -76,6 +76,9 @@ pub struct Frontend {
     /// The parsed program files with their symbols resolved: what each statement was written
     /// as (`awl dump` shows constants and labels as written).
     pub units: Vec<SourceUnit>,
+    /// The parsed STEP 7 files (empty for a STEP 5 program): what each STEP 7 statement was
+    /// written as, for the tools that show S7 operations (`awl dump`, program status).
+    pub s7_units: Vec<crate::step7::ast::S7Unit>,
 }
 
 impl Frontend {
@@ -224,6 +227,7 @@ pub fn build_with_symbols(
         diagnostics,
         mnemonics,
         units,
+        s7_units: Vec::new(),
     }
 }
 
@@ -292,6 +296,7 @@ fn build_step7(sources: SourceSet, language: Language, profile: &'static Profile
         diagnostics,
         mnemonics,
         units: Vec::new(),
+        s7_units: units,
     }
 }
 

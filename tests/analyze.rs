@@ -253,3 +253,44 @@ fn the_readme_shows_the_current_analysis() {
         "README.md's analysis of Fig. 5.2 is stale:\n{text}"
     );
 }
+
+fn on_speed7(source: &str) -> Analysis {
+    analysis(source, "speed7", InterruptPoints::Operation, 150_000_000)
+}
+
+const S7_LOOP: &str = "FUNCTION FC 1 : VOID\nBEGIN\n      L     5;\nnext: T     MW 0;   // @bound 5\n      L     MW 0;\n      LOOP  next;\nEND_FUNCTION\n\nORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL FC 1;\nEND_ORGANIZATION_BLOCK\n";
+
+#[test]
+fn a_step7_loop_is_a_loop_with_its_bound_and_an_fc_call_is_a_call() {
+    let analysis = on_speed7(S7_LOOP);
+    let fc = block(&analysis, "FC 1");
+    assert_eq!(fc.loops.len(), 1);
+    assert_eq!(fc.loops[0].bound, Some(5));
+    assert!(fc.wcet_ns.is_some());
+    assert_eq!(block(&analysis, "OB 1").calls, vec!["FC 1"]);
+    let unbounded = on_speed7(&S7_LOOP.replace("// @bound 5", ""));
+    assert_eq!(block(&unbounded, "FC 1").wcet_ns, None);
+}
+
+/// A jump list whose second entry leads to the longer branch; `short` makes both as long.
+fn jump_list(short: bool) -> String {
+    let long = if short {
+        ""
+    } else {
+        "      L 2;\n      T MW 6;\n      L 3;\n      T MW 8;\n"
+    };
+    format!(
+        "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L     MB 0;\n      JL    over;\n      JU    one;\n      JU    two;\nover: JU    done;\none:  L 1;\n      T MW 2;\n      JU    done;\ntwo:  L 1;\n      T MW 4;\n{long}      JU    done;\ndone: BEU;\nEND_ORGANIZATION_BLOCK\n"
+    )
+}
+
+#[test]
+fn every_entry_of_a_jump_list_is_a_path_and_the_end_after_beu_is_no_dead_code() {
+    let long = on_speed7(&jump_list(false));
+    let short = on_speed7(&jump_list(true));
+    assert!(long.unused.code.is_empty(), "{:?}", long.unused.code);
+    assert!(
+        block(&long, "OB 1").wcet_ns > block(&short, "OB 1").wcet_ns,
+        "the longer branch counts"
+    );
+}

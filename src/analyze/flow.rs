@@ -8,6 +8,7 @@ use crate::compiler::builtin::Builtin;
 use crate::compiler::bytecode::JumpCondition;
 use crate::compiler::{CompiledBlock, Op};
 use crate::mnemonics::OpCode;
+use crate::step7::bytecode::{MemOp, S7Code};
 
 /// How an op goes on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -16,6 +17,12 @@ pub enum Step {
     Jump {
         target: usize,
         conditional: bool,
+    },
+    /// STEP 7's `JL`: on to one of the next `entries` ops (the list's jumps) or past them to
+    /// `target`.
+    JumpList {
+        entries: usize,
+        target: usize,
     },
     /// A block call: an interrupt point when taken.
     Call {
@@ -44,6 +51,22 @@ pub fn step(op: Op) -> Step {
         Op::Jump(condition, target) => Step::Jump {
             target: target as usize,
             conditional: condition != JumpCondition::Always,
+        },
+        // STEP 7's own conditional jumps; `LOOP` is one backward (a loop to bound).
+        Op::S7(S7Code::Jump { target, .. } | S7Code::Loop { target }) => Step::Jump {
+            target: usize::from(target),
+            conditional: true,
+        },
+        Op::S7(S7Code::JumpList { entries, target }) => Step::JumpList {
+            entries: usize::from(entries),
+            target: usize::from(target),
+        },
+        Op::S7(S7Code::Mem {
+            op: MemOp::CallFrom,
+            ..
+        }) => Step::Call {
+            callee: Callee::Parameter,
+            conditional: false,
         },
         Op::Call {
             block, conditional, ..
@@ -220,6 +243,12 @@ impl Walker<'_> {
             let next = Exit::Pc(pc + 1);
             match step(self.block.code[pc]) {
                 Step::Plain => pass.arrive(pc, next, at, start)?,
+                Step::JumpList { entries, target } => {
+                    for entry in pc + 1..=pc + entries {
+                        pass.arrive(pc, Exit::Pc(entry), at, start)?;
+                    }
+                    pass.arrive(pc, Exit::Pc(target), at, start)?;
+                }
                 Step::Jump {
                     target,
                     conditional,
@@ -379,6 +408,10 @@ pub fn unreachable(block: &CompiledBlock) -> Vec<(usize, usize)> {
         }
         match step(block.code[pc]) {
             Step::Plain | Step::Call { .. } => work.push(pc + 1),
+            Step::JumpList { entries, target } => {
+                work.extend(pc + 1..=pc + entries);
+                work.push(target);
+            }
             Step::Jump {
                 target,
                 conditional,

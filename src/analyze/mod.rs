@@ -382,8 +382,17 @@ impl Analyzer<'_> {
                 .collect(),
             code: (0..program.blocks.len())
                 .flat_map(|index| {
-                    flow::unreachable(&program.blocks[index])
+                    let block = &program.blocks[index];
+                    // STEP 7 ends every logic block with a block end of its own after the
+                    // last network: after a `BEU` it is never reached, and that is no mistake.
+                    let implicit_end = program
+                        .s7
+                        .step7
+                        .then(|| block.code.len().checked_sub(1))
+                        .flatten();
+                    flow::unreachable(block)
                         .into_iter()
+                        .filter(move |&(first, last)| Some(first) != implicit_end || first != last)
                         .map(move |run| (index, run))
                 })
                 .map(|(index, (first, last))| UnusedCode {

@@ -7,7 +7,8 @@ use crate::diagnostics;
 use crate::frontend::{self, Frontend};
 
 use super::{
-    Console, DumpArgs, EXIT_OK, EXIT_SOURCE_ERRORS, SourceOptions, plural, selected_profile,
+    Console, DumpArgs, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_USAGE, SourceOptions, plural,
+    selected_profile,
 };
 
 /// Runs the front end and prints its diagnostics; `None` when a file could not be read. With
@@ -127,7 +128,13 @@ pub fn dump(args: &DumpArgs, console: &mut Console) -> u8 {
         return EXIT_SOURCE_ERRORS;
     }
     if args.listing {
-        console.out(&crate::dump::listing::listing(&built));
+        match crate::dump::listing_of(&built) {
+            Ok(listing) => console.out(&listing),
+            Err(error) => {
+                console.report(&Report::new(error));
+                return EXIT_USAGE;
+            }
+        }
     } else {
         console.out(&crate::dump::dump(&built));
     }

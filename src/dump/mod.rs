@@ -12,8 +12,33 @@ use crate::source::{SourceSet, Span};
 pub mod annotate;
 pub mod listing;
 pub mod mc5;
+pub mod s7;
 
 pub use annotate::op_text;
+
+/// `awl dump --listing` on a STEP 7 program: a PG listing (word addresses, `***`, `LEN=`) is
+/// STEP 5's printout; a STEP 7 source has no such form.
+#[derive(Debug, thiserror::Error, miette::Diagnostic)]
+#[error("`--listing` prints a STEP 5 PG listing, and `{file}` is a STEP 7 program")]
+#[diagnostic(
+    code(awl::cli::listing_step7),
+    help(
+        "`awl dump` without `--listing` shows each STEP 7 statement with the operations it runs; the STEP 7 source is its own listing"
+    )
+)]
+pub struct ListingOfStep7 {
+    pub file: String,
+}
+
+/// The PG listing of a STEP 5 program (see [`listing::listing`]).
+pub fn listing_of(built: &Frontend) -> Result<String, ListingOfStep7> {
+    match built.s7_units.first() {
+        Some(unit) => Err(ListingOfStep7 {
+            file: built.sources.get(unit.file).name.clone(),
+        }),
+        None => Ok(listing::listing(built)),
+    }
+}
 
 /// The parsed blocks of every program file, by block.
 pub(crate) fn parsed_blocks(built: &Frontend) -> HashMap<BlockId, &Block> {
@@ -38,6 +63,9 @@ fn header(out: &mut String, sources: &SourceSet, id: BlockId, at: Span, count: u
 
 /// The whole dump: a header line per block, then one line per op or data word.
 pub fn dump(built: &Frontend) -> String {
+    if !built.s7_units.is_empty() {
+        return s7::dump(built);
+    }
     let program = &built.compiled.program;
     let sources = &built.sources;
     let parsed = parsed_blocks(built);

@@ -2,6 +2,7 @@
 //! operation — RLO, STA, ACCU 1, ACCU 2 and the operand after each — by a [`Probe`] on the
 //! stepping loop. A loop body keeps its last pass and a count.
 
+mod s7;
 mod text;
 
 use std::cell::RefCell;
@@ -75,6 +76,8 @@ pub struct Recording {
     pub interruptions: Vec<Interruption>,
     /// The invocation ran to its block end.
     pub complete: bool,
+    /// A STEP 7 program: values in STEP 7 spelling.
+    pub step7: bool,
 }
 
 /// The probe that records one invocation of `block`, then halts the run.
@@ -117,6 +120,7 @@ impl Recorder {
     }
 
     fn begin(&mut self, cpu: &Cpu) {
+        self.recording.borrow_mut().step7 = cpu.program.s7.step7;
         self.recording.borrow_mut().invocation = Some(Invocation {
             cycle: cpu.cycle,
             t_ns: cpu.clock,
@@ -162,6 +166,7 @@ impl Probe for Recorder {
         self.last_pc = Some(pc);
         {
             let mut recording = self.recording.borrow_mut();
+            let step7 = recording.step7;
             let Some(slot) = recording.ops.get_mut(pc as usize) else {
                 return Flow::Go;
             };
@@ -172,7 +177,11 @@ impl Probe for Recorder {
                 sta: cpu.level.status.sta(),
                 accu1: cpu.level.accu1,
                 accu2: cpu.level.accu2,
-                operand: crate::state::operand::value(cpu, op),
+                operand: if step7 {
+                    s7::value(cpu, op)
+                } else {
+                    crate::state::operand::value(cpu, op)
+                },
             });
         }
         match op {
@@ -206,7 +215,9 @@ pub enum StatusError {
     #[error("{block} is a data block: program status shows logic blocks")]
     #[diagnostic(
         code(awl::status::data_block),
-        help("name an OB, PB, SB, FB or FX; `awl run --state` shows the data blocks' words")
+        help(
+            "name an OB, PB, SB, FB or FX (STEP 7: OB, FC, FB); `awl run --state` shows the data blocks' words"
+        )
     )]
     DataBlock { block: String },
     #[error("{block} did not run {window}")]

@@ -9,6 +9,10 @@ use crate::source::SourceSet;
 
 use super::{OpStatus, Recording};
 
+/// The accumulator columns: `KH 0001 0000`, and STEP 7's `DW#16#00010000`.
+const ACCU_WIDTH: usize = 12;
+const ACCU_WIDTH_S7: usize = 14;
+
 /// An accumulator as the PG shows a 16-bit one, with the high word only when it is used.
 fn accu(value: u32) -> String {
     if value >> 16 == 0 {
@@ -18,9 +22,14 @@ fn accu(value: u32) -> String {
     }
 }
 
-fn columns(status: &OpStatus) -> String {
+fn columns(status: &OpStatus, step7: bool) -> String {
+    let (accu, wide) = if step7 {
+        (super::s7::accu as fn(u32) -> String, ACCU_WIDTH_S7)
+    } else {
+        (accu as fn(u32) -> String, ACCU_WIDTH)
+    };
     let mut out = format!(
-        "{:>3} {:>3}  {:<12} {:<12} {:<14}",
+        "{:>3} {:>3}  {:<wide$} {:<wide$} {:<14}",
         u8::from(status.rlo),
         u8::from(status.sta),
         accu(status.accu1),
@@ -73,9 +82,14 @@ pub fn render(block: &CompiledBlock, sources: &SourceSet, recording: &Recording)
         .max()
         .unwrap_or(0)
         .max("statement".len());
+    let wide = if recording.step7 {
+        ACCU_WIDTH_S7
+    } else {
+        ACCU_WIDTH
+    };
     let _ = writeln!(
         out,
-        "{:>5}  {:<width$}  {:>3} {:>3}  {:<12} {:<12} operand",
+        "{:>5}  {:<width$}  {:>3} {:>3}  {:<wide$} {:<wide$} operand",
         "line", "statement", "RLO", "STA", "ACCU 1", "ACCU 2"
     );
     let interrupted_after = |line: u32| {
@@ -89,7 +103,7 @@ pub fn render(block: &CompiledBlock, sources: &SourceSet, recording: &Recording)
     };
     for line in first..=last {
         let beside = match by_line.get(&line) {
-            Some(Some(status)) => columns(status),
+            Some(Some(status)) => columns(status, recording.step7),
             Some(None) => "  -   -  not executed".to_string(),
             None => String::new(),
         };

@@ -10,5 +10,6 @@ pub mod lexer;
 pub mod literal;
 pub mod mnemonics;
 pub mod parser;
+pub mod text;
 
 pub use parser::{ParseOptions, Parsed, parse};

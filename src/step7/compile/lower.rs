@@ -178,7 +178,12 @@ fn is_word_logic(op: S7Op) -> bool {
 }
 
 impl super::Compiler<'_> {
-    pub(super) fn compile_block(&mut self, block: &S7Block, id: BlockId) -> CompiledBlock {
+    pub(super) fn compile_block(
+        &mut self,
+        block: &S7Block,
+        id: BlockId,
+        set: MnemonicSet,
+    ) -> CompiledBlock {
         let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
         let scope = Scope {
             interface: &interface,
@@ -252,7 +257,7 @@ impl super::Compiler<'_> {
         CompiledBlock {
             id,
             header: block.header,
-            mnemonics: MnemonicSet::English,
+            mnemonics: set,
             params: Vec::new(),
             code: out.code,
             spans: out.spans,

@@ -47,7 +47,7 @@ pub fn compile(
     compiler.make_data_blocks(units);
     let blocks = logic
         .iter()
-        .map(|(block, id)| compiler.compile_block(block, *id))
+        .map(|(block, id, set)| compiler.compile_block(block, *id, *set))
         .collect();
     compiler.errors.sort_by_key(|error| {
         let span = error.span();
@@ -130,7 +130,10 @@ impl<'a> Compiler<'a> {
     }
 
     /// Registers every block; lays out the interfaces of the logic blocks.
-    fn collect<'u>(&mut self, units: &'u [S7Unit]) -> Vec<(&'u S7Block, BlockId)> {
+    fn collect<'u>(
+        &mut self,
+        units: &'u [S7Unit],
+    ) -> Vec<(&'u S7Block, BlockId, crate::mnemonics::MnemonicSet)> {
         for block in units.iter().flat_map(|unit| &unit.blocks) {
             if let (S7BlockKind::Udt, S7BlockRef::Number { number, .. }, S7Body::Type(members)) =
                 (block.kind, &block.name, &block.body)
@@ -140,7 +143,10 @@ impl<'a> Compiler<'a> {
         }
         let mut first_seen: HashMap<BlockId, Span> = HashMap::new();
         let mut logic = Vec::new();
-        for block in units.iter().flat_map(|unit| &unit.blocks) {
+        let blocks = units
+            .iter()
+            .flat_map(|unit| unit.blocks.iter().map(move |block| (block, unit.mnemonics)));
+        for (block, set) in blocks {
             if block.kind == S7BlockKind::Udt {
                 continue;
             }
@@ -159,7 +165,7 @@ impl<'a> Compiler<'a> {
             if let S7Body::Logic(_) = block.body {
                 self.index.insert(id, logic.len() as u16);
                 self.interfaces.insert(id, self.interface(block));
-                logic.push((block, id));
+                logic.push((block, id, set));
             }
         }
         logic

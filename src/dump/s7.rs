@@ -1,0 +1,343 @@
+//! `awl dump` of a STEP 7 program: each op as the STEP 7 statement it came from, in the file's
+//! mnemonic set (`A #start`, `SPBN skip`), with where a block-local name or a symbol is
+//! (`DIX 0.0`, `parameter 1`) and where a jump goes. `CALL FB` is three ops — copy the inputs
+//! into the instance DB, run the FB, copy the outputs back — and each says which it is.
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+use crate::compiler::{CompiledBlock, Op, Program};
+use crate::frontend::Frontend;
+use crate::mnemonics::MnemonicSet;
+use crate::source::{SourceSet, Span};
+use crate::step7::ast::{
+    S7Address, S7Area, S7Block, S7BlockKind, S7BlockRef, S7Body, S7Operand, S7Statement, VarKind,
+};
+use crate::step7::bytecode::{Place, S7Code, Target};
+use crate::step7::text;
+
+/// The STEP 7 statements of every file, by where they start.
+pub(crate) fn statements(built: &Frontend) -> HashMap<Span, &S7Statement> {
+    built
+        .s7_units
+        .iter()
+        .flat_map(|unit| &unit.blocks)
+        .filter_map(|block| match &block.body {
+            S7Body::Logic(statements) => Some(statements),
+            _ => None,
+        })
+        .flatten()
+        .map(|statement| (statement.span, statement))
+        .collect()
+}
+
+/// The mnemonic set of the file `span` is in.
+pub(crate) fn set_of(built: &Frontend, span: Span) -> MnemonicSet {
+    built
+        .mnemonics
+        .get(usize::from(span.file))
+        .copied()
+        .unwrap_or(MnemonicSet::English)
+}
+
+/// What one block's ops are shown with.
+struct BlockContext<'a> {
+    program: &'a Program,
+    sources: &'a SourceSet,
+    blocks: &'a [&'a S7Block],
+    statements: &'a HashMap<Span, &'a S7Statement>,
+    block: &'a CompiledBlock,
+    set: MnemonicSet,
+}
+
+/// The whole dump of a STEP 7 program.
+pub fn dump(built: &Frontend) -> String {
+    let program = &built.compiled.program;
+    let statements = statements(built);
+    let blocks: Vec<&S7Block> = built
+        .s7_units
+        .iter()
+        .flat_map(|unit| &unit.blocks)
+        .collect();
+    let mut out = String::new();
+    for block in &program.blocks {
+        super::header(
+            &mut out,
+            &built.sources,
+            block.id,
+            block.header,
+            block.code.len(),
+            "ops",
+        );
+        let context = BlockContext {
+            program,
+            sources: &built.sources,
+            blocks: &blocks,
+            statements: &statements,
+            block,
+            set: set_of(built, block.header),
+        };
+        context.write(&mut out);
+        out.push('\n');
+    }
+    for block in blocks.iter().filter(|block| block.kind == S7BlockKind::Db) {
+        data_block(&mut out, built, block);
+    }
+    out
+}
+
+impl BlockContext<'_> {
+    fn write(&self, out: &mut String) {
+        for (pc, (op, span)) in self.block.code.iter().zip(&self.block.spans).enumerate() {
+            if let Some(&(_, network)) = self
+                .block
+                .segments
+                .iter()
+                .find(|(first, _)| *first as usize == pc)
+                && network != 0
+            {
+                let _ = writeln!(out, "  network {network}");
+            }
+            let line = self.sources.line_of(*span);
+            let (shown, detail) = self.op(*op, *span);
+            let row = format!("  {pc:>4}  line {line:>4}  {shown:<28} {detail}");
+            let _ = writeln!(out, "{}", row.trim_end());
+        }
+    }
+
+    /// The statement an op came from (with its label), and what to add about the op.
+    fn op(&self, op: Op, span: Span) -> (String, String) {
+        let Some(statement) = self.statements.get(&span) else {
+            // The block end STEP 7 places after the last network, on the `END_…` line.
+            let written = self.sources.get(span.file).slice(span).trim().to_string();
+            return (written, "block end".to_string());
+        };
+        let mut shown = text::statement(statement, self.set, self.sources);
+        if let Some(label) = &statement.label {
+            shown = format!("{}: {shown}", label.text);
+        }
+        let detail = match op {
+            Op::S7(S7Code::FbEnter { call }) => self.fb_inputs(statement, call),
+            Op::S7(S7Code::FbLeave { call }) => self.fb_outputs(statement, call),
+            Op::Call { .. } if statement.call.is_some() => self.call(statement),
+            Op::S7(S7Code::Jump { target, .. } | S7Code::Loop { target }) => {
+                format!("to {}", self.target(u32::from(target)))
+            }
+            Op::Jump(_, target) => format!("to {}", self.target(target)),
+            Op::S7(S7Code::JumpList { entries, target }) => format!(
+                "the next {entries} ops are the list; past it to {}",
+                self.target(u32::from(target))
+            ),
+            Op::S7(S7Code::Mem { place, .. }) => self.where_is(statement, place),
+            _ => String::new(),
+        };
+        (shown, detail)
+    }
+
+    /// `op 12`, or `skip (op 12)` when a label is there.
+    fn target(&self, pc: u32) -> String {
+        let label = self
+            .block
+            .spans
+            .get(pc as usize)
+            .and_then(|span| self.statements.get(span))
+            .and_then(|statement| statement.label.as_ref());
+        match label {
+            Some(label) => format!("{} (op {pc})", label.text),
+            None => format!("op {pc}"),
+        }
+    }
+
+    /// Where a name (`#start`, `"Motor".speed`) or an indirect address is; nothing for an
+    /// address written out.
+    fn where_is(&self, statement: &S7Statement, place: u16) -> String {
+        let named = matches!(
+            statement.operand,
+            S7Operand::Local(_) | S7Operand::Symbol { .. }
+        );
+        let place = self.program.s7.places.get(usize::from(place));
+        match place.and_then(|place| place_text(self.program, *place, self.set)) {
+            Some(text) if named => format!("= {text}"),
+            _ => String::new(),
+        }
+    }
+
+    /// `CALL FC 1`: the parameter list as written.
+    fn call(&self, statement: &S7Statement) -> String {
+        let Some(call) = &statement.call else {
+            return String::new();
+        };
+        match &call.instance {
+            Some(instance) => format!(
+                "run {} (instance {})",
+                text::block_ref(&call.block, self.sources),
+                text::block_ref(instance, self.sources)
+            ),
+            None if call.params.is_empty() => String::new(),
+            None => format!("with {}", self.parameters(statement, None)),
+        }
+    }
+
+    /// `a := MW 10, b := 5`: the parameters of a call, those of `kinds` only when given.
+    fn parameters(&self, statement: &S7Statement, kinds: Option<&[VarKind]>) -> String {
+        let Some(call) = &statement.call else {
+            return String::new();
+        };
+        let declared = kinds.and_then(|kinds| self.declared(&call.block, kinds));
+        call.params
+            .iter()
+            .filter(|param| {
+                declared.as_ref().is_none_or(|names| {
+                    names
+                        .iter()
+                        .any(|name| name.eq_ignore_ascii_case(&param.name.text))
+                })
+            })
+            .map(|param| {
+                let written = self.sources.get(param.span.file).slice(param.span);
+                written.split_whitespace().collect::<Vec<_>>().join(" ")
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// The names an FB declares in the sections `kinds`.
+    fn declared(&self, fb: &S7BlockRef, kinds: &[VarKind]) -> Option<Vec<String>> {
+        let block = self.blocks.iter().find(|block| block.name == *fb)?;
+        Some(
+            block
+                .interface
+                .iter()
+                .filter(|section| kinds.contains(&section.kind))
+                .flat_map(|section| &section.vars)
+                .map(|var| var.name.text.clone())
+                .collect(),
+        )
+    }
+
+    fn instance_db(&self, call: u16) -> String {
+        self.program
+            .s7
+            .fb_calls
+            .get(usize::from(call))
+            .map_or("the instance DB".to_string(), |call| {
+                format!("DB {}", call.instance_db)
+            })
+    }
+
+    fn fb_inputs(&self, statement: &S7Statement, call: u16) -> String {
+        let db = self.instance_db(call);
+        let params = self.parameters(statement, Some(&[VarKind::Input, VarKind::InOut]));
+        let params = if params.is_empty() {
+            String::new()
+        } else {
+            format!(" ({params})")
+        };
+        format!("copy the inputs into {db}{params}, open it as the instance DB")
+    }
+
+    fn fb_outputs(&self, statement: &S7Statement, call: u16) -> String {
+        let db = self.instance_db(call);
+        let params = self.parameters(statement, Some(&[VarKind::Output, VarKind::InOut]));
+        let params = if params.is_empty() {
+            String::new()
+        } else {
+            format!(" ({params})")
+        };
+        format!("copy the outputs back from {db}{params}, restore the DB registers")
+    }
+}
+
+/// A compiled place as an address (`DIX 0.0`, `LW 2`, `parameter 2`), when it is one.
+pub(crate) fn place_text(program: &Program, place: Place, set: MnemonicSet) -> Option<String> {
+    let address = |area, byte, bit, db| {
+        text::address(
+            S7Address {
+                area,
+                width: place.width,
+                byte,
+                bit,
+                db,
+            },
+            set,
+        )
+    };
+    Some(match place.target {
+        Target::Image { byte, bit } => {
+            let layout = program.layout;
+            let (area, number) = if byte >= layout.flag_base() {
+                (S7Area::Flag, byte - layout.flag_base())
+            } else if byte >= layout.output_base() {
+                (S7Area::Output, byte - layout.output_base())
+            } else {
+                (S7Area::Input, byte)
+            };
+            address(area, u32::from(number), bit, None)
+        }
+        Target::Local { byte, bit } => address(S7Area::Local, byte, bit, None),
+        Target::PreviousLocal { byte, bit } => address(S7Area::PreviousLocal, byte, bit, None),
+        Target::Data {
+            instance,
+            byte,
+            bit,
+        } => {
+            let area = if instance {
+                S7Area::Instance
+            } else {
+                S7Area::Data
+            };
+            address(area, byte, bit, None)
+        }
+        Target::NumberedData { db, byte, bit } => address(S7Area::Data, byte, bit, Some(db)),
+        Target::Parameter { param, byte, bit } if byte == 0 && bit == 0 => {
+            format!("parameter {}", u16::from(param) + 1)
+        }
+        Target::Parameter { param, byte, bit } => {
+            format!("parameter {}, at {byte}.{bit} in it", u16::from(param) + 1)
+        }
+        Target::Timer(n) => address(S7Area::Timer, u32::from(n), 0, None),
+        Target::Counter(n) => address(S7Area::Counter, u32::from(n), 0, None),
+        _ => return None,
+    })
+}
+
+/// A data block: its header, what it is an instance of, its initial bytes.
+fn data_block(out: &mut String, built: &Frontend, block: &S7Block) {
+    let S7BlockRef::Number { number, .. } = block.name else {
+        return;
+    };
+    let Some((_, bytes)) = built
+        .compiled
+        .program
+        .s7
+        .data_blocks
+        .iter()
+        .find(|(db, _)| *db == number)
+    else {
+        return;
+    };
+    let file = built.sources.get(block.header.file);
+    let _ = writeln!(
+        out,
+        "DB {number}  ({}:{}, {} bytes)",
+        file.name,
+        file.line_of(block.header.start),
+        bytes.len()
+    );
+    if let S7Body::Data {
+        instance_of: Some(fb),
+        ..
+    } = &block.body
+    {
+        let _ = writeln!(
+            out,
+            "  instance DB of {}",
+            text::block_ref(fb, &built.sources)
+        );
+    }
+    for (row, chunk) in bytes.chunks(8).enumerate() {
+        let hex: Vec<String> = chunk.iter().map(|byte| format!("{byte:02X}")).collect();
+        let _ = writeln!(out, "  DBB {:>4}  {}", row * 8, hex.join(" "));
+    }
+    out.push('\n');
+}
