@@ -35,10 +35,11 @@ impl Cpu {
         if self.probe.is_some() || self.tracer.enabled {
             return self.execute_watched(operation_points);
         }
-        if operation_points {
-            self.run_loop::<true, false, false>()
-        } else {
-            self.run_loop::<false, false, false>()
+        match (operation_points, self.program.s7.step7) {
+            (true, false) => self.run_loop::<true, false, false, false>(),
+            (false, false) => self.run_loop::<false, false, false, false>(),
+            (true, true) => self.run_loop::<true, false, false, true>(),
+            (false, true) => self.run_loop::<false, false, false, true>(),
         }
     }
 
@@ -47,11 +48,19 @@ impl Cpu {
     #[cold]
     #[inline(never)]
     fn execute_watched(&mut self, operation_points: bool) -> Exit {
-        match (operation_points, self.probe.is_some()) {
-            (true, true) => self.run_loop::<true, true, true>(),
-            (false, true) => self.run_loop::<false, true, true>(),
-            (true, false) => self.run_loop::<true, false, true>(),
-            (false, false) => self.run_loop::<false, false, true>(),
+        match (
+            operation_points,
+            self.probe.is_some(),
+            self.program.s7.step7,
+        ) {
+            (true, true, false) => self.run_loop::<true, true, true, false>(),
+            (false, true, false) => self.run_loop::<false, true, true, false>(),
+            (true, false, false) => self.run_loop::<true, false, true, false>(),
+            (false, false, false) => self.run_loop::<false, false, true, false>(),
+            (true, true, true) => self.run_loop::<true, true, true, true>(),
+            (false, true, true) => self.run_loop::<false, true, true, true>(),
+            (true, false, true) => self.run_loop::<true, false, true, true>(),
+            (false, false, true) => self.run_loop::<false, false, true, true>(),
         }
     }
 
@@ -123,13 +132,21 @@ impl Cpu {
 
     /// `TRACING`: block changes may be traced (the tracer is asked); without it the loop has
     /// no trace code at all — a run that traces nothing at its start traces nothing later.
-    fn run_loop<const OPERATION_POINTS: bool, const STEPPING: bool, const TRACING: bool>(
+    ///
+    /// `STEP7`: the program is a STEP 7 program. Its operations run inline and its calls move
+    /// the L stack; a STEP 5 program's loop has none of that code (it never meets those ops).
+    fn run_loop<
+        const OPERATION_POINTS: bool,
+        const STEPPING: bool,
+        const TRACING: bool,
+        const STEP7: bool,
+    >(
         &mut self,
     ) -> Exit {
         let program = Arc::clone(&self.program);
         let arena = &program.arena;
         // A STEP 7 program's calls also move the L stack and save the DB and DI registers.
-        let step7 = program.s7.step7;
+        let step7 = STEP7;
         // Every body in one array: `pc` is a position in it, `start` where the running body
         // starts (so op `pc - start` of the block), `times` the op times as prefix sums.
         // The fused pairs run as one op, except in the stepping loop, which shows every op;
@@ -310,7 +327,7 @@ impl Cpu {
                     break $run Leave::Stop(StopCause::Stueb, call_pc);
                 }
                 if step7 && !self.enter_s7_block(caller, target) {
-                    detail = StopDetail::Text("the L stack overflows".into());
+                    detail = super::s7::memory::local_overflow();
                     break $run Leave::Stop(StopCause::Stueb, call_pc);
                 }
                 self.level.block = target;
@@ -385,10 +402,10 @@ impl Cpu {
                         status.end_string();
                     }
                     Op::OrAlone => status.or_alone(),
-                    Op::S7Scan(combination, bit) => {
+                    Op::S7Scan(combination, bit) if STEP7 => {
                         status.scanned_step7(combination, self.image_bit(bit));
                     }
-                    Op::S7Write(write, bit) => {
+                    Op::S7Write(write, bit) if STEP7 => {
                         let rlo = status.rlo();
                         match write {
                             Write::Assign => self.write_image_bit(bit, rlo),
@@ -552,34 +569,17 @@ impl Cpu {
                         detail = StopDetail::Text("the block has no BE".into());
                         break 'run Leave::Stop(StopCause::Bcf, (pc - start) as u32);
                     }
-                    Op::S7(code) => {
+                    Op::S7(code) if STEP7 => {
                         sync!();
                         let flow = self.execute_s7(code, at!());
                         reload!();
                         match flow {
                             Ok(super::s7::exec::Flow::Next) => {}
+                            // A jump taken: the shared jump's arm moves there.
                             Ok(super::s7::exec::Flow::Jump(target)) => {
-                                let jump_pc = at!();
-                                let to = start + target as usize;
-                                let backward = to < pc;
-                                move_to!(to, start);
-                                if OPERATION_POINTS {
-                                    probe_after!('run, op_pc, op);
-                                    if times[pc] >= deadline {
-                                        self.last_op = (self.level.block, jump_pc);
-                                        break 'run Leave::Point(Point::Operation);
-                                    }
-                                    continue 'run;
-                                }
-                                if backward {
-                                    let clock = now!();
-                                    if clock >= self.attention_at {
-                                        let start = pass_start.max(self.last_point_at);
-                                        self.note_stretch(jump_pc, start, clock);
-                                        break 'run Leave::Point(Point::Loop);
-                                    }
-                                    pass_start = clock;
-                                }
+                                resolved = Op::Jump(JumpCondition::Always, target);
+                                op = &resolved;
+                                continue 'dispatch;
                             }
                             Err((cause, fault)) => {
                                 detail = fault;
@@ -655,6 +655,9 @@ impl Cpu {
                     | Op::DisableInterrupts
                     | Op::AddConstant { .. }
                     | Op::NotSimulated { .. }
+                    | Op::S7(_)
+                    | Op::S7Scan(..)
+                    | Op::S7Write(..)
                     | Op::EnableInterrupts => {
                         sync!();
                         let result = self.execute_other(*op, at!());

@@ -84,6 +84,12 @@ fn area_of_code(code: u32) -> Option<IndirectArea> {
     })
 }
 
+/// The detail of a STOP when a call's local data do not fit the L stack.
+#[cold]
+pub fn local_overflow() -> StopDetail {
+    StopDetail::Text("the L stack overflows".into())
+}
+
 fn fault(text: String) -> Fault {
     (StopCause::Bcf, StopDetail::Text(text))
 }
@@ -95,7 +101,7 @@ fn data_fault(text: String) -> Fault {
 impl Cpu {
     /// A STEP 7 block call (the frame is pushed): the caller's registers saved, the callee's
     /// local data placed after the caller's. `false` when the L stack has no room for them.
-    #[inline]
+    #[inline(never)]
     pub(crate) fn enter_s7_block(&mut self, caller: u16, callee: u16) -> bool {
         self.s7_frames.push(crate::vm::S7Frame {
             db: self.level.db,
@@ -108,7 +114,7 @@ impl Cpu {
     }
 
     /// A STEP 7 block's end (its frame popped): the caller's registers back.
-    #[inline]
+    #[inline(never)]
     pub(crate) fn leave_s7_block(&mut self) {
         if let Some(saved) = self.s7_frames.pop() {
             self.level.db = saved.db;
