@@ -250,15 +250,17 @@ fn the_json_state_keeps_its_bytes_and_words() {
 }
 
 #[test]
-fn the_readme_s_state_example_is_what_awl_prints() {
+fn the_readme_s_state_examples_are_what_awl_prints() {
     let readme = std::fs::read_to_string("README.md").unwrap();
-    let command =
-        "cargo run --release -- run --scenario programs/mixer_de.toml --state\n```\n```\n";
-    let start = readme.find(command).expect("the README's example") + command.len();
-    let shown = &readme[start..start + readme[start..].find("```").unwrap()];
-    let (stdout, _) = awl(&["run", "--scenario", "programs/mixer_de.toml", "--state"]);
-    let state = &stdout[stdout.find("state at the end").expect("the state")..];
-    assert_eq!(shown, state);
+    for scenario in ["programs/mixer_de.toml", "tests/inputs/s7/tank.toml"] {
+        let command =
+            format!("cargo run --release -- run --scenario {scenario} --state\n```\n```\n");
+        let start = readme.find(&command).expect("the README's example") + command.len();
+        let shown = &readme[start..start + readme[start..].find("```").unwrap()];
+        let (stdout, _) = awl(&["run", "--scenario", scenario, "--state"]);
+        let state = &stdout[stdout.find("state at the end").expect("the state")..];
+        assert_eq!(shown, state, "{scenario}");
+    }
 }
 
 #[test]
