@@ -54,6 +54,10 @@ impl Plan {
     }
 }
 
+/// What one event does: a happening the engine schedules (if any), and the data block writes
+/// (target, raw value) of its `set`.
+type Effect = (Option<Happening>, Vec<(Target, u32)>);
+
 /// A loaded scenario.
 #[derive(Debug)]
 pub struct Scenario {
@@ -427,7 +431,7 @@ impl Scenario {
         program: &Program,
         set: MnemonicSet,
         errors: &mut Errors,
-    ) -> Option<(Option<Happening>, Vec<(Target, u32)>)> {
+    ) -> Option<Effect> {
         let mut inputs = Vec::new();
         let mut writes = Vec::new();
         for (operand, value) in changes {
