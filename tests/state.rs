@@ -108,6 +108,70 @@ fn a_run_without_stop_has_no_levels_and_shows_timers_and_counters() {
 }
 
 #[test]
+fn json_state_of_a_step7_program_has_bytes_registers_and_br() {
+    let (stdout, _) = awl(&[
+        "run",
+        "--scenario",
+        "tests/inputs/s7/tank.toml",
+        "--state-format",
+        "json",
+    ]);
+    let state: Value = serde_json::from_str(&stdout).expect("stdout is the JSON alone");
+    assert_eq!(
+        keys(&state),
+        [
+            "accu",
+            "counters",
+            "data_blocks",
+            "images",
+            "mode",
+            "open_db",
+            "registers",
+            "status",
+            "timers"
+        ]
+    );
+    assert_eq!(
+        keys(&state["status"]),
+        [
+            "br",
+            "cc0",
+            "cc1",
+            "first_check",
+            "or",
+            "os",
+            "ov",
+            "rlo",
+            "sta"
+        ]
+    );
+    assert_eq!(keys(&state["registers"]), ["ar1", "ar2", "db", "di", "stw"]);
+    assert_eq!(state["registers"]["db"], 5, "DB5.DBB 2 opened DB 5 last");
+    assert_eq!(state["open_db"], 5, "the DB register's DB");
+    assert_eq!(
+        keys(&state["images"]),
+        ["I", "M", "Q"],
+        "flags are M in STEP 7"
+    );
+    assert_eq!(state["images"]["M"]["1"], 3, "MB 1 from DB5.DBB 2");
+    let db5 = &state["data_blocks"]["DB 5"];
+    assert_eq!(db5["2"], 3, "DB5.DBB 2 written by the scenario");
+    assert_eq!(
+        (&db5["4"], &db5["5"]),
+        (&0xFF.into(), &0xEC.into()),
+        "DBW 4 = -20"
+    );
+    let real: Vec<u8> = (6..10)
+        .map(|byte| db5[byte.to_string()].as_u64().unwrap_or(0) as u8)
+        .collect();
+    assert_eq!(
+        real,
+        4.0f32.to_bits().to_be_bytes(),
+        "DBD 6 = 4.0, byte by byte"
+    );
+}
+
+#[test]
 fn watch_rows_are_trace_events() {
     let (stdout, _) = awl(&[
         "run",
@@ -186,15 +250,17 @@ fn the_json_state_keeps_its_bytes_and_words() {
 }
 
 #[test]
-fn the_readme_s_state_example_is_what_awl_prints() {
+fn the_readme_s_state_examples_are_what_awl_prints() {
     let readme = std::fs::read_to_string("README.md").unwrap();
-    let command =
-        "cargo run --release -- run --scenario programs/mixer_de.toml --state\n```\n```\n";
-    let start = readme.find(command).expect("the README's example") + command.len();
-    let shown = &readme[start..start + readme[start..].find("```").unwrap()];
-    let (stdout, _) = awl(&["run", "--scenario", "programs/mixer_de.toml", "--state"]);
-    let state = &stdout[stdout.find("state at the end").expect("the state")..];
-    assert_eq!(shown, state);
+    for scenario in ["programs/mixer_de.toml", "tests/inputs/s7/tank.toml"] {
+        let command =
+            format!("cargo run --release -- run --scenario {scenario} --state\n```\n```\n");
+        let start = readme.find(&command).expect("the README's example") + command.len();
+        let shown = &readme[start..start + readme[start..].find("```").unwrap()];
+        let (stdout, _) = awl(&["run", "--scenario", scenario, "--state"]);
+        let state = &stdout[stdout.find("state at the end").expect("the state")..];
+        assert_eq!(shown, state, "{scenario}");
+    }
 }
 
 #[test]

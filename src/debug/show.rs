@@ -5,6 +5,7 @@ use std::fmt::Write;
 
 use crate::mnemonics::MnemonicSet;
 use crate::scenario::input_change;
+use crate::scenario::modify::write_s7_data;
 use crate::scenario::operand::{Target, parse_target, raw_value};
 use crate::state::watch::natural;
 use crate::state::{self, LevelView, StatusBits};
@@ -182,6 +183,7 @@ pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Resu
                 .ok_or_else(|| format!("DB {db} has no DW {word}"))?;
             *slot = raw()? as u16;
         }
+        Target::S7Data { .. } => write_s7_data(cpu, target, raw()?)?,
     }
     Ok(format!("{operand} = {}\n", natural(cpu, target)))
 }

@@ -18,10 +18,11 @@ use crate::diagnostics;
 use crate::frontend::{self, Frontend, Language};
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{Family, InterruptPoints, Profile};
-use crate::scenario::Scenario;
 use crate::scenario::check::{CheckOutcome, Checker};
 use crate::scenario::expect::{self, Mismatch};
+use crate::scenario::modify::Modifier;
 use crate::scenario::operand::{Target, parse_target};
+use crate::scenario::{Plan, Scenario};
 use crate::source::Files;
 use crate::state::watch::WatchTable;
 use crate::timeline;
@@ -96,13 +97,13 @@ pub enum RunError {
     )]
     StdoutTwice,
     #[error("cannot watch `{operand}`: {reason}")]
-    #[diagnostic(
-        code(awl::cli::watch_operand),
-        help(
-            "write operands as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
-        )
-    )]
-    WatchOperand { operand: String, reason: String },
+    #[diagnostic(code(awl::cli::watch_operand))]
+    WatchOperand {
+        operand: String,
+        reason: String,
+        #[help]
+        help: &'static str,
+    },
     #[error("the window from {from} to {to} holds no time")]
     #[diagnostic(
         code(awl::cli::empty_window),
@@ -280,6 +281,8 @@ pub struct Prepared {
     scenario: Option<Scenario>,
     expectations: Vec<expect::Expectation>,
     checker: Checker,
+    /// The data block writes of `set`, made at cycle boundaries.
+    modifier: Modifier,
     watch: WatchTable,
     points: InterruptPoints,
     timeline: Option<PathBuf>,
@@ -377,17 +380,17 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         .unwrap_or(MnemonicSet::English);
     // Watched operands are checked with the scenario's other operands, so all are reported.
     let watched = watched(options, scenario.as_ref(), &program, set);
-    let (schedule, expectations, checks) = match &scenario {
+    let (plan, expectations, checks) = match &scenario {
         Some(scenario) => {
-            let schedule = scenario.schedule(&program, set);
+            let plan = scenario.plan(&program, set);
             let expectations = scenario.expectations(&program, set);
             let checks = scenario.checks(&program, set);
-            match (schedule, expectations, checks) {
-                (Ok(schedule), Ok(expectations), Ok(checks)) if scenario_errors.is_empty() => {
-                    (schedule, expectations, checks)
+            match (plan, expectations, checks) {
+                (Ok(plan), Ok(expectations), Ok(checks)) if scenario_errors.is_empty() => {
+                    (plan, expectations, checks)
                 }
-                (schedule, expectations, checks) => {
-                    scenario_errors.extend(schedule.err().into_iter().flatten());
+                (plan, expectations, checks) => {
+                    scenario_errors.extend(plan.err().into_iter().flatten());
                     scenario_errors.extend(expectations.err().into_iter().flatten());
                     scenario_errors.extend(checks.err().into_iter().flatten());
                     if let Err(NotRun::Failed(reports)) = watched {
@@ -397,7 +400,7 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
                 }
             }
         }
-        None => (Vec::new(), Vec::new(), Vec::new()),
+        None => (Plan::default(), Vec::new(), Vec::new()),
     };
     let watch = WatchTable::new(watched?, options.watch_every_ns);
     let points = options
@@ -430,7 +433,7 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     let levels = trace::levels(profile, &program);
     let caption = caption(options, &files, &config, profile);
     let mut cpu = Cpu::new(program, sources);
-    cpu.engine = Engine::new(profile, config, schedule);
+    cpu.engine = Engine::new(profile, config, plan.schedule);
     let trace_to_stdout = options
         .trace
         .as_ref()
@@ -445,6 +448,7 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         scenario,
         expectations,
         checker: Checker::new(checks),
+        modifier: Modifier::new(plan.writes),
         watch,
         points,
         timeline: options.timeline.clone(),
@@ -468,6 +472,7 @@ impl Prepared {
             scenario,
             expectations,
             mut checker,
+            mut modifier,
             mut watch,
             points,
             timeline,
@@ -475,9 +480,11 @@ impl Prepared {
             mut warnings,
             ..
         } = self;
+        // The cycle end is seen as it is; a data block write comes after, before the next cycle.
         let outcome = cpu.run_watched(limit, &mut |cpu| {
             watch.observe(cpu);
             checker.observe(cpu);
+            modifier.observe(cpu);
             go_on(cpu)
         });
         watch.observe(&mut cpu);
@@ -564,6 +571,11 @@ fn watched(
             NotRun::Usage(Report::new(RunError::WatchOperand {
                 operand: operand.clone(),
                 reason: error.reason(),
+                help: if program.s7.step7 {
+                    "write operands as in a scenario's [expect]: `Q 4.0`, `MW 10`, `T 1`, `C 2`, `DB1.DBW 2`"
+                } else {
+                    "write operands as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
+                },
             }))
         })?;
         targets.push((operand.clone(), target));

@@ -61,13 +61,13 @@ impl Checker {
                 .filter_map(|expectation| {
                     let Expected::Value {
                         target,
-                        raw,
+                        wanted,
                         written,
-                    } = expectation.expected
+                    } = &expectation.expected
                     else {
                         return None;
                     };
-                    let (expected, actual) = value_mismatch(cpu, target, raw, written)?;
+                    let (expected, actual) = value_mismatch(cpu, *target, *wanted, written)?;
                     Some(Mismatch {
                         name: expectation.name.clone(),
                         expected,

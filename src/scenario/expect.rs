@@ -4,15 +4,15 @@ use crate::vm::Cpu;
 use crate::vm::cycle::RunOutcome;
 use crate::vm::exec::read_bytes;
 
-use super::operand::Target;
+use super::operand::{Target, Wanted};
 
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Expected {
-    /// The raw value the operand must hold; `written` is the number as the file gave it.
+    /// The value the operand must hold; `written` is the number as the file gave it.
     Value {
         target: Target,
-        raw: u32,
-        written: i64,
+        wanted: Wanted,
+        written: String,
     },
     Mode(String),
     StopCause(String),
@@ -62,7 +62,27 @@ pub fn actual(cpu: &Cpu, target: Target) -> Option<u32> {
                 .as_ref()?
                 .get(usize::from(word))?,
         ),
+        Target::S7Data {
+            db,
+            byte,
+            bit,
+            bytes,
+        } => {
+            let data = s7_data_bytes(cpu, db, byte, bytes.max(1))?;
+            match bytes {
+                0 => u32::from(data[0] >> bit & 1),
+                _ => read_bytes(data, 0, data.len()),
+            }
+        }
     })
+}
+
+/// `count` bytes of STEP 7 data block `db` from `byte`; `None` when the DB is not loaded (or
+/// is shorter now: a DB the program deleted and created anew).
+pub fn s7_data_bytes(cpu: &Cpu, db: u16, byte: u32, count: u8) -> Option<&[u8]> {
+    let data = cpu.s7_data.get(usize::from(db))?.as_ref()?;
+    let start = usize::try_from(byte).ok()?;
+    data.get(start..start + usize::from(count))
 }
 
 fn show(target: Target, raw: u32) -> String {
@@ -74,17 +94,22 @@ fn show(target: Target, raw: u32) -> String {
     }
 }
 
-/// What an operand holds if it is not the value expected: (expected, actual) as shown.
+/// What an operand holds if it is not the value expected: (expected, actual) as shown; a REAL
+/// expected shows the actual value as a REAL.
 pub fn value_mismatch(
     cpu: &Cpu,
     target: Target,
-    raw: u32,
-    written: i64,
+    wanted: Wanted,
+    written: &str,
 ) -> Option<(String, String)> {
-    match actual(cpu, target) {
-        Some(value) if value == raw => None,
-        Some(value) => Some((written.to_string(), show(target, value))),
-        None => Some((written.to_string(), "not loaded".to_string())),
+    match (actual(cpu, target), wanted) {
+        (Some(value), _) if wanted.matches(value) => None,
+        (Some(value), Wanted::Real(_)) => Some((
+            written.to_string(),
+            format!("{:?} ({value:#010X})", f32::from_bits(value)),
+        )),
+        (Some(value), Wanted::Raw(_)) => Some((written.to_string(), show(target, value))),
+        (None, _) => Some((written.to_string(), "not loaded".to_string())),
     }
 }
 
@@ -94,9 +119,9 @@ pub fn check(cpu: &Cpu, outcome: &RunOutcome, expectations: &[Expectation]) -> V
         let mismatch = match &expectation.expected {
             Expected::Value {
                 target,
-                raw,
+                wanted,
                 written,
-            } => value_mismatch(cpu, *target, *raw, *written),
+            } => value_mismatch(cpu, *target, *wanted, written),
             Expected::Mode(mode) => (outcome.mode.name() != mode)
                 .then(|| (mode.clone(), outcome.mode.name().to_string())),
             Expected::StopCause(cause) => {

@@ -7,8 +7,10 @@
 pub mod check;
 pub mod error;
 pub mod expect;
+pub mod modify;
 pub mod operand;
 mod raw;
+pub mod s7_operand;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -27,7 +29,8 @@ use crate::vm::stop::StopCause;
 pub use check::TimedCheck;
 pub use error::ScenarioError;
 pub use expect::{Expectation, Expected};
-use operand::{Target, parse_target, raw_value};
+pub use modify::DataWrite;
+use operand::{Target, Wanted, parse_target, raw_value, real_value};
 use raw::{ProgramList, RawEvent, RawScenario, SpannedTable};
 
 /// The longest cycle watchdog a scenario may set: the longest cycle monitoring time of the
@@ -36,6 +39,24 @@ pub const MAX_WATCHDOG_NS: u64 = 6_000_000_000;
 
 /// The most events a scenario's repetitions (`every`) may add up to.
 pub const MAX_EVENTS: usize = 1_000_000;
+
+/// What the events of a scenario do: the happenings the engine schedules, and the data block
+/// writes made at cycle boundaries ([`modify`]).
+#[derive(Debug, Default)]
+pub struct Plan {
+    pub schedule: Vec<Scheduled>,
+    pub writes: Vec<DataWrite>,
+}
+
+impl Plan {
+    fn len(&self) -> usize {
+        self.schedule.len() + self.writes.len()
+    }
+}
+
+/// What one event does: a happening the engine schedules (if any), and the data block writes
+/// (target, raw value) of its `set`.
+type Effect = (Option<Happening>, Vec<(Target, u32)>);
 
 /// A loaded scenario.
 #[derive(Debug)]
@@ -273,13 +294,15 @@ impl Scenario {
         }
     }
 
-    /// The integer a `set` or `[expect]` entry gives (booleans count as 0 and 1) and the raw
-    /// value it stands for in the operand.
+    /// The value a `set` or `[expect]` entry gives, as written, and what it stands for in the
+    /// operand: an integer (booleans count as 0 and 1), or in a STEP 7 program's double word
+    /// also a REAL.
     fn value(
         target: Target,
         value: &Spanned<toml::Value>,
         operand: &str,
-    ) -> Result<(i64, u32), ScenarioError> {
+        program: &Program,
+    ) -> Result<(String, Wanted), ScenarioError> {
         let bad = |shown: String, range: String| ScenarioError::BadValue {
             operand: operand.into(),
             value: shown,
@@ -289,10 +312,15 @@ impl Scenario {
         let number = match value.get_ref() {
             toml::Value::Integer(number) => *number,
             toml::Value::Boolean(flag) => i64::from(*flag),
+            toml::Value::Float(real) if program.s7.step7 => {
+                let bits =
+                    real_value(target, *real).map_err(|range| bad(real.to_string(), range))?;
+                return Ok((real.to_string(), Wanted::Real(bits)));
+            }
             other => return Err(bad(other.to_string(), "an integer".into())),
         };
         let raw = raw_value(target, number).map_err(|range| bad(number.to_string(), range))?;
-        Ok((number, raw))
+        Ok((number.to_string(), Wanted::Raw(raw)))
     }
 
     /// The timed events, with operands resolved against the compiled program.
@@ -312,8 +340,24 @@ impl Scenario {
         set: MnemonicSet,
         max_events: usize,
     ) -> Result<Vec<Scheduled>, Vec<Report>> {
+        self.plan_at_most(program, set, max_events)
+            .map(|plan| plan.schedule)
+    }
+
+    /// The timed events and the data block writes of `set`, with operands resolved against
+    /// the compiled program.
+    pub fn plan(&self, program: &Program, set: MnemonicSet) -> Result<Plan, Vec<Report>> {
+        self.plan_at_most(program, set, MAX_EVENTS)
+    }
+
+    fn plan_at_most(
+        &self,
+        program: &Program,
+        set: MnemonicSet,
+        max_events: usize,
+    ) -> Result<Plan, Vec<Report>> {
         let mut errors = Errors::default();
-        let mut schedule = Vec::new();
+        let mut plan = Plan::default();
         for event in &self.events {
             let at_span = span(&event.get_ref().at);
             let event_span = span(event);
@@ -331,21 +375,21 @@ impl Scenario {
                 ));
                 continue;
             }
+            let happening = |happening| (Some(happening), Vec::new());
             let what = if let Some(changes) = &event.set {
-                self.input_changes(changes, program, set, &mut errors)
-                    .map(Happening::SetInputs)
+                self.set_changes(changes, program, set, &mut errors)
             } else if let Some(interrupt) = &event.interrupt {
                 errors
                     .keep(self.interrupt_ob(interrupt))
-                    .map(|ob| Happening::Interrupt { ob })
+                    .map(|ob| happening(Happening::Interrupt { ob }))
             } else if let Some(hardware) = &event.hw_interrupt {
-                errors.keep(self.hardware(hardware))
+                errors.keep(self.hardware(hardware)).map(happening)
             } else {
                 None
             };
             let times = at_ns.and_then(|at_ns| errors.keep(occurrences(event, at_ns, max_events)));
-            if let (Some(times), Some(what)) = (times, what) {
-                if schedule.len() + times.len() > max_events {
+            if let (Some(times), Some((what, writes))) = (times, what) {
+                if plan.len() + times.len() > max_events {
                     errors.push(invalid(
                         format!(
                             "this event repeats {} times; a scenario holds at most {max_events} events",
@@ -357,48 +401,63 @@ impl Scenario {
                     ));
                     continue;
                 }
-                let repeated = times.into_iter().map(|at_ns| Scheduled {
-                    at_ns,
-                    what: what.clone(),
-                });
-                schedule.extend(repeated);
+                for at_ns in times {
+                    if let Some(what) = &what {
+                        plan.schedule.push(Scheduled {
+                            at_ns,
+                            what: what.clone(),
+                        });
+                    }
+                    let timed =
+                        writes
+                            .iter()
+                            .map(|&(target, raw)| DataWrite { at_ns, target, raw });
+                    plan.writes.extend(timed);
+                }
             }
         }
         if errors.0.is_empty() {
-            Ok(schedule)
+            Ok(plan)
         } else {
             Err(self.reports(errors.0))
         }
     }
 
-    fn input_changes(
+    /// What a `set` table does: the input changes (a happening; kept even when empty, as a
+    /// `set` of inputs only always was) and the data block writes.
+    fn set_changes(
         &self,
         changes: &SpannedTable,
         program: &Program,
         set: MnemonicSet,
         errors: &mut Errors,
-    ) -> Option<Vec<InputChange>> {
-        let mut resolved = Vec::new();
+    ) -> Option<Effect> {
+        let mut inputs = Vec::new();
+        let mut writes = Vec::new();
         for (operand, value) in changes {
             let at = self.key_span(operand);
             let text = operand.get_ref();
             let Some(target) = errors.keep(parse_target(text, at, set, program)) else {
                 continue;
             };
-            if input_change(target, program, 0).is_none() {
-                errors.push(ScenarioError::UnknownOperand {
-                    operand: text.clone(),
-                    at,
-                    reason: "`set` changes process inputs only".into(),
-                    help: Some("use I bits, IB, IW, PY, PW, OY or OW".into()),
-                });
+            let is_data = matches!(target, Target::S7Data { .. });
+            if !is_data && input_change(target, program, 0).is_none() {
+                errors.push(not_settable(text, at, program));
                 continue;
             }
-            if let Some((_, raw)) = errors.keep(Scenario::value(target, value, text)) {
-                resolved.extend(input_change(target, program, raw));
+            if let Some((_, wanted)) = errors.keep(Scenario::value(target, value, text, program)) {
+                if is_data {
+                    writes.push((target, wanted.raw()));
+                } else {
+                    inputs.extend(input_change(target, program, wanted.raw()));
+                }
             }
         }
-        (resolved.len() == changes.len()).then_some(resolved)
+        if inputs.len() + writes.len() != changes.len() {
+            return None;
+        }
+        let happening = (writes.is_empty() || !inputs.is_empty()).then_some(inputs);
+        Some((happening.map(Happening::SetInputs), writes))
     }
 
     fn hardware(&self, hardware: &Spanned<raw::RawHardware>) -> Result<Happening, ScenarioError> {
@@ -552,11 +611,11 @@ impl Scenario {
         let operand = key.get_ref();
         let at = self.key_span(key);
         let target = errors.keep(parse_target(operand, at, set, program))?;
-        let (number, raw) = errors.keep(Scenario::value(target, value, operand))?;
+        let (written, wanted) = errors.keep(Scenario::value(target, value, operand, program))?;
         Some(Expected::Value {
             target,
-            raw,
-            written: number,
+            wanted,
+            written,
         })
     }
 
@@ -685,6 +744,26 @@ fn report(path: &Path, text: &Arc<str>, error: ScenarioError) -> Report {
 fn sorted(mut errors: Vec<ScenarioError>) -> Vec<ScenarioError> {
     errors.sort_by_key(|error| error.offset());
     errors
+}
+
+/// The error for an operand `set` cannot change; a STEP 7 program may also write data blocks.
+fn not_settable(text: &str, at: SourceSpan, program: &Program) -> ScenarioError {
+    let help = if program.s7.step7 {
+        "use I bits, IB, IW, ID, PIB, PIW, PID (German E, EB …, PEB …), or data block operands: `DB5.DBW 4`"
+    } else {
+        "use I bits, IB, IW, PY, PW, OY or OW"
+    };
+    let reason = if program.s7.step7 {
+        "`set` changes process inputs and data blocks only"
+    } else {
+        "`set` changes process inputs only"
+    };
+    ScenarioError::UnknownOperand {
+        operand: text.to_string(),
+        at,
+        reason: reason.into(),
+        help: Some(help.into()),
+    }
 }
 
 /// The change of the input modules that writing `value` to `target` makes; `None` when the

@@ -1,5 +1,5 @@
 //! Operands in `set` and `[expect]`: the program's mnemonic set or English, checked against the
-//! CPU's ranges.
+//! CPU's ranges; a STEP 7 program's operands in STEP 7 spelling ([`super::s7_operand`]).
 
 use miette::SourceSpan;
 
@@ -9,6 +9,7 @@ use crate::mnemonics::{self, Area, MnemonicSet};
 use crate::profile::Profile;
 
 use super::error::ScenarioError;
+use super::s7_operand;
 
 /// What an operand of a scenario reads or writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -36,13 +37,22 @@ pub enum Target {
         db: u8,
         word: u16,
     },
+    /// A STEP 7 data block's bit (`bytes` 0), byte, word or double word: `DB5.DBW 4`.
+    S7Data {
+        db: u16,
+        byte: u32,
+        bit: u8,
+        bytes: u8,
+    },
 }
 
 impl Target {
     pub fn bytes(self) -> u8 {
         match self {
             Target::ImageBit { .. } | Target::TimerBit(_) => 0,
-            Target::Image { bytes, .. } | Target::Periphery { bytes, .. } => bytes,
+            Target::Image { bytes, .. }
+            | Target::Periphery { bytes, .. }
+            | Target::S7Data { bytes, .. } => bytes,
             Target::CounterValue(_) | Target::DataWord { .. } => 2,
         }
     }
@@ -88,12 +98,19 @@ pub fn parse_target(
     set: MnemonicSet,
     program: &Program,
 ) -> Result<Target, ScenarioError> {
+    let absolute = |text: &str| {
+        if program.s7.step7 {
+            s7_operand::parse(text, at, program)
+        } else {
+            parse_absolute(text, at, set, program.profile, program.layout)
+        }
+    };
     let Some(name) = text.trim().strip_prefix('-') else {
-        return parse_absolute(text, at, set, program.profile, program.layout);
+        return absolute(text);
     };
     let symbols = &program.symbols;
     match symbols.operand_in(name, set) {
-        Some(absolute) => parse_absolute(&absolute, at, set, program.profile, program.layout),
+        Some(operand) => absolute(&operand),
         None => Err(ScenarioError::UnknownSymbol {
             name: name.to_string(),
             at,
@@ -202,6 +219,51 @@ fn parse_absolute(
     })
 }
 
+/// What a scenario wants an operand to hold, or writes into it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Wanted {
+    /// An integer (or `true`/`false`) as the raw bits it stands for: matched exactly.
+    Raw(u32),
+    /// A REAL given to a STEP 7 double word, as its IEEE 754 bits: matched by [`reals_match`].
+    Real(u32),
+}
+
+impl Wanted {
+    /// The bits written into the operand.
+    pub fn raw(self) -> u32 {
+        match self {
+            Wanted::Raw(raw) | Wanted::Real(raw) => raw,
+        }
+    }
+
+    /// Whether the operand's raw value `actual` is what is wanted.
+    pub fn matches(self, actual: u32) -> bool {
+        match self {
+            Wanted::Raw(raw) => raw == actual,
+            Wanted::Real(bits) => reals_match(f32::from_bits(bits), f32::from_bits(actual)),
+        }
+    }
+}
+
+/// Two REALs match when they are equal or differ by at most 1e-6 of the larger magnitude (a few
+/// steps of a REAL's 24-bit mantissa), so a decimal written in the scenario matches the REAL a
+/// computation rounded differently. NaN matches nothing.
+pub fn reals_match(wanted: f32, actual: f32) -> bool {
+    wanted == actual || (wanted - actual).abs() <= 1e-6 * wanted.abs().max(actual.abs())
+}
+
+/// The REAL a float stands for in a double word; only double words hold REALs.
+pub fn real_value(target: Target, value: f64) -> Result<u32, String> {
+    if target.bytes() != 4 {
+        return Err("an integer (a REAL only for a double word: MD, ID, QD, PID, DBD)".into());
+    }
+    let real = value as f32;
+    if value.is_nan() || (value.is_finite() && !real.is_finite()) {
+        return Err("a REAL: a number up to ±3.402823e38".into());
+    }
+    Ok(real.to_bits())
+}
+
 /// The allowed values of a target and the raw value of an integer: bits 0 or 1; bytes, words
 /// and double words unsigned or signed.
 pub fn raw_value(target: Target, value: i64) -> Result<u32, String> {
@@ -233,6 +295,31 @@ mod tests {
         assert_eq!(words("IW 2"), ["IW", "2"]);
         assert_eq!(words("I0.0"), ["I", "0.0"]);
         assert_eq!(words("DB10.DW3"), ["DB", "10", "DW", "3"]);
+    }
+
+    #[test]
+    fn reals_match_within_a_relative_millionth() {
+        assert!(Wanted::Real(1.5f32.to_bits()).matches(0x3FC0_0000));
+        assert!(reals_match(0.3, 0.1 + 0.2));
+        assert!(reals_match(4.0, 4.000_003));
+        assert!(!reals_match(4.0, 4.000_01));
+        assert!(reals_match(0.0, -0.0));
+        assert!(!reals_match(f32::NAN, f32::NAN));
+        assert!(!Wanted::Raw(4).matches(5));
+    }
+
+    #[test]
+    fn reals_go_to_double_words_only() {
+        let double = Target::S7Data {
+            db: 5,
+            byte: 6,
+            bit: 0,
+            bytes: 4,
+        };
+        assert_eq!(real_value(double, -1.5), Ok(0xBFC0_0000));
+        assert!(real_value(double, f64::NAN).is_err());
+        assert!(real_value(double, 1e39).is_err());
+        assert!(real_value(Target::Image { byte: 0, bytes: 2 }, 1.5).is_err());
     }
 
     #[test]

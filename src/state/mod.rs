@@ -2,8 +2,11 @@
 //! the process images and flags, the timers and counters in use, the data words that are not
 //! zero, and at a STOP the processing levels (the ISTACK). One plain structure, printed as text
 //! (`--state`) or as JSON (`--state-format json`); `programs/README.md` documents the schema.
+//! A STEP 7 program's state is shown the STEP 7 way ([`s7`]).
 
 pub mod operand;
+pub mod s7;
+mod s7_text;
 pub mod text;
 pub mod watch;
 pub mod widths;
@@ -32,6 +35,9 @@ pub struct StatusBits {
     pub ov: bool,
     pub cc1: bool,
     pub cc0: bool,
+    /// The binary result, of a STEP 7 program only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub br: Option<bool>,
 }
 
 impl From<Status> for StatusBits {
@@ -45,7 +51,37 @@ impl From<Status> for StatusBits {
             ov: status.ov(),
             cc1: status.cc1(),
             cc0: status.cc0(),
+            br: None,
         }
+    }
+}
+
+impl StatusBits {
+    /// The bits of a program's status: with BR when the program is a STEP 7 one.
+    pub fn of(status: Status, step7: bool) -> Self {
+        StatusBits {
+            br: step7.then_some(status.br()),
+            ..StatusBits::from(status)
+        }
+    }
+
+    /// The status word as a STEP 7 `L STW` loads it: /FC, RLO, STA, OR, OS, OV, CC0, CC1, BR
+    /// in bits 0 to 8.
+    pub fn word(&self) -> u16 {
+        [
+            self.first_check,
+            self.rlo,
+            self.sta,
+            self.or,
+            self.os,
+            self.ov,
+            self.cc0,
+            self.cc1,
+            self.br.unwrap_or(false),
+        ]
+        .iter()
+        .enumerate()
+        .fold(0, |word, (n, bit)| word | u16::from(*bit) << n)
     }
 }
 
@@ -81,7 +117,8 @@ pub struct LevelView {
     pub line: u32,
     pub accu: Vec<u32>,
     pub status: StatusBits,
-    pub open_db: Option<u8>,
+    /// The open DB (STEP 7: the DB register's).
+    pub open_db: Option<u16>,
     /// Innermost first.
     pub return_points: Vec<ReturnPoint>,
 }
@@ -92,12 +129,17 @@ pub struct State {
     /// ACCU 1, ACCU 2 (and 3, 4 on CPUs with four).
     pub accu: Vec<u32>,
     pub status: StatusBits,
-    pub open_db: Option<u8>,
-    /// `"I"`, `"Q"`, `"F"` → byte number → value, the non-zero bytes only.
+    /// The open DB (STEP 7: the DB register's).
+    pub open_db: Option<u16>,
+    /// A STEP 7 program's status word, address registers, DB and DI registers.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub registers: Option<s7::Registers>,
+    /// `"I"`, `"Q"`, `"F"` (STEP 7: `"M"`) → byte number → value, the non-zero bytes only.
     pub images: BTreeMap<&'static str, BTreeMap<String, u8>>,
     pub timers: Vec<TimerState>,
     pub counters: Vec<CounterState>,
-    /// `"DB 10"` → word number → value, the non-zero words only.
+    /// `"DB 10"` → word number → value, the non-zero words only; a STEP 7 program's data
+    /// blocks byte by byte: byte offset → value.
     pub data_blocks: BTreeMap<String, BTreeMap<String, u16>>,
     /// At a STOP: the running level first, then the interrupted ones.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -105,6 +147,9 @@ pub struct State {
     /// The widths the program uses its addresses in, for the text (JSON keeps bytes).
     #[serde(skip)]
     pub widths: widths::Widths,
+    /// The program is a STEP 7 one: the text is in STEP 7 notation.
+    #[serde(skip)]
+    pub step7: bool,
 }
 
 /// ACCU 1 and 2 of a level, and 3 and 4 on the CPUs that have four.
@@ -125,6 +170,11 @@ fn non_zero_bytes(bytes: &[u8]) -> BTreeMap<String, u8> {
         .collect()
 }
 
+/// The name of the flag area: `F` in STEP 5, `M` in STEP 7.
+pub fn flag_area(step7: bool) -> &'static str {
+    if step7 { "M" } else { "F" }
+}
+
 fn images(cpu: &Cpu) -> BTreeMap<&'static str, BTreeMap<String, u8>> {
     let layout: Layout = cpu.program.layout;
     let image = usize::from(layout.image_bytes);
@@ -133,7 +183,7 @@ fn images(cpu: &Cpu) -> BTreeMap<&'static str, BTreeMap<String, u8>> {
         ("I", &cpu.image[..image]),
         ("Q", &cpu.image[image..2 * image]),
         (
-            "F",
+            flag_area(cpu.program.s7.step7),
             &cpu.image[flags..flags + usize::from(layout.flag_bytes)],
         ),
     ]
@@ -218,8 +268,8 @@ fn interrupted(cpu: &Cpu) -> Vec<LevelView> {
             block: cpu.block_id(level.block).to_string(),
             line: cpu.line_of(level.block, level.pc),
             accu: accumulators(cpu, level),
-            status: level.status.into(),
-            open_db: level.open_db,
+            status: StatusBits::of(level.status, cpu.program.s7.step7),
+            open_db: open_db(cpu, level),
             return_points: return_points(cpu, base..top),
         });
     }
@@ -231,9 +281,18 @@ fn running(cpu: &Cpu, block: u16, pc: u32, return_points: Vec<ReturnPoint>) -> L
         block: cpu.block_id(block).to_string(),
         line: cpu.line_of(block, pc),
         accu: accumulators(cpu, &cpu.level),
-        status: cpu.level.status.into(),
-        open_db: cpu.level.open_db,
+        status: StatusBits::of(cpu.level.status, cpu.program.s7.step7),
+        open_db: open_db(cpu, &cpu.level),
         return_points,
+    }
+}
+
+/// The open DB of a level: a STEP 7 program's DB register (0 is none).
+fn open_db(cpu: &Cpu, level: &LevelState) -> Option<u16> {
+    if cpu.program.s7.step7 {
+        (level.db != 0).then_some(level.db)
+    } else {
+        level.open_db.map(u16::from)
     }
 }
 
@@ -278,19 +337,26 @@ pub fn levels_now(cpu: &Cpu) -> Vec<LevelView> {
 impl State {
     /// The state of `cpu` now; `stop` adds the levels.
     pub fn capture(cpu: &Cpu, stop: Option<&Stop>) -> State {
+        let step7 = cpu.program.s7.step7;
         State {
             mode: cpu.mode.name(),
             accu: accumulators(cpu, &cpu.level),
-            status: cpu.level.status.into(),
-            open_db: cpu.level.open_db,
+            status: StatusBits::of(cpu.level.status, step7),
+            open_db: open_db(cpu, &cpu.level),
+            registers: step7.then(|| s7::Registers::of(cpu)),
             images: images(cpu),
             timers: timers(cpu),
             counters: counters(cpu),
-            data_blocks: data_blocks(cpu),
+            data_blocks: if step7 {
+                s7::data_blocks(cpu)
+            } else {
+                data_blocks(cpu)
+            },
             levels: stop
                 .filter(|_| cpu.mode == Mode::Stop)
                 .map(|stop| levels(cpu, stop)),
             widths: widths::Widths::of(&cpu.program),
+            step7,
         }
     }
 }

@@ -19,7 +19,7 @@ fn double(value: u32) -> String {
 }
 
 /// A map keyed by numbers written as text (`"10"`, `"DB 10"`), keyed by the numbers.
-fn numeric<'a, V>(map: &'a BTreeMap<String, V>, prefix: &str) -> BTreeMap<u16, &'a V> {
+pub(super) fn numeric<'a, V>(map: &'a BTreeMap<String, V>, prefix: &str) -> BTreeMap<u16, &'a V> {
     map.iter()
         .filter_map(|(key, value)| Some((key.strip_prefix(prefix)?.parse().ok()?, value)))
         .collect()
@@ -71,7 +71,11 @@ pub fn accu(value: u32) -> String {
     )
 }
 
+/// The status bits; a STEP 7 program's (with BR) as its status word.
 pub fn status(status: &StatusBits) -> String {
+    if status.br.is_some() {
+        return format!("STW {}", super::s7::status_word(status.word()));
+    }
     let bit = |set: bool| u8::from(set);
     format!(
         "first check {}  RLO {}  STA {}  OR {}  OS {}  OV {}  CC 1 {}  CC 0 {}",
@@ -86,11 +90,11 @@ pub fn status(status: &StatusBits) -> String {
     )
 }
 
-fn open_db(open: Option<u8>) -> String {
+fn open_db(open: Option<u16>) -> String {
     open.map_or("none".to_string(), |db| format!("DB {db}"))
 }
 
-const TIME_BASES: [&str; 4] = ["10 ms", "100 ms", "1 s", "10 s"];
+pub(super) const TIME_BASES: [&str; 4] = ["10 ms", "100 ms", "1 s", "10 s"];
 
 /// `--state`: what a PG would show after the run.
 pub fn render(state: &State) -> String {
@@ -99,6 +103,9 @@ pub fn render(state: &State) -> String {
 
 /// The state under a title of its own (the debugger's `state`: "state at 12.5 ms").
 pub fn render_titled(state: &State, title: &str) -> String {
+    if state.step7 {
+        return super::s7_text::render_titled(state, title);
+    }
     let mut out = format!("{title}: mode {}\n", state.mode);
     for (n, value) in state.accu.iter().enumerate() {
         let _ = writeln!(out, "  ACCU {}   {}", n + 1, accu(*value));
@@ -153,10 +160,16 @@ pub fn istack_text(levels: &[LevelView]) -> String {
         let open = level
             .open_db
             .map_or("no DB open".to_string(), |db| format!("DB {db} open"));
+        // A STEP 7 level (its status has BR) in STEP 7 notation.
+        let hex = if level.status.br.is_some() {
+            "DW#16#"
+        } else {
+            "KH "
+        };
         let accus: Vec<String> = level.accu.iter().map(|a| format!("{a:08X}")).collect();
         let _ = write!(
             out,
-            "\n  {} line {} ({role}), {open}\n    ACCU 1-{} KH {}\n    {}",
+            "\n  {} line {} ({role}), {open}\n    ACCU 1-{} {hex}{}\n    {}",
             level.block,
             level.line,
             accus.len(),

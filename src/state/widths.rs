@@ -1,12 +1,18 @@
 //! The widths the program gives its addresses, read from its code: `T FW 0` makes flag bytes 0
 //! and 1 one word, `T PW 4` output bytes 4 and 5, `T FD 4` bytes 4 to 7 one double word, `L IW 2` input bytes 2 and 3 one
 //! word, `T DD 3` data words 3 and 4 one double word. `--state` shows each address in the width
-//! the program used: the VM need not record anything while it runs.
+//! the program used: the VM need not record anything while it runs. A STEP 7 program's data
+//! blocks are byte-addressed: their widths come from its loads and transfers of DBW, DBD, DIW,
+//! DID and from the parameters its FB calls copy into instance data blocks.
 
 use std::collections::BTreeMap;
 
 use crate::compiler::bytecode::DataPart;
 use crate::compiler::{Layout, Op, Program};
+use crate::step7::ast::AccessWidth;
+use crate::step7::bytecode::{MemOp, Place, S7Code, Target as S7Target};
+
+use super::flag_area;
 
 /// The widths found, in bytes of the image and in words of the data blocks.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -16,6 +22,11 @@ pub struct Widths {
     image: BTreeMap<(&'static str, u16), u16>,
     /// Data word number → words (2): the double words the program transfers (in any DB).
     data: BTreeMap<u16, u16>,
+    /// STEP 7 data byte → bytes (2 or 4): the words and double words the program loads or
+    /// transfers (in any DB).
+    s7_data: BTreeMap<u16, u16>,
+    /// The flag area's name, `F` or (STEP 7) `M`.
+    flags: &'static str,
 }
 
 /// The ranges an area is shown in: (first address, width), in address order.
@@ -26,7 +37,10 @@ impl Widths {
     /// from the inputs (a program reads its inputs and writes the rest).
     pub fn of(program: &Program) -> Widths {
         let layout = program.layout;
-        let mut widths = Widths::default();
+        let mut widths = Widths {
+            flags: flag_area(program.s7.step7),
+            ..Widths::default()
+        };
         // The arena's plain code: every block's body and the FB bodies specialised for their
         // actual parameters (`T =OUT` with `OUT :FW 6` is a `T FW 6` there).
         for op in program.arena.plain.iter() {
@@ -52,21 +66,58 @@ impl Widths {
                 Op::TransferData(DataPart::Double, word) => {
                     widths.data.insert(word, 2);
                 }
+                Op::S7(S7Code::Mem {
+                    op: MemOp::Load | MemOp::Transfer,
+                    place,
+                }) => widths.s7_place(program.s7.places[usize::from(place)], layout),
                 _ => {}
+            }
+        }
+        for call in &program.s7.fb_calls {
+            for copy in call.inputs.iter().chain(&call.outputs) {
+                widths.s7_data_width(copy.byte, copy.width);
             }
         }
         widths
     }
 
+    /// The width of a STEP 7 load or transfer: of the image, or of any data block.
+    fn s7_place(&mut self, place: Place, layout: Layout) {
+        match place.target {
+            S7Target::Image { byte, .. } => match place.width {
+                AccessWidth::Word => self.image_width(layout, byte, 2),
+                AccessWidth::Double => self.image_width(layout, byte, 4),
+                AccessWidth::Bit | AccessWidth::Byte => {}
+            },
+            S7Target::Data { byte, .. } | S7Target::NumberedData { byte, .. } => {
+                self.s7_data_width(byte, place.width)
+            }
+            _ => {}
+        }
+    }
+
+    fn s7_data_width(&mut self, byte: u32, width: AccessWidth) {
+        let bytes = match width {
+            AccessWidth::Word => 2,
+            AccessWidth::Double => 4,
+            AccessWidth::Bit | AccessWidth::Byte => return,
+        };
+        let Ok(byte) = u16::try_from(byte) else {
+            return;
+        };
+        let widest = self.s7_data.entry(byte).or_insert(bytes);
+        *widest = (*widest).max(bytes);
+    }
+
     fn image_width(&mut self, layout: Layout, offset: u16, bytes: u16) {
-        let Some(at) = area_byte(layout, offset) else {
+        let Some(at) = area_byte(layout, offset, self.flags) else {
             return;
         };
         let widest = self.image.entry(at).or_insert(bytes);
         *widest = (*widest).max(bytes);
     }
 
-    /// How to show the non-zero bytes `bytes` of `area` (`"I"`, `"Q"`, `"F"`): each in the
+    /// How to show the non-zero bytes `bytes` of `area` (`"I"`, `"Q"`, `"F"`, `"M"`): each in the
     /// word or double word the program used it in, else alone.
     pub fn image_ranges(&self, area: &'static str, bytes: impl Iterator<Item = u16>) -> Ranges {
         ranges(bytes, 4, |at| self.image.get(&(area, at)).copied())
@@ -77,10 +128,16 @@ impl Widths {
     pub fn data_ranges(&self, words: impl Iterator<Item = u16>) -> Ranges {
         ranges(words, 2, |at| self.data.get(&at).copied())
     }
+
+    /// How to show the non-zero bytes of a STEP 7 data block: words and double words where the
+    /// program used them, else bytes.
+    pub fn s7_data_ranges(&self, bytes: impl Iterator<Item = u16>) -> Ranges {
+        ranges(bytes, 4, |at| self.s7_data.get(&at).copied())
+    }
 }
 
-/// The area and byte number of an image offset.
-fn area_byte(layout: Layout, offset: u16) -> Option<(&'static str, u16)> {
+/// The area and byte number of an image offset; `flags` names the flag area.
+fn area_byte(layout: Layout, offset: u16, flags: &'static str) -> Option<(&'static str, u16)> {
     let image = layout.image_bytes;
     if offset < image {
         Some(("I", offset))
@@ -90,7 +147,7 @@ fn area_byte(layout: Layout, offset: u16) -> Option<(&'static str, u16)> {
         offset
             .checked_sub(layout.flag_base())
             .filter(|byte| *byte < layout.flag_bytes)
-            .map(|byte| ("F", byte))
+            .map(|byte| (flags, byte))
     }
 }
 
