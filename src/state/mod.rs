@@ -58,10 +58,10 @@ impl From<Status> for StatusBits {
 
 impl StatusBits {
     /// The bits of a program's status: with BR when the program is a STEP 7 one.
-    pub fn of(status: Status, step7: bool) -> Self {
+    pub fn of(level: &crate::vm::LevelState, step7: bool) -> Self {
         StatusBits {
-            br: step7.then_some(status.br()),
-            ..StatusBits::from(status)
+            br: step7.then_some(level.br),
+            ..StatusBits::from(level.status)
         }
     }
 
@@ -268,7 +268,7 @@ fn interrupted(cpu: &Cpu) -> Vec<LevelView> {
             block: cpu.block_id(level.block).to_string(),
             line: cpu.line_of(level.block, level.pc),
             accu: accumulators(cpu, level),
-            status: StatusBits::of(level.status, cpu.program.s7.step7),
+            status: StatusBits::of(level, cpu.program.s7.step7),
             open_db: open_db(cpu, level),
             return_points: return_points(cpu, base..top),
         });
@@ -281,7 +281,7 @@ fn running(cpu: &Cpu, block: u16, pc: u32, return_points: Vec<ReturnPoint>) -> L
         block: cpu.block_id(block).to_string(),
         line: cpu.line_of(block, pc),
         accu: accumulators(cpu, &cpu.level),
-        status: StatusBits::of(cpu.level.status, cpu.program.s7.step7),
+        status: StatusBits::of(&cpu.level, cpu.program.s7.step7),
         open_db: open_db(cpu, &cpu.level),
         return_points,
     }
@@ -341,7 +341,7 @@ impl State {
         State {
             mode: cpu.mode.name(),
             accu: accumulators(cpu, &cpu.level),
-            status: StatusBits::of(cpu.level.status, step7),
+            status: StatusBits::of(&cpu.level, step7),
             open_db: open_db(cpu, &cpu.level),
             registers: step7.then(|| s7::Registers::of(cpu)),
             images: images(cpu),

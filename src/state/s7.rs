@@ -26,7 +26,7 @@ impl Registers {
     pub fn of(cpu: &Cpu) -> Registers {
         let level = &cpu.level;
         Registers {
-            stw: level.status.to_word(),
+            stw: level.status.to_word(level.br),
             ar1: level.ar1,
             ar2: level.ar2,
             db: level.db,

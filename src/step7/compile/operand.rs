@@ -86,10 +86,26 @@ impl super::Compiler<'_> {
                 },
                 None => return Err(self.range_error(address, at)),
             },
-            S7Area::PeripheralInput | S7Area::PeripheralOutput => Target::Peripheral {
-                output: address.area == S7Area::PeripheralOutput,
-                byte: address.byte.min(u32::from(u16::MAX)) as u16,
-            },
+            S7Area::PeripheralInput | S7Area::PeripheralOutput => {
+                let size = self.profile.sizes.peripheral_bytes;
+                if address.byte + bytes(width) > u32::from(size) {
+                    let name = if address.area == S7Area::PeripheralInput {
+                        "PI"
+                    } else {
+                        "PQ"
+                    };
+                    return Err(CheckError::OperandRange {
+                        what: format!("{name} byte {}", address.byte),
+                        at,
+                        range: format!("{name} bytes 0 to {}", size.saturating_sub(1)),
+                        cpu: self.profile.name,
+                    });
+                }
+                Target::Peripheral {
+                    output: address.area == S7Area::PeripheralOutput,
+                    byte: address.byte as u16,
+                }
+            }
             S7Area::Local => Target::Local {
                 byte: address.byte,
                 bit: address.bit,

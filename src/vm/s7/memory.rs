@@ -374,6 +374,18 @@ impl Cpu {
         }
     }
 
+    /// A peripheral access (an indirect one is known only now) within the CPU's modules.
+    fn peripheral_in_range(&self, byte: u16, width: AccessWidth) -> Result<(), Fault> {
+        let end = usize::from(byte) + byte_count(width);
+        if end > self.inputs.len() {
+            return Err(fault(format!(
+                "peripheral byte {byte} is past the CPU's {} peripheral bytes",
+                self.inputs.len()
+            )));
+        }
+        Ok(())
+    }
+
     /// Reads a byte, word or double word (bits: 0 or 1).
     pub fn fetch(&mut self, located: Located, width: AccessWidth) -> Result<u32, Fault> {
         if width == AccessWidth::Bit {
@@ -382,6 +394,7 @@ impl Cpu {
         match located {
             Located::Constant(value) => Ok(value),
             Located::Peripheral { output, byte } => {
+                self.peripheral_in_range(byte, width)?;
                 let width = io_width(width);
                 if output {
                     Err(fault(format!(
@@ -410,6 +423,7 @@ impl Cpu {
         }
         match located {
             Located::Peripheral { output: true, byte } => {
+                self.peripheral_in_range(byte, width)?;
                 self.write_periphery(io_width(width), byte, value, false);
                 Ok(())
             }
