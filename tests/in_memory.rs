@@ -1,6 +1,8 @@
 //! Runs from files held in memory (as the browser playground, which has no file system, will
 //! run them) give the same report as runs from the disk, for every sample.
 
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -26,7 +28,10 @@ fn report(options: &RunOptions) -> String {
 fn every_sample_runs_the_same_from_memory() {
     let mut files = BTreeMap::new();
     let mut scenarios = Vec::new();
-    for entry in std::fs::read_dir("programs").unwrap() {
+    let entries = common::SAMPLE_DIRS
+        .iter()
+        .flat_map(|dir| std::fs::read_dir(dir).unwrap());
+    for entry in entries {
         let path = entry.unwrap().path();
         if path.is_file() {
             files.insert(path.clone(), std::fs::read(&path).unwrap());

@@ -80,6 +80,32 @@ fn the_interrupt_example_is_serviced_once() {
     assert!(outcome.stop.is_none());
 }
 
+/// The STEP 7 samples of programs/s7/ are in the catalogue under `s7/`, their scenarios find
+/// their programs beside them, and the SPEED7 sample loses and holds its hardware interrupts
+/// as the VIPA SPEED7 operation list (OB 40/OB 41) says.
+#[test]
+fn the_step7_samples_are_in_the_catalogue() {
+    let files = catalogue();
+    for sample in ["traffic_light", "motor_fb", "ob40_alarm"] {
+        for extension in ["awl", "toml"] {
+            let name = format!("s7/{sample}.{extension}");
+            assert!(files.contains_key(&name), "{name}");
+        }
+    }
+    let outcome = playground::run(&scenario("s7/ob40_alarm.toml"));
+    assert!(outcome.ran, "{:#?}", outcome.diagnostics);
+    assert!(outcome.stop.is_none());
+    for line in [
+        "expectations: 10 of 10 met",
+        "OB 40: requested 5, serviced 3, lost 2",
+        "OB 82: requested 1, serviced 1, lost 0",
+    ] {
+        assert!(outcome.summary.contains(line), "{}", outcome.summary);
+    }
+    let alone = playground::run(&program("s7/motor_fb.awl"));
+    assert!(alone.summary.contains("cpu: speed7"), "{}", alone.summary);
+}
+
 #[test]
 fn source_errors_come_with_their_lines_and_help() {
     let outcome = playground::run(&program("mistakes.awl"));

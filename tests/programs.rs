@@ -1,9 +1,12 @@
-//! Every scenario in programs/ (and programs/bench/) passes and states the mode it ends in, and
-//! every sample program has one.
+//! Every scenario in programs/ (the STEP 5 samples), programs/s7/ (the STEP 7 samples) and
+//! programs/bench/ passes and states the mode it ends in, and every sample program has one.
 
 mod common;
 
 use awl::runner::{self, RunOptions};
+
+/// The folders of samples, each program with its scenarios beside it.
+const SAMPLE_DIRS: [&str; 3] = ["programs", "programs/s7", "programs/bench"];
 
 fn files(dir: &str, extension: &str) -> Vec<std::path::PathBuf> {
     let mut files: Vec<_> = std::fs::read_dir(dir)
@@ -17,9 +20,9 @@ fn files(dir: &str, extension: &str) -> Vec<std::path::PathBuf> {
 
 #[test]
 fn every_scenario_passes() {
-    let scenarios: Vec<_> = files("programs", "toml")
-        .into_iter()
-        .chain(files("programs/bench", "toml"))
+    let scenarios: Vec<_> = SAMPLE_DIRS
+        .iter()
+        .flat_map(|dir| files(dir, "toml"))
         .collect();
     assert!(scenarios.len() >= 20);
     for scenario in scenarios {
@@ -44,10 +47,7 @@ fn every_scenario_passes() {
 /// Every scenario says how the run must end: `mode` in its `[expect]` table.
 #[test]
 fn every_scenario_states_its_final_mode() {
-    for scenario in files("programs", "toml")
-        .into_iter()
-        .chain(files("programs/bench", "toml"))
-    {
+    for scenario in SAMPLE_DIRS.iter().flat_map(|dir| files(dir, "toml")) {
         let text = std::fs::read_to_string(&scenario).unwrap();
         let table: toml::Table = text.parse().unwrap();
         let mode = table
@@ -64,7 +64,7 @@ fn every_scenario_states_its_final_mode() {
 
 #[test]
 fn every_program_has_a_scenario() {
-    for dir in ["programs", "programs/bench"] {
+    for dir in SAMPLE_DIRS {
         let scenarios: String = files(dir, "toml")
             .iter()
             .map(|path| std::fs::read_to_string(path).unwrap())

@@ -1,6 +1,8 @@
 //! No input makes the front end panic or hang: random bytes, STL-like noise and mutated sample
 //! programs all go through lexing, parsing, compiling and rendering of every diagnostic.
 
+mod common;
+
 use awl::diagnostics::{render_plain, report};
 use awl::frontend;
 use awl::profile;
@@ -21,13 +23,7 @@ fn run_front_end(bytes: Vec<u8>) {
 }
 
 fn samples() -> Vec<Vec<u8>> {
-    let mut files: Vec<_> = std::fs::read_dir("programs")
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|ext| ext == "awl"))
-        .collect();
-    files.sort();
-    files
+    common::sample_files("awl")
         .into_iter()
         .map(|path| std::fs::read(path).unwrap())
         .collect()
@@ -140,13 +136,7 @@ fn crlf_and_latin1_files_parse() {
 
 /// Mutated scenario files never panic the scenario loader or resolver.
 fn scenario_samples() -> Vec<(std::path::PathBuf, String)> {
-    let mut files: Vec<_> = std::fs::read_dir("programs")
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|ext| ext == "toml"))
-        .collect();
-    files.sort();
-    files
+    common::sample_scenarios()
         .into_iter()
         .map(|path| {
             let text = std::fs::read_to_string(&path).unwrap();

@@ -1,6 +1,8 @@
 //! The stepping loop (program status, the debugger) runs programs exactly as the plain loop
 //! does: same state, clock, instruction count and interrupt statistics for every sample.
 
+mod common;
+
 use awl::compiler::Op;
 use awl::runner::{self, Ran, RunOptions};
 use awl::state::State;
@@ -50,12 +52,7 @@ fn summary(ran: &Ran) -> String {
 
 #[test]
 fn every_sample_runs_the_same_with_a_probe() {
-    let mut scenarios: Vec<_> = std::fs::read_dir("programs")
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|ext| ext == "toml"))
-        .collect();
-    scenarios.sort();
+    let scenarios = common::sample_scenarios();
     assert!(scenarios.len() > 15);
     for path in scenarios {
         let options = RunOptions {

@@ -153,15 +153,25 @@ impl Buffer {
     }
 }
 
-/// The sample scenarios of programs/ (not programs/bench/), in name order.
-pub fn sample_scenarios() -> Vec<PathBuf> {
-    let mut scenarios: Vec<PathBuf> = std::fs::read_dir("programs")
-        .expect("programs/")
+/// The folders of sample programs with their scenarios: the STEP 5 samples and the STEP 7 ones
+/// (not programs/bench/).
+pub const SAMPLE_DIRS: [&str; 2] = ["programs", "programs/s7"];
+
+/// The files of the sample folders whose names end in `.extension`, in name order.
+pub fn sample_files(extension: &str) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = SAMPLE_DIRS
+        .iter()
+        .flat_map(|dir| std::fs::read_dir(dir).expect("a sample folder"))
         .map(|entry| entry.expect("an entry").path())
-        .filter(|path| path.extension().is_some_and(|ext| ext == "toml"))
+        .filter(|path| path.extension().is_some_and(|ext| ext == extension))
         .collect();
-    scenarios.sort();
-    scenarios
+    files.sort();
+    files
+}
+
+/// The sample scenarios of programs/ and programs/s7/ (not programs/bench/), in name order.
+pub fn sample_scenarios() -> Vec<PathBuf> {
+    sample_files("toml")
 }
 
 /// Every file of `programs/` and `web/examples/`, named as the playground names them
