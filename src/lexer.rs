@@ -61,21 +61,22 @@ pub enum TokenKind {
     Invalid,
 }
 
-/// One token: its kind and where it stands in the file.
+/// One token: its kind (a STEP 5 [`TokenKind`], or the STEP 7 lexer's) and where it stands
+/// in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Token {
-    pub kind: TokenKind,
+pub struct Token<K = TokenKind> {
+    pub kind: K,
     pub start: u32,
     pub end: u32,
 }
 
-impl Token {
+impl<K: Copy> Token<K> {
     pub fn text(self, source: &str) -> &str {
         &source[self.start as usize..self.end as usize]
     }
 
-    /// True when `next` starts right where this token ends (`A(`, `:F`).
-    pub fn touches(self, next: Token) -> bool {
+    /// True when `next` starts right where this token ends (`A(`, `:F`, `I0.1`).
+    pub fn touches(self, next: Token<K>) -> bool {
         self.end == next.start
     }
 }

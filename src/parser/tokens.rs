@@ -9,18 +9,19 @@ use crate::source::{FileId, Span};
 
 use super::error::ParseError;
 
-/// The tokens of one line, as nom input.
+/// A run of tokens as nom input (nom 8 has no `Input` for token slices): the tokens of a
+/// STEP 5 line, or of a STEP 7 text with its own token type `T`.
 #[derive(Debug, Clone, Copy)]
-pub struct Tokens<'a> {
-    pub tokens: &'a [Token],
+pub struct Tokens<'a, T = Token> {
+    pub tokens: &'a [T],
 }
 
-impl<'a> Tokens<'a> {
-    pub fn new(tokens: &'a [Token]) -> Self {
+impl<'a, T: Copy> Tokens<'a, T> {
+    pub fn new(tokens: &'a [T]) -> Self {
         Tokens { tokens }
     }
 
-    pub fn first(&self) -> Option<Token> {
+    pub fn first(&self) -> Option<T> {
         self.tokens.first().copied()
     }
 
@@ -29,9 +30,9 @@ impl<'a> Tokens<'a> {
     }
 }
 
-impl<'a> nom::Input for Tokens<'a> {
-    type Item = Token;
-    type Iter = std::iter::Copied<std::slice::Iter<'a, Token>>;
+impl<'a, T: Copy> nom::Input for Tokens<'a, T> {
+    type Item = T;
+    type Iter = std::iter::Copied<std::slice::Iter<'a, T>>;
     type IterIndices = std::iter::Enumerate<Self::Iter>;
 
     fn input_len(&self) -> usize {

@@ -146,7 +146,7 @@ fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
                 Resolved::Constant(value) => Located::Constant(value),
                 Resolved::S7(index) => {
                     let place = *cpu.program.s7.places.get(usize::from(index))?;
-                    member(locate(cpu, place, caller(cpu, context)?)?, byte, bit)
+                    locate(cpu, place, caller(cpu, context)?)?.offset(byte, bit)
                 }
                 _ => return None,
             }
@@ -156,31 +156,6 @@ fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
         Target::Constant(value) => Located::Constant(value),
         _ => return None,
     })
-}
-
-/// A structure member `byte`/`bit` into an actual.
-fn member(located: Located, byte: u32, bit: u8) -> Located {
-    let byte = byte as usize;
-    match located {
-        Located::Image { byte: at, bit: own } => Located::Image {
-            byte: at + byte,
-            bit: own + bit,
-        },
-        Located::Local { byte: at, bit: own } => Located::Local {
-            byte: at + byte,
-            bit: own + bit,
-        },
-        Located::Data {
-            db,
-            byte: at,
-            bit: own,
-        } => Located::Data {
-            db,
-            byte: at + byte,
-            bit: own + bit,
-        },
-        other => other,
-    }
 }
 
 /// The value at `located`, spelled for its width.

@@ -77,24 +77,8 @@ pub enum TokenKind {
     Invalid,
 }
 
-/// One token: its kind and where it stands in the file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Token {
-    pub kind: TokenKind,
-    pub start: u32,
-    pub end: u32,
-}
-
-impl Token {
-    pub fn text(self, source: &str) -> &str {
-        &source[self.start as usize..self.end as usize]
-    }
-
-    /// True when `next` starts right where this token ends (`A(`, `I0.1`).
-    pub fn touches(self, next: Token) -> bool {
-        self.end == next.start
-    }
-}
+/// One STEP 7 token: its kind and where it stands in the file.
+pub type Token = crate::lexer::Token<TokenKind>;
 
 /// Splits a whole file into tokens. Characters that start no token become [`TokenKind::Invalid`].
 pub fn lex(source: &str) -> Vec<Token> {

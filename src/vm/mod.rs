@@ -300,7 +300,8 @@ impl Cpu {
             } else {
                 vec![0; s7::memory::LOCAL_BYTES]
             },
-            fb_saves: Vec::new(),
+            // As deep as the block stack, so a call never allocates.
+            fb_saves: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
             s7_frames: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
             level: LevelState {
                 accu1: 0,

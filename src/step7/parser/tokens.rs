@@ -1,93 +1,28 @@
-//! The token-slice input type for nom 8 over STEP 7 tokens, and the primitive parsers the
-//! statement, operand and declaration grammars are built from. It mirrors the STEP 5 parser's
-//! wrapper (`crate::parser::tokens`), over the STEP 7 lexer's tokens.
+//! The token-slice input for nom 8 over STEP 7 tokens (the STEP 5 parser's wrapper,
+//! `crate::parser::tokens::Tokens`), and the primitive parsers the statement, operand and
+//! declaration grammars are built from.
 
 use std::cell::Cell;
 
+use nom::IResult;
 use nom::error::ErrorKind;
-use nom::{IResult, Needed};
 
 use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
 use crate::step7::error::S7ParseError;
 use crate::step7::lexer::{Token, TokenKind};
 
-/// A run of tokens, as nom input.
-#[derive(Debug, Clone, Copy)]
-pub struct Tokens<'a> {
-    pub tokens: &'a [Token],
-}
+/// A run of STEP 7 tokens, as nom input: the STEP 5 parser's wrapper over this lexer's tokens.
+pub type Tokens<'a> = crate::parser::tokens::Tokens<'a, Token>;
 
 impl<'a> Tokens<'a> {
-    pub fn new(tokens: &'a [Token]) -> Self {
-        Tokens { tokens }
-    }
-
-    pub fn first(&self) -> Option<Token> {
-        self.tokens.first().copied()
-    }
-
     pub fn second(&self) -> Option<Token> {
         self.tokens.get(1).copied()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.tokens.is_empty()
     }
 
     pub fn skip(&self, count: usize) -> Self {
         Tokens {
             tokens: &self.tokens[count.min(self.tokens.len())..],
-        }
-    }
-}
-
-impl<'a> nom::Input for Tokens<'a> {
-    type Item = Token;
-    type Iter = std::iter::Copied<std::slice::Iter<'a, Token>>;
-    type IterIndices = std::iter::Enumerate<Self::Iter>;
-
-    fn input_len(&self) -> usize {
-        self.tokens.len()
-    }
-
-    fn take(&self, index: usize) -> Self {
-        Tokens {
-            tokens: &self.tokens[..index],
-        }
-    }
-
-    fn take_from(&self, index: usize) -> Self {
-        Tokens {
-            tokens: &self.tokens[index..],
-        }
-    }
-
-    fn take_split(&self, index: usize) -> (Self, Self) {
-        let (prefix, suffix) = self.tokens.split_at(index);
-        (Tokens { tokens: suffix }, Tokens { tokens: prefix })
-    }
-
-    fn position<P>(&self, predicate: P) -> Option<usize>
-    where
-        P: Fn(Self::Item) -> bool,
-    {
-        self.tokens.iter().position(|token| predicate(*token))
-    }
-
-    fn iter_elements(&self) -> Self::Iter {
-        self.tokens.iter().copied()
-    }
-
-    fn iter_indices(&self) -> Self::IterIndices {
-        self.iter_elements().enumerate()
-    }
-
-    fn slice_index(&self, count: usize) -> Result<usize, Needed> {
-        if self.tokens.len() >= count {
-            Ok(count)
-        } else {
-            Err(Needed::new(count - self.tokens.len()))
         }
     }
 }

@@ -56,7 +56,6 @@ pub fn accumulator(level: &mut LevelState, op: S7Op, count: u8) -> Result<(), Fa
         br,
         ..
     } = level;
-    let two = |kind: Arith| kind;
     match op {
         S7Op::OrAlone => bit_logic::or_alone(status),
         S7Op::SetRlo => bit_logic::set_rlo(status, true),
@@ -73,7 +72,7 @@ pub fn accumulator(level: &mut LevelState, op: S7Op, count: u8) -> Result<(), Fa
                 S7Op::AddInt => Arith::Add,
                 S7Op::SubInt => Arith::Sub,
                 S7Op::MulInt => Arith::Mul,
-                _ => two(Arith::Div),
+                _ => Arith::Div,
             };
             integer::int(kind, accu1, *accu2, status);
             after_arithmetic(level, count);

@@ -338,19 +338,18 @@ impl Cpu {
         let Some((db, di, ar2)) = self.fb_saves.pop() else {
             return Err(fault("an FB's return without its call"));
         };
-        let mut values = Vec::with_capacity(call.outputs.len());
+        // The registers first: an actual may be the caller's own instance data. The outputs are
+        // read from the instance DB by its number, whatever DI holds.
+        self.level.db = db;
+        self.level.di = di;
+        self.level.ar2 = ar2;
         for copy in &call.outputs {
             let from = Located::Data {
                 db: call.instance_db,
                 byte: copy.byte as usize,
                 bit: copy.bit,
             };
-            values.push(self.fetch(from, copy.width)?);
-        }
-        self.level.db = db;
-        self.level.di = di;
-        self.level.ar2 = ar2;
-        for (copy, value) in call.outputs.iter().zip(values) {
+            let value = self.fetch(from, copy.width)?;
             let (to, _) = self.locate_index(copy.actual)?;
             self.store(to, copy.width, value)?;
         }

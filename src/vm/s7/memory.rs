@@ -41,6 +41,34 @@ pub enum Located {
     Special(Target),
 }
 
+impl Located {
+    /// A member `byte`/`bit` into a located actual: a structure's member, or the actual itself
+    /// (0, 0) with its own bit.
+    pub fn offset(self, byte: u32, bit: u8) -> Located {
+        let byte = byte as usize;
+        match self {
+            Located::Image { byte: at, bit: own } => Located::Image {
+                byte: at + byte,
+                bit: own + bit,
+            },
+            Located::Local { byte: at, bit: own } => Located::Local {
+                byte: at + byte,
+                bit: own + bit,
+            },
+            Located::Data {
+                db,
+                byte: at,
+                bit: own,
+            } => Located::Data {
+                db,
+                byte: at + byte,
+                bit: own + bit,
+            },
+            other => other,
+        }
+    }
+}
+
 /// The registers a place is resolved against: the running block's, or a caller's for the
 /// actual of a parameter.
 #[derive(Debug, Clone, Copy)]
@@ -277,7 +305,7 @@ impl Cpu {
                 };
                 let place = self.program.s7.places[usize::from(index)];
                 let located = self.locate(place, caller)?;
-                Ok(offset(located, byte, bit))
+                Ok(located.offset(byte, bit))
             }
             _ => Err(fault(format!("parameter {} cannot be reached", param + 1))),
         }
@@ -497,32 +525,6 @@ fn bit_of(located: Located) -> u8 {
     match located {
         Located::Image { bit, .. } | Located::Local { bit, .. } | Located::Data { bit, .. } => bit,
         _ => 0,
-    }
-}
-
-/// A member `byte`/`bit` into a located actual: a structure's member, or the actual itself
-/// (0, 0) with its own bit.
-fn offset(located: Located, byte: u32, bit: u8) -> Located {
-    let byte = byte as usize;
-    match located {
-        Located::Image { byte: at, bit: own } => Located::Image {
-            byte: at + byte,
-            bit: own + bit,
-        },
-        Located::Local { byte: at, bit: own } => Located::Local {
-            byte: at + byte,
-            bit: own + bit,
-        },
-        Located::Data {
-            db,
-            byte: at,
-            bit: own,
-        } => Located::Data {
-            db,
-            byte: at + byte,
-            bit: own + bit,
-        },
-        other => other,
     }
 }
 
