@@ -25,7 +25,7 @@ pub struct Evidence {
 }
 
 /// Words that open a line of a STEP 7 source and never one of STEP 5.
-const STEP7_LINE_WORDS: &[&str] = &[
+pub const STEP7_LINE_WORDS: &[&str] = &[
     "ORGANIZATION_BLOCK",
     "FUNCTION_BLOCK",
     "FUNCTION",

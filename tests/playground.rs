@@ -400,6 +400,22 @@ fn the_editor_colours_the_words_of_both_sets() {
     assert!(words.constants.contains(&"KF"));
     assert!(words.blocks.contains(&"PB"));
     assert!(words.keywords.contains(&"BEZ"));
+    for operation in ["OPN", "AUF", "SPBNB", "JCN", "CALL", "L"] {
+        assert!(words.step7.operations.contains(&operation), "{operation}");
+    }
+    for area in ["DBW", "DIX", "PEW", "PIW"] {
+        assert!(words.step7.areas.contains(&area), "{area}");
+    }
+    for keyword in [
+        "FUNCTION_BLOCK",
+        "VAR_INPUT",
+        "BEGIN",
+        "TITLE",
+        "S5TIME",
+        "NETWORK",
+    ] {
+        assert!(words.step7.keywords.contains(&keyword), "{keyword}");
+    }
 }
 
 #[test]

@@ -159,6 +159,13 @@ fn the_playground_runs_in_a_headless_browser() {
         "the STOP line is marked"
     );
 
+    // A STEP 7 text: `;` ends a statement, `//` comments, `#local` is a name.
+    let dom = browser.open("example=motor_fb");
+    assert!(!dom.contains(r#"<span class="t-comment">;"#), "{dom}");
+    assert!(dom.contains(r#"<span class="t-comment">// Two conveyor motors"#));
+    assert!(dom.contains(r#"<span class="t-keyword">FUNCTION_BLOCK</span>"#));
+    assert!(dom.contains(r#"<span class="t-symbol">#"#));
+
     // The address the page writes after a run names the example's file.
     let dom = browser.open("example=fig5_2.awl&run");
     assert!(

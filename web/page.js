@@ -33,7 +33,23 @@ function wordSets(words) {
     constants: set(words.constants),
     blocks: set(words.blocks),
     keywords: set(words.keywords),
+    step7: {
+      operations: set(words.step7.operations),
+      areas: set(words.step7.areas),
+      keywords: set(words.step7.keywords),
+      lineWords: set(words.step7.line_words),
+      blocks: set(words.blocks.concat(["FC", "FB", "SFC", "SFB", "UDT"])),
+    },
   };
+}
+
+/** Whether `text` is STEP 7: a line opens with a word only a STEP 7 source writes. */
+function isStep7(step7, text) {
+  return text.split("\n").some((line) => {
+    const first = /^\s*([A-Za-z_]+)/.exec(line);
+    const upper = first ? first[1].toUpperCase() : "";
+    return step7.lineWords.has(upper) || upper.startsWith("END_");
+  });
 }
 
 /** Where a `;` or `//` comment starts outside quotes, or -1. */
@@ -92,6 +108,38 @@ function colourStl(words, line) {
   return html + span("comment", comment);
 }
 
+const STEP7_TOKEN = /(\/\/.*)|("[^"]*"?)|('[^']*'?)|(#[A-Za-z_\u00C0-\u00FF][\w\u00C0-\u00FF]*)|((?:[A-Za-z0-9]+#)+[\w.:+-]*|[+-]?[0-9][\w.]*)|([A-Za-z_\u00C0-\u00FF][\w\u00C0-\u00FF]*\(?)|(\s+)|(.)/g;
+
+/** A STEP 7 line: `;` ends a statement, `//` starts a comment, `"symbol"` and `#local` are
+ *  names, `S5T#2S` and `W#16#FF` constants. */
+function colourStep7(step7, line) {
+  let html = "";
+  let operationSeen = false;
+  let first = true;
+  const labelled = /^\s*[A-Za-z_\u00C0-\u00FF][\w\u00C0-\u00FF]*\s*:(?!=)/.test(line);
+  for (const match of line.matchAll(STEP7_TOKEN)) {
+    const [text, comment, symbol, quoted, local, constant, word, space] = match;
+    let kind = "";
+    if (comment) kind = "comment";
+    else if (symbol || local) kind = "symbol";
+    else if (quoted) kind = "string";
+    else if (constant) kind = "number";
+    else if (word) {
+      const upper = word.toUpperCase();
+      if (step7.keywords.has(upper) || upper.startsWith("END_")) kind = "keyword";
+      else if (first && labelled) kind = "label";
+      else if (step7.blocks.has(upper)) kind = "block";
+      else if (!operationSeen && step7.operations.has(upper)) kind = "op";
+      else if (operationSeen && step7.areas.has(upper)) kind = "area";
+    }
+    if (kind === "op") operationSeen = true;
+    if (text === ";") operationSeen = false;
+    if (!space) first = false;
+    html += span(kind, text);
+  }
+  return html;
+}
+
 const TOML_TOKEN = /("(?:[^"\\]|\\.)*"?|'[^']*'?)|(#.*)|(^\s*\[\[?[^\]]*\]\]?)|(^\s*[\w".\- ]+?(?=\s*=))|([+-]?[0-9][\w.:+-]*)|(true|false)|(\s+)|(.)/g;
 
 function colourToml(line) {
@@ -118,6 +166,7 @@ class Editor {
     this.breakpoints = null;
     this.onEdit = () => {};
     this.onGutter = () => {};
+    this.beforeRender = () => {};
     this.textarea.addEventListener("input", () => {
       this.marks.clear();
       this.render();
@@ -154,6 +203,7 @@ class Editor {
   }
 
   render() {
+    this.beforeRender(this.textarea.value);
     const lines = this.lines();
     const mark = (n) => (this.marks.has(n) ? " " + this.marks.get(n) : "");
     this.colours.innerHTML = lines
@@ -850,7 +900,12 @@ function wasmBytes() {
 
 function wire() {
   const words = wordSets(catalogue.words);
-  program = new Editor($("program-editor"), (line) => colourStl(words, line));
+  let step7 = false;
+  program = new Editor($("program-editor"), (line) =>
+    step7 ? colourStep7(words.step7, line) : colourStl(words, line));
+  program.beforeRender = (text) => {
+    step7 = isStep7(words.step7, text);
+  };
   program.breakpoints = new Set();
   program.onGutter = toggleBreakpoint;
   scenario = new Editor($("scenario-editor"), colourToml);

@@ -60,7 +60,7 @@ fn elementary(upper: &str) -> Option<DataType> {
     })
 }
 
-const TYPE_NAMES: &[&str] = &[
+pub const TYPE_NAMES: &[&str] = &[
     "BOOL",
     "BYTE",
     "WORD",

@@ -7,6 +7,7 @@
 //! keyword.
 
 mod interface;
+pub use interface::TYPE_NAMES;
 mod operand;
 mod statement;
 mod step5;
@@ -58,7 +59,7 @@ pub(crate) fn block_keyword(upper: &str) -> Option<(S7BlockKind, &'static str)> 
 }
 
 /// Header lines before the interface: read and dropped with the rest of their line.
-const HEADER_WORDS: &[&str] = &[
+pub const HEADER_WORDS: &[&str] = &[
     "TITLE",
     "AUTHOR",
     "FAMILY",
