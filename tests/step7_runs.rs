@@ -227,3 +227,16 @@ fn a_step7_program_on_a_step5_cpu_names_the_s7_profiles() {
         "{text}"
     );
 }
+
+#[test]
+fn a_data_access_without_a_data_block_stops_with_step7_help() {
+    let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L DBW 0;\nEND_ORGANIZATION_BLOCK\n";
+    let Ok(ran) = run(program, "run = { cycles = 1 }\n") else {
+        panic!("the program runs");
+    };
+    let stop = ran.outcome.stop.as_ref().expect("a STOP");
+    let report = awl::diagnostics::render_plain(&runner::stop_report(&ran, stop));
+    assert!(report.contains("awl::stop::lzf_data"), "{report}");
+    assert!(report.contains("`OPN DB n`"), "{report}");
+    assert!(!report.contains("C DB"), "{report}");
+}

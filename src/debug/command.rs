@@ -141,7 +141,7 @@ pub const COMMANDS: &[(&str, &str, &str)] = &[
     (
         "print",
         "p",
-        "print OPERAND[, OPERAND…]  (e.g. print Q 4.0, FW 10, T 1, DB 10 DW 3)",
+        "print OPERAND[, OPERAND…]  (e.g. print Q 4.0, FW 10, T 1, DB 10 DW 3; STEP 7: MW 10, DB5.DBW 4)",
     ),
     ("accu", "a", "accu  (the accumulators)"),
     ("status", "st", "status  (the status word)"),

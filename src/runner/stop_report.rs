@@ -155,6 +155,11 @@ pub fn cpu_stop_report(cpu: &Cpu, stop: &Stop) -> Report {
         },
         (StopCause::LzfData, _) => StopError::DataAccess {
             problem: detail,
+            fix: if program.s7.step7 {
+                "open a data block long enough with `OPN DB n` (or call the FB with its instance DB) before using DBX/DBB/DBW/DBD"
+            } else {
+                "open a data block long enough with `C DB n` before using DW/DL/DR/DD/D"
+            },
             at,
             stack,
         },

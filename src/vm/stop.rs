@@ -108,12 +108,11 @@ pub enum StopError {
     },
 
     #[error("STOP LZF: {problem}")]
-    #[diagnostic(
-        code(awl::stop::lzf_data),
-        help("{stack}\nopen a data block long enough with `C DB n` before using DW/DL/DR/DD/D")
-    )]
+    #[diagnostic(code(awl::stop::lzf_data), help("{stack}\n{fix}"))]
     DataAccess {
         problem: String,
+        /// How a program of its dialect opens a data block.
+        fix: &'static str,
         #[label("data access here")]
         at: Span,
         stack: String,
