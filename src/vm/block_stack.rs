@@ -1,26 +1,19 @@
-//! The block stack: the return points of every processing level, innermost last. Its room is
-//! fixed when the CPU is made (the profile's nesting limit on every level, plus one), so a
-//! block call never allocates and never calls out of the execution loop.
+//! The block stack: the return points of every processing level, innermost last, and beside
+//! it what a STEP 7 call saves besides. Its room is fixed when the CPU is made (the profile's
+//! nesting limit on every level, plus one), so a block call never allocates and never calls out
+//! of the execution loop.
 
 use std::ops::Deref;
 
-use super::Frame;
-
 #[derive(Debug, Clone)]
-pub struct BlockStack {
-    frames: Box<[Frame]>,
+pub struct BlockStack<T> {
+    frames: Box<[T]>,
     len: usize,
 }
 
-impl BlockStack {
+impl<T: Copy + Default> BlockStack<T> {
     pub fn with_room(room: usize) -> Self {
-        let empty = Frame {
-            block: super::IDLE,
-            start: 0,
-            open_db: None,
-            params: crate::compiler::bytecode::NO_PARAMS,
-            resume: 0,
-        };
+        let empty = T::default();
         BlockStack {
             frames: vec![empty; room].into_boxed_slice(),
             len: 0,
@@ -39,7 +32,7 @@ impl BlockStack {
 
     /// Pushes a return point; `false` when the stack is full.
     #[inline(always)]
-    pub fn push(&mut self, frame: Frame) -> bool {
+    pub fn push(&mut self, frame: T) -> bool {
         match self.frames.get_mut(self.len) {
             Some(slot) => {
                 *slot = frame;
@@ -53,16 +46,16 @@ impl BlockStack {
     /// Pops the innermost return point. By reference: an `Option<Frame>` would be told apart
     /// from `None` by a byte of the frame, one more test on every block end.
     #[inline(always)]
-    pub fn pop(&mut self) -> Option<&Frame> {
+    pub fn pop(&mut self) -> Option<&T> {
         self.len = self.len.checked_sub(1)?;
         self.frames.get(self.len)
     }
 }
 
-impl Deref for BlockStack {
-    type Target = [Frame];
+impl<T> Deref for BlockStack<T> {
+    type Target = [T];
 
-    fn deref(&self) -> &[Frame] {
+    fn deref(&self) -> &[T] {
         &self.frames[..self.len]
     }
 }
@@ -70,6 +63,7 @@ impl Deref for BlockStack {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::vm::Frame;
 
     fn frame(pc: u32) -> Frame {
         Frame {

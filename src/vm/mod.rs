@@ -52,6 +52,18 @@ pub struct Frame {
     pub resume: u32,
 }
 
+impl Default for Frame {
+    fn default() -> Self {
+        Frame {
+            block: IDLE,
+            start: 0,
+            open_db: None,
+            params: crate::compiler::bytecode::NO_PARAMS,
+            resume: 0,
+        }
+    }
+}
+
 impl Frame {
     /// The op of the calling block the loop resumes at.
     pub fn pc(&self) -> u32 {
@@ -232,10 +244,10 @@ pub struct Cpu {
     /// STEP 7: the DB, DI and AR2 registers each `CALL FB` saved.
     pub fb_saves: Vec<(u16, u16, u32)>,
     /// STEP 7: what each frame of the block stack saved besides (see [`S7Frame`]).
-    pub s7_frames: Vec<S7Frame>,
+    pub s7_frames: BlockStack<S7Frame>,
     /// The running level's registers and position.
     pub level: LevelState,
-    pub frames: BlockStack,
+    pub frames: BlockStack<Frame>,
     /// The interrupted levels, innermost last.
     pub levels: Vec<LevelState>,
     pub mode: Mode,
@@ -302,7 +314,9 @@ impl Cpu {
             },
             // As deep as the block stack, so a call never allocates.
             fb_saves: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
-            s7_frames: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
+            s7_frames: BlockStack::with_room(
+                usize::from(profile.nesting_limit) * levels_capacity + 1,
+            ),
             level: LevelState {
                 accu1: 0,
                 accu2: 0,

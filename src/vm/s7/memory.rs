@@ -129,8 +129,9 @@ fn data_fault(text: String) -> Fault {
 impl Cpu {
     /// A STEP 7 block call (the frame is pushed): the caller's registers saved, the callee's
     /// local data placed after the caller's. `false` when the L stack has no room for them.
-    #[inline(never)]
+    #[inline(always)]
     pub(crate) fn enter_s7_block(&mut self, caller: u16, callee: u16) -> bool {
+        // As deep as the block stack, whose push came first: this one always has room.
         self.s7_frames.push(crate::vm::S7Frame {
             db: self.level.db,
             di: self.level.di,
@@ -142,7 +143,7 @@ impl Cpu {
     }
 
     /// A STEP 7 block's end (its frame popped): the caller's registers back.
-    #[inline(never)]
+    #[inline(always)]
     pub(crate) fn leave_s7_block(&mut self) {
         if let Some(saved) = self.s7_frames.pop() {
             self.level.db = saved.db;
