@@ -195,8 +195,13 @@ pub fn build_with_symbols(
     let default = units
         .first()
         .map_or(MnemonicSet::English, |unit| unit.mnemonics);
-    let (symbols, mut symbol_errors) =
-        symbols::load(&sources, programs..sources.files.len(), default, profile);
+    let (symbols, mut symbol_errors) = symbols::load(
+        &sources,
+        programs..sources.files.len(),
+        default,
+        profile,
+        false,
+    );
     let uses = symbols::resolve(&mut units, &symbols, &sources, &mut symbol_errors);
     diagnostics.extend(symbol_errors.into_iter().map(SourceDiagnostic::Symbol));
     let compiled = compiler::compile(&units, &sources, profile);

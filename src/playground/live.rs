@@ -192,8 +192,8 @@ impl Live {
                         .cpu
                         .program
                         .symbols
-                        .name_of(&operand)
-                        .map(str::to_string),
+                        .entry_of(&operand)
+                        .map(|entry| entry.name.clone()),
                     operand,
                     value,
                 }
