@@ -208,6 +208,13 @@ impl Symbols {
                 first_place: place(sources, first),
             });
         }
+        self.insert(entry);
+        Ok(())
+    }
+
+    /// Adds an entry whose name is not defined yet.
+    fn insert(&mut self, entry: Entry) {
+        let key = entry.name.to_uppercase();
         let index = self.entries.len();
         self.by_name.insert(key, index);
         for set in [MnemonicSet::English, MnemonicSet::German] {
@@ -219,7 +226,29 @@ impl Symbols {
             self.by_operand.entry(block.to_string()).or_insert(index);
         }
         self.entries.push(entry);
-        Ok(())
+    }
+
+    /// A STEP 7 block the source declares by a name no table lists, with the number the
+    /// compiler gave it: named like a listed one from then on (`FB 1 ("Valve")`). `None` when
+    /// the name is taken.
+    pub fn declare(
+        &mut self,
+        name: &crate::ast::Name,
+        kind: S7BlockKind,
+        number: u16,
+    ) -> Option<()> {
+        if self.get(&name.text).is_some() {
+            return None;
+        }
+        self.insert(Entry {
+            name: name.text.clone(),
+            stands: Stands::Step7(S7Symbol::Block { kind, number }),
+            comment: "declared in the source, numbered by awl".into(),
+            set: MnemonicSet::English,
+            name_span: name.span,
+            operand_span: name.span,
+        });
+        Some(())
     }
 }
 
