@@ -180,10 +180,10 @@ impl BlockContext<'_> {
                 .number(reference)
                 .map(|(kind, number)| format!("= {} {number}", kind.name())),
             S7Operand::Address(address) => symbols
-                .name_of(&text::address(*address, self.set))
+                .written_of(&text::address(*address, self.set))
                 .map(|name| format!("({name})")),
             S7Operand::Block(S7BlockRef::Number { kind, number }) => symbols
-                .name_of(&format!("{} {number}", kind.name()))
+                .written_of(&format!("{} {number}", kind.name()))
                 .map(|name| format!("({name})")),
             _ => None,
         }

@@ -192,8 +192,8 @@ impl Live {
                         .cpu
                         .program
                         .symbols
-                        .entry_of(&operand)
-                        .map(|entry| entry.name.clone()),
+                        .name_of(&operand)
+                        .map(str::to_string),
                     operand,
                     value,
                 }

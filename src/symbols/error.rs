@@ -12,7 +12,9 @@ pub enum SymbolError {
     #[diagnostic(code(awl::symbols::unknown))]
     Unknown {
         written: String,
-        #[label("not in the assignment list")]
+        /// `assignment list` (STEP 5) or `symbol table` (STEP 7).
+        list: &'static str,
+        #[label("not in the {list}")]
         at: Span,
         #[help]
         help: Option<String>,

@@ -92,6 +92,8 @@ pub struct Symbols {
     by_name: HashMap<String, usize>,
     /// The operand as English and as German text (`I 1.0`, `E 1.0`, `PB 3`) → entry.
     by_operand: HashMap<String, usize>,
+    /// Upper-case names of STEP 7 table lines that had errors → where the name is.
+    rejected: HashMap<String, Span>,
 }
 
 /// An operand as text in `set`: `E 1.0`, `FW 10`, `PB 3`.
@@ -127,9 +129,13 @@ impl Symbols {
             .map(|&index| &self.entries[index])
     }
 
-    /// The symbol of an operand written as text in either set (`I 1.0`, `E 1.0`, `PB 3`), as
-    /// a program writes it (`-START`, `"Motor"`).
-    pub fn name_of(&self, operand: &str) -> Option<String> {
+    /// The symbol of an operand written as text in either set (`I 1.0`, `E 1.0`, `PB 3`).
+    pub fn name_of(&self, operand: &str) -> Option<&str> {
+        self.entry_of(operand).map(|entry| entry.name.as_str())
+    }
+
+    /// The same as a program writes it: `-START`, `"Motor"`.
+    pub fn written_of(&self, operand: &str) -> Option<String> {
         self.entry_of(operand).map(Entry::written)
     }
 
@@ -142,7 +148,7 @@ impl Symbols {
 
     /// `E 1.0 (-START)`, `I 0.0 ("Start")` when the operand has a symbol, else the operand.
     pub fn decorate(&self, operand: &str) -> String {
-        match self.name_of(operand) {
+        match self.written_of(operand) {
             Some(name) => format!("{operand} ({name})"),
             None => operand.to_string(),
         }
@@ -189,6 +195,16 @@ impl Symbols {
             [one] => Some(format!("did you mean {one}?")),
             [first @ .., last] => Some(format!("did you mean {} or {last}?", first.join(", "))),
         }
+    }
+
+    /// Why `name` is not a symbol although a table has a line for it: that line had an
+    /// error (reported with the table).
+    pub fn rejected(&self, name: &str, sources: &SourceSet) -> Option<String> {
+        let at = self.rejected.get(&unwritten(name).to_uppercase())?;
+        Some(format!(
+            "its line {} has an error, reported there",
+            place(sources, *at)
+        ))
     }
 
     /// The entries, in the order the lists define them.
@@ -298,7 +314,11 @@ pub fn load(
             continue;
         }
         let (entries, mut file_errors) = if is_step7 {
-            step7::read(id as u16, &file.text, format, profile)
+            let read = step7::read(id as u16, &file.text, format, profile);
+            for (name, at) in read.rejected {
+                symbols.rejected.entry(name.to_uppercase()).or_insert(at);
+            }
+            (read.entries, read.errors)
         } else {
             let (entries, _, errors) = file::read(id as u16, &file.text, default, profile);
             (entries, errors)

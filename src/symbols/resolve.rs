@@ -121,6 +121,7 @@ fn replace(
         });
         return Err(Box::new(SymbolError::Unknown {
             written: format!("-{name}"),
+            list: "assignment list",
             at,
             help,
         }));

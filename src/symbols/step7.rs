@@ -137,14 +137,18 @@ fn asc_fields(line: &str, at: usize) -> Vec<Field> {
         .collect()
 }
 
-/// Reads the STEP 7 table in `text` (file `file`, in `format`): its entries and every error.
-pub fn read(
-    file: FileId,
-    text: &str,
-    format: Format,
-    profile: &'static Profile,
-) -> (Vec<Entry>, Vec<SymbolError>) {
+/// What a table file holds: its entries, the names of the lines with errors (so a use of
+/// one is not said to be unknown) and the errors.
+pub struct Read {
+    pub entries: Vec<Entry>,
+    pub rejected: Vec<(String, Span)>,
+    pub errors: Vec<SymbolError>,
+}
+
+/// Reads the STEP 7 table in `text` (file `file`, in `format`).
+pub fn read(file: FileId, text: &str, format: Format, profile: &'static Profile) -> Read {
     let mut entries = Vec::new();
+    let mut rejected = Vec::new();
     let mut errors = Vec::new();
     let mut start = 0;
     let mut first = true;
@@ -183,7 +187,12 @@ pub fn read(
         }
         match entry(file, &fields, whole, profile) {
             Ok(entry) => entries.push(entry),
-            Err(error) => errors.push(error),
+            Err(error) => {
+                if !fields[0].text.is_empty() {
+                    rejected.push((fields[0].text.clone(), fields[0].span(file)));
+                }
+                errors.push(error);
+            }
         }
     }
     let set = majority(&entries);
@@ -195,7 +204,11 @@ pub fn read(
             }
         }
     }
-    (entries, errors)
+    Read {
+        entries,
+        rejected,
+        errors,
+    }
 }
 
 /// The mnemonic set an entry's address word shows (`E`: German, `I`: English).
@@ -479,7 +492,8 @@ mod tests {
 
     fn read_text(text: &str) -> (Vec<Entry>, Vec<SymbolError>) {
         let profile = crate::profile::find(crate::profile::DEFAULT_STEP7_PROFILE).unwrap();
-        read(0, text, Format::detect(text), profile)
+        let read = read(0, text, Format::detect(text), profile);
+        (read.entries, read.errors)
     }
 
     fn asc(name: &str, address: &str, ty: &str, comment: &str) -> String {

@@ -86,14 +86,19 @@ impl Compiler<'_> {
     }
 
     fn unknown(&self, name: &Name) -> CheckError {
-        let help = self.symbols.suggest(&name.text).or_else(|| {
-            self.symbols.is_empty().then(|| {
-                "give the symbol table with `--symbols FILE` or a scenario's `symbols = [...]`"
-                    .to_string()
-            })
-        });
+        let help = self
+            .symbols
+            .rejected(&name.text, self.sources)
+            .or_else(|| self.symbols.suggest(&name.text))
+            .or_else(|| {
+                self.symbols.is_empty().then(|| {
+                    "give the symbol table with `--symbols FILE` or a scenario's `symbols = [...]`"
+                        .to_string()
+                })
+            });
         CheckError::Symbol(Box::new(SymbolError::Unknown {
             written: format!("\"{}\"", name.text),
+            list: "symbol table",
             at: name.span,
             help,
         }))
