@@ -94,6 +94,8 @@ pub struct Symbols {
     by_operand: HashMap<String, usize>,
     /// Upper-case names of STEP 7 table lines that had errors → where the name is.
     rejected: HashMap<String, Span>,
+    /// How many entries are blocks the source declared (see [`Symbols::declare`]).
+    declared: usize,
 }
 
 /// An operand as text in `set`: `E 1.0`, `FW 10`, `PB 3`.
@@ -115,6 +117,11 @@ pub fn operand_text(operand: &Operand, set: MnemonicSet) -> Option<String> {
 impl Symbols {
     pub fn is_empty(&self) -> bool {
         self.entries.is_empty()
+    }
+
+    /// Whether no list or table gave a symbol (blocks the source declares by name aside).
+    pub fn none_listed(&self) -> bool {
+        self.entries.len() == self.declared
     }
 
     pub fn len(&self) -> usize {
@@ -202,7 +209,7 @@ impl Symbols {
     pub fn rejected(&self, name: &str, sources: &SourceSet) -> Option<String> {
         let at = self.rejected.get(&unwritten(name).to_uppercase())?;
         Some(format!(
-            "its line {} has an error, reported there",
+            "the table's line for it ({}) has an error, reported there",
             place(sources, *at)
         ))
     }
@@ -264,6 +271,7 @@ impl Symbols {
             name_span: name.span,
             operand_span: name.span,
         });
+        self.declared += 1;
         Some(())
     }
 }

@@ -301,7 +301,7 @@ impl super::Compiler<'_> {
         let span = statement.span;
         let at = statement.operand_span;
         let op = statement.op;
-        let resolved = self.resolved_operand(&statement.operand);
+        let resolved = self.resolved_operand(&statement.operand, op, at)?;
         let operand = resolved.as_ref().unwrap_or(&statement.operand);
         match op {
             S7Op::Or if *operand == S7Operand::None => {

@@ -9,7 +9,7 @@ use crate::compiler::CheckError;
 use crate::mnemonics::MnemonicSet;
 use crate::source::Span;
 use crate::step7::ast::{
-    CallSpec, PathPart, S7BlockKind, S7BlockRef, S7Operand, S7Statement, S7Unit,
+    CallSpec, PathPart, S7BlockKind, S7BlockRef, S7Op, S7Operand, S7Statement, S7Unit,
 };
 use crate::step7::bytecode::{Place, Target};
 use crate::step7::text;
@@ -66,6 +66,21 @@ impl Compiler<'_> {
     pub(super) fn declaration(&mut self, block: &crate::step7::ast::S7Block) -> Option<u16> {
         match &block.name {
             S7BlockRef::Number { number, .. } => Some(*number),
+            S7BlockRef::Symbol(name)
+                if block.kind == S7BlockKind::Ob && self.symbols.get(&name.text).is_none() =>
+            {
+                self.errors
+                    .push(CheckError::Symbol(Box::new(SymbolError::Unknown {
+                        written: format!("\"{}\"", name.text),
+                        list: "symbol table",
+                        at: name.span,
+                        help: Some(
+                            "an OB's number says when the CPU runs it, so awl does not number one: list the name in the symbol table (`--symbols FILE`) or write `ORGANIZATION_BLOCK OB 1`"
+                                .into(),
+                        ),
+                    })));
+                None
+            }
             S7BlockRef::Symbol(name) => {
                 let word = declaration_word(block.kind);
                 self.symbol_block(name, &[block.kind], word)
@@ -91,7 +106,7 @@ impl Compiler<'_> {
             .rejected(&name.text, self.sources)
             .or_else(|| self.symbols.suggest(&name.text))
             .or_else(|| {
-                self.symbols.is_empty().then(|| {
+                self.symbols.none_listed().then(|| {
                     "give the symbol table with `--symbols FILE` or a scenario's `symbols = [...]`"
                         .to_string()
                 })
@@ -170,19 +185,36 @@ impl Compiler<'_> {
 
     /// A symbol written as an operand, as the absolute operand it stands for (`A "Start"`
     /// compiles as `A I 0.0`, `UC "Valve"` as `UC FC 1`); `None` for other operands and for
-    /// a symbol that does not resolve (the place it is used reports it).
-    pub(super) fn resolved_operand(&self, operand: &S7Operand) -> Option<S7Operand> {
+    /// a symbol that does not resolve (the place it is used reports it). A block stands only
+    /// where the operation `op` takes one.
+    pub(super) fn resolved_operand(
+        &self,
+        operand: &S7Operand,
+        op: S7Op,
+        at: Span,
+    ) -> Result<Option<S7Operand>, CheckError> {
         let name = match operand {
             S7Operand::Symbol { name, members } if members.is_empty() => name,
             S7Operand::Block(S7BlockRef::Symbol(name)) => name,
-            _ => return None,
+            _ => return Ok(None),
         };
-        match self.symbol(name).ok()? {
-            S7Symbol::Address(address) => Some(S7Operand::Address(address)),
-            S7Symbol::Block { kind, number } => {
-                Some(S7Operand::Block(S7BlockRef::Number { kind, number }))
+        let Ok(symbol) = self.symbol(name) else {
+            return Ok(None);
+        };
+        let takes_block = matches!(
+            op,
+            S7Op::OpenDb
+                | S7Op::OpenInstanceDb
+                | S7Op::Call
+                | S7Op::CallUnconditional
+                | S7Op::CallConditional
+        );
+        match symbol {
+            S7Symbol::Address(address) => Ok(Some(S7Operand::Address(address))),
+            S7Symbol::Block { kind, number } if takes_block => {
+                Ok(Some(S7Operand::Block(S7BlockRef::Number { kind, number })))
             }
-            S7Symbol::VariableTable(_) => None,
+            _ => Err(self.wrong_kind(name, symbol, "", at)),
         }
     }
 
