@@ -27,7 +27,7 @@ pub struct ConformanceArgs {
     #[arg(long)]
     pub quiet: bool,
     /// A STEP 7 symbol table (ASCII export or CSV with `;`) every test is run with, as
-    /// awlsim's project files give one (repeatable)
+    /// awlsim's project files give one; repeatable [default: none]
     #[arg(long = "symbols", value_name = "FILE")]
     pub symbols: Vec<PathBuf>,
 }
