@@ -63,7 +63,7 @@ pub const TOPICS: &[Topic] = &[
     },
     Topic {
         name: "symbols",
-        summary: "symbolic operands (`-START`) and the assignment list (`--symbols`)",
+        summary: "symbolic operands (`-START`, STEP 7 `\"Motor\"`), the assignment list and STEP 7 symbol tables (`--symbols`)",
         file: GRAMMAR,
         heading: Some("Symbolic operands"),
     },

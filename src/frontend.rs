@@ -175,7 +175,7 @@ pub fn build_with_symbols(
     profile: &'static Profile,
 ) -> Frontend {
     if is_step7(&sources, language) {
-        return build_step7(sources, language, profile);
+        return build_step7(sources, symbol_files, language, profile);
     }
     let mut diagnostics = Vec::new();
     let programs = sources.files.len();
@@ -195,8 +195,13 @@ pub fn build_with_symbols(
     let default = units
         .first()
         .map_or(MnemonicSet::English, |unit| unit.mnemonics);
-    let (symbols, mut symbol_errors) =
-        symbols::load(&sources, programs..sources.files.len(), default, profile);
+    let (symbols, mut symbol_errors) = symbols::load(
+        &sources,
+        programs..sources.files.len(),
+        default,
+        profile,
+        false,
+    );
     let uses = symbols::resolve(&mut units, &symbols, &sources, &mut symbol_errors);
     diagnostics.extend(symbol_errors.into_iter().map(SourceDiagnostic::Symbol));
     let compiled = compiler::compile(&units, &sources, profile);
@@ -253,8 +258,14 @@ fn is_step7(sources: &SourceSet, language: Language) -> bool {
     }
 }
 
-/// The STEP 7 front end: each file parsed as STEP 7, all compiled together.
-fn build_step7(sources: SourceSet, language: Language, profile: &'static Profile) -> Frontend {
+/// The STEP 7 front end: each file parsed as STEP 7, the symbol tables `symbol_files` read
+/// (they join the set, so their diagnostics show their lines), all compiled together.
+fn build_step7(
+    mut sources: SourceSet,
+    symbol_files: Vec<SourceFile>,
+    language: Language,
+    profile: &'static Profile,
+) -> Frontend {
     let options = crate::step7::ParseOptions {
         mnemonics: language.mnemonics,
         extensions: language.extensions,
@@ -266,7 +277,23 @@ fn build_step7(sources: SourceSet, language: Language, profile: &'static Profile
         diagnostics.extend(parsed.errors.into_iter().map(SourceDiagnostic::Step7));
         units.push(parsed.unit);
     }
-    let compiled = crate::step7::compile::compile(&units, &sources, profile, language.extensions);
+    let programs = sources.files.len();
+    for file in symbol_files {
+        sources.add(file);
+    }
+    let default = units
+        .first()
+        .map_or(MnemonicSet::English, |unit| unit.mnemonics);
+    let (symbols, symbol_errors) = symbols::load(
+        &sources,
+        programs..sources.files.len(),
+        default,
+        profile,
+        true,
+    );
+    diagnostics.extend(symbol_errors.into_iter().map(SourceDiagnostic::Symbol));
+    let compiled =
+        crate::step7::compile::compile(&units, &sources, profile, language.extensions, symbols);
     diagnostics.extend(
         compiled
             .diagnostics

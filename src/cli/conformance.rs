@@ -26,18 +26,23 @@ pub struct ConformanceArgs {
     /// off]
     #[arg(long)]
     pub quiet: bool,
+    /// A STEP 7 symbol table (ASCII export or CSV with `;`) every test is run with, as
+    /// awlsim's project files give one; repeatable [default: none]
+    #[arg(long = "symbols", value_name = "FILE")]
+    pub symbols: Vec<PathBuf>,
 }
 
-/// Runs one test with the progress line and Ctrl-C.
-fn watched_test(path: &Path, conf: &Conf) -> Tested {
+/// Runs one test with the symbol tables `symbols`, the progress line and Ctrl-C.
+fn watched_test(path: &Path, conf: &Conf, symbols: &[PathBuf]) -> Tested {
     let mut watch = Watch::start();
-    let mut tested = conformance::run_test(path, conf, &mut |cpu| watch.go_on(cpu));
+    let mut tested = conformance::run_test(path, conf, symbols, &mut |cpu| watch.go_on(cpu));
     tested.halted |= watch.finish();
     tested
 }
 
 pub fn conformance(args: &ConformanceArgs, console: &mut Console) -> u8 {
-    let totals = conformance::run_suite(&args.files, &mut watched_test, &mut |checked| {
+    let mut run = |path: &Path, conf: &Conf| watched_test(path, conf, &args.symbols);
+    let totals = conformance::run_suite(&args.files, &mut run, &mut |checked| {
         console.out(&checked.line());
         if !args.quiet {
             console.reports(&checked.reports);

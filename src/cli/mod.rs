@@ -106,7 +106,8 @@ pub struct SourceOptions {
     pub cpu: Option<String>,
     #[command(flatten)]
     pub language: LanguageArgs,
-    /// Assignment list giving operands names (`-START`); repeatable [default: none]
+    /// Assignment list giving operands names (`-START`), or a STEP 7 symbol table (`"Motor"`);
+    /// repeatable [default: none]
     #[arg(long = "symbols", value_name = "FILE")]
     pub symbols: Vec<PathBuf>,
 }

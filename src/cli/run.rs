@@ -82,7 +82,8 @@ pub struct ProgramArgs {
     pub mode: Option<CpuMode>,
     #[command(flatten)]
     pub language: LanguageArgs,
-    /// Assignment list giving operands names (`-START`); repeatable, added to the scenario's
+    /// Assignment list giving operands names (`-START`), or a STEP 7 symbol table (`"Motor"`);
+    /// repeatable, added to the scenario's
     /// [default: the scenario's, else none]
     #[arg(long = "symbols", value_name = "FILE")]
     pub symbols: Vec<PathBuf>,

@@ -56,8 +56,8 @@ fn block_id(prepared: &Prepared, block: &BlockRef) -> Result<BlockId, StatusErro
         BlockRef::Symbol(name) => name,
     };
     let entry = prepared.cpu.program.symbols.get(name);
-    match entry.map(|entry| (entry.block, &entry.operand)) {
-        Some((Some(id), _)) | Some((None, &crate::ast::Operand::Block(id))) => Ok(id),
+    match entry.and_then(|entry| entry.step5()) {
+        Some((_, Some(id))) | Some((&crate::ast::Operand::Block(id), None)) => Ok(id),
         _ => Err(StatusError::UnknownBlock {
             block: format!("-{name}"),
             known: prepared

@@ -8,6 +8,11 @@ use crate::source::Span;
 
 #[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
 pub enum CheckError {
+    /// A STEP 7 symbol the S7 compiler looked up: unknown, or of the wrong kind.
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Symbol(Box<crate::symbols::SymbolError>),
+
     #[error("{id} is defined twice")]
     #[diagnostic(
         code(awl::check::duplicate_block),
@@ -351,6 +356,7 @@ pub enum CheckError {
 impl CheckError {
     pub fn span(&self) -> Span {
         match self {
+            CheckError::Symbol(error) => error.span(),
             CheckError::DuplicateBlock { at, .. }
             | CheckError::MissingBlockEnd { at, .. }
             | CheckError::ExtendedBlock { at, .. }

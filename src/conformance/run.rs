@@ -1,7 +1,7 @@
 //! One awlsim test file run as awlsim's harness runs it: STEP 7 with awlsim's test operations,
 //! the S7 CPU, startup, then OB 1 until the CPU stops or `max_runtime` has passed.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use miette::Report;
 
@@ -32,11 +32,12 @@ pub fn language() -> Language {
     }
 }
 
-/// The run `conf` asks for, of the test file `path`.
-pub fn options(path: &Path, conf: &Conf) -> RunOptions {
+/// The run `conf` asks for, of the test file `path` with the symbol tables `symbols`.
+pub fn options(path: &Path, conf: &Conf, symbols: &[PathBuf]) -> RunOptions {
     let limit = conf.max_runtime_ns.unwrap_or(UNBOUNDED_RUN_NS);
     RunOptions {
         files: vec![path.to_path_buf()],
+        symbols: symbols.to_vec(),
         cpu: profile::find(PROFILE),
         language: language(),
         // A run of no time ends at the first cycle end, as awlsim checks its limit there.
@@ -46,9 +47,19 @@ pub fn options(path: &Path, conf: &Conf) -> RunOptions {
     }
 }
 
-/// Runs the test `path` as `conf` asks; `go_on` may halt it at a cycle boundary (Ctrl-C).
-pub fn run_test(path: &Path, conf: &Conf, go_on: &mut dyn FnMut(&Cpu) -> bool) -> Tested {
-    run_with(&options(path, conf), conf.max_runtime_ns.is_some(), go_on)
+/// Runs the test `path` as `conf` asks, with the symbol tables `symbols` (awlsim gives them
+/// in a project file); `go_on` may halt it at a cycle boundary (Ctrl-C).
+pub fn run_test(
+    path: &Path,
+    conf: &Conf,
+    symbols: &[PathBuf],
+    go_on: &mut dyn FnMut(&Cpu) -> bool,
+) -> Tested {
+    run_with(
+        &options(path, conf, symbols),
+        conf.max_runtime_ns.is_some(),
+        go_on,
+    )
 }
 
 /// Runs `options`; a run that reaches its limit ended cleanly when `limit_is_max_runtime`,
@@ -177,14 +188,14 @@ mod tests {
             cycle_limit_ns: 2_000_000_000,
             ..Conf::default()
         };
-        let options = options(Path::new("t.awl"), &conf);
+        let options = options(Path::new("t.awl"), &conf, &[]);
         assert_eq!(options.language.dialect, Some(Dialect::Step7));
         assert!(options.language.extensions);
         assert_eq!(options.language.mnemonics, None);
         assert_eq!(options.cpu.map(|cpu| cpu.name), Some("speed7"));
         assert_eq!(options.limit, Some(RunLimit::Duration(1)));
         assert_eq!(options.watchdog_ns, Some(2_000_000_000));
-        let unbounded = super::options(Path::new("t.awl"), &Conf::default());
+        let unbounded = super::options(Path::new("t.awl"), &Conf::default(), &[]);
         assert_eq!(unbounded.limit, Some(RunLimit::Duration(UNBOUNDED_RUN_NS)));
     }
 }

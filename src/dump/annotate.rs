@@ -31,8 +31,8 @@ impl Context<'_> {
 
     /// `text` with its symbol, if it has one: `E 1.0 (-START)`.
     fn named(self, text: String) -> String {
-        match self.program.symbols.name_of(&text) {
-            Some(name) => format!("{text} (-{name})"),
+        match self.program.symbols.written_of(&text) {
+            Some(name) => format!("{text} ({name})"),
             None => text,
         }
     }

@@ -51,7 +51,14 @@ pub(crate) fn parsed_blocks(built: &Frontend) -> HashMap<BlockId, &Block> {
 }
 
 /// `PB 3  (file.awl:12, 4 ops)`
-fn header(out: &mut String, sources: &SourceSet, id: BlockId, at: Span, count: usize, unit: &str) {
+fn header(
+    out: &mut String,
+    sources: &SourceSet,
+    id: impl std::fmt::Display,
+    at: Span,
+    count: usize,
+    unit: &str,
+) {
     let file = sources.get(at.file);
     let _ = writeln!(
         out,

@@ -15,6 +15,7 @@ use crate::step7::ast::{
 };
 use crate::step7::bytecode::{Place, S7Code, Target};
 use crate::step7::text;
+use crate::symbols::{S7Symbol, Stands};
 
 /// The STEP 7 statements of every file, by where they start.
 pub(crate) fn statements(built: &Frontend) -> HashMap<Span, &S7Statement> {
@@ -64,7 +65,7 @@ pub fn dump(built: &Frontend) -> String {
         super::header(
             &mut out,
             &built.sources,
-            block.id,
+            program.symbols.decorate(&block.id.to_string()),
             block.header,
             block.code.len(),
             "ops",
@@ -131,6 +132,10 @@ impl BlockContext<'_> {
             Op::S7(S7Code::Mem { place, .. }) => self.where_is(statement, place),
             _ => String::new(),
         };
+        let detail = match self.symbol(statement) {
+            Some(symbol) if detail.is_empty() => symbol,
+            _ => detail,
+        };
         (shown, detail)
     }
 
@@ -162,6 +167,44 @@ impl BlockContext<'_> {
         }
     }
 
+    /// What the symbol table says of the operand: the address or block a symbol stands for
+    /// (`= I 0.0`), the symbol of an absolute operand (`("Start")`).
+    fn symbol(&self, statement: &S7Statement) -> Option<String> {
+        let symbols = &self.program.symbols;
+        match &statement.operand {
+            S7Operand::Symbol { name, members } if members.is_empty() => symbols
+                .get(&name.text)
+                .and_then(|entry| entry.operand_text(self.set))
+                .map(|text| format!("= {text}")),
+            S7Operand::Block(reference @ S7BlockRef::Symbol(_)) => self
+                .number(reference)
+                .map(|(kind, number)| format!("= {} {number}", kind.name())),
+            S7Operand::Address(address) => symbols
+                .written_of(&text::address(*address, self.set))
+                .map(|name| format!("({name})")),
+            S7Operand::Block(S7BlockRef::Number { kind, number }) => symbols
+                .written_of(&format!("{} {number}", kind.name()))
+                .map(|name| format!("({name})")),
+            _ => None,
+        }
+    }
+
+    /// The kind and number of a block reference, by the program's symbols for a name.
+    fn number(&self, reference: &S7BlockRef) -> Option<(S7BlockKind, u16)> {
+        block_number(self.program, reference)
+    }
+
+    /// A called block or instance DB by number, with its symbol: `FB 5 ("Valve")`.
+    fn block_shown(&self, reference: &S7BlockRef) -> String {
+        match self.number(reference) {
+            Some((kind, number)) => self
+                .program
+                .symbols
+                .decorate(&format!("{} {number}", kind.name())),
+            None => text::block_ref(reference, self.sources),
+        }
+    }
+
     /// `CALL FC 1`: the parameter list as written.
     fn call(&self, statement: &S7Statement) -> String {
         let Some(call) = &statement.call else {
@@ -170,8 +213,8 @@ impl BlockContext<'_> {
         match &call.instance {
             Some(instance) => format!(
                 "run {} (instance {})",
-                text::block_ref(&call.block, self.sources),
-                text::block_ref(instance, self.sources)
+                self.block_shown(&call.block),
+                self.block_shown(instance)
             ),
             None if call.params.is_empty() => String::new(),
             None => format!("with {}", self.parameters(statement, None)),
@@ -203,7 +246,11 @@ impl BlockContext<'_> {
 
     /// The names an FB declares in the sections `kinds`.
     fn declared(&self, fb: &S7BlockRef, kinds: &[VarKind]) -> Option<Vec<String>> {
-        let block = self.blocks.iter().find(|block| block.name == *fb)?;
+        let wanted = self.number(fb)?;
+        let block = self
+            .blocks
+            .iter()
+            .find(|block| self.number(&block.name) == Some(wanted))?;
         Some(
             block
                 .interface
@@ -245,6 +292,17 @@ impl BlockContext<'_> {
             format!(" ({params})")
         };
         format!("copy the outputs back from {db}{params}, restore the DB registers")
+    }
+}
+
+/// The kind and number of a block reference, a name looked up in the program's symbols.
+fn block_number(program: &Program, reference: &S7BlockRef) -> Option<(S7BlockKind, u16)> {
+    match reference {
+        S7BlockRef::Number { kind, number } => Some((*kind, *number)),
+        S7BlockRef::Symbol(name) => match program.symbols.get(&name.text)?.stands {
+            Stands::Step7(S7Symbol::Block { kind, number }) => Some((kind, number)),
+            _ => None,
+        },
     }
 }
 
@@ -303,7 +361,7 @@ pub(crate) fn place_text(program: &Program, place: Place, set: MnemonicSet) -> O
 
 /// A data block: its header, what it is an instance of, its initial bytes.
 fn data_block(out: &mut String, built: &Frontend, block: &S7Block) {
-    let S7BlockRef::Number { number, .. } = block.name else {
+    let Some((_, number)) = block_number(&built.compiled.program, &block.name) else {
         return;
     };
     let Some((_, bytes)) = built
@@ -319,7 +377,12 @@ fn data_block(out: &mut String, built: &Frontend, block: &S7Block) {
     let file = built.sources.get(block.header.file);
     let _ = writeln!(
         out,
-        "DB {number}  ({}:{}, {} bytes)",
+        "{}  ({}:{}, {} bytes)",
+        built
+            .compiled
+            .program
+            .symbols
+            .decorate(&format!("DB {number}")),
         file.name,
         file.line_of(block.header.start),
         bytes.len()
@@ -329,11 +392,15 @@ fn data_block(out: &mut String, built: &Frontend, block: &S7Block) {
         ..
     } = &block.body
     {
-        let _ = writeln!(
-            out,
-            "  instance DB of {}",
-            text::block_ref(fb, &built.sources)
-        );
+        let fb = match block_number(&built.compiled.program, fb) {
+            Some((kind, number)) => built
+                .compiled
+                .program
+                .symbols
+                .decorate(&format!("{} {number}", kind.name())),
+            None => text::block_ref(fb, &built.sources),
+        };
+        let _ = writeln!(out, "  instance DB of {fb}");
     }
     for (row, chunk) in bytes.chunks(8).enumerate() {
         let hex: Vec<String> = chunk.iter().map(|byte| format!("{byte:02X}")).collect();

@@ -43,10 +43,11 @@ pub enum ScenarioError {
         help: Option<String>,
     },
 
-    #[error("unknown symbol `-{name}`")]
+    /// `written`: the symbol as the scenario wrote it (`-START`, `"Motor"`).
+    #[error("unknown symbol `{written}`")]
     #[diagnostic(code(awl::scenario::unknown_symbol))]
     UnknownSymbol {
-        name: String,
+        written: String,
         #[label("not in the assignment list")]
         at: SourceSpan,
         #[help]

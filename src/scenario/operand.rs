@@ -105,14 +105,15 @@ pub fn parse_target(
             parse_absolute(text, at, set, program.profile, program.layout)
         }
     };
-    let Some(name) = text.trim().strip_prefix('-') else {
+    // `-START`, or a STEP 7 symbol in its quotes: `"Motor"`.
+    let Some(name) = crate::symbols::symbol_written(text) else {
         return absolute(text);
     };
     let symbols = &program.symbols;
     match symbols.operand_in(name, set) {
         Some(operand) => absolute(&operand),
         None => Err(ScenarioError::UnknownSymbol {
-            name: name.to_string(),
+            written: text.trim().to_string(),
             at,
             help: symbols.suggest(name).or_else(|| {
                 symbols.is_empty().then(|| {

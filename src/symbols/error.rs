@@ -7,11 +7,14 @@ use crate::source::Span;
 
 #[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
 pub enum SymbolError {
-    #[error("unknown symbol `-{name}`")]
+    /// `written` is the symbol as a program writes it: `-START`, `"Motor"`.
+    #[error("unknown symbol `{written}`")]
     #[diagnostic(code(awl::symbols::unknown))]
     Unknown {
-        name: String,
-        #[label("not in the assignment list")]
+        written: String,
+        /// `assignment list` (STEP 5) or `symbol table` (STEP 7).
+        list: &'static str,
+        #[label("not in the {list}")]
         at: Span,
         #[help]
         help: Option<String>,
@@ -35,17 +38,14 @@ pub enum SymbolError {
     },
 
     #[error("`{operand}` is not an operand")]
-    #[diagnostic(
-        code(awl::symbols::bad_operand),
-        help(
-            "write the absolute operand first, as in the program: `E 1.0`/`I 1.0`, `MW 10`/`FW 10`, `T 1`, `PB 3`"
-        )
-    )]
+    #[diagnostic(code(awl::symbols::bad_operand))]
     BadOperand {
         operand: String,
         #[label("{reason}")]
         at: Span,
         reason: String,
+        #[help]
+        help: String,
     },
 
     #[error("`{operand}` is out of range on the {cpu}")]
@@ -73,21 +73,58 @@ pub enum SymbolError {
         at: Span,
     },
 
-    #[error("`{name}` cannot be written as a symbol `-{name}`")]
-    #[diagnostic(
-        code(awl::symbols::bad_name),
-        help("a symbol starts with a letter and has letters, digits and `_`")
-    )]
+    #[error("`{name}` cannot be written as a symbol `{written}`")]
+    #[diagnostic(code(awl::symbols::bad_name))]
     BadName {
         name: String,
+        written: String,
         #[label("not a symbol name")]
+        at: Span,
+        #[help]
+        help: String,
+    },
+
+    #[error("not a line of a STEP 7 symbol table")]
+    #[diagnostic(
+        code(awl::symbols::bad_table_line),
+        help(
+            "a STEP 7 symbol table is the ASCII export (`126,` then the symbol in 24 columns, the address in 12, the data type in 10, the comment) or CSV `Symbol;Address;Data type;Comment`"
+        )
+    )]
+    BadTableLine {
+        reason: String,
+        #[label("{reason}")]
         at: Span,
     },
 
-    #[error("`-{name}` stands for {stands_for}, which `{op}` cannot take")]
+    #[error("data type `{ty}` does not fit `{operand}`")]
+    #[diagnostic(
+        code(awl::symbols::type_mismatch),
+        help("`{operand}` takes the data type {expected}")
+    )]
+    TypeMismatch {
+        ty: String,
+        operand: String,
+        expected: String,
+        #[label("not a type of `{operand}`")]
+        at: Span,
+    },
+
+    #[error("a {found} symbol list for a {program} program")]
+    #[diagnostic(code(awl::symbols::wrong_dialect), help("{help}"))]
+    WrongDialect {
+        found: &'static str,
+        program: &'static str,
+        help: &'static str,
+        #[label("this file is read as a {found} list")]
+        at: Span,
+    },
+
+    /// `written` as in [`SymbolError::Unknown`].
+    #[error("`{written}` stands for {stands_for}, which `{op}` cannot take")]
     #[diagnostic(code(awl::symbols::wrong_kind))]
     WrongKind {
-        name: String,
+        written: String,
         stands_for: String,
         op: String,
         #[label("{stands_for} here")]
@@ -106,6 +143,9 @@ impl SymbolError {
             | SymbolError::OutOfRange { at, .. }
             | SymbolError::BadLine { at }
             | SymbolError::BadName { at, .. }
+            | SymbolError::BadTableLine { at, .. }
+            | SymbolError::TypeMismatch { at, .. }
+            | SymbolError::WrongDialect { at, .. }
             | SymbolError::WrongKind { at, .. } => *at,
         }
     }

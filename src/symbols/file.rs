@@ -3,7 +3,7 @@
 //! button`) or by commas (CSV, fields may be quoted). Lines starting with `;` or `#` are
 //! comments.
 
-use crate::ast::{BlockId, Operand};
+use crate::ast::Operand;
 use crate::lexer::{Token, lex};
 use crate::mnemonics::{self, MnemonicSet, OpCode, Position};
 use crate::parser::line::operand;
@@ -11,7 +11,7 @@ use crate::parser::tokens::{Context, Tokens};
 use crate::profile::Profile;
 use crate::source::{FileId, Span};
 
-use super::SymbolError;
+use super::{Stands, SymbolError};
 
 /// A field of a line: its text and where it starts in the file.
 #[derive(Debug, Clone, Copy)]
@@ -41,11 +41,9 @@ pub struct Line<'a> {
 /// A symbol as the list defines it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Entry {
-    /// Without the leading `-`.
+    /// Without the leading `-` (STEP 5) or the quotes (STEP 7).
     pub name: String,
-    pub operand: Operand,
-    /// The block a German `PB n` also names (it is a peripheral byte otherwise).
-    pub block: Option<BlockId>,
+    pub stands: Stands,
     pub comment: String,
     /// The mnemonic set the list is written in.
     pub set: MnemonicSet,
@@ -222,7 +220,9 @@ fn entry(
     if !valid {
         return Err(SymbolError::BadName {
             name: name.to_string(),
+            written: format!("-{name}"),
             at: name_span,
+            help: "a symbol starts with a letter and has letters, digits and `_`".into(),
         });
     }
     let tokens: Vec<Token> = lex(line.operand.text)
@@ -233,10 +233,13 @@ fn entry(
             ..token
         })
         .collect();
-    let bad = |reason: &str| SymbolError::BadOperand {
+    let bad = |reason: &str| {
+        SymbolError::BadOperand {
         operand: line.operand.text.to_string(),
         at: operand_span,
         reason: reason.to_string(),
+        help: "write the absolute operand first, as in the program: `E 1.0`/`I 1.0`, `MW 10`/`FW 10`, `T 1`, `PB 3`".into(),
+    }
     };
     let parsed = operand(context, None)(Tokens::new(&tokens));
     let value = match parsed {
@@ -268,8 +271,10 @@ fn entry(
     }
     Ok(Entry {
         name: name.to_string(),
-        operand: value,
-        block,
+        stands: Stands::Step5 {
+            operand: value,
+            block,
+        },
         comment: line.comment.to_string(),
         set: context.set,
         name_span,
@@ -296,7 +301,11 @@ mod tests {
         assert_eq!(entries[0].name, "START");
         assert_eq!(entries[0].comment, "Start button");
         assert_eq!(
-            entries[2].block.map(|id| id.to_string()).as_deref(),
+            entries[2]
+                .step5()
+                .and_then(|(_, block)| block)
+                .map(|id| id.to_string())
+                .as_deref(),
             Some("PB 3")
         );
     }

@@ -4,7 +4,7 @@ use crate::ast::{BlockBody, Operand, SourceUnit};
 use crate::mnemonics::{self, OpCode};
 use crate::source::{SourceSet, Span};
 
-use super::{Entry, SymbolError, Symbols, operand_text};
+use super::{Entry, SymbolError, Symbols};
 
 /// Operations whose operand is a block.
 fn takes_block(op: OpCode) -> bool {
@@ -90,8 +90,8 @@ impl Uses {
         if let SymbolError::WrongKind { op: slot, help, .. } = &mut explained {
             *slot = op.clone();
             *help = Some(format!(
-                "`-{}` is defined in {} line {}; `{op}` takes another kind of operand",
-                entry.name,
+                "`{}` is defined in {} line {}; `{op}` takes another kind of operand",
+                entry.written(),
                 sources.get(entry.name_span.file).name,
                 sources.line_of(entry.name_span)
             ));
@@ -120,16 +120,21 @@ fn replace(
             })
         });
         return Err(Box::new(SymbolError::Unknown {
-            name: name.clone(),
+            written: format!("-{name}"),
+            list: "assignment list",
             at,
             help,
         }));
     };
     let wants_block = op.is_some_and(takes_block);
-    let resolved = match (wants_block, entry.block, &entry.operand) {
+    // The loader reads only STEP 5 lists for a STEP 5 program.
+    let Some((stands, block)) = entry.step5() else {
+        return Err(Box::new(wrong_kind(entry, op, at, sources, set)));
+    };
+    let resolved = match (wants_block, block, stands) {
         (true, Some(block), _) => Operand::Block(block),
-        (true, None, Operand::Block(_)) | (false, _, Operand::Address(_)) => entry.operand.clone(),
-        (false, Some(_), Operand::Block(_)) if op.is_none() => entry.operand.clone(),
+        (true, None, Operand::Block(_)) | (false, _, Operand::Address(_)) => stands.clone(),
+        (false, Some(_), Operand::Block(_)) if op.is_none() => stands.clone(),
         _ => return Err(Box::new(wrong_kind(entry, op, at, sources, set))),
     };
     let name = std::mem::replace(operand, resolved);
@@ -146,14 +151,14 @@ fn wrong_kind(
     sources: &SourceSet,
     set: mnemonics::MnemonicSet,
 ) -> SymbolError {
-    let stands_for = operand_text(&entry.operand, set).unwrap_or_default();
+    let stands_for = entry.operand_text(set).unwrap_or_default();
     let op = op.map_or_else(String::new, |op| mnemonics::op_word(set, op).to_string());
     let defined = entry.name_span;
     SymbolError::WrongKind {
-        name: entry.name.clone(),
+        written: entry.written(),
         help: Some(format!(
-            "`-{}` is defined in {} line {}; use a symbol of the kind `{op}` takes",
-            entry.name,
+            "`{}` is defined in {} line {}; use a symbol of the kind `{op}` takes",
+            entry.written(),
             sources.get(defined.file).name,
             sources.line_of(defined)
         )),

@@ -222,9 +222,11 @@ impl super::Compiler<'_> {
                 .iter()
                 .take_while(|s| s.op == S7Op::JumpAlways && s.label.is_none())
                 .count();
+            let first_error = self.errors.len();
             if let Err(error) = self.lower(statement, &scope, &mut out, following_jumps) {
                 self.errors.push(error);
             }
+            self.name_operation(first_error, statement, set);
         }
         // The block's end: `BE` as STEP 7 places it after the last network.
         let end = block.end.unwrap_or(block.header);
@@ -299,7 +301,8 @@ impl super::Compiler<'_> {
         let span = statement.span;
         let at = statement.operand_span;
         let op = statement.op;
-        let operand = &statement.operand;
+        let resolved = self.resolved_operand(&statement.operand, op, at)?;
+        let operand = resolved.as_ref().unwrap_or(&statement.operand);
         match op {
             S7Op::Or if *operand == S7Operand::None => {
                 self.emit(out, Op::S7(S7Code::Accu(S7Op::OrAlone)), span);
@@ -562,6 +565,15 @@ impl super::Compiler<'_> {
             ),
             S7Op::OpenDb | S7Op::OpenInstanceDb => {
                 let instance = op == S7Op::OpenInstanceDb;
+                if let (
+                    S7Operand::Symbol { name, .. },
+                    S7Operand::Block(S7BlockRef::Number { kind, .. }),
+                ) = (&statement.operand, operand)
+                    && *kind != S7BlockKind::Db
+                {
+                    self.symbol_block(name, &[S7BlockKind::Db], "");
+                    return Ok(());
+                }
                 let code = match operand {
                     S7Operand::Block(S7BlockRef::Number { number, .. }) => {
                         if !self.has_db(*number) {
@@ -599,6 +611,7 @@ impl super::Compiler<'_> {
                         S7Operand::Block(reference) => {
                             self.plain_call(out, reference, false, at, span)
                         }
+                        _ if self.not_a_block(operand, "CALL") => Ok(()),
                         _ => Err(not_an_operand(at, "`CALL` needs a block; this")),
                     };
                 };
@@ -606,6 +619,9 @@ impl super::Compiler<'_> {
             }
             S7Op::CallUnconditional | S7Op::CallConditional => {
                 let S7Operand::Block(reference) = operand else {
+                    if self.not_a_block(operand, "") {
+                        return Ok(());
+                    }
                     return Err(not_an_operand(at, "`UC`/`CC` need an FC or FB; this"));
                 };
                 self.plain_call(out, reference, op == S7Op::CallConditional, at, span)
@@ -817,6 +833,9 @@ impl super::Compiler<'_> {
                 at,
             });
         }
+        let Some(call) = &self.numbered_call(call) else {
+            return Ok(());
+        };
         if let S7BlockRef::Number {
             kind: S7BlockKind::Sfc | S7BlockKind::Sfb,
             number,

@@ -6,6 +6,7 @@ mod data;
 mod layout;
 mod lower;
 mod operand;
+mod symbols;
 
 use std::collections::HashMap;
 
@@ -16,20 +17,24 @@ use crate::profile::Profile;
 use crate::source::{SourceSet, Span};
 use crate::step7::ast::{S7Block, S7BlockKind, S7BlockRef, S7Body, S7Unit, VarDecl, VarKind};
 use crate::step7::bytecode::S7Tables;
+use crate::symbols::Symbols;
 
 use layout::Interface;
 
-/// Compiles every STEP 7 unit of a program together; `extensions` allows awlsim's test
-/// instructions.
+/// Compiles every STEP 7 unit of a program together with the symbol table `symbols`;
+/// `extensions` allows awlsim's test instructions. The program keeps the symbols, with the
+/// blocks the source declares by a name the table does not list.
 pub fn compile(
     units: &[S7Unit],
     sources: &SourceSet,
     profile: &'static Profile,
     extensions: bool,
+    symbols: Symbols,
 ) -> Compiled {
     let mut compiler = Compiler {
         profile,
         sources,
+        symbols,
         index: HashMap::new(),
         interfaces: HashMap::new(),
         udts: HashMap::new(),
@@ -43,6 +48,7 @@ pub fn compile(
         param_lists: Vec::new(),
         errors: Vec::new(),
     };
+    compiler.number_blocks(units);
     let logic = compiler.collect(units);
     compiler.make_data_blocks(units);
     let blocks = logic
@@ -56,7 +62,7 @@ pub fn compile(
     let mut data: Vec<(u16, Vec<u8>)> = compiler.data_blocks.into_iter().collect();
     data.sort_by_key(|(number, _)| *number);
     compiler.tables.data_blocks = data;
-    let program = Program::assemble(
+    let mut program = Program::assemble(
         profile,
         blocks,
         Vec::new(),
@@ -64,6 +70,7 @@ pub fn compile(
         compiler.index,
         compiler.tables,
     );
+    program.symbols = compiler.symbols;
     Compiled {
         program,
         diagnostics: compiler.errors,
@@ -73,6 +80,8 @@ pub fn compile(
 struct Compiler<'a> {
     profile: &'static Profile,
     sources: &'a SourceSet,
+    /// The symbol table, and the blocks declared by a name it does not list.
+    symbols: Symbols,
     index: HashMap<BlockId, u16>,
     interfaces: HashMap<BlockId, Interface>,
     udts: HashMap<u16, Vec<VarDecl>>,
@@ -118,13 +127,8 @@ impl<'a> Compiler<'a> {
                 }
             }
             S7BlockRef::Symbol(name) => {
-                self.errors.push(CheckError::NotSimulated {
-                    what: format!("the block name \"{}\"", name.text),
-                    why: "name blocks by number (`FC 1`); STEP 7 symbol tables are not read yet"
-                        .into(),
-                    at: name.span,
-                });
-                None
+                let (kind, number) = self.symbol_block(name, &[], "")?;
+                self.block_id(&S7BlockRef::Number { kind, number }, span)
             }
         }
     }
@@ -135,10 +139,10 @@ impl<'a> Compiler<'a> {
         units: &'u [S7Unit],
     ) -> Vec<(&'u S7Block, BlockId, crate::mnemonics::MnemonicSet)> {
         for block in units.iter().flat_map(|unit| &unit.blocks) {
-            if let (S7BlockKind::Udt, S7BlockRef::Number { number, .. }, S7Body::Type(members)) =
-                (block.kind, &block.name, &block.body)
+            if let (S7BlockKind::Udt, S7Body::Type(members)) = (block.kind, &block.body)
+                && let Some(number) = self.declaration(block)
             {
-                self.udts.insert(*number, members.clone());
+                self.udts.insert(number, members.clone());
             }
         }
         let mut first_seen: HashMap<BlockId, Span> = HashMap::new();
@@ -150,7 +154,14 @@ impl<'a> Compiler<'a> {
             if block.kind == S7BlockKind::Udt {
                 continue;
             }
-            let Some(id) = self.block_id(&block.name, block.header) else {
+            let Some(number) = self.declaration(block) else {
+                continue;
+            };
+            let name = S7BlockRef::Number {
+                kind: block.kind,
+                number,
+            };
+            let Some(id) = self.block_id(&name, block.header) else {
                 continue;
             };
             if let Some(first) = first_seen.get(&id) {
@@ -204,7 +215,7 @@ impl<'a> Compiler<'a> {
             else {
                 continue;
             };
-            let S7BlockRef::Number { number, .. } = block.name else {
+            let Some(number) = self.declared_number(block) else {
                 continue;
             };
             let mut errors = Vec::new();
@@ -216,7 +227,10 @@ impl<'a> Compiler<'a> {
                     data::global_image(members, initial, &self.udts, &mut errors)
                 }
                 Some(fb) => {
-                    let Some(id) = self.block_id(fb, block.header) else {
+                    let Some(fb) = self.numbered(fb, "DATA_BLOCK") else {
+                        continue;
+                    };
+                    let Some(id) = self.block_id(&fb, block.header) else {
                         continue;
                     };
                     match self.interfaces.get(&id) {

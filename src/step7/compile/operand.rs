@@ -222,9 +222,7 @@ impl super::Compiler<'_> {
                     target: Target::Constant(u32::from(*number)),
                     width: AccessWidth::Word,
                 }),
-                crate::step7::ast::S7BlockRef::Symbol(_) => {
-                    Err(not_an_operand(at, "a block symbol"))
-                }
+                crate::step7::ast::S7BlockRef::Symbol(name) => self.symbol_place(name, &[], at),
             },
             S7Operand::AreaCrossing { width, ar, offset } => Ok(Place {
                 target: Target::RegisterIndirect {
@@ -253,17 +251,13 @@ impl super::Compiler<'_> {
                 })
             }
             S7Operand::DbMember { db, path } => self.db_member_place(*db, path, at),
-            S7Operand::Symbol { name, .. } => Err(CheckError::NotSimulated {
-                what: format!("the symbol \"{}\"", name.text),
-                why: "write the absolute address; STEP 7 symbol tables are not read yet".into(),
-                at,
-            }),
+            S7Operand::Symbol { name, members } => self.symbol_place(name, members, at),
             _ => Err(not_an_operand(at, "this operand")),
         }
     }
 
     /// `DB5.speed`: a member of a data block declared in the program.
-    fn db_member_place(
+    pub(super) fn db_member_place(
         &mut self,
         db: u16,
         path: &[crate::step7::ast::PathPart],

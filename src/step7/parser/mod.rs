@@ -479,6 +479,18 @@ impl<'a> Parser<'a> {
         let result = self.header_line(kind, keyword);
         match result {
             Ok(header) => {
+                // `DATA_BLOCK "ValveDB" "Valve"`, `DATA_BLOCK DB 5 FB 5`: the FB of an
+                // instance DB on the header line, read as the line after it would be.
+                let instance_follows = kind == S7BlockKind::Db
+                    && self.rest_of_line().first().is_some_and(|t| {
+                        t.kind == TokenKind::Symbol
+                            || self.ctx.word(*t).is_some_and(|word| {
+                                word.starts_with("FB") || word.starts_with("SFB")
+                            })
+                    });
+                if instance_follows {
+                    return Some(header);
+                }
                 if let Some(extra) = self
                     .rest_of_line()
                     .first()
