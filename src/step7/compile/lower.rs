@@ -563,18 +563,10 @@ impl super::Compiler<'_> {
             S7Op::OpenDb | S7Op::OpenInstanceDb => {
                 let instance = op == S7Op::OpenInstanceDb;
                 let code = match operand {
-                    S7Operand::Block(S7BlockRef::Number { number, .. }) => {
-                        if !self.has_db(*number) {
-                            self.errors.push(CheckError::UndefinedDb {
-                                id: format!("DB {number}"),
-                                at,
-                            });
-                        }
-                        S7Code::OpenDb {
-                            instance,
-                            number: *number,
-                        }
-                    }
+                    S7Operand::Block(S7BlockRef::Number { number, .. }) => S7Code::OpenDb {
+                        instance,
+                        slot: self.db_slot(*number, at),
+                    },
                     other => {
                         let place = self.place(other, at, scope)?;
                         S7Code::OpenDbFrom {
@@ -771,7 +763,7 @@ impl super::Compiler<'_> {
             self.emit(out, Op::S7(S7Code::Sfc { call }), span);
             return Ok(());
         }
-        let Some(id) = self.block_id(reference, at) else {
+        let Some(id) = self.block_id(reference) else {
             return Ok(());
         };
         let op = match self.index.get(&id) {
@@ -861,7 +853,7 @@ impl super::Compiler<'_> {
             self.emit(out, Op::S7(S7Code::Sfc { call: index }), span);
             return Ok(());
         }
-        let Some(id) = self.block_id(&call.block, at) else {
+        let Some(id) = self.block_id(&call.block) else {
             return Ok(());
         };
         let Some(&block) = self.index.get(&id) else {
@@ -987,12 +979,7 @@ impl super::Compiler<'_> {
                 at,
             });
         };
-        if !self.has_db(*db) {
-            self.errors.push(CheckError::UndefinedDb {
-                id: format!("DB {db}"),
-                at,
-            });
-        }
+        let instance_slot = self.db_slot(*db, at);
         let mut inputs = Vec::new();
         let mut outputs = Vec::new();
         for param in &call.params {
@@ -1047,6 +1034,7 @@ impl super::Compiler<'_> {
         }
         self.tables.fb_calls.push(FbCall {
             instance_db: *db,
+            instance_slot,
             inputs,
             outputs,
         });
