@@ -362,3 +362,30 @@ pub fn cost(code: S7Code, t: &crate::profile::Timings) -> u32 {
         _ => t.other,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_data_block_number_finds_its_slot_only_when_defined() {
+        // DB 0 is no data block; DB 7, 300 and 65535 are defined; DB 9 is only named.
+        let tables = S7Tables {
+            db_numbers: vec![0, 7, 300, 65535, 9],
+            defined_dbs: 3,
+            ..S7Tables::default()
+        };
+        assert_eq!(tables.db_slot(0), Some(0));
+        assert_eq!(tables.db_slot(300), Some(2));
+        assert_eq!(tables.db_slot(65535), Some(3));
+        assert_eq!(tables.db_slot(9), None, "named, not defined");
+        assert_eq!(tables.db_slot(8), None);
+        assert_eq!(tables.db_number(4), 9);
+        assert_eq!(tables.db_number(17), 0, "no such slot");
+        assert_eq!(
+            S7Tables::default().db_slot(5),
+            None,
+            "no data blocks at all"
+        );
+    }
+}
