@@ -213,3 +213,10 @@ fn the_readme_s_dump_examples_are_true() {
     }
     assert!(checked >= 2, "{checked} examples");
 }
+
+#[test]
+fn a_step7_open_names_the_register_it_opens_into() {
+    let dump = dump("tests/inputs/s7/open_di.awl");
+    assert!(dump.contains("line    4  OPN DI 2"), "{dump}");
+    assert!(dump.contains("line    5  OPN DB 2"), "{dump}");
+}

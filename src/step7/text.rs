@@ -105,6 +105,12 @@ pub fn operand(statement: &S7Statement, set: MnemonicSet, sources: &SourceSet) -
         S7Operand::None => String::new(),
         S7Operand::Address(at) => address(*at, set),
         S7Operand::Condition(status) => condition(*status, set).to_string(),
+        // `OPN DI 2` is filed as the open of DB 2 into the DI register.
+        S7Operand::Block(S7BlockRef::Number { number, .. })
+            if statement.op == S7Op::OpenInstanceDb =>
+        {
+            format!("DI {number}")
+        }
         S7Operand::Block(reference) => block_ref(reference, sources),
         _ => written(sources, statement.operand_span),
     }
