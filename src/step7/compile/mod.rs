@@ -49,6 +49,8 @@ pub fn compile(
         errors: Vec::new(),
     };
     compiler.number_blocks(units);
+    let units = compiler.named_types(units);
+    let units: &[S7Unit] = &units;
     let logic = compiler.collect(units);
     compiler.make_data_blocks(units);
     let blocks = logic
