@@ -7,7 +7,7 @@ use crate::source::{FileId, Span};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct BlockId {
     pub kind: BlockKind,
-    pub number: u8,
+    pub number: u16,
 }
 
 impl BlockId {

@@ -86,11 +86,6 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
             "ORGANIZATION_BLOCK OB 1\nBEGIN\n      MCRA;\nEND_ORGANIZATION_BLOCK\n".into(),
         ),
         (
-            "awl::check::block_number",
-            "speed7",
-            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL FC 300;\nEND_ORGANIZATION_BLOCK\n".into(),
-        ),
-        (
             "awl::check::step7_on_step5_cpu",
             "sinumerik-840c",
             "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  I 0.0;\n      =  Q 4.0;\nEND_ORGANIZATION_BLOCK\n".into(),

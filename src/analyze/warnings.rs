@@ -32,7 +32,7 @@ pub enum ProgramWarning {
         )
     )]
     ObNotOnCpu {
-        ob: u8,
+        ob: u16,
         cpu: &'static str,
         #[label("not an OB the {cpu} starts")]
         at: Span,
@@ -66,8 +66,11 @@ pub fn no_ob1(program: &Program) -> Option<Report> {
 }
 
 /// Whether the CPU starts OB `ob`: the cyclic OB, a start-up OB or an interrupt OB it has.
-fn starts(profile: &Profile, ob: u8) -> bool {
-    ob == 1 || profile.startup_obs.contains(&ob) || profile.interrupt_ob(ob).is_some()
+fn starts(profile: &Profile, ob: u16) -> bool {
+    // The OBs a CPU starts have numbers that fit a byte.
+    u8::try_from(ob).is_ok_and(|ob| {
+        ob == 1 || profile.startup_obs.contains(&ob) || profile.interrupt_ob(ob).is_some()
+    })
 }
 
 /// A warning for each OB of the program its CPU does not have and the program does not call.

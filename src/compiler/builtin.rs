@@ -161,8 +161,11 @@ pub fn name(fb: u8) -> &'static str {
 /// The profiles that have `id` built in: an integral FB or a system OB.
 pub fn profiles_with(id: BlockId) -> Vec<&'static str> {
     match id.kind {
-        BlockKind::Fb => crate::profile::with_integral_fb(id.number),
-        BlockKind::Ob => crate::profile::with_system_ob(id.number),
+        // The built-in blocks' numbers fit a byte.
+        BlockKind::Fb => {
+            u8::try_from(id.number).map_or(Vec::new(), crate::profile::with_integral_fb)
+        }
+        BlockKind::Ob => u8::try_from(id.number).map_or(Vec::new(), crate::profile::with_system_ob),
         _ => Vec::new(),
     }
 }

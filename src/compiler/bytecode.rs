@@ -240,7 +240,7 @@ pub enum Op {
     /// A call of a block that is not loaded: STOP when taken.
     CallMissing {
         kind: BlockKind,
-        number: u8,
+        number: u16,
         conditional: bool,
     },
     OpenDb(u8),

@@ -340,17 +340,6 @@ pub enum CheckError {
         #[label("STEP 7 source")]
         at: Span,
     },
-
-    #[error("{id}: awl numbers blocks up to 255")]
-    #[diagnostic(
-        code(awl::check::block_number),
-        help("renumber the block; awl's block numbers are one byte")
-    )]
-    BlockNumber {
-        id: String,
-        #[label("number too large")]
-        at: Span,
-    },
 }
 
 impl CheckError {
@@ -383,7 +372,6 @@ impl CheckError {
             | CheckError::UndeclaredLocal { at, .. }
             | CheckError::UndefinedLabel { at, .. }
             | CheckError::NotSimulated { at, .. }
-            | CheckError::BlockNumber { at, .. }
             | CheckError::Step7OnStep5Cpu { at, .. } => *at,
         }
     }

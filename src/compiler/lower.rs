@@ -16,7 +16,7 @@ pub enum Resolved {
     /// A block; `index` is its place in the program when it is loaded (logic blocks).
     Block {
         kind: BlockKind,
-        number: u8,
+        number: u16,
         index: Option<u16>,
     },
     Label(u32),
@@ -153,6 +153,12 @@ fn label_condition(op: OpCode) -> Option<JumpCondition> {
 
 /// The op for an operation and its operand, or `None` when the operand does not fit.
 /// `params` is the actual-parameter list of an FB call.
+/// A STEP 5 data block's number: the STEP 5 parser takes none above 255, so the op keeps a
+/// byte (STEP 7's `OPN DB n` is an S7 op with the whole number).
+fn s5_db(number: u16) -> Option<u8> {
+    u8::try_from(number).ok()
+}
+
 pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Option<Op> {
     use OpCode::*;
     use Resolved as R;
@@ -326,7 +332,7 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
                 number,
                 ..
             },
-        ) => Op::OpenDb(number),
+        ) => Op::OpenDb(s5_db(number)?),
         (
             GenerateDb,
             R::Block {
@@ -334,7 +340,7 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
                 number,
                 ..
             },
-        ) => Op::GenerateDb(number),
+        ) => Op::GenerateDb(s5_db(number)?),
         (BlockEnd, R::None) => Op::BlockEnd,
         (BlockEndConditional, R::None) => Op::BlockEndConditional,
         (BlockEndUnconditional, R::None) => Op::BlockEndUnconditional,

@@ -150,10 +150,11 @@ impl Program {
             .unwrap_or(0)
     }
 
+    /// The index of OB `number`, one of the OBs a CPU starts (their numbers fit a byte).
     pub fn ob(&self, number: u8) -> Option<u16> {
         self.block_index(BlockId {
             kind: BlockKind::Ob,
-            number,
+            number: u16::from(number),
         })
     }
 }
@@ -243,7 +244,7 @@ struct Compiler<'a> {
     index: HashMap<BlockId, u16>,
     data_numbers: Vec<BlockId>,
     /// DBs that a `G DB` may create at run time.
-    generated_dbs: Vec<u8>,
+    generated_dbs: Vec<u16>,
     fb_params: HashMap<BlockId, Vec<ParamDecl>>,
     param_lists: Vec<Vec<Resolved>>,
     templates: Vec<(OpCode, Resolved)>,
@@ -317,7 +318,7 @@ impl<'a> Compiler<'a> {
         for &number in self.profile.integral_fbs {
             let id = BlockId {
                 kind: BlockKind::Fb,
-                number,
+                number: u16::from(number),
             };
             if let (false, Some(fb)) = (self.index.contains_key(&id), IntegralFb::of(number)) {
                 self.fb_params.insert(id, fb.declarations());
@@ -332,12 +333,15 @@ impl<'a> Compiler<'a> {
             return None;
         }
         match id.kind {
-            BlockKind::Fb if self.profile.has_integral_fb(id.number) => {
-                IntegralFb::of(id.number).map(Builtin::Integral)
-            }
-            BlockKind::Ob if self.profile.system_ob(id.number).is_some() => {
-                Some(Builtin::SystemOb(id.number))
-            }
+            BlockKind::Fb => u8::try_from(id.number)
+                .ok()
+                .filter(|&number| self.profile.has_integral_fb(number))
+                .and_then(IntegralFb::of)
+                .map(Builtin::Integral),
+            BlockKind::Ob => u8::try_from(id.number)
+                .ok()
+                .and_then(|number| self.profile.system_ob(number))
+                .map(|system| Builtin::SystemOb(system.ob)),
             _ => None,
         }
     }

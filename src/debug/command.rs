@@ -196,7 +196,7 @@ fn ob_number(words: &[&str]) -> Option<u8> {
         Some(BlockId {
             kind: crate::mnemonics::BlockKind::Ob,
             number,
-        }) => Some(number),
+        }) => u8::try_from(number).ok(),
         _ => None,
     }
 }

@@ -346,7 +346,7 @@ pub(crate) fn place_text(program: &Program, place: Place, set: MnemonicSet) -> O
             };
             address(area, byte, bit, None)
         }
-        Target::NumberedData { db, byte, bit } => address(S7Area::Data, byte, bit, Some(db)),
+        Target::NumberedData { db, byte, bit, .. } => address(S7Area::Data, byte, bit, Some(db)),
         Target::Parameter { param, byte, bit } if byte == 0 && bit == 0 => {
             format!("parameter {}", u16::from(param) + 1)
         }

@@ -46,7 +46,13 @@ pub fn header<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a,
         if let Some(kind) = BlockKind::from_word(text) {
             let (rest, number) = kind_number(context, rest)?;
             let (rest, _) = header_information(rest)?;
-            return Ok((rest, BlockId { kind, number }));
+            return Ok((
+                rest,
+                BlockId {
+                    kind,
+                    number: u16::from(number),
+                },
+            ));
         }
         let split = text
             .find(|c: char| c.is_ascii_digit())
@@ -56,7 +62,13 @@ pub fn header<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a,
             (Some(kind), Ok(number)) if !digits.is_empty() => {
                 let (rest, _) = header_information(rest)?;
                 let number = block_number(context, word, number)?;
-                Ok((rest, BlockId { kind, number }))
+                Ok((
+                    rest,
+                    BlockId {
+                        kind,
+                        number: u16::from(number),
+                    },
+                ))
             }
             _ => Err(nom::Err::Error(LineError {
                 at: Some(word),
@@ -751,7 +763,16 @@ fn word_operand<'a>(
                 other => other,
             })?;
             let span = context.span_of(word, number_token);
-            Ok((rest, (Operand::Block(BlockId { kind, number }), span)))
+            Ok((
+                rest,
+                (
+                    Operand::Block(BlockId {
+                        kind,
+                        number: u16::from(number),
+                    }),
+                    span,
+                ),
+            ))
         }
         (_, Some(area)) => address(context, area, word, rest),
         _ => match mnemonics::constant_format(context.set, text) {

@@ -127,12 +127,14 @@ fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
             byte,
             bit,
         } => Located::Data {
-            db: if instance { context.di } else { context.db },
+            slot: if instance { context.di } else { context.db },
             byte: byte as usize,
             bit,
         },
-        Target::NumberedData { db, byte, bit } => Located::Data {
-            db,
+        Target::NumberedData {
+            slot, byte, bit, ..
+        } => Located::Data {
+            slot,
             byte: byte as usize,
             bit,
         },
@@ -177,8 +179,8 @@ fn read(cpu: &Cpu, located: Located, width: AccessWidth) -> Option<String> {
         }
         Located::Image { byte, bit } => (cpu.image.get(byte..)?, bit),
         Located::Local { byte, bit } => (cpu.local.get(byte..)?, bit),
-        Located::Data { db, byte, bit } => (
-            cpu.s7_data.get(usize::from(db))?.as_ref()?.get(byte..)?,
+        Located::Data { slot, byte, bit } => (
+            cpu.s7_data.get(usize::from(slot))?.as_ref()?.get(byte..)?,
             bit,
         ),
         Located::Peripheral { .. } | Located::Special(_) => return None,

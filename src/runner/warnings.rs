@@ -103,9 +103,13 @@ pub fn obs_never_run(program: &Program, sources: &SourceSet, config: &EngineConf
         if block.id.kind != BlockKind::Ob || called(program, index as u16) {
             continue;
         }
-        if let Some((reason, help)) = never_runs(block.id.number, program.profile, config) {
+        // An OB numbered above 255 is no OB a CPU starts: the program's warning.
+        let Ok(ob) = u8::try_from(block.id.number) else {
+            continue;
+        };
+        if let Some((reason, help)) = never_runs(ob, program.profile, config) {
             let warning = RunWarning::ObNeverRuns {
-                ob: block.id.number,
+                ob,
                 at: block.header,
                 reason,
                 help,
@@ -125,7 +129,8 @@ pub fn normal_mode_calls(program: &Program, sources: &SourceSet) -> Vec<Report> 
                 continue;
             };
             let id = program.blocks[usize::from(target)].id;
-            if id.kind == BlockKind::Ob && normal_mode_skips(id.number) {
+            let skipped = u8::try_from(id.number).is_ok_and(normal_mode_skips);
+            if id.kind == BlockKind::Ob && skipped {
                 let warning = RunWarning::ObCallNormalMode {
                     ob: id.to_string(),
                     at: *span,

@@ -80,7 +80,7 @@ pub fn actual(cpu: &Cpu, target: Target) -> Option<u32> {
 /// `count` bytes of STEP 7 data block `db` from `byte`; `None` when the DB is not loaded (or
 /// is shorter now: a DB the program deleted and created anew).
 pub fn s7_data_bytes(cpu: &Cpu, db: u16, byte: u32, count: u8) -> Option<&[u8]> {
-    let data = cpu.s7_data.get(usize::from(db))?.as_ref()?;
+    let data = cpu.s7_db(db)?;
     let start = usize::try_from(byte).ok()?;
     data.get(start..start + usize::from(count))
 }

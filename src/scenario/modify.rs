@@ -55,9 +55,7 @@ pub fn write_s7_data(cpu: &mut Cpu, target: Target, raw: u32) -> Result<(), Stri
         return Err("not a data block operand".into());
     };
     let data = cpu
-        .s7_data
-        .get_mut(usize::from(db))
-        .and_then(Option::as_mut)
+        .s7_db_mut(db)
         .ok_or_else(|| format!("DB {db} is not loaded"))?;
     let start = usize::try_from(byte).unwrap_or(usize::MAX);
     let count = usize::from(bytes.max(1));

@@ -290,7 +290,7 @@ fn running(cpu: &Cpu, block: u16, pc: u32, return_points: Vec<ReturnPoint>) -> L
 /// The open DB of a level: a STEP 7 program's DB register (0 is none).
 fn open_db(cpu: &Cpu, level: &LevelState) -> Option<u16> {
     if cpu.program.s7.step7 {
-        (level.db != 0).then_some(level.db)
+        (level.db != 0).then(|| cpu.program.s7.db_number(level.db))
     } else {
         level.open_db.map(u16::from)
     }

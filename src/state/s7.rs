@@ -29,8 +29,8 @@ impl Registers {
             stw: level.status.to_word(level.br),
             ar1: level.ar1,
             ar2: level.ar2,
-            db: level.db,
-            di: level.di,
+            db: cpu.program.s7.db_number(level.db),
+            di: cpu.program.s7.db_number(level.di),
         }
     }
 }
@@ -116,7 +116,7 @@ pub fn data_blocks(cpu: &Cpu) -> BTreeMap<String, BTreeMap<String, u16>> {
     cpu.s7_data
         .iter()
         .enumerate()
-        .filter_map(|(number, bytes)| Some((number, bytes.as_ref()?)))
+        .filter_map(|(slot, bytes)| Some((cpu.program.s7.db_number(slot as u16), bytes.as_ref()?)))
         .map(|(number, bytes)| {
             let non_zero = bytes
                 .iter()

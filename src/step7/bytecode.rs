@@ -60,10 +60,10 @@ pub enum S7Code {
         logic: MemOp,
         condition: Condition,
     },
-    /// `OPN DB n` / `OPN DI n`.
+    /// `OPN DB n` / `OPN DI n`: the DB's slot (see [`S7Tables::db_numbers`]).
     OpenDb {
         instance: bool,
-        number: u16,
+        slot: u16,
     },
     /// `OPN DB [MW 2]`, `OPN #db_param`: the number from a place.
     OpenDbFrom {
@@ -198,9 +198,11 @@ pub enum Target {
         byte: u32,
         bit: u8,
     },
-    /// `DB5.DBW 4`: opens DB 5 (the DB register) and accesses it.
+    /// `DB5.DBW 4`: opens DB 5 (the DB register) and accesses it; `slot` is DB 5's slot (see
+    /// [`S7Tables::db_numbers`]).
     NumberedData {
         db: u16,
+        slot: u16,
         byte: u32,
         bit: u8,
     },
@@ -261,6 +263,8 @@ pub enum IndirectArea {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FbCall {
     pub instance_db: u16,
+    /// The instance DB's slot (see [`S7Tables::db_numbers`]).
+    pub instance_slot: u16,
     /// (actual place, byte/bit offset in the instance DB, width) of each input and in/out.
     pub inputs: Vec<ParamCopy>,
     /// (actual place, offset, width) of each output and in/out.
@@ -293,6 +297,16 @@ pub struct S7Tables {
     pub sfc_calls: Vec<SfcCall>,
     /// The data blocks' initial bytes, by DB number.
     pub data_blocks: Vec<(u16, Vec<u8>)>,
+    /// The data blocks by slot: the numbers of the data blocks the program defines or names
+    /// (`OPN DB 7`, `DB7.DBW 0`, an instance DB). STEP 7 numbers DBs up to 65535, so the VM
+    /// keeps them densely: the DB and DI registers hold slots, and an access indexes the data
+    /// with no lookup. Slot 0 is number 0 (no data block); the defined ones follow in order
+    /// of number (`defined_dbs` of them, searched when a number is known only at run time,
+    /// `OPN DB [MW 10]`); then the named ones the program does not define, so their STOP
+    /// names them.
+    pub db_numbers: Vec<u16>,
+    /// How many slots after slot 0 hold defined data blocks.
+    pub defined_dbs: usize,
     /// The awlsim test instructions may run (`awl conformance`, `--extended`).
     pub extensions: bool,
     /// The program is a STEP 7 program (it has an L stack and byte-addressed DBs).
@@ -308,6 +322,22 @@ impl S7Tables {
     pub fn place(&mut self, place: Place) -> u16 {
         self.places.push(place);
         (self.places.len() - 1) as u16
+    }
+
+    /// The number of the data block in `slot` (0 for none).
+    pub fn db_number(&self, slot: u16) -> u16 {
+        self.db_numbers.get(usize::from(slot)).copied().unwrap_or(0)
+    }
+
+    /// The slot of data block `number` when the program defines it (0, no data block, is in
+    /// slot 0).
+    pub fn db_slot(&self, number: u16) -> Option<u16> {
+        if number == 0 {
+            return Some(0);
+        }
+        let defined = self.db_numbers.get(1..=self.defined_dbs)?;
+        let index = defined.binary_search(&number).ok()?;
+        Some(index as u16 + 1)
     }
 
     pub fn constant(&mut self, value: u32) -> u16 {
@@ -330,5 +360,32 @@ pub fn cost(code: S7Code, t: &crate::profile::Timings) -> u32 {
         S7Code::FbEnter { .. } | S7Code::FbLeave { .. } => t.load_word,
         S7Code::Sfc { .. } => t.block_call + t.block_end,
         _ => t.other,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_data_block_number_finds_its_slot_only_when_defined() {
+        // DB 0 is no data block; DB 7, 300 and 65535 are defined; DB 9 is only named.
+        let tables = S7Tables {
+            db_numbers: vec![0, 7, 300, 65535, 9],
+            defined_dbs: 3,
+            ..S7Tables::default()
+        };
+        assert_eq!(tables.db_slot(0), Some(0));
+        assert_eq!(tables.db_slot(300), Some(2));
+        assert_eq!(tables.db_slot(65535), Some(3));
+        assert_eq!(tables.db_slot(9), None, "named, not defined");
+        assert_eq!(tables.db_slot(8), None);
+        assert_eq!(tables.db_number(4), 9);
+        assert_eq!(tables.db_number(17), 0, "no such slot");
+        assert_eq!(
+            S7Tables::default().db_slot(5),
+            None,
+            "no data blocks at all"
+        );
     }
 }

@@ -72,8 +72,8 @@ impl Frame {
 }
 
 /// What a STEP 7 block call saves beside its [`Frame`] (on a stack of its own, parallel to the
-/// block stack, so STEP 5 calls carry none of it): the calling block's DB and DI registers and
-/// where its local data start.
+/// block stack, so STEP 5 calls carry none of it): the calling block's DB and DI registers
+/// (slots, as in [`LevelState`]) and where its local data start.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct S7Frame {
     pub db: u16,
@@ -105,8 +105,11 @@ pub struct LevelState {
     pub interrupts_enabled: bool,
     /// S5-95F: this level is OB 13, so `L PY`/`T PY` reach the interrupt process images.
     pub interrupt_images: bool,
-    /// STEP 7: the address registers, the DB and DI registers (0: none open) and where the
-    /// running block's local data start on the L stack.
+    /// STEP 7: the address registers, the DB and DI registers and where the running block's
+    /// local data start on the L stack. The DB and DI registers hold the open data blocks'
+    /// slots (see [`S7Tables::db_numbers`]; 0: none open), `L DBNO` their numbers.
+    ///
+    /// [`S7Tables::db_numbers`]: crate::step7::bytecode::S7Tables::db_numbers
     pub ar1: u32,
     pub ar2: u32,
     pub db: u16,
@@ -235,9 +238,10 @@ pub struct Cpu {
     pub extended_outputs: Vec<u8>,
     pub timers: Vec<Timer>,
     pub counters: Vec<Counter>,
-    /// Data blocks by number.
+    /// STEP 5 data blocks by number (0–255).
     pub data_blocks: Vec<Option<Vec<u16>>>,
-    /// STEP 7 data blocks by number, byte-addressed.
+    /// STEP 7 data blocks by slot (see [`crate::step7::bytecode::S7Tables::db_numbers`]),
+    /// byte-addressed.
     pub s7_data: Vec<Option<Vec<u8>>>,
     /// STEP 7: the L stack.
     pub local: Vec<u8>,

@@ -575,18 +575,10 @@ impl super::Compiler<'_> {
                     return Ok(());
                 }
                 let code = match operand {
-                    S7Operand::Block(S7BlockRef::Number { number, .. }) => {
-                        if !self.has_db(*number) {
-                            self.errors.push(CheckError::UndefinedDb {
-                                id: format!("DB {number}"),
-                                at,
-                            });
-                        }
-                        S7Code::OpenDb {
-                            instance,
-                            number: *number,
-                        }
-                    }
+                    S7Operand::Block(S7BlockRef::Number { number, .. }) => S7Code::OpenDb {
+                        instance,
+                        slot: self.db_slot(*number, at),
+                    },
                     other => {
                         let place = self.place(other, at, scope)?;
                         S7Code::OpenDbFrom {
@@ -787,7 +779,7 @@ impl super::Compiler<'_> {
             self.emit(out, Op::S7(S7Code::Sfc { call }), span);
             return Ok(());
         }
-        let Some(id) = self.block_id(reference, at) else {
+        let Some(id) = self.block_id(reference) else {
             return Ok(());
         };
         let op = match self.index.get(&id) {
@@ -880,7 +872,7 @@ impl super::Compiler<'_> {
             self.emit(out, Op::S7(S7Code::Sfc { call: index }), span);
             return Ok(());
         }
-        let Some(id) = self.block_id(&call.block, at) else {
+        let Some(id) = self.block_id(&call.block) else {
             return Ok(());
         };
         let Some(&block) = self.index.get(&id) else {
@@ -1006,12 +998,7 @@ impl super::Compiler<'_> {
                 at,
             });
         };
-        if !self.has_db(*db) {
-            self.errors.push(CheckError::UndefinedDb {
-                id: format!("DB {db}"),
-                at,
-            });
-        }
+        let instance_slot = self.db_slot(*db, at);
         let mut inputs = Vec::new();
         let mut outputs = Vec::new();
         for param in &call.params {
@@ -1066,6 +1053,7 @@ impl super::Compiler<'_> {
         }
         self.tables.fb_calls.push(FbCall {
             instance_db: *db,
+            instance_slot,
             inputs,
             outputs,
         });

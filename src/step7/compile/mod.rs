@@ -40,6 +40,7 @@ pub fn compile(
         udts: HashMap::new(),
         data_blocks: HashMap::new(),
         db_layouts: HashMap::new(),
+        db_slots: HashMap::new(),
         tables: S7Tables {
             extensions,
             step7: true,
@@ -53,6 +54,7 @@ pub fn compile(
     let units: &[S7Unit] = &units;
     let logic = compiler.collect(units);
     compiler.make_data_blocks(units);
+    compiler.number_data_blocks();
     let blocks = logic
         .iter()
         .map(|(block, id, set)| compiler.compile_block(block, *id, *set))
@@ -90,6 +92,8 @@ struct Compiler<'a> {
     data_blocks: HashMap<u16, Vec<u8>>,
     /// Each data block's members and where they lie (for `DB5.speed`).
     db_layouts: HashMap<u16, Interface>,
+    /// Each data block number's slot in [`S7Tables::db_numbers`].
+    db_slots: HashMap<u16, u16>,
     tables: S7Tables,
     param_lists: Vec<Vec<Resolved>>,
     errors: Vec<CheckError>,
@@ -112,25 +116,16 @@ impl<'a> Compiler<'a> {
         format!("{}:{}", file.name, file.line_of(span.start))
     }
 
-    /// The block id of a reference, or an error at `span`.
-    fn block_id(&mut self, reference: &S7BlockRef, span: Span) -> Option<BlockId> {
+    /// The block id of a reference, or `None` after an error.
+    fn block_id(&mut self, reference: &S7BlockRef) -> Option<BlockId> {
         match reference {
-            S7BlockRef::Number { kind, number } => {
-                let kind = block_kind(*kind)?;
-                match u8::try_from(*number) {
-                    Ok(number) => Some(BlockId { kind, number }),
-                    Err(_) => {
-                        self.errors.push(CheckError::BlockNumber {
-                            id: format!("{} {number}", kind.name()),
-                            at: span,
-                        });
-                        None
-                    }
-                }
-            }
+            S7BlockRef::Number { kind, number } => Some(BlockId {
+                kind: block_kind(*kind)?,
+                number: *number,
+            }),
             S7BlockRef::Symbol(name) => {
                 let (kind, number) = self.symbol_block(name, &[], "")?;
-                self.block_id(&S7BlockRef::Number { kind, number }, span)
+                self.block_id(&S7BlockRef::Number { kind, number })
             }
         }
     }
@@ -163,7 +158,7 @@ impl<'a> Compiler<'a> {
                 kind: block.kind,
                 number,
             };
-            let Some(id) = self.block_id(&name, block.header) else {
+            let Some(id) = self.block_id(&name) else {
                 continue;
             };
             if let Some(first) = first_seen.get(&id) {
@@ -232,7 +227,7 @@ impl<'a> Compiler<'a> {
                     let Some(fb) = self.numbered(fb, "DATA_BLOCK") else {
                         continue;
                     };
-                    let Some(id) = self.block_id(&fb, block.header) else {
+                    let Some(id) = self.block_id(&fb) else {
                         continue;
                     };
                     match self.interfaces.get(&id) {
@@ -255,9 +250,39 @@ impl<'a> Compiler<'a> {
         }
     }
 
-    /// Whether the program defines data block `number`.
-    fn has_db(&self, number: u16) -> bool {
-        self.data_blocks.contains_key(&number)
+    /// The slots of the defined data blocks: 0 (no data block), then the others by number.
+    fn number_data_blocks(&mut self) {
+        let mut defined: Vec<u16> = self
+            .data_blocks
+            .keys()
+            .copied()
+            .filter(|&n| n != 0)
+            .collect();
+        defined.sort_unstable();
+        self.tables.defined_dbs = defined.len();
+        self.tables.db_numbers = std::iter::once(0).chain(defined).collect();
+        for (slot, &number) in self.tables.db_numbers.iter().enumerate() {
+            self.db_slots.insert(number, slot as u16);
+        }
+    }
+
+    /// The slot of data block `number`, named at `at`: a new one after the defined ones for a
+    /// data block the program does not define, with a warning.
+    fn db_slot(&mut self, number: u16, at: Span) -> u16 {
+        if !self.data_blocks.contains_key(&number) {
+            self.errors.push(CheckError::UndefinedDb {
+                id: format!("DB {number}"),
+                at,
+            });
+        }
+        if let Some(&slot) = self.db_slots.get(&number) {
+            return slot;
+        }
+        // At most 65536 numbers, so a slot fits 16 bits.
+        let slot = self.tables.db_numbers.len() as u16;
+        self.tables.db_numbers.push(number);
+        self.db_slots.insert(number, slot);
+        slot
     }
 
     fn udts(&self) -> &HashMap<u16, Vec<VarDecl>> {

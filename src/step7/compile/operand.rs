@@ -115,19 +115,12 @@ impl super::Compiler<'_> {
                 bit: address.bit,
             },
             S7Area::Data | S7Area::Instance => match address.db {
-                Some(db) => {
-                    if !self.has_db(db) {
-                        self.errors.push(CheckError::UndefinedDb {
-                            id: format!("DB {db}"),
-                            at,
-                        });
-                    }
-                    Target::NumberedData {
-                        db,
-                        byte: address.byte,
-                        bit: address.bit,
-                    }
-                }
+                Some(db) => Target::NumberedData {
+                    db,
+                    slot: self.db_slot(db, at),
+                    byte: address.byte,
+                    bit: address.bit,
+                },
                 None => Target::Data {
                     instance: address.area == S7Area::Instance,
                     byte: address.byte,
@@ -281,6 +274,7 @@ impl super::Compiler<'_> {
         Ok(Place {
             target: Target::NumberedData {
                 db,
+                slot: self.db_slot(db, at),
                 byte: bits / 8,
                 bit: (bits % 8) as u8,
             },

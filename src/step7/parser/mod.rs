@@ -637,7 +637,7 @@ impl<'a> Parser<'a> {
                 }
                 _ => {
                     if let Some(nom::Err::Failure(fail) | nom::Err::Error(fail)) =
-                        statement::negative_block_number(ctx, line)
+                        statement::bad_block_number(ctx, line)
                         && let Some(diagnostic) = fail.diagnostic
                     {
                         return Err(*diagnostic);

@@ -212,7 +212,9 @@ fn block_kind(upper: &str) -> Option<S7BlockKind> {
 /// `FC 1`, `FC1`, `DB 3`, `DI 2`, `SFB 4`; `OPN DB [MW 2]` and `OPN DI [#nr]` give the pointer
 /// word. `None` when the word is no block kind (or `DB5.DBW` follows).
 fn block_operand<'a>(ctx: Ctx<'a>, input: Tokens<'a>) -> Option<PResult<'a, S7Operand>> {
-    let (number, rest) = block_number_tokens(ctx, input)?;
+    let Some((number, rest)) = block_number_tokens(ctx, input) else {
+        return block_number_out_of_range(ctx, input).map(|error| Err(Fail::with(error)));
+    };
     let Some((kind, number)) = number else {
         // `DB [MW 2]`: the word the block number is read from.
         let result = delimited(
@@ -259,6 +261,31 @@ pub fn block_number_tokens<'a>(
     }
     let number = digits.parse::<u16>().ok()?;
     Some((Some((kind, number)), input.skip(1)))
+}
+
+/// A block kind with a number past 65535 (`FC 70000`, `FC70000`), where
+/// [`block_number_tokens`] finds no block.
+pub fn block_number_out_of_range(ctx: Ctx<'_>, input: Tokens<'_>) -> Option<S7ParseError> {
+    let first = input.first()?;
+    let upper = ctx.word(first)?;
+    let next = input.second();
+    if block_kind(&upper).is_some() {
+        let token = next.filter(|token| token.kind == TokenKind::Number)?;
+        return block_number(ctx, token).err();
+    }
+    let (letters, digits) = letters_and_digits(&upper)?;
+    block_kind(letters)?;
+    // `DB70000.DBW 4` is an address; its number is checked there.
+    if next.is_some_and(|t| t.kind == TokenKind::Dot && first.touches(t)) {
+        return None;
+    }
+    digits
+        .parse::<u16>()
+        .is_err()
+        .then(|| S7ParseError::BlockNumber {
+            number: digits.into(),
+            at: ctx.span(first),
+        })
 }
 
 fn block_number(ctx: Ctx<'_>, token: Token) -> Result<u16, S7ParseError> {

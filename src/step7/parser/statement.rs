@@ -451,7 +451,7 @@ fn instance_block<'a>(ctx: Ctx<'a>, input: Tokens<'a>) -> PResult<'a, S7BlockRef
         }
         Some(_) => match block_number_tokens(ctx, input) {
             Some((Some((kind, number)), rest)) => Ok((rest, S7BlockRef::Number { kind, number })),
-            _ => Err(negative_block_number(ctx, input).unwrap_or_else(|| {
+            _ => Err(bad_block_number(ctx, input).unwrap_or_else(|| {
                 fail(input, "a block such as `FC 1`, `FB 2, DB 2` or `\"Name\"`")
             })),
         },
@@ -459,8 +459,12 @@ fn instance_block<'a>(ctx: Ctx<'a>, input: Tokens<'a>) -> PResult<'a, S7BlockRef
     }
 }
 
-/// awlsim's internal blocks `SFC -1`, `SFB -1`: no block number of STEP 7.
-pub fn negative_block_number(ctx: Ctx<'_>, input: Tokens<'_>) -> Option<nom::Err<Fail>> {
+/// A block number STEP 7 does not have: awlsim's internal blocks `SFC -1`, `SFB -1`, or one
+/// past 65535 (`FC 70000`).
+pub fn bad_block_number(ctx: Ctx<'_>, input: Tokens<'_>) -> Option<nom::Err<Fail>> {
+    if let Some(error) = super::operand::block_number_out_of_range(ctx, input) {
+        return Some(Fail::with(error));
+    }
     match input.tokens {
         [word, minus, number, ..]
             if word.kind == TokenKind::Word

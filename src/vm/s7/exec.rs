@@ -21,6 +21,15 @@ fn fault(text: impl Into<String>) -> Fault {
     (StopCause::Bcf, StopDetail::Text(text.into()))
 }
 
+/// The STOP for a data block the program does not have.
+#[cold]
+fn missing_db(number: u16) -> Fault {
+    (
+        StopCause::LzfBlock,
+        StopDetail::Text(format!("DB {number}")),
+    )
+}
+
 impl Cpu {
     /// Runs `code`, op `pc` of the running block; ACCU 1/2 and the status are in `self.level`.
     #[inline(never)]
@@ -72,11 +81,14 @@ impl Cpu {
                 let value = bridge::condition(&self.level, condition);
                 bridge::combine(&mut self.level.status, logic, value);
             }
-            S7Code::OpenDb { instance, number } => self.open_s7_db(instance, number)?,
+            S7Code::OpenDb { instance, slot } => self.open_s7_db(instance, slot)?,
             S7Code::OpenDbFrom { instance, place } => {
                 let (located, _) = self.locate_index(place)?;
                 let number = self.fetch(located, AccessWidth::Word)? as u16;
-                self.open_s7_db(instance, number)?;
+                let Some(slot) = self.program.s7.db_slot(number) else {
+                    return Err(missing_db(number));
+                };
+                self.open_s7_db(instance, slot)?;
             }
             S7Code::ExchangeDbRegisters => {
                 std::mem::swap(&mut self.level.db, &mut self.level.di);
@@ -152,32 +164,31 @@ impl Cpu {
         }
     }
 
-    fn open_s7_db(&mut self, instance: bool, number: u16) -> Result<(), Fault> {
-        if number != 0 && !matches!(self.s7_data.get(usize::from(number)), Some(Some(_))) {
-            return Err((
-                StopCause::LzfBlock,
-                StopDetail::Text(format!("DB {number}")),
-            ));
+    /// Opens the data block in `slot` (0: none) as the DB or the instance DB.
+    fn open_s7_db(&mut self, instance: bool, slot: u16) -> Result<(), Fault> {
+        if slot != 0 && !matches!(self.s7_data.get(usize::from(slot)), Some(Some(_))) {
+            return Err(missing_db(self.program.s7.db_number(slot)));
         }
         if instance {
-            self.level.di = number;
+            self.level.di = slot;
         } else {
-            self.level.db = number;
+            self.level.db = slot;
         }
         Ok(())
     }
 
     fn db_register(&self, register: DbRegister) -> u32 {
-        let length = |db: u16| {
+        let length = |slot: u16| {
             self.s7_data
-                .get(usize::from(db))
+                .get(usize::from(slot))
                 .and_then(Option::as_ref)
                 .map_or(0, |bytes| bytes.len() as u32)
         };
+        let number = |slot: u16| u32::from(self.program.s7.db_number(slot));
         match register {
-            DbRegister::DbNumber => u32::from(self.level.db),
+            DbRegister::DbNumber => number(self.level.db),
             DbRegister::DbLength => length(self.level.db),
-            DbRegister::DiNumber => u32::from(self.level.di),
+            DbRegister::DiNumber => number(self.level.di),
             DbRegister::DiLength => length(self.level.di),
         }
     }
@@ -306,19 +317,16 @@ impl Cpu {
         let program = std::sync::Arc::clone(&self.program);
         let call = &program.s7.fb_calls[usize::from(call)];
         if !matches!(
-            self.s7_data.get(usize::from(call.instance_db)),
+            self.s7_data.get(usize::from(call.instance_slot)),
             Some(Some(_))
         ) {
-            return Err((
-                StopCause::LzfBlock,
-                StopDetail::Text(format!("DB {}", call.instance_db)),
-            ));
+            return Err(missing_db(call.instance_db));
         }
         for copy in &call.inputs {
             let (from, _) = self.locate_index(copy.actual)?;
             let value = self.fetch(from, copy.width)?;
             let to = Located::Data {
-                db: call.instance_db,
+                slot: call.instance_slot,
                 byte: copy.byte as usize,
                 bit: copy.bit,
             };
@@ -326,7 +334,7 @@ impl Cpu {
         }
         self.fb_saves
             .push((self.level.db, self.level.di, self.level.ar2));
-        self.level.di = call.instance_db;
+        self.level.di = call.instance_slot;
         self.level.ar2 = 0x8500_0000;
         Ok(())
     }
@@ -345,7 +353,7 @@ impl Cpu {
         self.level.ar2 = ar2;
         for copy in &call.outputs {
             let from = Located::Data {
-                db: call.instance_db,
+                slot: call.instance_slot,
                 byte: copy.byte as usize,
                 bit: copy.bit,
             };
@@ -396,8 +404,8 @@ impl Cpu {
             Extension::Accu(_) => self.level.accu4,
             Extension::AddressRegister(1) => self.level.ar1,
             Extension::AddressRegister(_) => self.level.ar2,
-            Extension::DbRegister(1) => u32::from(self.level.db),
-            Extension::DbRegister(_) => u32::from(self.level.di),
+            Extension::DbRegister(1) => u32::from(self.program.s7.db_number(self.level.db)),
+            Extension::DbRegister(_) => u32::from(self.program.s7.db_number(self.level.di)),
             Extension::Pi => std::f32::consts::PI.to_bits(),
             Extension::E => std::f32::consts::E.to_bits(),
             Extension::PositiveInfinity => f32::INFINITY.to_bits(),

@@ -29,8 +29,10 @@ pub enum Located {
         byte: usize,
         bit: u8,
     },
+    /// A byte of a STEP 7 data block, by the block's slot (see
+    /// [`crate::step7::bytecode::S7Tables::db_numbers`]).
     Data {
-        db: u16,
+        slot: u16,
         byte: usize,
         bit: u8,
     },
@@ -56,11 +58,11 @@ impl Located {
                 bit: own + bit,
             },
             Located::Data {
-                db,
+                slot,
                 byte: at,
                 bit: own,
             } => Located::Data {
-                db,
+                slot,
                 byte: at + byte,
                 bit: own + bit,
             },
@@ -223,16 +225,18 @@ impl Cpu {
                 byte,
                 bit,
             } => Located::Data {
-                db: if instance { context.di } else { context.db },
+                slot: if instance { context.di } else { context.db },
                 byte: byte as usize,
                 bit,
             },
-            Target::NumberedData { db, byte, bit } => {
+            Target::NumberedData {
+                slot, byte, bit, ..
+            } => {
                 if context.frames == self.frames.len() {
-                    self.level.db = db;
+                    self.level.db = slot;
                 }
                 Located::Data {
-                    db,
+                    slot,
                     byte: byte as usize,
                     bit,
                 }
@@ -351,12 +355,12 @@ impl Cpu {
                 )),
             },
             IndirectArea::Data => Ok(Located::Data {
-                db: context.db,
+                slot: context.db,
                 byte,
                 bit,
             }),
             IndirectArea::Instance => Ok(Located::Data {
-                db: context.di,
+                slot: context.di,
                 byte,
                 bit,
             }),
@@ -383,19 +387,23 @@ impl Cpu {
                 .local
                 .get_mut(byte..byte + count)
                 .ok_or_else(|| fault("the L stack overflows".into())),
-            Located::Data { db, byte, .. } => {
-                if db == 0 {
+            Located::Data { slot, byte, .. } => {
+                if slot == 0 {
                     return Err(data_fault(format!(
                         "data byte {byte} accessed with no data block open"
                     )));
                 }
-                let Some(Some(data)) = self.s7_data.get_mut(usize::from(db)) else {
-                    return Err((StopCause::LzfBlock, StopDetail::Text(format!("DB {db}"))));
+                // The number only for a STOP's text: an access goes by the slot alone.
+                let db = |program: &crate::compiler::Program| program.s7.db_number(slot);
+                let Some(Some(data)) = self.s7_data.get_mut(usize::from(slot)) else {
+                    let text = format!("DB {}", db(&self.program));
+                    return Err((StopCause::LzfBlock, StopDetail::Text(text)));
                 };
                 let length = data.len();
                 data.get_mut(byte..byte + count).ok_or_else(|| {
                     data_fault(format!(
-                        "DB {db} byte {byte} is past the end of its {length} bytes"
+                        "DB {} byte {byte} is past the end of its {length} bytes",
+                        db(&self.program)
                     ))
                 })
             }

@@ -39,19 +39,37 @@ pub mod shift;
 pub mod word_logic;
 
 use crate::compiler::Program;
+use crate::vm::Cpu;
 
-/// The STEP 7 data blocks at the start, indexed by number.
+/// The STEP 7 data blocks at the start, by slot (see [`S7Tables::db_numbers`]): `None` for a
+/// data block the program names but does not define.
+///
+/// [`S7Tables::db_numbers`]: crate::step7::bytecode::S7Tables::db_numbers
 pub fn initial_data(program: &Program) -> Vec<Option<Vec<u8>>> {
-    let count = program
+    let defined: std::collections::HashMap<u16, &Vec<u8>> = program
         .s7
         .data_blocks
         .iter()
-        .map(|(number, _)| usize::from(*number) + 1)
-        .max()
-        .unwrap_or(0);
-    let mut data = vec![None; count];
-    for (number, bytes) in &program.s7.data_blocks {
-        data[usize::from(*number)] = Some(bytes.clone());
+        .map(|(number, bytes)| (*number, bytes))
+        .collect();
+    program
+        .s7
+        .db_numbers
+        .iter()
+        .map(|number| defined.get(number).map(|bytes| (*bytes).clone()))
+        .collect()
+}
+
+impl Cpu {
+    /// STEP 7 data block `number`'s bytes, when the program has it.
+    pub fn s7_db(&self, number: u16) -> Option<&[u8]> {
+        let slot = self.program.s7.db_slot(number)?;
+        self.s7_data.get(usize::from(slot))?.as_deref()
     }
-    data
+
+    /// STEP 7 data block `number`'s bytes to write, when the program has it.
+    pub fn s7_db_mut(&mut self, number: u16) -> Option<&mut [u8]> {
+        let slot = self.program.s7.db_slot(number)?;
+        self.s7_data.get_mut(usize::from(slot))?.as_deref_mut()
+    }
 }
