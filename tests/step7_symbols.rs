@@ -312,3 +312,184 @@ fn the_table_lines_with_errors_are_reported_and_their_uses_point_there() {
     );
     assert!(format!("{:?}", built.diagnostics[0]).contains("(in t.csv line 1) has an error"));
 }
+
+/// A UDT by its name: declared in the source (`TYPE "MotorData"`, numbered as no table lists
+/// it), a static of an FB, the element of an array, a member of a global DB's structure.
+const TYPED: &str = r#"
+TYPE "MotorData"
+STRUCT
+  speed : INT := 5;
+  on : BOOL;
+END_STRUCT;
+END_TYPE
+
+TYPE "Line"
+STRUCT
+  first : "MotorData";
+  motors : ARRAY [1..2] OF "MotorData";
+END_STRUCT;
+END_TYPE
+
+FUNCTION_BLOCK "Drive"
+VAR
+  motor : "MotorData";
+END_VAR
+BEGIN
+      L     #motor.speed;
+      L     1;
+      +I;
+      T     #motor.speed;
+      T     MW 0;
+END_FUNCTION_BLOCK
+
+DATA_BLOCK "DriveDB" "Drive"
+BEGIN
+END_DATA_BLOCK
+
+DATA_BLOCK "Plant"
+STRUCT
+  pump : "MotorData";
+  line : "Line";
+  spare : ARRAY [1..3] OF "MotorData";
+END_STRUCT;
+BEGIN
+  line.motors[2].speed := 42;
+  spare[3].speed := 7;
+END_DATA_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+      CALL  "Drive", "DriveDB";
+      L     "Plant".pump.speed;
+      T     MW 2;
+      L     "Plant".line.motors[2].speed;
+      T     MW 4;
+      L     "Plant".spare[3].speed;
+      T     MW 6;
+      L     "Plant".line.first.speed;
+      T     MW 8;
+END_ORGANIZATION_BLOCK
+"#;
+
+#[test]
+fn a_type_written_by_its_name_is_laid_out_as_the_udt_it_stands_for() {
+    passes(
+        TYPED,
+        "Unused;M 9.0;BOOL;\n",
+        "run = { cycles = 3 }\n[expect]\n\"MW 0\" = 8\n\"MW 2\" = 5\n\"MW 4\" = 42\n\"MW 6\" = 7\n\"MW 8\" = 5\n",
+    );
+    // The same types by number give the same data block: the name is only another spelling.
+    let numbered = TYPED
+        .replace("TYPE \"MotorData\"", "TYPE UDT 1")
+        .replace("TYPE \"Line\"", "TYPE UDT 2")
+        .replace(": \"MotorData\"", ": UDT 1")
+        .replace("OF \"MotorData\"", "OF UDT 1")
+        .replace(": \"Line\"", ": UDT 2");
+    let by_name = build(TYPED, "", "");
+    let by_number = build(&numbered, "", "");
+    assert!(codes(&by_name).is_empty(), "{:?}", by_name.diagnostics);
+    assert!(codes(&by_number).is_empty(), "{:?}", by_number.diagnostics);
+    assert_eq!(
+        by_name.compiled.program.symbols.decorate("UDT 1"),
+        "UDT 1 (\"MotorData\")"
+    );
+    assert_eq!(
+        format!("{:?}", by_name.compiled.program.s7.data_blocks),
+        format!("{:?}", by_number.compiled.program.s7.data_blocks)
+    );
+}
+
+#[test]
+fn a_type_the_table_lists_takes_its_number_from_there() {
+    let program = r#"
+TYPE UDT 7
+STRUCT
+  speed : INT := 9;
+END_STRUCT;
+END_TYPE
+
+DATA_BLOCK "Plant"
+STRUCT
+  filler : INT;
+  pump : "MotorData";
+END_STRUCT;
+BEGIN
+END_DATA_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+      L     "Plant".pump.speed;
+      T     MW 0;
+END_ORGANIZATION_BLOCK
+"#;
+    passes(
+        program,
+        "MotorData;UDT 7;UDT 7;\n",
+        "run = { cycles = 1 }\n[expect]\n\"MW 0\" = 9\n",
+    );
+}
+
+#[test]
+fn a_multi_instance_by_name_is_taken_as_one_by_number() {
+    let program = |ty: &str| {
+        format!(
+            r#"
+FUNCTION_BLOCK "Function Block 2"
+BEGIN
+      NOP   0;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK FB 1
+VAR
+  MULTI : {ty};
+END_VAR
+BEGIN
+      CALL  #MULTI;
+END_FUNCTION_BLOCK
+"#
+        )
+    };
+    let by_name = build(&program("\"Function Block 2\""), "", "");
+    let by_number = build(&program("FB 2"), "", "");
+    assert!(!codes(&by_number).is_empty());
+    assert_eq!(codes(&by_name), codes(&by_number));
+}
+
+#[test]
+fn a_type_name_that_stands_for_no_type_is_an_error() {
+    let program = r#"
+TYPE "MotorData"
+STRUCT
+  speed : INT;
+END_STRUCT;
+END_TYPE
+
+FUNCTION_BLOCK FB 1
+VAR
+  motor : "MotorDta";
+  pump : "Start";
+  motors : ARRAY [1..2] OF "Nothing";
+END_VAR
+BEGIN
+      NOP   0;
+END_FUNCTION_BLOCK
+"#;
+    let built = build(program, "t.csv", "Start;I 0.0;BOOL;\n");
+    assert_eq!(
+        codes(&built),
+        [
+            "awl::symbols::unknown",
+            "awl::symbols::wrong_kind",
+            "awl::symbols::unknown",
+        ]
+    );
+    let first = format!("{:?}", built.diagnostics[0]);
+    assert!(first.contains(r#"did you mean `\"MotorData\"`"#), "{first}");
+    let built = build(
+        "TYPE UDT 1\nSTRUCT\n  a : \"Other\";\nEND_STRUCT;\nEND_TYPE\n",
+        "",
+        "",
+    );
+    assert_eq!(codes(&built), ["awl::symbols::unknown"]);
+    assert!(format!("{:?}", built.diagnostics[0]).contains("--symbols FILE"));
+}

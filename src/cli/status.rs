@@ -21,7 +21,7 @@ pub struct StatusArgs {
     pub program: ProgramArgs,
     #[command(flatten)]
     pub length: RunLength,
-    /// The block to show, e.g. "PB 3", or its symbol, e.g. "-FILL"
+    /// The block to show, e.g. "PB 3", or its symbol, e.g. -FILL or '"Valve"' (STEP 7)
     #[arg(long, value_parser = parse_block, allow_hyphen_values = true)]
     pub block: BlockRef,
     /// Its first invocation in this cycle [default: its first in the run]
@@ -33,7 +33,8 @@ pub struct StatusArgs {
     pub at: Option<u64>,
 }
 
-/// A block as `--block` names it: absolute, or by its symbol.
+/// A block as `--block` names it: absolute, or by its symbol as a program writes it
+/// (`-FILL`, `"Valve"`).
 #[derive(Debug, Clone)]
 pub enum BlockRef {
     Id(BlockId),
@@ -41,35 +42,40 @@ pub enum BlockRef {
 }
 
 fn parse_block(text: &str) -> Result<BlockRef, String> {
-    if let Some(name) = text.trim().strip_prefix('-') {
-        return Ok(BlockRef::Symbol(name.to_string()));
+    let text = text.trim();
+    if crate::symbols::symbol_written(text).is_some() {
+        return Ok(BlockRef::Symbol(text.to_string()));
     }
-    BlockId::parse(text)
-        .map(BlockRef::Id)
-        .ok_or_else(|| format!("`{text}` is not a block; write e.g. \"PB 3\" or \"-FILL\""))
+    BlockId::parse(text).map(BlockRef::Id).ok_or_else(|| {
+        format!("`{text}` is not a block; write e.g. \"PB 3\", -FILL or '\"Valve\"'")
+    })
 }
 
-/// The block a `--block` names; a symbol that names no block is reported as unknown.
+/// The block a `--block` names; a symbol that names no block is reported as unknown, with
+/// the block names close to it.
 fn block_id(prepared: &Prepared, block: &BlockRef) -> Result<BlockId, StatusError> {
-    let name = match block {
+    let written = match block {
         BlockRef::Id(id) => return Ok(*id),
-        BlockRef::Symbol(name) => name,
+        BlockRef::Symbol(written) => written,
     };
-    let entry = prepared.cpu.program.symbols.get(name);
-    match entry.and_then(|entry| entry.step5()) {
-        Some((_, Some(id))) | Some((&crate::ast::Operand::Block(id), None)) => Ok(id),
-        _ => Err(StatusError::UnknownBlock {
-            block: format!("-{name}"),
-            known: prepared
-                .cpu
-                .program
+    let program = &prepared.cpu.program;
+    program
+        .symbols
+        .block_of(written)
+        .ok_or_else(|| StatusError::UnknownBlock {
+            block: written.clone(),
+            hint: program
+                .symbols
+                .suggest_block(written)
+                .map(|hint| format!("{hint} "))
+                .unwrap_or_default(),
+            known: program
                 .blocks
                 .iter()
-                .map(|block| prepared.cpu.program.symbols.decorate(&block.id.to_string()))
+                .map(|block| program.symbols.decorate(&block.id.to_string()))
                 .collect::<Vec<_>>()
                 .join(", "),
-        }),
-    }
+        })
 }
 
 fn parse_time(text: &str) -> Result<u64, String> {
@@ -89,6 +95,7 @@ fn logic_block(prepared: &Prepared, id: BlockId) -> Result<u16, StatusError> {
         .block_index(id)
         .ok_or_else(|| StatusError::UnknownBlock {
             block: id.to_string(),
+            hint: String::new(),
             known: program
                 .blocks
                 .iter()
@@ -118,7 +125,7 @@ fn did_not_run(args: &StatusArgs, window: Window, ran: &Ran, halted: bool) -> St
     StatusError::DidNotRun {
         block: match &args.block {
             BlockRef::Id(id) => id.to_string(),
-            BlockRef::Symbol(name) => format!("-{name}"),
+            BlockRef::Symbol(written) => written.clone(),
         },
         window: window.describe(),
         ended: format!("{ended} after {}", super::plural(cycles, "cycle")),

@@ -28,6 +28,12 @@ pub enum Until {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Command {
     Break(BreakAt),
+    /// `break "Valve" [line N]`, `break -FILL`: a block by its symbol, which the session
+    /// looks up in the program's symbols.
+    BreakNamed {
+        symbol: String,
+        line: Option<u32>,
+    },
     /// `break` alone: the breakpoints.
     Breakpoints,
     /// `delete` (all) or `delete N`.
@@ -56,7 +62,7 @@ pub enum Command {
 impl Command {
     pub fn name(&self) -> &'static str {
         match self {
-            Command::Break(_) | Command::Breakpoints => "break",
+            Command::Break(_) | Command::BreakNamed { .. } | Command::Breakpoints => "break",
             Command::Delete(_) => "delete",
             Command::Step => "step",
             Command::Next => "next",
@@ -114,7 +120,7 @@ pub const COMMANDS: &[(&str, &str, &str)] = &[
     (
         "break",
         "b",
-        "break BLOCK [line N] | break request OB n | break service OB n",
+        "break BLOCK [line N] | break request OB n | break service OB n  (BLOCK: PB 3, -FILL or \"Valve\")",
     ),
     ("delete", "d", "delete [N]  (all breakpoints, or number N)"),
     (
@@ -212,13 +218,7 @@ fn parse_break(words: &[&str]) -> Result<Command, CommandError> {
     let line_at = words
         .iter()
         .position(|word| word.eq_ignore_ascii_case("line"));
-    let block_words = &words[..line_at.unwrap_or(words.len())];
-    let block = BlockId::parse(&block_words.join(" ")).ok_or_else(|| {
-        usage(
-            "break",
-            format!("`{}` is not a block", block_words.join(" ")),
-        )
-    })?;
+    let block_words = words[..line_at.unwrap_or(words.len())].join(" ");
     let line = match line_at {
         None => None,
         Some(at) => match words.get(at + 1..) {
@@ -230,6 +230,14 @@ fn parse_break(words: &[&str]) -> Result<Command, CommandError> {
             _ => return Err(usage("break", "`line` needs one line number")),
         },
     };
+    if crate::symbols::symbol_written(&block_words).is_some() {
+        return Ok(Command::BreakNamed {
+            symbol: block_words,
+            line,
+        });
+    }
+    let block = BlockId::parse(&block_words)
+        .ok_or_else(|| usage("break", format!("`{block_words}` is not a block")))?;
     Ok(Command::Break(BreakAt::Block { block, line }))
 }
 
@@ -395,6 +403,20 @@ mod tests {
             Command::Break(BreakAt::Service(13))
         );
         assert_eq!(ok("break"), Command::Breakpoints);
+        assert_eq!(
+            ok("break \"Function  Block 2\" line 4"),
+            Command::BreakNamed {
+                symbol: "\"Function Block 2\"".into(),
+                line: Some(4)
+            }
+        );
+        assert_eq!(
+            ok("b -FILL"),
+            Command::BreakNamed {
+                symbol: "-FILL".into(),
+                line: None
+            }
+        );
         assert_eq!(ok("delete 2"), Command::Delete(Some(2)));
         assert_eq!(ok("until 250ms"), Command::Until(Until::At(250_000_000)));
         assert_eq!(ok("u +1ms"), Command::Until(Until::After(1_000_000)));

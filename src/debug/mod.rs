@@ -205,6 +205,10 @@ impl Session {
                 }
                 Command::Fire(ob) => self.fire(cpu, ob),
                 Command::Break(at) => self.add_breakpoint(cpu, at),
+                Command::BreakNamed { symbol, line } => match named_block(cpu, &symbol) {
+                    Ok(block) => self.add_breakpoint(cpu, BreakAt::Block { block, line }),
+                    Err(error) => self.fail(error),
+                },
                 other => self.inspect(cpu, None, &other),
             }
         }
@@ -363,6 +367,7 @@ impl Session {
                 })
                 .collect(),
             Command::Break(_)
+            | Command::BreakNamed { .. }
             | Command::Step
             | Command::Next
             | Command::Finish
@@ -400,6 +405,19 @@ impl Session {
             }
         }
     }
+}
+
+/// The block `symbol` (`"Valve"`, `-FILL`) names in the program's symbols; the close block
+/// names when it names none.
+fn named_block(cpu: &Cpu, symbol: &str) -> Result<crate::ast::BlockId, CommandError> {
+    let symbols = &cpu.program.symbols;
+    symbols.block_of(symbol).ok_or_else(|| {
+        let reason = match symbols.suggest_block(symbol) {
+            Some(hint) => format!("no block is named {symbol}; {hint}"),
+            None => format!("no block is named {symbol}"),
+        };
+        command::usage("break", reason)
+    })
 }
 
 fn describe(cpu: &Cpu, at: BreakAt, place: Option<(u16, u32)>) -> String {

@@ -210,8 +210,16 @@ impl Probe for Recorder {
 #[derive(Debug, thiserror::Error, miette::Diagnostic)]
 pub enum StatusError {
     #[error("the program has no {block}")]
-    #[diagnostic(code(awl::status::unknown_block), help("its logic blocks: {known}"))]
-    UnknownBlock { block: String, known: String },
+    /// `hint`: a did-you-mean for a symbol, ending in a space, or empty.
+    #[diagnostic(
+        code(awl::status::unknown_block),
+        help("{hint}its logic blocks: {known}")
+    )]
+    UnknownBlock {
+        block: String,
+        hint: String,
+        known: String,
+    },
     #[error("{block} is a data block: program status shows logic blocks")]
     #[diagnostic(
         code(awl::status::data_block),

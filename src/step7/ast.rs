@@ -129,6 +129,9 @@ pub enum DataType {
     Udt(u16),
     /// A multi-instance `name : FB 5` / `SFB 3`.
     Instance(S7BlockKind, u16),
+    /// A UDT or FB written by its symbol, `"MotorData"`: the compiler replaces it by the
+    /// [`DataType::Udt`] or [`DataType::Instance`] the name stands for.
+    Named(Name),
     Timer,
     Counter,
     Pointer,

@@ -181,10 +181,39 @@ impl Symbols {
     /// The close names for an unknown one (the closest first, at most three), for a
     /// did-you-mean.
     pub fn suggest(&self, name: &str) -> Option<String> {
+        self.suggest_among(name, |_| true)
+    }
+
+    /// The block a symbol names (`-FUELLEN`, `"Valve"`), for the commands that take a block;
+    /// `None` for a name that is not there or stands for no block awl files.
+    pub fn block_of(&self, name: &str) -> Option<BlockId> {
+        match &self.get(name)?.stands {
+            Stands::Step5 {
+                block: Some(id), ..
+            }
+            | Stands::Step5 {
+                operand: Operand::Block(id),
+                ..
+            } => Some(*id),
+            // A UDT, SFC or VAT is no block of the program: its text does not parse.
+            Stands::Step7(symbol @ S7Symbol::Block { .. }) => {
+                BlockId::parse(&symbol.text(MnemonicSet::English))
+            }
+            _ => None,
+        }
+    }
+
+    /// The close names of blocks for an unknown one, as [`Symbols::suggest`].
+    pub fn suggest_block(&self, name: &str) -> Option<String> {
+        self.suggest_among(name, |entry| self.block_of(&entry.name).is_some())
+    }
+
+    fn suggest_among(&self, name: &str, fits: impl Fn(&Entry) -> bool) -> Option<String> {
         let wanted = unwritten(name).to_uppercase();
         let mut close: Vec<(usize, &Entry)> = self
             .entries
             .iter()
+            .filter(|entry| fits(entry))
             .map(|entry| {
                 let distance = strsim::damerau_levenshtein(&wanted, &entry.name.to_uppercase());
                 (distance, entry)

@@ -63,6 +63,9 @@ pub fn size_bits(ty: &DataType, udts: &HashMap<u16, Vec<VarDecl>>) -> u32 {
             .map_or(0, |members| struct_layout(members, udts).1),
         // Multi-instances are part 2: an instance takes no room here.
         DataType::Instance(..) => 0,
+        // The compiler replaced every name that stands for a type; one left stands for
+        // nothing and was reported.
+        DataType::Named(_) => 0,
     }
 }
 

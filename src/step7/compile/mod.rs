@@ -50,6 +50,8 @@ pub fn compile(
         errors: Vec::new(),
     };
     compiler.number_blocks(units);
+    let units = compiler.named_types(units);
+    let units: &[S7Unit] = &units;
     let logic = compiler.collect(units);
     compiler.make_data_blocks(units);
     compiler.number_data_blocks();

@@ -2,6 +2,7 @@
 //! block, `"Data".speed` for a member of a data block. A block the source declares by a name
 //! the table does not list gets a number of its own (see [`Compiler::number_blocks`]).
 
+use std::borrow::Cow;
 use std::collections::{BTreeSet, HashMap};
 
 use crate::ast::Name;
@@ -9,7 +10,8 @@ use crate::compiler::CheckError;
 use crate::mnemonics::MnemonicSet;
 use crate::source::Span;
 use crate::step7::ast::{
-    CallSpec, PathPart, S7BlockKind, S7BlockRef, S7Op, S7Operand, S7Statement, S7Unit,
+    CallSpec, DataType, PathPart, S7Block, S7BlockKind, S7BlockRef, S7Body, S7Op, S7Operand,
+    S7Statement, S7Unit, VarDecl,
 };
 use crate::step7::bytecode::{Place, Target};
 use crate::step7::text;
@@ -48,6 +50,60 @@ impl Compiler<'_> {
             };
             used.insert(number);
             self.symbols.declare(name, block.kind, number);
+        }
+    }
+
+    /// The units with every type written by its symbol (`motor : "MotorData";`) replaced by
+    /// the UDT or FB it stands for, as if written `UDT 5` or `FB 2`, so the layout sees only
+    /// numbered types. Borrowed when no declaration names a type by its symbol; a name that
+    /// stands for no UDT or FB is reported and kept (it takes no room).
+    pub(super) fn named_types<'u>(&mut self, units: &'u [S7Unit]) -> Cow<'u, [S7Unit]> {
+        let blocks = units.iter().flat_map(|unit| &unit.blocks);
+        if !blocks.flat_map(declared).any(names_type) {
+            return Cow::Borrowed(units);
+        }
+        let mut units = units.to_vec();
+        for block in units.iter_mut().flat_map(|unit| &mut unit.blocks) {
+            if let Some(ty) = &mut block.return_type {
+                let op = format!("{} : …", declaration_word(block.kind));
+                self.resolve_type(ty, &op);
+            }
+            let members = match &mut block.body {
+                S7Body::Type(members) | S7Body::Data { members, .. } => members.as_mut_slice(),
+                S7Body::Logic(_) => &mut [],
+            };
+            let sections = block
+                .interface
+                .iter_mut()
+                .flat_map(|section| &mut section.vars);
+            for declaration in sections.chain(members) {
+                let op = format!("{} : …", declaration.name.text);
+                self.resolve_type(&mut declaration.ty, &op);
+            }
+        }
+        Cow::Owned(units)
+    }
+
+    /// Replaces the names in `ty` (and its members and elements) by the types they stand for;
+    /// `op` is the declaration, for the error of a name that stands for something else.
+    fn resolve_type(&mut self, ty: &mut DataType, op: &str) {
+        match ty {
+            DataType::Named(name) => {
+                let kinds = [S7BlockKind::Udt, S7BlockKind::Fb, S7BlockKind::Sfb];
+                *ty = match self.symbol_block(&name.clone(), &kinds, op) {
+                    Some((S7BlockKind::Udt, number)) => DataType::Udt(number),
+                    Some((kind, number)) => DataType::Instance(kind, number),
+                    None => return,
+                };
+            }
+            DataType::Struct(members) => {
+                for member in members {
+                    let op = format!("{} : …", member.name.text);
+                    self.resolve_type(&mut member.ty, &op);
+                }
+            }
+            DataType::Array { element, .. } => self.resolve_type(element, op),
+            _ => {}
         }
     }
 
@@ -270,6 +326,32 @@ impl Compiler<'_> {
                 *op = text::op_word(statement.op, set).to_string();
             }
         }
+    }
+}
+
+/// The declarations of a block: its interface, a UDT's or global DB's members, a function's
+/// return type (as `RET_VAL`).
+fn declared(block: &S7Block) -> impl Iterator<Item = &DataType> {
+    let members: &[VarDecl] = match &block.body {
+        S7Body::Type(members) | S7Body::Data { members, .. } => members,
+        S7Body::Logic(_) => &[],
+    };
+    block
+        .interface
+        .iter()
+        .flat_map(|section| &section.vars)
+        .chain(members)
+        .map(|declaration| &declaration.ty)
+        .chain(&block.return_type)
+}
+
+/// Whether `ty` or a member or element of it is written by a symbol.
+fn names_type(ty: &DataType) -> bool {
+    match ty {
+        DataType::Named(_) => true,
+        DataType::Struct(members) => members.iter().any(|member| names_type(&member.ty)),
+        DataType::Array { element, .. } => names_type(element),
+        _ => false,
     }
 }
 

@@ -15,7 +15,7 @@ use crate::step7::error::S7ParseError;
 use crate::step7::lexer::{Token, TokenKind};
 
 use super::Parser as Driver;
-use super::operand::{constant, members};
+use super::operand::{constant, members, symbol_name};
 use super::statement::finish;
 use super::tokens::{
     Ctx, PResult, Tokens, fail, integer, kind, letters_and_digits, signed_integer,
@@ -215,23 +215,19 @@ impl<'a> Driver<'a> {
         }
     }
 
-    /// A data type, the structures spread over lines.
+    /// A data type, the structures spread over lines; a UDT or FB also by its symbol
+    /// (`"MotorData"`), which the compiler resolves.
     pub(super) fn data_type(&mut self) -> Result<DataType, S7ParseError> {
         self.skip_newlines();
         let Some(token) = self.peek() else {
             return Err(self.at_end("a data type"));
         };
+        if token.kind == TokenKind::Symbol {
+            self.pos += 1;
+            return Ok(DataType::Named(symbol_name(self.ctx, token)));
+        }
         let Some(upper) = self.ctx.word(token) else {
-            return Err(match token.kind {
-                TokenKind::Symbol => S7ParseError::UnknownType {
-                    word: self.ctx.text(token).into(),
-                    at: self.ctx.span(token),
-                    help: Some(
-                        "name user types and function blocks by number: `UDT 5`, `FB 2`".into(),
-                    ),
-                },
-                _ => super::statement::unexpected(self.ctx, token, "a data type"),
-            });
+            return Err(super::statement::unexpected(self.ctx, token, "a data type"));
         };
         self.pos += 1;
         if let Some(ty) = elementary(&upper) {

@@ -656,3 +656,27 @@ fn step5_spellings_are_named_with_the_step7_form() {
     // `BEB` and `BEA` are STEP 7 too.
     assert!(codes("U E 0.0\nBEB\nBEA\n").is_empty());
 }
+
+#[test]
+fn a_type_written_by_its_symbol_keeps_its_name_for_the_compiler() {
+    let unit = parse_ok(
+        "FUNCTION_BLOCK FB 1\nVAR\n  motor : \"MotorData\";\n  motors : ARRAY [1..4] OF \"Motor Data\";\n  MULTI : \"Function Block 2\";\nEND_VAR\nBEGIN\nEND_FUNCTION_BLOCK\n",
+    );
+    let types: Vec<&DataType> = unit.blocks[0].interface[0]
+        .vars
+        .iter()
+        .map(|v| &v.ty)
+        .collect();
+    let name = |ty: &DataType| match ty {
+        DataType::Named(name) => name.text.clone(),
+        DataType::Array { element, .. } => match &**element {
+            DataType::Named(name) => name.text.clone(),
+            other => panic!("{other:?}"),
+        },
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(
+        types.into_iter().map(name).collect::<Vec<_>>(),
+        ["MotorData", "Motor Data", "Function Block 2"]
+    );
+}
