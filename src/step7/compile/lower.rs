@@ -15,6 +15,7 @@ use crate::step7::ast::{
     S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{FbCall, MemOp, ParamCopy, Place, S7Code, SfcCall, Target};
+use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
 
 use super::layout::Home;
@@ -265,7 +266,13 @@ impl super::Compiler<'_> {
             spans: out.spans,
             elapsed: out.elapsed,
             segments: out.segments,
-            local_bytes: interface.local_bytes,
+            // An OB's local data hold its 20 bytes of start information, declared or not
+            // (see `vm::start_info`): the blocks it calls start after them.
+            local_bytes: if id.kind == BlockKind::Ob {
+                interface.local_bytes.max(START_INFO_BYTES)
+            } else {
+                interface.local_bytes
+            },
         }
     }
 
