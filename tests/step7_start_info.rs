@@ -187,6 +187,31 @@ fn the_date_and_time_counts_from_the_start_date() {
     );
 }
 
+/// OB 102 alone: a cold restart, and OB 1's first cycle says so.
+const COLD_RESTART: &str = "
+ORGANIZATION_BLOCK OB 102
+BEGIN
+      L     LD 0;
+      T     MD 0;
+      L     LD 8;
+      T     MD 4;
+END_ORGANIZATION_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+      L     LB 1;
+      T     MB 8;
+END_ORGANIZATION_BLOCK
+";
+
+#[test]
+fn ob102_alone_is_a_manual_cold_restart() {
+    passes(
+        COLD_RESTART,
+        "run = { cycles = 1 }\n[expect]\n\"MD 0\" = 0x13851B66\n\"MD 4\" = 0x00077703\n\"MB 8\" = 4\n",
+    );
+}
+
 /// OB 100 takes 3.723 s; OB 1 keeps its DATE_AND_TIME in MD 20 and MD 24.
 const LATE_OB1: &str = "
 ORGANIZATION_BLOCK OB 100
@@ -375,4 +400,112 @@ fn a_called_blocks_temporaries_leave_the_start_information_alone() {
         CALLEE_TEMPS,
         "run = { cycles = 1 }\n[expect]\n\"MB 0\" = 0x11\n\"MB 1\" = 1\n",
     );
+}
+
+/// The source errors of `program` (with the test extensions), as text.
+fn source_errors(program: &str) -> String {
+    match run(program, "extended = true\nrun = { cycles = 1 }\n") {
+        Err(NotRun::SourceErrors(reports)) => format!("{reports:?}"),
+        Ok(_) => panic!("the program ran"),
+        Err(NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::Usage(report)) => panic!("{report:?}"),
+    }
+}
+
+/// The STOP a run of `program` (with the test extensions) ends with, as text.
+fn stop_of(program: &str) -> String {
+    let ran = match run(program, "extended = true\nrun = { cycles = 1 }\n") {
+        Ok(ran) => ran,
+        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::Usage(report)) => panic!("{report:?}"),
+    };
+    format!("{:?}", ran.outcome.stop.expect("a STOP"))
+}
+
+/// `P##name` of a temporary is an area-crossing pointer to it on the L stack.
+const POINTER_TO_TEMP: &str = "
+ORGANIZATION_BLOCK OB 1
+VAR_TEMP
+  OB1_EV_CLASS : BYTE;
+  OB1_SCAN_1 : BYTE;
+  OB1_PRIORITY : BYTE;
+  OB1_OB_NUMBR : BYTE;
+  OB1_RESERVED_1 : BYTE;
+  OB1_RESERVED_2 : BYTE;
+  OB1_PREV_CYCLE : INT;
+  OB1_MIN_CYCLE : INT;
+  OB1_MAX_CYCLE : INT;
+  OB1_DATE_TIME : DATE_AND_TIME;
+END_VAR
+BEGIN
+      LAR1  P##OB1_DATE_TIME;
+      L     B [AR1, P#0.0];     // the year
+      T     MB 0;
+      L     P##OB1_OB_NUMBR;
+      T     MD 4;
+      LAR2  P##OB1_SCAN_1;
+      L     B [AR2, P#0.0];
+      T     MB 1;
+END_ORGANIZATION_BLOCK
+";
+
+#[test]
+fn a_pointer_to_a_temporary_reads_the_start_information() {
+    passes(
+        POINTER_TO_TEMP,
+        "run = { cycles = 1 }\n[expect]\n\"MB 0\" = 0x24\n\"MD 4\" = 0x86000018\n\"MB 1\" = 1\n",
+    );
+}
+
+#[test]
+fn a_pointer_to_an_fc_parameter_is_not_simulated() {
+    let errors = source_errors(
+        "FUNCTION FC 1 : VOID\nVAR_INPUT\n  x : INT;\nEND_VAR\nBEGIN\n      LAR1  P##x;\nEND_FUNCTION\n\n\
+         ORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL FC 1 (x := 1);\nEND_ORGANIZATION_BLOCK\n",
+    );
+    assert!(errors.contains("a pointer to an FC parameter"), "{errors}");
+}
+
+#[test]
+fn a_pointer_to_a_data_block_member_is_not_simulated() {
+    let errors = source_errors(
+        "DATA_BLOCK DB 1\nSTRUCT\n  a : INT;\nEND_STRUCT\nBEGIN\nEND_DATA_BLOCK\n\n\
+         ORGANIZATION_BLOCK OB 1\nBEGIN\n      LAR1  P#DB1.a;\nEND_ORGANIZATION_BLOCK\n",
+    );
+    assert!(errors.contains("P##name"), "{errors}");
+}
+
+#[test]
+fn feature_1_says_the_start_information_is_written() {
+    passes(
+        "ORGANIZATION_BLOCK OB 1\nBEGIN\n      __FEATURE 1;\n      T     MB 0;\n      __FEATURE 1, 1;\n      T     MB 1;\nEND_ORGANIZATION_BLOCK\n",
+        "extended = true\nrun = { cycles = 1 }\n[expect]\n\"MB 0\" = 1\n\"MB 1\" = 1\n",
+    );
+    let stop =
+        stop_of("ORGANIZATION_BLOCK OB 1\nBEGIN\n      __FEATURE 1, 0;\nEND_ORGANIZATION_BLOCK\n");
+    assert!(stop.contains("cannot switch it off"), "{stop}");
+}
+
+#[test]
+fn awlsims_reboot_parses_with_the_extensions_and_stops_when_run() {
+    let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL SFC -2 (REBOOT_TYPE := 1);\nEND_ORGANIZATION_BLOCK\n";
+    let stop = stop_of(program);
+    assert!(
+        stop.contains("SFC -2 (__REBOOT) is not simulated"),
+        "{stop}"
+    );
+    let other = source_errors(
+        "ORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL SFC -3 (X := 1);\nEND_ORGANIZATION_BLOCK\n",
+    );
+    assert!(other.contains("SFC -3"), "{other}");
+    // Without the extensions, a negative number is no block.
+    match run(program, "run = { cycles = 1 }\n") {
+        Err(NotRun::SourceErrors(reports)) => {
+            assert!(
+                format!("{reports:?}").contains("block number -2"),
+                "{reports:?}"
+            )
+        }
+        _ => panic!("SFC -2 parsed without the extensions"),
+    }
 }
