@@ -1005,11 +1005,14 @@ fn check_ob13(
     })
 }
 
+/// The logical base addresses `[[hw_module]]` gives: (module, address).
+type Addresses = Vec<(u16, u16)>;
+
 fn check_modules(
     modules: &[Spanned<raw::RawHwModule>],
     profile: &Profile,
     errors: &mut Errors,
-) -> (Vec<(u16, u8)>, Vec<(u16, u16)>) {
+) -> (Vec<(u16, u8)>, Addresses) {
     let mut mapped: Vec<(u16, u8)> = Vec::new();
     let mut addresses: Vec<(u16, u16)> = Vec::new();
     for module in modules {
