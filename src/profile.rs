@@ -164,6 +164,7 @@ pub struct Profile {
     pub accumulators: u8,
     pub bracket_depth: u8,
     pub watchdog_ns: u64,
+    /// The startup OBs: the first of them the program has runs in STARTUP.
     pub startup_obs: &'static [u8],
     pub interrupt_obs: &'static [InterruptOb],
     pub default_points: InterruptPoints,
@@ -481,7 +482,10 @@ pub static PROFILES: &[Profile] = &[
         accumulators: 2,
         bracket_depth: 7,
         watchdog_ns: 150_000_000,
-        startup_obs: &[100],
+        // OB 100, the warm restart, SPEED7's default startup; a program with OB 102 only
+        // was written for a CPU set to cold restart (VIPA SPEED7 operation list, OB 100,
+        // OB 102).
+        startup_obs: &[100, 102],
         interrupt_obs: &[
             InterruptOb {
                 ob: 82,

@@ -311,6 +311,7 @@ fn run(
                 max_delay_ns: None,
             }),
             hw_modules: vec![(1, 40), (2, 41)],
+            hw_addresses: Vec::new(),
             watchdog_ns: 150_000_000,
         },
         schedule,

@@ -96,7 +96,7 @@ fn the_step7_samples_are_in_the_catalogue() {
     assert!(outcome.ran, "{:#?}", outcome.diagnostics);
     assert!(outcome.stop.is_none());
     for line in [
-        "expectations: 10 of 10 met",
+        "expectations: 12 of 12 met",
         "OB 40: requested 5, serviced 3, lost 2",
         "OB 82: requested 1, serviced 1, lost 0",
     ] {

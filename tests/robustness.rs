@@ -309,6 +309,7 @@ proptest! {
                     },
                 ),
                 hw_modules: vec![(0, 40), (1, 41)],
+                hw_addresses: Vec::new(),
                 watchdog_ns: 150_000_000,
             };
             let mut machine = awl::vm::Cpu::new(

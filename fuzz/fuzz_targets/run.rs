@@ -89,6 +89,7 @@ fuzz_target!(
                 max_delay_ns: None,
             }),
             hw_modules: vec![(0, 40), (1, 41)],
+            hw_addresses: Vec::new(),
             watchdog_ns: awl_fuzz::watchdog_ns(profile),
         };
         let setup = awl_fuzz::Setup {

@@ -54,6 +54,7 @@ fuzz_target!(
             special_mode: scenario.special_mode.unwrap_or(false),
             ob13: scenario.ob13,
             hw_modules: scenario.hw_modules.clone(),
+            hw_addresses: scenario.hw_addresses.clone(),
             watchdog_ns: scenario.watchdog_ns.unwrap_or(profile.watchdog_ns),
         };
         let setup = awl_fuzz::Setup {

@@ -419,6 +419,10 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
             .as_ref()
             .map(|s| s.hw_modules.clone())
             .unwrap_or_default(),
+        hw_addresses: scenario
+            .as_ref()
+            .map(|s| s.hw_addresses.clone())
+            .unwrap_or_default(),
         watchdog_ns: options
             .watchdog_ns
             .or(scenario.as_ref().and_then(|s| s.watchdog_ns))

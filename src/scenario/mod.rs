@@ -80,6 +80,8 @@ pub struct Scenario {
     pub watchdog_ns: Option<u64>,
     pub ob13: Option<Ob13Timing>,
     pub hw_modules: Vec<(u16, u8)>,
+    /// The logical base addresses `[[hw_module]]` gives (module, address).
+    pub hw_addresses: Vec<(u16, u16)>,
     events: Vec<Spanned<RawEvent>>,
     expect: SpannedTable,
     watch: Vec<Spanned<String>>,
@@ -271,7 +273,7 @@ impl Scenario {
             .ob13
             .as_ref()
             .and_then(|ob13| errors.keep(check_ob13(ob13, profile)));
-        let hw_modules = check_modules(&raw.hw_module, profile, errors);
+        let (hw_modules, hw_addresses) = check_modules(&raw.hw_module, profile, errors);
         Scenario {
             path: path.to_path_buf(),
             text,
@@ -287,6 +289,7 @@ impl Scenario {
             watchdog_ns,
             ob13,
             hw_modules,
+            hw_addresses,
             events: raw.event,
             expect: raw.expect,
             watch: raw.watch,
@@ -1002,12 +1005,16 @@ fn check_ob13(
     })
 }
 
+/// The logical base addresses `[[hw_module]]` gives: (module, address).
+type Addresses = Vec<(u16, u16)>;
+
 fn check_modules(
     modules: &[Spanned<raw::RawHwModule>],
     profile: &Profile,
     errors: &mut Errors,
-) -> Vec<(u16, u8)> {
+) -> (Vec<(u16, u8)>, Addresses) {
     let mut mapped: Vec<(u16, u8)> = Vec::new();
+    let mut addresses: Vec<(u16, u16)> = Vec::new();
     for module in modules {
         let raw = module.get_ref();
         if profile.family != Family::Speed7 {
@@ -1039,8 +1046,13 @@ fn check_modules(
             continue;
         }
         mapped.push((number, ob));
+        let Some(address) = &raw.address else {
+            continue;
+        };
+        let at = *address.get_ref();
+        addresses.push((number, at));
     }
-    mapped
+    (mapped, addresses)
 }
 
 #[cfg(test)]

@@ -84,6 +84,8 @@ pub struct RawOb13 {
 pub struct RawHwModule {
     pub module: Spanned<u16>,
     pub ob: Spanned<u8>,
+    /// The module's logical base address.
+    pub address: Option<Spanned<u16>>,
 }
 
 #[derive(Debug, Deserialize)]

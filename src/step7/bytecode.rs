@@ -280,6 +280,10 @@ pub struct ParamCopy {
     pub width: AccessWidth,
 }
 
+/// awlsim's `SFC -2` (`__REBOOT`), with the test extensions: awlsim's system functions
+/// `SFC -1` to `SFC -4` are numbered as 16-bit two's complements, 65535 down to 65532.
+pub const AWLSIM_SFC_REBOOT: u16 = -2i16 as u16;
+
 /// One `CALL SFC n (…)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SfcCall {

@@ -356,27 +356,53 @@ fn date_and_time(rest: &str) -> Literal {
             "DT#1990-1-1-0:0:0.0 to DT#2089-12-31-23:59:59.999",
         ));
     }
-    let month: u32 = month.parse().unwrap_or(0);
-    let day: u32 = day.parse().unwrap_or(0);
     let (h, m, s, ms) = clock(clock_text, "DATE_AND_TIME")?;
-    // 1990-01-01 was a Monday: weekday 2 when Sunday is 1.
-    let weekday = (days + 1) % 7 + 1;
-    let byte = |value: u32| bcd(value % 100) as u8;
-    let bytes = vec![
-        byte(year % 100),
-        byte(month),
-        byte(day),
-        byte(h),
-        byte(m),
-        byte(s),
-        byte(ms / 10),
-        (((ms % 10) << 4) | weekday) as u8,
-    ];
+    let bytes = date_and_time_bytes(days, ((h * 60 + m) * 60 + s) * 1000 + ms);
     Ok(S7Constant {
         kind: ConstKind::DateAndTime,
         value: 0,
-        bytes,
+        bytes: bytes.to_vec(),
     })
+}
+
+/// A DATE_AND_TIME's eight BCD bytes ("Programming with STEP 7", data types): year (two digits,
+/// 90–99 for 1990–1999), month, day, hour, minute, second, milliseconds in three digits, and
+/// the weekday (1 = Sunday) in the last nibble; of the day `days` after 1990-01-01 at `ms`
+/// milliseconds after midnight.
+pub fn date_and_time_bytes(days: u32, ms: u32) -> [u8; 8] {
+    let (year, month, day) = civil_from_days(i64::from(days) + days_from_civil(1990, 1, 1));
+    // 1990-01-01 was a Monday: weekday 2 when Sunday is 1.
+    let weekday = (days + 1) % 7 + 1;
+    let byte = |value: u32| bcd(value % 100) as u8;
+    let (seconds, ms) = (ms / 1000, ms % 1000);
+    [
+        byte(year % 100),
+        byte(month),
+        byte(day),
+        byte(seconds / 3600 % 24),
+        byte(seconds / 60 % 60),
+        byte(seconds % 60),
+        byte(ms / 10),
+        (((ms % 10) << 4) | weekday) as u8,
+    ]
+}
+
+/// The inverse of [`days_from_civil`]: year, month and day of a day count.
+fn civil_from_days(days: i64) -> (u32, u32, u32) {
+    let era = days.div_euclid(146_097);
+    let day_of_era = days - era * 146_097;
+    let year_of_era =
+        (day_of_era - day_of_era / 1460 + day_of_era / 36_524 - day_of_era / 146_096) / 365;
+    let day_of_year = day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
+    let shifted_month = (5 * day_of_year + 2) / 153;
+    let day = day_of_year - (153 * shifted_month + 2) / 5 + 1;
+    let month = if shifted_month < 10 {
+        shifted_month + 3
+    } else {
+        shifted_month - 9
+    };
+    let year = year_of_era + era * 400 + i64::from(month <= 2);
+    (year as u32, month as u32, day as u32)
 }
 
 /// `C#…`: a counter value, three BCD digits.
@@ -716,6 +742,14 @@ mod tests {
         // 24 December 2009 was a Thursday: weekday 5.
         assert_eq!(dt.bytes, [0x09, 0x12, 0x24, 0x17, 0x45, 0x30, 0x12, 0x35]);
         assert!(typed("DT#2090-1-1-0:0:0.0").unwrap_err().out_of_range);
+        // A leap day's last millisecond, a Thursday (5), and the next day, a Friday (6).
+        let dt = typed("DT#2024-02-29-23:59:59.999").unwrap();
+        assert_eq!(dt.bytes, [0x24, 0x02, 0x29, 0x23, 0x59, 0x59, 0x99, 0x95]);
+        let days = date("2024-03-01").unwrap();
+        assert_eq!(
+            date_and_time_bytes(days, 0),
+            [0x24, 0x03, 0x01, 0x00, 0x00, 0x00, 0x00, 0x06]
+        );
     }
 
     #[test]

@@ -30,6 +30,8 @@ pub struct CycleTimes {
     pub min_ns: u64,
     pub max_ns: u64,
     pub total_ns: u64,
+    /// The last one's.
+    pub last_ns: u64,
 }
 
 impl CycleTimes {
@@ -40,6 +42,7 @@ impl CycleTimes {
             self.min_ns.min(ns)
         };
         self.max_ns = self.max_ns.max(ns);
+        self.last_ns = ns;
         self.total_ns += ns;
         self.count += 1;
     }
@@ -185,13 +188,11 @@ impl Cpu {
         self.set_mode(Mode::Startup, None);
         self.cycle_started_at = self.clock;
         self.update_attention();
-        let startup_ob = self
-            .profile
-            .startup_obs
-            .iter()
-            .find_map(|ob| self.program.ob(*ob));
-        if let Some(block) = startup_ob {
+        if let Some((ob, block)) = self.startup_ob() {
             self.enter_level(block);
+            if !self.local.is_empty() {
+                self.write_start_info(Self::startup_start_info(ob));
+            }
             self.last_point_at = self.clock;
             self.run_level()?;
         }
@@ -248,6 +249,9 @@ impl Cpu {
         self.cycle_point(StretchKind::ProcessImageRead)?;
         if let Some(block) = self.program.ob(1) {
             self.enter_level(block);
+            if !self.local.is_empty() {
+                self.write_start_info(self.cycle_start_info());
+            }
             self.update_attention();
             self.run_level()?;
         }

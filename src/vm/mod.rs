@@ -19,6 +19,7 @@ pub mod probe;
 pub mod pulse;
 mod run_loop;
 pub mod s7;
+pub mod start_info;
 pub mod status;
 pub mod stop;
 pub mod system_ops;

@@ -14,7 +14,10 @@ use crate::step7::ast::{
     AccessWidth, CallSpec, ConstKind, S7Address, S7Area, S7Block, S7BlockKind, S7BlockRef, S7Body,
     S7Op, S7Operand, S7Statement, VarKind,
 };
-use crate::step7::bytecode::{FbCall, MemOp, ParamCopy, Place, S7Code, SfcCall, Target};
+use crate::step7::bytecode::{
+    AWLSIM_SFC_REBOOT, FbCall, MemOp, ParamCopy, Place, S7Code, SfcCall, Target,
+};
+use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
 
 use super::layout::Home;
@@ -265,7 +268,13 @@ impl super::Compiler<'_> {
             spans: out.spans,
             elapsed: out.elapsed,
             segments: out.segments,
-            local_bytes: interface.local_bytes,
+            // An OB's local data hold its 20 bytes of start information, declared or not
+            // (see `vm::start_info`): the blocks it calls start after them.
+            local_bytes: if id.kind == BlockKind::Ob {
+                interface.local_bytes.max(START_INFO_BYTES)
+            } else {
+                interface.local_bytes
+            },
         }
     }
 
@@ -429,6 +438,13 @@ impl super::Compiler<'_> {
                         ar,
                         constant: self.tables.constant(constant.value),
                     },
+                    S7Operand::PointerTo(inner) => {
+                        let pointer = self.pointer_to(inner, at, scope)?;
+                        S7Code::LoadArConstant {
+                            ar,
+                            constant: self.tables.constant(pointer),
+                        }
+                    }
                     _ => return self.memory(out, op, operand, at, span, scope),
                 };
                 self.emit(out, Op::S7(code), span);
@@ -733,6 +749,35 @@ impl super::Compiler<'_> {
         Ok(())
     }
 
+    /// `P##name`: an area-crossing pointer to a variable of the block's interface: area L
+    /// (16#86) for a temporary, DI (16#85) for an FB's variable in its instance DB.
+    fn pointer_to(
+        &self,
+        inner: &S7Operand,
+        at: Span,
+        scope: &Scope<'_>,
+    ) -> Result<u32, CheckError> {
+        let S7Operand::Local(path) = inner else {
+            return Err(not_an_operand(
+                at,
+                "a pointer to a variable of the block (`P##name`) is simulated; this",
+            ));
+        };
+        let (variable, _, offset) = self.resolve_local(path, at, scope)?;
+        let (area, base) = match variable.home {
+            Home::Local(base) => (0x86, base.0),
+            Home::Instance(base) => (0x85, base.0),
+            Home::Parameter(_) => {
+                return Err(CheckError::NotSimulated {
+                    what: "a pointer to an FC parameter".into(),
+                    why: "`P##parameter` of an FC is not simulated yet".into(),
+                    at,
+                });
+            }
+        };
+        Ok(area << 24 | (base + offset))
+    }
+
     fn load(
         &mut self,
         out: &mut Emitter,
@@ -755,6 +800,11 @@ impl super::Compiler<'_> {
             }
             S7Operand::DbRegister(register) => {
                 self.emit(out, Op::S7(S7Code::LoadDbRegister(*register)), span);
+                Ok(())
+            }
+            S7Operand::PointerTo(inner) => {
+                let pointer = self.pointer_to(inner, at, scope)?;
+                self.emit(out, Op::LoadConstant(pointer), span);
                 Ok(())
             }
             other => self.memory(out, S7Op::Load, other, at, span, scope),
@@ -848,8 +898,14 @@ impl super::Compiler<'_> {
                     kind: S7BlockKind::Sfb,
                     ..
                 }
-            ) || number != 46
+            ) || !matches!(number, 46 | AWLSIM_SFC_REBOOT)
             {
+                // awlsim's own system functions are numbered below 0.
+                let number = if number >= AWLSIM_SFC_REBOOT - 2 {
+                    i32::from(number as i16)
+                } else {
+                    i32::from(number)
+                };
                 return Err(CheckError::NotSimulated {
                     what: format!(
                         "{} {number}",

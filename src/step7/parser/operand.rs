@@ -247,6 +247,11 @@ pub fn block_number_tokens<'a>(
                 let number = block_number(ctx, token).ok()?;
                 return Some((Some((kind, number)), input.skip(2)));
             }
+            Some(token) if token.kind == TokenKind::Minus => {
+                let digits = input.tokens.get(2).copied()?;
+                let number = awlsim_system_block(ctx, kind, token, digits)?;
+                return Some((Some((kind, number)), input.skip(3)));
+            }
             Some(token) if token.kind == TokenKind::LBracket => {
                 return Some((None, input.skip(1)));
             }
@@ -286,6 +291,24 @@ pub fn block_number_out_of_range(ctx: Ctx<'_>, input: Tokens<'_>) -> Option<S7Pa
             number: digits.into(),
             at: ctx.span(first),
         })
+}
+
+/// awlsim's own system functions, `SFC -1` to `SFC -4` (with the test extensions only): the
+/// number as a 16-bit two's complement, 65535 down to 65532 (see
+/// [`crate::step7::bytecode::AWLSIM_SFC_REBOOT`]).
+fn awlsim_system_block(
+    ctx: Ctx<'_>,
+    kind: S7BlockKind,
+    minus: Token,
+    digits: Token,
+) -> Option<u16> {
+    let number = ctx.text(digits).parse::<i16>().ok()?;
+    let awlsim = ctx.extensions
+        && kind == S7BlockKind::Sfc
+        && digits.kind == TokenKind::Number
+        && minus.touches(digits)
+        && (1..=4).contains(&number);
+    awlsim.then_some(number.wrapping_neg() as u16)
 }
 
 fn block_number(ctx: Ctx<'_>, token: Token) -> Result<u16, S7ParseError> {

@@ -27,6 +27,7 @@ use crate::trace::Event;
 
 use super::io_trace::Modules;
 use super::place::Place;
+use super::start_info::Cause;
 use super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, IDLE, Mode, Point, StretchKind};
 
@@ -110,7 +111,20 @@ pub struct EngineConfig {
     pub ob13: Option<Ob13Timing>,
     /// SPEED7: which OB a module's hardware interrupts start.
     pub hw_modules: Vec<(u16, u8)>,
+    /// SPEED7: the logical base addresses of the modules given one.
+    pub hw_addresses: Vec<(u16, u16)>,
     pub watchdog_ns: u64,
+}
+
+impl EngineConfig {
+    /// A module's logical base address, for the start information of its OBs: the one given,
+    /// else the module's number.
+    pub fn module_address(&self, module: u16) -> u16 {
+        self.hw_addresses
+            .iter()
+            .find(|(known, _)| *known == module)
+            .map_or(module, |(_, address)| *address)
+    }
 }
 
 impl Default for EngineConfig {
@@ -120,6 +134,7 @@ impl Default for EngineConfig {
             special_mode: false,
             ob13: None,
             hw_modules: Vec::new(),
+            hw_addresses: Vec::new(),
             watchdog_ns: 150_000_000,
         }
     }
@@ -190,6 +205,8 @@ pub struct Request {
     pub requested_at: u64,
     pub hardware: Option<HardwareSource>,
     pub waited: Option<Wait>,
+    /// Why an error OB was requested, for its start information.
+    pub cause: Cause,
 }
 
 /// An interrupt OB that is running (or interrupted by a higher one).
@@ -662,6 +679,7 @@ impl Cpu {
             requested_at: at,
             hardware,
             waited,
+            cause: Cause::None,
         }
     }
 
@@ -672,7 +690,21 @@ impl Cpu {
         at: u64,
         hardware: Option<HardwareSource>,
     ) -> Option<u64> {
-        let request = self.announce(ob, at, hardware);
+        self.request_for(ob, at, hardware, Cause::None)
+    }
+
+    /// As [`Cpu::request`], for an error OB requested because of `cause`.
+    pub(super) fn request_for(
+        &mut self,
+        ob: u8,
+        at: u64,
+        hardware: Option<HardwareSource>,
+        cause: Cause,
+    ) -> Option<u64> {
+        let request = Request {
+            cause,
+            ..self.announce(ob, at, hardware)
+        };
         let id = request.id;
         let rule = self.engine.rules.rules().ignores(ob);
         if rule.is_some() || self.program.ob(ob).is_none() {
@@ -780,6 +812,10 @@ impl Cpu {
             .ob(request.ob)
             .expect("requests are only pending for programmed OBs");
         self.enter_level(block);
+        if !self.local.is_empty() {
+            let head = self.interrupt_start_info(&request, priority);
+            self.write_start_info(head);
+        }
         self.with_rules(|rules, cpu| rules.entered(cpu, request.ob));
         self.with_probe((), |probe, cpu| probe.serviced(cpu, request.ob));
         Ok(true)

@@ -21,6 +21,7 @@
 use crate::trace::Event;
 
 use super::super::place::Place;
+use super::super::start_info::Cause;
 
 use super::super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, EngineConfig, Happening, HardwareSource, Request, Rules, Scheduled, Wait};
@@ -136,7 +137,14 @@ impl Speed7 {
                 };
                 return Err(cpu.stop_at_last_op(StopCause::Ob85, detail));
             }
-            cpu.request(85, at, None);
+            let (active_ob, active_priority) = cpu.active_ob();
+            let cause = Cause::MissingOb {
+                ob,
+                module: source.module,
+                active_ob,
+                active_priority,
+            };
+            cpu.request_for(85, at, None, cause);
             return Ok(());
         }
         if cpu.request(ob, at, Some(source)).is_some() {
@@ -207,7 +215,10 @@ impl Rules for Speed7 {
             if channel == source.channel {
                 cpu.lose(at, request, SAME_CHANNEL);
                 if cpu.program.ob(82).is_some() {
-                    cpu.request(82, at, None);
+                    let cause = Cause::LostChannel {
+                        module: source.module,
+                    };
+                    cpu.request_for(82, at, None, cause);
                 }
             } else {
                 self.hold(request, source.module);

@@ -2,7 +2,7 @@
 
 use crate::compiler::bytecode::{Op, TimerKind};
 use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
-use crate::step7::bytecode::{MemOp, S7Code, Target};
+use crate::step7::bytecode::{AWLSIM_SFC_REBOOT, MemOp, S7Code, Target};
 use crate::vm::Cpu;
 use crate::vm::stop::{StopCause, StopDetail};
 
@@ -142,6 +142,16 @@ impl Cpu {
                         )));
                     }
                     (0, None) => u32::from(self.profile.accumulators),
+                    // awlsim's switch for writing the OBs' start information: awl always
+                    // writes it.
+                    (1, None | Some(1)) => 1,
+                    (1, Some(_)) => {
+                        return Err(fault(
+                            "awl always writes the OBs' start information: `__FEATURE 1` \
+                             cannot switch it off"
+                                .to_string(),
+                        ));
+                    }
                     (_, Some(value)) => u32::from(value),
                     (_, None) => 0,
                 };
@@ -368,6 +378,15 @@ impl Cpu {
         let number = self.program.s7.sfc_calls[usize::from(call)].number;
         match number {
             46 => Err((StopCause::Stp, StopDetail::Text("CALL SFC 46 (STP)".into()))),
+            AWLSIM_SFC_REBOOT => Err(fault(
+                "awlsim's SFC -2 (__REBOOT) is not simulated: awl writes the OBs' start \
+                 information always (`__FEATURE 1` is 1), there is nothing to reboot for"
+                    .to_string(),
+            )),
+            other if other >= AWLSIM_SFC_REBOOT - 2 => Err(fault(format!(
+                "awlsim's SFC {} is not simulated",
+                other as i16
+            ))),
             other => Err(fault(format!("SFC {other} is not simulated"))),
         }
     }
