@@ -234,6 +234,9 @@ pub struct Cpu {
     pub inputs: Vec<u8>,
     /// The process outputs at the output modules.
     pub outputs: Vec<u8>,
+    /// A direct read of an input (`L PIB`) gives the PII's byte, as on awlsim's dummy
+    /// hardware, whose input modules hand back the process image (`awl conformance`).
+    pub inputs_echo_pii: bool,
     pub extended_inputs: Vec<u8>,
     pub extended_outputs: Vec<u8>,
     pub timers: Vec<Timer>,
@@ -305,6 +308,7 @@ impl Cpu {
                 .expect("the length is IMAGE_MEMORY"),
             inputs: vec![0; periphery],
             outputs: vec![0; periphery],
+            inputs_echo_pii: false,
             extended_inputs: vec![0; periphery],
             extended_outputs: vec![0; periphery],
             timers: vec![Timer::default(); usize::from(sizes.timers)],

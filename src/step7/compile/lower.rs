@@ -672,14 +672,9 @@ impl super::Compiler<'_> {
                 Ok(())
             }
             S7Op::Feature => {
-                let number = |operand: &S7Operand| match operand {
-                    S7Operand::Number(n) => Some(*n as u8),
-                    S7Operand::Constant(constant) => Some(constant.value as u8),
-                    _ => None,
-                };
                 let (target, value) = match operand {
-                    S7Operand::Pair(a, b) => (number(a).unwrap_or(0), number(b)),
-                    other => (number(other).unwrap_or(0), None),
+                    S7Operand::Pair(a, b) => (feature_number(a).unwrap_or(0), feature_number(b)),
+                    other => (feature_number(other).unwrap_or(0), None),
                 };
                 self.emit(out, Op::S7(S7Code::Feature { target, value }), span);
                 Ok(())
@@ -1070,5 +1065,14 @@ impl super::Compiler<'_> {
         );
         self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
         Ok(())
+    }
+}
+
+/// A `__FEATURE` operand's number.
+pub(super) fn feature_number(operand: &S7Operand) -> Option<u8> {
+    match operand {
+        S7Operand::Number(n) => Some(*n as u8),
+        S7Operand::Constant(constant) => Some(constant.value as u8),
+        _ => None,
     }
 }
