@@ -115,6 +115,8 @@ pub struct LevelState {
     pub db: u16,
     pub di: u16,
     pub local_base: u32,
+    /// STEP 7: the master control relay.
+    pub mcr: s7::mcr::Mcr,
 }
 
 /// The operating mode.
@@ -347,6 +349,7 @@ impl Cpu {
                 db: 0,
                 di: 0,
                 local_base: 0,
+                mcr: s7::mcr::Mcr::default(),
             },
             frames: BlockStack::with_room(usize::from(profile.nesting_limit) * levels_capacity + 1),
             levels: Vec::with_capacity(levels_capacity),
@@ -441,6 +444,7 @@ impl Cpu {
         self.level.interrupt_images = false;
         self.level.db = 0;
         self.level.di = 0;
+        self.level.mcr = s7::mcr::Mcr::default();
         self.level.local_base = self.levels.last().map_or(0, |outer| {
             if outer.block == IDLE {
                 0

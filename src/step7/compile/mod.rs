@@ -75,6 +75,7 @@ pub fn compile(
         },
         param_lists: Vec::new(),
         errors: Vec::new(),
+        mcr_block: false,
     };
     compiler.number_blocks(units);
     let logic = compiler.collect(units);
@@ -122,6 +123,8 @@ struct Compiler<'a> {
     tables: S7Tables,
     param_lists: Vec<Vec<Resolved>>,
     errors: Vec<CheckError>,
+    /// The block being compiled has `MCRA`: its writes are MCR-aware.
+    mcr_block: bool,
 }
 
 /// The block kind awl files an S7 block under.
