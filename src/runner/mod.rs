@@ -436,6 +436,10 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     let caption = caption(options, &files, &config, profile);
     let mut cpu = Cpu::new(program, sources);
     cpu.engine = Engine::new(profile, config, plan.schedule);
+    cpu.clock_memory = scenario
+        .as_ref()
+        .and_then(|s| s.clock_memory)
+        .map(|byte| cpu.program.layout.flag_base() + byte);
     let trace_to_stdout = options
         .trace
         .as_ref()

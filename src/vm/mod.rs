@@ -239,6 +239,8 @@ pub struct Cpu {
     /// A direct read of an input (`L PIB`) gives the PII's byte, as on awlsim's dummy
     /// hardware, whose input modules hand back the process image (`awl conformance`).
     pub inputs_echo_pii: bool,
+    /// The S7 clock memory byte's place in the image (the scenario's `clock_memory`).
+    pub clock_memory: Option<u16>,
     pub extended_inputs: Vec<u8>,
     pub extended_outputs: Vec<u8>,
     pub timers: Vec<Timer>,
@@ -311,6 +313,7 @@ impl Cpu {
             inputs: vec![0; periphery],
             outputs: vec![0; periphery],
             inputs_echo_pii: false,
+            clock_memory: None,
             extended_inputs: vec![0; periphery],
             extended_outputs: vec![0; periphery],
             timers: vec![Timer::default(); usize::from(sizes.timers)],
