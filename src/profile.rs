@@ -7,6 +7,8 @@ mod s5_155u;
 mod s5_common;
 mod s5_small;
 
+use std::sync::OnceLock;
+
 /// The CPUs whose interrupt rules differ; each has its rules in `vm::interrupts`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Family {
@@ -563,6 +565,43 @@ pub const DEFAULT_PROFILE: &str = "sinumerik-840c";
 /// The profile a STEP 7 program runs on when none is chosen.
 pub const DEFAULT_STEP7_PROFILE: &str = "speed7";
 
+/// The S7 CPUs set to four accumulators: the S7-400 has ACCU 1 to 4, the S7-300 (and the
+/// SPEED7 CPUs, which follow it) two ("Statement List (STL) for S7-300 and S7-400
+/// Programming", Accumulator Instructions). Made once, on first use, so a run can keep
+/// `&'static Profile` as every other profile.
+static FOUR_ACCUMULATORS: OnceLock<Vec<Profile>> = OnceLock::new();
+
+/// `profile` with `count` accumulators: itself, or its variant when it is an S7 CPU and
+/// `count` is 2 or 4 (`__FEATURE 0, 4` in an awlsim test, a `.conf`'s `accus`, a scenario's
+/// `accumulators`); `None` when the CPU cannot have that many.
+pub fn with_accumulators(profile: &'static Profile, count: u8) -> Option<&'static Profile> {
+    if count == profile.accumulators {
+        return Some(profile);
+    }
+    if !profile.runs_step7() {
+        return None;
+    }
+    match count {
+        2 => PROFILES
+            .iter()
+            .find(|base| base.name == profile.name && base.accumulators == 2),
+        4 => FOUR_ACCUMULATORS
+            .get_or_init(|| {
+                PROFILES
+                    .iter()
+                    .filter(|base| base.runs_step7())
+                    .map(|base| Profile {
+                        accumulators: 4,
+                        ..base.clone()
+                    })
+                    .collect()
+            })
+            .iter()
+            .find(|variant| variant.name == profile.name),
+        _ => None,
+    }
+}
+
 /// The profile of a name or an alias.
 pub fn find(name: &str) -> Option<&'static Profile> {
     let name = ALIASES
@@ -574,7 +613,6 @@ pub fn find(name: &str) -> Option<&'static Profile> {
         .find(|profile| profile.name.eq_ignore_ascii_case(name))
 }
 
-/// The names of the profiles that have `feature`.
 /// The profiles of S7 CPUs, which run STEP 7 programs.
 pub fn step7_profiles() -> Vec<&'static str> {
     PROFILES
@@ -584,6 +622,7 @@ pub fn step7_profiles() -> Vec<&'static str> {
         .collect()
 }
 
+/// The names of the profiles that have `feature`.
 pub fn having(feature: Feature) -> Vec<&'static str> {
     PROFILES
         .iter()

@@ -83,7 +83,9 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
         (
             "awl::check::not_simulated",
             "speed7",
-            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      MCRA;\nEND_ORGANIZATION_BLOCK\n".into(),
+            "FUNCTION_BLOCK FB 1\nBEGIN\n      NOP 0;\nEND_FUNCTION_BLOCK\n\
+             ORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL FB 1;\nEND_ORGANIZATION_BLOCK\n"
+                .into(),
         ),
         (
             "awl::check::step7_on_step5_cpu",

@@ -38,7 +38,11 @@ pub fn options(path: &Path, conf: &Conf, symbols: &[PathBuf]) -> RunOptions {
     RunOptions {
         files: vec![path.to_path_buf()],
         symbols: symbols.to_vec(),
-        cpu: profile::find(PROFILE),
+        // `accus=4` sets the S7 CPU to four accumulators (its S7-400 variant).
+        cpu: profile::find(PROFILE).and_then(|cpu| match conf.accus {
+            Some(count) => profile::with_accumulators(cpu, count),
+            None => Some(cpu),
+        }),
         language: language(),
         // A run of no time ends at the first cycle end, as awlsim checks its limit there.
         limit: Some(RunLimit::Duration(limit.max(1))),
@@ -74,12 +78,14 @@ pub(super) fn run_with(
         reports,
         halted: false,
     };
-    let prepared = match runner::prepare(options) {
+    let mut prepared = match runner::prepare(options) {
         Ok(prepared) => prepared,
         Err(NotRun::SourceErrors(reports)) => return not_run(Ending::SourceErrors, reports),
         Err(NotRun::Failed(reports)) => return not_run(Ending::NotRun, reports),
         Err(NotRun::Usage(report)) => return not_run(Ending::NotRun, vec![report]),
     };
+    // awlsim runs its tests on its dummy hardware (insn_MISC's direct reads rely on it).
+    prepared.cpu.inputs_echo_pii = true;
     let ran = prepared.run(go_on);
     let (ending, reports): (Ending, Vec<Report>) = match &ran.outcome.stop {
         Some(stop) => (

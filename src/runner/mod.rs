@@ -371,6 +371,8 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         return Err(NotRun::SourceErrors(warnings));
     }
     let program = Arc::new(built.compiled.program.clone());
+    // The CPU as the program set it (`__FEATURE 0, 4`: four accumulators).
+    let profile = program.profile;
     warnings.extend(analyze::warnings::no_ob1(&program));
     warnings.extend(analyze::warnings::obs_not_on_cpu(&program, &built.sources));
     let set = built
@@ -438,6 +440,10 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     let caption = caption(options, &files, &config, profile);
     let mut cpu = Cpu::new(program, sources);
     cpu.engine = Engine::new(profile, config, plan.schedule);
+    cpu.clock_memory = scenario
+        .as_ref()
+        .and_then(|s| s.clock_memory)
+        .map(|byte| cpu.program.layout.flag_base() + byte);
     let trace_to_stdout = options
         .trace
         .as_ref()

@@ -82,6 +82,8 @@ pub struct Scenario {
     pub hw_modules: Vec<(u16, u8)>,
     /// The logical base addresses `[[hw_module]]` gives (module, address).
     pub hw_addresses: Vec<(u16, u16)>,
+    /// The clock memory byte's number (`clock_memory = 100`: MB 100).
+    pub clock_memory: Option<u16>,
     events: Vec<Spanned<RawEvent>>,
     expect: SpannedTable,
     watch: Vec<Spanned<String>>,
@@ -274,6 +276,10 @@ impl Scenario {
             .as_ref()
             .and_then(|ob13| errors.keep(check_ob13(ob13, profile)));
         let (hw_modules, hw_addresses) = check_modules(&raw.hw_module, profile, errors);
+        let clock_memory = raw
+            .clock_memory
+            .as_ref()
+            .and_then(|byte| errors.keep(check_clock_memory(byte, profile)));
         Scenario {
             path: path.to_path_buf(),
             text,
@@ -290,6 +296,7 @@ impl Scenario {
             ob13,
             hw_modules,
             hw_addresses,
+            clock_memory,
             events: raw.event,
             expect: raw.expect,
             watch: raw.watch,
@@ -957,6 +964,37 @@ fn check_watchdog(watchdog: &Spanned<String>) -> Result<u64, ScenarioError> {
             span(watchdog),
             "out of range",
             Some("6000 ms is the longest cycle monitoring time the S7-300 class CPUs (and the SPEED7) accept; the S5 CPUs allow less".into()),
+        )),
+    }
+}
+
+/// The clock memory byte: a flag byte of an S7 CPU (set in its hardware configuration, "Cycle/
+/// Clock Memory").
+fn check_clock_memory(byte: &Spanned<i64>, profile: &Profile) -> Result<u16, ScenarioError> {
+    if !profile.runs_step7() {
+        return Err(invalid(
+            format!("the {} CPU has no clock memory byte", profile.name),
+            span(byte),
+            "an S7 CPU's setting",
+            Some(format!(
+                "the clock memory is set in an S7 CPU's hardware configuration; the S7 \
+                 profiles: {}",
+                profile::step7_profiles().join(", ")
+            )),
+        ));
+    }
+    let flags = i64::from(profile.sizes.flag_bytes);
+    match u16::try_from(*byte.get_ref()) {
+        Ok(number) if i64::from(number) < flags => Ok(number),
+        _ => Err(invalid(
+            format!("there is no flag byte MB {}", byte.get_ref()),
+            span(byte),
+            "out of range",
+            Some(format!(
+                "the {} CPU has MB 0 to MB {}",
+                profile.name,
+                flags - 1
+            )),
         )),
     }
 }

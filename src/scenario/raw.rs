@@ -31,6 +31,7 @@ pub const KEYS: &[&str] = &[
     "symbols",
     "dialect",
     "extended",
+    "clock_memory",
 ];
 
 #[derive(Debug, Default)]
@@ -49,6 +50,8 @@ pub struct RawScenario {
     pub watchdog: Option<Spanned<String>>,
     pub ob13: Option<Spanned<RawOb13>>,
     pub hw_module: Vec<Spanned<RawHwModule>>,
+    /// The S7 CPU's clock memory byte (`MB n`).
+    pub clock_memory: Option<Spanned<i64>>,
     pub event: Vec<Spanned<RawEvent>>,
     pub expect: SpannedTable,
     pub watch: Vec<Spanned<String>>,
@@ -174,6 +177,7 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "run" => keep(read(value).map(|v| raw.run = Some(v))),
             "watchdog" => keep(read(value).map(|v| raw.watchdog = Some(v))),
             "ob13" => keep(read(value).map(|v| raw.ob13 = Some(v))),
+            "clock_memory" => keep(read(value).map(|v| raw.clock_memory = Some(v))),
             "expect" => keep(read(value).map(|v| raw.expect = v)),
             "watch" => keep(read(value).map(|v| raw.watch = v)),
             "hw_module" => raw.hw_module = read_each(value, &mut errors),

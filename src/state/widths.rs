@@ -67,7 +67,7 @@ impl Widths {
                     widths.data.insert(word, 2);
                 }
                 Op::S7(S7Code::Mem {
-                    op: MemOp::Load | MemOp::Transfer,
+                    op: MemOp::Load | MemOp::Transfer | MemOp::McrTransfer,
                     place,
                 }) => widths.s7_place(program.s7.places[usize::from(place)], layout),
                 _ => {}

@@ -111,6 +111,8 @@ pub enum S7Code {
         cmp: Cmp,
         left: u16,
     },
+    /// The master control relay (see [`crate::vm::s7::mcr`]).
+    Mcr(McrCode),
     /// `__STWRST`
     ResetStatusWord,
     /// `__SLEEP ms`: simulated time passes.
@@ -122,6 +124,20 @@ pub enum S7Code {
         target: u8,
         value: Option<u8>,
     },
+}
+
+/// An [`S7Code::Mcr`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum McrCode {
+    /// `MCRA`, and `MCRD` or the start of a block with `MCRA` (false).
+    Activate(bool),
+    /// `MCR(`
+    Open,
+    /// `)MCR`
+    Close,
+    /// Around a call in a block with `MCRA`: its dependency saved and cleared (true), then
+    /// back (false).
+    Call(bool),
 }
 
 /// What an [`S7Code::Mem`] does with its place.
@@ -142,6 +158,11 @@ pub enum MemOp {
     /// `LC T`/`LC C`: the BCD value.
     LoadCoded,
     Transfer,
+    /// `=`, `S`, `R` on a bit and `T` in a block with `MCRA`: under the master control relay.
+    McrAssign,
+    McrSet,
+    McrReset,
+    McrTransfer,
     TimerPulse,
     TimerExtendedPulse,
     TimerOnDelay,

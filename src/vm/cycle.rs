@@ -246,6 +246,9 @@ impl Cpu {
         }
         self.poll()?;
         self.process_image_cycle(true);
+        if let Some(at) = self.clock_memory {
+            self.image[usize::from(at)] = clock_memory_byte(self.clock);
+        }
         self.cycle_point(StretchKind::ProcessImageRead)?;
         if let Some(block) = self.program.ob(1) {
             self.enter_level(block);
@@ -353,4 +356,28 @@ impl Cpu {
             halted,
         }
     }
+}
+
+/// Half the period of each clock memory bit, bit 0 first: 0.1 s (10 Hz) to 2 s (0.5 Hz), as
+/// an S7 CPU's clock memory ("Programming with STEP 7", the clock memory): each bit is 0 for
+/// half its period, then 1.
+const CLOCK_HALF_PERIODS_NS: [u64; 8] = [
+    50_000_000,
+    100_000_000,
+    200_000_000,
+    250_000_000,
+    400_000_000,
+    500_000_000,
+    800_000_000,
+    1_000_000_000,
+];
+
+/// The clock memory byte at simulated time `now_ns`; the CPU writes it at each cycle start.
+pub fn clock_memory_byte(now_ns: u64) -> u8 {
+    CLOCK_HALF_PERIODS_NS
+        .iter()
+        .enumerate()
+        .fold(0, |byte, (bit, half)| {
+            byte | (((now_ns / half) & 1) as u8) << bit
+        })
 }

@@ -245,6 +245,10 @@ impl Cpu {
         if extended {
             return read_bytes(&self.extended_inputs, at, count);
         }
+        let pii = usize::from(self.program.layout.input_base());
+        if self.inputs_echo_pii && at + count <= usize::from(self.program.layout.image_bytes) {
+            return read_bytes(&self.image[..], pii + at, count);
+        }
         match self.interrupt_images() {
             Some(images) => images.read_interrupt_pii(at, count),
             None => read_bytes(&self.inputs, at, count),

@@ -116,6 +116,8 @@ pub struct LevelState {
     pub db: u16,
     pub di: u16,
     pub local_base: u32,
+    /// STEP 7: the master control relay.
+    pub mcr: s7::mcr::Mcr,
 }
 
 /// The operating mode.
@@ -235,6 +237,11 @@ pub struct Cpu {
     pub inputs: Vec<u8>,
     /// The process outputs at the output modules.
     pub outputs: Vec<u8>,
+    /// A direct read of an input (`L PIB`) gives the PII's byte, as on awlsim's dummy
+    /// hardware, whose input modules hand back the process image (`awl conformance`).
+    pub inputs_echo_pii: bool,
+    /// The S7 clock memory byte's place in the image (the scenario's `clock_memory`).
+    pub clock_memory: Option<u16>,
     pub extended_inputs: Vec<u8>,
     pub extended_outputs: Vec<u8>,
     pub timers: Vec<Timer>,
@@ -306,6 +313,8 @@ impl Cpu {
                 .expect("the length is IMAGE_MEMORY"),
             inputs: vec![0; periphery],
             outputs: vec![0; periphery],
+            inputs_echo_pii: false,
+            clock_memory: None,
             extended_inputs: vec![0; periphery],
             extended_outputs: vec![0; periphery],
             timers: vec![Timer::default(); usize::from(sizes.timers)],
@@ -344,6 +353,7 @@ impl Cpu {
                 db: 0,
                 di: 0,
                 local_base: 0,
+                mcr: s7::mcr::Mcr::default(),
             },
             frames: BlockStack::with_room(usize::from(profile.nesting_limit) * levels_capacity + 1),
             levels: Vec::with_capacity(levels_capacity),
@@ -438,6 +448,7 @@ impl Cpu {
         self.level.interrupt_images = false;
         self.level.db = 0;
         self.level.di = 0;
+        self.level.mcr = s7::mcr::Mcr::default();
         self.level.local_base = self.levels.last().map_or(0, |outer| {
             if outer.block == IDLE {
                 0

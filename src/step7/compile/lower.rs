@@ -15,7 +15,7 @@ use crate::step7::ast::{
     S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{
-    AWLSIM_SFC_REBOOT, FbCall, MemOp, ParamCopy, Place, S7Code, SfcCall, Target,
+    AWLSIM_SFC_REBOOT, FbCall, McrCode, MemOp, ParamCopy, Place, S7Code, SfcCall, Target,
 };
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
@@ -203,6 +203,13 @@ impl super::Compiler<'_> {
         let S7Body::Logic(statements) = &block.body else {
             unreachable!("only logic blocks are compiled")
         };
+        // A block with `MCRA` has the MCR-aware writes, and starts without the dependency
+        // (see `vm::s7::mcr`); no other block pays for the MCR.
+        self.mcr_block = statements.iter().any(|s| s.op == S7Op::McrActivate);
+        if self.mcr_block {
+            let start = Op::S7(S7Code::Mcr(McrCode::Activate(false)));
+            out.emit(start, block.header, &self.profile.timings);
+        }
         let mut network = 0;
         let mut label_spans = HashMap::new();
         for (index, statement) in statements.iter().enumerate() {
@@ -337,6 +344,7 @@ impl super::Compiler<'_> {
                     return Ok(());
                 }
                 if let S7Operand::Address(address) = operand
+                    && !(self.mcr_block && matches!(op, S7Op::Assign | S7Op::Set | S7Op::Reset))
                     && let Some(shared) = self.image_bit_op(op, address)
                 {
                     self.emit(out, shared, span);
@@ -401,6 +409,7 @@ impl super::Compiler<'_> {
             S7Op::Load => self.load(out, operand, at, span, scope),
             S7Op::Transfer => {
                 if let S7Operand::Address(address) = operand
+                    && !self.mcr_block
                     && address.width != AccessWidth::Bit
                     && let Some(byte) = self.image_byte(address)
                 {
@@ -613,6 +622,16 @@ impl super::Compiler<'_> {
                 self.emit(out, Op::S7(S7Code::ExchangeDbRegisters), span);
                 Ok(())
             }
+            S7Op::Call | S7Op::CallUnconditional | S7Op::CallConditional if self.mcr_block => {
+                // The callee starts without the caller's MCR dependency; the caller has it
+                // back after the call.
+                self.emit(out, Op::S7(S7Code::Mcr(McrCode::Call(true))), span);
+                self.mcr_block = false;
+                let lowered = self.lower(statement, scope, out, following_jumps);
+                self.mcr_block = true;
+                self.emit(out, Op::S7(S7Code::Mcr(McrCode::Call(false))), span);
+                lowered
+            }
             S7Op::Call => {
                 let Some(call) = &statement.call else {
                     return match operand {
@@ -647,11 +666,14 @@ impl super::Compiler<'_> {
                 Ok(())
             }
             S7Op::McrActivate | S7Op::McrDeactivate | S7Op::McrOpen | S7Op::McrClose => {
-                Err(CheckError::NotSimulated {
-                    what: "the master control relay".into(),
-                    why: "MCRA, MCRD, MCR( and )MCR are not simulated yet".into(),
-                    at: statement.op_span,
-                })
+                let code = match op {
+                    S7Op::McrActivate => McrCode::Activate(true),
+                    S7Op::McrDeactivate => McrCode::Activate(false),
+                    S7Op::McrOpen => McrCode::Open,
+                    _ => McrCode::Close,
+                };
+                self.emit(out, Op::S7(S7Code::Mcr(code)), span);
+                Ok(())
             }
             S7Op::Nop | S7Op::Display => {
                 self.emit(out, Op::Nop, span);
@@ -688,14 +710,9 @@ impl super::Compiler<'_> {
                 Ok(())
             }
             S7Op::Feature => {
-                let number = |operand: &S7Operand| match operand {
-                    S7Operand::Number(n) => Some(*n as u8),
-                    S7Operand::Constant(constant) => Some(constant.value as u8),
-                    _ => None,
-                };
                 let (target, value) = match operand {
-                    S7Operand::Pair(a, b) => (number(a).unwrap_or(0), number(b)),
-                    other => (number(other).unwrap_or(0), None),
+                    S7Operand::Pair(a, b) => (feature_number(a).unwrap_or(0), feature_number(b)),
+                    other => (feature_number(other).unwrap_or(0), None),
                 };
                 self.emit(out, Op::S7(S7Code::Feature { target, value }), span);
                 Ok(())
@@ -741,9 +758,18 @@ impl super::Compiler<'_> {
         span: Span,
         scope: &Scope<'_>,
     ) -> Result<(), CheckError> {
-        let Some(mem) = mem_op(op) else {
+        let Some(mut mem) = mem_op(op) else {
             return Err(not_an_operand(at, "this operand"));
         };
+        if self.mcr_block {
+            mem = match mem {
+                MemOp::Assign => MemOp::McrAssign,
+                MemOp::Set => MemOp::McrSet,
+                MemOp::Reset => MemOp::McrReset,
+                MemOp::Transfer => MemOp::McrTransfer,
+                other => other,
+            };
+        }
         let place = self.place(operand, at, scope)?;
         self.mem(out, mem, place, span);
         Ok(())
@@ -1126,5 +1152,14 @@ impl super::Compiler<'_> {
         );
         self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
         Ok(())
+    }
+}
+
+/// A `__FEATURE` operand's number.
+pub(super) fn feature_number(operand: &S7Operand) -> Option<u8> {
+    match operand {
+        S7Operand::Number(n) => Some(*n as u8),
+        S7Operand::Constant(constant) => Some(constant.value as u8),
+        _ => None,
     }
 }

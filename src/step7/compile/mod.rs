@@ -15,11 +15,32 @@ use crate::compiler::{CheckError, Compiled, Program, Resolved};
 use crate::mnemonics::BlockKind;
 use crate::profile::Profile;
 use crate::source::{SourceSet, Span};
-use crate::step7::ast::{S7Block, S7BlockKind, S7BlockRef, S7Body, S7Unit, VarDecl, VarKind};
+use crate::step7::ast::{
+    S7Block, S7BlockKind, S7BlockRef, S7Body, S7Op, S7Operand, S7Unit, VarDecl, VarKind,
+};
 use crate::step7::bytecode::S7Tables;
 use crate::symbols::Symbols;
 
 use layout::Interface;
+
+/// The number of accumulators the first `__FEATURE 0, N` of the program asks for.
+fn asked_accumulators(units: &[S7Unit]) -> Option<u8> {
+    units
+        .iter()
+        .flat_map(|unit| &unit.blocks)
+        .filter_map(|block| match &block.body {
+            S7Body::Logic(statements) => Some(statements),
+            _ => None,
+        })
+        .flatten()
+        .filter(|statement| statement.op == S7Op::Feature)
+        .find_map(|statement| match &statement.operand {
+            S7Operand::Pair(target, value) if lower::feature_number(target) == Some(0) => {
+                lower::feature_number(value)
+            }
+            _ => None,
+        })
+}
 
 /// Compiles every STEP 7 unit of a program together with the symbol table `symbols`;
 /// `extensions` allows awlsim's test instructions. The program keeps the symbols, with the
@@ -31,6 +52,12 @@ pub fn compile(
     extensions: bool,
     symbols: Symbols,
 ) -> Compiled {
+    // awlsim's `__FEATURE 0, 4` sets the number of accumulators; the compiled operations
+    // depend on it, so the program runs on the CPU set that way from its start.
+    let profile = asked_accumulators(units)
+        .filter(|_| extensions)
+        .and_then(|count| crate::profile::with_accumulators(profile, count))
+        .unwrap_or(profile);
     let mut compiler = Compiler {
         profile,
         sources,
@@ -48,6 +75,7 @@ pub fn compile(
         },
         param_lists: Vec::new(),
         errors: Vec::new(),
+        mcr_block: false,
     };
     compiler.number_blocks(units);
     let units = compiler.named_types(units);
@@ -97,6 +125,8 @@ struct Compiler<'a> {
     tables: S7Tables,
     param_lists: Vec<Vec<Resolved>>,
     errors: Vec<CheckError>,
+    /// The block being compiled has `MCRA`: its writes are MCR-aware.
+    mcr_block: bool,
 }
 
 /// The block kind awl files an S7 block under.

@@ -2,11 +2,13 @@
 
 use crate::compiler::bytecode::{Op, TimerKind};
 use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
-use crate::step7::bytecode::{AWLSIM_SFC_REBOOT, MemOp, S7Code, Target};
+use crate::step7::bytecode::{AWLSIM_SFC_REBOOT, McrCode, MemOp, S7Code, Target};
 use crate::vm::Cpu;
 use crate::vm::stop::{StopCause, StopDetail};
 
+use super::bit_logic;
 use super::bridge;
+use super::mcr::StackFault;
 use super::memory::{Fault, Located};
 
 /// What the loop does after an S7 operation.
@@ -130,6 +132,7 @@ impl Cpu {
             S7Code::FbLeave { call } => self.fb_leave(call)?,
             S7Code::Sfc { call } => self.system_function(call)?,
             S7Code::Assert { cmp, left } => self.assert(cmp, left)?,
+            S7Code::Mcr(code) => self.mcr(code)?,
             S7Code::ResetStatusWord => bridge::reset_status_word(&mut self.level),
             S7Code::Sleep { ms } => self.clock += u64::from(ms) * 1_000_000,
             S7Code::Feature { target, value } => {
@@ -159,6 +162,38 @@ impl Cpu {
             }
         }
         Ok(Flow::Next)
+    }
+
+    /// `MCRA`, `MCRD`, `MCR(`, `)MCR` and a block with `MCRA` around its calls.
+    fn mcr(&mut self, code: McrCode) -> Result<(), Fault> {
+        let mcr = &mut self.level.mcr;
+        match code {
+            McrCode::Activate(on) => mcr.active = on,
+            McrCode::Call(true) => mcr.call(),
+            McrCode::Call(false) => mcr.called(),
+            McrCode::Open | McrCode::Close => {
+                let changed = if code == McrCode::Open {
+                    mcr.open(self.level.status.rlo())
+                } else {
+                    mcr.close()
+                };
+                changed.map_err(|stack| {
+                    fault(match stack {
+                        StackFault::Overflow => {
+                            "MCR stack fault (MCRF): a ninth nested MCR(, \
+                                                 the MCR stack holds 8 entries"
+                        }
+                        StackFault::Underflow => "MCR stack fault (MCRF): )MCR with no MCR( open",
+                    })
+                })?;
+                // Both end the logic string and set STA (STL manual, status of MCR( and )MCR).
+                let status = &mut self.level.status;
+                status.set_or_bit(false);
+                status.set_sta(true);
+                status.set_first_check(false);
+            }
+        }
+        Ok(())
     }
 
     fn load_s7(&mut self, value: u32) {
@@ -232,6 +267,25 @@ impl Cpu {
                     self.store_bit(located, op == MemOp::Set)?;
                 }
                 bridge::after_assignment(&mut self.level.status);
+            }
+            MemOp::McrAssign => {
+                let written = rlo && self.level.mcr.writes();
+                self.store_bit(located, written)?;
+                bit_logic::assigned(&mut self.level.status, written);
+            }
+            MemOp::McrSet | MemOp::McrReset => {
+                if rlo && self.level.mcr.writes() {
+                    self.store_bit(located, op == MemOp::McrSet)?;
+                }
+                bridge::after_assignment(&mut self.level.status);
+            }
+            MemOp::McrTransfer => {
+                let value = if self.level.mcr.writes() {
+                    self.level.accu1
+                } else {
+                    0
+                };
+                self.store(located, width, value)?;
             }
             MemOp::EdgePositive | MemOp::EdgeNegative => {
                 let memory = self.fetch_bit(located)?;

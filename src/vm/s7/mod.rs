@@ -15,6 +15,7 @@
 //! - [`accu`]: `TAK PUSH POP ENT LEAVE INC DEC`, and the move of ACCU 3/4 after arithmetic.
 //! - [`jump`]: whether each conditional jump jumps and what it does to the status; `LOOP`; the
 //!   status conditions `==0 <>0 >0 <0 >=0 <=0 UO OV OS BR` as bit operands.
+//! - [`mcr`]: the master control relay, `MCRA MCRD MCR( )MCR`.
 //! - [`memory`]: where an operand is (L stack, DB/DI, parameters, indirect addresses);
 //!   [`exec`]: the out-of-line executor the loop calls for [`crate::step7::bytecode::S7Code`].
 //!
@@ -33,6 +34,7 @@ pub mod convert;
 pub mod exec;
 pub mod integer;
 pub mod jump;
+pub mod mcr;
 pub mod memory;
 pub mod real;
 pub mod shift;
