@@ -290,6 +290,22 @@ pub enum Op {
         written: u16,
         write_op: u8,
     },
+    /// STEP 7's `LogicPair`: two of `A AN O ON X XN` on image bits, each `u8` packing the
+    /// combination (bits 3–5) and the bit.
+    S7ScanPair {
+        first_op: u8,
+        first: u16,
+        second: u16,
+        second_op: u8,
+    },
+    /// STEP 7's `LogicWrite`: a scan packed as in `S7ScanPair`, then `=`, `S` or `R` packed as
+    /// in `LogicWrite`.
+    S7ScanWrite {
+        scan_op: u8,
+        scanned: u16,
+        written: u16,
+        write_op: u8,
+    },
     /// `L` of an image word, then `L` of a 16-bit constant.
     LoadWordConstant {
         byte: u16,

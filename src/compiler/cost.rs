@@ -87,6 +87,8 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         // Never compiled: their ops are timed one by one.
         Op::End
         | Op::LogicPair { .. }
+        | Op::S7ScanPair { .. }
+        | Op::S7ScanWrite { .. }
         | Op::LogicWrite { .. }
         | Op::LoadWordConstant { .. }
         | Op::LoadWords { .. }

@@ -1,12 +1,14 @@
-//! Pairs of operations the VM runs as one op when interrupts are serviced at block changes only:
-//! the common STL idioms `A`/`O` chains on image bits, `L` `L` before arithmetic, and
-//! arithmetic followed by `T`. Between the two ops of a pair there is no interrupt point in that
-//! mode and neither can fault, so running them as one changes nothing but the dispatch: time and
-//! the operation count follow the position, which a pair moves by two. Position `i` holds op
-//! `i`, fused with op `i + 1` where they pair; op `i + 1` keeps its own place, so a jump to it
-//! still finds it. The stepping loop and operation points run the plain ops.
+//! Pairs of operations the VM runs as one op: the common STL idioms `A`/`O` chains on image
+//! bits, `L` `L` before arithmetic, and arithmetic followed by `T`. Neither op of a pair can
+//! fault, so running them as one changes nothing but the dispatch: time and the operation count
+//! follow the position, which a pair moves by two. Position `i` holds op `i`, fused with op
+//! `i + 1` where they pair; op `i + 1` keeps its own place, so a jump to it still finds it. The
+//! stepping loop runs the plain ops; with operation points a pair runs as one only when no point
+//! falls due between its ops, else as its first op. STEP 7's scans and writes (`S7Scan`,
+//! `S7Write`: their status rules differ) pair only with each other.
 
 use super::bytecode::{ImageBit, Logic, Op, Write};
+use crate::vm::status::Combination;
 
 /// `code` with every op that pairs with the next one replaced by the pair.
 pub fn fuse(code: &[Op]) -> Vec<Op> {
@@ -37,6 +39,20 @@ fn pair(first: Op, second: Op) -> Option<Op> {
             stack: true,
             byte,
         },
+        (Op::S7Scan(combination, scanned), Op::S7Write(write, written)) => Op::S7ScanWrite {
+            scan_op: pack_step7(combination, scanned),
+            scanned: scanned.byte,
+            written: written.byte,
+            write_op: pack_write(write, written),
+        },
+        (Op::S7Scan(first_combination, first), Op::S7Scan(second_combination, second)) => {
+            Op::S7ScanPair {
+                first_op: pack_step7(first_combination, first),
+                first: first.byte,
+                second: second.byte,
+                second_op: pack_step7(second_combination, second),
+            }
+        }
         _ if bit_logic(first).is_some() && bit_write(second).is_some() => {
             let (logic, scanned) = bit_logic(first)?;
             let (write, written) = bit_write(second)?;
@@ -81,6 +97,31 @@ fn bit_write(op: Op) -> Option<(Write, ImageBit)> {
 
 fn pack(logic: Logic, bit: ImageBit) -> u8 {
     (logic as u8) << 3 | bit.bit & 7
+}
+
+fn pack_step7(combination: Combination, bit: ImageBit) -> u8 {
+    (combination as u8) << 3 | bit.bit & 7
+}
+
+/// The combination and bit an [`Op::S7ScanPair`] or [`Op::S7ScanWrite`] packed with `byte`.
+#[inline(always)]
+pub fn unpack_step7(packed: u8, byte: u16) -> (Combination, ImageBit) {
+    const COMBINATIONS: [Combination; 8] = [
+        Combination::And,
+        Combination::AndNot,
+        Combination::Or,
+        Combination::OrNot,
+        Combination::Xor,
+        Combination::XorNot,
+        // Never packed: six combinations fill three bits' first six values.
+        Combination::And,
+        Combination::And,
+    ];
+    let bit = ImageBit {
+        byte,
+        bit: packed & 7,
+    };
+    (COMBINATIONS[usize::from(packed >> 3 & 7)], bit)
 }
 
 /// What a write does to its bit for one value of the RLO: clear it…
@@ -138,6 +179,42 @@ mod tests {
                 assert_eq!(unpack(pack(logic, image), 300), (logic, image));
             }
         }
+    }
+
+    #[test]
+    fn a_packed_step7_half_unpacks_to_its_combination_and_bit() {
+        use Combination::*;
+        for combination in [And, AndNot, Or, OrNot, Xor, XorNot] {
+            for bit in 0..8 {
+                let image = ImageBit { byte: 300, bit };
+                let packed = pack_step7(combination, image);
+                assert_eq!(unpack_step7(packed, 300), (combination, image));
+            }
+        }
+    }
+
+    #[test]
+    fn step7_scans_pair_with_scans_and_writes_but_not_with_step5_ops() {
+        let (a, b) = (ImageBit { byte: 1, bit: 2 }, ImageBit { byte: 3, bit: 4 });
+        let scan = Op::S7Scan(Combination::Xor, a);
+        assert!(matches!(
+            pair(scan, Op::S7Scan(Combination::OrNot, b)),
+            Some(Op::S7ScanPair {
+                first: 1,
+                second: 3,
+                ..
+            })
+        ));
+        assert!(matches!(
+            pair(scan, Op::S7Write(Write::Set, b)),
+            Some(Op::S7ScanWrite {
+                scanned: 1,
+                written: 3,
+                ..
+            })
+        ));
+        assert_eq!(pair(scan, Op::Assign(b)), None);
+        assert_eq!(pair(Op::And(a), Op::S7Write(Write::Assign, b)), None);
     }
 
     #[test]

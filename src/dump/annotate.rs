@@ -549,6 +549,8 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
         Op::End
         | Op::CallAt { .. }
         | Op::LogicPair { .. }
+        | Op::S7ScanPair { .. }
+        | Op::S7ScanWrite { .. }
         | Op::LogicWrite { .. }
         | Op::LoadWordConstant { .. }
         | Op::LoadWords { .. }

@@ -135,6 +135,8 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
         | Op::Stop
         | Op::End
         | Op::LogicPair { .. }
+        | Op::S7ScanPair { .. }
+        | Op::S7ScanWrite { .. }
         | Op::LogicWrite { .. }
         | Op::LoadWordConstant { .. }
         | Op::LoadWords { .. }

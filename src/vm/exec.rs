@@ -548,6 +548,8 @@ impl Cpu {
             | Op::Formal { .. }
             | Op::End
             | Op::LogicPair { .. }
+            | Op::S7ScanPair { .. }
+            | Op::S7ScanWrite { .. }
             | Op::LogicWrite { .. }
             | Op::LoadWordConstant { .. }
             | Op::LoadWords { .. }

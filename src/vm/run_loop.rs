@@ -534,6 +534,34 @@ impl Cpu {
                         status.scanned(logic, self.image_bit(bit));
                         pc += 1;
                     }
+                    Op::S7ScanPair {
+                        first_op,
+                        first,
+                        second,
+                        second_op,
+                    } if STEP7 => {
+                        split_if_due!('dispatch, op);
+                        let (combination, bit) = fuse::unpack_step7(first_op, first);
+                        status.scanned_step7(combination, self.image_bit(bit));
+                        let (combination, bit) = fuse::unpack_step7(second_op, second);
+                        status.scanned_step7(combination, self.image_bit(bit));
+                        pc += 1;
+                    }
+                    Op::S7ScanWrite {
+                        scan_op,
+                        scanned,
+                        written,
+                        write_op,
+                    } if STEP7 => {
+                        split_if_due!('dispatch, op);
+                        let (combination, bit) = fuse::unpack_step7(scan_op, scanned);
+                        status.scanned_step7(combination, self.image_bit(bit));
+                        let rlo = status.rlo();
+                        let byte = &mut self.image[usize::from(written)];
+                        *byte = fuse::apply_write(write_op, rlo, *byte);
+                        super::s7::bit_logic::assigned(&mut status, rlo);
+                        pc += 1;
+                    }
                     Op::LogicWrite {
                         logic_op,
                         scanned,
@@ -665,6 +693,8 @@ impl Cpu {
                     | Op::S7(_)
                     | Op::S7Scan(..)
                     | Op::S7Write(..)
+                    | Op::S7ScanPair { .. }
+                    | Op::S7ScanWrite { .. }
                     | Op::EnableInterrupts => {
                         sync!();
                         let result = self.execute_other(*op, at!());
