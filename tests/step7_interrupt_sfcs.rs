@@ -196,7 +196,10 @@ fn a_delayed_interrupt_runs_after_en_airt() {
     assert!(!ran.failed(), "{:#?}", ran.mismatches);
     let delayed = of(&events, "irq_delayed");
     assert_eq!(delayed.len(), 1);
-    assert_eq!((delayed[0]["ob"].as_u64(), delayed[0]["delays"].as_u64()), (Some(40), Some(1)));
+    assert_eq!(
+        (delayed[0]["ob"].as_u64(), delayed[0]["delays"].as_u64()),
+        (Some(40), Some(1))
+    );
     let service = of(&events, "irq_service")[0];
     assert_eq!(service["waited"], "delayed");
     let enable = of(&events, "irt_call")
@@ -230,7 +233,10 @@ fn the_delay_ends_with_the_ob_that_called_dis_airt() {
     );
     assert!(!ran.failed(), "{:#?}", ran.mismatches);
     let end = of(&events, "delay_end")[0];
-    assert_eq!((end["ob"].as_u64(), end["by"].as_str()), (Some(1), Some("OB end")));
+    assert_eq!(
+        (end["ob"].as_u64(), end["by"].as_str()),
+        (Some(1), Some("OB end"))
+    );
     let service = of(&events, "irq_service")[0];
     assert_eq!(service["waited"], "delayed");
     assert!(t(service) >= t(end));
@@ -265,7 +271,10 @@ fn a_disabled_interrupt_is_discarded_not_delayed() {
     assert!(of(&events, "irq_service").is_empty());
     assert!(of(&events, "irq_delayed").is_empty());
     let stats = ran.cpu.engine.stats(40);
-    assert_eq!((stats.requested, stats.discarded, stats.serviced), (1, 1, 0));
+    assert_eq!(
+        (stats.requested, stats.discarded, stats.serviced),
+        (1, 1, 0)
+    );
 }
 
 const OB35_COUNTS: &str = "
@@ -444,7 +453,11 @@ mode = \"RUN\"
     let ob80 = ran.cpu.engine.stats(80);
     assert_eq!((ob80.requested, ob80.serviced), (2, 2), "{ob80:?}");
     let ob35 = ran.cpu.engine.stats(35);
-    assert_eq!((ob35.requested, ob35.lost, ob35.serviced), (5, 1, 4), "{ob35:?}");
+    assert_eq!(
+        (ob35.requested, ob35.lost, ob35.serviced),
+        (5, 1, 4),
+        "{ob35:?}"
+    );
     let lost = of(&events, "irq_lost");
     assert_eq!((lost.len(), t(lost[0])), (1, 3_000_000));
     assert_eq!(ran.cpu.engine.stats(80).requested, 2);
@@ -475,9 +488,8 @@ stop_cause = \"OB80\"
 
 #[test]
 fn a_disabled_ob35_is_discarded_and_never_falls_behind() {
-    let program = once_in_ob1(
-        "      CALL SFC 39 (MODE := B#16#1, OB_NR := 30, RET_VAL := MW 0);",
-    ) + OB35_SLOW;
+    let program = once_in_ob1("      CALL SFC 39 (MODE := B#16#1, OB_NR := 30, RET_VAL := MW 0);")
+        + OB35_SLOW;
     let ran = ran(run_scenario(
         "ob35_disabled",
         &program,
@@ -520,7 +532,10 @@ fn ob35_belongs_to_the_speed7() {
         "OB 1\n      BE\n",
         "cpu = \"s5-115u\"\n[ob35]\ninterval = \"10ms\"\n",
     ));
-    assert!(text.contains("[ob35] belongs to the speed7 profile"), "{text}");
+    assert!(
+        text.contains("[ob35] belongs to the speed7 profile"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -528,12 +543,18 @@ fn the_interrupt_sfcs_need_their_parameters() {
     for (call, said) in [
         ("CALL SFC 41;", "expects 1 parameters"),
         ("UC SFC 42;", "expects 1 parameters"),
-        ("CALL SFC 39 (MODE := B#16#0, RET_VAL := MW 0);", "missing: OB_NR"),
+        (
+            "CALL SFC 39 (MODE := B#16#0, RET_VAL := MW 0);",
+            "missing: OB_NR",
+        ),
         (
             "CALL SFC 41 (RET_VAL := MW 0, MODE := B#16#0);",
             "has no parameter `MODE`",
         ),
-        ("CALL SFC 42 (RET_VAL := 5);", "does not accept this operand"),
+        (
+            "CALL SFC 42 (RET_VAL := 5);",
+            "does not accept this operand",
+        ),
         (
             "CALL SFC 40 (MODE := MW 2, OB_NR := 40, RET_VAL := MW 0);",
             "does not accept this operand",

@@ -199,7 +199,9 @@ pub enum StopError {
         at: Span,
         stack: String,
     },
-    #[error("STOP OB80: OB {ob} was requested again before its last request had run, and OB 80 is not programmed")]
+    #[error(
+        "STOP OB80: OB {ob} was requested again before its last request had run, and OB 80 is not programmed"
+    )]
     #[diagnostic(
         code(awl::stop::ob80),
         help(

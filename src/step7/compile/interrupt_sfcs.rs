@@ -60,7 +60,9 @@ pub fn ordered(
     let mut ok = true;
     for (index, param) in params.iter().enumerate() {
         let name = param.name.text.to_ascii_uppercase();
-        let known = declared_params.iter().any(|(declared, _)| *declared == name);
+        let known = declared_params
+            .iter()
+            .any(|(declared, _)| *declared == name);
         let first = !params[..index]
             .iter()
             .any(|other| other.name.text.eq_ignore_ascii_case(&name));

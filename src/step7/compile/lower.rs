@@ -900,9 +900,10 @@ impl super::Compiler<'_> {
         scope: &Scope<'_>,
     ) -> Result<(), CheckError> {
         let mut errors = Vec::new();
-        let ordered = super::interrupt_sfcs::ordered(number, &call.params, at, &mut errors, |param| {
-            self.place(&param.actual, param.actual_span, scope)
-        });
+        let ordered =
+            super::interrupt_sfcs::ordered(number, &call.params, at, &mut errors, |param| {
+                self.place(&param.actual, param.actual_span, scope)
+            });
         self.errors.extend(errors);
         let Some(ordered) = ordered else {
             return Ok(());
