@@ -569,3 +569,43 @@ fn the_interrupt_sfcs_need_their_parameters() {
         assert!(text.contains(said), "{call}: {text}");
     }
 }
+
+#[test]
+fn the_timeline_marks_calls_delays_and_discards() {
+    let program = once_in_ob1(&format!(
+        "      CALL SFC 39 (MODE := B#16#2, OB_NR := 35, RET_VAL := MW 0);
+      CALL SFC 41 (RET_VAL := MW 2);
+{LONG}
+      CALL SFC 42 (RET_VAL := MW 4);"
+    )) + OB40
+        + OB35_COUNTS;
+    let path = common::write_scenario(
+        "irt_timeline",
+        &program,
+        &scenario(&format!(
+            "run = {{ for = \"12ms\" }}\n[ob35]\ninterval = \"10ms\"\n{MODULE}"
+        )),
+    );
+    let svg_path = path.with_file_name("timeline.svg");
+    ran(runner::run(&runner::RunOptions {
+        scenario: Some(path),
+        timeline: Some(svg_path.clone()),
+        ..runner::RunOptions::default()
+    }));
+    let svg = std::fs::read_to_string(svg_path).unwrap();
+    for class in [
+        "class=\"delayed\"",
+        "class=\"irt-call\"",
+        "class=\"discarded\"",
+        "sfc-legend",
+    ] {
+        assert!(svg.contains(class), "{class}");
+    }
+    // The three calls, two of them merged into one mark of the same pixel.
+    let calls: u32 = svg
+        .split("<g class=\"irt-call\" data-count=\"")
+        .skip(1)
+        .map(|rest| rest[..rest.find('"').unwrap()].parse::<u32>().unwrap())
+        .sum();
+    assert_eq!(calls, 3);
+}
