@@ -490,6 +490,12 @@ pub static PROFILES: &[Profile] = &[
         startup_obs: &[100, 102],
         interrupt_obs: &[
             InterruptOb {
+                ob: 80,
+                priority: 26,
+                summary: "time error (OB 35 requested again before it ran)",
+                every_ms: 0,
+            },
+            InterruptOb {
                 ob: 82,
                 priority: 26,
                 summary: "diagnostic interrupt",
@@ -511,6 +517,13 @@ pub static PROFILES: &[Profile] = &[
                 ob: 40,
                 priority: 16,
                 summary: "hardware interrupt",
+                every_ms: 0,
+            },
+            // Its interval is the scenario's (`[ob35]`), not the profile's.
+            InterruptOb {
+                ob: 35,
+                priority: 12,
+                summary: "cyclic interrupt",
                 every_ms: 0,
             },
         ],
@@ -537,6 +550,18 @@ pub static PROFILES: &[Profile] = &[
             "no OB for the module: OB 85 is called and the interrupt acknowledged; no OB 85 \
              either: STOP cause OB85",
             "interrupt points: after every operation, as S7 CPUs do",
+            "OB 35 (priority 12) runs every [ob35].interval (100 ms by default) from the \
+             transition to RUN when the program has it (VIPA SPEED7 operation list, OB 28, 29, \
+             32-35)",
+            "OB 35 requested again while its last request is pending or it runs: time error, \
+             OB 80 (priority 26); no OB 80: STOP cause OB80 (System Software for S7-300/400 \
+             System and Standard Functions, 1.16 Time Error Organization Block (OB80); VIPA \
+             SPEED7 operation list, OB 80)",
+            "SFC 39 DIS_IRT discards new events of all interrupt and asynchronous error OBs \
+             (MODE 0), of a class (1) or of one OB (2) until SFC 40 EN_IRT; SFC 41 DIS_AIRT \
+             delays those of a higher priority until as many SFC 42 EN_AIRT calls, or until the \
+             OB that called it ends (System Software for S7-300/400 System and Standard \
+             Functions, 12 SFCs for Handling Interrupts and Asynchronous Errors)",
         ],
     },
     s5_small::S5_95U,

@@ -312,6 +312,7 @@ fn run(
             }),
             hw_modules: vec![(1, 40), (2, 41)],
             hw_addresses: Vec::new(),
+            ob35_interval_ns: awl::vm::interrupts::OB35_DEFAULT_NS,
             watchdog_ns: 150_000_000,
         },
         schedule,

@@ -86,7 +86,7 @@ fn the_interrupt_example_is_serviced_once() {
 #[test]
 fn the_step7_samples_are_in_the_catalogue() {
     let files = catalogue();
-    for sample in ["traffic_light", "motor_fb", "ob40_alarm"] {
+    for sample in ["traffic_light", "motor_fb", "ob40_alarm", "speed7_critical"] {
         for extension in ["awl", "toml"] {
             let name = format!("s7/{sample}.{extension}");
             assert!(files.contains_key(&name), "{name}");
@@ -101,6 +101,13 @@ fn the_step7_samples_are_in_the_catalogue() {
         "OB 82: requested 1, serviced 1, lost 0",
     ] {
         assert!(outcome.summary.contains(line), "{}", outcome.summary);
+    }
+    let critical = playground::run(&scenario("s7/speed7_critical.toml"));
+    for line in [
+        "expectations: 10 of 10 met",
+        "OB 40: waited beyond the response bound: 3 because SFC 41 DIS_AIRT delayed it",
+    ] {
+        assert!(critical.summary.contains(line), "{}", critical.summary);
     }
     let alone = playground::run(&program("s7/motor_fb.awl"));
     assert!(alone.summary.contains("cpu: speed7"), "{}", alone.summary);

@@ -310,6 +310,7 @@ proptest! {
                 ),
                 hw_modules: vec![(0, 40), (1, 41)],
                 hw_addresses: Vec::new(),
+                ob35_interval_ns: awl::vm::interrupts::OB35_DEFAULT_NS,
                 watchdog_ns: 150_000_000,
             };
             let mut machine = awl::vm::Cpu::new(

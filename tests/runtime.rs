@@ -60,6 +60,11 @@ fn every_stop_cause_renders_with_line_and_block_stack() {
             "OB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n",
             "cpu = \"speed7\"\nrun = { for = \"10ms\" }\n[[hw_module]]\nmodule = 4\nob = 40\n[[event]]\nat = \"2ms\"\nhw_interrupt = { module = 4, channel = 1, active_for = \"1ms\" }\n",
         ),
+        (
+            "awl::stop::ob80",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      NOP 0;\nEND_ORGANIZATION_BLOCK\nORGANIZATION_BLOCK OB 35\nBEGIN\n      L 200;\nm:    T MW 0;\n      L 1000;\nn:    LOOP n;\n      L MW 0;\n      LOOP m;\nEND_ORGANIZATION_BLOCK\n",
+            "cpu = \"speed7\"\nrun = { for = \"5ms\" }\n[ob35]\ninterval = \"1ms\"\n",
+        ),
     ];
     for (code, program, scenario) in cases {
         let rendered = stop_rendering(&code.replace("::", "_"), program, scenario);

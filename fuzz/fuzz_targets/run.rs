@@ -11,7 +11,7 @@ use awl::profile::{Family, InterruptPoints};
 use awl::source::{SourceFile, SourceSet};
 use awl::trace::TraceFormat;
 use awl::vm::cycle::RunLimit;
-use awl::vm::interrupts::{EngineConfig, Happening, Ob13Timing, Scheduled};
+use awl::vm::interrupts::{EngineConfig, Happening, OB35_DEFAULT_NS, Ob13Timing, Scheduled};
 use libfuzzer_sys::fuzz_target;
 
 /// The cycles a program runs.
@@ -90,6 +90,7 @@ fuzz_target!(
             }),
             hw_modules: vec![(0, 40), (1, 41)],
             hw_addresses: Vec::new(),
+            ob35_interval_ns: OB35_DEFAULT_NS,
             watchdog_ns: awl_fuzz::watchdog_ns(profile),
         };
         let setup = awl_fuzz::Setup {

@@ -11,7 +11,7 @@ use std::sync::LazyLock;
 use awl::frontend;
 use awl::profile::InterruptPoints;
 use awl::scenario::Scenario;
-use awl::vm::interrupts::EngineConfig;
+use awl::vm::interrupts::{EngineConfig, OB35_DEFAULT_NS};
 use libfuzzer_sys::fuzz_target;
 
 /// OB 1 with a block call, a timer and a data block, and every interrupt OB of every CPU.
@@ -55,6 +55,7 @@ fuzz_target!(
             ob13: scenario.ob13,
             hw_modules: scenario.hw_modules.clone(),
             hw_addresses: scenario.hw_addresses.clone(),
+            ob35_interval_ns: scenario.ob35_interval_ns.unwrap_or(OB35_DEFAULT_NS),
             watchdog_ns: scenario.watchdog_ns.unwrap_or(profile.watchdog_ns),
         };
         let setup = awl_fuzz::Setup {

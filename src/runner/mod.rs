@@ -425,6 +425,10 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
             .as_ref()
             .map(|s| s.hw_addresses.clone())
             .unwrap_or_default(),
+        ob35_interval_ns: scenario
+            .as_ref()
+            .and_then(|s| s.ob35_interval_ns)
+            .unwrap_or(crate::vm::interrupts::OB35_DEFAULT_NS),
         watchdog_ns: options
             .watchdog_ns
             .or(scenario.as_ref().and_then(|s| s.watchdog_ns))

@@ -199,6 +199,8 @@ pub fn cpu_stop_report(cpu: &Cpu, stop: &Stop) -> Report {
             at,
             stack,
         },
+        (StopCause::Ob80, StopDetail::Ob(ob)) => StopError::TimeError { ob: *ob, at, stack },
+        (StopCause::Ob80, _) => StopError::TimeError { ob: 35, at, stack },
         // A halt is reported as one, not as a STOP; should it reach here, it says what it was.
         (StopCause::Halt, _) => StopError::Operation {
             problem: "the run was halted here".into(),

@@ -79,6 +79,8 @@ pub struct Scenario {
     pub limit: Option<RunLimit>,
     pub watchdog_ns: Option<u64>,
     pub ob13: Option<Ob13Timing>,
+    /// The OB 35 interval `[ob35]` gives.
+    pub ob35_interval_ns: Option<u64>,
     pub hw_modules: Vec<(u16, u8)>,
     /// The logical base addresses `[[hw_module]]` gives (module, address).
     pub hw_addresses: Vec<(u16, u16)>,
@@ -275,6 +277,10 @@ impl Scenario {
             .ob13
             .as_ref()
             .and_then(|ob13| errors.keep(check_ob13(ob13, profile)));
+        let ob35_interval_ns = raw
+            .ob35
+            .as_ref()
+            .and_then(|ob35| errors.keep(check_ob35(ob35, profile)));
         let (hw_modules, hw_addresses) = check_modules(&raw.hw_module, profile, errors);
         let clock_memory = raw
             .clock_memory
@@ -294,6 +300,7 @@ impl Scenario {
             limit,
             watchdog_ns,
             ob13,
+            ob35_interval_ns,
             hw_modules,
             hw_addresses,
             clock_memory,
@@ -1041,6 +1048,36 @@ fn check_ob13(
         delay_ns: delay.unwrap_or(0),
         max_delay_ns: max_delay,
     })
+}
+
+/// The OB 35 interval of `[ob35]`: whole milliseconds from 1 to 60000, the range STEP 7
+/// configures for the cyclic interrupts of the S7-300 class ("System Software for S7-300/400
+/// System and Standard Functions", Organization Blocks, Cyclic Interrupt Organization Blocks;
+/// VIPA SPEED7 operation list, OB 28, 29, 32–35); 100 ms without `interval`, their default.
+fn check_ob35(ob35: &Spanned<raw::RawOb35>, profile: &Profile) -> Result<u64, ScenarioError> {
+    let raw = ob35.get_ref();
+    let at = raw.interval.as_ref().map_or_else(|| span(ob35), span);
+    if profile.family != Family::Speed7 {
+        return Err(invalid(
+            "[ob35] belongs to the speed7 profile",
+            at,
+            format!("{} has no cyclic interrupt OB 35", profile.name),
+            Some("OB 35 is an S7 OB: set `cpu = \"speed7\"`".into()),
+        ));
+    }
+    let Some(text) = &raw.interval else {
+        return Ok(crate::vm::interrupts::OB35_DEFAULT_NS);
+    };
+    let interval = duration(text)?;
+    if interval == 0 || interval % 1_000_000 != 0 || interval > 60_000_000_000 {
+        return Err(invalid(
+            format!("the OB 35 interval `{}` is not a whole number of milliseconds from 1 to 60000", text.get_ref()),
+            span(text),
+            "not configurable",
+            Some("STEP 7 sets a cyclic interrupt's interval in ms, 1 ms to 60000 ms; 100 ms is the default".into()),
+        ));
+    }
+    Ok(interval)
 }
 
 /// The logical base addresses `[[hw_module]]` gives: (module, address).

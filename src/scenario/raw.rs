@@ -23,6 +23,7 @@ pub const KEYS: &[&str] = &[
     "run",
     "watchdog",
     "ob13",
+    "ob35",
     "hw_module",
     "event",
     "expect",
@@ -49,6 +50,7 @@ pub struct RawScenario {
     pub run: Option<Spanned<RawRun>>,
     pub watchdog: Option<Spanned<String>>,
     pub ob13: Option<Spanned<RawOb13>>,
+    pub ob35: Option<Spanned<RawOb35>>,
     pub hw_module: Vec<Spanned<RawHwModule>>,
     /// The S7 CPU's clock memory byte (`MB n`).
     pub clock_memory: Option<Spanned<i64>>,
@@ -80,6 +82,13 @@ pub struct RawOb13 {
     pub interval: Spanned<String>,
     pub delay: Option<Spanned<String>>,
     pub max_delay: Option<Spanned<String>>,
+}
+
+/// `[ob35]`: the cyclic interrupt OB 35 of an S7 CPU.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOb35 {
+    pub interval: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -177,6 +186,7 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "run" => keep(read(value).map(|v| raw.run = Some(v))),
             "watchdog" => keep(read(value).map(|v| raw.watchdog = Some(v))),
             "ob13" => keep(read(value).map(|v| raw.ob13 = Some(v))),
+            "ob35" => keep(read(value).map(|v| raw.ob35 = Some(v))),
             "clock_memory" => keep(read(value).map(|v| raw.clock_memory = Some(v))),
             "expect" => keep(read(value).map(|v| raw.expect = v)),
             "watch" => keep(read(value).map(|v| raw.watch = v)),

@@ -1,7 +1,8 @@
 //! The timeline picture of a run (`awl run … --timeline FILE.svg` or `FILE.html`): simulated
 //! time across, one lane per priority level (OB 1 at the bottom), bars where a level runs with
 //! its called blocks nested below, ticks at the block changes (the interrupt points), requests
-//! joined to their service with the latency, lost and ignored requests crossed out, data
+//! joined to their service with the latency, lost, ignored and discarded requests crossed out,
+//! the wait of a request SFC 41 delayed hatched, SFC 39–42 calls marked on their level, data
 //! cycles and operating-system time shaded, a STOP marked. Every mark has a class and a
 //! `<title>`; marks closer than a pixel are merged and say how many they stand for.
 
@@ -87,6 +88,8 @@ pub struct Recorder {
     rows: Rows,
     /// Open requests: id → when they came.
     requests: HashMap<u64, u64>,
+    /// Delayed requests: id → when the delay took them.
+    delayed: HashMap<u64, u64>,
 }
 
 impl Recorder {
@@ -99,6 +102,7 @@ impl Recorder {
             spans: Vec::new(),
             rows: Rows::default(),
             requests: HashMap::new(),
+            delayed: HashMap::new(),
         }
     }
 
@@ -118,6 +122,16 @@ impl Recorder {
                 id, ob, latency_ns, ..
             } => {
                 let requested_at = self.requests.remove(id).unwrap_or(t_ns);
+                if let Some(delayed_at) = self.delayed.remove(id) {
+                    let wait = Item::new(delayed_at, t_ns, String::new(), String::new());
+                    self.add((Mark::Delayed, *ob, 0), wait, || {
+                        format!(
+                            "OB {ob} request #{id} delayed by SFC 41 DIS_AIRT from {} to {}",
+                            format_ms(delayed_at),
+                            format_ms(t_ns)
+                        )
+                    });
+                }
                 let mut item = Item::new(t_ns, t_ns, String::new(), String::new());
                 item.requested_at = requested_at;
                 item.latency = (*latency_ns, *latency_ns);
@@ -132,6 +146,15 @@ impl Recorder {
                 self.requests.remove(id);
                 point(Mark::Ignored, *ob)
             }
+            Event::IrqDiscarded { id, ob, .. } => {
+                self.requests.remove(id);
+                point(Mark::Discarded, *ob)
+            }
+            Event::IrqDelayed { id, .. } => {
+                self.delayed.entry(*id).or_insert(t_ns);
+                return;
+            }
+            Event::IrtCall { name, ob, .. } => ((Mark::IrtCall, *ob, 0), name.to_string()),
             Event::ModuleEvent { ob, .. } => point(Mark::ModuleEvent, *ob),
             Event::Stop { cause, .. } => ((Mark::Stop, 0, 0), format!("STOP {cause}")),
             Event::Input { .. } => point(Mark::Input, 0),
@@ -141,6 +164,7 @@ impl Recorder {
             | Event::DataCycle { .. }
             | Event::OsTime { .. }
             | Event::IrqEnd { .. }
+            | Event::DelayEnd { .. }
             | Event::Watch { .. } => return,
         };
         let item = Item::new(t_ns, t_ns, label, String::new());

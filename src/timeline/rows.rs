@@ -15,6 +15,12 @@ pub enum Mark {
     Service,
     Lost,
     Ignored,
+    /// A request SFC 39 DIS_IRT had disabled.
+    Discarded,
+    /// The wait of a request SFC 41 DIS_AIRT delayed, from the delay to its service.
+    Delayed,
+    /// A call of SFC 39 to SFC 42 on the calling OB's level.
+    IrtCall,
     /// A module's hardware event that is no request.
     ModuleEvent,
     DataCycle,
@@ -36,6 +42,9 @@ impl Mark {
             Mark::Service => "service",
             Mark::Lost => "lost",
             Mark::Ignored => "ignored",
+            Mark::Discarded => "discarded",
+            Mark::Delayed => "delayed",
+            Mark::IrtCall => "irt-call",
             Mark::ModuleEvent => "module-event",
             Mark::DataCycle => "data-cycle",
             Mark::OsTime => "os-time",
@@ -56,6 +65,9 @@ impl Mark {
             Mark::Service => "services",
             Mark::Lost => "lost requests",
             Mark::Ignored => "ignored requests",
+            Mark::Discarded => "discarded requests",
+            Mark::Delayed => "delayed requests",
+            Mark::IrtCall => "SFC 39–42 calls",
             Mark::ModuleEvent => "module events",
             Mark::DataCycle => "data cycles",
             Mark::OsTime => "stretches of operating-system time",

@@ -120,7 +120,11 @@ pub fn render(scene: &Scene) -> String {
     let io = scene.has(Mark::Input) || scene.has(Mark::Output);
     let io_top = system_top + STRIP + GAP;
     let axis_top = if io { io_top + STRIP + GAP } else { io_top };
-    let height = axis_top + 52.0;
+    // The marks of SFC 39–42 get a legend line of their own, only when the run has them.
+    let interrupt_sfcs = [Mark::Discarded, Mark::Delayed, Mark::IrtCall]
+        .into_iter()
+        .any(|mark| scene.has(mark));
+    let height = axis_top + 52.0 + if interrupt_sfcs { 14.0 } else { 0.0 };
     let width = LEFT + PLOT_WIDTH as f64 + RIGHT;
     let mut svg = String::new();
     let _ = write!(
@@ -128,6 +132,10 @@ pub fn render(scene: &Scene) -> String {
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="DejaVu Sans, Arial, sans-serif" font-size="10">"#
     );
     svg.push_str(r##"<rect class="background" width="100%" height="100%" fill="#ffffff"/>"##);
+    // The hatching of a delayed request's wait.
+    svg.push_str(
+        r##"<defs><pattern id="hatch" width="6" height="6" patternUnits="userSpaceOnUse" patternTransform="rotate(45)"><rect width="6" height="6" fill="#fff4d6"/><line x1="0" y1="0" x2="0" y2="6" stroke="#e8a33d" stroke-width="2.5"/></pattern></defs>"##,
+    );
     let _ = write!(
         svg,
         r#"<text class="caption" x="{LEFT}" y="16" font-size="13" fill="{INK}">{}</text>"#,
@@ -147,6 +155,9 @@ pub fn render(scene: &Scene) -> String {
     draw_axis(&mut svg, scene, axis_top);
     draw_stops(&mut svg, scene, axis_top);
     draw_legend(&mut svg, axis_top + 40.0);
+    if interrupt_sfcs {
+        draw_sfc_legend(&mut svg, axis_top + 54.0);
+    }
     svg.push_str("</svg>\n");
     svg
 }
@@ -216,6 +227,17 @@ fn draw_lane(svg: &mut String, scene: &Scene, lane: &Lane) {
             escape(&title(Mark::Tick, item))
         );
     }
+    for (_, item) in scene.items(Mark::Delayed, lane.ob) {
+        let x = scene.x(item.start);
+        let width = (scene.x(item.end) - x).max(0.8);
+        let _ = write!(
+            svg,
+            r##"<rect class="delayed" data-count="{}" x="{x:.1}" y="{:.1}" width="{width:.1}" height="6" fill="url(#hatch)" stroke="#e8a33d" stroke-width="0.6"><title>{}</title></rect>"##,
+            item.count,
+            middle - 3.0,
+            escape(&title(Mark::Delayed, item))
+        );
+    }
     for (_, item) in scene.items(Mark::Service, lane.ob) {
         draw_service(svg, scene, item, middle);
     }
@@ -228,7 +250,26 @@ fn draw_lane(svg: &mut String, scene: &Scene, lane: &Lane) {
             escape(&title(Mark::Request, item))
         );
     }
-    for (mark, colour) in [(Mark::Lost, "#d62728"), (Mark::Ignored, "#7f7f7f")] {
+    for (_, item) in scene.items(Mark::IrtCall, lane.ob) {
+        let x = scene.x(item.start);
+        let _ = write!(
+            svg,
+            r##"<g class="irt-call" data-count="{}"><title>{}</title><path d="M{x:.1} {:.1}L{:.1} {:.1}L{x:.1} {:.1}L{:.1} {:.1}Z" fill="#e8a33d" stroke="{INK}" stroke-width="0.6"/></g>"##,
+            item.count,
+            escape(&title(Mark::IrtCall, item)),
+            bar_top - 3.0,
+            x + 4.0,
+            bar_top + 1.0,
+            bar_top + 5.0,
+            x - 4.0,
+            bar_top + 1.0,
+        );
+    }
+    for (mark, colour) in [
+        (Mark::Lost, "#d62728"),
+        (Mark::Ignored, "#7f7f7f"),
+        (Mark::Discarded, "#e8a33d"),
+    ] {
         for (_, item) in scene.items(mark, lane.ob) {
             cross(svg, scene, mark, item, middle, colour);
         }
@@ -301,6 +342,7 @@ fn cross(svg: &mut String, scene: &Scene, mark: Mark, item: &Item, y: f64, colou
     );
     let word = match mark {
         Mark::Lost => "lost",
+        Mark::Discarded => "discarded",
         _ => "ignored",
     };
     let _ = write!(
@@ -448,6 +490,27 @@ fn draw_legend(svg: &mut String, y: f64) {
         LEFT + 430.0,
         LEFT + 480.0,
         LEFT + 560.0,
+    );
+}
+
+/// The legend of the SFC 39–42 marks.
+fn draw_sfc_legend(svg: &mut String, y: f64) {
+    let _ = write!(
+        svg,
+        r##"<g class="legend sfc-legend" fill="#555"><path d="M{:.1} {:.1}L{:.1} {:.1}L{:.1} {:.1}L{:.1} {:.1}Z" fill="#e8a33d" stroke="{INK}" stroke-width="0.6"/><text x="{:.1}" y="{y:.1}">SFC 39–42 call</text><rect x="{:.1}" y="{:.1}" width="24" height="6" fill="url(#hatch)" stroke="#e8a33d" stroke-width="0.6"/><text x="{:.1}" y="{y:.1}">delayed by SFC 41 DIS_AIRT</text><text x="{:.1}" y="{y:.1}" fill="#e8a33d">✕ discarded: disabled by SFC 39 DIS_IRT</text></g>"##,
+        LEFT + 4.0,
+        y - 8.0,
+        LEFT + 8.0,
+        y - 4.0,
+        LEFT + 4.0,
+        y,
+        LEFT,
+        y - 4.0,
+        LEFT + 12.0,
+        LEFT + 110.0,
+        y - 7.0,
+        LEFT + 138.0,
+        LEFT + 300.0,
     );
 }
 

@@ -127,6 +127,10 @@ impl Activity {
             | Event::IrqRequest { .. }
             | Event::IrqLost { .. }
             | Event::IrqIgnored { .. }
+            | Event::IrqDiscarded { .. }
+            | Event::IrqDelayed { .. }
+            | Event::DelayEnd { .. }
+            | Event::IrtCall { .. }
             | Event::ModuleEvent { .. }
             | Event::Watch { .. }
             | Event::Input { .. }

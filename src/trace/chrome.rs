@@ -258,6 +258,13 @@ impl Chrome {
                 self.flows.remove(id);
                 self.on_level(*ob, "request ignored", t_ns, event)
             }
+            Event::IrqDiscarded { id, ob, .. } => {
+                self.flows.remove(id);
+                self.on_level(*ob, "request discarded", t_ns, event)
+            }
+            Event::IrqDelayed { ob, .. } => self.on_level(*ob, "request delayed", t_ns, event),
+            Event::DelayEnd { ob, .. } => self.on_level(*ob, "delays end", t_ns, event),
+            Event::IrtCall { ob, name, .. } => self.on_level(*ob, name, t_ns, event),
             Event::ModuleEvent { ob, .. } => self.on_level(*ob, "module event", t_ns, event),
             Event::Mode { from, to, .. } => self.global(format!("mode {from} → {to}"), t_ns, event),
             Event::Stop { cause, .. } => self.global(format!("STOP {cause}"), t_ns, event),

@@ -6,7 +6,8 @@ use super::Event;
 /// A kind of event, as `--trace-filter` names it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kind {
-    /// Requests, services, ends of interrupt OBs, lost and ignored requests, module events.
+    /// Requests, services, ends of interrupt OBs, lost, ignored, discarded and delayed
+    /// requests, SFC 39–42 calls, module events.
     Interrupts,
     /// Block calls and block ends.
     Blocks,
@@ -41,6 +42,10 @@ pub fn kind(event: &Event) -> Option<Kind> {
         | Event::IrqEnd { .. }
         | Event::IrqLost { .. }
         | Event::IrqIgnored { .. }
+        | Event::IrqDiscarded { .. }
+        | Event::IrqDelayed { .. }
+        | Event::DelayEnd { .. }
+        | Event::IrtCall { .. }
         | Event::ModuleEvent { .. } => Some(Kind::Interrupts),
         Event::Watch { .. } | Event::Input { .. } | Event::Output { .. } => Some(Kind::Io),
     }

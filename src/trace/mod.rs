@@ -104,6 +104,39 @@ pub enum Event {
         ob: u8,
         reason: String,
     },
+    /// A request SFC 39 DIS_IRT had disabled: discarded, it never runs.
+    IrqDiscarded {
+        id: u64,
+        ob: u8,
+        reason: &'static str,
+    },
+    /// A request SFC 41 DIS_AIRT delays: it runs when the delays end (its `irq_service` says
+    /// `waited: "delayed"`).
+    IrqDelayed {
+        id: u64,
+        ob: u8,
+        /// The DIS_AIRT calls in force.
+        delays: u16,
+    },
+    /// The delays of SFC 41 DIS_AIRT ended: by SFC 42 EN_AIRT, or with the OB that called it.
+    DelayEnd {
+        /// The OB whose delays ended.
+        ob: u8,
+        /// `EN_AIRT` or `OB end`.
+        by: &'static str,
+    },
+    /// A call of SFC 39 DIS_IRT, SFC 40 EN_IRT, SFC 41 DIS_AIRT or SFC 42 EN_AIRT.
+    IrtCall {
+        sfc: u16,
+        name: &'static str,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        mode: Option<u8>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        ob_nr: Option<i16>,
+        ret_val: i16,
+        /// The OB whose level called it.
+        ob: u8,
+    },
     DataCycle {
         kind: &'static str,
         /// `input` (read into an image) or `output` (written to the modules).

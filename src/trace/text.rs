@@ -152,6 +152,7 @@ pub fn line(event: &Event) -> String {
                 Some("priority") => " (a higher or equal priority ran first)",
                 Some("disabled") => " (IA held it back)",
                 Some("startup") => " (it came before RUN)",
+                Some("delayed") => " (SFC 41 DIS_AIRT delayed it)",
                 _ => "",
             };
             format!(
@@ -165,6 +166,36 @@ pub fn line(event: &Event) -> String {
         Event::IrqLost { id, ob, reason } => format!("✗ OB {ob} request #{id} lost: {reason}"),
         Event::IrqIgnored { id, ob, reason } => {
             format!("✗ OB {ob} request #{id} ignored: {reason}")
+        }
+        Event::IrqDiscarded { id, ob, reason } => {
+            format!("✗ OB {ob} request #{id} discarded: {reason}")
+        }
+        Event::IrqDelayed { id, ob, delays } => format!(
+            "⏸ OB {ob} request #{id} delayed by SFC 41 DIS_AIRT ({})",
+            plural_delays(*delays)
+        ),
+        Event::DelayEnd { ob, by } => match *by {
+            "EN_AIRT" => format!("⏵ OB {ob}'s delays end: SFC 42 EN_AIRT"),
+            _ => format!("⏵ OB {ob}'s delays end with the OB"),
+        },
+        Event::IrtCall {
+            sfc,
+            name,
+            mode,
+            ob_nr,
+            ret_val,
+            ob,
+        } => {
+            let arguments = match (mode, ob_nr) {
+                (Some(mode), Some(ob_nr)) => format!(" MODE {mode}, OB_NR {ob_nr},"),
+                _ => String::new(),
+            };
+            let result = if *ret_val < 0 {
+                format!("16#{:04X}", *ret_val as u16)
+            } else {
+                ret_val.to_string()
+            };
+            format!("OB {ob} calls SFC {sfc} {name}:{arguments} RET_VAL {result}")
         }
         Event::DataCycle {
             kind,
@@ -204,6 +235,15 @@ pub fn line(event: &Event) -> String {
                 .collect();
             format!("watch: {}", values.join(", "))
         }
+    }
+}
+
+/// `1 delay in force`, `2 delays in force`.
+fn plural_delays(delays: u16) -> String {
+    if delays == 1 {
+        "1 delay in force".to_string()
+    } else {
+        format!("{delays} delays in force")
     }
 }
 

@@ -101,6 +101,11 @@ impl Cpu {
                     self.at_point(point)?;
                 }
                 Exit::LevelEnd if self.levels.len() == depth => {
+                    // OB 1 or the startup OB has ended, and with it its DIS_AIRT delays.
+                    if depth == 0 {
+                        let ob = self.active_ob().0;
+                        self.end_delays(ob);
+                    }
                     // OB 1's own block end is a block change too: pending interrupts run
                     // before the operating system ends the cycle.
                     if depth == 0 && self.mode == Mode::Run {

@@ -104,6 +104,9 @@ pub struct LevelState {
     /// A block call with this many frames on the block stack exceeds the nesting limit.
     pub frame_limit: usize,
     pub interrupts_enabled: bool,
+    /// STEP 7: the SFC 41 DIS_AIRT calls of this level's OB still in force; they end with the
+    /// OB (System Software for S7-300/400 System and Standard Functions, 12.4).
+    pub airt_delays: u16,
     /// S5-95F: this level is OB 13, so `L PY`/`T PY` reach the interrupt process images.
     pub interrupt_images: bool,
     /// STEP 7: the address registers, the DB and DI registers and where the running block's
@@ -347,6 +350,7 @@ impl Cpu {
                 level_base: 0,
                 frame_limit: usize::from(profile.nesting_limit).saturating_sub(1),
                 interrupts_enabled: true,
+                airt_delays: 0,
                 interrupt_images: false,
                 ar1: 0,
                 ar2: 0,
@@ -446,6 +450,7 @@ impl Cpu {
         self.level.br = false;
         self.level.brackets = Brackets::default();
         self.level.interrupt_images = false;
+        self.level.airt_delays = 0;
         self.level.db = 0;
         self.level.di = 0;
         self.level.mcr = s7::mcr::Mcr::default();

@@ -42,6 +42,9 @@ pub enum Cause {
         active_ob: u8,
         active_priority: u8,
     },
+    /// OB 80: OB `ob` of priority `priority` was requested again while its last request was
+    /// still pending or it still ran.
+    TimeError { ob: u8, priority: u8 },
 }
 
 /// Event class 1, "start events of standard OBs", identifier 1 ("System Software for
@@ -51,10 +54,15 @@ const STANDARD_OB: u8 = 0x11;
 const STARTUP_OB: u8 = 0x13;
 /// Event class 3 ("asynchronous error"), identifier 9: an incoming event (OB 82).
 const INCOMING_ERROR: u8 = 0x39;
-/// Event class 3, identifier 5: OB 85's start events for an OB not loaded.
+/// Event class 3, identifier 5: OB 85's start events for an OB not loaded, and OB 80's.
 const OB85_EVENT: u8 = 0x35;
 /// OB 85's error code: "a start event for an OB that is not loaded on the CPU".
 const OB_NOT_LOADED: u8 = 0xA1;
+/// OB 80's error code 16#02: "The called OB is still being executed" ("System Software for
+/// S7-300/400 System and Standard Functions", 1.16).
+const OB_STILL_RUNNING: u8 = 0x02;
+/// The first cyclic interrupt OB; OB 30 + n has event number 16#31 + n (OB 35: 16#36).
+const FIRST_CYCLIC_OB: u8 = 30;
 /// OB 82's error code.
 const DIAGNOSTIC_INTERRUPT: u8 = 0x42;
 /// OB40_IO_FLAG, OB82_IO_FLAG: the module is an input module (awl's modules are).
@@ -197,6 +205,48 @@ impl Cpu {
                     missing[3],
                 ]
             }
+            // OB80_ERROR_INFO (bytes 6–7) is a temporary variable of the OB that could not
+            // start, which the manual leaves unnamed for a cyclic OB: awl writes 0.
+            (80, cause) => {
+                let missed = match cause {
+                    Cause::TimeError { ob, priority } => {
+                        [STANDARD_OB, cyclic_event(ob), priority, ob]
+                    }
+                    _ => [0; 4],
+                };
+                [
+                    OB85_EVENT,
+                    OB_STILL_RUNNING,
+                    priority,
+                    ob,
+                    0,
+                    0,
+                    0,
+                    0,
+                    missed[0],
+                    missed[1],
+                    missed[2],
+                    missed[3],
+                ]
+            }
+            // OB35_PHASE_OFFSET (bytes 6–7) 0, OB35_EXC_FREQ (bytes 10–11) the interval in ms.
+            (30..=38, _) => {
+                let ms = ms_int(self.engine.config.ob35_interval_ns).to_be_bytes();
+                [
+                    STANDARD_OB,
+                    cyclic_event(ob),
+                    priority,
+                    ob,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    ms[0],
+                    ms[1],
+                ]
+            }
             (40..=47, _) => {
                 let (address, points) = match request.hardware {
                     Some(source) => (
@@ -262,6 +312,11 @@ fn hw_event(ob: u8) -> u8 {
     0x41u8.wrapping_add(ob.wrapping_sub(FIRST_HW_OB))
 }
 
+/// A cyclic interrupt OB's event number.
+fn cyclic_event(ob: u8) -> u8 {
+    0x31u8.wrapping_add(ob.wrapping_sub(FIRST_CYCLIC_OB))
+}
+
 /// Nanoseconds as an INT of milliseconds, at most 32767.
 fn ms_int(ns: u64) -> i16 {
     i16::try_from(ns / 1_000_000).unwrap_or(i16::MAX)
@@ -283,6 +338,11 @@ mod tests {
     fn hardware_interrupt_ob_events_count_from_16_41() {
         assert_eq!(hw_event(40), 0x41);
         assert_eq!(hw_event(41), 0x42);
+    }
+
+    #[test]
+    fn cyclic_interrupt_obs_count_from_16_31() {
+        assert_eq!(cyclic_event(35), 0x36);
     }
 
     #[test]

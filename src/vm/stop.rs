@@ -26,6 +26,8 @@ pub enum StopCause {
     Weck,
     /// A hardware interrupt for a module without OB, and no OB 85.
     Ob85,
+    /// A time error (OB 35 behind), and no OB 80.
+    Ob80,
     /// An awlsim test assertion (`__ASSERT==` …) did not hold.
     Assert,
     /// No STOP: a probe (program status, the debugger) ended the run here.
@@ -35,7 +37,7 @@ pub enum StopCause {
 impl StopCause {
     /// Every code [`StopCause::code`] gives.
     pub const CODES: &'static [&'static str] = &[
-        "ZYK", "STUEB", "LZF", "BCF", "STP", "WECK", "OB85", "ASSERT",
+        "ZYK", "STUEB", "LZF", "BCF", "STP", "WECK", "OB85", "OB80", "ASSERT",
     ];
 
     /// The cause as the PG shows it (and as scenario files expect it).
@@ -48,6 +50,7 @@ impl StopCause {
             StopCause::Stp => "STP",
             StopCause::Weck => "WECK",
             StopCause::Ob85 => "OB85",
+            StopCause::Ob80 => "OB80",
             StopCause::Assert => "ASSERT",
             StopCause::Halt => "HALT",
         }
@@ -196,6 +199,21 @@ pub enum StopError {
         at: Span,
         stack: String,
     },
+    #[error(
+        "STOP OB80: OB {ob} was requested again before its last request had run, and OB 80 is not programmed"
+    )]
+    #[diagnostic(
+        code(awl::stop::ob80),
+        help(
+            "{stack}\nthe time error (System Software for S7-300/400 System and Standard Functions, 1.16 Time Error Organization Block (OB80)): shorten OB {ob} or what delays it, lengthen `[ob35] interval`, or program OB 80 to handle the error"
+        )
+    )]
+    TimeError {
+        ob: u8,
+        #[label("running here when OB {ob} was due again")]
+        at: Span,
+        stack: String,
+    },
 }
 
 impl StopError {
@@ -210,7 +228,8 @@ impl StopError {
             | StopError::AssertionFailed { at, .. }
             | StopError::WakeUp { at, .. }
             | StopError::IntervalNotAboveDelay { at, .. }
-            | StopError::MissingOb85 { at, .. } => *at,
+            | StopError::MissingOb85 { at, .. }
+            | StopError::TimeError { at, .. } => *at,
         }
     }
 }

@@ -851,6 +851,9 @@ impl super::Compiler<'_> {
             number,
         } = reference
         {
+            if super::interrupt_sfcs::is_interrupt_sfc(*number) {
+                return Err(super::interrupt_sfcs::missing_all(*number, at));
+            }
             let call = self.sfc(*number, Vec::new());
             self.emit(out, Op::S7(S7Code::Sfc { call }), span);
             return Ok(());
@@ -885,6 +888,35 @@ impl super::Compiler<'_> {
         (self.tables.sfc_calls.len() - 1) as u16
     }
 
+    /// `CALL SFC 39 (…)` to `CALL SFC 42 (…)`: the parameters checked and laid out in the
+    /// order the VM reads them.
+    fn interrupt_sfc(
+        &mut self,
+        out: &mut Emitter,
+        number: u16,
+        call: &CallSpec,
+        at: Span,
+        span: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(), CheckError> {
+        let mut errors = Vec::new();
+        let ordered =
+            super::interrupt_sfcs::ordered(number, &call.params, at, &mut errors, |param| {
+                self.place(&param.actual, param.actual_span, scope)
+            });
+        self.errors.extend(errors);
+        let Some(ordered) = ordered else {
+            return Ok(());
+        };
+        let params = ordered
+            .into_iter()
+            .map(|(name, place)| (name, self.tables.place(place)))
+            .collect();
+        let index = self.sfc(number, params);
+        self.emit(out, Op::S7(S7Code::Sfc { call: index }), span);
+        Ok(())
+    }
+
     /// `CALL FC n (…)`, `CALL FB n, DB m (…)`, `CALL SFC n (…)`.
     fn call(
         &mut self,
@@ -909,6 +941,16 @@ impl super::Compiler<'_> {
             number,
         } = call.block
         {
+            let sfc = matches!(
+                call.block,
+                S7BlockRef::Number {
+                    kind: S7BlockKind::Sfc,
+                    ..
+                }
+            );
+            if sfc && super::interrupt_sfcs::is_interrupt_sfc(number) {
+                return self.interrupt_sfc(out, number, call, at, span, scope);
+            }
             let mut params = Vec::new();
             for param in &call.params {
                 let place = self.place(&param.actual, param.actual_span, scope)?;
@@ -947,7 +989,8 @@ impl super::Compiler<'_> {
                             "SFC"
                         }
                     ),
-                    why: "of the system blocks, awl runs SFC 46 (STP) so far".into(),
+                    why: "of the system blocks, awl runs SFC 39 to SFC 42 and SFC 46 (STP) so far"
+                        .into(),
                     at,
                 });
             }

@@ -3,6 +3,7 @@
 //! out, the data blocks' initial bytes made, then each logic block's statements lowered.
 
 mod data;
+mod interrupt_sfcs;
 mod layout;
 mod lower;
 mod operand;

@@ -17,6 +17,7 @@
 //! watchdog, a look of the run's pulse), or at 0 while a pending request outranks the running
 //! level. With nothing pending the loop pays one comparison per block change.
 
+pub mod control;
 pub mod s5;
 pub mod s5_95f;
 pub mod sinumerik840c;
@@ -113,8 +114,14 @@ pub struct EngineConfig {
     pub hw_modules: Vec<(u16, u8)>,
     /// SPEED7: the logical base addresses of the modules given one.
     pub hw_addresses: Vec<(u16, u16)>,
+    /// SPEED7: the cyclic interrupt OB 35's interval (`[ob35]`).
+    pub ob35_interval_ns: u64,
     pub watchdog_ns: u64,
 }
+
+/// OB 35's interval when the scenario gives none: 100 ms, the default of the S7-300 class and
+/// the SPEED7 (VIPA SPEED7 operation list, OB 28, 29, 32, 33, 34, 35 - CYC_INTx).
+pub const OB35_DEFAULT_NS: u64 = 100_000_000;
 
 impl EngineConfig {
     /// A module's logical base address, for the start information of its OBs: the one given,
@@ -135,6 +142,7 @@ impl Default for EngineConfig {
             ob13: None,
             hw_modules: Vec::new(),
             hw_addresses: Vec::new(),
+            ob35_interval_ns: OB35_DEFAULT_NS,
             watchdog_ns: 150_000_000,
         }
     }
@@ -151,16 +159,24 @@ pub enum Wait {
     Disabled,
     /// It came before RUN.
     NotInRun,
+    /// SFC 41 DIS_AIRT delayed it.
+    Delayed,
 }
 
 impl Wait {
-    pub const ALL: [Wait; 3] = [Wait::Priority, Wait::Disabled, Wait::NotInRun];
+    pub const ALL: [Wait; 4] = [
+        Wait::Priority,
+        Wait::Disabled,
+        Wait::NotInRun,
+        Wait::Delayed,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             Wait::Priority => "priority",
             Wait::Disabled => "disabled",
             Wait::NotInRun => "startup",
+            Wait::Delayed => "delayed",
         }
     }
 
@@ -170,6 +186,7 @@ impl Wait {
             Wait::Priority => "a level of the same or a higher priority ran first",
             Wait::Disabled => "IA held interrupts back",
             Wait::NotInRun => "it came before RUN",
+            Wait::Delayed => "SFC 41 DIS_AIRT delayed it",
         }
     }
 }
@@ -181,11 +198,13 @@ pub struct ObStats {
     pub serviced: u64,
     pub lost: u64,
     pub ignored: u64,
+    /// Requests SFC 39 DIS_IRT had disabled.
+    pub discarded: u64,
     pub latency_min: u64,
     pub latency_max: u64,
     pub latency_sum: u64,
     /// Serviced requests that waited for a reason of [`Wait`], by its order in `Wait::ALL`.
-    pub waited: [u64; 3],
+    pub waited: [u64; 4],
     /// The longest time from the OB's start to its end, interruptions included.
     pub run_max: u64,
 }
@@ -329,6 +348,8 @@ pub struct Engine {
     /// When RUN began (SPEED7: hardware interrupts before it are not produced).
     run_started_at: Option<u64>,
     pub rules: FamilyRules,
+    /// The OBs SFC 39 DIS_IRT has disabled.
+    pub disabled: control::Disabled,
 }
 
 impl Engine {
@@ -347,6 +368,7 @@ impl Engine {
             stats: Box::new([ObStats::default(); 256]),
             next_id: 0,
             run_started_at: None,
+            disabled: control::Disabled::default(),
             config,
         }
     }
@@ -469,6 +491,7 @@ impl Cpu {
         let running = self.running_priority();
         let serviceable = self.mode == Mode::Run
             && self.level.interrupts_enabled
+            && self.level.airt_delays == 0
             && self
                 .engine
                 .pending
@@ -519,7 +542,9 @@ impl Cpu {
         };
         let mut entered = false;
         if is_point && self.mode == Mode::Run {
-            if self.level.interrupts_enabled {
+            if self.level.airt_delays > 0 {
+                self.mark_waiting(Wait::Delayed);
+            } else if self.level.interrupts_enabled {
                 entered = self.service(point)?;
             } else {
                 self.mark_waiting(Wait::Disabled);
@@ -670,6 +695,8 @@ impl Cpu {
             Some(Wait::Priority)
         } else if !self.level.interrupts_enabled {
             Some(Wait::Disabled)
+        } else if self.level.airt_delays > 0 {
+            Some(Wait::Delayed)
         } else {
             None
         };
@@ -706,6 +733,10 @@ impl Cpu {
             ..self.announce(ob, at, hardware)
         };
         let id = request.id;
+        if self.engine.disabled.has(ob) {
+            self.discard(at, request);
+            return None;
+        }
         let rule = self.engine.rules.rules().ignores(ob);
         if rule.is_some() || self.program.ob(ob).is_none() {
             self.ignore(at, request, rule);
@@ -719,6 +750,10 @@ impl Cpu {
                 reason: format!("OB {ob} already has a pending request"),
             });
             return None;
+        }
+        if request.waited == Some(Wait::Delayed) {
+            let delays = self.level.airt_delays;
+            self.emit(at, |_| Event::IrqDelayed { id, ob, delays });
         }
         self.engine.pending.push(request);
         Some(id)
@@ -843,6 +878,7 @@ impl Cpu {
             return Ok(());
         };
         let request = active.request;
+        self.end_delays(request.ob);
         self.emit(self.clock, |_| Event::IrqEnd {
             id: request.id,
             ob: request.ob,

@@ -17,6 +17,18 @@
 //!   transition to RUN are lost";
 //! - no OB for the module: "OB 85 is called ... The hardware interrupt is acknowledged. If OB 85
 //!   has not been programmed, the CPU goes to STOP".
+//!
+//! The cyclic interrupt OB 35 (VIPA SPEED7 operation list, "OB 28, 29, 32, 33, 34, 35 -
+//! CYC_INTx"): priority 12, every `[ob35]` interval (100 ms by default) counted from the
+//! transition to RUN, when the program has OB 35 ("A cyclic interrupt is activated by
+//! programming the corresponding OB"). A request while the last one is still pending or OB 35
+//! still runs is the time error: the operating system calls OB 80 ("System Software for
+//! S7-300/400 System and Standard Functions", 1.16 Time Error Organization Block (OB80): "If,
+//! for example, a start event for a cyclic interrupt OB occurs while the same OB is still being
+//! executed following a previous call, the operating system calls OB80. If OB80 has not been
+//! programmed, the CPU changes to the STOP mode"; the SPEED7 operation list, "OB 80 -
+//! CYCL_FLT", says the same). The new request runs later ("The cyclic interrupt that caused the
+//! error is executed later") unless one is still pending: an OB holds one pending request.
 
 use crate::trace::Event;
 
@@ -46,7 +58,16 @@ pub struct Speed7 {
     /// Events of the STARTUP, judged at the transition to RUN, with where the CPU was when
     /// each came (when a trace is written).
     startup_events: Vec<(u64, u8, HardwareSource, Option<Place>)>,
+    /// OB 35's interval and its next request (`u64::MAX`: none).
+    ob35_every_ns: u64,
+    ob35_next: u64,
 }
+
+/// The cyclic interrupt OB and the time error OB.
+const CYCLIC_OB: u8 = 35;
+const TIME_ERROR_OB: u8 = 80;
+const OB35_BEHIND: &str = "its last request has not run yet: a time error (System Software \
+     for S7-300/400 System and Standard Functions, 1.16)";
 
 const SAME_CHANNEL: &str = "same channel between identification and acknowledgement \
      (VIPA SPEED7 operation list, OB 40/OB 41)";
@@ -74,7 +95,37 @@ impl Speed7 {
             held: Vec::with_capacity(events),
             released: Vec::with_capacity(events),
             startup_events: Vec::with_capacity(events),
+            ob35_every_ns: config.ob35_interval_ns.max(1),
+            ob35_next: u64::MAX,
         }
+    }
+
+    /// OB 35 is due: requested, or the time error when it is behind.
+    fn cyclic_interrupt(&mut self, cpu: &mut Cpu) -> Result<(), Stop> {
+        let at = self.ob35_next;
+        self.ob35_next = at.saturating_add(self.ob35_every_ns);
+        let running = cpu.engine.active.iter().any(|a| a.request.ob == CYCLIC_OB);
+        let pending = cpu.engine.pending.iter().any(|r| r.ob == CYCLIC_OB);
+        if cpu.engine.disabled.has(CYCLIC_OB) || !(running || pending) {
+            cpu.request(CYCLIC_OB, at, None);
+            return Ok(());
+        }
+        if pending {
+            let request = cpu.announce(CYCLIC_OB, at, None);
+            cpu.lose(at, request, OB35_BEHIND);
+        } else {
+            cpu.request(CYCLIC_OB, at, None);
+        }
+        let disabled = cpu.engine.disabled.has(TIME_ERROR_OB);
+        if cpu.program.ob(TIME_ERROR_OB).is_none() && !disabled {
+            return Err(cpu.stop_at_last_op(StopCause::Ob80, StopDetail::Ob(CYCLIC_OB)));
+        }
+        let cause = Cause::TimeError {
+            ob: CYCLIC_OB,
+            priority: cpu.priority_of(CYCLIC_OB),
+        };
+        cpu.request_for(TIME_ERROR_OB, at, None, cause);
+        Ok(())
     }
 
     fn busy_channel(&self, module: u16) -> Option<u16> {
@@ -245,7 +296,18 @@ impl Rules for Speed7 {
         self.identify(cpu, at, ob, source)
     }
 
+    fn next_due(&self) -> u64 {
+        self.ob35_next
+    }
+
+    fn poll(&mut self, cpu: &mut Cpu) -> Result<(), Stop> {
+        self.cyclic_interrupt(cpu)
+    }
+
     fn start_run(&mut self, cpu: &mut Cpu) -> Result<(), Stop> {
+        if cpu.program.ob(CYCLIC_OB).is_some() {
+            self.ob35_next = cpu.clock.saturating_add(self.ob35_every_ns);
+        }
         let mut events = std::mem::take(&mut self.startup_events);
         for (at, ob, source, place) in events.drain(..) {
             self.before_run(cpu, at, ob, source, place);

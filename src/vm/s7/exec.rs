@@ -4,6 +4,7 @@ use crate::compiler::bytecode::{Op, TimerKind};
 use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
 use crate::step7::bytecode::{AWLSIM_SFC_REBOOT, McrCode, MemOp, S7Code, Target};
 use crate::vm::Cpu;
+use crate::vm::interrupts::control::{DIS_IRT, EN_AIRT};
 use crate::vm::stop::{StopCause, StopDetail};
 
 use super::bit_logic;
@@ -432,6 +433,7 @@ impl Cpu {
         let number = self.program.s7.sfc_calls[usize::from(call)].number;
         match number {
             46 => Err((StopCause::Stp, StopDetail::Text("CALL SFC 46 (STP)".into()))),
+            DIS_IRT..=EN_AIRT => self.interrupt_sfc(number, call),
             AWLSIM_SFC_REBOOT => Err(fault(
                 "awlsim's SFC -2 (__REBOOT) is not simulated: awl writes the OBs' start \
                  information always (`__FEATURE 1` is 1), there is nothing to reboot for"

@@ -1,0 +1,140 @@
+//! The parameters of SFC 39 DIS_IRT, SFC 40 EN_IRT, SFC 41 DIS_AIRT and SFC 42 EN_AIRT
+//! ("System Software for S7-300/400 System and Standard Functions", 12.2 to 12.5): every one
+//! given once, each with an operand of its type; laid out in the order the VM reads them
+//! ([`crate::vm::interrupts::control::parameters`]).
+
+use crate::compiler::CheckError;
+use crate::source::Span;
+use crate::step7::ast::{AccessWidth, CallParam, S7Operand};
+use crate::step7::bytecode::{Place, Target};
+use crate::vm::interrupts::control;
+
+/// Whether `number` is one of these SFCs.
+pub fn is_interrupt_sfc(number: u16) -> bool {
+    (control::DIS_IRT..=control::EN_AIRT).contains(&number)
+}
+
+/// The call's name in diagnostics: `SFC 41 (DIS_AIRT)`.
+pub fn call_name(number: u16) -> String {
+    format!("SFC {number} ({})", control::name(number))
+}
+
+/// The declared parameters, for a help text.
+fn declared(number: u16) -> String {
+    control::parameters(number)
+        .iter()
+        .map(|(name, _)| *name)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A call without its parameters (`UC SFC 41`, `CALL SFC 41`).
+pub fn missing_all(number: u16, at: Span) -> CheckError {
+    CheckError::ParamCount {
+        fb: call_name(number),
+        expected: control::parameters(number).len(),
+        found: 0,
+        at,
+        help: Some(format!(
+            "write the call with its parameters: `CALL SFC {number} ({})`",
+            control::parameters(number)
+                .iter()
+                .map(|(name, _)| format!("{name} := …"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
+
+/// The call's parameters in the VM's order, each resolved by `place`; every error found is
+/// pushed to `errors`, and then there is no list.
+pub fn ordered(
+    number: u16,
+    params: &[CallParam],
+    at: Span,
+    errors: &mut Vec<CheckError>,
+    mut place: impl FnMut(&CallParam) -> Result<Place, CheckError>,
+) -> Option<Vec<(String, Place)>> {
+    let declared_params = control::parameters(number);
+    let fb = call_name(number);
+    let mut ok = true;
+    for (index, param) in params.iter().enumerate() {
+        let name = param.name.text.to_ascii_uppercase();
+        let known = declared_params
+            .iter()
+            .any(|(declared, _)| *declared == name);
+        let first = !params[..index]
+            .iter()
+            .any(|other| other.name.text.eq_ignore_ascii_case(&name));
+        if !known || !first {
+            errors.push(CheckError::UnknownParam {
+                name: param.name.text.clone(),
+                fb: fb.clone(),
+                at: param.name.span,
+                help: Some(if known {
+                    format!("`{name}` is given twice")
+                } else {
+                    format!("{fb} has {}", declared(number))
+                }),
+            });
+            ok = false;
+        }
+    }
+    let mut list = Vec::with_capacity(declared_params.len());
+    let mut missing = Vec::new();
+    for &(name, width) in declared_params {
+        let Some(param) = params
+            .iter()
+            .find(|param| param.name.text.eq_ignore_ascii_case(name))
+        else {
+            missing.push(name);
+            continue;
+        };
+        let resolved = match place(param) {
+            Ok(resolved) => resolved,
+            Err(error) => {
+                errors.push(error);
+                ok = false;
+                continue;
+            }
+        };
+        let output = name == "RET_VAL";
+        let fits = match (resolved.target, &param.actual) {
+            (Target::Constant(_), _) if output => false,
+            // A BYTE takes a constant up to 255; an INT any the parser accepted.
+            (Target::Constant(value), S7Operand::Constant(_)) => {
+                width == AccessWidth::Word || value <= u32::from(u8::MAX)
+            }
+            _ => resolved.width == width,
+        };
+        if !fits {
+            errors.push(CheckError::ParamMismatch {
+                name: name.to_string(),
+                fb: fb.clone(),
+                at: param.actual_span,
+                expected: match (name, output) {
+                    ("MODE", _) => "a BYTE (a constant such as B#16#1, or a byte: MB 10)".into(),
+                    (_, true) => "an INT to write to (a word: MW 10, #ret)".into(),
+                    _ => "an INT (a constant such as 40, or a word: MW 10)".into(),
+                },
+            });
+            ok = false;
+            continue;
+        }
+        list.push((name.to_string(), resolved));
+    }
+    if !missing.is_empty() {
+        errors.push(CheckError::ParamCount {
+            fb: fb.clone(),
+            expected: declared_params.len(),
+            found: declared_params.len() - missing.len(),
+            at,
+            help: Some(format!(
+                "an SFC needs every parameter; missing: {}",
+                missing.join(", ")
+            )),
+        });
+        ok = false;
+    }
+    ok.then_some(list)
+}
