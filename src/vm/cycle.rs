@@ -247,7 +247,7 @@ impl Cpu {
         self.poll()?;
         self.process_image_cycle(true);
         if let Some(at) = self.clock_memory {
-            self.image[usize::from(at)] = clock_memory_byte(self.clock);
+            self.image[usize::from(at)] = clock_memory_byte(self.clock.saturating_sub(self.clock_origin_ns));
         }
         self.cycle_point(StretchKind::ProcessImageRead)?;
         if let Some(block) = self.program.ob(1) {
@@ -354,6 +354,25 @@ impl Cpu {
             instructions: self.instructions,
             wall: started.elapsed(),
             halted,
+        }
+    }
+}
+
+impl Cpu {
+    /// SFC 64 (TIME_TCK)'s value: the milliseconds of simulated time since the CPU started
+    /// (or awlsim's `__CLKRST` restarted the clocks), as a TIME that wraps from 2^31 − 1 to 0
+    /// ("System Software for S7-300/400 System and Standard Functions", SFC 64 TIME_TCK).
+    pub fn time_tick(&self) -> u32 {
+        let ms = self.clock.saturating_sub(self.clock_origin_ns) / 1_000_000;
+        (ms & 0x7FFF_FFFF) as u32
+    }
+
+    /// awlsim's `SFC -4` (`__CLKRST`): the clock memory and SFC 64 count from now, the clock
+    /// memory byte 0 again.
+    pub fn restart_clocks(&mut self) {
+        self.clock_origin_ns = self.clock;
+        if let Some(at) = self.clock_memory {
+            self.image[usize::from(at)] = clock_memory_byte(0);
         }
     }
 }
