@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::conformance::{self, Conf, Tested};
+use crate::conformance::{self, Conf, Project, Tested};
 
 use super::watch::{EXIT_HALTED, Watch};
 use super::{Console, EXIT_EXPECTATION, EXIT_OK};
@@ -33,15 +33,23 @@ pub struct ConformanceArgs {
 }
 
 /// Runs one test with the symbol tables `symbols`, the progress line and Ctrl-C.
-fn watched_test(path: &Path, conf: &Conf, symbols: &[PathBuf]) -> Tested {
+fn watched_test(
+    path: &Path,
+    conf: &Conf,
+    project: Option<&Project>,
+    symbols: &[PathBuf],
+) -> Tested {
     let mut watch = Watch::start();
-    let mut tested = conformance::run_test(path, conf, symbols, &mut |cpu| watch.go_on(cpu));
+    let mut tested =
+        conformance::run_test(path, conf, project, symbols, &mut |cpu| watch.go_on(cpu));
     tested.halted |= watch.finish();
     tested
 }
 
 pub fn conformance(args: &ConformanceArgs, console: &mut Console) -> u8 {
-    let mut run = |path: &Path, conf: &Conf| watched_test(path, conf, &args.symbols);
+    let mut run = |path: &Path, conf: &Conf, project: Option<&Project>| {
+        watched_test(path, conf, project, &args.symbols)
+    };
     let totals = conformance::run_suite(&args.files, &mut run, &mut |checked| {
         console.out(&checked.line());
         if !args.quiet {

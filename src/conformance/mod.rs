@@ -8,6 +8,7 @@
 
 pub mod collect;
 pub mod conf;
+pub mod project;
 pub mod run;
 
 use std::path::{Path, PathBuf};
@@ -18,6 +19,7 @@ use crate::vm::stop::StopCause;
 
 pub use collect::{Entry, collect};
 pub use conf::{Conf, parse_conf, read_conf};
+pub use project::{Project, parse_project, read_project};
 pub use run::run_test;
 
 /// awlsim's exit code when the simulator reported an error (`EXIT_ERR_SIM`).
@@ -150,7 +152,7 @@ impl Totals {
 /// stops early when a run was halted.
 pub fn run_suite(
     paths: &[PathBuf],
-    run: &mut dyn FnMut(&Path, &Conf) -> Tested,
+    run: &mut dyn FnMut(&Path, &Conf, Option<&Project>) -> Tested,
     each: &mut dyn FnMut(&Checked),
 ) -> Totals {
     let mut totals = Totals::default();
@@ -180,8 +182,12 @@ pub fn run_suite(
     totals
 }
 
-/// One test: its `.conf`, then the run unless the `.conf` rules it out; `None` when halted.
-fn check(path: &Path, run: &mut dyn FnMut(&Path, &Conf) -> Tested) -> Option<Checked> {
+/// One test: its `.conf`, its project file when it is one, then the run unless the `.conf`
+/// rules it out; `None` when halted.
+fn check(
+    path: &Path,
+    run: &mut dyn FnMut(&Path, &Conf, Option<&Project>) -> Tested,
+) -> Option<Checked> {
     let checked = |verdict, reports| Checked {
         path: path.to_path_buf(),
         verdict,
@@ -199,7 +205,17 @@ fn check(path: &Path, run: &mut dyn FnMut(&Path, &Conf) -> Tested) -> Option<Che
     if let Some(reason) = skip_reason(&conf) {
         return Some(checked(Verdict::Skip(reason), Vec::new()));
     }
-    let tested = run(path, &conf);
+    let project = match collect::is_project(path).then(|| read_project(path)) {
+        None => None,
+        Some(Ok(project)) => Some(project),
+        Some(Err(reports)) => {
+            return Some(checked(
+                Verdict::Fail("awl cannot run its project file as given".into()),
+                reports,
+            ));
+        }
+    };
+    let tested = run(path, &conf, project.as_ref());
     if tested.halted {
         return None;
     }
@@ -326,7 +342,7 @@ mod tests {
             path.display().to_string().replace('\\', "/")
         };
         let mut ran = Vec::new();
-        let mut run = |path: &Path, _: &Conf| {
+        let mut run = |path: &Path, _: &Conf, _: Option<&Project>| {
             ran.push(relative(path));
             let text = std::fs::read_to_string(path).unwrap_or_default();
             let ending = match text.trim() {
