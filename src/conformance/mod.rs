@@ -375,7 +375,7 @@ mod tests {
     }
 
     #[test]
-    fn a_directory_is_every_awl_file_below_it_with_awlsim_s_skips() {
+    fn a_directory_is_every_awl_and_awlpro_file_below_it_with_awlsim_s_skips() {
         let suite = Suite::new(
             "walk",
             &[
@@ -389,6 +389,7 @@ mod tests {
                 ("sub/project.awlpro", "[project]"),
                 ("sub/shell.awl", "stop"),
                 ("sub/shell.sh", "sh_test() { :; }"),
+                ("sub/shell.awlpro", "[project]"),
                 ("sub/off.awl", "stop"),
                 ("sub/off.awl.conf", "disabled=needs hardware\n"),
                 ("sub/four.awl", "stop"),
@@ -406,6 +407,7 @@ mod tests {
                 suite.0.clone(),
                 suite.0.join("z"),
                 suite.0.join("sub/project.awlpro"),
+                suite.0.join("sub/shell.sh"),
             ],
         );
         assert_eq!(
@@ -418,10 +420,13 @@ mod tests {
                 "PASS sub/four.awl [0]",
                 "SKIP sub/off.awl: disabled: needs hardware [0]",
                 "SKIP sub/project.awl: awlsim runs it through project.awlpro (awlsim project file) [0]",
-                "SKIP sub/shell.awl: awlsim runs it through shell.sh (awlsim shell test) [0]",
+                "FAIL sub/project.awlpro: awl cannot run its project file as given [1]",
+                "SKIP sub/shell.awl: awlsim runs it through shell.awlpro (awlsim project file) [0]",
+                "SKIP sub/shell.awlpro: awlsim runs it through shell.sh (awlsim shell test) [0]",
                 "PASS sub/two.awl [0]",
                 "FAIL z: no .awl test file below this directory [0]",
-                "SKIP sub/project.awlpro: awl conformance runs .awl files (awlsim project file) [0]",
+                "FAIL sub/project.awlpro: awl cannot run its project file as given [1]",
+                "SKIP sub/shell.sh: awl conformance runs .awl and .awlpro files (awlsim shell test) [0]",
             ]
         );
         assert_eq!(
@@ -438,8 +443,8 @@ mod tests {
             totals,
             Totals {
                 passed: 4,
-                failed: 3,
-                skipped: 4,
+                failed: 5,
+                skipped: 5,
                 halted: false
             }
         );

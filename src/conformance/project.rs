@@ -200,7 +200,10 @@ pub fn parse_project(
                 }
             }
             "libraries" => {
-                for selection in section.children().filter(|node| node.has_tag_name("lib_selection")) {
+                for selection in section
+                    .children()
+                    .filter(|node| node.has_tag_name("lib_selection"))
+                {
                     reader.errors.push(not_run(
                         "a block of awlsim's libraries is not run",
                         span(selection.range()),
@@ -210,7 +213,10 @@ pub fn parse_project(
                 }
             }
             "hardware" => {
-                for module in section.children().filter(|node| node.has_tag_name("module")) {
+                for module in section
+                    .children()
+                    .filter(|node| node.has_tag_name("module"))
+                {
                     reader.errors.push(not_run(
                         "an awlsim hardware module is not simulated",
                         span(module.range()),
@@ -351,7 +357,11 @@ impl Reader {
             node,
             "cycle_time_limit_us",
             1_000_000,
-            |n| (1..=i64::from(u32::MAX)).contains(&n).then(|| n as u64 * 1000),
+            |n| {
+                (1..=i64::from(u32::MAX))
+                    .contains(&n)
+                    .then(|| n as u64 * 1000)
+            },
             "microseconds, above 0",
         ) {
             self.project.cycle_limit_ns = limit;
@@ -398,7 +408,11 @@ impl Reader {
                 && given.value().trim() != kind
             {
                 self.errors.push(bad(
-                    format!("a source of type {} in `<{}>`", given.value(), section.tag_name().name()),
+                    format!(
+                        "a source of type {} in `<{}>`",
+                        given.value(),
+                        section.tag_name().name()
+                    ),
                     span(given.range_value()),
                     "this type",
                     Some(format!(
@@ -408,7 +422,10 @@ impl Reader {
                 ));
                 continue;
             }
-            let loaded = match source.attribute_node("file").filter(|f| !f.value().is_empty()) {
+            let loaded = match source
+                .attribute_node("file")
+                .filter(|f| !f.value().is_empty())
+            {
                 Some(file) => match read(file.value()) {
                     Ok(bytes) => {
                         let dir = path.parent().unwrap_or(Path::new(""));
@@ -435,8 +452,16 @@ impl Reader {
                         // An empty table, as awlsim writes one for a new project: nothing.
                         continue;
                     }
-                    let named = format!("{} [{} {}: {name}]", path.display(), section.tag_name().name(), index + 1);
-                    (PathBuf::from(named), text.trim_matches(['\r', '\n']).as_bytes().to_vec())
+                    let named = format!(
+                        "{} [{} {}: {name}]",
+                        path.display(),
+                        section.tag_name().name(),
+                        index + 1
+                    );
+                    (
+                        PathBuf::from(named),
+                        text.trim_matches(['\r', '\n']).as_bytes().to_vec(),
+                    )
                 }
             };
             if symbols {
@@ -482,7 +507,12 @@ fn span(range: std::ops::Range<usize>) -> SourceSpan {
     (range.start, range.len()).into()
 }
 
-fn bad(message: impl Into<String>, at: SourceSpan, label: &str, help: Option<String>) -> ProjectError {
+fn bad(
+    message: impl Into<String>,
+    at: SourceSpan,
+    label: &str,
+    help: Option<String>,
+) -> ProjectError {
     ProjectError::Bad {
         message: message.into(),
         at,
@@ -502,5 +532,133 @@ fn not_run(
         at,
         label: label.into(),
         help,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Project, Vec<ProjectError>> {
+        parse_project(text, Path::new("dir/p.awlpro"), &mut |file| match file {
+            "a.awl" => Ok(b"ORGANIZATION_BLOCK OB 1\nBEGIN\nEND_ORGANIZATION_BLOCK\n".to_vec()),
+            _ => Err(std::io::Error::new(
+                std::io::ErrorKind::NotFound,
+                "no such file",
+            )),
+        })
+    }
+
+    fn messages(text: &str) -> Vec<String> {
+        parse(text)
+            .expect_err("errors")
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    }
+
+    #[test]
+    fn without_settings_the_project_has_awlsim_s_defaults() {
+        let project = parse("<awlsim_project format_version=\"1\"/>").unwrap();
+        assert_eq!(project.accus, 2);
+        assert_eq!(project.clock_memory, None);
+        assert!(!project.start_info && !project.extensions);
+        assert_eq!(project.mnemonics, None);
+        assert_eq!(project.cycle_limit_ns, 1_000_000_000);
+        assert_eq!(project.max_runtime_ns, None);
+        assert!(project.programs.is_empty() && project.symbols.is_empty());
+    }
+
+    #[test]
+    fn every_key_awl_honours_is_read() {
+        let project = parse(
+            "<awlsim_project format_version=\"1\"><cpu>\
+             <specs nr_accus=\"4\"/>\
+             <config clock_memory_byte=\"7\" mnemonics=\"1\" ob_startinfo_enable=\"1\" \
+             ext_insns_enable=\"1\" cycle_time_limit_us=\"2000\" run_time_limit_us=\"300\"/>\
+             </cpu><language_awl>\
+             <source enabled=\"1\" file=\"a.awl\" type=\"0\"/>\
+             <source enabled=\"0\" type=\"0\">not read</source>\
+             <source name=\"B\" type=\"0\"><![CDATA[\nFC text\n]]></source>\
+             </language_awl><symbols><source name=\"S\" type=\"3\">\n\n</source></symbols>\
+             <core_link/><gui/></awlsim_project>",
+        )
+        .unwrap();
+        assert_eq!(project.accus, 4);
+        assert_eq!(project.clock_memory, Some(7));
+        assert_eq!(project.mnemonics, Some(MnemonicSet::English));
+        assert!(project.start_info && project.extensions);
+        assert_eq!(project.cycle_limit_ns, 2_000_000);
+        assert_eq!(project.max_runtime_ns, Some(300_000));
+        let names: Vec<String> = project
+            .programs
+            .iter()
+            .map(|(name, _)| name.display().to_string())
+            .collect();
+        assert_eq!(names, ["dir/a.awl", "dir/p.awlpro [language_awl 2: B]"]);
+        assert_eq!(project.programs[1].1, b"FC text");
+        // An empty symbol table is none.
+        assert!(project.symbols.is_empty());
+        let german = parse(
+            "<awlsim_project format_version=\"1\"><cpu><config mnemonics=\"2\"/></cpu>\
+             </awlsim_project>",
+        )
+        .unwrap();
+        assert_eq!(german.mnemonics, Some(MnemonicSet::German));
+    }
+
+    #[test]
+    fn malformed_text_is_an_error_never_a_panic() {
+        for text in [
+            "",
+            "not xml",
+            "<awlsim_project",
+            "<a></b>",
+            "\u{feff}<?xml version=\"1.0\"?>\n<x>\n</y>",
+            "<awlsim_project format_version=\"1\"><cpu><specs nr_accus=\"ä\"/></cpu>",
+        ] {
+            assert!(parse(text).is_err(), "{text:?}");
+        }
+        assert_eq!(
+            messages("<project/>"),
+            ["`<project>` is not an awlsim project"]
+        );
+        assert_eq!(
+            messages("<awlsim_project/>"),
+            ["the project has no format version"]
+        );
+        assert_eq!(
+            messages("<awlsim_project format_version=\"0\"/>"),
+            ["project format version 0 is not read"]
+        );
+    }
+
+    #[test]
+    fn what_awl_cannot_honour_is_reported() {
+        let found = messages(
+            "<awlsim_project format_version=\"1\"><cpu>\
+             <specs nr_accus=\"3\" nr_flags=\"256\"/>\
+             <config clock_memory_byte=\"5000\" mnemonics=\"x\" cycle_time_target_us=\"1\"/>\
+             </cpu><language_awl><source file=\"gone.awl\" type=\"0\"/>\
+             <source file=\"a.awl\" type=\"3\"/></language_awl>\
+             <language_kop><source type=\"2\"/></language_kop>\
+             <libraries><lib_selection/></libraries>\
+             <hardware><module name=\"dummy\"/></hardware></awlsim_project>",
+        );
+        assert_eq!(
+            found,
+            [
+                "`nr_accus` 3 is out of range",
+                "`nr_flags` 256 is not awlsim's default",
+                "`clock_memory_byte` 5000 is out of range",
+                "`mnemonics` is not a number",
+                "a target cycle time is not simulated",
+                "cannot read `gone.awl`: no such file",
+                "a source of type 3 in `<language_awl>`",
+                "a KOP (ladder) source is not run",
+                "a block of awlsim's libraries is not run",
+                "an awlsim hardware module is not simulated",
+            ]
+        );
     }
 }

@@ -76,8 +76,16 @@ pub fn options(
                 files.insert(normalize(table), text);
             }
         }
-        options.files = project.programs.iter().map(|(name, _)| name.clone()).collect();
-        options.symbols = project.symbols.iter().map(|(name, _)| name.clone()).collect();
+        options.files = project
+            .programs
+            .iter()
+            .map(|(name, _)| name.clone())
+            .collect();
+        options.symbols = project
+            .symbols
+            .iter()
+            .map(|(name, _)| name.clone())
+            .collect();
         options.symbols.extend(symbols.iter().cloned());
         options.store = Files::Memory(Arc::new(files));
         options.language.mnemonics = project.mnemonics;

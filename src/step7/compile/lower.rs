@@ -11,11 +11,12 @@ use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
 use crate::source::Span;
 use crate::step7::ast::{
-    AccessWidth, CallSpec, ConstKind, S7Address, S7Area, S7Block, S7BlockKind, S7BlockRef, S7Body,
-    S7Op, S7Operand, S7Statement, VarKind,
+    AccessWidth, CallParam, CallSpec, ConstKind, S7Address, S7Area, S7Block, S7BlockKind,
+    S7BlockRef, S7Body, S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, FbCall, McrCode, MemOp, ParamCopy, Place, S7Code, SfcCall, TIME_TCK, Target,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, FbCall, McrCode, MemOp, ParamCopy, Place, S7Code,
+    SfcCall, TIME_TCK, Target,
 };
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
@@ -851,6 +852,7 @@ impl super::Compiler<'_> {
             number,
         } = reference
         {
+            system_function_params(*number, &[], &[], at)?;
             let call = self.sfc(*number, Vec::new());
             self.emit(out, Op::S7(S7Code::Sfc { call }), span);
             return Ok(());
@@ -927,7 +929,7 @@ impl super::Compiler<'_> {
                 }
             );
             if !is_sfb {
-                system_function_params(number, call, &widths, span)?;
+                system_function_params(number, &call.params, &widths, span)?;
             }
             let index = self.sfc(number, params);
             if is_sfb
@@ -1181,7 +1183,7 @@ pub(super) fn feature_number(operand: &S7Operand) -> Option<u8> {
 /// RET_VAL, a TIME; awlsim's SFC -4 (`__CLKRST`) has none.
 fn system_function_params(
     number: u16,
-    call: &CallSpec,
+    params: &[CallParam],
     widths: &[AccessWidth],
     span: Span,
 ) -> Result<(), CheckError> {
@@ -1190,7 +1192,7 @@ fn system_function_params(
         AWLSIM_SFC_CLOCK_RESET => ("SFC -4", &[]),
         _ => return Ok(()),
     };
-    for (param, width) in call.params.iter().zip(widths) {
+    for (param, width) in params.iter().zip(widths) {
         if !interface.contains(&param.name.text.to_ascii_uppercase().as_str()) {
             return Err(CheckError::UnknownParam {
                 name: param.name.text.clone(),
@@ -1211,11 +1213,11 @@ fn system_function_params(
             });
         }
     }
-    if call.params.len() < interface.len() {
+    if params.len() < interface.len() {
         return Err(CheckError::ParamCount {
             fb: name.into(),
             expected: interface.len(),
-            found: call.params.len(),
+            found: params.len(),
             at: span,
             help: Some(format!("write `CALL {name} (RET_VAL := MD 4)`")),
         });

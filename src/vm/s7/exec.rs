@@ -151,9 +151,7 @@ impl Cpu {
                     // unless the run switched it off (an awlsim project file's
                     // `ob_startinfo_enable`), and the program cannot switch it.
                     (1, None) => u32::from(self.writes_start_info),
-                    (1, Some(value)) if (value != 0) == self.writes_start_info => {
-                        u32::from(value)
-                    }
+                    (1, Some(value)) if (value != 0) == self.writes_start_info => u32::from(value),
                     (1, Some(_)) => {
                         return Err(fault(
                             "`__FEATURE 1` cannot switch the OBs' start information: awl \
