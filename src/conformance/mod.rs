@@ -4,7 +4,8 @@
 //! with, the cycle limit, a run time, the accumulators, or disable the test. awlsim ends with
 //! 0 when the program stops the CPU by `CALL SFC 46` or the run time is over, and with 30 when
 //! the simulator reports an error: a source error, a failed assertion, any other STOP. A test
-//! passes when awl ends as awlsim must.
+//! passes when awl ends as awlsim must. An awlsim project file (`.awlpro`) is a test too: its
+//! sources and settings ([`project`]) make the program and the CPU.
 
 pub mod collect;
 pub mod conf;

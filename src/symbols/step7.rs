@@ -517,6 +517,31 @@ mod tests {
     }
 
     #[test]
+    fn awlsim_s_own_system_functions_have_negative_numbers() {
+        let text = [
+            asc("__CLKRST", "SFC -4", "SFC -4", ""),
+            asc("__REBOOT", "SFC -2", "SFC -2", ""),
+        ]
+        .concat();
+        let (entries, errors) = read_text(&text);
+        assert!(errors.is_empty(), "{errors:?}");
+        assert_eq!(
+            entries[0].stands,
+            Stands::Step7(S7Symbol::Block {
+                kind: S7BlockKind::Sfc,
+                number: 65532
+            })
+        );
+        for bad in [
+            asc("X", "SFC -5", "SFC -5", ""),
+            asc("Y", "FC -1", "FC -1", ""),
+        ] {
+            let (_, errors) = read_text(&bad);
+            assert_eq!(errors.len(), 1, "{bad}");
+        }
+    }
+
+    #[test]
     fn formats_are_told_by_content() {
         assert_eq!(
             Format::detect(&asc("Start", "I 0.0", "BOOL", "")),
