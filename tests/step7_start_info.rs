@@ -483,7 +483,10 @@ fn feature_1_says_the_start_information_is_written() {
     );
     let stop =
         stop_of("ORGANIZATION_BLOCK OB 1\nBEGIN\n      __FEATURE 1, 0;\nEND_ORGANIZATION_BLOCK\n");
-    assert!(stop.contains("cannot switch it off"), "{stop}");
+    assert!(
+        stop.contains("cannot switch the OBs' start information"),
+        "{stop}"
+    );
 }
 
 #[test]

@@ -1,5 +1,5 @@
-//! Which files the command line names: files as given, directories as every `.awl` file
-//! below them, sorted by path, as awlsim's harness walks its test tree.
+//! Which files the command line names: files as given, directories as every `.awl` and
+//! `.awlpro` file below them, sorted by path, as awlsim's harness walks its test tree.
 
 use std::path::{Path, PathBuf};
 
@@ -16,9 +16,14 @@ pub enum Entry {
 }
 
 /// The files only awlsim itself can run, by extension.
-const AWLSIM_ONLY: &[(&str, &str)] = &[
-    ("awlpro", "awlsim project file"),
-    ("sh", "awlsim shell test"),
+const AWLSIM_ONLY: &[(&str, &str)] = &[("sh", "awlsim shell test")];
+
+/// What awlsim's harness runs instead of a test file of the same name beside it: a `.awl`
+/// file through its project file or shell test, a project file through its shell test.
+const RUN_INSTEAD: &[(&str, &str, &str)] = &[
+    ("awl", "awlpro", "awlsim project file"),
+    ("awl", "sh", "awlsim shell test"),
+    ("awlpro", "sh", "awlsim shell test"),
 ];
 
 /// The entries `paths` name, in order; a directory's files sorted by path.
@@ -32,7 +37,7 @@ pub fn collect(paths: &[PathBuf]) -> Vec<Entry> {
             }
             entries.extend(found);
         } else {
-            entries.push(match project_file(path) {
+            entries.push(match awlsim_only(path) {
                 Some(reason) => Entry::Skip(path.clone(), reason),
                 None => Entry::Test(path.clone()),
             });
@@ -41,20 +46,24 @@ pub fn collect(paths: &[PathBuf]) -> Vec<Entry> {
     entries
 }
 
-/// Every `.awl` file below `dir`; one that awlsim runs through a project file or a shell
-/// script of the same name beside it is skipped, as awlsim's harness skips it.
+/// Every `.awl` and `.awlpro` file below `dir`; one that awlsim runs through another file of
+/// the same name beside it is skipped, as awlsim's harness skips it.
 fn below(dir: &Path) -> Vec<Entry> {
     walkdir::WalkDir::new(dir)
         .sort_by_file_name()
         .into_iter()
         // A directory that cannot be read is left out: none of its files could be run.
         .filter_map(Result::ok)
-        .filter(|entry| entry.file_type().is_file() && has_extension(entry.path(), "awl"))
+        .filter(|entry| {
+            entry.file_type().is_file()
+                && (has_extension(entry.path(), "awl") || has_extension(entry.path(), "awlpro"))
+        })
         .map(|entry| {
             let path = entry.into_path();
-            let beside = AWLSIM_ONLY
+            let beside = RUN_INSTEAD
                 .iter()
-                .map(|&(extension, what)| (path.with_extension(extension), what))
+                .filter(|(test, _, _)| has_extension(&path, test))
+                .map(|&(_, extension, what)| (path.with_extension(extension), what))
                 .find(|(other, _)| other.exists());
             match beside {
                 Some((other, what)) => {
@@ -68,13 +77,18 @@ fn below(dir: &Path) -> Vec<Entry> {
         .collect()
 }
 
-/// Why a file named on the command line is no `.awl` test: awlsim's project files and shell
-/// tests need awlsim itself.
-fn project_file(path: &Path) -> Option<String> {
+/// Why a file named on the command line is no test awl runs: awlsim's shell tests need
+/// awlsim itself.
+fn awlsim_only(path: &Path) -> Option<String> {
     AWLSIM_ONLY
         .iter()
         .find(|(extension, _)| has_extension(path, extension))
-        .map(|(_, what)| format!("awl conformance runs .awl files ({what})"))
+        .map(|(_, what)| format!("awl conformance runs .awl and .awlpro files ({what})"))
+}
+
+/// Whether `path` is an awlsim project file, run through [`super::project`].
+pub fn is_project(path: &Path) -> bool {
+    has_extension(path, "awlpro")
 }
 
 fn has_extension(path: &Path, extension: &str) -> bool {

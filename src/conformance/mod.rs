@@ -4,10 +4,12 @@
 //! with, the cycle limit, a run time, the accumulators, or disable the test. awlsim ends with
 //! 0 when the program stops the CPU by `CALL SFC 46` or the run time is over, and with 30 when
 //! the simulator reports an error: a source error, a failed assertion, any other STOP. A test
-//! passes when awl ends as awlsim must.
+//! passes when awl ends as awlsim must. An awlsim project file (`.awlpro`) is a test too: its
+//! sources and settings ([`project`]) make the program and the CPU.
 
 pub mod collect;
 pub mod conf;
+pub mod project;
 pub mod run;
 
 use std::path::{Path, PathBuf};
@@ -18,6 +20,7 @@ use crate::vm::stop::StopCause;
 
 pub use collect::{Entry, collect};
 pub use conf::{Conf, parse_conf, read_conf};
+pub use project::{Project, parse_project, read_project};
 pub use run::run_test;
 
 /// awlsim's exit code when the simulator reported an error (`EXIT_ERR_SIM`).
@@ -150,7 +153,7 @@ impl Totals {
 /// stops early when a run was halted.
 pub fn run_suite(
     paths: &[PathBuf],
-    run: &mut dyn FnMut(&Path, &Conf) -> Tested,
+    run: &mut dyn FnMut(&Path, &Conf, Option<&Project>) -> Tested,
     each: &mut dyn FnMut(&Checked),
 ) -> Totals {
     let mut totals = Totals::default();
@@ -180,8 +183,12 @@ pub fn run_suite(
     totals
 }
 
-/// One test: its `.conf`, then the run unless the `.conf` rules it out; `None` when halted.
-fn check(path: &Path, run: &mut dyn FnMut(&Path, &Conf) -> Tested) -> Option<Checked> {
+/// One test: its `.conf`, its project file when it is one, then the run unless the `.conf`
+/// rules it out; `None` when halted.
+fn check(
+    path: &Path,
+    run: &mut dyn FnMut(&Path, &Conf, Option<&Project>) -> Tested,
+) -> Option<Checked> {
     let checked = |verdict, reports| Checked {
         path: path.to_path_buf(),
         verdict,
@@ -199,7 +206,17 @@ fn check(path: &Path, run: &mut dyn FnMut(&Path, &Conf) -> Tested) -> Option<Che
     if let Some(reason) = skip_reason(&conf) {
         return Some(checked(Verdict::Skip(reason), Vec::new()));
     }
-    let tested = run(path, &conf);
+    let project = match collect::is_project(path).then(|| read_project(path)) {
+        None => None,
+        Some(Ok(project)) => Some(project),
+        Some(Err(reports)) => {
+            return Some(checked(
+                Verdict::Fail("awl cannot run its project file as given".into()),
+                reports,
+            ));
+        }
+    };
+    let tested = run(path, &conf, project.as_ref());
     if tested.halted {
         return None;
     }
@@ -326,7 +343,7 @@ mod tests {
             path.display().to_string().replace('\\', "/")
         };
         let mut ran = Vec::new();
-        let mut run = |path: &Path, _: &Conf| {
+        let mut run = |path: &Path, _: &Conf, _: Option<&Project>| {
             ran.push(relative(path));
             let text = std::fs::read_to_string(path).unwrap_or_default();
             let ending = match text.trim() {
@@ -359,7 +376,7 @@ mod tests {
     }
 
     #[test]
-    fn a_directory_is_every_awl_file_below_it_with_awlsim_s_skips() {
+    fn a_directory_is_every_awl_and_awlpro_file_below_it_with_awlsim_s_skips() {
         let suite = Suite::new(
             "walk",
             &[
@@ -373,6 +390,7 @@ mod tests {
                 ("sub/project.awlpro", "[project]"),
                 ("sub/shell.awl", "stop"),
                 ("sub/shell.sh", "sh_test() { :; }"),
+                ("sub/shell.awlpro", "[project]"),
                 ("sub/off.awl", "stop"),
                 ("sub/off.awl.conf", "disabled=needs hardware\n"),
                 ("sub/four.awl", "stop"),
@@ -390,6 +408,7 @@ mod tests {
                 suite.0.clone(),
                 suite.0.join("z"),
                 suite.0.join("sub/project.awlpro"),
+                suite.0.join("sub/shell.sh"),
             ],
         );
         assert_eq!(
@@ -402,10 +421,13 @@ mod tests {
                 "PASS sub/four.awl [0]",
                 "SKIP sub/off.awl: disabled: needs hardware [0]",
                 "SKIP sub/project.awl: awlsim runs it through project.awlpro (awlsim project file) [0]",
-                "SKIP sub/shell.awl: awlsim runs it through shell.sh (awlsim shell test) [0]",
+                "FAIL sub/project.awlpro: awl cannot run its project file as given [1]",
+                "SKIP sub/shell.awl: awlsim runs it through shell.awlpro (awlsim project file) [0]",
+                "SKIP sub/shell.awlpro: awlsim runs it through shell.sh (awlsim shell test) [0]",
                 "PASS sub/two.awl [0]",
                 "FAIL z: no .awl test file below this directory [0]",
-                "SKIP sub/project.awlpro: awl conformance runs .awl files (awlsim project file) [0]",
+                "FAIL sub/project.awlpro: awl cannot run its project file as given [1]",
+                "SKIP sub/shell.sh: awl conformance runs .awl and .awlpro files (awlsim shell test) [0]",
             ]
         );
         assert_eq!(
@@ -422,8 +444,8 @@ mod tests {
             totals,
             Totals {
                 passed: 4,
-                failed: 3,
-                skipped: 4,
+                failed: 5,
+                skipped: 5,
                 halted: false
             }
         );

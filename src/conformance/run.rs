@@ -1,7 +1,9 @@
 //! One awlsim test file run as awlsim's harness runs it: STEP 7 with awlsim's test operations,
 //! the S7 CPU, startup, then OB 1 until the CPU stops or `max_runtime` has passed.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use miette::Report;
 
@@ -9,10 +11,12 @@ use crate::dialect::Dialect;
 use crate::frontend::Language;
 use crate::profile;
 use crate::runner::{self, NotRun, RunOptions};
+use crate::source::{Files, normalize};
 use crate::vm::Cpu;
 use crate::vm::cycle::RunLimit;
 
 use super::conf::Conf;
+use super::project::Project;
 use super::{Ending, Tested};
 
 /// The CPU the tests run on: the S7 CPU of the profiles.
@@ -32,44 +36,108 @@ pub fn language() -> Language {
     }
 }
 
-/// The run `conf` asks for, of the test file `path` with the symbol tables `symbols`.
-pub fn options(path: &Path, conf: &Conf, symbols: &[PathBuf]) -> RunOptions {
+/// The run `conf` asks for, of the test file `path` with the symbol tables `symbols`; of the
+/// sources of `project` when the test is a project file.
+pub fn options(
+    path: &Path,
+    conf: &Conf,
+    project: Option<&Project>,
+    symbols: &[PathBuf],
+) -> RunOptions {
     let limit = conf.max_runtime_ns.unwrap_or(UNBOUNDED_RUN_NS);
-    RunOptions {
+    // awlsim's harness sets the accumulators when the `.conf` says; else the project's count.
+    let accus = conf.accus.or(project.map(|project| project.accus));
+    let mut options = RunOptions {
         files: vec![path.to_path_buf()],
         symbols: symbols.to_vec(),
         // `accus=4` sets the S7 CPU to four accumulators (its S7-400 variant).
-        cpu: profile::find(PROFILE).and_then(|cpu| match conf.accus {
+        cpu: profile::find(PROFILE).and_then(|cpu| match accus {
             Some(count) => profile::with_accumulators(cpu, count),
             None => Some(cpu),
         }),
         language: language(),
         // A run of no time ends at the first cycle end, as awlsim checks its limit there.
         limit: Some(RunLimit::Duration(limit.max(1))),
+        // awlsim's harness gives the cycle limit and run time on awlsim's command line, over
+        // the project's: awl takes them from the `.conf` alike.
         watchdog_ns: Some(conf.cycle_limit_ns),
         ..RunOptions::default()
+    };
+    if let Some(project) = project {
+        // Every source in memory: the project's own, the files it names, and the symbol
+        // tables of the command line.
+        let mut files = BTreeMap::new();
+        for (name, text) in project.programs.iter().chain(&project.symbols) {
+            files.insert(normalize(name), text.clone());
+        }
+        for table in symbols {
+            // A table that cannot be read is left out here, and reported as missing.
+            if let Ok(text) = std::fs::read(table) {
+                files.insert(normalize(table), text);
+            }
+        }
+        options.files = project
+            .programs
+            .iter()
+            .map(|(name, _)| name.clone())
+            .collect();
+        options.symbols = project
+            .symbols
+            .iter()
+            .map(|(name, _)| name.clone())
+            .collect();
+        options.symbols.extend(symbols.iter().cloned());
+        options.store = Files::Memory(Arc::new(files));
+        options.language.mnemonics = project.mnemonics;
     }
+    options
 }
 
-/// Runs the test `path` as `conf` asks, with the symbol tables `symbols` (awlsim gives them
-/// in a project file); `go_on` may halt it at a cycle boundary (Ctrl-C).
+/// Runs the test `path` as `conf` asks, with the symbol tables `symbols` (besides those of its
+/// project file, when it is one); `go_on` may halt it at a cycle boundary (Ctrl-C).
 pub fn run_test(
     path: &Path,
     conf: &Conf,
+    project: Option<&Project>,
     symbols: &[PathBuf],
     go_on: &mut dyn FnMut(&Cpu) -> bool,
 ) -> Tested {
+    let setup = CpuSetup {
+        clock_memory: project.and_then(|project| project.clock_memory),
+        // Without a project file, awl writes the start information, as it always does.
+        start_info: project.is_none_or(|project| project.start_info),
+    };
     run_with(
-        &options(path, conf, symbols),
+        &options(path, conf, project, symbols),
+        setup,
         conf.max_runtime_ns.is_some(),
         go_on,
     )
+}
+
+/// What a project file sets on the CPU itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct CpuSetup {
+    /// The clock memory byte's number (`MB 100`).
+    pub clock_memory: Option<u16>,
+    /// Whether the OBs' start information is written.
+    pub start_info: bool,
+}
+
+impl Default for CpuSetup {
+    fn default() -> Self {
+        CpuSetup {
+            clock_memory: None,
+            start_info: true,
+        }
+    }
 }
 
 /// Runs `options`; a run that reaches its limit ended cleanly when `limit_is_max_runtime`,
 /// else it never stopped.
 pub(super) fn run_with(
     options: &RunOptions,
+    setup: CpuSetup,
     limit_is_max_runtime: bool,
     go_on: &mut dyn FnMut(&Cpu) -> bool,
 ) -> Tested {
@@ -86,6 +154,14 @@ pub(super) fn run_with(
     };
     // awlsim runs its tests on its dummy hardware (insn_MISC's direct reads rely on it).
     prepared.cpu.inputs_echo_pii = true;
+    prepared.cpu.writes_start_info = setup.start_info;
+    if let Some(byte) = setup.clock_memory {
+        let flags = prepared.cpu.program.profile.sizes.flag_bytes;
+        // The project's byte is one of awlsim's flag bytes, which the S7 CPU has too.
+        if byte < flags {
+            prepared.cpu.clock_memory = Some(prepared.cpu.program.layout.flag_base() + byte);
+        }
+    }
     let ran = prepared.run(go_on);
     let (ending, reports): (Ending, Vec<Report>) = match &ran.outcome.stop {
         Some(stop) => (
@@ -124,7 +200,7 @@ mod tests {
             watchdog_ns: Some(watchdog_ns),
             ..RunOptions::default()
         };
-        run_with(&options, is_max_runtime, &mut |_| true).ending
+        run_with(&options, CpuSetup::default(), is_max_runtime, &mut |_| true).ending
     }
 
     const MS: u64 = 1_000_000;
@@ -182,7 +258,7 @@ mod tests {
             ..RunOptions::default()
         };
         assert_eq!(
-            run_with(&options, false, &mut |_| true).ending,
+            run_with(&options, CpuSetup::default(), false, &mut |_| true).ending,
             Ending::NotRun
         );
     }
@@ -194,14 +270,14 @@ mod tests {
             cycle_limit_ns: 2_000_000_000,
             ..Conf::default()
         };
-        let options = options(Path::new("t.awl"), &conf, &[]);
+        let options = options(Path::new("t.awl"), &conf, None, &[]);
         assert_eq!(options.language.dialect, Some(Dialect::Step7));
         assert!(options.language.extensions);
         assert_eq!(options.language.mnemonics, None);
         assert_eq!(options.cpu.map(|cpu| cpu.name), Some("speed7"));
         assert_eq!(options.limit, Some(RunLimit::Duration(1)));
         assert_eq!(options.watchdog_ns, Some(2_000_000_000));
-        let unbounded = super::options(Path::new("t.awl"), &Conf::default(), &[]);
+        let unbounded = super::options(Path::new("t.awl"), &Conf::default(), None, &[]);
         assert_eq!(unbounded.limit, Some(RunLimit::Duration(UNBOUNDED_RUN_NS)));
     }
 }

@@ -305,6 +305,13 @@ pub struct ParamCopy {
 /// `SFC -1` to `SFC -4` are numbered as 16-bit two's complements, 65535 down to 65532.
 pub const AWLSIM_SFC_REBOOT: u16 = -2i16 as u16;
 
+/// awlsim's `SFC -4` (`__CLKRST`), with the test extensions: restarts the clock memory and
+/// the time SFC 64 counts, as if the CPU had just started.
+pub const AWLSIM_SFC_CLOCK_RESET: u16 = -4i16 as u16;
+
+/// SFC 64 `TIME_TCK`: the system time, milliseconds since the CPU started.
+pub const TIME_TCK: u16 = 64;
+
 /// One `CALL SFC n (…)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SfcCall {

@@ -344,13 +344,17 @@ fn parse_address(text: &str) -> Result<(S7Symbol, Option<MnemonicSet>), String> 
         _ => None,
     };
     if let Some(kind) = block {
-        return Ok((
-            S7Symbol::Block {
-                kind,
-                number: whole(number)?,
-            },
-            None,
-        ));
+        // awlsim's own system functions `SFC -1` to `SFC -4` (its test files name them in
+        // their tables), numbered as the STL front end numbers them: 16-bit two's complements.
+        let awlsim = number
+            .strip_prefix('-')
+            .and_then(|digits| digits.trim().parse::<u8>().ok())
+            .filter(|n| kind == S7BlockKind::Sfc && (1..=4).contains(n));
+        let number = match awlsim {
+            Some(n) => (-i16::from(n)) as u16,
+            None => whole(number)?,
+        };
+        return Ok((S7Symbol::Block { kind, number }, None));
     }
     if word == "VAT" {
         return Ok((S7Symbol::VariableTable(whole(number)?), None));
@@ -450,7 +454,12 @@ fn check_type(symbol: &S7Symbol, ty: &str) -> Result<(), String> {
             (_, AccessWidth::Double) => &["DWORD", "DINT", "REAL", "TIME", "TOD", "TIME_OF_DAY"],
         },
         S7Symbol::Block { kind, number } => {
-            let same = format!("{} {number}", kind.name());
+            // awlsim's own system functions are written with their negative numbers.
+            let shown = match (*kind, *number as i16) {
+                (S7BlockKind::Sfc, -4..=-1) => i32::from(*number as i16),
+                _ => i32::from(*number),
+            };
+            let same = format!("{} {shown}", kind.name());
             let number_of = |prefix: &str| {
                 upper
                     .strip_prefix(prefix)
@@ -504,6 +513,31 @@ mod tests {
         match entry.stands {
             Stands::Step7(S7Symbol::Address(address)) => address,
             ref other => panic!("not an address: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn awlsim_s_own_system_functions_have_negative_numbers() {
+        let text = [
+            asc("__CLKRST", "SFC -4", "SFC -4", ""),
+            asc("__REBOOT", "SFC -2", "SFC -2", ""),
+        ]
+        .concat();
+        let (entries, errors) = read_text(&text);
+        assert!(errors.is_empty(), "{errors:?}");
+        assert_eq!(
+            entries[0].stands,
+            Stands::Step7(S7Symbol::Block {
+                kind: S7BlockKind::Sfc,
+                number: 65532
+            })
+        );
+        for bad in [
+            asc("X", "SFC -5", "SFC -5", ""),
+            asc("Y", "FC -1", "FC -1", ""),
+        ] {
+            let (_, errors) = read_text(&bad);
+            assert_eq!(errors.len(), 1, "{bad}");
         }
     }
 

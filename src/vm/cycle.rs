@@ -252,7 +252,8 @@ impl Cpu {
         self.poll()?;
         self.process_image_cycle(true);
         if let Some(at) = self.clock_memory {
-            self.image[usize::from(at)] = clock_memory_byte(self.clock);
+            self.image[usize::from(at)] =
+                clock_memory_byte(self.clock.saturating_sub(self.clock_origin_ns));
         }
         self.cycle_point(StretchKind::ProcessImageRead)?;
         if let Some(block) = self.program.ob(1) {
@@ -363,6 +364,29 @@ impl Cpu {
     }
 }
 
+impl Cpu {
+    /// SFC 64 (TIME_TCK)'s value: the milliseconds of simulated time since the CPU started
+    /// (or awlsim's `__CLKRST` restarted the clocks), as a TIME that wraps from 2^31 − 1 to 0
+    /// ("System Software for S7-300/400 System and Standard Functions", SFC 64 TIME_TCK).
+    pub fn time_tick(&self) -> u32 {
+        time_tick(self.clock.saturating_sub(self.clock_origin_ns))
+    }
+
+    /// awlsim's `SFC -4` (`__CLKRST`): the clock memory and SFC 64 count from now, the clock
+    /// memory byte 0 again.
+    pub fn restart_clocks(&mut self) {
+        self.clock_origin_ns = self.clock;
+        if let Some(at) = self.clock_memory {
+            self.image[usize::from(at)] = clock_memory_byte(0);
+        }
+    }
+}
+
+/// SFC 64's TIME after `elapsed_ns`: whole milliseconds, 31 bits.
+fn time_tick(elapsed_ns: u64) -> u32 {
+    ((elapsed_ns / 1_000_000) & 0x7FFF_FFFF) as u32
+}
+
 /// Half the period of each clock memory bit, bit 0 first: 0.1 s (10 Hz) to 2 s (0.5 Hz), as
 /// an S7 CPU's clock memory ("Programming with STEP 7", the clock memory): each bit is 0 for
 /// half its period, then 1.
@@ -385,4 +409,19 @@ pub fn clock_memory_byte(now_ns: u64) -> u8 {
         .fold(0, |byte, (bit, half)| {
             byte | (((now_ns / half) & 1) as u8) << bit
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::time_tick;
+
+    #[test]
+    fn sfc_64_counts_whole_milliseconds_and_wraps_at_2_to_the_31() {
+        assert_eq!(time_tick(0), 0);
+        assert_eq!(time_tick(1_999_999), 1);
+        let wrap_ns = (1u64 << 31) * 1_000_000;
+        assert_eq!(time_tick(wrap_ns - 1_000_000), 0x7FFF_FFFF);
+        assert_eq!(time_tick(wrap_ns), 0);
+        assert_eq!(time_tick(wrap_ns + 5_000_000), 5);
+    }
 }

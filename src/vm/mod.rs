@@ -245,6 +245,12 @@ pub struct Cpu {
     pub inputs_echo_pii: bool,
     /// The S7 clock memory byte's place in the image (the scenario's `clock_memory`).
     pub clock_memory: Option<u16>,
+    /// The simulated time the clock memory and SFC 64 (TIME_TCK) count from: the start of
+    /// the run, or the last `CALL SFC -4` (awlsim's `__CLKRST`, which restarts both).
+    pub clock_origin_ns: u64,
+    /// The operating system writes each OB's start information into its local data; awlsim's
+    /// project files may switch that off (`ob_startinfo_enable="0"`, `awl conformance`).
+    pub writes_start_info: bool,
     pub extended_inputs: Vec<u8>,
     pub extended_outputs: Vec<u8>,
     pub timers: Vec<Timer>,
@@ -318,6 +324,8 @@ impl Cpu {
             outputs: vec![0; periphery],
             inputs_echo_pii: false,
             clock_memory: None,
+            clock_origin_ns: 0,
+            writes_start_info: true,
             extended_inputs: vec![0; periphery],
             extended_outputs: vec![0; periphery],
             timers: vec![Timer::default(); usize::from(sizes.timers)],

@@ -80,8 +80,12 @@ const FIRST_HW_OB: u8 = 40;
 impl Cpu {
     /// Writes the running level's OB's start information at the start of its local data.
     /// Only STEP 7 programs have an L stack; a level too deep for it gets none (its first
-    /// access to its local data stops the CPU).
+    /// access to its local data stops the CPU). Nothing when the start information is switched
+    /// off ([`Cpu::writes_start_info`]).
     pub(super) fn write_start_info(&mut self, head: Head) {
+        if !self.writes_start_info {
+            return;
+        }
         let start = self.level.local_base as usize;
         let Some(info) = self.local.get_mut(start..start + START_INFO_BYTES as usize) else {
             return;

@@ -2,7 +2,9 @@
 
 use crate::compiler::bytecode::{Op, TimerKind};
 use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
-use crate::step7::bytecode::{AWLSIM_SFC_REBOOT, McrCode, MemOp, S7Code, Target};
+use crate::step7::bytecode::{
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, McrCode, MemOp, S7Code, TIME_TCK, Target,
+};
 use crate::vm::Cpu;
 use crate::vm::interrupts::control::{DIS_IRT, EN_AIRT};
 use crate::vm::stop::{StopCause, StopDetail};
@@ -146,13 +148,15 @@ impl Cpu {
                         )));
                     }
                     (0, None) => u32::from(self.profile.accumulators),
-                    // awlsim's switch for writing the OBs' start information: awl always
-                    // writes it.
-                    (1, None | Some(1)) => 1,
+                    // awlsim's switch for writing the OBs' start information: awl writes it
+                    // unless the run switched it off (an awlsim project file's
+                    // `ob_startinfo_enable`), and the program cannot switch it.
+                    (1, None) => u32::from(self.writes_start_info),
+                    (1, Some(value)) if (value != 0) == self.writes_start_info => u32::from(value),
                     (1, Some(_)) => {
                         return Err(fault(
-                            "awl always writes the OBs' start information: `__FEATURE 1` \
-                             cannot switch it off"
+                            "`__FEATURE 1` cannot switch the OBs' start information: awl \
+                             writes it unless the awlsim project file switches it off"
                                 .to_string(),
                         ));
                     }
@@ -434,12 +438,28 @@ impl Cpu {
         match number {
             46 => Err((StopCause::Stp, StopDetail::Text("CALL SFC 46 (STP)".into()))),
             DIS_IRT..=EN_AIRT => self.interrupt_sfc(number, call),
+            TIME_TCK => {
+                // The compiler checked RET_VAL is given, a double word.
+                let program = std::sync::Arc::clone(&self.program);
+                let params = &program.s7.sfc_calls[usize::from(call)].params;
+                if let Some(&(_, place)) = params.iter().find(|(name, _)| name == "RET_VAL") {
+                    let (to, width) = self.locate_index(place)?;
+                    self.store(to, width, self.time_tick())?;
+                }
+                self.level.br = true;
+                Ok(())
+            }
+            AWLSIM_SFC_CLOCK_RESET => {
+                self.restart_clocks();
+                self.level.br = true;
+                Ok(())
+            }
             AWLSIM_SFC_REBOOT => Err(fault(
                 "awlsim's SFC -2 (__REBOOT) is not simulated: awl writes the OBs' start \
                  information always (`__FEATURE 1` is 1), there is nothing to reboot for"
                     .to_string(),
             )),
-            other if other >= AWLSIM_SFC_REBOOT - 2 => Err(fault(format!(
+            other if other >= AWLSIM_SFC_CLOCK_RESET => Err(fault(format!(
                 "awlsim's SFC {} is not simulated",
                 other as i16
             ))),

@@ -1,0 +1,64 @@
+//! SFC 64 TIME_TCK: the system time, milliseconds of simulated time since the CPU started,
+//! as a TIME ("System Software for S7-300/400 System and Standard Functions", SFC 64); its
+//! RET_VAL checked as the interface declares it.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use awl::runner::{self, NotRun, Ran, RunOptions};
+use awl::source::Files;
+
+fn run(program: &str, scenario: &str) -> Result<Ran, NotRun> {
+    let mut files = BTreeMap::new();
+    files.insert(PathBuf::from("p.awl"), program.as_bytes().to_vec());
+    let scenario = format!("program = [\"p.awl\"]\ncpu = \"speed7\"\ndialect = \"s7\"\n{scenario}");
+    files.insert(PathBuf::from("s.toml"), scenario.into_bytes());
+    runner::run(&RunOptions {
+        scenario: Some(PathBuf::from("s.toml")),
+        store: Files::Memory(Arc::new(files)),
+        ..RunOptions::default()
+    })
+}
+
+#[test]
+fn time_tck_is_the_time_since_the_start() {
+    // OB 100 takes the time at startup; OB 1 each cycle. After 1.33 s the last cycle began
+    // within a cycle of the end: between 1300 and 1330 ms.
+    let program = "ORGANIZATION_BLOCK OB 100\nBEGIN\n      CALL SFC 64 (RET_VAL := MD 0);\n\
+                   END_ORGANIZATION_BLOCK\n\
+                   ORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL SFC 64 (RET_VAL := MD 4);\n\
+                   L MD 4;\n      L L#1300;\n      >=D;\n      = M 8.0;\n\
+                   L MD 4;\n      L L#1330;\n      <=D;\n      = M 8.1;\n\
+                   END_ORGANIZATION_BLOCK\n";
+    let Ok(ran) = run(
+        program,
+        "run = { for = \"1.33s\" }\n[expect]\n\"MD 0\" = 0\n\"M 8.0\" = 1\n\"M 8.1\" = 1\n",
+    ) else {
+        panic!("the program runs");
+    };
+    assert!(!ran.failed(), "{:#?}", ran.mismatches);
+}
+
+fn errors(call: &str) -> String {
+    let program = format!("ORGANIZATION_BLOCK OB 1\nBEGIN\n      {call}\nEND_ORGANIZATION_BLOCK\n");
+    match run(&program, "") {
+        Err(NotRun::SourceErrors(reports)) => {
+            reports.iter().map(awl::diagnostics::render_plain).collect()
+        }
+        _ => panic!("`{call}` has errors"),
+    }
+}
+
+#[test]
+fn ret_val_is_a_double_word_and_the_only_parameter() {
+    let narrow = errors("CALL SFC 64 (RET_VAL := MW 4);");
+    assert!(narrow.contains("awl::check::param_mismatch"), "{narrow}");
+    assert!(narrow.contains("a TIME"), "{narrow}");
+    let unknown = errors("CALL SFC 64 (OUT := MD 4);");
+    assert!(unknown.contains("awl::check::unknown_param"), "{unknown}");
+    assert!(unknown.contains("SFC 64 has RET_VAL"), "{unknown}");
+    let missing = errors("CALL SFC 64;");
+    assert!(missing.contains("awl::check::param_count"), "{missing}");
+    assert!(missing.contains("RET_VAL := MD 4"), "{missing}");
+}
