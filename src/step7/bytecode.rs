@@ -111,12 +111,6 @@ pub enum S7Code {
     FcLeave {
         call: u16,
     },
-    /// `UC FC [MW 50]`, `CC FB [MW 50]`: the block whose number is in the word at `place`.
-    CallFrom {
-        place: u16,
-        conditional: bool,
-        fb: bool,
-    },
     /// `L P##param` in an FC: the pointer to the actual its caller passed.
     LoadParamPointer {
         param: u8,
@@ -428,7 +422,6 @@ pub fn cost(code: S7Code, t: &crate::profile::Timings) -> u32 {
         S7Code::FbEnter { .. } | S7Code::FbLeave { .. } => t.load_word,
         // Part of the call's own time (the copies are the CALL's parameter passing).
         S7Code::FcEnter { .. } | S7Code::FcLeave { .. } => 0,
-        S7Code::CallFrom { .. } => t.block_call,
         S7Code::Sfc { .. } => t.block_call + t.block_end,
         _ => t.other,
     }

@@ -594,11 +594,6 @@ impl Cpu {
                                 op = &resolved;
                                 continue 'dispatch;
                             }
-                            Ok(super::s7::exec::Flow::Dispatch(concrete)) => {
-                                resolved = concrete;
-                                op = &resolved;
-                                continue 'dispatch;
-                            }
                             Err((cause, fault)) => {
                                 detail = fault;
                                 break 'run Leave::Stop(cause, at!());

@@ -5,7 +5,8 @@ use std::collections::HashMap;
 
 use crate::ast::BlockId;
 use crate::compiler::bytecode::{
-    Arith, ImageBit, JumpCondition, NO_PARAMS, Op, TimerKind, Width, Write,
+    Arith, CALL_FROM_CONDITIONAL, CALL_FROM_FB, ImageBit, IndirectSource, JumpCondition, NO_PARAMS,
+    Op, TimerKind, Width, Write,
 };
 use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
@@ -679,12 +680,18 @@ impl super::Compiler<'_> {
                         width: AccessWidth::Word,
                         ..place
                     });
-                    let code = S7Code::CallFrom {
-                        place,
-                        conditional: op == S7Op::CallConditional,
-                        fb: *kind == S7BlockKind::Fb,
+                    let mut flags = 0;
+                    if *kind == S7BlockKind::Fb {
+                        flags |= CALL_FROM_FB;
+                    }
+                    if op == S7Op::CallConditional {
+                        flags |= CALL_FROM_CONDITIONAL;
+                    }
+                    let call = Op::Indirect {
+                        source: IndirectSource::S7Block(place),
+                        template: flags,
                     };
-                    self.emit(out, Op::S7(code), span);
+                    self.emit(out, call, span);
                     return Ok(());
                 }
                 let S7Operand::Block(reference) = operand else {

@@ -17,8 +17,6 @@ pub enum Flow {
     Next,
     /// Go on at op `target` of the running block.
     Jump(u32),
-    /// Run this op now (an indirect call, its block known at last).
-    Dispatch(Op),
 }
 
 fn fault(text: impl Into<String>) -> Fault {
@@ -132,11 +130,6 @@ impl Cpu {
             }
             S7Code::FcEnter { call } => self.fc_enter(call)?,
             S7Code::FcLeave { call } => self.fc_leave(call)?,
-            S7Code::CallFrom {
-                place,
-                conditional,
-                fb,
-            } => return self.call_from(place, conditional, fb).map(Flow::Dispatch),
             S7Code::LoadParamPointer { param } => {
                 let pointer = self.param_pointer(param)?;
                 self.load_s7(pointer);
@@ -518,10 +511,12 @@ impl Cpu {
     }
 
     /// `UC FC [MW 50]`, `CC FB [MW 50]`: the call of the block numbered in the word.
-    fn call_from(&mut self, place: u16, conditional: bool, fb: bool) -> Result<Op, Fault> {
+    pub(crate) fn call_from(&mut self, place: u16, flags: u16) -> Result<Op, Fault> {
+        use crate::compiler::bytecode::{CALL_FROM_CONDITIONAL, CALL_FROM_FB};
+        let conditional = flags & CALL_FROM_CONDITIONAL != 0;
         let (located, _) = self.locate_index(place)?;
         let number = self.fetch(located, AccessWidth::Word)? as u16;
-        let kind = if fb {
+        let kind = if flags & CALL_FROM_FB != 0 {
             crate::mnemonics::BlockKind::Fb
         } else {
             crate::mnemonics::BlockKind::Fc
