@@ -17,14 +17,13 @@ pub struct Types {
     pub instances: HashMap<(S7BlockKind, u16), Vec<Vec<VarDecl>>>,
 }
 
+/// Instance data laid out: each section's start in bits with its variables.
+pub type Sections<'t> = Vec<(u32, &'t [VarDecl])>;
+
 impl Types {
     /// The instance data of `kind number` as `(offset of the section, its variables)`, and
     /// the size in bits; `None` for a block the program does not have.
-    pub fn instance(
-        &self,
-        kind: S7BlockKind,
-        number: u16,
-    ) -> Option<(Vec<(u32, &[VarDecl])>, u32)> {
+    pub fn instance(&self, kind: S7BlockKind, number: u16) -> Option<(Sections<'_>, u32)> {
         let sections = self.instances.get(&(kind, number))?;
         let mut at = 0;
         let mut laid = Vec::with_capacity(sections.len());

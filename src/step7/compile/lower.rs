@@ -1291,13 +1291,14 @@ impl super::Compiler<'_> {
                     CheckError::UndeclaredLocal {
                         name, block, at, ..
                     } => {
-                        let instances: Vec<&str> = scope
+                        let mut instances: Vec<&str> = scope
                             .interface
                             .variables
                             .values()
                             .filter(|v| matches!(v.ty, DataType::Instance(..)))
                             .map(|v| v.declaration.name.text.as_str())
                             .collect();
+                        instances.sort_unstable();
                         let close = instances
                             .iter()
                             .find(|known| super::operand::strsim_close(known, &name))
