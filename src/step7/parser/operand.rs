@@ -1106,11 +1106,21 @@ mod tests {
         );
         assert_eq!(
             parse_in(MnemonicSet::English, "DB [MW 2]", Expect::Block).unwrap(),
-            addr(S7Area::Flag, AccessWidth::Word, 2, 0)
+            S7Operand::BlockFrom {
+                kind: S7BlockKind::Db,
+                word: Box::new(addr(S7Area::Flag, AccessWidth::Word, 2, 0))
+            }
         );
         assert!(matches!(
             parse_in(MnemonicSet::German, "DB [#DBNR]", Expect::Block).unwrap(),
-            S7Operand::Local(_)
+            S7Operand::BlockFrom { word, .. } if matches!(*word, S7Operand::Local(_))
+        ));
+        assert!(matches!(
+            parse_in(MnemonicSet::English, "FB [MW 50]", Expect::Block).unwrap(),
+            S7Operand::BlockFrom {
+                kind: S7BlockKind::Fb,
+                ..
+            }
         ));
     }
 
