@@ -76,6 +76,12 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
             "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  #start;\n      =  Q 4.0;\nEND_ORGANIZATION_BLOCK\n".into(),
         ),
         (
+            "awl::check::recursive_instance",
+            "speed7",
+            "FUNCTION_BLOCK FB 1\nVAR\n  again : FB 1;\nEND_VAR\nBEGIN\n      NOP 0;\nEND_FUNCTION_BLOCK\n"
+                .into(),
+        ),
+        (
             "awl::check::undefined_label",
             "speed7",
             "ORGANIZATION_BLOCK OB 1\nBEGIN\n      JU nix;\n      NOP 0;\nEND_ORGANIZATION_BLOCK\n".into(),

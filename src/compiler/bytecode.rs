@@ -148,7 +148,16 @@ pub enum IndirectSource {
     /// A flag word, as an image byte offset.
     FlagWord(u16),
     DataWord(u16),
+    /// STEP 7 `UC FC [MW 50]`, `CC FB [MW 50]`: the block number is the word at this place of
+    /// the S7 tables; the op's `template` holds [`CALL_FROM_FB`] and [`CALL_FROM_CONDITIONAL`]
+    /// instead of a template.
+    S7Block(u16),
 }
+
+/// [`IndirectSource::S7Block`]: an FB is called (an FC otherwise).
+pub const CALL_FROM_FB: u16 = 1;
+/// [`IndirectSource::S7Block`]: `CC`, called when the RLO is 1.
+pub const CALL_FROM_CONDITIONAL: u16 = 2;
 
 /// No actual-parameter list.
 pub const NO_PARAMS: u16 = u16::MAX;

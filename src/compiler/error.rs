@@ -308,6 +308,19 @@ pub enum CheckError {
         help: Option<String>,
     },
 
+    #[error("{id} embeds itself as a multi-instance")]
+    #[diagnostic(
+        code(awl::check::recursive_instance),
+        help(
+            "an FB's instance data cannot hold an instance of the FB itself; call it with an instance DB of its own (`CALL FB n, DB m`)"
+        )
+    )]
+    RecursiveInstance {
+        id: String,
+        #[label("an instance of {id}, inside {id}")]
+        at: Span,
+    },
+
     #[error("jump to `{name}`, a label {block} does not have")]
     #[diagnostic(
         code(awl::check::undefined_label),
@@ -370,6 +383,7 @@ impl CheckError {
             | CheckError::UnopenedBracket { at, .. }
             | CheckError::BracketDepth { at, .. }
             | CheckError::UndeclaredLocal { at, .. }
+            | CheckError::RecursiveInstance { at, .. }
             | CheckError::UndefinedLabel { at, .. }
             | CheckError::NotSimulated { at, .. }
             | CheckError::Step7OnStep5Cpu { at, .. } => *at,

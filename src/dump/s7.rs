@@ -120,6 +120,9 @@ impl BlockContext<'_> {
         let detail = match op {
             Op::S7(S7Code::FbEnter { call }) => self.fb_inputs(statement, call),
             Op::S7(S7Code::FbLeave { call }) => self.fb_outputs(statement, call),
+            Op::S7(S7Code::FcEnter { call }) => self.fc_copies(call, true),
+            Op::S7(S7Code::FcLeave { call }) => self.fc_copies(call, false),
+            Op::Indirect { .. } => "call the block numbered in the word".to_string(),
             Op::Call { .. } if statement.call.is_some() => self.call(statement),
             Op::S7(S7Code::Jump { target, .. } | S7Code::Loop { target }) => {
                 format!("to {}", self.target(u32::from(target)))
@@ -263,13 +266,53 @@ impl BlockContext<'_> {
     }
 
     fn instance_db(&self, call: u16) -> String {
-        self.program
-            .s7
-            .fb_calls
-            .get(usize::from(call))
-            .map_or("the instance DB".to_string(), |call| {
-                format!("DB {}", call.instance_db)
+        self.program.s7.fb_calls.get(usize::from(call)).map_or(
+            "the instance DB".to_string(),
+            |call| match call.multi_instance {
+                Some(offset) => format!(
+                    "the caller's instance DB at AR2 + P#{}.{}",
+                    offset / 8,
+                    offset % 8
+                ),
+                None => format!("DB {}", call.instance_db),
+            },
+        )
+    }
+
+    /// `CALL FC n (…)`: the actuals passed as copies on the L stack, and AR2 saved or back.
+    fn fc_copies(&self, call: u16, entering: bool) -> String {
+        let Some(call) = self.program.s7.fc_calls.get(usize::from(call)) else {
+            return String::new();
+        };
+        let copies = if entering {
+            &call.inputs
+        } else {
+            &call.outputs
+        };
+        let shown = |place: u16| {
+            self.program
+                .s7
+                .places
+                .get(usize::from(place))
+                .and_then(|place| place_text(self.program, *place, self.set))
+                .unwrap_or_else(|| "?".into())
+        };
+        let list: Vec<String> = copies
+            .iter()
+            .map(|&(actual, copy)| {
+                if entering {
+                    format!("{} to {}", shown(actual), shown(copy))
+                } else {
+                    format!("{} to {}", shown(copy), shown(actual))
+                }
             })
+            .collect();
+        match (entering, list.is_empty()) {
+            (true, true) => "save AR2".into(),
+            (true, false) => format!("copy {} onto the L stack, save AR2", list.join(", ")),
+            (false, true) => "restore AR2".into(),
+            (false, false) => format!("restore AR2, copy back {}", list.join(", ")),
+        }
     }
 
     fn fb_inputs(&self, statement: &S7Statement, call: u16) -> String {
@@ -280,7 +323,12 @@ impl BlockContext<'_> {
         } else {
             format!(" ({params})")
         };
-        format!("copy the inputs into {db}{params}, open it as the instance DB")
+        let opened = if db.starts_with("DB") {
+            "open it as the instance DB"
+        } else {
+            "AR2 to the instance"
+        };
+        format!("copy the inputs into {db}{params}, {opened}")
     }
 
     fn fb_outputs(&self, statement: &S7Statement, call: u16) -> String {
@@ -347,6 +395,12 @@ pub(crate) fn place_text(program: &Program, place: Place, set: MnemonicSet) -> O
             address(area, byte, bit, None)
         }
         Target::NumberedData { db, byte, bit, .. } => address(S7Area::Data, byte, bit, Some(db)),
+        Target::Instance { byte, bit } => {
+            // The FB's own variable: DI at AR2's offset (`DIW [AR2, P#2.0]`).
+            let written = address(S7Area::Instance, byte, bit, None);
+            let area = written.split_whitespace().next().unwrap_or("DIX");
+            format!("{area} [AR2, P#{byte}.{bit}]")
+        }
         Target::Parameter { param, byte, bit } if byte == 0 && bit == 0 => {
             format!("parameter {}", u16::from(param) + 1)
         }

@@ -101,6 +101,7 @@ fn caller(cpu: &Cpu, context: Context) -> Option<Context> {
         previous_local,
         db: saved.db,
         di: saved.di,
+        ar2: cpu.level.ar2,
         params: frame.params,
         frames: below,
     })
@@ -122,6 +123,14 @@ fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
             byte: (context.previous_local? + byte) as usize,
             bit,
         },
+        Target::Instance { byte, bit } => {
+            let at = (context.ar2 & 0x0007_FFFF) + (byte << 3 | u32::from(bit));
+            Located::Data {
+                slot: context.di,
+                byte: (at >> 3) as usize,
+                bit: (at & 7) as u8,
+            }
+        }
         Target::Data {
             instance,
             byte,

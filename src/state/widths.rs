@@ -74,8 +74,11 @@ impl Widths {
             }
         }
         for call in &program.s7.fb_calls {
+            // A multi-instance's data lie at its offset in the caller's (taken as one with an
+            // instance DB of its own: nested ones' callers are known only at run time).
+            let base = call.multi_instance.map_or(0, |offset| offset / 8);
             for copy in call.inputs.iter().chain(&call.outputs) {
-                widths.s7_data_width(copy.byte, copy.width);
+                widths.s7_data_width(base + copy.byte, copy.width);
             }
         }
         widths
@@ -89,9 +92,11 @@ impl Widths {
                 AccessWidth::Double => self.image_width(layout, byte, 4),
                 AccessWidth::Bit | AccessWidth::Byte => {}
             },
-            S7Target::Data { byte, .. } | S7Target::NumberedData { byte, .. } => {
-                self.s7_data_width(byte, place.width)
-            }
+            // An FB's own variable: at its offset in an instance DB of its own (a
+            // multi-instance's lies further on, see the FB calls below).
+            S7Target::Data { byte, .. }
+            | S7Target::NumberedData { byte, .. }
+            | S7Target::Instance { byte, .. } => self.s7_data_width(byte, place.width),
             _ => {}
         }
     }

@@ -211,6 +211,11 @@ pub enum S7Operand {
     /// A jump target.
     Label(Name),
     Block(S7BlockRef),
+    /// `OPN DB [MW 2]`, `UC FC [MW 50]`: a block whose number is read from the word `word`.
+    BlockFrom {
+        kind: S7BlockKind,
+        word: Box<S7Operand>,
+    },
     /// A number where the operation takes one: `SLW 3`, `+AR1 P#…` is a constant instead.
     Number(i64),
     /// `L DBNO`, `L DBLG`, `L DINO`, `L DILG`.

@@ -102,6 +102,19 @@ pub enum S7Code {
     FbLeave {
         call: u16,
     },
+    /// `CALL FC n (…)`, before the call: the actuals STEP 7 passes as copies on the caller's L
+    /// stack copied there, AR2 saved. Indexes [`S7Tables::fc_calls`].
+    FcEnter {
+        call: u16,
+    },
+    /// After the FC: AR2 back, the copies of the outputs and in/outs copied to their actuals.
+    FcLeave {
+        call: u16,
+    },
+    /// `L P##param` in an FC: the pointer to the actual its caller passed.
+    LoadParamPointer {
+        param: u8,
+    },
     /// `CALL SFC n` (with its parameter places in [`S7Tables::sfc_calls`]).
     Sfc {
         call: u16,
@@ -219,6 +232,13 @@ pub enum Target {
         byte: u32,
         bit: u8,
     },
+    /// A variable of the running FB's interface: in the instance DB (DI register) at AR2's
+    /// offset plus `byte`.`bit`, as STEP 7 addresses it (`DIX [AR2, P#byte.bit]`), so a
+    /// multi-instance finds its data inside the caller's instance DB.
+    Instance {
+        byte: u32,
+        bit: u8,
+    },
     /// `DB5.DBW 4`: opens DB 5 (the DB register) and accesses it; `slot` is DB 5's slot (see
     /// [`S7Tables::db_numbers`]).
     NumberedData {
@@ -280,16 +300,32 @@ pub enum IndirectArea {
     Counter,
 }
 
-/// One `CALL FB n, DB m (…)`.
+/// One `CALL FB n, DB m (…)`, or `CALL #instance (…)` of a multi-instance.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FbCall {
     pub instance_db: u16,
     /// The instance DB's slot (see [`S7Tables::db_numbers`]).
     pub instance_slot: u16,
+    /// A multi-instance: its data lie in the caller's instance DB (which stays open), this
+    /// many bits after the caller's AR2 offset; AR2 points there during the call.
+    pub multi_instance: Option<u32>,
+    /// A system FB awl runs itself (the call has no block to enter).
+    pub system: Option<u16>,
     /// (actual place, byte/bit offset in the instance DB, width) of each input and in/out.
     pub inputs: Vec<ParamCopy>,
     /// (actual place, offset, width) of each output and in/out.
     pub outputs: Vec<ParamCopy>,
+}
+
+/// One `CALL FC n (…)`: the actuals passed as copies on the caller's L stack — constants, and
+/// the caller's own instance data, which STEP 7 does not pass by pointer (the FC may change
+/// DI and AR2) — as (actual place, copy place) pairs.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FcCall {
+    /// Copied before the call (inputs, in/outs).
+    pub inputs: Vec<(u16, u16)>,
+    /// Copied back after it (outputs, in/outs).
+    pub outputs: Vec<(u16, u16)>,
 }
 
 /// One parameter copied between an actual and the instance DB.
@@ -326,6 +362,7 @@ pub struct S7Tables {
     pub places: Vec<Place>,
     pub constants: Vec<u32>,
     pub fb_calls: Vec<FbCall>,
+    pub fc_calls: Vec<FcCall>,
     pub sfc_calls: Vec<SfcCall>,
     /// The data blocks' initial bytes, by DB number.
     pub data_blocks: Vec<(u16, Vec<u8>)>,
@@ -390,6 +427,8 @@ pub fn cost(code: S7Code, t: &crate::profile::Timings) -> u32 {
             t.open_db
         }
         S7Code::FbEnter { .. } | S7Code::FbLeave { .. } => t.load_word,
+        // Part of the call's own time (the copies are the CALL's parameter passing).
+        S7Code::FcEnter { .. } | S7Code::FcLeave { .. } => 0,
         S7Code::Sfc { .. } => t.block_call + t.block_end,
         _ => t.other,
     }

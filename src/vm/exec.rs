@@ -71,6 +71,10 @@ impl Cpu {
                     Err((StopCause::Bcf, StopDetail::Text(text)))
                 }
             },
+            Op::Indirect {
+                source: IndirectSource::S7Block(place),
+                template: flags,
+            } => self.call_from(place, flags).map(|call| (call, false)),
             Op::Indirect { source, template } => {
                 let value = match source {
                     IndirectSource::FlagWord(byte) => self.read_image(Width::Word, byte),
@@ -78,6 +82,7 @@ impl Cpu {
                         Some(value) => u32::from(value),
                         None => return Err(self.data_fault(word)),
                     },
+                    IndirectSource::S7Block(_) => unreachable!("matched above"),
                 };
                 match self.substitute(template, value as u16) {
                     Some(concrete) => Ok((concrete, true)),

@@ -291,6 +291,8 @@ impl Cpu {
                 self.level.open_db = frame.open_db;
                 self.level.params = frame.params;
                 if step7 {
+                    // A block end clears OS (STL manual, status word: OS).
+                    status.set_os(false);
                     self.leave_s7_block();
                 }
                 let resume = frame.resume as usize;
@@ -332,6 +334,10 @@ impl Cpu {
                 });
                 if !pushed {
                     break $run Leave::Stop(StopCause::Stueb, call_pc);
+                }
+                if step7 {
+                    // So does a block call.
+                    status.set_os(false);
                 }
                 if step7 && !self.enter_s7_block(caller, target) {
                     detail = super::s7::memory::local_overflow();

@@ -1,17 +1,15 @@
 //! The initial bytes of STEP 7 data blocks: the declared initial values (`:= 5` in the
 //! interface or `STRUCT`), then the assignments after `BEGIN`.
 
-use std::collections::HashMap;
-
 use crate::compiler::CheckError;
 use crate::step7::ast::{DataType, InitialValue, PathPart, S7Constant, VarDecl};
 
-use super::layout::{self, BitOffset, Interface, struct_layout};
+use super::layout::{self, BitOffset, Interface, Types, struct_layout};
 
 /// Writes `value` as a value of `ty` at bit `at` of `bytes`, growing them as needed.
 pub fn put(bytes: &mut Vec<u8>, at: u32, ty: &DataType, value: &S7Constant) {
     let start = (at / 8) as usize;
-    let size = (layout::size_bits(ty, &HashMap::new()).max(1)).div_ceil(8) as usize;
+    let size = (layout::size_bits(ty, &Types::default()).max(1)).div_ceil(8) as usize;
     if bytes.len() < start + size {
         bytes.resize(start + size, 0);
     }
@@ -55,26 +53,26 @@ fn put_declared(
     base: u32,
     members: &[VarDecl],
     offsets: &[BitOffset],
-    udts: &HashMap<u16, Vec<VarDecl>>,
+    types: &Types,
 ) {
     for (member, offset) in members.iter().zip(offsets) {
         let at = base + offset.0;
         match &member.ty {
             DataType::Struct(inner) => {
-                let (inner_offsets, _) = struct_layout(inner, udts);
-                put_declared(bytes, at, inner, &inner_offsets, udts);
+                let (inner_offsets, _) = struct_layout(inner, types);
+                put_declared(bytes, at, inner, &inner_offsets, types);
             }
             DataType::Udt(number) => {
-                if let Some(inner) = udts.get(number) {
-                    let (inner_offsets, _) = struct_layout(inner, udts);
-                    put_declared(bytes, at, inner, &inner_offsets, udts);
+                if let Some(inner) = types.udts.get(number) {
+                    let (inner_offsets, _) = struct_layout(inner, types);
+                    put_declared(bytes, at, inner, &inner_offsets, types);
                 }
             }
             DataType::Array { element, .. } => {
                 let stride = match **element {
                     DataType::Bool => 1,
                     DataType::Byte | DataType::Char => 8,
-                    ref other => layout::size_bits(other, udts).div_ceil(16) * 16,
+                    ref other => layout::size_bits(other, types).div_ceil(16) * 16,
                 };
                 for (index, value) in member.initial.iter().enumerate() {
                     put(bytes, at + index as u32 * stride, element, value);
@@ -93,14 +91,14 @@ fn put_declared(
 pub fn global_image(
     members: &[VarDecl],
     initial: &[InitialValue],
-    udts: &HashMap<u16, Vec<VarDecl>>,
+    types: &Types,
     errors: &mut Vec<CheckError>,
 ) -> Vec<u8> {
-    let (offsets, size) = struct_layout(members, udts);
+    let (offsets, size) = struct_layout(members, types);
     let mut bytes = vec![0u8; (size / 8) as usize];
-    put_declared(&mut bytes, 0, members, &offsets, udts);
+    put_declared(&mut bytes, 0, members, &offsets, types);
     let as_struct = DataType::Struct(members.to_vec());
-    assign(&mut bytes, &as_struct, initial, udts, errors);
+    assign(&mut bytes, &as_struct, initial, types, errors);
     bytes
 }
 
@@ -109,7 +107,7 @@ pub fn global_image(
 pub fn instance_image(
     interface: &Interface,
     initial: &[InitialValue],
-    udts: &HashMap<u16, Vec<VarDecl>>,
+    types: &Types,
     errors: &mut Vec<CheckError>,
 ) -> Vec<u8> {
     let mut bytes = vec![0u8; interface.instance_bytes as usize];
@@ -121,7 +119,7 @@ pub fn instance_image(
                 at.0,
                 std::slice::from_ref(&variable.declaration),
                 &[BitOffset(0)],
-                udts,
+                types,
             );
             members.push((at, variable));
         }
@@ -137,7 +135,7 @@ pub fn instance_image(
         let layout::Home::Instance(at) = variable.home else {
             continue;
         };
-        match layout::member(&variable.ty, &value.path[1..], udts) {
+        match layout::member(&variable.ty, &value.path[1..], types) {
             Ok((offset, ty)) => put(&mut bytes, at.0 + offset, &ty, &value.value),
             Err(problem) => errors.push(bad_member(problem, value)),
         }
@@ -149,11 +147,11 @@ fn assign(
     bytes: &mut Vec<u8>,
     whole: &DataType,
     initial: &[InitialValue],
-    udts: &HashMap<u16, Vec<VarDecl>>,
+    types: &Types,
     errors: &mut Vec<CheckError>,
 ) {
     for value in initial {
-        match layout::member(whole, &value.path, udts) {
+        match layout::member(whole, &value.path, types) {
             Ok((offset, ty)) => put(bytes, offset, &ty, &value.value),
             Err(problem) => errors.push(bad_member(problem, value)),
         }

@@ -5,7 +5,35 @@
 
 use std::collections::HashMap;
 
-use crate::step7::ast::{AccessWidth, DataType, PathPart, VarDecl, VarKind};
+use crate::step7::ast::{AccessWidth, DataType, PathPart, S7BlockKind, VarDecl, VarKind};
+
+/// The types a layout looks up by number: the UDTs, and the FBs and SFBs a multi-instance
+/// (`motor : FB 2;`) embeds.
+#[derive(Debug, Clone, Default)]
+pub struct Types {
+    pub udts: HashMap<u16, Vec<VarDecl>>,
+    /// The instance data of each FB and SFB, section by section (inputs, outputs, in/outs,
+    /// statics): each section starts on an even byte, as in its own instance DB.
+    pub instances: HashMap<(S7BlockKind, u16), Vec<Vec<VarDecl>>>,
+}
+
+/// Instance data laid out: each section's start in bits with its variables.
+pub type Sections<'t> = Vec<(u32, &'t [VarDecl])>;
+
+impl Types {
+    /// The instance data of `kind number` as `(offset of the section, its variables)`, and
+    /// the size in bits; `None` for a block the program does not have.
+    pub fn instance(&self, kind: S7BlockKind, number: u16) -> Option<(Sections<'_>, u32)> {
+        let sections = self.instances.get(&(kind, number))?;
+        let mut at = 0;
+        let mut laid = Vec::with_capacity(sections.len());
+        for section in sections {
+            laid.push((at, section.as_slice()));
+            at += struct_layout(section, self).1;
+        }
+        Some((laid, at))
+    }
+}
 
 /// A position in bits from the start of an area.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -27,7 +55,7 @@ impl BitOffset {
 }
 
 /// The size of a type in bits (BOOL: 1).
-pub fn size_bits(ty: &DataType, udts: &HashMap<u16, Vec<VarDecl>>) -> u32 {
+pub fn size_bits(ty: &DataType, types: &Types) -> u32 {
     match ty {
         DataType::Bool => 1,
         DataType::Byte | DataType::Char => 8,
@@ -54,15 +82,18 @@ pub fn size_bits(ty: &DataType, udts: &HashMap<u16, Vec<VarDecl>>) -> u32 {
                 .iter()
                 .map(|(low, high)| (high - low + 1).max(0) as u32)
                 .product();
-            let element_bits = element_stride(element, udts);
+            let element_bits = element_stride(element, types);
             BitOffset(count * element_bits).align_word().0
         }
-        DataType::Struct(members) => struct_layout(members, udts).1,
-        DataType::Udt(number) => udts
+        DataType::Struct(members) => struct_layout(members, types).1,
+        DataType::Udt(number) => types
+            .udts
             .get(number)
-            .map_or(0, |members| struct_layout(members, udts).1),
-        // Multi-instances are part 2: an instance takes no room here.
-        DataType::Instance(..) => 0,
+            .map_or(0, |members| struct_layout(members, types).1),
+        // A multi-instance: the FB's or SFB's instance data, inside the calling FB's.
+        DataType::Instance(kind, number) => {
+            types.instance(*kind, *number).map_or(0, |(_, size)| size)
+        }
         // The compiler replaced every name that stands for a type; one left stands for
         // nothing and was reported.
         DataType::Named(_) => 0,
@@ -70,11 +101,11 @@ pub fn size_bits(ty: &DataType, udts: &HashMap<u16, Vec<VarDecl>>) -> u32 {
 }
 
 /// The distance between two array elements in bits.
-fn element_stride(element: &DataType, udts: &HashMap<u16, Vec<VarDecl>>) -> u32 {
+fn element_stride(element: &DataType, types: &Types) -> u32 {
     match element {
         DataType::Bool => 1,
         DataType::Byte | DataType::Char => 8,
-        other => BitOffset(size_bits(other, udts)).align_word().0,
+        other => BitOffset(size_bits(other, types)).align_word().0,
     }
 }
 
@@ -88,16 +119,13 @@ fn aligned(at: BitOffset, ty: &DataType) -> BitOffset {
 }
 
 /// The members' offsets and the structure's size in bits (even bytes).
-pub fn struct_layout(
-    members: &[VarDecl],
-    udts: &HashMap<u16, Vec<VarDecl>>,
-) -> (Vec<BitOffset>, u32) {
+pub fn struct_layout(members: &[VarDecl], types: &Types) -> (Vec<BitOffset>, u32) {
     let mut at = BitOffset(0);
     let mut offsets = Vec::with_capacity(members.len());
     for member in members {
         at = aligned(at, &member.ty);
         offsets.push(at);
-        at = BitOffset(at.0 + size_bits(&member.ty, udts));
+        at = BitOffset(at.0 + size_bits(&member.ty, types));
     }
     (offsets, at.align_word().0)
 }
@@ -159,11 +187,7 @@ pub struct Interface {
 impl Interface {
     /// The interface of an FB (`instance` true: inputs … statics in the instance DB) or of an
     /// FC or OB (parameters by position, temporaries on the L stack).
-    pub fn build(
-        sections: &[(VarKind, &[VarDecl])],
-        instance: bool,
-        udts: &HashMap<u16, Vec<VarDecl>>,
-    ) -> Interface {
+    pub fn build(sections: &[(VarKind, &[VarDecl])], instance: bool, types: &Types) -> Interface {
         let mut interface = Interface::default();
         let mut data = BitOffset(0);
         let mut local = BitOffset(0);
@@ -174,13 +198,13 @@ impl Interface {
                     VarKind::Temp => {
                         local = aligned(local, &var.ty);
                         let home = Home::Local(local);
-                        local = BitOffset(local.0 + size_bits(&var.ty, udts));
+                        local = BitOffset(local.0 + size_bits(&var.ty, types));
                         home
                     }
                     _ if in_instance => {
                         data = aligned(data, &var.ty);
                         let home = Home::Instance(data);
-                        data = BitOffset(data.0 + size_bits(&var.ty, udts));
+                        data = BitOffset(data.0 + size_bits(&var.ty, types));
                         home
                     }
                     _ => {
@@ -210,12 +234,19 @@ impl Interface {
     }
 }
 
+/// Where a section lies in an FB's instance data and an FC's parameter list.
+pub fn section_rank(kind: VarKind) -> u8 {
+    match kind {
+        VarKind::Input => 0,
+        VarKind::Output => 1,
+        VarKind::InOut => 2,
+        VarKind::Static => 3,
+        VarKind::Temp => 4,
+    }
+}
+
 /// A member path below a variable: the offset in bits and the member's type, or why not.
-pub fn member(
-    ty: &DataType,
-    path: &[PathPart],
-    udts: &HashMap<u16, Vec<VarDecl>>,
-) -> Result<(u32, DataType), String> {
+pub fn member(ty: &DataType, path: &[PathPart], types: &Types) -> Result<(u32, DataType), String> {
     let mut offset = 0u32;
     let mut ty = ty.clone();
     for part in path {
@@ -223,10 +254,10 @@ pub fn member(
             (PathPart::Member(name), DataType::Struct(_) | DataType::Udt(_)) => {
                 let members = match &ty {
                     DataType::Struct(members) => members.clone(),
-                    DataType::Udt(number) => udts.get(number).cloned().unwrap_or_default(),
+                    DataType::Udt(number) => types.udts.get(number).cloned().unwrap_or_default(),
                     _ => unreachable!("matched above"),
                 };
-                let (offsets, _) = struct_layout(&members, udts);
+                let (offsets, _) = struct_layout(&members, types);
                 let Some(at) = members
                     .iter()
                     .position(|m| m.name.text.eq_ignore_ascii_case(&name.text))
@@ -251,8 +282,25 @@ pub fn member(
                     }
                     linear = linear * ((high - low + 1) as u32) + (index - low) as u32;
                 }
-                offset += linear * element_stride(element, udts);
+                offset += linear * element_stride(element, types);
                 ty = (**element).clone();
+            }
+            (PathPart::Member(name), DataType::Instance(kind, number)) => {
+                let Some((sections, _)) = types.instance(*kind, *number) else {
+                    return Err(format!("{} {number} is not in the program", kind.name()));
+                };
+                let found = sections.iter().find_map(|(start, vars)| {
+                    let at = vars
+                        .iter()
+                        .position(|v| v.name.text.eq_ignore_ascii_case(&name.text))?;
+                    let (offsets, _) = struct_layout(vars, types);
+                    Some((start + offsets[at].0, vars[at].ty.clone()))
+                });
+                let Some((at, member)) = found else {
+                    return Err(format!("no member `{}`", name.text));
+                };
+                offset += at;
+                ty = member;
             }
             (PathPart::Member(name), _) => return Err(format!("`{}`: not a structure", name.text)),
             (PathPart::Index(_), _) => return Err("not an array".into()),

@@ -5,18 +5,19 @@ use std::collections::HashMap;
 
 use crate::ast::BlockId;
 use crate::compiler::bytecode::{
-    Arith, ImageBit, JumpCondition, NO_PARAMS, Op, TimerKind, Width, Write,
+    Arith, CALL_FROM_CONDITIONAL, CALL_FROM_FB, ImageBit, IndirectSource, JumpCondition, NO_PARAMS,
+    Op, TimerKind, Width, Write,
 };
 use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
 use crate::source::Span;
 use crate::step7::ast::{
-    AccessWidth, CallParam, CallSpec, ConstKind, S7Address, S7Area, S7Block, S7BlockKind,
+    AccessWidth, CallParam, CallSpec, ConstKind, DataType, S7Address, S7Area, S7Block, S7BlockKind,
     S7BlockRef, S7Body, S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, FbCall, McrCode, MemOp, ParamCopy, Place, S7Code,
-    SfcCall, TIME_TCK, Target,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, FbCall, FcCall, McrCode, MemOp, ParamCopy, Place,
+    S7Code, SfcCall, TIME_TCK, Target,
 };
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
@@ -189,6 +190,28 @@ impl super::Compiler<'_> {
         set: MnemonicSet,
     ) -> CompiledBlock {
         let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
+        // An OB's local data hold its 20 bytes of start information, declared or not
+        // (see `vm::start_info`): the blocks it calls start after them.
+        let declared = if id.kind == BlockKind::Ob {
+            interface.local_bytes.max(START_INFO_BYTES)
+        } else {
+            interface.local_bytes
+        };
+        let S7Body::Logic(statements) = &block.body else {
+            unreachable!("only logic blocks are compiled")
+        };
+        // The local data also cover what the block addresses absolutely (`T LB 0` with no
+        // temporaries): a block it calls starts after them, so neither overwrites the other.
+        let declared = statements
+            .iter()
+            .flat_map(|statement| {
+                let params = statement.call.iter().flat_map(|call| &call.params);
+                std::iter::once(&statement.operand).chain(params.map(|param| &param.actual))
+            })
+            .map(absolute_local_end)
+            .fold(declared, u32::max);
+        self.scratch_base = declared;
+        self.scratch_bytes = 0;
         let scope = Scope {
             interface: &interface,
             block: id.to_string(),
@@ -200,9 +223,6 @@ impl super::Compiler<'_> {
             segments: Vec::new(),
             labels: HashMap::new(),
             fixups: Vec::new(),
-        };
-        let S7Body::Logic(statements) = &block.body else {
-            unreachable!("only logic blocks are compiled")
         };
         // A block with `MCRA` has the MCR-aware writes, and starts without the dependency
         // (see `vm::s7::mcr`); no other block pays for the MCR.
@@ -276,13 +296,8 @@ impl super::Compiler<'_> {
             spans: out.spans,
             elapsed: out.elapsed,
             segments: out.segments,
-            // An OB's local data hold its 20 bytes of start information, declared or not
-            // (see `vm::start_info`): the blocks it calls start after them.
-            local_bytes: if id.kind == BlockKind::Ob {
-                interface.local_bytes.max(START_INFO_BYTES)
-            } else {
-                interface.local_bytes
-            },
+            // The copies of its calls' actuals follow its own local data.
+            local_bytes: declared + self.scratch_bytes,
         }
     }
 
@@ -605,6 +620,16 @@ impl super::Compiler<'_> {
                         instance,
                         slot: self.db_slot(*number, at),
                     },
+                    S7Operand::BlockFrom { word, .. } => {
+                        let place = self.place(word, at, scope)?;
+                        S7Code::OpenDbFrom {
+                            instance,
+                            place: self.tables.place(Place {
+                                width: AccessWidth::Word,
+                                ..place
+                            }),
+                        }
+                    }
                     other => {
                         let place = self.place(other, at, scope)?;
                         S7Code::OpenDbFrom {
@@ -646,6 +671,30 @@ impl super::Compiler<'_> {
                 self.call(out, call, at, span, scope)
             }
             S7Op::CallUnconditional | S7Op::CallConditional => {
+                if let S7Operand::BlockFrom {
+                    kind: kind @ (S7BlockKind::Fc | S7BlockKind::Fb),
+                    word,
+                } = operand
+                {
+                    let place = self.place(word, at, scope)?;
+                    let place = self.tables.place(Place {
+                        width: AccessWidth::Word,
+                        ..place
+                    });
+                    let mut flags = 0;
+                    if *kind == S7BlockKind::Fb {
+                        flags |= CALL_FROM_FB;
+                    }
+                    if op == S7Op::CallConditional {
+                        flags |= CALL_FROM_CONDITIONAL;
+                    }
+                    let call = Op::Indirect {
+                        source: IndirectSource::S7Block(place),
+                        template: flags,
+                    };
+                    self.emit(out, call, span);
+                    return Ok(());
+                }
                 let S7Operand::Block(reference) = operand else {
                     if self.not_a_block(operand, "") {
                         return Ok(());
@@ -796,8 +845,10 @@ impl super::Compiler<'_> {
             Home::Instance(base) => (0x85, base.0),
             Home::Parameter(_) => {
                 return Err(CheckError::NotSimulated {
-                    what: "a pointer to an FC parameter".into(),
-                    why: "`P##parameter` of an FC is not simulated yet".into(),
+                    what: "this pointer to an FC parameter".into(),
+                    why: "awl loads `P##parameter` of a whole parameter with `L`; a member's, \
+                          or one loaded by `LAR1`/`LAR2`, is not simulated yet"
+                        .into(),
                     at,
                 });
             }
@@ -830,6 +881,16 @@ impl super::Compiler<'_> {
                 Ok(())
             }
             S7Operand::PointerTo(inner) => {
+                if let S7Operand::Local(path) = &**inner
+                    && path.len() == 1
+                    && let (variable, _, _) = self.resolve_local(path, at, scope)?
+                    && let Home::Parameter(param) = variable.home
+                {
+                    // Where the actual is, known when the FC runs: the pointer its caller
+                    // passed.
+                    self.emit(out, Op::S7(S7Code::LoadParamPointer { param }), span);
+                    return Ok(());
+                }
                 let pointer = self.pointer_to(inner, at, scope)?;
                 self.emit(out, Op::LoadConstant(pointer), span);
                 Ok(())
@@ -928,12 +989,8 @@ impl super::Compiler<'_> {
         span: Span,
         scope: &Scope<'_>,
     ) -> Result<(), CheckError> {
-        if call.multi_instance.is_some() {
-            return Err(CheckError::NotSimulated {
-                what: "a multi-instance call".into(),
-                why: "`CALL #instance` is not simulated yet".into(),
-                at,
-            });
+        if let Some(name) = &call.multi_instance {
+            return self.call_multi_instance(out, call, name, at, span, scope);
         }
         let Some(call) = &self.numbered_call(call) else {
             return Ok(());
@@ -1055,6 +1112,8 @@ impl super::Compiler<'_> {
             interface,
         } = callee;
         let mut actuals = vec![None; interface.parameters.len()];
+        let mut fc_call = FcCall::default();
+        let mut scratch_bits = 0u32;
         for param in &call.params {
             let name = param.name.text.to_ascii_uppercase();
             let Some(position) = interface.parameters.iter().position(|p| *p == name) else {
@@ -1066,17 +1125,55 @@ impl super::Compiler<'_> {
                 });
                 continue;
             };
-            let resolved = match &param.actual {
-                S7Operand::Constant(constant) => Resolved::Constant(constant_value(constant)),
+            let formal = &interface.variables[&name];
+            let place = match &param.actual {
+                S7Operand::Constant(constant) if !copied(&formal.ty) => {
+                    actuals[position] = Some(Resolved::Constant(constant_value(constant)));
+                    continue;
+                }
                 actual => match self.place(actual, param.actual_span, scope) {
-                    Ok(place) => Resolved::S7(self.tables.place(place)),
+                    Ok(place) => place,
                     Err(error) => {
                         self.errors.push(error);
                         continue;
                     }
                 },
             };
-            actuals[position] = Some(resolved);
+            let copy = matches!(place.target, Target::Constant(_) | Target::Instance { .. })
+                && copied(&formal.ty);
+            let Some(width) = super::layout::width_of(&formal.ty).filter(|_| copy) else {
+                actuals[position] = Some(Resolved::S7(self.tables.place(place)));
+                continue;
+            };
+            // STEP 7 passes a constant or the caller's instance data as a copy on the caller's
+            // L stack, after its temporaries: the FC's pointer is to the copy (area V).
+            let bits = if width == AccessWidth::Bit {
+                1
+            } else {
+                8 * super::operand::bytes(width)
+            };
+            let start = if width == AccessWidth::Bit {
+                scratch_bits
+            } else {
+                scratch_bits.div_ceil(16) * 16
+            };
+            scratch_bits = start + bits;
+            let at_bits = self.scratch_base * 8 + start;
+            let local = self.tables.place(Place {
+                target: Target::Local {
+                    byte: at_bits / 8,
+                    bit: (at_bits % 8) as u8,
+                },
+                width,
+            });
+            let actual = self.tables.place(place);
+            if matches!(formal.kind, VarKind::Input | VarKind::InOut) {
+                fc_call.inputs.push((actual, local));
+            }
+            if matches!(formal.kind, VarKind::Output | VarKind::InOut) {
+                fc_call.outputs.push((actual, local));
+            }
+            actuals[position] = Some(Resolved::S7(local));
         }
         let missing: Vec<&str> = interface
             .parameters
@@ -1103,6 +1200,10 @@ impl super::Compiler<'_> {
             .collect();
         self.param_lists.push(list);
         let params = (self.param_lists.len() - 1) as u16;
+        self.scratch_bytes = self.scratch_bytes.max(scratch_bits.div_ceil(16) * 2);
+        self.tables.fc_calls.push(fc_call);
+        let index = (self.tables.fc_calls.len() - 1) as u16;
+        self.emit(out, Op::S7(S7Code::FcEnter { call: index }), span);
         self.emit(
             out,
             Op::Call {
@@ -1112,6 +1213,7 @@ impl super::Compiler<'_> {
             },
             span,
         );
+        self.emit(out, Op::S7(S7Code::FcLeave { call: index }), span);
         Ok(())
     }
 
@@ -1137,6 +1239,39 @@ impl super::Compiler<'_> {
             });
         };
         let instance_slot = self.db_slot(*db, at);
+        let (inputs, outputs) = self.fb_param_copies(call, &id.to_string(), interface, scope);
+        self.tables.fb_calls.push(FbCall {
+            instance_db: *db,
+            instance_slot,
+            multi_instance: None,
+            system: None,
+            inputs,
+            outputs,
+        });
+        let index = (self.tables.fb_calls.len() - 1) as u16;
+        self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
+        self.emit(
+            out,
+            Op::Call {
+                block,
+                conditional: false,
+                params: NO_PARAMS,
+            },
+            span,
+        );
+        self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
+        Ok(())
+    }
+
+    /// The copies of a call's actuals into an FB's instance data (inputs, in/outs) and back
+    /// (outputs, in/outs); `fb` names the block for messages.
+    fn fb_param_copies(
+        &mut self,
+        call: &CallSpec,
+        fb: &str,
+        interface: &super::layout::Interface,
+        scope: &Scope<'_>,
+    ) -> (Vec<ParamCopy>, Vec<ParamCopy>) {
         let mut inputs = Vec::new();
         let mut outputs = Vec::new();
         for param in &call.params {
@@ -1150,7 +1285,7 @@ impl super::Compiler<'_> {
             let Some(variable) = variable else {
                 self.errors.push(CheckError::UnknownParam {
                     name: param.name.text.clone(),
-                    fb: id.to_string(),
+                    fb: fb.to_string(),
                     at: param.name.span,
                     help: None,
                 });
@@ -1189,9 +1324,127 @@ impl super::Compiler<'_> {
                 outputs.push(copy);
             }
         }
+        (inputs, outputs)
+    }
+
+    /// `CALL #motor (…)`: the FB or SFB of the calling FB's multi-instance `motor`, with the
+    /// caller's instance DB and AR2 moved on to the instance's data.
+    fn call_multi_instance(
+        &mut self,
+        out: &mut Emitter,
+        call: &CallSpec,
+        name: &crate::ast::Name,
+        at: Span,
+        span: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(), CheckError> {
+        let path = [crate::step7::ast::PathPart::Member(name.clone())];
+        let (variable, ty, _) = self
+            .resolve_local(&path, name.span, scope)
+            .map_err(|error| {
+                match error {
+                    // The names that are multi-instances are the ones to suggest.
+                    CheckError::UndeclaredLocal {
+                        name, block, at, ..
+                    } => {
+                        let mut instances: Vec<&str> = scope
+                            .interface
+                            .variables
+                            .values()
+                            .filter(|v| matches!(v.ty, DataType::Instance(..)))
+                            .map(|v| v.declaration.name.text.as_str())
+                            .collect();
+                        instances.sort_unstable();
+                        let close = instances
+                            .iter()
+                            .find(|known| super::operand::strsim_close(known, &name))
+                            .map(|known| format!("did you mean `#{known}`?"))
+                            .or_else(|| {
+                                (!instances.is_empty()).then(|| {
+                                    format!(
+                                        "the multi-instances of {block}: #{}",
+                                        instances.join(", #")
+                                    )
+                                })
+                            })
+                            .or_else(|| {
+                                Some(format!(
+                                    "declare it in the static section of {block}: `{name} : FB n;`"
+                                ))
+                            });
+                        CheckError::UndeclaredLocal {
+                            name,
+                            block,
+                            at,
+                            help: close,
+                        }
+                    }
+                    other => other,
+                }
+            })?;
+        let (Home::Instance(offset), DataType::Instance(kind, number)) = (variable.home, &ty)
+        else {
+            return Err(CheckError::OperandNotAllowed {
+                op: "CALL".into(),
+                at,
+                help: Some(format!(
+                    "`CALL #{}` calls a multi-instance, a variable declared `{} : FB n;` in the \
+                     static section (VAR) of an FB",
+                    name.text, name.text
+                )),
+            });
+        };
+        let (kind, number) = (*kind, *number);
+        let label = format!("{} {number}", kind.name());
+        if kind == S7BlockKind::Sfb {
+            let Some(interface) = super::system::interface(number, self.types()) else {
+                return Err(CheckError::NotSimulated {
+                    what: label,
+                    why: "of the system FBs, awl runs SFB 0 (CTU) so far".into(),
+                    at,
+                });
+            };
+            let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
+            self.tables.fb_calls.push(FbCall {
+                instance_db: 0,
+                instance_slot: 0,
+                multi_instance: Some(offset.0),
+                system: Some(number),
+                inputs,
+                outputs,
+            });
+            let index = (self.tables.fb_calls.len() - 1) as u16;
+            self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
+            self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
+            return Ok(());
+        }
+        let id = BlockId {
+            kind: BlockKind::Fb,
+            number,
+        };
+        let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
+        let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
+        let Some(&block) = self.index.get(&id) else {
+            self.errors.push(CheckError::UndefinedBlock {
+                id: id.to_string(),
+                at,
+            });
+            self.emit(
+                out,
+                Op::CallMissing {
+                    kind: id.kind,
+                    number: id.number,
+                    conditional: false,
+                },
+                span,
+            );
+            return Ok(());
+        };
         self.tables.fb_calls.push(FbCall {
-            instance_db: *db,
-            instance_slot,
+            instance_db: 0,
+            instance_slot: 0,
+            multi_instance: Some(offset.0),
+            system: None,
             inputs,
             outputs,
         });
@@ -1209,6 +1462,32 @@ impl super::Compiler<'_> {
         self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
         Ok(())
     }
+}
+
+/// Where the absolute `L` addresses of an operand end, in bytes rounded to a word (0: none).
+fn absolute_local_end(operand: &S7Operand) -> u32 {
+    match operand {
+        S7Operand::Address(address) if address.area == S7Area::Local => {
+            (address.byte + super::operand::bytes(address.width)).div_ceil(2) * 2
+        }
+        S7Operand::Pair(first, second) => absolute_local_end(first).max(absolute_local_end(second)),
+        _ => 0,
+    }
+}
+
+/// Whether STEP 7 passes an actual of an FC parameter of type `ty` as a copy when it is a
+/// constant or the caller's instance data: the elementary types (a TIMER, COUNTER or block
+/// parameter passes the number itself).
+fn copied(ty: &DataType) -> bool {
+    super::layout::width_of(ty).is_some()
+        && !matches!(
+            ty,
+            DataType::Timer
+                | DataType::Counter
+                | DataType::BlockDb
+                | DataType::BlockFb
+                | DataType::BlockFc
+        )
 }
 
 /// A `__FEATURE` operand's number.

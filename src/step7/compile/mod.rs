@@ -8,6 +8,7 @@ mod layout;
 mod lower;
 mod operand;
 mod symbols;
+mod system;
 
 use std::collections::HashMap;
 
@@ -22,7 +23,7 @@ use crate::step7::ast::{
 use crate::step7::bytecode::S7Tables;
 use crate::symbols::Symbols;
 
-use layout::Interface;
+use layout::{Interface, Types};
 
 /// The number of accumulators the first `__FEATURE 0, N` of the program asks for.
 fn asked_accumulators(units: &[S7Unit]) -> Option<u8> {
@@ -65,7 +66,7 @@ pub fn compile(
         symbols,
         index: HashMap::new(),
         interfaces: HashMap::new(),
-        udts: HashMap::new(),
+        types: Types::default(),
         data_blocks: HashMap::new(),
         db_layouts: HashMap::new(),
         db_slots: HashMap::new(),
@@ -77,6 +78,8 @@ pub fn compile(
         param_lists: Vec::new(),
         errors: Vec::new(),
         mcr_block: false,
+        scratch_base: 0,
+        scratch_bytes: 0,
     };
     compiler.number_blocks(units);
     let units = compiler.named_types(units);
@@ -117,7 +120,7 @@ struct Compiler<'a> {
     symbols: Symbols,
     index: HashMap<BlockId, u16>,
     interfaces: HashMap<BlockId, Interface>,
-    udts: HashMap<u16, Vec<VarDecl>>,
+    types: Types,
     data_blocks: HashMap<u16, Vec<u8>>,
     /// Each data block's members and where they lie (for `DB5.speed`).
     db_layouts: HashMap<u16, Interface>,
@@ -128,6 +131,10 @@ struct Compiler<'a> {
     errors: Vec<CheckError>,
     /// The block being compiled has `MCRA`: its writes are MCR-aware.
     mcr_block: bool,
+    /// Where the block's copies of FC actuals start on its L stack (after its own local
+    /// data), and how many bytes its largest call needs.
+    scratch_base: u32,
+    scratch_bytes: u32,
 }
 
 /// The block kind awl files an S7 block under.
@@ -170,9 +177,10 @@ impl<'a> Compiler<'a> {
             if let (S7BlockKind::Udt, S7Body::Type(members)) = (block.kind, &block.body)
                 && let Some(number) = self.declaration(block)
             {
-                self.udts.insert(number, members.clone());
+                self.types.udts.insert(number, members.clone());
             }
         }
+        self.instance_types(units);
         let mut first_seen: HashMap<BlockId, Span> = HashMap::new();
         let mut logic = Vec::new();
         let blocks = units
@@ -210,12 +218,107 @@ impl<'a> Compiler<'a> {
         logic
     }
 
+    /// Registers the instance data of every FB (and of the system FBs awl runs) for the
+    /// multi-instances that embed them; an FB that embeds itself, directly or through others,
+    /// is reported and left out, so it takes no room.
+    fn instance_types(&mut self, units: &[S7Unit]) {
+        for block in units.iter().flat_map(|unit| &unit.blocks) {
+            if block.kind != S7BlockKind::Fb {
+                continue;
+            }
+            let S7BlockRef::Number { number, .. } = block.name else {
+                // `number_blocks` declared it: its number is in the symbol table.
+                let S7BlockRef::Symbol(name) = &block.name else {
+                    unreachable!("matched above")
+                };
+                let Some(crate::symbols::Stands::Step7(crate::symbols::S7Symbol::Block {
+                    number,
+                    ..
+                })) = self
+                    .symbols
+                    .get(&name.text)
+                    .map(|entry| entry.stands.clone())
+                else {
+                    continue;
+                };
+                self.register_instance(block, number);
+                continue;
+            };
+            self.register_instance(block, number);
+        }
+        for (number, sections) in system::instances() {
+            self.types
+                .instances
+                .insert((S7BlockKind::Sfb, number), sections);
+        }
+        // Each FB on a cycle of multi-instances is left out until none is left.
+        loop {
+            let mut keys: Vec<(S7BlockKind, u16)> = self.types.instances.keys().copied().collect();
+            keys.sort_unstable();
+            let Some((key, at)) = keys.iter().find_map(|key| {
+                self.embeds(*key, *key, &mut Vec::new())
+                    .map(|at| (*key, at))
+            }) else {
+                break;
+            };
+            self.types.instances.remove(&key);
+            self.errors.push(CheckError::RecursiveInstance {
+                id: format!("{} {}", key.0.name(), key.1),
+                at,
+            });
+        }
+    }
+
+    fn register_instance(&mut self, block: &S7Block, number: u16) {
+        let mut sections: Vec<(VarKind, Vec<VarDecl>)> = block
+            .interface
+            .iter()
+            .filter(|section| section.kind != VarKind::Temp)
+            .map(|section| (section.kind, section.vars.clone()))
+            .collect();
+        sections.sort_by_key(|(kind, _)| layout::section_rank(*kind));
+        let sections = sections.into_iter().map(|(_, vars)| vars).collect();
+        self.types
+            .instances
+            .insert((S7BlockKind::Fb, number), sections);
+    }
+
+    /// Where the instance data of `from` embed `target`, directly or through other
+    /// multi-instances (`seen`: the blocks already walked).
+    fn embeds(
+        &self,
+        from: (S7BlockKind, u16),
+        target: (S7BlockKind, u16),
+        seen: &mut Vec<(S7BlockKind, u16)>,
+    ) -> Option<Span> {
+        if seen.contains(&from) {
+            return None;
+        }
+        seen.push(from);
+        let sections = self.types.instances.get(&from)?;
+        for declaration in sections.iter().flatten() {
+            let mut ty = &declaration.ty;
+            while let crate::step7::ast::DataType::Array { element, .. } = ty {
+                ty = element;
+            }
+            if let crate::step7::ast::DataType::Instance(kind, number) = *ty
+                && ((kind, number) == target || self.embeds((kind, number), target, seen).is_some())
+            {
+                return Some(declaration.span);
+            }
+        }
+        None
+    }
+
     fn interface(&self, block: &S7Block) -> Interface {
         let mut sections: Vec<(VarKind, &[VarDecl])> = block
             .interface
             .iter()
             .map(|section| (section.kind, section.vars.as_slice()))
             .collect();
+        // STEP 7 lays the sections out in this order whatever order the source writes them in
+        // (inputs, outputs, in/outs, statics; temporaries on the L stack).
+        sections.sort_by_key(|(kind, _)| layout::section_rank(*kind));
         let return_value;
         if let Some(ty) = &block.return_type {
             return_value = [VarDecl {
@@ -228,9 +331,9 @@ impl<'a> Compiler<'a> {
                 span: block.header,
             }];
             sections.push((VarKind::Output, &return_value));
-            return Interface::build(&sections, block.kind == S7BlockKind::Fb, &self.udts);
+            return Interface::build(&sections, block.kind == S7BlockKind::Fb, &self.types);
         }
-        Interface::build(&sections, block.kind == S7BlockKind::Fb, &self.udts)
+        Interface::build(&sections, block.kind == S7BlockKind::Fb, &self.types)
     }
 
     fn make_data_blocks(&mut self, units: &[S7Unit]) {
@@ -250,9 +353,9 @@ impl<'a> Compiler<'a> {
             let bytes = match instance_of {
                 None => {
                     let sections = [(VarKind::Static, members.as_slice())];
-                    let layout = Interface::build(&sections, true, &self.udts);
+                    let layout = Interface::build(&sections, true, &self.types);
                     self.db_layouts.insert(number, layout);
-                    data::global_image(members, initial, &self.udts, &mut errors)
+                    data::global_image(members, initial, &self.types, &mut errors)
                 }
                 Some(fb) => {
                     let Some(fb) = self.numbered(fb, "DATA_BLOCK") else {
@@ -264,7 +367,7 @@ impl<'a> Compiler<'a> {
                     match self.interfaces.get(&id) {
                         Some(interface) => {
                             self.db_layouts.insert(number, interface.clone());
-                            data::instance_image(interface, initial, &self.udts, &mut errors)
+                            data::instance_image(interface, initial, &self.types, &mut errors)
                         }
                         None => {
                             self.errors.push(CheckError::UndefinedBlock {
@@ -316,7 +419,7 @@ impl<'a> Compiler<'a> {
         slot
     }
 
-    fn udts(&self) -> &HashMap<u16, Vec<VarDecl>> {
-        &self.udts
+    fn types(&self) -> &Types {
+        &self.types
     }
 }

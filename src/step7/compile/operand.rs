@@ -295,8 +295,7 @@ impl super::Compiler<'_> {
         let target = match variable.home {
             Home::Instance(base) => {
                 let at_bits = base.0 + offset;
-                Target::Data {
-                    instance: true,
+                Target::Instance {
                     byte: at_bits / 8,
                     bit: (at_bits % 8) as u8,
                 }
@@ -360,14 +359,14 @@ impl super::Compiler<'_> {
                 help: close,
             });
         };
-        let (offset, ty) = layout::member(&variable.ty, &path[1..], self.udts())
+        let (offset, ty) = layout::member(&variable.ty, &path[1..], self.types())
             .map_err(|problem| not_an_operand(at, &problem))?;
         Ok((variable.clone(), ty, offset))
     }
 }
 
 /// Two names that differ in case or by one character.
-fn strsim_close(a: &str, b: &str) -> bool {
+pub(super) fn strsim_close(a: &str, b: &str) -> bool {
     let (a, b) = (a.to_ascii_uppercase(), b.to_ascii_uppercase());
     if a.len().abs_diff(b.len()) > 1 {
         return false;

@@ -216,13 +216,27 @@ fn block_operand<'a>(ctx: Ctx<'a>, input: Tokens<'a>) -> Option<PResult<'a, S7Op
         return block_number_out_of_range(ctx, input).map(|error| Err(Fail::with(error)));
     };
     let Some((kind, number)) = number else {
-        // `DB [MW 2]`: the word the block number is read from.
+        // `DB [MW 2]`, `FC [MW 50]`: the word the block number is read from.
+        let block = input
+            .first()
+            .and_then(|token| ctx.word(token))
+            .and_then(|upper| block_kind(&upper))
+            .unwrap_or(S7BlockKind::Db);
         let result = delimited(
             kind(TokenKind::LBracket, "`[`"),
             |input| pointer_operand(ctx, input),
             kind(TokenKind::RBracket, "`]`"),
         )
-        .parse(rest);
+        .parse(rest)
+        .map(|(rest, word)| {
+            (
+                rest,
+                S7Operand::BlockFrom {
+                    kind: block,
+                    word: Box::new(word),
+                },
+            )
+        });
         return Some(result);
     };
     Some(Ok((
@@ -1092,11 +1106,21 @@ mod tests {
         );
         assert_eq!(
             parse_in(MnemonicSet::English, "DB [MW 2]", Expect::Block).unwrap(),
-            addr(S7Area::Flag, AccessWidth::Word, 2, 0)
+            S7Operand::BlockFrom {
+                kind: S7BlockKind::Db,
+                word: Box::new(addr(S7Area::Flag, AccessWidth::Word, 2, 0))
+            }
         );
         assert!(matches!(
             parse_in(MnemonicSet::German, "DB [#DBNR]", Expect::Block).unwrap(),
-            S7Operand::Local(_)
+            S7Operand::BlockFrom { word, .. } if matches!(*word, S7Operand::Local(_))
+        ));
+        assert!(matches!(
+            parse_in(MnemonicSet::English, "FB [MW 50]", Expect::Block).unwrap(),
+            S7Operand::BlockFrom {
+                kind: S7BlockKind::Fb,
+                ..
+            }
         ));
     }
 

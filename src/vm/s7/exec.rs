@@ -131,6 +131,12 @@ impl Cpu {
                 let address = (*register & 0x00FF_FFFF).wrapping_add(offset) & 0x00FF_FFFF;
                 *register = *register & 0xFF00_0000 | address;
             }
+            S7Code::FcEnter { call } => self.fc_enter(call)?,
+            S7Code::FcLeave { call } => self.fc_leave(call)?,
+            S7Code::LoadParamPointer { param } => {
+                let pointer = self.param_pointer(param)?;
+                self.load_s7(pointer);
+            }
             S7Code::FbEnter { call } => self.fb_enter(call)?,
             S7Code::FbLeave { call } => self.fb_leave(call)?,
             S7Code::Sfc { call } => self.system_function(call)?,
@@ -381,30 +387,44 @@ impl Cpu {
         self.execute_other(shared, pc)
     }
 
-    /// `CALL FB n, DB m`, before the call: the inputs into the instance DB, the registers saved.
+    /// Where the instance data of `call` start: its instance DB's slot and the bit offset in
+    /// it (a multi-instance's inside the caller's instance DB, after the caller's AR2).
+    fn instance_base(&self, call: &crate::step7::bytecode::FbCall) -> (u16, u32) {
+        match call.multi_instance {
+            Some(offset) => (self.level.di, (self.level.ar2 & 0x0007_FFFF) + offset),
+            None => (call.instance_slot, 0),
+        }
+    }
+
+    /// `CALL FB n, DB m` and `CALL #instance`, before the call: the inputs into the instance
+    /// data, the registers saved, DB the caller's DI, DI the instance DB and AR2 the instance's
+    /// start (STL manual, `CALL`: AR2 holds the multi-instance offset).
     fn fb_enter(&mut self, call: u16) -> Result<(), Fault> {
         let program = std::sync::Arc::clone(&self.program);
         let call = &program.s7.fb_calls[usize::from(call)];
-        if !matches!(
-            self.s7_data.get(usize::from(call.instance_slot)),
-            Some(Some(_))
-        ) {
+        let (slot, base) = self.instance_base(call);
+        if !matches!(self.s7_data.get(usize::from(slot)), Some(Some(_))) {
+            if call.multi_instance.is_some() {
+                return Err(fault(
+                    "a multi-instance call with no instance DB open (DI)".to_string(),
+                ));
+            }
             return Err(missing_db(call.instance_db));
         }
         for copy in &call.inputs {
             let (from, _) = self.locate_index(copy.actual)?;
             let value = self.fetch(from, copy.width)?;
-            let to = Located::Data {
-                slot: call.instance_slot,
-                byte: copy.byte as usize,
-                bit: copy.bit,
-            };
-            self.store(to, copy.width, value)?;
+            self.store(instance_at(slot, base, copy), copy.width, value)?;
         }
         self.fb_saves
             .push((self.level.db, self.level.di, self.level.ar2));
-        self.level.di = call.instance_slot;
-        self.level.ar2 = 0x8500_0000;
+        self.level.db = self.level.di;
+        self.level.di = slot;
+        // P#DBX base: the area bits say DB, STEP 7's own choice; FB code adds only the offset.
+        self.level.ar2 = 0x8400_0000 | base;
+        if let Some(number) = call.system {
+            self.system_fb(number, slot, base)?;
+        }
         Ok(())
     }
 
@@ -416,21 +436,161 @@ impl Cpu {
             return Err(fault("an FB's return without its call"));
         };
         // The registers first: an actual may be the caller's own instance data. The outputs are
-        // read from the instance DB by its number, whatever DI holds.
+        // read from the instance data where the call put them, whatever DI holds now.
         self.level.db = db;
         self.level.di = di;
         self.level.ar2 = ar2;
+        let (slot, base) = self.instance_base(call);
         for copy in &call.outputs {
-            let from = Located::Data {
-                slot: call.instance_slot,
-                byte: copy.byte as usize,
-                bit: copy.bit,
-            };
-            let value = self.fetch(from, copy.width)?;
+            let value = self.fetch(instance_at(slot, base, copy), copy.width)?;
             let (to, _) = self.locate_index(copy.actual)?;
             self.store(to, copy.width, value)?;
         }
         Ok(())
+    }
+
+    /// A system FB awl runs itself, on its instance data at `base` bits into `slot`.
+    fn system_fb(&mut self, number: u16, slot: u16, base: u32) -> Result<(), Fault> {
+        let at = |offset: u32| {
+            let bits = base + offset;
+            Located::Data {
+                slot,
+                byte: (bits >> 3) as usize,
+                bit: (bits & 7) as u8,
+            }
+        };
+        match number {
+            // SFB 0 CTU (the System and Standard Functions manual, IEC counters): CU 0.0,
+            // R 0.1, PV 2, Q 4.0, CV 6, CUO 8.0.
+            0 => {
+                let cu = self.fetch_bit(at(0))?;
+                let reset = self.fetch_bit(at(1))?;
+                let preset = self.fetch(at(16), AccessWidth::Word)? as u16 as i16;
+                let edge = self.fetch_bit(at(64))?;
+                let mut count = self.fetch(at(48), AccessWidth::Word)? as u16 as i16;
+                if reset {
+                    count = 0;
+                } else if cu && !edge && count < i16::MAX {
+                    count += 1;
+                }
+                self.store(at(48), AccessWidth::Word, count as u16 as u32)?;
+                self.store_bit(at(32), count >= preset)?;
+                self.store_bit(at(64), cu)?;
+                Ok(())
+            }
+            other => Err(fault(format!("SFB {other} is not simulated"))),
+        }
+    }
+
+    /// `CALL FC n (…)`, before the call: the copied actuals onto the L stack, AR2 saved.
+    fn fc_enter(&mut self, call: u16) -> Result<(), Fault> {
+        let program = std::sync::Arc::clone(&self.program);
+        let call = &program.s7.fc_calls[usize::from(call)];
+        for &(actual, copy) in &call.inputs {
+            let (from, width) = self.locate_index(actual)?;
+            let value = self.fetch(from, width)?;
+            let (to, width) = self.locate_index(copy)?;
+            self.store(to, width, value)?;
+        }
+        self.fb_saves
+            .push((self.level.db, self.level.di, self.level.ar2));
+        Ok(())
+    }
+
+    /// After the FC: AR2 back (an FB's instance data stay where they were whatever the FC
+    /// did with AR2), the copies of outputs and in/outs to their actuals.
+    fn fc_leave(&mut self, call: u16) -> Result<(), Fault> {
+        let program = std::sync::Arc::clone(&self.program);
+        let call = &program.s7.fc_calls[usize::from(call)];
+        let Some((_, _, ar2)) = self.fb_saves.pop() else {
+            return Err(fault("an FC's return without its call"));
+        };
+        self.level.ar2 = ar2;
+        for &(actual, copy) in &call.outputs {
+            let (from, width) = self.locate_index(copy)?;
+            let value = self.fetch(from, width)?;
+            let (to, width) = self.locate_index(actual)?;
+            self.store(to, width, value)?;
+        }
+        Ok(())
+    }
+
+    /// `UC FC [MW 50]`, `CC FB [MW 50]`: the call of the block numbered in the word.
+    pub(crate) fn call_from(&mut self, place: u16, flags: u16) -> Result<Op, Fault> {
+        use crate::compiler::bytecode::{CALL_FROM_CONDITIONAL, CALL_FROM_FB};
+        let conditional = flags & CALL_FROM_CONDITIONAL != 0;
+        let (located, _) = self.locate_index(place)?;
+        let number = self.fetch(located, AccessWidth::Word)? as u16;
+        let kind = if flags & CALL_FROM_FB != 0 {
+            crate::mnemonics::BlockKind::Fb
+        } else {
+            crate::mnemonics::BlockKind::Fc
+        };
+        let id = crate::ast::BlockId { kind, number };
+        Ok(match self.program.block_index(id) {
+            Some(block) => Op::Call {
+                block,
+                conditional,
+                params: crate::compiler::bytecode::NO_PARAMS,
+            },
+            None => Op::CallMissing {
+                kind,
+                number,
+                conditional,
+            },
+        })
+    }
+
+    /// `P##param`: the pointer the FC's caller passed for parameter `param`, an area-crossing
+    /// pointer to where the actual is (area V for the caller's local data).
+    fn param_pointer(&mut self, param: u8) -> Result<u32, Fault> {
+        let context = self.running_context();
+        let actual = self
+            .program
+            .param_lists
+            .get(usize::from(context.params))
+            .and_then(|list| list.get(usize::from(param)))
+            .copied();
+        let Some(crate::compiler::Resolved::S7(index)) = actual else {
+            return Err(fault(format!(
+                "parameter {} has no actual to point to",
+                param + 1
+            )));
+        };
+        let place = self.program.s7.places[usize::from(index)];
+        let Some(caller) = self.caller_context(context) else {
+            return Err(fault("a parameter outside a called block".to_string()));
+        };
+        let located = self.locate(place, caller)?;
+        let layout = self.program.layout;
+        let (area, byte, bit) = match located {
+            Located::Local { byte, bit } if byte >= caller.local_base as usize => {
+                (0x87, byte - caller.local_base as usize, bit)
+            }
+            Located::Data { slot, byte, bit } => {
+                (if slot == caller.di { 0x85 } else { 0x84 }, byte, bit)
+            }
+            Located::Image { byte, bit } => {
+                let flag = usize::from(layout.flag_base());
+                let output = usize::from(layout.output_base());
+                let input = usize::from(layout.input_base());
+                if byte >= flag {
+                    (0x83, byte - flag, bit)
+                } else if byte >= output {
+                    (0x82, byte - output, bit)
+                } else {
+                    (0x81, byte - input, bit)
+                }
+            }
+            Located::Peripheral { byte, .. } => (0x80, usize::from(byte), 0),
+            other => {
+                return Err(fault(format!(
+                    "parameter {} is {other:?}, which no pointer reaches",
+                    param + 1
+                )));
+            }
+        };
+        Ok(area << 24 | (byte as u32) << 3 | u32::from(bit))
     }
 
     fn system_function(&mut self, call: u16) -> Result<(), Fault> {
@@ -540,6 +700,16 @@ impl Cpu {
                 "__ASSERT{sign} failed: left is {a} ({a:#X}), right is {b} ({b:#X})"
             )),
         ))
+    }
+}
+
+/// Where a parameter copy lies in instance data that start `base` bits into `slot`.
+fn instance_at(slot: u16, base: u32, copy: &crate::step7::bytecode::ParamCopy) -> Located {
+    let bits = base + (copy.byte << 3 | u32::from(copy.bit));
+    Located::Data {
+        slot,
+        byte: (bits >> 3) as usize,
+        bit: (bits & 7) as u8,
     }
 }
 

@@ -80,6 +80,8 @@ pub struct Context {
     pub previous_local: Option<u32>,
     pub db: u16,
     pub di: u16,
+    /// AR2: the FB's instance data start at its offset in DI.
+    pub ar2: u32,
     pub params: u16,
     /// Frames on the block stack below this context's block.
     pub frames: usize,
@@ -165,13 +167,14 @@ impl Cpu {
             previous_local,
             db: self.level.db,
             di: self.level.di,
+            ar2: self.level.ar2,
             params: self.level.params,
             frames,
         }
     }
 
     /// The registers of the block that called the block of `context`.
-    fn caller_context(&self, context: Context) -> Option<Context> {
+    pub(crate) fn caller_context(&self, context: Context) -> Option<Context> {
         if context.frames <= self.level.level_base {
             return None;
         }
@@ -186,6 +189,9 @@ impl Cpu {
             previous_local,
             db: saved.db,
             di: saved.di,
+            // A caller's instance variables reach an FC as copies on the caller's L stack
+            // (see `FcCall`), so no caller's AR2 is needed; AR2 as it is stands in.
+            ar2: self.level.ar2,
             params: frame.params,
             frames: below,
         })
@@ -229,6 +235,15 @@ impl Cpu {
                 byte: byte as usize,
                 bit,
             },
+            Target::Instance { byte, bit } => {
+                // Area-internal: AR2's area bits do not count, its byte.bit offset does.
+                let at = (context.ar2 & 0x0007_FFFF) + (byte << 3 | u32::from(bit));
+                Located::Data {
+                    slot: context.di,
+                    byte: (at >> 3) as usize,
+                    bit: (at & 7) as u8,
+                }
+            }
             Target::NumberedData {
                 slot, byte, bit, ..
             } => {
