@@ -1240,26 +1240,15 @@ impl super::Compiler<'_> {
         };
         let instance_slot = self.db_slot(*db, at);
         let (inputs, outputs) = self.fb_param_copies(call, &id.to_string(), interface, scope);
-        self.tables.fb_calls.push(FbCall {
+        let call = FbCall {
             instance_db: *db,
             instance_slot,
             multi_instance: None,
             system: None,
             inputs,
             outputs,
-        });
-        let index = (self.tables.fb_calls.len() - 1) as u16;
-        self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
-        self.emit(
-            out,
-            Op::Call {
-                block,
-                conditional: false,
-                params: NO_PARAMS,
-            },
-            span,
-        );
-        self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
+        };
+        self.emit_fb_call(out, call, block, span);
         Ok(())
     }
 
@@ -1440,14 +1429,21 @@ impl super::Compiler<'_> {
             );
             return Ok(());
         };
-        self.tables.fb_calls.push(FbCall {
+        let call = FbCall {
             instance_db: 0,
             instance_slot: 0,
             multi_instance: Some(offset.0),
             system: None,
             inputs,
             outputs,
-        });
+        };
+        self.emit_fb_call(out, call, block, span);
+        Ok(())
+    }
+
+    /// An FB call as its three ops: copy in and open the instance, run FB `block`, copy out.
+    fn emit_fb_call(&mut self, out: &mut Emitter, call: FbCall, block: u16, span: Span) {
+        self.tables.fb_calls.push(call);
         let index = (self.tables.fb_calls.len() - 1) as u16;
         self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
         self.emit(
@@ -1460,7 +1456,6 @@ impl super::Compiler<'_> {
             span,
         );
         self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
-        Ok(())
     }
 }
 
