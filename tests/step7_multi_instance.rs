@@ -4,36 +4,10 @@
 //! `CALL`). Also the FC calls around it: actuals copied to the L stack, `P##param`, AR2 back
 //! after the call, `UC FC [MW n]`.
 
-use std::collections::BTreeMap;
-use std::path::PathBuf;
-use std::sync::Arc;
+mod common;
 
-use awl::runner::{self, NotRun, Ran, RunOptions};
-use awl::source::Files;
-
-fn run(program: &str, scenario: &str) -> Result<Ran, NotRun> {
-    let mut files = BTreeMap::new();
-    files.insert(PathBuf::from("p.awl"), program.as_bytes().to_vec());
-    let scenario = format!("program = [\"p.awl\"]\ncpu = \"speed7\"\n{scenario}");
-    files.insert(PathBuf::from("s.toml"), scenario.into_bytes());
-    runner::run(&RunOptions {
-        scenario: Some(PathBuf::from("s.toml")),
-        store: Files::Memory(Arc::new(files)),
-        ..RunOptions::default()
-    })
-}
-
-fn passes(program: &str, scenario: &str) {
-    match run(program, scenario) {
-        Ok(ran) => assert!(
-            !ran.failed() && ran.expectations > 0,
-            "{:#?}",
-            ran.mismatches
-        ),
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => panic!("{reports:?}"),
-        Err(NotRun::Usage(report)) => panic!("{report:?}"),
-    }
-}
+use awl::runner::NotRun;
+use common::step7::{passes, run};
 
 /// FB 2 (a counter with an inner FB 3) twice inside FB 1; FB 1's instance DB 1 holds both.
 /// FB 3 (2 bytes: `seen`) lies at 8 in FB 2, which takes 10 bytes: `add` 0, `total` 2,

@@ -2,41 +2,15 @@
 //! to the actuals; FB: copies in and out of the instance DB), the L stack per call, data block
 //! members, REAL values, and the errors a run can meet.
 
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use awl::runner::{self, NotRun, Ran, RunOptions};
+use awl::runner::{self, NotRun, RunOptions};
 use awl::source::Files;
-
-/// Runs `program` with the scenario `scenario` (its `program` key is added), from memory.
-fn run(program: &str, scenario: &str) -> Result<Ran, NotRun> {
-    let mut files = BTreeMap::new();
-    files.insert(PathBuf::from("p.awl"), program.as_bytes().to_vec());
-    let scenario = format!("program = [\"p.awl\"]\ncpu = \"speed7\"\n{scenario}");
-    files.insert(PathBuf::from("s.toml"), scenario.into_bytes());
-    runner::run(&RunOptions {
-        scenario: Some(PathBuf::from("s.toml")),
-        store: Files::Memory(Arc::new(files)),
-        ..RunOptions::default()
-    })
-}
-
-fn passes(program: &str, scenario: &str) {
-    match run(program, scenario) {
-        Ok(ran) => {
-            assert!(
-                !ran.failed() && ran.expectations > 0,
-                "{:#?}",
-                ran.mismatches
-            );
-        }
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => {
-            panic!("{reports:?}")
-        }
-        Err(NotRun::Usage(report)) => panic!("{report:?}"),
-    }
-}
+use common::step7::{passes, run};
 
 const FC_OUTPUT_IS_A_POINTER: &str = "
 FUNCTION FC 1 : VOID

@@ -2,41 +2,10 @@
 //! data ("System Software for S7-300/400 System and Standard Functions", Organization Blocks;
 //! VIPA SPEED7 operation list), read by address and by the names an OB declares in VAR_TEMP.
 
-use std::collections::BTreeMap;
-use std::path::PathBuf;
-use std::sync::Arc;
+mod common;
 
-use awl::runner::{self, NotRun, Ran, RunOptions};
-use awl::source::Files;
-
-/// Runs `program` with the scenario `scenario` (its `program` key is added), from memory.
-fn run(program: &str, scenario: &str) -> Result<Ran, NotRun> {
-    let mut files = BTreeMap::new();
-    files.insert(PathBuf::from("p.awl"), program.as_bytes().to_vec());
-    let scenario = format!("program = [\"p.awl\"]\ncpu = \"speed7\"\n{scenario}");
-    files.insert(PathBuf::from("s.toml"), scenario.into_bytes());
-    runner::run(&RunOptions {
-        scenario: Some(PathBuf::from("s.toml")),
-        store: Files::Memory(Arc::new(files)),
-        ..RunOptions::default()
-    })
-}
-
-fn passes(program: &str, scenario: &str) {
-    match run(program, scenario) {
-        Ok(ran) => {
-            assert!(
-                !ran.failed() && ran.expectations > 0,
-                "{:#?}",
-                ran.mismatches
-            );
-        }
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => {
-            panic!("{reports:?}")
-        }
-        Err(NotRun::Usage(report)) => panic!("{report:?}"),
-    }
-}
+use awl::runner::NotRun;
+use common::step7::{passes, run};
 
 /// OB 1 by its default names: the first cycle's are kept in MB 0–MB 3 and MW 6–MW 10, the
 /// latest cycle's in MB 20–MB 23 and MW 26–MW 30.
