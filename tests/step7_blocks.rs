@@ -2,24 +2,12 @@
 //! numbered past 255 compile and run; data blocks opened by a constant and by a number read at
 //! run time; what lies past 65535 (and, in STEP 5, past 255) is a diagnostic.
 
-use std::collections::BTreeMap;
-use std::path::PathBuf;
-use std::sync::Arc;
+mod common;
 
-use awl::runner::{self, NotRun, Ran, RunOptions};
-use awl::source::Files;
+use awl::runner::{self, NotRun, Ran};
 
-/// Runs `program` with the scenario `scenario` (its `program` key is added), from memory.
 fn run(program: &str, cpu: &str, scenario: &str) -> Result<Ran, NotRun> {
-    let mut files = BTreeMap::new();
-    files.insert(PathBuf::from("p.awl"), program.as_bytes().to_vec());
-    let scenario = format!("program = [\"p.awl\"]\ncpu = \"{cpu}\"\n{scenario}");
-    files.insert(PathBuf::from("s.toml"), scenario.into_bytes());
-    runner::run(&RunOptions {
-        scenario: Some(PathBuf::from("s.toml")),
-        store: Files::Memory(Arc::new(files)),
-        ..RunOptions::default()
-    })
+    common::step7::run_on(cpu, program, scenario)
 }
 
 fn passes(program: &str, scenario: &str) -> Ran {

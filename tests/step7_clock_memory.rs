@@ -2,26 +2,15 @@
 //! configuration sets it): bit 0 toggles every 50 ms (10 Hz) … bit 7 every second (0.5 Hz),
 //! on simulated time, written at each cycle start.
 
-use std::collections::BTreeMap;
-use std::path::PathBuf;
-use std::sync::Arc;
+mod common;
 
-use awl::runner::{self, NotRun, Ran, RunOptions};
-use awl::source::Files;
+use awl::runner::{NotRun, Ran};
 
 const OB1: &str = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L MB 100;\n      T MB 0;\n\
                    END_ORGANIZATION_BLOCK\n";
 
 fn run(cpu: &str, scenario: &str) -> Result<Ran, NotRun> {
-    let mut files = BTreeMap::new();
-    files.insert(PathBuf::from("p.awl"), OB1.as_bytes().to_vec());
-    let scenario = format!("program = [\"p.awl\"]\ncpu = \"{cpu}\"\ndialect = \"s7\"\n{scenario}");
-    files.insert(PathBuf::from("s.toml"), scenario.into_bytes());
-    runner::run(&RunOptions {
-        scenario: Some(PathBuf::from("s.toml")),
-        store: Files::Memory(Arc::new(files)),
-        ..RunOptions::default()
-    })
+    common::step7::run_on(cpu, OB1, scenario)
 }
 
 #[test]

@@ -2,24 +2,10 @@
 //! as a TIME ("System Software for S7-300/400 System and Standard Functions", SFC 64); its
 //! RET_VAL checked as the interface declares it.
 
-use std::collections::BTreeMap;
-use std::path::PathBuf;
-use std::sync::Arc;
+mod common;
 
-use awl::runner::{self, NotRun, Ran, RunOptions};
-use awl::source::Files;
-
-fn run(program: &str, scenario: &str) -> Result<Ran, NotRun> {
-    let mut files = BTreeMap::new();
-    files.insert(PathBuf::from("p.awl"), program.as_bytes().to_vec());
-    let scenario = format!("program = [\"p.awl\"]\ncpu = \"speed7\"\ndialect = \"s7\"\n{scenario}");
-    files.insert(PathBuf::from("s.toml"), scenario.into_bytes());
-    runner::run(&RunOptions {
-        scenario: Some(PathBuf::from("s.toml")),
-        store: Files::Memory(Arc::new(files)),
-        ..RunOptions::default()
-    })
-}
+use awl::runner::NotRun;
+use common::step7::run;
 
 #[test]
 fn time_tck_is_the_time_since_the_start() {

@@ -199,32 +199,20 @@ pub fn parse_project(
                     ));
                 }
             }
-            "libraries" => {
-                for selection in section
-                    .children()
-                    .filter(|node| node.has_tag_name("lib_selection"))
-                {
-                    reader.errors.push(not_run(
-                        "a block of awlsim's libraries is not run",
-                        span(selection.range()),
-                        "this library block",
-                        Some("awl has no copy of awlsim's library blocks (IEC, …)".into()),
-                    ));
-                }
-            }
-            "hardware" => {
-                for module in section
-                    .children()
-                    .filter(|node| node.has_tag_name("module"))
-                {
-                    reader.errors.push(not_run(
-                        "an awlsim hardware module is not simulated",
-                        span(module.range()),
-                        "this module",
-                        Some("awl runs awlsim's tests on its dummy hardware only".into()),
-                    ));
-                }
-            }
+            "libraries" => reader.refuse_each(
+                section,
+                "lib_selection",
+                "a block of awlsim's libraries is not run",
+                "this library block",
+                "awl has no copy of awlsim's library blocks (IEC, …)",
+            ),
+            "hardware" => reader.refuse_each(
+                section,
+                "module",
+                "an awlsim hardware module is not simulated",
+                "this module",
+                "awl runs awlsim's tests on its dummy hardware only",
+            ),
             // The core server's link and the GUI's settings do not touch the run.
             _ => {}
         }
@@ -242,6 +230,25 @@ struct Reader {
 }
 
 impl Reader {
+    /// An error for each `tag` element of `section`: a part of the project awl cannot run.
+    fn refuse_each(
+        &mut self,
+        section: roxmltree::Node<'_, '_>,
+        tag: &str,
+        message: &str,
+        label: &str,
+        help: &str,
+    ) {
+        for node in section.children().filter(|node| node.has_tag_name(tag)) {
+            self.errors.push(not_run(
+                message,
+                span(node.range()),
+                label,
+                Some(help.into()),
+            ));
+        }
+    }
+
     /// An integer attribute, or `default` when absent; `None` (an error kept) when bad.
     fn int(&mut self, node: roxmltree::Node<'_, '_>, name: &str, default: i64) -> Option<i64> {
         let Some(attribute) = node.attribute_node(name) else {

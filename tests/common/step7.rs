@@ -7,11 +7,18 @@ use std::sync::Arc;
 use awl::runner::{self, NotRun, Ran, RunOptions};
 use awl::source::Files;
 
-/// Runs `program` with the scenario `scenario` (its `program` and `cpu` keys are added).
+/// Runs `program` on speed7 with the scenario `scenario` (its `program` and `cpu` keys are
+/// added).
 pub fn run(program: &str, scenario: &str) -> Result<Ran, NotRun> {
+    run_on("speed7", program, scenario)
+}
+
+/// Runs `program` on `cpu` with the scenario `scenario` (its `program` and `cpu` keys are
+/// added).
+pub fn run_on(cpu: &str, program: &str, scenario: &str) -> Result<Ran, NotRun> {
     let mut files = BTreeMap::new();
     files.insert(PathBuf::from("p.awl"), program.as_bytes().to_vec());
-    let scenario = format!("program = [\"p.awl\"]\ncpu = \"speed7\"\n{scenario}");
+    let scenario = format!("program = [\"p.awl\"]\ncpu = \"{cpu}\"\n{scenario}");
     files.insert(PathBuf::from("s.toml"), scenario.into_bytes());
     runner::run(&RunOptions {
         scenario: Some(PathBuf::from("s.toml")),

@@ -924,26 +924,41 @@ impl super::Compiler<'_> {
         let Some(id) = self.block_id(reference) else {
             return Ok(());
         };
-        let op = match self.index.get(&id) {
-            Some(&block) => Op::Call {
+        if let Some(block) = self.loaded_or_missing(out, id, conditional, at, span) {
+            let call = Op::Call {
                 block,
                 conditional,
                 params: NO_PARAMS,
-            },
-            None => {
-                self.errors.push(CheckError::UndefinedBlock {
-                    id: id.to_string(),
-                    at,
-                });
-                Op::CallMissing {
-                    kind: id.kind,
-                    number: id.number,
-                    conditional,
-                }
-            }
-        };
-        self.emit(out, op, span);
+            };
+            self.emit(out, call, span);
+        }
         Ok(())
+    }
+
+    /// The arena index of block `id`; for a block the program lacks, the error and a call
+    /// that stops the CPU when taken, and `None`.
+    fn loaded_or_missing(
+        &mut self,
+        out: &mut Emitter,
+        id: BlockId,
+        conditional: bool,
+        at: Span,
+        span: Span,
+    ) -> Option<u16> {
+        if let Some(&block) = self.index.get(&id) {
+            return Some(block);
+        }
+        self.errors.push(CheckError::UndefinedBlock {
+            id: id.to_string(),
+            at,
+        });
+        let missing = Op::CallMissing {
+            kind: id.kind,
+            number: id.number,
+            conditional,
+        };
+        self.emit(out, missing, span);
+        None
     }
 
     fn sfc(&mut self, number: u16, params: Vec<(String, u16)>) -> u16 {
@@ -1070,20 +1085,7 @@ impl super::Compiler<'_> {
         let Some(id) = self.block_id(&call.block) else {
             return Ok(());
         };
-        let Some(&block) = self.index.get(&id) else {
-            self.errors.push(CheckError::UndefinedBlock {
-                id: id.to_string(),
-                at,
-            });
-            self.emit(
-                out,
-                Op::CallMissing {
-                    kind: id.kind,
-                    number: id.number,
-                    conditional: false,
-                },
-                span,
-            );
+        let Some(block) = self.loaded_or_missing(out, id, false, at, span) else {
             return Ok(());
         };
         let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
@@ -1413,20 +1415,7 @@ impl super::Compiler<'_> {
         };
         let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
         let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
-        let Some(&block) = self.index.get(&id) else {
-            self.errors.push(CheckError::UndefinedBlock {
-                id: id.to_string(),
-                at,
-            });
-            self.emit(
-                out,
-                Op::CallMissing {
-                    kind: id.kind,
-                    number: id.number,
-                    conditional: false,
-                },
-                span,
-            );
+        let Some(block) = self.loaded_or_missing(out, id, false, at, span) else {
             return Ok(());
         };
         let call = FbCall {
