@@ -472,9 +472,13 @@ pub static PROFILES: &[Profile] = &[
         title: "VIPA SPEED7 with hardware interrupts OB 40/OB 41",
         manual: "VIPA SPEED7 operation list, OB 40/OB 41 hardware interrupts",
         sizes: Sizes {
+            // The SPEED7 CPUs' sizes: process images of 256 bytes each (their preset; larger
+            // ones are set in a hardware configuration, which a text program lacks), 8192 flag
+            // bytes, 8192 bytes of peripheral inputs and outputs (VIPA System 300S CPU
+            // manuals, technical data).
             image_bytes: 256,
-            flag_bytes: 2048,
-            peripheral_bytes: 256,
+            flag_bytes: 8192,
+            peripheral_bytes: 8192,
             timers: 256,
             counters: 256,
             data_words: 4096,

@@ -68,7 +68,7 @@ fn operand_ranges_per_area_and_cpu() {
         ("s5-95f", "A  T", "127", "128", "T 0…127"),
         ("s5-95f", "A  C", "127", "128", "C 0…127"),
         ("s5-95f", "L  DW", "255", "256", "DW 0…255"),
-        ("speed7", "A  F", "2047.0", "2048.0", "F 0…2047"),
+        ("speed7", "A  F", "8191.0", "8192.0", "F 0…8191"),
         ("speed7", "L  IW", "254", "255", "IW 0…254"),
     ];
     for (cpu, op, highest, beyond, range) in cases {

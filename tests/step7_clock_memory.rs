@@ -53,9 +53,9 @@ fn scenario_error(cpu: &str, scenario: &str) -> String {
 
 #[test]
 fn the_clock_memory_is_a_flag_byte_of_an_s7_cpu() {
-    let text = scenario_error("speed7", "clock_memory = 2048\n");
-    assert!(text.contains("no flag byte MB 2048"), "{text}");
-    assert!(text.contains("MB 0 to MB 2047"), "{text}");
+    let text = scenario_error("speed7", "clock_memory = 8192\n");
+    assert!(text.contains("no flag byte MB 8192"), "{text}");
+    assert!(text.contains("MB 0 to MB 8191"), "{text}");
     let text = scenario_error("s5-115u", "clock_memory = 10\n");
     assert!(text.contains("has no clock memory byte"), "{text}");
     assert!(text.contains("speed7"), "{text}");

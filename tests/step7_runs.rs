@@ -164,7 +164,7 @@ fn sfc_46_stops_the_cpu() {
 
 #[test]
 fn a_peripheral_address_past_the_modules_is_a_source_error() {
-    let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L PIW 256;\nEND_ORGANIZATION_BLOCK\n";
+    let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L PIW 8192;\nEND_ORGANIZATION_BLOCK\n";
     let Err(NotRun::SourceErrors(reports)) = run(program, "run = { cycles = 1 }\n") else {
         panic!("a source error");
     };
@@ -173,7 +173,7 @@ fn a_peripheral_address_past_the_modules_is_a_source_error() {
 
 #[test]
 fn an_indirect_address_past_the_modules_stops_the_cpu() {
-    let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L 2048;\n      T MD 4;\n      \
+    let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L L#65536;\n      T MD 4;\n      \
                    L PIW [MD 4];\nEND_ORGANIZATION_BLOCK\n";
     passes(
         program,

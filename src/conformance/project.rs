@@ -20,14 +20,16 @@ use crate::mnemonics::MnemonicSet;
 /// The format version awlsim 0.77.1 writes and reads.
 const FORMAT_VERSION: &str = "1";
 
-/// awlsim's CPU sizes by default (`S7CPUSpecs` in awlsim 0.77.1), which the speed7 profile
-/// stands for in every awlsim test; `nr_accus` is read on its own.
-const DEFAULT_SPECS: &[(&str, i64)] = &[
+/// awlsim's CPU sizes that awl runs on the speed7 profile: a project may ask for these or less
+/// (a program fits a larger CPU), not more. The defaults of awlsim 0.77.1 (`S7CPUSpecs`) but
+/// for the process images and flags, where the SPEED7 CPU has more; `nr_accus` is read on its
+/// own.
+const SPEED7_SPECS: &[(&str, i64)] = &[
     ("nr_timers", 256),
     ("nr_counters", 256),
-    ("nr_flags", 2048),
-    ("nr_inputs", 128),
-    ("nr_outputs", 128),
+    ("nr_flags", 8192),
+    ("nr_inputs", 256),
+    ("nr_outputs", 256),
     ("nr_localbytes", 1024),
     ("parenthesis_stack_size", 7),
     ("call_stack_size", 256),
@@ -304,21 +306,20 @@ impl Reader {
         ) {
             self.project.accus = accus;
         }
-        for &(name, default) in DEFAULT_SPECS {
-            let Some(value) = self.int(node, name, default) else {
+        for &(name, limit) in SPEED7_SPECS {
+            let Some(value) = self.int(node, name, limit) else {
                 continue;
             };
-            if value != default {
+            if value > limit {
                 let at = node
                     .attribute_node(name)
                     .map_or(node.range(), |attribute| attribute.range_value());
                 self.errors.push(not_run(
-                    format!("`{name}` {value} is not awlsim's default"),
+                    format!("`{name}` {value} is more than awl's CPU has"),
                     span(at),
                     "not run as given",
                     Some(format!(
-                        "awl runs awlsim's tests on the speed7 CPU, which stands for awlsim's \
-                         default sizes ({name} {default})"
+                        "awl runs awlsim's tests on the speed7 CPU, which has {name} {limit}"
                     )),
                 ));
             }
@@ -644,7 +645,7 @@ mod tests {
     fn what_awl_cannot_honour_is_reported() {
         let found = messages(
             "<awlsim_project format_version=\"1\"><cpu>\
-             <specs nr_accus=\"3\" nr_flags=\"256\"/>\
+             <specs nr_accus=\"3\" nr_flags=\"9000\"/>\
              <config clock_memory_byte=\"5000\" mnemonics=\"x\" cycle_time_target_us=\"1\"/>\
              </cpu><language_awl><source file=\"gone.awl\" type=\"0\"/>\
              <source file=\"a.awl\" type=\"3\"/></language_awl>\
@@ -656,7 +657,7 @@ mod tests {
             found,
             [
                 "`nr_accus` 3 is out of range",
-                "`nr_flags` 256 is not awlsim's default",
+                "`nr_flags` 9000 is more than awl's CPU has",
                 "`clock_memory_byte` 5000 is out of range",
                 "`mnemonics` is not a number",
                 "a target cycle time is not simulated",

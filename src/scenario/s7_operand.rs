@@ -413,11 +413,11 @@ END_ORGANIZATION_BLOCK
         assert!(reason("MW").contains("a number"));
         assert_eq!(reason(""), "empty operand");
         assert_eq!(
-            reason("MW 2047"),
-            "out of range for the speed7 CPU: M bytes 0 to 2047"
+            reason("MW 8191"),
+            "out of range for the speed7 CPU: M bytes 0 to 8191"
         );
         assert!(reason("Q 256.0").contains("Q bytes 0 to 255"));
-        assert!(reason("PIW 256").contains("PI bytes 0 to 255"));
+        assert!(reason("PIW 8192").contains("PI bytes 0 to 8191"));
         assert!(reason("T 256").contains("T 0 to 255"));
         assert!(reason("Z 256").contains("C 0 to 255"));
         assert_eq!(reason("DB9.DBW 0"), "DB 9 is not in the program");

@@ -184,7 +184,16 @@ fn detect(source: &str, tokens: &[Token], flat: bool) -> Option<(MnemonicSet, Sp
             in_body = false;
             continue;
         }
-        if !in_body || line.iter().any(|t| t.kind == TokenKind::Assign) {
+        if !in_body {
+            continue;
+        }
+        // A call's actual parameter (`stoerung := E 10.0`) names its area in one set's words.
+        if let Some(assign) = line.iter().position(|t| t.kind == TokenKind::Assign) {
+            if let Some(actual) = line.get(assign + 1).filter(|t| t.kind == TokenKind::Word)
+                && let Some(set) = area_evidence(source, *actual)
+            {
+                vote(set, *actual);
+            }
             continue;
         }
         let line = match line {
@@ -215,13 +224,9 @@ fn detect(source: &str, tokens: &[Token], flat: bool) -> Option<(MnemonicSet, Sp
         if let Some(operand) = line
             .get(1)
             .filter(|t| t.kind == TokenKind::Word && takes_address)
+            && let Some(set) = area_evidence(source, *operand)
         {
-            let upper = operand.text(source).to_ascii_uppercase();
-            let area =
-                tokens::letters_and_digits(&upper).map_or(upper.as_str(), |(letters, _)| letters);
-            if let Some(set) = mnemonics::operand_evidence(area) {
-                vote(set, *operand);
-            }
+            vote(set, *operand);
         }
     }
     let [english, german] = votes;
@@ -231,6 +236,13 @@ fn detect(source: &str, tokens: &[Token], flat: bool) -> Option<(MnemonicSet, Sp
         (_, (_, Some(span))) => Some((MnemonicSet::German, span)),
         _ => None,
     }
+}
+
+/// The set whose area word `operand` is (`E`, `EW` German; `I`, `IW` English), if only one's.
+fn area_evidence(source: &str, operand: Token) -> Option<MnemonicSet> {
+    let upper = operand.text(source).to_ascii_uppercase();
+    let area = tokens::letters_and_digits(&upper).map_or(upper.as_str(), |(letters, _)| letters);
+    mnemonics::operand_evidence(area)
 }
 
 /// The cursor over a file's tokens.

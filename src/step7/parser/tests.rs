@@ -435,6 +435,14 @@ fn german_files_are_detected() {
 }
 
 #[test]
+fn a_block_of_calls_only_is_detected_by_its_actual_parameters() {
+    let unit = parse_ok(
+        "ORGANIZATION_BLOCK OB 1\nBEGIN\n  CALL FC 1 (\n    fault := E 10.0,\n    lamp := A 10.0)\nEND_ORGANIZATION_BLOCK\n",
+    );
+    assert_eq!(unit.mnemonics, MnemonicSet::German);
+}
+
+#[test]
 fn the_forced_set_reads_ambiguous_words() {
     let text = "SE T 1\n";
     let english = parse_with(text, ParseOptions::default());
