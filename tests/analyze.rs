@@ -333,10 +333,10 @@ fn a_dis_airt_section_with_its_calls_sets_the_response_bound() {
     let ob40 = analysis.obs.iter().find(|ob| ob.ob == 40).unwrap();
     assert!(ob40.response_bound_ns.unwrap() > airt.ns.unwrap());
     // Without DIS_AIRT the operating-system time sets the bound, and there is no section.
-    let plain = on_speed7(&airt_program("      CALL  FC 1;\n", true, "").replace(
-        "      CALL  SFC 41 (RET_VAL := MW 50);\n",
-        "",
-    ));
+    let plain = on_speed7(
+        &airt_program("      CALL  FC 1;\n", true, "")
+            .replace("      CALL  SFC 41 (RET_VAL := MW 50);\n", ""),
+    );
     assert!(block(&plain, "OB 1").airt_section.is_none());
     assert!(plain.response_bound_by.contains("operating-system time"));
 }
@@ -357,13 +357,18 @@ fn a_section_without_en_airt_lasts_to_the_end_of_its_ob() {
 /// response bound (with operation points only the section and the longest operation count).
 #[test]
 fn a_loop_without_bound_is_unbounded_only_inside_a_section() {
-    let unbounded_loop = "      L     100;\nloop: T     MW 2;\n      L     MW 2;\n      LOOP  loop;\n";
+    let unbounded_loop =
+        "      L     100;\nloop: T     MW 2;\n      L     MW 2;\n      LOOP  loop;\n";
     let inside = on_speed7(&airt_program(unbounded_loop, true, ""));
     assert_eq!(inside.response_bound_ns, None);
     assert!(inside.response_bound_by.contains("has no bound"));
     assert_eq!(section(&inside, "OB 1").ns, None);
     let after = on_speed7(&airt_program("", true, unbounded_loop));
-    assert!(after.response_bound_ns.is_some(), "{}", after.response_bound_by);
+    assert!(
+        after.response_bound_ns.is_some(),
+        "{}",
+        after.response_bound_by
+    );
     assert_eq!(block(&after, "OB 1").wcet_ns, None);
 }
 

@@ -143,7 +143,12 @@ fn nothing_in_startup_and_a_loss_at_the_transition_to_run() {
     let module_events = of(&events, "module_event");
     assert_eq!(module_events.len(), 1);
     assert!(t(module_events[0]) < run);
-    assert!(module_events[0]["reason"].as_str().unwrap().contains("STARTUP"));
+    assert!(
+        module_events[0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("STARTUP")
+    );
     let still_active = request(&events, 4, 1, 20_000);
     assert!(reason(&events, still_active).contains("transition to RUN"));
     assert_eq!(
