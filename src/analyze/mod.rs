@@ -166,6 +166,9 @@ pub struct UnusedCode {
     pub lines: [u32; 2],
 }
 
+/// A block's longest DIS_AIRT section: the block, its time (or why unbounded), its lines.
+type Section = (usize, Result<u64, String>, Option<[u32; 2]>);
+
 struct Analyzer<'a> {
     program: &'a Program,
     sources: &'a SourceSet,
@@ -349,7 +352,7 @@ impl Analyzer<'_> {
 
         let mut blocks = Vec::new();
         let mut stretches: Vec<(usize, Result<u64, String>)> = Vec::new();
-        let mut sections: Vec<(usize, Result<u64, String>, Option<[u32; 2]>)> = Vec::new();
+        let mut sections: Vec<Section> = Vec::new();
         for (index, &runs) in reachable.iter().enumerate() {
             let wcet = self.wcet(index as u16);
             let stretch = self.stretch(index);
@@ -497,7 +500,7 @@ impl Analyzer<'_> {
     fn response_bound(
         &self,
         stretches: &[(usize, Result<u64, String>)],
-        sections: &[(usize, Result<u64, String>, Option<[u32; 2]>)],
+        sections: &[Section],
     ) -> (Option<u64>, String) {
         let mut candidates = self.system();
         for (index, section, lines) in sections {
