@@ -469,8 +469,10 @@ pub static PROFILES: &[Profile] = &[
     Profile {
         name: "speed7",
         family: Family::Speed7,
-        title: "VIPA SPEED7 with hardware interrupts OB 40/OB 41",
-        manual: "VIPA SPEED7 operation list, OB 40/OB 41 hardware interrupts",
+        title: "VIPA SPEED7: hardware interrupts OB 40/OB 41, cyclic interrupt OB 35, OB 80/82/85, \
+                SFC 39-42",
+        manual: "VIPA SPEED7 operation list, OB 40/OB 41 hardware interrupts, OB 35, OB 80, OB 82, \
+                 OB 85; System Software for S7-300/400 System and Standard Functions, 12",
         sizes: Sizes {
             // The SPEED7 CPUs' sizes: process images of 256 bytes each (their preset; larger
             // ones are set in a hardware configuration, which a text program lacks), 8192 flag

@@ -294,3 +294,96 @@ fn every_entry_of_a_jump_list_is_a_path_and_the_end_after_beu_is_no_dead_code() 
         "the longer branch counts"
     );
 }
+
+/// OB 1 with a DIS_AIRT section around `inside` (an FC 1 call, a loop …), `after` after it,
+/// and FC 1: a 10000-pass loop (about 0.3 ms).
+fn airt_program(inside: &str, enable: bool, after: &str) -> String {
+    let enable = if enable {
+        "      CALL  SFC 42 (RET_VAL := MW 52);\n"
+    } else {
+        ""
+    };
+    format!(
+        "FUNCTION FC 1 : VOID\nBEGIN\n      L     10000;\nnext: T     MW 0;   // @bound 10000\n      L     MW 0;\n      LOOP  next;\nEND_FUNCTION\n\nORGANIZATION_BLOCK OB 1\nBEGIN\n      L     1;\n      CALL  SFC 41 (RET_VAL := MW 50);\n{inside}{enable}{after}END_ORGANIZATION_BLOCK\n\nORGANIZATION_BLOCK OB 40\nBEGIN\n      L     MW 4;\nEND_ORGANIZATION_BLOCK\n"
+    )
+}
+
+fn section(analysis: &Analysis, name: &str) -> analyze::AirtSection {
+    block(analysis, name).airt_section.clone().unwrap()
+}
+
+/// "System Software for S7-300/400 System and Standard Functions", 12.4: the interrupts SFC 41
+/// DIS_AIRT delays run after SFC 42 EN_AIRT, so a section as long as the called FC 1 sets the
+/// response bound, and every interrupt OB's bound has it.
+#[test]
+fn a_dis_airt_section_with_its_calls_sets_the_response_bound() {
+    let analysis = on_speed7(&airt_program("      CALL  FC 1;\n", true, ""));
+    let fc = block(&analysis, "FC 1").wcet_ns.unwrap();
+    let airt = section(&analysis, "OB 1");
+    assert_eq!(airt.lines, Some([12, 14]));
+    assert!(airt.ns.unwrap() > fc, "{airt:?} FC 1 {fc}");
+    assert_eq!(analysis.response_bound_ns, airt.ns);
+    assert!(
+        analysis
+            .response_bound_by
+            .contains("SFC 41 DIS_AIRT section of OB 1, lines 12–14"),
+        "{}",
+        analysis.response_bound_by
+    );
+    let ob40 = analysis.obs.iter().find(|ob| ob.ob == 40).unwrap();
+    assert!(ob40.response_bound_ns.unwrap() > airt.ns.unwrap());
+    // Without DIS_AIRT the operating-system time sets the bound, and there is no section.
+    let plain = on_speed7(
+        &airt_program("      CALL  FC 1;\n", true, "")
+            .replace("      CALL  SFC 41 (RET_VAL := MW 50);\n", ""),
+    );
+    assert!(block(&plain, "OB 1").airt_section.is_none());
+    assert!(plain.response_bound_by.contains("operating-system time"));
+}
+
+/// 12.4: a delay without EN_AIRT ends with the OB that called DIS_AIRT: the section runs to
+/// OB 1's end, through the work after the call of FC 1.
+#[test]
+fn a_section_without_en_airt_lasts_to_the_end_of_its_ob() {
+    let closed = on_speed7(&airt_program("", true, "      CALL  FC 1;\n"));
+    let open = on_speed7(&airt_program("", false, "      CALL  FC 1;\n"));
+    let fc = block(&open, "FC 1").wcet_ns.unwrap();
+    assert!(section(&closed, "OB 1").ns.unwrap() < fc);
+    assert!(section(&open, "OB 1").ns.unwrap() > fc);
+    assert_eq!(open.response_bound_ns, section(&open, "OB 1").ns);
+}
+
+/// A loop inside a section needs its bound; one after the section does not change the
+/// response bound (with operation points only the section and the longest operation count).
+#[test]
+fn a_loop_without_bound_is_unbounded_only_inside_a_section() {
+    let unbounded_loop =
+        "      L     100;\nloop: T     MW 2;\n      L     MW 2;\n      LOOP  loop;\n";
+    let inside = on_speed7(&airt_program(unbounded_loop, true, ""));
+    assert_eq!(inside.response_bound_ns, None);
+    assert!(inside.response_bound_by.contains("has no bound"));
+    assert_eq!(section(&inside, "OB 1").ns, None);
+    let after = on_speed7(&airt_program("", true, unbounded_loop));
+    assert!(
+        after.response_bound_ns.is_some(),
+        "{}",
+        after.response_bound_by
+    );
+    assert_eq!(block(&after, "OB 1").wcet_ns, None);
+}
+
+/// The sample: OB 1 copies its record inside a section about 1 ms long; the bound covers the
+/// latencies the run shows (OB 40 waited up to 836 us for EN_AIRT).
+#[test]
+fn the_critical_section_sample_bounds_its_latencies() {
+    let analysis = analyze_scenario("programs/s7/speed7_critical.toml");
+    let airt = section(&analysis, "OB 1");
+    assert!(airt.ns.unwrap() > 1_000_000, "{airt:?}");
+    let ran = common::ran(runner::run(&RunOptions {
+        scenario: Some("programs/s7/speed7_critical.toml".into()),
+        ..RunOptions::default()
+    }));
+    let latest = ran.cpu.engine.stats(40).latency_max;
+    let ob40 = analysis.obs.iter().find(|ob| ob.ob == 40).unwrap();
+    assert!(latest > 800_000 && latest <= ob40.response_bound_ns.unwrap());
+}

@@ -86,7 +86,15 @@ fn the_interrupt_example_is_serviced_once() {
 #[test]
 fn the_step7_samples_are_in_the_catalogue() {
     let files = catalogue();
-    for sample in ["traffic_light", "motor_fb", "ob40_alarm", "speed7_critical"] {
+    for sample in [
+        "traffic_light",
+        "motor_fb",
+        "ob40_alarm",
+        "speed7_critical",
+        "speed7_lines",
+        "speed7_ob85",
+        "speed7_stop",
+    ] {
         for extension in ["awl", "toml"] {
             let name = format!("s7/{sample}.{extension}");
             assert!(files.contains_key(&name), "{name}");

@@ -2,7 +2,8 @@
 //! (`wcet`), and the longest time between two interrupt points (`stretch`), on the same op
 //! times the VM counts. Conditional jumps take the worse branch; `BEB` ends a path; a
 //! backward jump is a loop, bounded by a `; @bound N` comment on its first line (N passes at
-//! most) or unbounded.
+//! most) or unbounded. With `Delayed`, the longest SFC 41 DIS_AIRT section: from a DIS_AIRT
+//! call to the next SFC 42 EN_AIRT call or the block's end, with the blocks it calls.
 
 use crate::compiler::builtin::Builtin;
 use crate::compiler::bytecode::JumpCondition;
@@ -144,6 +145,20 @@ pub enum Measure {
     Wcet,
     /// Between two interrupt points: a taken call and a block end are points.
     Stretch,
+    /// From an SFC 41 DIS_AIRT call to the next SFC 42 EN_AIRT call or the block's end, with
+    /// the called blocks' times: the interrupts DIS_AIRT delays wait that long ("System Software
+    /// for S7-300/400 System and Standard Functions", 12.4). A nested DIS_AIRT goes on with the
+    /// section; the first EN_AIRT after it ends it.
+    Delayed,
+}
+
+/// An op that opens or closes a DIS_AIRT section.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Airt {
+    /// SFC 41 DIS_AIRT.
+    Disable,
+    /// SFC 42 EN_AIRT.
+    Enable,
 }
 
 /// Where a path leaves a range of ops.
@@ -184,9 +199,18 @@ pub struct Walker<'a> {
     pub measure: Measure,
     /// The line of an op, for reasons.
     pub line: &'a dyn Fn(usize) -> u32,
+    /// Whether an op is a DIS_AIRT or EN_AIRT call (read with `Delayed` only).
+    pub airt: &'a dyn Fn(usize) -> Option<Airt>,
 }
 
 impl Walker<'_> {
+    /// Whether a path whose stretch starts at op `start` is inside a DIS_AIRT section.
+    fn opens(&self, start: usize) -> bool {
+        self.measure == Measure::Delayed
+            && start < self.block.code.len()
+            && (self.airt)(start) == Some(Airt::Disable)
+    }
+
     pub fn run(&self) -> Paths {
         let last = self.block.code.len().saturating_sub(1);
         match self.range(0, last, None) {
@@ -199,7 +223,7 @@ impl Walker<'_> {
                     value: Ok(range.exits.iter().map(|(_, ns, _)| *ns).max().unwrap_or(0)),
                     path: Vec::new(),
                 },
-                Measure::Stretch => {
+                Measure::Stretch | Measure::Delayed => {
                     let (ns, path) = range.best.unwrap_or_default();
                     Paths {
                         value: Ok(ns),
@@ -220,6 +244,7 @@ impl Walker<'_> {
             reach: vec![None; hi - lo + 2],
             out: Range::default(),
             line: self.line,
+            opens: &|start| self.opens(start),
         };
         pass.reach[0] = Some((0, lo, lo));
         let mut pc = lo;
@@ -242,6 +267,20 @@ impl Walker<'_> {
             let at = value + self.block.cost(pc);
             let next = Exit::Pc(pc + 1);
             match step(self.block.code[pc]) {
+                Step::Plain if self.measure == Measure::Delayed => match (self.airt)(pc) {
+                    // A section starts with the DIS_AIRT call, or goes on when one is open.
+                    Some(Airt::Disable) if !self.opens(start) => {
+                        pass.arrive(pc, next, self.block.cost(pc), pc)?;
+                    }
+                    Some(Airt::Enable) => {
+                        if self.opens(start) {
+                            let path = self.path_to(lo, pc, start, &pass.reach);
+                            note(&mut pass.out.best, at, path);
+                        }
+                        pass.arrive(pc, next, 0, pc + 1)?;
+                    }
+                    _ => pass.arrive(pc, next, at, start)?,
+                },
                 Step::Plain => pass.arrive(pc, next, at, start)?,
                 Step::JumpList { entries, target } => {
                     for entry in pc + 1..=pc + entries {
@@ -262,7 +301,10 @@ impl Walker<'_> {
                     callee,
                     conditional,
                 } => match self.measure {
-                    Measure::Wcet => pass.arrive(pc, next, at + (self.callee)(callee)?, start)?,
+                    // Interrupts stay delayed while the called block runs.
+                    Measure::Wcet | Measure::Delayed => {
+                        pass.arrive(pc, next, at + (self.callee)(callee)?, start)?;
+                    }
                     Measure::Stretch => {
                         // Taken, the call is a point: a new stretch starts after the callee.
                         let path = self.path_to(lo, pc, start, &pass.reach);
@@ -274,7 +316,11 @@ impl Walker<'_> {
                     }
                 },
                 Step::End { conditional } | Step::Stop { conditional } => {
-                    if matches!(step(self.block.code[pc]), Step::End { .. }) {
+                    let counts = match self.measure {
+                        Measure::Delayed => self.opens(start),
+                        _ => true,
+                    };
+                    if counts && matches!(step(self.block.code[pc]), Step::End { .. }) {
                         let path = self.path_to(lo, pc, start, &pass.reach);
                         note(&mut pass.out.best, at, path);
                     }
@@ -328,7 +374,11 @@ impl Walker<'_> {
         let body = self.range(inner.head, inner.tail, Some(inner))?;
         let pass = body.body.unwrap_or(0);
         let has_point = body.best.is_some() && self.measure == Measure::Stretch;
-        let passes = match (inner.bound, has_point) {
+        // Outside a section, and opening none, a loop's length does not matter.
+        let outside = self.measure == Measure::Delayed
+            && !self.opens(start)
+            && !(inner.head..=inner.tail).any(|pc| (self.airt)(pc) == Some(Airt::Disable));
+        let passes = match (inner.bound, has_point || outside) {
             (Some(bound), _) => u64::from(bound.max(1)),
             // A point in every pass breaks the stretch: two passes bound it.
             (None, true) => 2,
@@ -346,7 +396,15 @@ impl Walker<'_> {
         Ok(body
             .exits
             .into_iter()
-            .map(|(exit, ns, from)| (exit, value + repeated + ns, from.min(start)))
+            .map(|(exit, ns, from)| {
+                // A section open before the loop, or opened in it, goes on after it.
+                let from = if self.opens(start) || !self.opens(from) {
+                    from.min(start)
+                } else {
+                    from
+                };
+                (exit, value + repeated + ns, from)
+            })
             .collect())
     }
 }
@@ -359,6 +417,9 @@ struct Pass<'a> {
     reach: Vec<Reach>,
     out: Range,
     line: &'a dyn Fn(usize) -> u32,
+    /// Whether a stretch starting at an op is a DIS_AIRT section: such a path wins over one
+    /// outside, whatever their times, so the section is never lost where they join.
+    opens: &'a dyn Fn(usize) -> bool,
 }
 
 impl Pass<'_> {
@@ -374,8 +435,9 @@ impl Pass<'_> {
             return Ok(());
         }
         if target > current && target <= self.hi {
+            let opens = self.opens;
             let slot = &mut self.reach[target - self.lo];
-            if slot.is_none_or(|(best, _, _)| ns > best) {
+            if slot.is_none_or(|(best, from, _)| (opens(start), ns) > (opens(from), best)) {
                 *slot = Some((ns, start, current));
             }
             return Ok(());

@@ -4,7 +4,9 @@
 //! cyclic level and of each interrupt OB, the deepest call chain against the CPU's limit
 //! (STOP `STUEB`), the S5-95F's wake-up risk (STOP `WECK`), the cycle against the watchdog
 //! (STOP `ZYK`), and what never runs. Loops need a `; @bound N` comment on their first line;
-//! without one the figures that depend on them are unbounded (`null`), never guessed.
+//! without one the figures that depend on them are unbounded (`null`), never guessed. On a
+//! STEP 7 program an SFC 41 DIS_AIRT … SFC 42 EN_AIRT section delays the interrupts for its
+//! whole length, so the longest one is a candidate for the response bound.
 
 mod calls;
 pub mod flow;
@@ -19,7 +21,11 @@ use crate::source::SourceSet;
 
 pub use text::render;
 
-use flow::{Callee, Loop, Measure, Paths, Walker};
+use flow::{Airt, Callee, Loop, Measure, Paths, Walker};
+
+use crate::compiler::Op;
+use crate::step7::bytecode::S7Code;
+use crate::vm::interrupts::control::{DIS_AIRT, EN_AIRT};
 
 /// What the analysis assumes: the CPU and the run's settings.
 #[derive(Debug, Clone, Copy)]
@@ -82,6 +88,17 @@ pub struct BlockFigures {
     pub unbounded: Option<String>,
     pub loops: Vec<LoopFigures>,
     pub calls: Vec<String>,
+    /// STEP 7: the longest SFC 41 DIS_AIRT section in it, to the next SFC 42 EN_AIRT or the
+    /// block's end, with what it calls (`null` when unbounded); only in a block with DIS_AIRT.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub airt_section: Option<AirtSection>,
+}
+
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct AirtSection {
+    pub ns: Option<u64>,
+    /// The first and the last line of the longest section.
+    pub lines: Option<[u32; 2]>,
 }
 
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -149,12 +166,17 @@ pub struct UnusedCode {
     pub lines: [u32; 2],
 }
 
+/// A block's longest DIS_AIRT section: the block, its time (or why unbounded), its lines.
+type Section = (usize, Result<u64, String>, Option<[u32; 2]>);
+
 struct Analyzer<'a> {
     program: &'a Program,
     sources: &'a SourceSet,
     config: Config,
     loops: Vec<Vec<Loop>>,
     wcet: Vec<Option<Result<u64, String>>>,
+    /// The longest DIS_AIRT section of each block with one, found with its WCET.
+    sections: Vec<Option<Paths>>,
     visiting: Vec<bool>,
 }
 
@@ -173,9 +195,22 @@ pub fn analyze(program: &Program, sources: &SourceSet, config: Config) -> Analys
         config,
         loops,
         wcet: vec![None; count],
+        sections: vec![None; count],
         visiting: vec![false; count],
     }
     .run()
+}
+
+/// Whether op `pc` of block `block` calls SFC 41 DIS_AIRT or SFC 42 EN_AIRT.
+fn airt_at(program: &Program, block: usize, pc: usize) -> Option<Airt> {
+    let Op::S7(S7Code::Sfc { call }) = *program.blocks[block].code.get(pc)? else {
+        return None;
+    };
+    match program.s7.sfc_calls.get(usize::from(call))?.number {
+        DIS_AIRT => Some(Airt::Disable),
+        EN_AIRT => Some(Airt::Enable),
+        _ => None,
+    }
 }
 
 /// The line of op `pc` of block `block`.
@@ -237,6 +272,10 @@ impl Analyzer<'_> {
         };
         let result = self.walk(index, Measure::Wcet, &callee).value;
         self.wcet[index] = Some(result.clone());
+        let code = &self.program.blocks[index].code;
+        if (0..code.len()).any(|pc| airt_at(self.program, index, pc) == Some(Airt::Disable)) {
+            self.sections[index] = Some(self.walk(index, Measure::Delayed, &callee));
+        }
         result
     }
 
@@ -247,12 +286,14 @@ impl Analyzer<'_> {
         callee: &dyn Fn(Callee) -> Result<u64, String>,
     ) -> Paths {
         let line = |pc: usize| self.line(index, pc);
+        let airt = |pc: usize| airt_at(self.program, index, pc);
         Walker {
             block: &self.program.blocks[index],
             loops: &self.loops[index],
             callee,
             measure,
             line: &line,
+            airt: &airt,
         }
         .run()
     }
@@ -311,11 +352,27 @@ impl Analyzer<'_> {
 
         let mut blocks = Vec::new();
         let mut stretches: Vec<(usize, Result<u64, String>)> = Vec::new();
+        let mut sections: Vec<Section> = Vec::new();
         for (index, &runs) in reachable.iter().enumerate() {
             let wcet = self.wcet(index as u16);
             let stretch = self.stretch(index);
             if runs {
                 stretches.push((index, stretch.value.clone()));
+            }
+            let airt_section = self.sections[index].as_ref().map(|section| {
+                let lines = section.value.is_ok().then(|| {
+                    let first = section.path.first().map(|pc| self.line(index, *pc));
+                    let last = section.path.last().map(|pc| self.line(index, *pc));
+                    first.zip(last).map(|(first, last)| [first, last])
+                });
+                AirtSection {
+                    ns: section.value.clone().ok(),
+                    lines: lines.flatten(),
+                }
+            });
+            if runs && let Some(section) = &self.sections[index] {
+                let lines = airt_section.as_ref().and_then(|section| section.lines);
+                sections.push((index, section.value.clone(), lines));
             }
             let unbounded = wcet.clone().err().or(stretch.value.clone().err());
             blocks.push(BlockFigures {
@@ -343,10 +400,11 @@ impl Analyzer<'_> {
                     .into_iter()
                     .map(|callee| self.name(usize::from(callee)))
                     .collect(),
+                airt_section,
             });
         }
 
-        let (response, by) = self.response_bound(&stretches);
+        let (response, by) = self.response_bound(&stretches, &sections);
         let ob_runs: Vec<(u8, u8, Result<u64, String>)> = obs
             .iter()
             .map(|&(ob, priority, block)| {
@@ -439,8 +497,29 @@ impl Analyzer<'_> {
 
     /// The longest stretch without an interrupt point anywhere: in a block that can run, or
     /// the operating system's work (S5-95F: OB 13's end with its output data cycle).
-    fn response_bound(&self, stretches: &[(usize, Result<u64, String>)]) -> (Option<u64>, String) {
+    fn response_bound(
+        &self,
+        stretches: &[(usize, Result<u64, String>)],
+        sections: &[Section],
+    ) -> (Option<u64>, String) {
         let mut candidates = self.system();
+        for (index, section, lines) in sections {
+            match section {
+                Ok(ns) => {
+                    let lines = match lines {
+                        Some([first, last]) if first == last => format!(", line {first}"),
+                        Some([first, last]) => format!(", lines {first}–{last}"),
+                        None => String::new(),
+                    };
+                    let what = format!(
+                        "the SFC 41 DIS_AIRT section of {}{lines}, which delays the interrupts",
+                        self.name(*index)
+                    );
+                    candidates.push((*ns, what));
+                }
+                Err(reason) => return (None, format!("unbounded: {reason}")),
+            }
+        }
         for (index, stretch) in stretches {
             match stretch {
                 Ok(ns) => {

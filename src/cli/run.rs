@@ -39,7 +39,8 @@ pub enum Format {
 /// A kind of trace events (`--trace-filter`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum TraceKind {
-    /// Requests, services, interrupt OB ends, lost and ignored requests
+    /// Requests, services, interrupt OB ends, lost, ignored, discarded (SFC 39) and delayed
+    /// (SFC 41) requests, delay ends, SFC 39-42 calls, module events
     Interrupts,
     /// Block calls and ends
     Blocks,
