@@ -119,6 +119,9 @@ pub struct LevelState {
     pub db: u16,
     pub di: u16,
     pub local_base: u32,
+    /// STEP 7: where the running block's local data end (its base plus its size), where a
+    /// block it calls has its own: kept so a call looks up only the called block's size.
+    pub local_end: u32,
     /// STEP 7: the master control relay.
     pub mcr: s7::mcr::Mcr,
 }
@@ -365,6 +368,7 @@ impl Cpu {
                 db: 0,
                 di: 0,
                 local_base: 0,
+                local_end: 0,
                 mcr: s7::mcr::Mcr::default(),
             },
             frames: BlockStack::with_room(usize::from(profile.nesting_limit) * levels_capacity + 1),
@@ -466,9 +470,10 @@ impl Cpu {
             if outer.block == IDLE {
                 0
             } else {
-                outer.local_base + self.program.local_bytes(outer.block)
+                outer.local_end
             }
         });
+        self.level.local_end = self.level.local_base + self.program.local_bytes(block);
         let limit = usize::from(self.profile.nesting_limit);
         self.level.frame_limit = match self.profile.nesting {
             Nesting::PerLevel => self.level.level_base + limit - 1,

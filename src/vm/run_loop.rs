@@ -78,7 +78,7 @@ impl Cpu {
         self.stop(cause, pc, detail)
     }
 
-    /// Marks a block change (an interrupt point in both modes): the stretch since the last
+    /// Marks a block change, an interrupt point with block points: the stretch since the last
     /// point ended with op `end_pc` of `block`.
     #[inline(always)]
     fn mark_point(&mut self, clock: u64, block: u16, end_pc: u32) {
@@ -89,6 +89,20 @@ impl Cpu {
             end_ns: clock,
         };
         self.longest_block.record(clock - self.last_point_at, kind);
+        self.last_point_at = clock;
+    }
+
+    /// Marks the point after op `end_pc` of `block` with operation points, where the loop
+    /// leaves at a block change: the stretch is that op alone, as at every other operation
+    /// (so the loop keeps no stretch at the block changes it goes on after).
+    #[cold]
+    fn mark_operation(&mut self, clock: u64, block: u16, end_pc: u32) {
+        let cost = self.program.blocks[usize::from(block)].cost(end_pc as usize);
+        self.last_stretch = LastStretch {
+            kind: StretchKind::Block { block, end_pc },
+            start_ns: clock - cost,
+            end_ns: clock,
+        };
         self.last_point_at = clock;
     }
 
@@ -262,6 +276,16 @@ impl Cpu {
                 rebase!();
             };
         }
+        // The point at a block change the loop leaves at.
+        macro_rules! point_here {
+            ($clock:expr, $block:expr, $end_pc:expr) => {
+                if OPERATION_POINTS {
+                    self.mark_operation($clock, $block, $end_pc);
+                } else {
+                    self.mark_point($clock, $block, $end_pc);
+                }
+            };
+        }
         // The block end of the running block, after its status rule was applied.
         macro_rules! block_end {
             ($run:lifetime, $op:expr) => {{
@@ -279,8 +303,8 @@ impl Cpu {
                     self.note_stretch(end_pc, self.last_point_at, clock);
                     break $run Leave::LevelEnd;
                 }
-                self.mark_point(clock, ended, end_pc);
                 if level_end {
+                    point_here!(clock, ended, end_pc);
                     self.last_op = (ended, end_pc);
                     break $run Leave::LevelEnd;
                 }
@@ -298,8 +322,12 @@ impl Cpu {
                 let resume = frame.resume as usize;
                 move_to!(resume, frame.start as usize);
                 if clock >= self.attention_at {
+                    point_here!(clock, ended, end_pc);
                     self.last_op = (ended, end_pc);
                     break $run Leave::Point(Point::BlockEnd);
+                }
+                if !OPERATION_POINTS {
+                    self.mark_point(clock, ended, end_pc);
                 }
             }};
         }
@@ -339,7 +367,7 @@ impl Cpu {
                     // So does a block call.
                     status.set_os(false);
                 }
-                if step7 && !self.enter_s7_block(caller, target) {
+                if step7 && !self.enter_s7_block(target) {
                     detail = super::s7::memory::local_overflow();
                     break $run Leave::Stop(StopCause::Stueb, call_pc);
                 }
@@ -353,14 +381,17 @@ impl Cpu {
                 pc = entry;
                 time_base = clock;
                 rebase!();
-                self.mark_point(clock, caller, call_pc);
                 if TRACING && self.tracer.enabled {
                     self.clock = clock;
                     self.trace_call(caller, target);
                 }
                 if clock >= self.attention_at {
+                    point_here!(clock, caller, call_pc);
                     self.last_op = (caller, call_pc);
                     break $run Leave::Point(Point::BlockCall);
+                }
+                if !OPERATION_POINTS {
+                    self.mark_point(clock, caller, call_pc);
                 }
                 continue $run;
             }};

@@ -134,16 +134,16 @@ impl Cpu {
     /// A STEP 7 block call (the frame is pushed): the caller's registers saved, the callee's
     /// local data placed after the caller's. `false` when the L stack has no room for them.
     #[inline(always)]
-    pub(crate) fn enter_s7_block(&mut self, caller: u16, callee: u16) -> bool {
+    pub(crate) fn enter_s7_block(&mut self, callee: u16) -> bool {
         // As deep as the block stack, whose push came first: this one always has room.
         self.s7_frames.push(crate::vm::S7Frame {
             db: self.level.db,
             di: self.level.di,
             local_base: self.level.local_base,
         });
-        self.level.local_base += self.program.local_bytes(caller);
-        let end = self.level.local_base + self.program.local_bytes(callee);
-        end as usize <= self.local.len()
+        self.level.local_base = self.level.local_end;
+        self.level.local_end = self.level.local_base + self.program.local_bytes(callee);
+        self.level.local_end as usize <= self.local.len()
     }
 
     /// A STEP 7 block's end (its frame popped): the caller's registers back.
@@ -152,6 +152,8 @@ impl Cpu {
         if let Some(saved) = self.s7_frames.pop() {
             self.level.db = saved.db;
             self.level.di = saved.di;
+            // The called block's locals began where the caller's end.
+            self.level.local_end = self.level.local_base;
             self.level.local_base = saved.local_base;
         }
     }
