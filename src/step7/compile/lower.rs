@@ -1011,18 +1011,18 @@ impl super::Compiler<'_> {
             return Ok(());
         };
         if let S7BlockRef::Number {
-            kind: S7BlockKind::Sfc | S7BlockKind::Sfb,
+            kind: S7BlockKind::Sfb,
             number,
         } = call.block
         {
-            let sfc = matches!(
-                call.block,
-                S7BlockRef::Number {
-                    kind: S7BlockKind::Sfc,
-                    ..
-                }
-            );
-            if sfc && super::interrupt_sfcs::is_interrupt_sfc(number) {
+            return self.call_system_fb(out, call, number, at, span, scope);
+        }
+        if let S7BlockRef::Number {
+            kind: S7BlockKind::Sfc,
+            number,
+        } = call.block
+        {
+            if super::interrupt_sfcs::is_interrupt_sfc(number) {
                 return self.interrupt_sfc(out, number, call, at, span, scope);
             }
             let mut params = Vec::new();
@@ -1035,23 +1035,12 @@ impl super::Compiler<'_> {
                     self.tables.place(place),
                 ));
             }
-            let is_sfb = matches!(
-                call.block,
-                S7BlockRef::Number {
-                    kind: S7BlockKind::Sfb,
-                    ..
-                }
-            );
-            if !is_sfb {
-                system_function_params(number, &call.params, &widths, span)?;
-            }
+            system_function_params(number, &call.params, &widths, span)?;
             let index = self.sfc(number, params);
-            if is_sfb
-                || !matches!(
-                    number,
-                    46 | TIME_TCK | AWLSIM_SFC_REBOOT | AWLSIM_SFC_CLOCK_RESET
-                )
-            {
+            if !matches!(
+                number,
+                46 | TIME_TCK | AWLSIM_SFC_REBOOT | AWLSIM_SFC_CLOCK_RESET
+            ) {
                 // awlsim's own system functions are numbered below 0.
                 let number = if number >= AWLSIM_SFC_REBOOT - 2 {
                     i32::from(number as i16)
@@ -1059,20 +1048,7 @@ impl super::Compiler<'_> {
                     i32::from(number)
                 };
                 return Err(CheckError::NotSimulated {
-                    what: format!(
-                        "{} {number}",
-                        if matches!(
-                            call.block,
-                            S7BlockRef::Number {
-                                kind: S7BlockKind::Sfb,
-                                ..
-                            }
-                        ) {
-                            "SFB"
-                        } else {
-                            "SFC"
-                        }
-                    ),
+                    what: format!("SFC {number}"),
                     why: "of the system blocks, awl runs SFC 39 to SFC 42, SFC 46 (STP) and \
                           SFC 64 (TIME_TCK) so far"
                         .into(),
@@ -1098,6 +1074,48 @@ impl super::Compiler<'_> {
             BlockKind::Fb => self.call_fb(out, call, callee, at, span, scope),
             _ => self.call_fc(out, call, callee, span, scope),
         }
+    }
+
+    /// `CALL SFB n, DB m`: the system FB runs on its instance DB between the copies in and
+    /// out, as a multi-instance of it does.
+    fn call_system_fb(
+        &mut self,
+        out: &mut Emitter,
+        call: &CallSpec,
+        number: u16,
+        at: Span,
+        span: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(), CheckError> {
+        let label = super::system::label(number);
+        let Some(interface) = super::system::interface(number, self.types()) else {
+            return Err(CheckError::NotSimulated {
+                what: label,
+                why: super::system::WHICH.into(),
+                at,
+            });
+        };
+        let Some(S7BlockRef::Number { number: db, .. }) = &call.instance else {
+            return Err(CheckError::NotSimulated {
+                what: format!("a call of {label} without an instance DB"),
+                why: format!("write `CALL {label}, DB m`"),
+                at,
+            });
+        };
+        let instance_slot = self.db_slot(*db, at);
+        let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
+        self.tables.fb_calls.push(FbCall {
+            instance_db: *db,
+            instance_slot,
+            multi_instance: None,
+            system: Some(number),
+            inputs,
+            outputs,
+        });
+        let index = (self.tables.fb_calls.len() - 1) as u16;
+        self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
+        self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
+        Ok(())
     }
 
     fn call_fc(
@@ -1386,12 +1404,12 @@ impl super::Compiler<'_> {
             });
         };
         let (kind, number) = (*kind, *number);
-        let label = format!("{} {number}", kind.name());
         if kind == S7BlockKind::Sfb {
+            let label = super::system::label(number);
             let Some(interface) = super::system::interface(number, self.types()) else {
                 return Err(CheckError::NotSimulated {
                     what: label,
-                    why: "of the system FBs, awl runs SFB 0 (CTU) so far".into(),
+                    why: super::system::WHICH.into(),
                     at,
                 });
             };
@@ -1409,6 +1427,7 @@ impl super::Compiler<'_> {
             self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
             return Ok(());
         }
+        let label = format!("{} {number}", kind.name());
         let id = BlockId {
             kind: BlockKind::Fb,
             number,

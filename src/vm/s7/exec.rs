@@ -22,7 +22,7 @@ pub enum Flow {
     Jump(u32),
 }
 
-fn fault(text: impl Into<String>) -> Fault {
+pub(super) fn fault(text: impl Into<String>) -> Fault {
     (StopCause::Bcf, StopDetail::Text(text.into()))
 }
 
@@ -447,39 +447,6 @@ impl Cpu {
             self.store(to, copy.width, value)?;
         }
         Ok(())
-    }
-
-    /// A system FB awl runs itself, on its instance data at `base` bits into `slot`.
-    fn system_fb(&mut self, number: u16, slot: u16, base: u32) -> Result<(), Fault> {
-        let at = |offset: u32| {
-            let bits = base + offset;
-            Located::Data {
-                slot,
-                byte: (bits >> 3) as usize,
-                bit: (bits & 7) as u8,
-            }
-        };
-        match number {
-            // SFB 0 CTU (the System and Standard Functions manual, IEC counters): CU 0.0,
-            // R 0.1, PV 2, Q 4.0, CV 6, CUO 8.0.
-            0 => {
-                let cu = self.fetch_bit(at(0))?;
-                let reset = self.fetch_bit(at(1))?;
-                let preset = self.fetch(at(16), AccessWidth::Word)? as u16 as i16;
-                let edge = self.fetch_bit(at(64))?;
-                let mut count = self.fetch(at(48), AccessWidth::Word)? as u16 as i16;
-                if reset {
-                    count = 0;
-                } else if cu && !edge && count < i16::MAX {
-                    count += 1;
-                }
-                self.store(at(48), AccessWidth::Word, count as u16 as u32)?;
-                self.store_bit(at(32), count >= preset)?;
-                self.store_bit(at(64), cu)?;
-                Ok(())
-            }
-            other => Err(fault(format!("SFB {other} is not simulated"))),
-        }
     }
 
     /// `CALL FC n (…)`, before the call: the copied actuals onto the L stack, AR2 saved.

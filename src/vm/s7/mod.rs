@@ -38,6 +38,7 @@ pub mod mcr;
 pub mod memory;
 pub mod real;
 pub mod shift;
+mod system_blocks;
 pub mod word_logic;
 
 use crate::compiler::Program;
