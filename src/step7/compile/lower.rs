@@ -12,12 +12,12 @@ use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
 use crate::source::Span;
 use crate::step7::ast::{
-    AccessWidth, CallParam, CallSpec, ConstKind, DataType, S7Address, S7Area, S7Block, S7BlockKind,
+    AccessWidth, CallSpec, ConstKind, DataType, S7Address, S7Area, S7Block, S7BlockKind,
     S7BlockRef, S7Body, S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, FbCall, FcCall, McrCode, MemOp, ParamCopy, Place,
-    S7Code, SfcCall, TIME_TCK, Target,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, FbCall, FcCall, McrCode, MemOp,
+    ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK, Target, WAIT,
 };
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
@@ -916,7 +916,7 @@ impl super::Compiler<'_> {
             if super::interrupt_sfcs::is_interrupt_sfc(*number) {
                 return Err(super::interrupt_sfcs::missing_all(*number, at));
             }
-            system_function_params(*number, &[], &[], at)?;
+            super::system_functions::given_all(*number, 0, at)?;
             let call = self.sfc(*number, Vec::new());
             self.emit(out, Op::S7(S7Code::Sfc { call }), span);
             return Ok(());
@@ -1035,11 +1035,18 @@ impl super::Compiler<'_> {
                     self.tables.place(place),
                 ));
             }
-            system_function_params(number, &call.params, &widths, span)?;
+            self.system_function_params(number, &call.params, &widths, span, scope)?;
             let index = self.sfc(number, params);
             if !matches!(
                 number,
-                46 | TIME_TCK | AWLSIM_SFC_REBOOT | AWLSIM_SFC_CLOCK_RESET
+                SET_CLK
+                    | READ_CLK
+                    | 46
+                    | WAIT
+                    | TIME_TCK
+                    | AWLSIM_SFC_NOP
+                    | AWLSIM_SFC_REBOOT
+                    | AWLSIM_SFC_CLOCK_RESET
             ) {
                 // awlsim's own system functions are numbered below 0.
                 let number = if number >= AWLSIM_SFC_REBOOT - 2 {
@@ -1049,8 +1056,9 @@ impl super::Compiler<'_> {
                 };
                 return Err(CheckError::NotSimulated {
                     what: format!("SFC {number}"),
-                    why: "of the system blocks, awl runs SFC 39 to SFC 42, SFC 46 (STP) and \
-                          SFC 64 (TIME_TCK) so far"
+                    why: "of the system functions, awl runs SFC 0 (SET_CLK), SFC 1 \
+                          (READ_CLK), SFC 39 to SFC 42, SFC 46 (STP), SFC 47 (WAIT), SFC 64 \
+                          (TIME_TCK) and awlsim's SFC -1 and SFC -4 so far"
                         .into(),
                     at,
                 });
@@ -1500,51 +1508,4 @@ pub(super) fn feature_number(operand: &S7Operand) -> Option<u8> {
         S7Operand::Constant(constant) => Some(constant.value as u8),
         _ => None,
     }
-}
-
-/// The parameters of a system function awl runs, checked against its interface ("System
-/// Software for S7-300/400 System and Standard Functions"): SFC 64 (TIME_TCK) has one output,
-/// RET_VAL, a TIME; awlsim's SFC -4 (`__CLKRST`) has none.
-fn system_function_params(
-    number: u16,
-    params: &[CallParam],
-    widths: &[AccessWidth],
-    span: Span,
-) -> Result<(), CheckError> {
-    let (name, interface): (&str, &[&str]) = match number {
-        TIME_TCK => ("SFC 64", &["RET_VAL"]),
-        AWLSIM_SFC_CLOCK_RESET => ("SFC -4", &[]),
-        _ => return Ok(()),
-    };
-    for (param, width) in params.iter().zip(widths) {
-        if !interface.contains(&param.name.text.to_ascii_uppercase().as_str()) {
-            return Err(CheckError::UnknownParam {
-                name: param.name.text.clone(),
-                fb: name.into(),
-                at: param.name.span,
-                help: Some(match interface {
-                    [] => format!("{name} has no parameters"),
-                    _ => format!("{name} has {}", interface.join(", ")),
-                }),
-            });
-        }
-        if *width != AccessWidth::Double {
-            return Err(CheckError::ParamMismatch {
-                name: param.name.text.clone(),
-                fb: name.into(),
-                at: param.actual_span,
-                expected: "a TIME: a double word such as MD 4".into(),
-            });
-        }
-    }
-    if params.len() < interface.len() {
-        return Err(CheckError::ParamCount {
-            fb: name.into(),
-            expected: interface.len(),
-            found: params.len(),
-            at: span,
-            help: Some(format!("write `CALL {name} (RET_VAL := MD 4)`")),
-        });
-    }
-    Ok(())
 }

@@ -9,6 +9,7 @@ mod lower;
 mod operand;
 mod symbols;
 mod system;
+mod system_functions;
 
 use std::collections::HashMap;
 

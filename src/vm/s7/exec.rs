@@ -3,7 +3,8 @@
 use crate::compiler::bytecode::{Op, TimerKind};
 use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, McrCode, MemOp, S7Code, TIME_TCK, Target,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, McrCode, MemOp, READ_CLK, S7Code,
+    SET_CLK, TIME_TCK, Target, WAIT,
 };
 use crate::vm::Cpu;
 use crate::vm::interrupts::control::{DIS_IRT, EN_AIRT};
@@ -563,7 +564,9 @@ impl Cpu {
     fn system_function(&mut self, call: u16) -> Result<(), Fault> {
         let number = self.program.s7.sfc_calls[usize::from(call)].number;
         match number {
+            SET_CLK | READ_CLK => self.clock_sfc(number, call),
             46 => Err((StopCause::Stp, StopDetail::Text("CALL SFC 46 (STP)".into()))),
+            WAIT => self.wait(call),
             DIS_IRT..=EN_AIRT => self.interrupt_sfc(number, call),
             TIME_TCK => {
                 // The compiler checked RET_VAL is given, a double word.
@@ -573,6 +576,10 @@ impl Cpu {
                     let (to, width) = self.locate_index(place)?;
                     self.store(to, width, self.time_tick())?;
                 }
+                self.level.br = true;
+                Ok(())
+            }
+            AWLSIM_SFC_NOP => {
                 self.level.br = true;
                 Ok(())
             }

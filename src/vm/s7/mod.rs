@@ -29,6 +29,7 @@
 pub mod accu;
 pub mod bit_logic;
 mod bridge;
+mod clock_sfcs;
 pub mod compare;
 pub mod convert;
 pub mod exec;
