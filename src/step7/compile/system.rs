@@ -119,3 +119,84 @@ pub fn interface(number: u16, types: &Types) -> Option<Interface> {
         .collect();
     Some(Interface::build(&borrowed, true, types))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::step7::compile::layout::Home;
+
+    /// The instance data as the VM reads them (src/vm/s7/system_blocks.rs): each variable's
+    /// byte.bit, and the DB's length, which awlsim's tests check with `L DBLG`.
+    #[test]
+    fn the_instance_data_lie_where_the_vm_reads_them() {
+        let types = Types::default();
+        let expected: [(u16, &[(&str, u32)], u32); 6] = [
+            (
+                0,
+                &[
+                    ("CU", 0),
+                    ("R", 1),
+                    ("PV", 16),
+                    ("Q", 32),
+                    ("CV", 48),
+                    ("CUO", 64),
+                ],
+                10,
+            ),
+            (
+                1,
+                &[
+                    ("CD", 0),
+                    ("LOAD", 1),
+                    ("PV", 16),
+                    ("Q", 32),
+                    ("CV", 48),
+                    ("CDO", 64),
+                ],
+                10,
+            ),
+            (
+                2,
+                &[
+                    ("CU", 0),
+                    ("CD", 1),
+                    ("R", 2),
+                    ("LOAD", 3),
+                    ("PV", 16),
+                    ("QU", 32),
+                    ("QD", 33),
+                    ("CV", 48),
+                    ("CUO", 64),
+                    ("CDO", 65),
+                ],
+                10,
+            ),
+            (3, TIMER, 22),
+            (4, TIMER, 22),
+            (5, TIMER, 22),
+        ];
+        for (number, variables, bytes) in expected {
+            let interface = interface(number, &types).expect("a system FB");
+            for &(name, bits) in variables {
+                let home = interface.variables[name].home;
+                assert!(
+                    matches!(home, Home::Instance(offset) if offset.0 == bits),
+                    "SFB {number} {name}: {home:?}"
+                );
+            }
+            assert_eq!(interface.instance_bytes, bytes, "SFB {number}");
+        }
+        assert_eq!(interface(AWLSIM_SFB_NOP, &types).unwrap().instance_bytes, 0);
+        assert!(interface(6, &types).is_none());
+    }
+
+    const TIMER: &[(&str, u32)] = &[
+        ("IN", 0),
+        ("PT", 16),
+        ("Q", 48),
+        ("ET", 64),
+        ("STATE", 96),
+        ("STIME", 112),
+        ("ATIME", 144),
+    ];
+}
