@@ -130,7 +130,7 @@ mod tests {
     #[test]
     fn the_instance_data_lie_where_the_vm_reads_them() {
         let types = Types::default();
-        let expected: [(u16, &[(&str, u32)], u32); 6] = [
+        let expected: [(u16, Offsets, u32); 6] = [
             (
                 0,
                 &[
@@ -190,7 +190,10 @@ mod tests {
         assert!(interface(6, &types).is_none());
     }
 
-    const TIMER: &[(&str, u32)] = &[
+    /// Each variable's name and bit offset.
+    type Offsets = &'static [(&'static str, u32)];
+
+    const TIMER: Offsets = &[
         ("IN", 0),
         ("PT", 16),
         ("Q", 48),

@@ -31,8 +31,10 @@ impl Kind {
     }
 }
 
-/// Each SFC's name for messages, its parameters and a call to show in help.
-fn interface(number: u16) -> Option<(&'static str, &'static [(&'static str, Kind)], &'static str)> {
+/// An SFC's name for messages, its parameters and a call to show in help.
+type SfcInterface = (&'static str, &'static [(&'static str, Kind)], &'static str);
+
+fn interface(number: u16) -> Option<SfcInterface> {
     Some(match number {
         SET_CLK => (
             "SFC 0 (SET_CLK)",
