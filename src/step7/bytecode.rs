@@ -337,6 +337,9 @@ pub struct ParamCopy {
     pub width: AccessWidth,
 }
 
+/// awlsim's `SFC -1` (`__SFC_NOP`), with the test extensions: does nothing but set BR.
+pub const AWLSIM_SFC_NOP: u16 = -1i16 as u16;
+
 /// awlsim's `SFC -2` (`__REBOOT`), with the test extensions: awlsim's system functions
 /// `SFC -1` to `SFC -4` are numbered as 16-bit two's complements, 65535 down to 65532.
 pub const AWLSIM_SFC_REBOOT: u16 = -2i16 as u16;
@@ -344,6 +347,15 @@ pub const AWLSIM_SFC_REBOOT: u16 = -2i16 as u16;
 /// awlsim's `SFC -4` (`__CLKRST`), with the test extensions: restarts the clock memory and
 /// the time SFC 64 counts, as if the CPU had just started.
 pub const AWLSIM_SFC_CLOCK_RESET: u16 = -4i16 as u16;
+
+/// SFC 0 `SET_CLK`: sets the CPU's clock (date and time of day).
+pub const SET_CLK: u16 = 0;
+
+/// SFC 1 `READ_CLK`: reads the CPU's clock.
+pub const READ_CLK: u16 = 1;
+
+/// SFC 47 `WAIT`: waits WT microseconds.
+pub const WAIT: u16 = 47;
 
 /// SFC 64 `TIME_TCK`: the system time, milliseconds since the CPU started.
 pub const TIME_TCK: u16 = 64;

@@ -387,6 +387,41 @@ pub fn date_and_time_bytes(days: u32, ms: u32) -> [u8; 8] {
     ]
 }
 
+/// What is wrong with the eight bytes of a DATE_AND_TIME, for SFC 0 (SET_CLK)'s RET_VAL.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BadDateAndTime {
+    /// The year, month or day is no BCD number of the calendar.
+    Date,
+    /// The hour, minute, second or millisecond is no BCD number of a day.
+    Time,
+}
+
+/// The inverse of [`date_and_time_bytes`]: the day after 1990-01-01 and the milliseconds
+/// after midnight. The weekday nibble is not checked: STEP 7 computes it from the date.
+pub fn date_and_time_from_bytes(bytes: [u8; 8]) -> Result<(u32, u32), BadDateAndTime> {
+    let digits = |byte: u8| {
+        (byte >> 4 < 10 && byte & 15 < 10).then(|| u32::from(byte >> 4) * 10 + u32::from(byte & 15))
+    };
+    let date = || -> Option<u32> {
+        let two = digits(bytes[0])?;
+        // Two digits: 90–99 are 1990–1999, 00–89 2000–2089.
+        let year = if two >= 90 { 1900 + two } else { 2000 + two };
+        let (month, day) = (digits(bytes[1])?, digits(bytes[2])?);
+        ((1..=12).contains(&month) && day >= 1 && day <= days_in_month(year, month))
+            .then(|| (days_from_civil(year, month, day) - days_from_civil(1990, 1, 1)) as u32)
+    };
+    let time = || -> Option<u32> {
+        let (hours, minutes, seconds) = (digits(bytes[3])?, digits(bytes[4])?, digits(bytes[5])?);
+        let high = digits(bytes[6])?;
+        let low = u32::from(bytes[7] >> 4);
+        (hours < 24 && minutes < 60 && seconds < 60 && low < 10)
+            .then(|| ((hours * 60 + minutes) * 60 + seconds) * 1000 + high * 10 + low)
+    };
+    let days = date().ok_or(BadDateAndTime::Date)?;
+    let ms = time().ok_or(BadDateAndTime::Time)?;
+    Ok((days, ms))
+}
+
 /// The inverse of [`days_from_civil`]: year, month and day of a day count.
 fn civil_from_days(days: i64) -> (u32, u32, u32) {
     let era = days.div_euclid(146_097);
@@ -629,6 +664,32 @@ mod tests {
     fn value(text: &str) -> (ConstKind, u32) {
         let constant = typed(text).unwrap_or_else(|e| panic!("{text}: {e:?}"));
         (constant.kind, constant.value)
+    }
+
+    #[test]
+    fn date_and_time_bytes_read_back_and_bad_fields_are_told_apart() {
+        for (days, ms) in [(0, 0), (12_418, 45_296_789), (36_524, 86_399_999)] {
+            let bytes = date_and_time_bytes(days, ms);
+            assert_eq!(date_and_time_from_bytes(bytes), Ok((days, ms)));
+        }
+        let good = date_and_time_bytes(12_418, 0);
+        let with = |index: usize, byte: u8| {
+            let mut bytes = good;
+            bytes[index] = byte;
+            date_and_time_from_bytes(bytes)
+        };
+        // February 30th, month 13, a non-BCD day.
+        let mut february_30 = good;
+        february_30[1..3].copy_from_slice(&[0x02, 0x30]);
+        assert_eq!(
+            date_and_time_from_bytes(february_30),
+            Err(BadDateAndTime::Date)
+        );
+        assert_eq!(with(1, 0x13), Err(BadDateAndTime::Date));
+        assert_eq!(with(2, 0x1A), Err(BadDateAndTime::Date));
+        assert_eq!(with(3, 0x24), Err(BadDateAndTime::Time));
+        assert_eq!(with(5, 0x60), Err(BadDateAndTime::Time));
+        assert_eq!(with(7, 0xA2), Err(BadDateAndTime::Time));
     }
 
     #[test]

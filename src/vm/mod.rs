@@ -251,6 +251,9 @@ pub struct Cpu {
     /// The simulated time the clock memory and SFC 64 (TIME_TCK) count from: the start of
     /// the run, or the last `CALL SFC -4` (awlsim's `__CLKRST`, which restarts both).
     pub clock_origin_ns: u64,
+    /// How far SFC 0 (SET_CLK) set the CPU's clock from [`start_info::START_DATE`] plus the
+    /// simulated time, in milliseconds.
+    pub clock_set_ms: i64,
     /// The operating system writes each OB's start information into its local data; awlsim's
     /// project files may switch that off (`ob_startinfo_enable="0"`, `awl conformance`).
     pub writes_start_info: bool,
@@ -328,6 +331,7 @@ impl Cpu {
             inputs_echo_pii: false,
             clock_memory: None,
             clock_origin_ns: 0,
+            clock_set_ms: 0,
             writes_start_info: true,
             extended_inputs: vec![0; periphery],
             extended_outputs: vec![0; periphery],

@@ -91,13 +91,26 @@ impl Cpu {
             return;
         };
         info[..12].copy_from_slice(&head);
-        let ms = self.clock / 1_000_000;
-        let days = START_DAY as u64 + ms / 86_400_000;
-        let bytes = date_and_time_bytes(
+        let bytes = self.date_and_time();
+        let start = self.level.local_base as usize;
+        self.local[start + 12..start + START_INFO_BYTES as usize].copy_from_slice(&bytes);
+    }
+
+    /// The CPU's clock as a DATE_AND_TIME: [`START_DATE`] plus the simulated time, as far as
+    /// SFC 0 (SET_CLK) moved it.
+    pub(crate) fn date_and_time(&self) -> [u8; 8] {
+        let ms = self.clock_ms();
+        let days = ms / 86_400_000;
+        date_and_time_bytes(
             u32::try_from(days).unwrap_or(u32::MAX),
             (ms % 86_400_000) as u32,
-        );
-        info[12..].copy_from_slice(&bytes);
+        )
+    }
+
+    /// The CPU's clock in milliseconds since 1990-01-01, the origin of STEP 7's dates.
+    pub(crate) fn clock_ms(&self) -> u64 {
+        let ms = i64::from(START_DAY) * 86_400_000 + (self.clock / 1_000_000) as i64;
+        ms.saturating_add(self.clock_set_ms).max(0) as u64
     }
 
     /// OB 1's: OB1_SCAN_1 (byte 1) is 1 in the first cycle after a warm restart (OB 100), 4

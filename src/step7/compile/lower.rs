@@ -12,12 +12,12 @@ use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
 use crate::source::Span;
 use crate::step7::ast::{
-    AccessWidth, CallParam, CallSpec, ConstKind, DataType, S7Address, S7Area, S7Block, S7BlockKind,
+    AccessWidth, CallSpec, ConstKind, DataType, S7Address, S7Area, S7Block, S7BlockKind,
     S7BlockRef, S7Body, S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, FbCall, FcCall, McrCode, MemOp, ParamCopy, Place,
-    S7Code, SfcCall, TIME_TCK, Target,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, FbCall, FcCall, McrCode, MemOp,
+    ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK, Target, WAIT,
 };
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
@@ -916,7 +916,7 @@ impl super::Compiler<'_> {
             if super::interrupt_sfcs::is_interrupt_sfc(*number) {
                 return Err(super::interrupt_sfcs::missing_all(*number, at));
             }
-            system_function_params(*number, &[], &[], at)?;
+            super::system_functions::given_all(*number, 0, at)?;
             let call = self.sfc(*number, Vec::new());
             self.emit(out, Op::S7(S7Code::Sfc { call }), span);
             return Ok(());
@@ -1011,18 +1011,18 @@ impl super::Compiler<'_> {
             return Ok(());
         };
         if let S7BlockRef::Number {
-            kind: S7BlockKind::Sfc | S7BlockKind::Sfb,
+            kind: S7BlockKind::Sfb,
             number,
         } = call.block
         {
-            let sfc = matches!(
-                call.block,
-                S7BlockRef::Number {
-                    kind: S7BlockKind::Sfc,
-                    ..
-                }
-            );
-            if sfc && super::interrupt_sfcs::is_interrupt_sfc(number) {
+            return self.call_system_fb(out, call, number, at, span, scope);
+        }
+        if let S7BlockRef::Number {
+            kind: S7BlockKind::Sfc,
+            number,
+        } = call.block
+        {
+            if super::interrupt_sfcs::is_interrupt_sfc(number) {
                 return self.interrupt_sfc(out, number, call, at, span, scope);
             }
             let mut params = Vec::new();
@@ -1035,23 +1035,19 @@ impl super::Compiler<'_> {
                     self.tables.place(place),
                 ));
             }
-            let is_sfb = matches!(
-                call.block,
-                S7BlockRef::Number {
-                    kind: S7BlockKind::Sfb,
-                    ..
-                }
-            );
-            if !is_sfb {
-                system_function_params(number, &call.params, &widths, span)?;
-            }
+            self.system_function_params(number, &call.params, &widths, span, scope)?;
             let index = self.sfc(number, params);
-            if is_sfb
-                || !matches!(
-                    number,
-                    46 | TIME_TCK | AWLSIM_SFC_REBOOT | AWLSIM_SFC_CLOCK_RESET
-                )
-            {
+            if !matches!(
+                number,
+                SET_CLK
+                    | READ_CLK
+                    | 46
+                    | WAIT
+                    | TIME_TCK
+                    | AWLSIM_SFC_NOP
+                    | AWLSIM_SFC_REBOOT
+                    | AWLSIM_SFC_CLOCK_RESET
+            ) {
                 // awlsim's own system functions are numbered below 0.
                 let number = if number >= AWLSIM_SFC_REBOOT - 2 {
                     i32::from(number as i16)
@@ -1059,22 +1055,10 @@ impl super::Compiler<'_> {
                     i32::from(number)
                 };
                 return Err(CheckError::NotSimulated {
-                    what: format!(
-                        "{} {number}",
-                        if matches!(
-                            call.block,
-                            S7BlockRef::Number {
-                                kind: S7BlockKind::Sfb,
-                                ..
-                            }
-                        ) {
-                            "SFB"
-                        } else {
-                            "SFC"
-                        }
-                    ),
-                    why: "of the system blocks, awl runs SFC 39 to SFC 42, SFC 46 (STP) and \
-                          SFC 64 (TIME_TCK) so far"
+                    what: format!("SFC {number}"),
+                    why: "of the system functions, awl runs SFC 0 (SET_CLK), SFC 1 \
+                          (READ_CLK), SFC 39 to SFC 42, SFC 46 (STP), SFC 47 (WAIT), SFC 64 \
+                          (TIME_TCK) and awlsim's SFC -1 and SFC -4 so far"
                         .into(),
                     at,
                 });
@@ -1098,6 +1082,48 @@ impl super::Compiler<'_> {
             BlockKind::Fb => self.call_fb(out, call, callee, at, span, scope),
             _ => self.call_fc(out, call, callee, span, scope),
         }
+    }
+
+    /// `CALL SFB n, DB m`: the system FB runs on its instance DB between the copies in and
+    /// out, as a multi-instance of it does.
+    fn call_system_fb(
+        &mut self,
+        out: &mut Emitter,
+        call: &CallSpec,
+        number: u16,
+        at: Span,
+        span: Span,
+        scope: &Scope<'_>,
+    ) -> Result<(), CheckError> {
+        let label = super::system::label(number);
+        let Some(interface) = super::system::interface(number, self.types()) else {
+            return Err(CheckError::NotSimulated {
+                what: label,
+                why: super::system::WHICH.into(),
+                at,
+            });
+        };
+        let Some(S7BlockRef::Number { number: db, .. }) = &call.instance else {
+            return Err(CheckError::NotSimulated {
+                what: format!("a call of {label} without an instance DB"),
+                why: format!("write `CALL {label}, DB m`"),
+                at,
+            });
+        };
+        let instance_slot = self.db_slot(*db, at);
+        let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
+        self.tables.fb_calls.push(FbCall {
+            instance_db: *db,
+            instance_slot,
+            multi_instance: None,
+            system: Some(number),
+            inputs,
+            outputs,
+        });
+        let index = (self.tables.fb_calls.len() - 1) as u16;
+        self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
+        self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
+        Ok(())
     }
 
     fn call_fc(
@@ -1386,12 +1412,12 @@ impl super::Compiler<'_> {
             });
         };
         let (kind, number) = (*kind, *number);
-        let label = format!("{} {number}", kind.name());
         if kind == S7BlockKind::Sfb {
+            let label = super::system::label(number);
             let Some(interface) = super::system::interface(number, self.types()) else {
                 return Err(CheckError::NotSimulated {
                     what: label,
-                    why: "of the system FBs, awl runs SFB 0 (CTU) so far".into(),
+                    why: super::system::WHICH.into(),
                     at,
                 });
             };
@@ -1409,6 +1435,7 @@ impl super::Compiler<'_> {
             self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
             return Ok(());
         }
+        let label = format!("{} {number}", kind.name());
         let id = BlockId {
             kind: BlockKind::Fb,
             number,
@@ -1481,51 +1508,4 @@ pub(super) fn feature_number(operand: &S7Operand) -> Option<u8> {
         S7Operand::Constant(constant) => Some(constant.value as u8),
         _ => None,
     }
-}
-
-/// The parameters of a system function awl runs, checked against its interface ("System
-/// Software for S7-300/400 System and Standard Functions"): SFC 64 (TIME_TCK) has one output,
-/// RET_VAL, a TIME; awlsim's SFC -4 (`__CLKRST`) has none.
-fn system_function_params(
-    number: u16,
-    params: &[CallParam],
-    widths: &[AccessWidth],
-    span: Span,
-) -> Result<(), CheckError> {
-    let (name, interface): (&str, &[&str]) = match number {
-        TIME_TCK => ("SFC 64", &["RET_VAL"]),
-        AWLSIM_SFC_CLOCK_RESET => ("SFC -4", &[]),
-        _ => return Ok(()),
-    };
-    for (param, width) in params.iter().zip(widths) {
-        if !interface.contains(&param.name.text.to_ascii_uppercase().as_str()) {
-            return Err(CheckError::UnknownParam {
-                name: param.name.text.clone(),
-                fb: name.into(),
-                at: param.name.span,
-                help: Some(match interface {
-                    [] => format!("{name} has no parameters"),
-                    _ => format!("{name} has {}", interface.join(", ")),
-                }),
-            });
-        }
-        if *width != AccessWidth::Double {
-            return Err(CheckError::ParamMismatch {
-                name: param.name.text.clone(),
-                fb: name.into(),
-                at: param.actual_span,
-                expected: "a TIME: a double word such as MD 4".into(),
-            });
-        }
-    }
-    if params.len() < interface.len() {
-        return Err(CheckError::ParamCount {
-            fb: name.into(),
-            expected: interface.len(),
-            found: params.len(),
-            at: span,
-            help: Some(format!("write `CALL {name} (RET_VAL := MD 4)`")),
-        });
-    }
-    Ok(())
 }

@@ -9,6 +9,7 @@ mod lower;
 mod operand;
 mod symbols;
 mod system;
+mod system_functions;
 
 use std::collections::HashMap;
 
@@ -361,6 +362,26 @@ impl<'a> Compiler<'a> {
                     let Some(fb) = self.numbered(fb, "DATA_BLOCK") else {
                         continue;
                     };
+                    if let S7BlockRef::Number {
+                        kind: S7BlockKind::Sfb,
+                        number: sfb,
+                    } = fb
+                    {
+                        let Some(interface) = system::interface(sfb, &self.types) else {
+                            self.errors.push(CheckError::NotSimulated {
+                                what: format!("an instance DB of {}", system::label(sfb)),
+                                why: system::WHICH.into(),
+                                at: block.header,
+                            });
+                            continue;
+                        };
+                        let bytes =
+                            data::instance_image(&interface, initial, &self.types, &mut errors);
+                        self.db_layouts.insert(number, interface);
+                        self.errors.extend(errors);
+                        self.data_blocks.insert(number, bytes);
+                        continue;
+                    }
                     let Some(id) = self.block_id(&fb) else {
                         continue;
                     };

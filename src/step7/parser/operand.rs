@@ -307,8 +307,8 @@ pub fn block_number_out_of_range(ctx: Ctx<'_>, input: Tokens<'_>) -> Option<S7Pa
         })
 }
 
-/// awlsim's own system functions, `SFC -1` to `SFC -4` (with the test extensions only): the
-/// number as a 16-bit two's complement, 65535 down to 65532 (see
+/// awlsim's own system blocks, `SFC -1` to `SFC -4` and `SFB -1` (with the test extensions
+/// only): the number as a 16-bit two's complement, 65535 down to 65532 (see
 /// [`crate::step7::bytecode::AWLSIM_SFC_REBOOT`]).
 fn awlsim_system_block(
     ctx: Ctx<'_>,
@@ -317,11 +317,13 @@ fn awlsim_system_block(
     digits: Token,
 ) -> Option<u16> {
     let number = ctx.text(digits).parse::<i16>().ok()?;
-    let awlsim = ctx.extensions
-        && kind == S7BlockKind::Sfc
-        && digits.kind == TokenKind::Number
-        && minus.touches(digits)
-        && (1..=4).contains(&number);
+    let known = match kind {
+        S7BlockKind::Sfc => (1..=4).contains(&number),
+        S7BlockKind::Sfb => number == 1,
+        _ => false,
+    };
+    let awlsim =
+        ctx.extensions && known && digits.kind == TokenKind::Number && minus.touches(digits);
     awlsim.then_some(number.wrapping_neg() as u16)
 }
 

@@ -482,6 +482,36 @@ fn mixing_the_sets_is_one_error_at_the_first_foreign_word() {
 }
 
 #[test]
+fn awlsims_sfb_minus_1_is_a_block_and_its_instance_dbs_fb_with_the_extensions() {
+    let unit = parse_ok(
+        "ORGANIZATION_BLOCK OB 1\nBEGIN\nCALL SFB -1, DB 1\nEND_ORGANIZATION_BLOCK\n\
+         DATA_BLOCK DB 1\nSFB -1\nBEGIN\nEND_DATA_BLOCK\n",
+    );
+    let sfb = S7BlockRef::Number {
+        kind: S7BlockKind::Sfb,
+        number: u16::MAX,
+    };
+    let call = statements(&unit.blocks[0])[0]
+        .call
+        .as_ref()
+        .expect("a call");
+    assert_eq!(call.block, sfb);
+    let S7Body::Data { instance_of, .. } = &unit.blocks[1].body else {
+        panic!("a DB")
+    };
+    assert_eq!(instance_of.as_ref(), Some(&sfb));
+    // awlsim has no other negative SFB.
+    let parsed = parse_with(
+        "CALL SFB -2, DB 1\n",
+        ParseOptions {
+            mnemonics: None,
+            extensions: true,
+        },
+    );
+    assert_eq!(parsed.errors.len(), 1, "{:#?}", parsed.errors);
+}
+
+#[test]
 fn test_extensions_only_when_enabled() {
     let text = "__STWRST\n__ASSERT== __ACCU 1, 5\n__ASSERT>= MW 0, L#3\n__SLEEP 10\n__FEATURE 1, 2\nL __CNST_PI\n";
     let unit = parse_ok(text);
@@ -628,6 +658,7 @@ fn block_level_errors() {
 fn statement_errors() {
     assert_eq!(codes("LOOPS: NOP 0\n"), ["awl::s7::bad_label"]);
     assert_eq!(codes("CALL SFC -1\n"), ["awl::s7::block_number"]);
+    assert_eq!(codes("CALL SFB -1, DB 1\n"), ["awl::s7::block_number"]);
     assert_eq!(codes("L\n"), ["awl::s7::missing_operand"]);
     assert_eq!(codes("A X 1.0\n"), ["awl::s7::unknown_operand"]);
     assert_eq!(codes("L 5 6\n"), ["awl::s7::unexpected_token"]);

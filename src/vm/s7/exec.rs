@@ -3,7 +3,8 @@
 use crate::compiler::bytecode::{Op, TimerKind};
 use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, McrCode, MemOp, S7Code, TIME_TCK, Target,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, McrCode, MemOp, READ_CLK, S7Code,
+    SET_CLK, TIME_TCK, Target, WAIT,
 };
 use crate::vm::Cpu;
 use crate::vm::interrupts::control::{DIS_IRT, EN_AIRT};
@@ -22,7 +23,7 @@ pub enum Flow {
     Jump(u32),
 }
 
-fn fault(text: impl Into<String>) -> Fault {
+pub(super) fn fault(text: impl Into<String>) -> Fault {
     (StopCause::Bcf, StopDetail::Text(text.into()))
 }
 
@@ -449,39 +450,6 @@ impl Cpu {
         Ok(())
     }
 
-    /// A system FB awl runs itself, on its instance data at `base` bits into `slot`.
-    fn system_fb(&mut self, number: u16, slot: u16, base: u32) -> Result<(), Fault> {
-        let at = |offset: u32| {
-            let bits = base + offset;
-            Located::Data {
-                slot,
-                byte: (bits >> 3) as usize,
-                bit: (bits & 7) as u8,
-            }
-        };
-        match number {
-            // SFB 0 CTU (the System and Standard Functions manual, IEC counters): CU 0.0,
-            // R 0.1, PV 2, Q 4.0, CV 6, CUO 8.0.
-            0 => {
-                let cu = self.fetch_bit(at(0))?;
-                let reset = self.fetch_bit(at(1))?;
-                let preset = self.fetch(at(16), AccessWidth::Word)? as u16 as i16;
-                let edge = self.fetch_bit(at(64))?;
-                let mut count = self.fetch(at(48), AccessWidth::Word)? as u16 as i16;
-                if reset {
-                    count = 0;
-                } else if cu && !edge && count < i16::MAX {
-                    count += 1;
-                }
-                self.store(at(48), AccessWidth::Word, count as u16 as u32)?;
-                self.store_bit(at(32), count >= preset)?;
-                self.store_bit(at(64), cu)?;
-                Ok(())
-            }
-            other => Err(fault(format!("SFB {other} is not simulated"))),
-        }
-    }
-
     /// `CALL FC n (…)`, before the call: the copied actuals onto the L stack, AR2 saved.
     fn fc_enter(&mut self, call: u16) -> Result<(), Fault> {
         let program = std::sync::Arc::clone(&self.program);
@@ -596,7 +564,9 @@ impl Cpu {
     fn system_function(&mut self, call: u16) -> Result<(), Fault> {
         let number = self.program.s7.sfc_calls[usize::from(call)].number;
         match number {
+            SET_CLK | READ_CLK => self.clock_sfc(number, call),
             46 => Err((StopCause::Stp, StopDetail::Text("CALL SFC 46 (STP)".into()))),
+            WAIT => self.wait(call),
             DIS_IRT..=EN_AIRT => self.interrupt_sfc(number, call),
             TIME_TCK => {
                 // The compiler checked RET_VAL is given, a double word.
@@ -606,6 +576,10 @@ impl Cpu {
                     let (to, width) = self.locate_index(place)?;
                     self.store(to, width, self.time_tick())?;
                 }
+                self.level.br = true;
+                Ok(())
+            }
+            AWLSIM_SFC_NOP => {
                 self.level.br = true;
                 Ok(())
             }

@@ -29,6 +29,7 @@
 pub mod accu;
 pub mod bit_logic;
 mod bridge;
+mod clock_sfcs;
 pub mod compare;
 pub mod convert;
 pub mod exec;
@@ -38,6 +39,7 @@ pub mod mcr;
 pub mod memory;
 pub mod real;
 pub mod shift;
+mod system_blocks;
 pub mod word_logic;
 
 use crate::compiler::Program;
