@@ -109,11 +109,13 @@ impl Cpu {
             }
             S7Code::LoadAr1FromAr2 => self.level.ar1 = self.level.ar2,
             S7Code::TransferAr(ar) => {
-                self.level.accu1 = if ar == 1 {
+                // Statement List manual, TAR1/TAR2: ACCU 1 is saved into ACCU 2 first.
+                let value = if ar == 1 {
                     self.level.ar1
                 } else {
                     self.level.ar2
                 };
+                self.load_s7(value);
             }
             S7Code::TransferAr1ToAr2 => self.level.ar2 = self.level.ar1,
             S7Code::SwapAr => std::mem::swap(&mut self.level.ar1, &mut self.level.ar2),
@@ -249,6 +251,25 @@ impl Cpu {
         }
     }
 
+    /// An area-crossing pointer with area P (code 0) names the peripheral inputs when read
+    /// and the peripheral outputs when written (Statement List manual, area-crossing
+    /// register-indirect addressing).
+    fn written_peripheral(&self, located: Located, place: u16) -> Located {
+        match located {
+            Located::Peripheral {
+                output: false,
+                byte,
+            } if matches!(
+                self.program.s7.places[usize::from(place)].target,
+                Target::RegisterIndirect { area: None, .. }
+            ) =>
+            {
+                Located::Peripheral { output: true, byte }
+            }
+            other => other,
+        }
+    }
+
     fn memory_op(&mut self, op: MemOp, place: u16, pc: u32) -> Result<(), Fault> {
         let (located, width) = self.locate_index(place)?;
         let rlo = self.level.status.rlo();
@@ -321,7 +342,10 @@ impl Cpu {
                     self.load_s7(value);
                 }
             },
-            MemOp::Transfer => self.store(located, width, self.level.accu1)?,
+            MemOp::Transfer => {
+                let located = self.written_peripheral(located, place);
+                self.store(located, width, self.level.accu1)?;
+            }
             MemOp::TimerPulse
             | MemOp::TimerExtendedPulse
             | MemOp::TimerOnDelay
