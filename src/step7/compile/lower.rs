@@ -16,8 +16,8 @@ use crate::step7::ast::{
     S7BlockRef, S7Body, S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, FbCall, FcCall, McrCode, MemOp, ParamCopy, Place,
-    S7Code, SfcCall, TIME_TCK, Target,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, BLKMOV, FILL, FbCall, FcCall,
+    McrCode, MemOp, ParamCopy, Place, S7Code, SfcCall, TIME_TCK, Target,
 };
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
@@ -891,7 +891,10 @@ impl super::Compiler<'_> {
                     self.emit(out, Op::S7(S7Code::LoadParamPointer { param }), span);
                     return Ok(());
                 }
-                let pointer = self.pointer_to(inner, at, scope)?;
+                let pointer = match self.db_member_area_pointer(inner, at) {
+                    Some(pointer) => pointer?,
+                    None => self.pointer_to(inner, at, scope)?,
+                };
                 self.emit(out, Op::LoadConstant(pointer), span);
                 Ok(())
             }
@@ -962,7 +965,11 @@ impl super::Compiler<'_> {
     }
 
     fn sfc(&mut self, number: u16, params: Vec<(String, u16)>) -> u16 {
-        self.tables.sfc_calls.push(SfcCall { number, params });
+        self.tables.sfc_calls.push(SfcCall {
+            number,
+            params,
+            anys: Vec::new(),
+        });
         (self.tables.sfc_calls.len() - 1) as u16
     }
 
@@ -1025,6 +1032,12 @@ impl super::Compiler<'_> {
             if sfc && super::interrupt_sfcs::is_interrupt_sfc(number) {
                 return self.interrupt_sfc(out, number, call, at, span, scope);
             }
+            if sfc && matches!(number, BLKMOV | FILL) {
+                if let Some(call) = self.block_sfc(number, call, at, scope) {
+                    self.emit(out, Op::S7(S7Code::Sfc { call }), span);
+                }
+                return Ok(());
+            }
             let mut params = Vec::new();
             let mut widths = Vec::new();
             for param in &call.params {
@@ -1049,7 +1062,7 @@ impl super::Compiler<'_> {
             if is_sfb
                 || !matches!(
                     number,
-                    46 | TIME_TCK | AWLSIM_SFC_REBOOT | AWLSIM_SFC_CLOCK_RESET
+                    46 | TIME_TCK | AWLSIM_SFC_NOP | AWLSIM_SFC_REBOOT | AWLSIM_SFC_CLOCK_RESET
                 )
             {
                 // awlsim's own system functions are numbered below 0.
@@ -1073,8 +1086,8 @@ impl super::Compiler<'_> {
                             "SFC"
                         }
                     ),
-                    why: "of the system blocks, awl runs SFC 39 to SFC 42, SFC 46 (STP) and \
-                          SFC 64 (TIME_TCK) so far"
+                    why: "of the system blocks, awl runs SFC 20 (BLKMOV), SFC 21 (FILL), \
+                          SFC 39 to SFC 42, SFC 46 (STP) and SFC 64 (TIME_TCK) so far"
                         .into(),
                     at,
                 });
@@ -1128,6 +1141,17 @@ impl super::Compiler<'_> {
                 continue;
             };
             let formal = &interface.variables[&name];
+            if super::pointers::is_pointer_type(&formal.ty) {
+                actuals[position] = self.fc_pointer_param(
+                    param,
+                    &formal.ty,
+                    &id.to_string(),
+                    scope,
+                    &mut scratch_bits,
+                    &mut fc_call,
+                );
+                continue;
+            }
             let place = match &param.actual {
                 S7Operand::Constant(constant) if !copied(&formal.ty) => {
                     actuals[position] = Some(Resolved::Constant(constant_value(constant)));
@@ -1282,6 +1306,14 @@ impl super::Compiler<'_> {
                 });
                 continue;
             };
+            if let (Home::Instance(offset), true) = (
+                variable.home,
+                super::pointers::is_pointer_type(&variable.ty),
+            ) {
+                let copies = self.fb_pointer_param(param, &variable.ty, offset, fb, scope);
+                inputs.extend(copies.unwrap_or_default());
+                continue;
+            }
             let (Home::Instance(offset), Some(width)) =
                 (variable.home, super::layout::width_of(&variable.ty))
             else {

@@ -3,7 +3,8 @@
 use crate::compiler::bytecode::{Op, TimerKind};
 use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_REBOOT, McrCode, MemOp, S7Code, TIME_TCK, Target,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, BLKMOV, FILL, McrCode, MemOp,
+    S7Code, TIME_TCK, Target,
 };
 use crate::vm::Cpu;
 use crate::vm::interrupts::control::{DIS_IRT, EN_AIRT};
@@ -22,7 +23,7 @@ pub enum Flow {
     Jump(u32),
 }
 
-fn fault(text: impl Into<String>) -> Fault {
+pub(super) fn fault(text: impl Into<String>) -> Fault {
     (StopCause::Bcf, StopDetail::Text(text.into()))
 }
 
@@ -621,6 +622,11 @@ impl Cpu {
         let number = self.program.s7.sfc_calls[usize::from(call)].number;
         match number {
             46 => Err((StopCause::Stp, StopDetail::Text("CALL SFC 46 (STP)".into()))),
+            BLKMOV | FILL => self.block_move(number, call),
+            AWLSIM_SFC_NOP => {
+                self.level.br = true;
+                Ok(())
+            }
             DIS_IRT..=EN_AIRT => self.interrupt_sfc(number, call),
             TIME_TCK => {
                 // The compiler checked RET_VAL is given, a double word.

@@ -28,6 +28,7 @@
 
 pub mod accu;
 pub mod bit_logic;
+mod block_move;
 mod bridge;
 pub mod compare;
 pub mod convert;
