@@ -919,6 +919,22 @@ impl super::Compiler<'_> {
             if super::interrupt_sfcs::is_interrupt_sfc(*number) {
                 return Err(super::interrupt_sfcs::missing_all(*number, at));
             }
+            if matches!(*number, BLKMOV | FILL) {
+                // Each of their parameters is missing: the errors say which.
+                let call = CallSpec {
+                    block: reference.clone(),
+                    instance: None,
+                    multi_instance: None,
+                    params: Vec::new(),
+                };
+                let empty = super::layout::Interface::default();
+                let scope = Scope {
+                    interface: &empty,
+                    block: String::new(),
+                };
+                self.block_sfc(*number, &call, at, &scope);
+                return Ok(());
+            }
             system_function_params(*number, &[], &[], at)?;
             let call = self.sfc(*number, Vec::new());
             self.emit(out, Op::S7(S7Code::Sfc { call }), span);
