@@ -8,7 +8,7 @@ use crate::step7::ast::{AccessWidth, CallSpec, DataType};
 use crate::step7::bytecode::{BLKMOV, SfcCall, Target};
 
 use super::operand::Scope;
-use super::pointers::View;
+use super::pointers::{Formal, View};
 
 /// The parameters of SFC `number` (20 or 21) in their order: the source ANY, RET_VAL, the
 /// destination ANY.
@@ -94,15 +94,13 @@ impl super::Compiler<'_> {
                 }
                 continue;
             }
-            match self.pointer_actual(
-                &param.actual,
-                &DataType::Any,
+            let formal = Formal {
+                ty: &DataType::Any,
                 name,
-                &fb,
-                param.actual_span,
-                scope,
-                View::SystemFunction,
-            ) {
+                callee: &fb,
+                view: View::SystemFunction,
+            };
+            match self.pointer_actual(&param.actual, formal, param.actual_span, scope) {
                 Ok(actual) => anys.push((name.to_string(), actual.any())),
                 Err(error) => {
                     self.errors.push(error);

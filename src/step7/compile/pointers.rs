@@ -76,6 +76,17 @@ impl Descriptor {
     }
 }
 
+/// A POINTER or ANY parameter as a call names it.
+#[derive(Debug, Clone, Copy)]
+pub struct Formal<'a> {
+    /// `DataType::Pointer` or `DataType::Any`.
+    pub ty: &'a DataType,
+    pub name: &'a str,
+    /// The called block, for messages.
+    pub callee: &'a str,
+    pub view: View,
+}
+
 /// What a POINTER or ANY parameter is given.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PointerActual {
@@ -157,19 +168,21 @@ impl super::Compiler<'_> {
         by_width(super::layout::size_bits(ty, self.types()))
     }
 
-    /// The pointer the call passes to parameter `name` of type `formal` (POINTER or ANY) for
-    /// `actual`.
+    /// The pointer the call passes to parameter `formal` for `actual`.
     pub(super) fn pointer_actual(
         &mut self,
         actual: &S7Operand,
-        formal: &DataType,
-        name: &str,
-        callee: &str,
+        formal: Formal<'_>,
         at: Span,
         scope: &Scope<'_>,
-        view: View,
     ) -> Result<PointerActual, CheckError> {
-        let any = *formal == DataType::Any;
+        let Formal {
+            ty: formal_ty,
+            name,
+            callee,
+            view,
+        } = formal;
+        let any = *formal_ty == DataType::Any;
         let mismatch = || CheckError::ParamMismatch {
             name: name.to_string(),
             fb: callee.to_string(),
@@ -210,13 +223,11 @@ impl super::Compiler<'_> {
                 _ => Err(mismatch()),
             },
             // `P#DB100.DBVAR3` (an awlsim extension) stands for what it points to.
-            S7Operand::PointerTo(inner) => {
-                self.pointer_actual(inner, formal, name, callee, at, scope, view)
-            }
+            S7Operand::PointerTo(inner) => self.pointer_actual(inner, formal, at, scope),
             S7Operand::Address(address) => self.address_pointer(address, at, view, &mismatch),
             S7Operand::Local(path) => {
                 let (variable, ty, offset) = self.resolve_local(path, at, scope)?;
-                if ty == *formal {
+                if ty == *formal_ty {
                     return Ok(PointerActual::Variable(self.local_place(path, at, scope)?));
                 }
                 let Home::Local(base) = variable.home else {
@@ -414,15 +425,13 @@ impl super::Compiler<'_> {
         scratch_bits: &mut u32,
         call: &mut FcCall,
     ) -> Option<Resolved> {
-        let actual = self.pointer_actual(
-            &param.actual,
-            formal,
-            &param.name.text,
+        let formal_param = Formal {
+            ty: formal,
+            name: &param.name.text,
             callee,
-            param.actual_span,
-            scope,
-            View::Callee,
-        );
+            view: View::Callee,
+        };
+        let actual = self.pointer_actual(&param.actual, formal_param, param.actual_span, scope);
         let descriptor = match actual {
             Ok(PointerActual::Known(descriptor)) => descriptor,
             Ok(PointerActual::Variable(place)) => {
@@ -468,15 +477,13 @@ impl super::Compiler<'_> {
         callee: &str,
         scope: &Scope<'_>,
     ) -> Option<Vec<ParamCopy>> {
-        let actual = self.pointer_actual(
-            &param.actual,
-            formal,
-            &param.name.text,
+        let formal_param = Formal {
+            ty: formal,
+            name: &param.name.text,
             callee,
-            param.actual_span,
-            scope,
-            View::Callee,
-        );
+            view: View::Callee,
+        };
+        let actual = self.pointer_actual(&param.actual, formal_param, param.actual_span, scope);
         let pieces: Vec<(Place, u32)> = match actual {
             Ok(PointerActual::Known(descriptor)) => descriptor
                 .pieces(formal)
