@@ -377,6 +377,20 @@ fn pointer_actuals_are_checked() {
         ob1("      CALL FB 1, DB 1;")
     ));
     assert!(instance.contains("awl::check::not_simulated"), "{instance}");
+    // An FC's POINTER parameter passed on to another FC.
+    let forwarded = errors(&format!(
+        "{fc}FUNCTION FC 2 : VOID\nVAR_INPUT\n  q : POINTER;\nEND_VAR\nBEGIN\n\
+         CALL FC 1 (p := #q);\nEND_FUNCTION\n{}",
+        ob1("      CALL FC 2 (q := M 0.0);")
+    ));
+    assert!(
+        forwarded.contains("awl::check::not_simulated"),
+        "{forwarded}"
+    );
+    assert!(
+        forwarded.contains("passing on the parameter"),
+        "{forwarded}"
+    );
 }
 
 #[test]

@@ -434,6 +434,21 @@ impl super::Compiler<'_> {
         let actual = self.pointer_actual(&param.actual, formal_param, param.actual_span, scope);
         let descriptor = match actual {
             Ok(PointerActual::Known(descriptor)) => descriptor,
+            // An FC's own POINTER or ANY parameter lies on its caller's caller's L stack,
+            // which no pointer of the called FC reaches.
+            Ok(PointerActual::Variable(Place {
+                target: Target::Parameter { .. },
+                ..
+            })) => {
+                self.errors.push(CheckError::NotSimulated {
+                    what: format!("passing on the parameter `{}`", param.name.text),
+                    why: "an FC passes its POINTER or ANY parameter on to an FB, not to another \
+                          FC, so far"
+                        .into(),
+                    at: param.actual_span,
+                });
+                return None;
+            }
             Ok(PointerActual::Variable(place)) => {
                 return Some(Resolved::S7(self.tables.place(place)));
             }
