@@ -360,12 +360,29 @@ pub const WAIT: u16 = 47;
 /// SFC 64 `TIME_TCK`: the system time, milliseconds since the CPU started.
 pub const TIME_TCK: u16 = 64;
 
+/// SFC 20 `BLKMOV`: copies the area of one ANY into that of another.
+pub const BLKMOV: u16 = 20;
+
+/// SFC 21 `FILL`: fills the area of one ANY with copies of another's.
+pub const FILL: u16 = 21;
+
 /// One `CALL SFC n (…)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SfcCall {
     pub number: u16,
     /// The parameters' places, by name as written.
     pub params: Vec<(String, u16)>,
+    /// The ANY parameters (SFC 20, SFC 21), by name in upper case.
+    pub anys: Vec<(String, AnyActual)>,
+}
+
+/// The actual of an ANY parameter of a system function.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnyActual {
+    /// Known when compiling: its 10 bytes.
+    Bytes([u8; 10]),
+    /// An ANY variable the program filled: its 10 bytes from this place on.
+    At(Place),
 }
 
 /// The tables S7 ops index, shared by the whole program.

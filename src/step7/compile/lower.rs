@@ -16,8 +16,8 @@ use crate::step7::ast::{
     S7BlockRef, S7Body, S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, FbCall, FcCall, McrCode, MemOp,
-    ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK, Target, WAIT,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, BLKMOV, FILL, FbCall, FcCall,
+    McrCode, MemOp, ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK, Target, WAIT,
 };
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
@@ -891,7 +891,10 @@ impl super::Compiler<'_> {
                     self.emit(out, Op::S7(S7Code::LoadParamPointer { param }), span);
                     return Ok(());
                 }
-                let pointer = self.pointer_to(inner, at, scope)?;
+                let pointer = match self.db_member_area_pointer(inner, at) {
+                    Some(pointer) => pointer?,
+                    None => self.pointer_to(inner, at, scope)?,
+                };
                 self.emit(out, Op::LoadConstant(pointer), span);
                 Ok(())
             }
@@ -915,6 +918,22 @@ impl super::Compiler<'_> {
         {
             if super::interrupt_sfcs::is_interrupt_sfc(*number) {
                 return Err(super::interrupt_sfcs::missing_all(*number, at));
+            }
+            if matches!(*number, BLKMOV | FILL) {
+                // Each of their parameters is missing: the errors say which.
+                let call = CallSpec {
+                    block: reference.clone(),
+                    instance: None,
+                    multi_instance: None,
+                    params: Vec::new(),
+                };
+                let empty = super::layout::Interface::default();
+                let scope = Scope {
+                    interface: &empty,
+                    block: String::new(),
+                };
+                self.block_sfc(*number, &call, at, &scope);
+                return Ok(());
             }
             super::system_functions::given_all(*number, 0, at)?;
             let call = self.sfc(*number, Vec::new());
@@ -962,7 +981,11 @@ impl super::Compiler<'_> {
     }
 
     fn sfc(&mut self, number: u16, params: Vec<(String, u16)>) -> u16 {
-        self.tables.sfc_calls.push(SfcCall { number, params });
+        self.tables.sfc_calls.push(SfcCall {
+            number,
+            params,
+            anys: Vec::new(),
+        });
         (self.tables.sfc_calls.len() - 1) as u16
     }
 
@@ -1025,6 +1048,12 @@ impl super::Compiler<'_> {
             if super::interrupt_sfcs::is_interrupt_sfc(number) {
                 return self.interrupt_sfc(out, number, call, at, span, scope);
             }
+            if matches!(number, BLKMOV | FILL) {
+                if let Some(call) = self.block_sfc(number, call, at, scope) {
+                    self.emit(out, Op::S7(S7Code::Sfc { call }), span);
+                }
+                return Ok(());
+            }
             let mut params = Vec::new();
             let mut widths = Vec::new();
             for param in &call.params {
@@ -1057,8 +1086,9 @@ impl super::Compiler<'_> {
                 return Err(CheckError::NotSimulated {
                     what: format!("SFC {number}"),
                     why: "of the system functions, awl runs SFC 0 (SET_CLK), SFC 1 \
-                          (READ_CLK), SFC 39 to SFC 42, SFC 46 (STP), SFC 47 (WAIT), SFC 64 \
-                          (TIME_TCK) and awlsim's SFC -1 and SFC -4 so far"
+                          (READ_CLK), SFC 20 (BLKMOV), SFC 21 (FILL), SFC 39 to SFC 42, SFC 46 \
+                          (STP), SFC 47 (WAIT), SFC 64 (TIME_TCK) and awlsim's SFC -1 and \
+                          SFC -4 so far"
                         .into(),
                     at,
                 });
@@ -1154,6 +1184,17 @@ impl super::Compiler<'_> {
                 continue;
             };
             let formal = &interface.variables[&name];
+            if super::pointers::is_pointer_type(&formal.ty) {
+                actuals[position] = self.fc_pointer_param(
+                    param,
+                    &formal.ty,
+                    &id.to_string(),
+                    scope,
+                    &mut scratch_bits,
+                    &mut fc_call,
+                );
+                continue;
+            }
             let place = match &param.actual {
                 S7Operand::Constant(constant) if !copied(&formal.ty) => {
                     actuals[position] = Some(Resolved::Constant(constant_value(constant)));
@@ -1308,6 +1349,14 @@ impl super::Compiler<'_> {
                 });
                 continue;
             };
+            if let (Home::Instance(offset), true) = (
+                variable.home,
+                super::pointers::is_pointer_type(&variable.ty),
+            ) {
+                let copies = self.fb_pointer_param(param, &variable.ty, offset, fb, scope);
+                inputs.extend(copies.unwrap_or_default());
+                continue;
+            }
             let (Home::Instance(offset), Some(width)) =
                 (variable.home, super::layout::width_of(&variable.ty))
             else {

@@ -2,11 +2,13 @@
 //! Blocks are registered first (so calls find their callees' interfaces), the interfaces laid
 //! out, the data blocks' initial bytes made, then each logic block's statements lowered.
 
+mod block_sfcs;
 mod data;
 mod interrupt_sfcs;
 mod layout;
 mod lower;
 mod operand;
+mod pointers;
 mod symbols;
 mod system;
 mod system_functions;

@@ -217,6 +217,11 @@ impl super::Compiler<'_> {
                 }),
                 crate::step7::ast::S7BlockRef::Symbol(name) => self.symbol_place(name, &[], at),
             },
+            // A block parameter's actual `DB [MW 14]`: the word that holds the number.
+            S7Operand::BlockFrom { word, .. } => Ok(Place {
+                width: AccessWidth::Word,
+                ..self.place(word, at, scope)?
+            }),
             S7Operand::AreaCrossing { width, ar, offset } => Ok(Place {
                 target: Target::RegisterIndirect {
                     area: None,

@@ -109,7 +109,7 @@ impl Compiler<'_> {
 
     /// What `name` stands for: its table entry, or the number a block declared by that name
     /// was given.
-    fn symbol(&self, name: &Name) -> Result<S7Symbol, CheckError> {
+    pub(super) fn symbol(&self, name: &Name) -> Result<S7Symbol, CheckError> {
         match self.symbols.get(&name.text).map(|entry| &entry.stands) {
             Some(Stands::Step7(symbol)) => Ok(*symbol),
             // The loader reads only STEP 7 tables for a STEP 7 program.

@@ -3,8 +3,8 @@
 use crate::compiler::bytecode::{Op, TimerKind};
 use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, McrCode, MemOp, READ_CLK, S7Code,
-    SET_CLK, TIME_TCK, Target, WAIT,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, BLKMOV, FILL, McrCode, MemOp,
+    READ_CLK, S7Code, SET_CLK, TIME_TCK, Target, WAIT,
 };
 use crate::vm::Cpu;
 use crate::vm::interrupts::control::{DIS_IRT, EN_AIRT};
@@ -110,11 +110,13 @@ impl Cpu {
             }
             S7Code::LoadAr1FromAr2 => self.level.ar1 = self.level.ar2,
             S7Code::TransferAr(ar) => {
-                self.level.accu1 = if ar == 1 {
+                // Statement List manual, TAR1/TAR2: ACCU 1 is saved into ACCU 2 first.
+                let value = if ar == 1 {
                     self.level.ar1
                 } else {
                     self.level.ar2
                 };
+                self.load_s7(value);
             }
             S7Code::TransferAr1ToAr2 => self.level.ar2 = self.level.ar1,
             S7Code::SwapAr => std::mem::swap(&mut self.level.ar1, &mut self.level.ar2),
@@ -250,6 +252,25 @@ impl Cpu {
         }
     }
 
+    /// An area-crossing pointer with area P (code 0) names the peripheral inputs when read
+    /// and the peripheral outputs when written (Statement List manual, area-crossing
+    /// register-indirect addressing).
+    fn written_peripheral(&self, located: Located, place: u16) -> Located {
+        match located {
+            Located::Peripheral {
+                output: false,
+                byte,
+            } if matches!(
+                self.program.s7.places[usize::from(place)].target,
+                Target::RegisterIndirect { area: None, .. }
+            ) =>
+            {
+                Located::Peripheral { output: true, byte }
+            }
+            other => other,
+        }
+    }
+
     fn memory_op(&mut self, op: MemOp, place: u16, pc: u32) -> Result<(), Fault> {
         let (located, width) = self.locate_index(place)?;
         let rlo = self.level.status.rlo();
@@ -322,7 +343,10 @@ impl Cpu {
                     self.load_s7(value);
                 }
             },
-            MemOp::Transfer => self.store(located, width, self.level.accu1)?,
+            MemOp::Transfer => {
+                let located = self.written_peripheral(located, place);
+                self.store(located, width, self.level.accu1)?;
+            }
             MemOp::TimerPulse
             | MemOp::TimerExtendedPulse
             | MemOp::TimerOnDelay
@@ -567,6 +591,7 @@ impl Cpu {
             SET_CLK | READ_CLK => self.clock_sfc(number, call),
             46 => Err((StopCause::Stp, StopDetail::Text("CALL SFC 46 (STP)".into()))),
             WAIT => self.wait(call),
+            BLKMOV | FILL => self.block_move(number, call),
             DIS_IRT..=EN_AIRT => self.interrupt_sfc(number, call),
             TIME_TCK => {
                 // The compiler checked RET_VAL is given, a double word.

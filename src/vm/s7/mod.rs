@@ -28,6 +28,7 @@
 
 pub mod accu;
 pub mod bit_logic;
+mod block_move;
 mod bridge;
 mod clock_sfcs;
 pub mod compare;
