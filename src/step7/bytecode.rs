@@ -344,6 +344,10 @@ pub const AWLSIM_SFC_NOP: u16 = -1i16 as u16;
 /// `SFC -1` to `SFC -4` are numbered as 16-bit two's complements, 65535 down to 65532.
 pub const AWLSIM_SFC_REBOOT: u16 = -2i16 as u16;
 
+/// awlsim's `SFC -3` (`__SHUTDOWN`), with the test extensions: ends the simulation, as
+/// `CALL SFC 46` ends a test.
+pub const AWLSIM_SFC_SHUTDOWN: u16 = -3i16 as u16;
+
 /// awlsim's `SFC -4` (`__CLKRST`), with the test extensions: restarts the clock memory and
 /// the time SFC 64 counts, as if the CPU had just started.
 pub const AWLSIM_SFC_CLOCK_RESET: u16 = -4i16 as u16;

@@ -16,8 +16,9 @@ use crate::step7::ast::{
     S7BlockRef, S7Body, S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, BLKMOV, FILL, FbCall, FcCall,
-    McrCode, MemOp, ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK, Target, WAIT,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, AWLSIM_SFC_SHUTDOWN, BLKMOV, FILL,
+    FbCall, FcCall, McrCode, MemOp, ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK,
+    Target, WAIT,
 };
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
@@ -1075,6 +1076,7 @@ impl super::Compiler<'_> {
                     | TIME_TCK
                     | AWLSIM_SFC_NOP
                     | AWLSIM_SFC_REBOOT
+                    | AWLSIM_SFC_SHUTDOWN
                     | AWLSIM_SFC_CLOCK_RESET
             ) {
                 // awlsim's own system functions are numbered below 0.
@@ -1087,8 +1089,8 @@ impl super::Compiler<'_> {
                     what: format!("SFC {number}"),
                     why: "of the system functions, awl runs SFC 0 (SET_CLK), SFC 1 \
                           (READ_CLK), SFC 20 (BLKMOV), SFC 21 (FILL), SFC 39 to SFC 42, SFC 46 \
-                          (STP), SFC 47 (WAIT), SFC 64 (TIME_TCK) and awlsim's SFC -1 and \
-                          SFC -4 so far"
+                          (STP), SFC 47 (WAIT), SFC 64 (TIME_TCK) and awlsim's SFC -1, SFC -3 \
+                          and SFC -4 so far"
                         .into(),
                     at,
                 });

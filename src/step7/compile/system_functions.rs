@@ -2,12 +2,14 @@
 //! Software for S7-300/400 System and Standard Functions"): SFC 0 SET_CLK (PDT: the
 //! DATE_AND_TIME to set, RET_VAL: INT), SFC 1 READ_CLK (RET_VAL: INT, CDT: the DATE_AND_TIME
 //! read), SFC 47 WAIT (WT: INT, microseconds), SFC 64 TIME_TCK (RET_VAL: TIME) and awlsim's
-//! SFC -4 (`__CLKRST`, none). Every parameter must be given, each once.
+//! SFC -3 (`__SHUTDOWN`, SHUTDOWN_TYPE: INT) and SFC -4 (`__CLKRST`, none). Every parameter must be given, each once.
 
 use crate::compiler::CheckError;
 use crate::source::Span;
 use crate::step7::ast::{AccessWidth, CallParam, DataType, S7Operand};
-use crate::step7::bytecode::{AWLSIM_SFC_CLOCK_RESET, READ_CLK, SET_CLK, TIME_TCK, WAIT};
+use crate::step7::bytecode::{
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_SHUTDOWN, READ_CLK, SET_CLK, TIME_TCK, WAIT,
+};
 
 use super::layout::Home;
 use super::operand::Scope;
@@ -55,6 +57,11 @@ fn interface(number: u16) -> Option<SfcInterface> {
             "SFC 64",
             &[("RET_VAL", Kind::Time)],
             "CALL SFC 64 (RET_VAL := MD 4)",
+        ),
+        AWLSIM_SFC_SHUTDOWN => (
+            "SFC -3",
+            &[("SHUTDOWN_TYPE", Kind::Int)],
+            "CALL SFC -3 (SHUTDOWN_TYPE := 1)",
         ),
         AWLSIM_SFC_CLOCK_RESET => ("SFC -4", &[], "CALL SFC -4"),
         _ => return None,

@@ -3,8 +3,8 @@
 use crate::compiler::bytecode::{Op, TimerKind};
 use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
 use crate::step7::bytecode::{
-    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, BLKMOV, FILL, McrCode, MemOp,
-    READ_CLK, S7Code, SET_CLK, TIME_TCK, Target, WAIT,
+    AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, AWLSIM_SFC_SHUTDOWN, BLKMOV, FILL,
+    McrCode, MemOp, READ_CLK, S7Code, SET_CLK, TIME_TCK, Target, WAIT,
 };
 use crate::vm::Cpu;
 use crate::vm::interrupts::control::{DIS_IRT, EN_AIRT};
@@ -590,6 +590,11 @@ impl Cpu {
         match number {
             SET_CLK | READ_CLK => self.clock_sfc(number, call),
             46 => Err((StopCause::Stp, StopDetail::Text("CALL SFC 46 (STP)".into()))),
+            // The simulation ends as a test does at `CALL SFC 46`.
+            AWLSIM_SFC_SHUTDOWN => Err((
+                StopCause::Stp,
+                StopDetail::Text("awlsim's CALL SFC -3 (__SHUTDOWN)".into()),
+            )),
             WAIT => self.wait(call),
             BLKMOV | FILL => self.block_move(number, call),
             DIS_IRT..=EN_AIRT => self.interrupt_sfc(number, call),
