@@ -1128,6 +1128,21 @@ impl super::Compiler<'_> {
                 continue;
             };
             let formal = &interface.variables[&name];
+            if super::complex::is_complex(&formal.ty) {
+                let block = id.to_string();
+                match self.complex_fc_actual(
+                    param,
+                    &formal.ty,
+                    &block,
+                    &mut scratch_bits,
+                    &mut fc_call,
+                    scope,
+                ) {
+                    Ok(pointer) => actuals[position] = Some(Resolved::S7(pointer)),
+                    Err(error) => self.errors.push(error),
+                }
+                continue;
+            }
             let place = match &param.actual {
                 S7Operand::Constant(constant) if !copied(&formal.ty) => {
                     actuals[position] = Some(Resolved::Constant(constant_value(constant)));
@@ -1241,30 +1256,31 @@ impl super::Compiler<'_> {
             });
         };
         let instance_slot = self.db_slot(*db, at);
-        let (inputs, outputs) = self.fb_param_copies(call, &id.to_string(), interface, scope);
-        let call = FbCall {
+        let mut fb_call = FbCall {
             instance_db: *db,
             instance_slot,
             multi_instance: None,
             system: None,
-            inputs,
-            outputs,
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            blocks_in: Vec::new(),
+            blocks_out: Vec::new(),
         };
-        self.emit_fb_call(out, call, block, span);
+        self.fb_param_copies(call, &id.to_string(), interface, scope, &mut fb_call);
+        self.emit_fb_call(out, fb_call, block, span);
         Ok(())
     }
 
     /// The copies of a call's actuals into an FB's instance data (inputs, in/outs) and back
-    /// (outputs, in/outs); `fb` names the block for messages.
+    /// (outputs, in/outs), into `fb_call`; `fb` names the block for messages.
     fn fb_param_copies(
         &mut self,
         call: &CallSpec,
         fb: &str,
         interface: &super::layout::Interface,
         scope: &Scope<'_>,
-    ) -> (Vec<ParamCopy>, Vec<ParamCopy>) {
-        let mut inputs = Vec::new();
-        let mut outputs = Vec::new();
+        fb_call: &mut FbCall,
+    ) {
         for param in &call.params {
             let name = param.name.text.to_ascii_uppercase();
             let variable = interface.variables.get(&name).filter(|variable| {
@@ -1282,15 +1298,25 @@ impl super::Compiler<'_> {
                 });
                 continue;
             };
+            if super::complex::is_complex(&variable.ty) {
+                match self.complex_fb_copy(param, variable, fb, scope) {
+                    Ok(copy) if variable.kind == VarKind::Input => fb_call.blocks_in.push(copy),
+                    Ok(copy) => fb_call.blocks_out.push(copy),
+                    Err(error) => self.errors.push(error),
+                }
+                continue;
+            }
             let (Home::Instance(offset), Some(width)) =
                 (variable.home, super::layout::width_of(&variable.ty))
             else {
                 self.errors.push(CheckError::NotSimulated {
                     what: format!(
-                        "the parameter `{}` of type {:?}",
-                        param.name.text, variable.ty
+                        "the parameter `{}` of type {}",
+                        param.name.text,
+                        super::complex::type_name(&variable.ty)
                     ),
-                    why: "FB parameters of elementary types are simulated so far".into(),
+                    why: "FB parameters of elementary and complex types are simulated so far"
+                        .into(),
                     at: param.span,
                 });
                 continue;
@@ -1309,13 +1335,12 @@ impl super::Compiler<'_> {
                 width,
             };
             if matches!(variable.kind, VarKind::Input | VarKind::InOut) {
-                inputs.push(copy);
+                fb_call.inputs.push(copy);
             }
             if matches!(variable.kind, VarKind::Output | VarKind::InOut) {
-                outputs.push(copy);
+                fb_call.outputs.push(copy);
             }
         }
-        (inputs, outputs)
     }
 
     /// `CALL #motor (…)`: the FB or SFB of the calling FB's multi-instance `motor`, with the
@@ -1395,15 +1420,18 @@ impl super::Compiler<'_> {
                     at,
                 });
             };
-            let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
-            self.tables.fb_calls.push(FbCall {
+            let mut fb_call = FbCall {
                 instance_db: 0,
                 instance_slot: 0,
                 multi_instance: Some(offset.0),
                 system: Some(number),
-                inputs,
-                outputs,
-            });
+                inputs: Vec::new(),
+                outputs: Vec::new(),
+                blocks_in: Vec::new(),
+                blocks_out: Vec::new(),
+            };
+            self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
+            self.tables.fb_calls.push(fb_call);
             let index = (self.tables.fb_calls.len() - 1) as u16;
             self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
             self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
@@ -1414,19 +1442,21 @@ impl super::Compiler<'_> {
             number,
         };
         let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
-        let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
-        let Some(block) = self.loaded_or_missing(out, id, false, at, span) else {
-            return Ok(());
-        };
-        let call = FbCall {
+        let mut fb_call = FbCall {
             instance_db: 0,
             instance_slot: 0,
             multi_instance: Some(offset.0),
             system: None,
-            inputs,
-            outputs,
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            blocks_in: Vec::new(),
+            blocks_out: Vec::new(),
         };
-        self.emit_fb_call(out, call, block, span);
+        self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
+        let Some(block) = self.loaded_or_missing(out, id, false, at, span) else {
+            return Ok(());
+        };
+        self.emit_fb_call(out, fb_call, block, span);
         Ok(())
     }
 

@@ -2,6 +2,7 @@
 //! Blocks are registered first (so calls find their callees' interfaces), the interfaces laid
 //! out, the data blocks' initial bytes made, then each logic block's statements lowered.
 
+mod complex;
 mod data;
 mod interrupt_sfcs;
 mod layout;

@@ -307,6 +307,9 @@ impl super::Compiler<'_> {
                     bit: (at_bits % 8) as u8,
                 }
             }
+            Home::Parameter(param) if super::complex::is_complex(&variable.ty) => {
+                Target::Through { param, byte, bit }
+            }
             Home::Parameter(param) => Target::Parameter { param, byte, bit },
         };
         // An FB keeps a TIMER or COUNTER parameter as its number in the instance DB.
