@@ -262,6 +262,14 @@ pub enum Target {
         byte: u32,
         bit: u8,
     },
+    /// An FB's in/out of a complex type: the 6-byte DB pointer to the actual lies in the
+    /// instance data at byte `pointer` (after AR2's offset), `byte`.`bit` into what it points
+    /// to.
+    InstanceThrough {
+        pointer: u32,
+        byte: u32,
+        bit: u8,
+    },
     /// Memory-indirect: the pointer is read from `pointer` (a place index): a double word
     /// area-internal pointer for bits and bytes, a word for timers, counters and DB numbers.
     MemoryIndirect {
@@ -327,6 +335,9 @@ pub struct FbCall {
     pub blocks_in: Vec<BlockCopy>,
     /// The outputs of a complex type, copied whole back to their actuals.
     pub blocks_out: Vec<BlockCopy>,
+    /// The in/outs of a complex type: (actual place, byte in the instance data), where the
+    /// call writes the 6-byte DB pointer to the actual.
+    pub pointers: Vec<(u16, u32)>,
 }
 
 /// A parameter of a complex type (ARRAY, STRUCT, UDT, STRING, DATE_AND_TIME) copied byte by

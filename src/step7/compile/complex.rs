@@ -6,8 +6,10 @@
 
 use crate::compiler::CheckError;
 use crate::source::Span;
-use crate::step7::ast::{AccessWidth, CallParam, ConstKind, DataType, S7Constant, S7Operand};
-use crate::step7::bytecode::{BlockCopy, CopySource, FcCall, Place, Target};
+use crate::step7::ast::{
+    AccessWidth, CallParam, ConstKind, DataType, S7Constant, S7Operand, VarKind,
+};
+use crate::step7::bytecode::{BlockCopy, CopySource, FbCall, FcCall, Place, Target};
 
 use super::layout::{self, Home, Variable};
 use super::operand::Scope;
@@ -42,6 +44,16 @@ pub fn type_name(ty: &DataType) -> String {
         DataType::Instance(kind, number) => format!("{} {number}", kind.name()),
         DataType::Named(name) => format!("\"{}\"", name.text),
         other => format!("{other:?}").to_ascii_uppercase(),
+    }
+}
+
+/// The bits a variable of type `ty` takes in an FB's instance data: an in/out of a complex
+/// type is a 6-byte DB pointer to its actual.
+pub fn instance_bits(kind: VarKind, ty: &DataType, types: &layout::Types) -> u32 {
+    if kind == VarKind::InOut && is_complex(ty) {
+        48
+    } else {
+        layout::size_bits(ty, types)
     }
 }
 
@@ -125,36 +137,47 @@ impl super::Compiler<'_> {
         Ok((CopySource::Place(self.tables.place(place)), size))
     }
 
-    /// An FB input or output of a complex type: the copy into or out of the instance data.
-    pub(super) fn complex_fb_copy(
+    /// An FB parameter of a complex type, into `fb_call`: an input or output copied into or
+    /// out of the instance data, an in/out passed as a DB pointer there.
+    pub(super) fn complex_fb_param(
         &mut self,
         param: &CallParam,
         variable: &Variable,
         block: &str,
         scope: &Scope<'_>,
-    ) -> Result<BlockCopy, CheckError> {
+        fb_call: &mut FbCall,
+    ) -> Result<(), CheckError> {
         let Home::Instance(offset) = variable.home else {
-            return Err(not_simulated_in_out(param, variable));
-        };
-        if variable.kind == crate::step7::ast::VarKind::InOut {
-            return Err(not_simulated_in_out(param, variable));
-        }
-        let (source, size) = self.complex_source(param, &variable.ty, block, scope)?;
-        if variable.kind == crate::step7::ast::VarKind::Output
-            && matches!(source, CopySource::Bytes(_))
-        {
-            return Err(CheckError::ParamMismatch {
+            return Err(CheckError::UnknownParam {
                 name: param.name.text.clone(),
                 fb: block.to_string(),
-                at: param.actual_span,
-                expected: format!("a variable of type {} to write", type_name(&variable.ty)),
+                at: param.name.span,
+                help: None,
             });
-        }
-        Ok(BlockCopy {
-            source,
-            byte: offset.byte(),
-            size,
-        })
+        };
+        let (source, size) = self.complex_source(param, &variable.ty, block, scope)?;
+        let (CopySource::Place(place), VarKind::InOut) = (&source, variable.kind) else {
+            if variable.kind != VarKind::Input && matches!(source, CopySource::Bytes(_)) {
+                return Err(CheckError::ParamMismatch {
+                    name: param.name.text.clone(),
+                    fb: block.to_string(),
+                    at: param.actual_span,
+                    expected: format!("a variable of type {} to write", type_name(&variable.ty)),
+                });
+            }
+            let copy = BlockCopy {
+                source,
+                byte: offset.byte(),
+                size,
+            };
+            match variable.kind {
+                VarKind::Input => fb_call.blocks_in.push(copy),
+                _ => fb_call.blocks_out.push(copy),
+            }
+            return Ok(());
+        };
+        fb_call.pointers.push((*place, offset.byte()));
+        Ok(())
     }
 
     /// An FC parameter of a complex type: the DB pointer to its actual, on the caller's L stack
@@ -197,16 +220,43 @@ impl super::Compiler<'_> {
     }
 }
 
-fn not_simulated_in_out(param: &CallParam, variable: &Variable) -> CheckError {
-    CheckError::NotSimulated {
-        what: format!(
-            "the in/out parameter `{}` of type {}",
-            param.name.text,
-            type_name(&variable.ty)
-        ),
-        why: "an FB's inputs and outputs of a complex type are simulated (copied into and out of \
-              its instance DB); an in/out one, passed as a pointer, is not yet"
-            .into(),
-        at: param.span,
+/// The number of a UDT that `ty` names, or a member or element of it names, and that the
+/// program does not define.
+fn missing_udt(ty: &DataType, types: &layout::Types) -> Option<u16> {
+    match ty {
+        DataType::Udt(number) => (!types.udts.contains_key(number)).then_some(*number),
+        DataType::Array { element, .. } => missing_udt(element, types),
+        DataType::Struct(members) => members.iter().find_map(|m| missing_udt(&m.ty, types)),
+        _ => None,
+    }
+}
+
+impl super::Compiler<'_> {
+    /// Reports each declaration that names a UDT the program does not define: it would take no
+    /// room, and its members none.
+    pub(super) fn check_udts(&mut self, units: &[crate::step7::ast::S7Unit]) {
+        use crate::step7::ast::S7Body;
+        for block in units.iter().flat_map(|unit| &unit.blocks) {
+            let members: &[crate::step7::ast::VarDecl] = match &block.body {
+                S7Body::Type(members) | S7Body::Data { members, .. } => members,
+                S7Body::Logic(_) => &[],
+            };
+            let declarations = block
+                .interface
+                .iter()
+                .flat_map(|section| &section.vars)
+                .chain(members)
+                .map(|declaration| (&declaration.ty, declaration.span))
+                .chain(block.return_type.iter().map(|ty| (ty, block.header)));
+            let missing: Vec<(u16, Span)> = declarations
+                .filter_map(|(ty, at)| Some((missing_udt(ty, &self.types)?, at)))
+                .collect();
+            for (number, at) in missing {
+                self.errors.push(CheckError::UndefinedType {
+                    id: format!("UDT {number}"),
+                    at,
+                });
+            }
+        }
     }
 }

@@ -131,7 +131,10 @@ pub fn instance_image(
     let mut bytes = vec![0u8; interface.instance_bytes as usize];
     let mut members = Vec::new();
     for variable in interface.variables.values() {
-        if let layout::Home::Instance(at) = variable.home {
+        // An in/out of a complex type holds the DB pointer its call writes, no value.
+        let pointer = variable.kind == crate::step7::ast::VarKind::InOut
+            && super::complex::is_complex(&variable.ty);
+        if let (layout::Home::Instance(at), false) = (variable.home, pointer) {
             put_declared(
                 &mut bytes,
                 at.0,
@@ -153,6 +156,13 @@ pub fn instance_image(
         let layout::Home::Instance(at) = variable.home else {
             continue;
         };
+        if variable.kind == crate::step7::ast::VarKind::InOut
+            && super::complex::is_complex(&variable.ty)
+        {
+            let problem = "an in/out of a complex type holds the pointer its call passes";
+            errors.push(bad_member(problem.into(), value));
+            continue;
+        }
         match layout::member(&variable.ty, &value.path[1..], types) {
             Ok((offset, ty)) => put(&mut bytes, at.0 + offset, &ty, &value.value),
             Err(problem) => errors.push(bad_member(problem, value)),

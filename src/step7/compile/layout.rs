@@ -204,7 +204,8 @@ impl Interface {
                     _ if in_instance => {
                         data = aligned(data, &var.ty);
                         let home = Home::Instance(data);
-                        data = BitOffset(data.0 + size_bits(&var.ty, types));
+                        let bits = super::complex::instance_bits(*kind, &var.ty, types);
+                        data = BitOffset(data.0 + bits);
                         home
                     }
                     _ => {

@@ -1265,6 +1265,7 @@ impl super::Compiler<'_> {
             outputs: Vec::new(),
             blocks_in: Vec::new(),
             blocks_out: Vec::new(),
+            pointers: Vec::new(),
         };
         self.fb_param_copies(call, &id.to_string(), interface, scope, &mut fb_call);
         self.emit_fb_call(out, fb_call, block, span);
@@ -1299,10 +1300,8 @@ impl super::Compiler<'_> {
                 continue;
             };
             if super::complex::is_complex(&variable.ty) {
-                match self.complex_fb_copy(param, variable, fb, scope) {
-                    Ok(copy) if variable.kind == VarKind::Input => fb_call.blocks_in.push(copy),
-                    Ok(copy) => fb_call.blocks_out.push(copy),
-                    Err(error) => self.errors.push(error),
+                if let Err(error) = self.complex_fb_param(param, variable, fb, scope, fb_call) {
+                    self.errors.push(error);
                 }
                 continue;
             }
@@ -1429,6 +1428,7 @@ impl super::Compiler<'_> {
                 outputs: Vec::new(),
                 blocks_in: Vec::new(),
                 blocks_out: Vec::new(),
+                pointers: Vec::new(),
             };
             self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
             self.tables.fb_calls.push(fb_call);
@@ -1451,6 +1451,7 @@ impl super::Compiler<'_> {
             outputs: Vec::new(),
             blocks_in: Vec::new(),
             blocks_out: Vec::new(),
+            pointers: Vec::new(),
         };
         self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
         let Some(block) = self.loaded_or_missing(out, id, false, at, span) else {

@@ -621,7 +621,8 @@ impl<'a> Parser<'a> {
         self.ctx.span(token)
     }
 
-    /// A data block's `FB 1`, `SFB 3` or `"Name"` line: the block it is the instance DB of.
+    /// A data block's `FB 1`, `SFB 3`, `UDT 1` or `"Name"` line: the block it is the instance
+    /// DB of, or the UDT it is laid out as.
     fn instance_line(&mut self) -> Result<S7BlockRef, S7ParseError> {
         let ctx = self.ctx;
         let token = self.peek().expect("checked by the caller");
@@ -632,9 +633,11 @@ impl<'a> Parser<'a> {
                 line.skip(1),
             ),
             _ => match operand::block_number_tokens(ctx, line) {
-                Some((Some((kind @ (S7BlockKind::Fb | S7BlockKind::Sfb), number)), rest)) => {
-                    (S7BlockRef::Number { kind, number }, rest)
-                }
+                // `UDT 1`: a global DB laid out as the UDT.
+                Some((
+                    Some((kind @ (S7BlockKind::Fb | S7BlockKind::Sfb | S7BlockKind::Udt), number)),
+                    rest,
+                )) => (S7BlockRef::Number { kind, number }, rest),
                 _ => {
                     if let Some(nom::Err::Failure(fail) | nom::Err::Error(fail)) =
                         statement::bad_block_number(ctx, line)
@@ -645,7 +648,8 @@ impl<'a> Parser<'a> {
                     return Err(statement::unexpected(
                         ctx,
                         token,
-                        "`STRUCT`, the FB of an instance DB (`FB 1`, `SFB 3`) or `BEGIN`",
+                        "`STRUCT`, the FB of an instance DB (`FB 1`, `SFB 3`), a UDT (`UDT 1`) \
+                         or `BEGIN`",
                     ));
                 }
             },

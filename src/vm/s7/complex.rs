@@ -115,17 +115,55 @@ impl Cpu {
         })
     }
 
+    /// Before an FB call: the DB pointer to each actual of an in/out of a complex type into the
+    /// instance data at `instance`.
+    pub(super) fn write_instance_pointers(
+        &mut self,
+        pointers: &[(u16, u32)],
+        instance: impl Fn(u32) -> Located,
+    ) -> Result<(), Fault> {
+        for &(actual, byte) in pointers {
+            let (from, _) = self.locate_index(actual)?;
+            let (number, area) = self.db_pointer(from)?;
+            let to = instance(byte);
+            self.store(to, AccessWidth::Word, u32::from(number))?;
+            self.store(to.offset(2, 0), AccessWidth::Double, area)?;
+        }
+        Ok(())
+    }
+
     /// Where the DB pointer of complex FC parameter `param` points, for the FC of `context`.
     pub(super) fn locate_through(&mut self, param: u8, context: Context) -> Result<Located, Fault> {
         let pointer = self.locate_parameter(param, 0, 0, context)?;
+        self.dereference(pointer, context)
+    }
+
+    /// Where the DB pointer at byte `pointer` of the running FB's instance data points (an
+    /// in/out of a complex type).
+    pub(super) fn locate_instance_through(
+        &mut self,
+        pointer: u32,
+        context: Context,
+    ) -> Result<Located, Fault> {
+        let at = (context.ar2 & 0x0007_FFFF) + (pointer << 3);
+        let located = Located::Data {
+            slot: context.di,
+            byte: (at >> 3) as usize,
+            bit: 0,
+        };
+        self.dereference(located, context)
+    }
+
+    /// Where the 6-byte DB pointer at `pointer` points, read by the block of `context` (area
+    /// V is its caller's L stack).
+    fn dereference(&mut self, pointer: Located, context: Context) -> Result<Located, Fault> {
         let number = self.fetch(pointer, AccessWidth::Word)? as u16;
         let area = self.fetch(pointer.offset(2, 0), AccessWidth::Double)?;
         let code = area >> 24 & 7;
         if code == 4 && number != 0 {
             let Some(slot) = self.program.s7.db_slot(number) else {
                 return Err(fault(format!(
-                    "parameter {} points into DB {number}, which the program lacks",
-                    param + 1
+                    "a DB pointer into DB {number}, which the program lacks"
                 )));
             };
             return Ok(Located::Data {
@@ -136,8 +174,7 @@ impl Cpu {
         }
         let Some(area_code) = area_of_code(code).filter(|_| area >> 24 & 0x80 != 0) else {
             return Err(fault(format!(
-                "parameter {} holds no DB pointer ({area:#010X})",
-                param + 1
+                "{area:#010X} is no DB pointer's area pointer"
             )));
         };
         self.locate_pointer(area_code, area & 0x0007_FFFF, context)

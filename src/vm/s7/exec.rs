@@ -417,6 +417,7 @@ impl Cpu {
             self.store(instance_at(slot, base, copy), copy.width, value)?;
         }
         self.copy_blocks_in(&call.blocks_in, |byte| bytes_at(slot, base, byte))?;
+        self.write_instance_pointers(&call.pointers, |byte| bytes_at(slot, base, byte))?;
         self.fb_saves
             .push((self.level.db, self.level.di, self.level.ar2));
         self.level.db = self.level.di;

@@ -262,6 +262,9 @@ impl Cpu {
             Target::Through { param, byte, bit } => {
                 self.locate_through(param, context)?.offset(byte, bit)
             }
+            Target::InstanceThrough { pointer, byte, bit } => self
+                .locate_instance_through(pointer, context)?
+                .offset(byte, bit),
             Target::MemoryIndirect { area, pointer } => {
                 let pointer_place = self.program.s7.places[usize::from(pointer)];
                 let located = self.locate(pointer_place, context)?;
