@@ -88,8 +88,8 @@ fn arrays_structures_and_strings_lie_as_step7_lays_them_out() {
     );
 }
 
-/// `DATA_BLOCK DB n` followed by `UDT m` (or the UDT's symbol) is a global DB laid out as the
-/// UDT, with its declared values.
+/// `DATA_BLOCK DB n` followed by `UDT m` (or the UDT's symbol), on the next line or the same,
+/// is a global DB laid out as the UDT, with its declared values.
 #[test]
 fn a_data_block_is_made_from_a_udt_by_number_or_name() {
     let program = "
@@ -118,6 +118,11 @@ DATA_BLOCK DB 6
 BEGIN
 END_DATA_BLOCK
 
+DATA_BLOCK DB 7 UDT 3
+BEGIN
+  a := 8;
+END_DATA_BLOCK
+
 ORGANIZATION_BLOCK OB 1
 BEGIN
       L     DB5.a;
@@ -128,12 +133,14 @@ BEGIN
       T     MB 3;
       L     DB6.speed;
       T     MD 4;
+      L     DB7.a;
+      T     MW 8;
 END_ORGANIZATION_BLOCK
 ";
     passes(
         program,
         "run = { cycles = 1 }\n[expect]\n\"MW 0\" = 5\n\"MB 2\" = 7\n\"MB 3\" = 0x62\n\
-         \"MD 4\" = 1000\n\"DB5.DBW 2\" = 0x0402\n",
+         \"MD 4\" = 1000\n\"MW 8\" = 8\n\"DB5.DBW 2\" = 0x0402\n",
     );
 }
 

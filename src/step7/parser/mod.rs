@@ -479,13 +479,14 @@ impl<'a> Parser<'a> {
         let result = self.header_line(kind, keyword);
         match result {
             Ok(header) => {
-                // `DATA_BLOCK "ValveDB" "Valve"`, `DATA_BLOCK DB 5 FB 5`: the FB of an
-                // instance DB on the header line, read as the line after it would be.
+                // `DATA_BLOCK "ValveDB" "Valve"`, `DATA_BLOCK DB 5 FB 5`, `DATA_BLOCK DB 6
+                // UDT 2`: the FB of an instance DB, or the UDT, on the header line, read as the
+                // line after it would be.
                 let instance_follows = kind == S7BlockKind::Db
                     && self.rest_of_line().first().is_some_and(|t| {
                         t.kind == TokenKind::Symbol
                             || self.ctx.word(*t).is_some_and(|word| {
-                                word.starts_with("FB") || word.starts_with("SFB")
+                                ["FB", "SFB", "UDT"].iter().any(|k| word.starts_with(k))
                             })
                     });
                 if instance_follows {
