@@ -94,6 +94,13 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
                 .into(),
         ),
         (
+            "awl::check::undefined_type",
+            "speed7",
+            "DATA_BLOCK DB 5\nUDT 9\nBEGIN\nEND_DATA_BLOCK\n\
+             ORGANIZATION_BLOCK OB 1\nBEGIN\n      NOP 0;\nEND_ORGANIZATION_BLOCK\n"
+                .into(),
+        ),
+        (
             "awl::check::step7_on_step5_cpu",
             "sinumerik-840c",
             "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  I 0.0;\n      =  Q 4.0;\nEND_ORGANIZATION_BLOCK\n".into(),

@@ -187,6 +187,17 @@ pub enum CheckError {
         at: Span,
     },
 
+    #[error("{id} is not in the program")]
+    #[diagnostic(
+        code(awl::check::undefined_type),
+        help("add the `TYPE {id}` … `END_TYPE` block, or load the file that has it")
+    )]
+    UndefinedType {
+        id: String,
+        #[label("no such data type")]
+        at: Span,
+    },
+
     #[error("{id} is built into other CPUs, not into {cpu}")]
     #[diagnostic(
         code(awl::check::block_not_on_cpu),
@@ -374,6 +385,7 @@ impl CheckError {
             | CheckError::ParamMismatch { at, .. }
             | CheckError::UnknownParam { at, .. }
             | CheckError::UndefinedBlock { at, .. }
+            | CheckError::UndefinedType { at, .. }
             | CheckError::BlockNotOnCpu { at, .. }
             | CheckError::UndefinedDb { at, .. }
             | CheckError::IndirectTarget { at, .. }

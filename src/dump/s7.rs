@@ -407,6 +407,15 @@ pub(crate) fn place_text(program: &Program, place: Place, set: MnemonicSet) -> O
         Target::Parameter { param, byte, bit } => {
             format!("parameter {}, at {byte}.{bit} in it", u16::from(param) + 1)
         }
+        Target::Through { param, byte, bit } => {
+            format!(
+                "parameter {} (by DB pointer), at {byte}.{bit} in it",
+                u16::from(param) + 1
+            )
+        }
+        Target::InstanceThrough { pointer, byte, bit } => {
+            format!("the DB pointer at DIX [AR2, P#{pointer}.0], at {byte}.{bit} in it")
+        }
         Target::Timer(n) => address(S7Area::Timer, u32::from(n), 0, None),
         Target::Counter(n) => address(S7Area::Counter, u32::from(n), 0, None),
         _ => return None,

@@ -254,6 +254,22 @@ pub enum Target {
         byte: u32,
         bit: u8,
     },
+    /// FC parameter `param` of a complex type (ARRAY, STRUCT, UDT, STRING, DATE_AND_TIME):
+    /// its actual is the 6-byte DB pointer the caller wrote to its L stack, `byte`.`bit` into
+    /// what that points to.
+    Through {
+        param: u8,
+        byte: u32,
+        bit: u8,
+    },
+    /// An FB's in/out of a complex type: the 6-byte DB pointer to the actual lies in the
+    /// instance data at byte `pointer` (after AR2's offset), `byte`.`bit` into what it points
+    /// to.
+    InstanceThrough {
+        pointer: u32,
+        byte: u32,
+        bit: u8,
+    },
     /// Memory-indirect: the pointer is read from `pointer` (a place index): a double word
     /// area-internal pointer for bits and bytes, a word for timers, counters and DB numbers.
     MemoryIndirect {
@@ -315,6 +331,31 @@ pub struct FbCall {
     pub inputs: Vec<ParamCopy>,
     /// (actual place, offset, width) of each output and in/out.
     pub outputs: Vec<ParamCopy>,
+    /// The inputs of a complex type, copied whole into the instance data.
+    pub blocks_in: Vec<BlockCopy>,
+    /// The outputs of a complex type, copied whole back to their actuals.
+    pub blocks_out: Vec<BlockCopy>,
+    /// The in/outs of a complex type: (actual place, byte in the instance data), where the
+    /// call writes the 6-byte DB pointer to the actual.
+    pub pointers: Vec<(u16, u32)>,
+}
+
+/// A parameter of a complex type (ARRAY, STRUCT, UDT, STRING, DATE_AND_TIME) copied byte by
+/// byte between its actual and the instance data, `byte` bytes into them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockCopy {
+    pub source: CopySource,
+    pub byte: u32,
+    pub size: u32,
+}
+
+/// Where a [`BlockCopy`] or a complex FC parameter takes its bytes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CopySource {
+    /// The actual's place (its first byte).
+    Place(u16),
+    /// A constant (`'text'` for a STRING, `DT#…`) laid out as the parameter's type.
+    Bytes(Vec<u8>),
 }
 
 /// One `CALL FC n (…)`: the actuals passed as copies on the caller's L stack — constants, and
@@ -326,6 +367,13 @@ pub struct FcCall {
     pub inputs: Vec<(u16, u16)>,
     /// Copied back after it (outputs, in/outs).
     pub outputs: Vec<(u16, u16)>,
+    /// Constants of parameters of a complex type, written to the caller's L stack: (place,
+    /// bytes).
+    pub constants: Vec<(u16, Vec<u8>)>,
+    /// Parameters of a complex type: (actual place, place of the 6-byte DB pointer to it on the
+    /// caller's L stack), written before the call ("Programming with STEP 7", parameter
+    /// passing: an FC receives a pointer to a complex actual).
+    pub pointers: Vec<(u16, u16)>,
 }
 
 /// One parameter copied between an actual and the instance DB.

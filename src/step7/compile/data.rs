@@ -37,6 +37,8 @@ pub fn put(bytes: &mut Vec<u8>, at: u32, ty: &DataType, value: &S7Constant) {
                 let length = text.len().min(usize::from(*max));
                 bytes[start] = *max;
                 bytes[start + 1] = length as u8;
+                // A shorter value replaces a declared one entirely: the rest reads as zeros.
+                bytes[start + 2..start + size].fill(0);
                 bytes[start + 2..start + 2 + length].copy_from_slice(&text[..length]);
             }
             _ => {
@@ -56,32 +58,48 @@ fn put_declared(
     types: &Types,
 ) {
     for (member, offset) in members.iter().zip(offsets) {
-        let at = base + offset.0;
-        match &member.ty {
-            DataType::Struct(inner) => {
+        put_initial(bytes, base + offset.0, &member.ty, &member.initial, types);
+    }
+}
+
+/// A value of type `ty` at bit `at` as declared: `initial` (one value per array element), the
+/// declared values of a structure's or UDT's members, and every STRING's maximum length.
+fn put_initial(bytes: &mut Vec<u8>, at: u32, ty: &DataType, initial: &[S7Constant], types: &Types) {
+    match ty {
+        DataType::Struct(inner) => {
+            let (inner_offsets, _) = struct_layout(inner, types);
+            put_declared(bytes, at, inner, &inner_offsets, types);
+        }
+        DataType::Udt(number) => {
+            if let Some(inner) = types.udts.get(number) {
                 let (inner_offsets, _) = struct_layout(inner, types);
                 put_declared(bytes, at, inner, &inner_offsets, types);
             }
-            DataType::Udt(number) => {
-                if let Some(inner) = types.udts.get(number) {
-                    let (inner_offsets, _) = struct_layout(inner, types);
-                    put_declared(bytes, at, inner, &inner_offsets, types);
-                }
+        }
+        DataType::Array { dims, element } => {
+            let count: u32 = dims
+                .iter()
+                .map(|(low, high)| (high - low + 1).max(0) as u32)
+                .product();
+            let stride = layout::element_stride(element, types);
+            for index in 0..count {
+                let value = initial.get(index as usize..=index as usize).unwrap_or(&[]);
+                put_initial(bytes, at + index * stride, element, value, types);
             }
-            DataType::Array { element, .. } => {
-                let stride = match **element {
-                    DataType::Bool => 1,
-                    DataType::Byte | DataType::Char => 8,
-                    ref other => layout::size_bits(other, types).div_ceil(16) * 16,
-                };
-                for (index, value) in member.initial.iter().enumerate() {
-                    put(bytes, at + index as u32 * stride, element, value);
-                }
-            }
-            ty => {
-                if let Some(value) = member.initial.first() {
-                    put(bytes, at, ty, value);
-                }
+        }
+        DataType::String(max) => {
+            // A STRING's first byte is its maximum length, whether it has a value or not.
+            let empty = S7Constant {
+                kind: crate::step7::ast::ConstKind::String,
+                value: 0,
+                bytes: Vec::new(),
+            };
+            let value = initial.first().unwrap_or(&empty);
+            put(bytes, at, &DataType::String(*max), value);
+        }
+        ty => {
+            if let Some(value) = initial.first() {
+                put(bytes, at, ty, value);
             }
         }
     }
@@ -113,7 +131,10 @@ pub fn instance_image(
     let mut bytes = vec![0u8; interface.instance_bytes as usize];
     let mut members = Vec::new();
     for variable in interface.variables.values() {
-        if let layout::Home::Instance(at) = variable.home {
+        // An in/out of a complex type holds the DB pointer its call writes, no value.
+        let pointer = variable.kind == crate::step7::ast::VarKind::InOut
+            && super::complex::is_complex(&variable.ty);
+        if let (layout::Home::Instance(at), false) = (variable.home, pointer) {
             put_declared(
                 &mut bytes,
                 at.0,
@@ -135,6 +156,13 @@ pub fn instance_image(
         let layout::Home::Instance(at) = variable.home else {
             continue;
         };
+        if variable.kind == crate::step7::ast::VarKind::InOut
+            && super::complex::is_complex(&variable.ty)
+        {
+            let problem = "an in/out of a complex type holds the pointer its call passes";
+            errors.push(bad_member(problem.into(), value));
+            continue;
+        }
         match layout::member(&variable.ty, &value.path[1..], types) {
             Ok((offset, ty)) => put(&mut bytes, at.0 + offset, &ty, &value.value),
             Err(problem) => errors.push(bad_member(problem, value)),

@@ -101,7 +101,7 @@ pub fn size_bits(ty: &DataType, types: &Types) -> u32 {
 }
 
 /// The distance between two array elements in bits.
-fn element_stride(element: &DataType, types: &Types) -> u32 {
+pub fn element_stride(element: &DataType, types: &Types) -> u32 {
     match element {
         DataType::Bool => 1,
         DataType::Byte | DataType::Char => 8,
@@ -204,7 +204,8 @@ impl Interface {
                     _ if in_instance => {
                         data = aligned(data, &var.ty);
                         let home = Home::Instance(data);
-                        data = BitOffset(data.0 + size_bits(&var.ty, types));
+                        let bits = super::complex::instance_bits(*kind, &var.ty, types);
+                        data = BitOffset(data.0 + bits);
                         home
                     }
                     _ => {
@@ -284,6 +285,18 @@ pub fn member(ty: &DataType, path: &[PathPart], types: &Types) -> Result<(u32, D
                 }
                 offset += linear * element_stride(element, types);
                 ty = (**element).clone();
+            }
+            // A STRING's characters, `text[1]` the first: after its maximum and actual length
+            // bytes ("Programming with STEP 7", data types: STRING).
+            (PathPart::Index(indexes), DataType::String(max)) => {
+                let [index] = indexes.as_slice() else {
+                    return Err(format!("a STRING takes 1 index, not {}", indexes.len()));
+                };
+                if *index < 1 || *index > i32::from(*max) {
+                    return Err(format!("index {index} is outside the STRING's 1..{max}"));
+                }
+                offset += (1 + *index as u32) * 8;
+                ty = DataType::Char;
             }
             (PathPart::Member(name), DataType::Instance(kind, number)) => {
                 let Some((sections, _)) = types.instance(*kind, *number) else {

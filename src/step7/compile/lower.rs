@@ -1143,15 +1143,19 @@ impl super::Compiler<'_> {
             });
         };
         let instance_slot = self.db_slot(*db, at);
-        let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
-        self.tables.fb_calls.push(FbCall {
+        let mut fb_call = FbCall {
             instance_db: *db,
             instance_slot,
             multi_instance: None,
             system: Some(number),
-            inputs,
-            outputs,
-        });
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            blocks_in: Vec::new(),
+            blocks_out: Vec::new(),
+            pointers: Vec::new(),
+        };
+        self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
+        self.tables.fb_calls.push(fb_call);
         let index = (self.tables.fb_calls.len() - 1) as u16;
         self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
         self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
@@ -1195,6 +1199,21 @@ impl super::Compiler<'_> {
                     &mut scratch_bits,
                     &mut fc_call,
                 );
+                continue;
+            }
+            if super::complex::is_complex(&formal.ty) {
+                let block = id.to_string();
+                match self.complex_fc_actual(
+                    param,
+                    &formal.ty,
+                    &block,
+                    &mut scratch_bits,
+                    &mut fc_call,
+                    scope,
+                ) {
+                    Ok(pointer) => actuals[position] = Some(Resolved::S7(pointer)),
+                    Err(error) => self.errors.push(error),
+                }
                 continue;
             }
             let place = match &param.actual {
@@ -1310,30 +1329,32 @@ impl super::Compiler<'_> {
             });
         };
         let instance_slot = self.db_slot(*db, at);
-        let (inputs, outputs) = self.fb_param_copies(call, &id.to_string(), interface, scope);
-        let call = FbCall {
+        let mut fb_call = FbCall {
             instance_db: *db,
             instance_slot,
             multi_instance: None,
             system: None,
-            inputs,
-            outputs,
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            blocks_in: Vec::new(),
+            blocks_out: Vec::new(),
+            pointers: Vec::new(),
         };
-        self.emit_fb_call(out, call, block, span);
+        self.fb_param_copies(call, &id.to_string(), interface, scope, &mut fb_call);
+        self.emit_fb_call(out, fb_call, block, span);
         Ok(())
     }
 
     /// The copies of a call's actuals into an FB's instance data (inputs, in/outs) and back
-    /// (outputs, in/outs); `fb` names the block for messages.
+    /// (outputs, in/outs), into `fb_call`; `fb` names the block for messages.
     fn fb_param_copies(
         &mut self,
         call: &CallSpec,
         fb: &str,
         interface: &super::layout::Interface,
         scope: &Scope<'_>,
-    ) -> (Vec<ParamCopy>, Vec<ParamCopy>) {
-        let mut inputs = Vec::new();
-        let mut outputs = Vec::new();
+        fb_call: &mut FbCall,
+    ) {
         for param in &call.params {
             let name = param.name.text.to_ascii_uppercase();
             let variable = interface.variables.get(&name).filter(|variable| {
@@ -1356,7 +1377,13 @@ impl super::Compiler<'_> {
                 super::pointers::is_pointer_type(&variable.ty),
             ) {
                 let copies = self.fb_pointer_param(param, &variable.ty, offset, fb, scope);
-                inputs.extend(copies.unwrap_or_default());
+                fb_call.inputs.extend(copies.unwrap_or_default());
+                continue;
+            }
+            if super::complex::is_complex(&variable.ty) {
+                if let Err(error) = self.complex_fb_param(param, variable, fb, scope, fb_call) {
+                    self.errors.push(error);
+                }
                 continue;
             }
             let (Home::Instance(offset), Some(width)) =
@@ -1364,10 +1391,12 @@ impl super::Compiler<'_> {
             else {
                 self.errors.push(CheckError::NotSimulated {
                     what: format!(
-                        "the parameter `{}` of type {:?}",
-                        param.name.text, variable.ty
+                        "the parameter `{}` of type {}",
+                        param.name.text,
+                        super::complex::type_name(&variable.ty)
                     ),
-                    why: "FB parameters of elementary types are simulated so far".into(),
+                    why: "FB parameters of elementary and complex types are simulated so far"
+                        .into(),
                     at: param.span,
                 });
                 continue;
@@ -1386,13 +1415,12 @@ impl super::Compiler<'_> {
                 width,
             };
             if matches!(variable.kind, VarKind::Input | VarKind::InOut) {
-                inputs.push(copy);
+                fb_call.inputs.push(copy);
             }
             if matches!(variable.kind, VarKind::Output | VarKind::InOut) {
-                outputs.push(copy);
+                fb_call.outputs.push(copy);
             }
         }
-        (inputs, outputs)
     }
 
     /// `CALL #motor (…)`: the FB or SFB of the calling FB's multi-instance `motor`, with the
@@ -1472,15 +1500,19 @@ impl super::Compiler<'_> {
                     at,
                 });
             };
-            let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
-            self.tables.fb_calls.push(FbCall {
+            let mut fb_call = FbCall {
                 instance_db: 0,
                 instance_slot: 0,
                 multi_instance: Some(offset.0),
                 system: Some(number),
-                inputs,
-                outputs,
-            });
+                inputs: Vec::new(),
+                outputs: Vec::new(),
+                blocks_in: Vec::new(),
+                blocks_out: Vec::new(),
+                pointers: Vec::new(),
+            };
+            self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
+            self.tables.fb_calls.push(fb_call);
             let index = (self.tables.fb_calls.len() - 1) as u16;
             self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
             self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
@@ -1492,19 +1524,22 @@ impl super::Compiler<'_> {
             number,
         };
         let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
-        let (inputs, outputs) = self.fb_param_copies(call, &label, &interface, scope);
-        let Some(block) = self.loaded_or_missing(out, id, false, at, span) else {
-            return Ok(());
-        };
-        let call = FbCall {
+        let mut fb_call = FbCall {
             instance_db: 0,
             instance_slot: 0,
             multi_instance: Some(offset.0),
             system: None,
-            inputs,
-            outputs,
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            blocks_in: Vec::new(),
+            blocks_out: Vec::new(),
+            pointers: Vec::new(),
         };
-        self.emit_fb_call(out, call, block, span);
+        self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
+        let Some(block) = self.loaded_or_missing(out, id, false, at, span) else {
+            return Ok(());
+        };
+        self.emit_fb_call(out, fb_call, block, span);
         Ok(())
     }
 

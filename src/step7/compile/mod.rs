@@ -3,6 +3,7 @@
 //! out, the data blocks' initial bytes made, then each logic block's statements lowered.
 
 mod block_sfcs;
+mod complex;
 mod data;
 mod interrupt_sfcs;
 mod layout;
@@ -88,6 +89,7 @@ pub fn compile(
     let units = compiler.named_types(units);
     let units: &[S7Unit] = &units;
     let logic = compiler.collect(units);
+    compiler.check_udts(units);
     compiler.make_data_blocks(units);
     compiler.number_data_blocks();
     let blocks = logic
@@ -279,6 +281,16 @@ impl<'a> Compiler<'a> {
             .filter(|section| section.kind != VarKind::Temp)
             .map(|section| (section.kind, section.vars.clone()))
             .collect();
+        // A multi-instance's in/out of a complex type is the DB pointer to its actual, as in
+        // the FB's own instance DB: as big as a POINTER.
+        for (_, vars) in sections
+            .iter_mut()
+            .filter(|(kind, _)| *kind == VarKind::InOut)
+        {
+            for var in vars.iter_mut().filter(|var| complex::is_complex(&var.ty)) {
+                var.ty = crate::step7::ast::DataType::Pointer;
+            }
+        }
         sections.sort_by_key(|(kind, _)| layout::section_rank(*kind));
         let sections = sections.into_iter().map(|(_, vars)| vars).collect();
         self.types
@@ -380,6 +392,27 @@ impl<'a> Compiler<'a> {
                         let bytes =
                             data::instance_image(&interface, initial, &self.types, &mut errors);
                         self.db_layouts.insert(number, interface);
+                        self.errors.extend(errors);
+                        self.data_blocks.insert(number, bytes);
+                        continue;
+                    }
+                    // `DATA_BLOCK DB 5` / `UDT 1`: a global DB whose structure is the UDT's.
+                    if let S7BlockRef::Number {
+                        kind: S7BlockKind::Udt,
+                        number: udt,
+                    } = fb
+                    {
+                        let Some(members) = self.types.udts.get(&udt).cloned() else {
+                            self.errors.push(CheckError::UndefinedType {
+                                id: format!("UDT {udt}"),
+                                at: block.header,
+                            });
+                            continue;
+                        };
+                        let sections = [(VarKind::Static, members.as_slice())];
+                        let layout = Interface::build(&sections, true, &self.types);
+                        self.db_layouts.insert(number, layout);
+                        let bytes = data::global_image(&members, initial, &self.types, &mut errors);
                         self.errors.extend(errors);
                         self.data_blocks.insert(number, bytes);
                         continue;

@@ -5,6 +5,7 @@ use crate::compiler::CheckError;
 use crate::source::Span;
 use crate::step7::ast::{
     AccessWidth, ConstKind, DataType, IndirectPointer, S7Address, S7Area, S7Constant, S7Operand,
+    VarKind,
 };
 use crate::step7::bytecode::{IndirectArea, Place, Target};
 
@@ -298,6 +299,15 @@ impl super::Compiler<'_> {
         let width = layout::width_of(&ty).unwrap_or(AccessWidth::Byte);
         let (byte, bit) = (offset / 8, (offset % 8) as u8);
         let target = match variable.home {
+            Home::Instance(base)
+                if variable.kind == VarKind::InOut && super::complex::is_complex(&variable.ty) =>
+            {
+                Target::InstanceThrough {
+                    pointer: base.byte(),
+                    byte,
+                    bit,
+                }
+            }
             Home::Instance(base) => {
                 let at_bits = base.0 + offset;
                 Target::Instance {
@@ -311,6 +321,9 @@ impl super::Compiler<'_> {
                     byte: at_bits / 8,
                     bit: (at_bits % 8) as u8,
                 }
+            }
+            Home::Parameter(param) if super::complex::is_complex(&variable.ty) => {
+                Target::Through { param, byte, bit }
             }
             Home::Parameter(param) => Target::Parameter { param, byte, bit },
         };

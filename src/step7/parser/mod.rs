@@ -491,13 +491,14 @@ impl<'a> Parser<'a> {
         let result = self.header_line(kind, keyword);
         match result {
             Ok(header) => {
-                // `DATA_BLOCK "ValveDB" "Valve"`, `DATA_BLOCK DB 5 FB 5`: the FB of an
-                // instance DB on the header line, read as the line after it would be.
+                // `DATA_BLOCK "ValveDB" "Valve"`, `DATA_BLOCK DB 5 FB 5`, `DATA_BLOCK DB 6
+                // UDT 2`: the FB of an instance DB, or the UDT, on the header line, read as the
+                // line after it would be.
                 let instance_follows = kind == S7BlockKind::Db
                     && self.rest_of_line().first().is_some_and(|t| {
                         t.kind == TokenKind::Symbol
                             || self.ctx.word(*t).is_some_and(|word| {
-                                word.starts_with("FB") || word.starts_with("SFB")
+                                ["FB", "SFB", "UDT"].iter().any(|k| word.starts_with(k))
                             })
                     });
                 if instance_follows {
@@ -633,7 +634,8 @@ impl<'a> Parser<'a> {
         self.ctx.span(token)
     }
 
-    /// A data block's `FB 1`, `SFB 3` or `"Name"` line: the block it is the instance DB of.
+    /// A data block's `FB 1`, `SFB 3`, `UDT 1` or `"Name"` line: the block it is the instance
+    /// DB of, or the UDT it is laid out as.
     fn instance_line(&mut self) -> Result<S7BlockRef, S7ParseError> {
         let ctx = self.ctx;
         let token = self.peek().expect("checked by the caller");
@@ -644,9 +646,11 @@ impl<'a> Parser<'a> {
                 line.skip(1),
             ),
             _ => match operand::block_number_tokens(ctx, line) {
-                Some((Some((kind @ (S7BlockKind::Fb | S7BlockKind::Sfb), number)), rest)) => {
-                    (S7BlockRef::Number { kind, number }, rest)
-                }
+                // `UDT 1`: a global DB laid out as the UDT.
+                Some((
+                    Some((kind @ (S7BlockKind::Fb | S7BlockKind::Sfb | S7BlockKind::Udt), number)),
+                    rest,
+                )) => (S7BlockRef::Number { kind, number }, rest),
                 _ => {
                     if let Some(nom::Err::Failure(fail) | nom::Err::Error(fail)) =
                         statement::bad_block_number(ctx, line)
@@ -657,7 +661,8 @@ impl<'a> Parser<'a> {
                     return Err(statement::unexpected(
                         ctx,
                         token,
-                        "`STRUCT`, the FB of an instance DB (`FB 1`, `SFB 3`) or `BEGIN`",
+                        "`STRUCT`, the FB of an instance DB (`FB 1`, `SFB 3`), a UDT (`UDT 1`) \
+                         or `BEGIN`",
                     ));
                 }
             },

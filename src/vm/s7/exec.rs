@@ -441,6 +441,8 @@ impl Cpu {
             let value = self.fetch(from, copy.width)?;
             self.store(instance_at(slot, base, copy), copy.width, value)?;
         }
+        self.copy_blocks_in(&call.blocks_in, |byte| bytes_at(slot, base, byte))?;
+        self.write_instance_pointers(&call.pointers, |byte| bytes_at(slot, base, byte))?;
         self.fb_saves
             .push((self.level.db, self.level.di, self.level.ar2));
         self.level.db = self.level.di;
@@ -453,7 +455,8 @@ impl Cpu {
         Ok(())
     }
 
-    /// After the FB: the registers restored, the outputs copied to their actuals.
+    /// After the FB: the registers restored, the outputs copied to their actuals, the instance
+    /// DB left open as the DB.
     fn fb_leave(&mut self, call: u16) -> Result<(), Fault> {
         let program = std::sync::Arc::clone(&self.program);
         let call = &program.s7.fb_calls[usize::from(call)];
@@ -471,6 +474,10 @@ impl Cpu {
             let (to, _) = self.locate_index(copy.actual)?;
             self.store(to, copy.width, value)?;
         }
+        self.copy_blocks_out(&call.blocks_out, |byte| bytes_at(slot, base, byte))?;
+        // STEP 7's `CALL FB` exchanges DB and DI around the call (`TDB`, `OPN DI`, `UC`, `TDB`):
+        // afterwards the DB register holds the instance DB and DI the caller's own again.
+        self.level.db = slot;
         Ok(())
     }
 
@@ -484,6 +491,7 @@ impl Cpu {
             let (to, width) = self.locate_index(copy)?;
             self.store(to, width, value)?;
         }
+        self.write_db_pointers(call)?;
         self.fb_saves
             .push((self.level.db, self.level.di, self.level.ar2));
         Ok(())
@@ -714,6 +722,15 @@ fn instance_at(slot: u16, base: u32, copy: &crate::step7::bytecode::ParamCopy) -
         slot,
         byte: (bits >> 3) as usize,
         bit: (bits & 7) as u8,
+    }
+}
+
+/// Byte `byte` of instance data that start `base` bits into `slot`.
+fn bytes_at(slot: u16, base: u32, byte: u32) -> Located {
+    Located::Data {
+        slot,
+        byte: ((base >> 3) + byte) as usize,
+        bit: 0,
     }
 }
 

@@ -102,7 +102,7 @@ pub fn area_code(area: IndirectArea) -> u32 {
     }
 }
 
-fn area_of_code(code: u32) -> Option<IndirectArea> {
+pub(super) fn area_of_code(code: u32) -> Option<IndirectArea> {
     Some(match code {
         0 => IndirectArea::PeripheralInput,
         1 => IndirectArea::Input,
@@ -122,7 +122,7 @@ pub fn local_overflow() -> StopDetail {
     StopDetail::Text("the L stack overflows".into())
 }
 
-fn fault(text: String) -> Fault {
+pub(super) fn fault(text: String) -> Fault {
     (StopCause::Bcf, StopDetail::Text(text))
 }
 
@@ -261,6 +261,12 @@ impl Cpu {
             Target::Parameter { param, byte, bit } => {
                 self.locate_parameter(param, byte, bit, context)?
             }
+            Target::Through { param, byte, bit } => {
+                self.locate_through(param, context)?.offset(byte, bit)
+            }
+            Target::InstanceThrough { pointer, byte, bit } => self
+                .locate_instance_through(pointer, context)?
+                .offset(byte, bit),
             Target::MemoryIndirect { area, pointer } => {
                 let pointer_place = self.program.s7.places[usize::from(pointer)];
                 let located = self.locate(pointer_place, context)?;
@@ -303,7 +309,7 @@ impl Cpu {
     }
 
     /// An FC parameter: the caller's actual, resolved where the caller stands.
-    fn locate_parameter(
+    pub(super) fn locate_parameter(
         &mut self,
         param: u8,
         byte: u32,
@@ -334,7 +340,7 @@ impl Cpu {
     }
 
     /// The address a pointer value (byte << 3 | bit) gives in `area`.
-    fn locate_pointer(
+    pub(super) fn locate_pointer(
         &mut self,
         area: IndirectArea,
         pointer: u32,

@@ -16,6 +16,8 @@
 //! - [`jump`]: whether each conditional jump jumps and what it does to the status; `LOOP`; the
 //!   status conditions `==0 <>0 >0 <0 >=0 <=0 UO OV OS BR` as bit operands.
 //! - [`mcr`]: the master control relay, `MCRA MCRD MCR( )MCR`.
+//! - `complex`: parameters of ARRAY, STRUCT, UDT, STRING and DATE_AND_TIME types (copies,
+//!   DB pointers).
 //! - [`memory`]: where an operand is (L stack, DB/DI, parameters, indirect addresses);
 //!   [`exec`]: the out-of-line executor the loop calls for [`crate::step7::bytecode::S7Code`].
 //!
@@ -32,6 +34,7 @@ mod block_move;
 mod bridge;
 mod clock_sfcs;
 pub mod compare;
+mod complex;
 pub mod convert;
 pub mod exec;
 pub mod integer;
