@@ -7,7 +7,7 @@ mod s5_155u;
 mod s5_common;
 mod s5_small;
 
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock, PoisonError};
 
 /// The CPUs whose interrupt rules differ; each has its rules in `vm::interrupts`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -633,6 +633,46 @@ pub fn with_accumulators(profile: &'static Profile, count: u8) -> Option<&'stati
     }
 }
 
+/// The largest process image an S7 CPU of awl can be set to, in bytes (the SPEED7 CPUs'; VIPA
+/// System 300S CPU manuals, technical data).
+pub const MAX_S7_IMAGE_BYTES: u16 = 2048;
+
+/// The S7 CPU variants with larger process images, made as runs ask for them and kept, so a
+/// run can keep `&'static Profile` as every other profile.
+static RESIZED_IMAGES: Mutex<Vec<&'static Profile>> = Mutex::new(Vec::new());
+
+/// `profile` with process images of `bytes` each, as a hardware configuration sets them (an
+/// awlsim project's `nr_inputs`): itself, or its variant when it is an S7 CPU and `bytes` is
+/// at most [`MAX_S7_IMAGE_BYTES`]; `None` when the CPU cannot have that many.
+pub fn with_image_bytes(profile: &'static Profile, bytes: u16) -> Option<&'static Profile> {
+    if bytes == profile.sizes.image_bytes {
+        return Some(profile);
+    }
+    if !profile.runs_step7() || bytes > MAX_S7_IMAGE_BYTES {
+        return None;
+    }
+    let mut made = RESIZED_IMAGES
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner);
+    let same = |variant: &&&Profile| {
+        variant.name == profile.name
+            && variant.accumulators == profile.accumulators
+            && variant.sizes.image_bytes == bytes
+    };
+    if let Some(&variant) = made.iter().find(same) {
+        return Some(variant);
+    }
+    let variant: &'static Profile = Box::leak(Box::new(Profile {
+        sizes: Sizes {
+            image_bytes: bytes,
+            ..profile.sizes
+        },
+        ..profile.clone()
+    }));
+    made.push(variant);
+    Some(variant)
+}
+
 /// The profile of a name or an alias.
 pub fn find(name: &str) -> Option<&'static Profile> {
     let name = ALIASES
@@ -729,6 +769,21 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn an_s7_cpu_takes_larger_process_images_up_to_the_speed7_s_largest() {
+        let speed7 = find("speed7").unwrap();
+        let larger = with_image_bytes(speed7, 1024).unwrap();
+        assert_eq!(larger.sizes.image_bytes, 1024);
+        assert_eq!(larger.sizes.flag_bytes, speed7.sizes.flag_bytes);
+        assert!(std::ptr::eq(
+            larger,
+            with_image_bytes(speed7, 1024).unwrap()
+        ));
+        assert!(std::ptr::eq(speed7, with_image_bytes(speed7, 256).unwrap()));
+        assert!(with_image_bytes(speed7, MAX_S7_IMAGE_BYTES + 1).is_none());
+        assert!(with_image_bytes(find("s5-115u").unwrap(), 1024).is_none());
     }
 
     #[test]

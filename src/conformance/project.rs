@@ -22,18 +22,21 @@ const FORMAT_VERSION: &str = "1";
 
 /// awlsim's CPU sizes that awl runs on the speed7 profile: a project may ask for these or less
 /// (a program fits a larger CPU), not more. The defaults of awlsim 0.77.1 (`S7CPUSpecs`) but
-/// for the process images and flags, where the SPEED7 CPU has more; `nr_accus` is read on its
-/// own.
+/// for the process images (up to the SPEED7's largest, set as a project asks) and the flags,
+/// where the SPEED7 CPU has more; `nr_accus` is read on its own.
 const SPEED7_SPECS: &[(&str, i64)] = &[
     ("nr_timers", 256),
     ("nr_counters", 256),
     ("nr_flags", 8192),
-    ("nr_inputs", 256),
-    ("nr_outputs", 256),
+    ("nr_inputs", 2048),
+    ("nr_outputs", 2048),
     ("nr_localbytes", 1024),
     ("parenthesis_stack_size", 7),
     ("call_stack_size", 256),
 ];
+
+/// The speed7 profile's process images, in bytes: a project asking for more gets them.
+const PRESET_IMAGE_BYTES: i64 = 256;
 
 /// awlsim's source types (`type=`): STL sources and symbol tables.
 const AWL_SOURCE: &str = "0";
@@ -44,6 +47,9 @@ const SYMBOL_TABLE: &str = "3";
 pub struct Project {
     /// `<specs nr_accus=…>`: 2 or 4.
     pub accus: u8,
+    /// `<specs nr_inputs=… nr_outputs=…>`: bytes of each process image, when the larger is
+    /// more than the speed7 profile's preset.
+    pub image_bytes: Option<u16>,
     /// `<config clock_memory_byte=…>`: the flag byte, when not −1.
     pub clock_memory: Option<u16>,
     /// `ob_startinfo_enable`: whether the OBs' start information is written.
@@ -137,6 +143,7 @@ pub fn parse_project(
     let mut reader = Reader {
         project: Project {
             accus: 2,
+            image_bytes: None,
             clock_memory: None,
             start_info: false,
             mnemonics: None,
@@ -310,6 +317,17 @@ impl Reader {
             let Some(value) = self.int(node, name, limit) else {
                 continue;
             };
+            if matches!(name, "nr_inputs" | "nr_outputs")
+                && (PRESET_IMAGE_BYTES..=limit).contains(&value)
+                && value
+                    > i64::from(
+                        self.project
+                            .image_bytes
+                            .unwrap_or(PRESET_IMAGE_BYTES as u16),
+                    )
+            {
+                self.project.image_bytes = Some(value as u16);
+            }
             if value > limit {
                 let at = node
                     .attribute_node(name)
@@ -569,6 +587,7 @@ mod tests {
     fn without_settings_the_project_has_awlsim_s_defaults() {
         let project = parse("<awlsim_project format_version=\"1\"/>").unwrap();
         assert_eq!(project.accus, 2);
+        assert_eq!(project.image_bytes, None);
         assert_eq!(project.clock_memory, None);
         assert!(!project.start_info && !project.extensions);
         assert_eq!(project.mnemonics, None);
@@ -581,7 +600,7 @@ mod tests {
     fn every_key_awl_honours_is_read() {
         let project = parse(
             "<awlsim_project format_version=\"1\"><cpu>\
-             <specs nr_accus=\"4\"/>\
+             <specs nr_accus=\"4\" nr_inputs=\"1024\" nr_outputs=\"512\"/>\
              <config clock_memory_byte=\"7\" mnemonics=\"1\" ob_startinfo_enable=\"1\" \
              ext_insns_enable=\"1\" cycle_time_limit_us=\"2000\" run_time_limit_us=\"300\"/>\
              </cpu><language_awl>\
@@ -593,6 +612,7 @@ mod tests {
         )
         .unwrap();
         assert_eq!(project.accus, 4);
+        assert_eq!(project.image_bytes, Some(1024));
         assert_eq!(project.clock_memory, Some(7));
         assert_eq!(project.mnemonics, Some(MnemonicSet::English));
         assert!(project.start_info && project.extensions);

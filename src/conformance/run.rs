@@ -51,10 +51,17 @@ pub fn options(
         files: vec![path.to_path_buf()],
         symbols: symbols.to_vec(),
         // `accus=4` sets the S7 CPU to four accumulators (its S7-400 variant).
-        cpu: profile::find(PROFILE).and_then(|cpu| match accus {
-            Some(count) => profile::with_accumulators(cpu, count),
-            None => Some(cpu),
-        }),
+        cpu: profile::find(PROFILE)
+            .and_then(|cpu| match accus {
+                Some(count) => profile::with_accumulators(cpu, count),
+                None => Some(cpu),
+            })
+            .and_then(
+                |cpu| match project.and_then(|project| project.image_bytes) {
+                    Some(bytes) => profile::with_image_bytes(cpu, bytes),
+                    None => Some(cpu),
+                },
+            ),
         language: language(),
         // A run of no time ends at the first cycle end, as awlsim checks its limit there.
         limit: Some(RunLimit::Duration(limit.max(1))),
