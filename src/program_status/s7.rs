@@ -84,29 +84,6 @@ fn duration(ms: u64) -> String {
     if text.is_empty() { "0MS".into() } else { text }
 }
 
-/// The registers of the block that called the block of `context` (for an FC parameter's
-/// actual), as the VM keeps them.
-fn caller(cpu: &Cpu, context: Context) -> Option<Context> {
-    if context.frames <= cpu.level.level_base {
-        return None;
-    }
-    let frame = cpu.frames.get(context.frames - 1)?;
-    let saved = cpu.s7_frames.get(context.frames - 1)?;
-    let below = context.frames - 1;
-    let previous_local = (below > cpu.level.level_base)
-        .then(|| cpu.s7_frames.get(below - 1).map(|frame| frame.local_base))
-        .flatten();
-    Some(Context {
-        local_base: saved.local_base,
-        previous_local,
-        db: saved.db,
-        di: saved.di,
-        ar2: cpu.level.ar2,
-        params: frame.params,
-        frames: below,
-    })
-}
-
 /// Where `place` is in `context`; `None` for what status does not show (indirect
 /// addresses, test operands).
 fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
@@ -157,7 +134,7 @@ fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
                 Resolved::Constant(value) => Located::Constant(value),
                 Resolved::S7(index) => {
                     let place = *cpu.program.s7.places.get(usize::from(index))?;
-                    locate(cpu, place, caller(cpu, context)?)?.offset(byte, bit)
+                    locate(cpu, place, cpu.caller_context(context)?)?.offset(byte, bit)
                 }
                 _ => return None,
             }

@@ -270,8 +270,9 @@ pub struct Cpu {
     pub local: Vec<u8>,
     /// STEP 7: the DB, DI and AR2 registers each `CALL FB` saved.
     pub fb_saves: Vec<(u16, u16, u32)>,
-    /// STEP 7: what each frame of the block stack saved besides (see [`S7Frame`]).
-    pub s7_frames: BlockStack<S7Frame>,
+    /// STEP 7: what each frame of the block stack saved besides (see [`S7Frame`]), at the
+    /// frame's index: the block stack's length says how many are in use.
+    pub s7_frames: Box<[S7Frame]>,
     /// The running level's registers and position.
     pub level: LevelState,
     pub frames: BlockStack<Frame>,
@@ -346,9 +347,11 @@ impl Cpu {
             },
             // As deep as the block stack, so a call never allocates.
             fb_saves: Vec::with_capacity(usize::from(profile.nesting_limit) * levels_capacity + 1),
-            s7_frames: BlockStack::with_room(
-                usize::from(profile.nesting_limit) * levels_capacity + 1,
-            ),
+            s7_frames: vec![
+                S7Frame::default();
+                usize::from(profile.nesting_limit) * levels_capacity + 1
+            ]
+            .into_boxed_slice(),
             level: LevelState {
                 accu1: 0,
                 accu2: 0,

@@ -276,13 +276,12 @@ impl Cpu {
                 rebase!();
             };
         }
-        // The point at a block change the loop leaves at.
-        macro_rules! point_here {
+        // The point at a block change the loop leaves at, with operation points (with block
+        // points it was marked at the change itself).
+        macro_rules! leaving_point {
             ($clock:expr, $block:expr, $end_pc:expr) => {
                 if OPERATION_POINTS {
                     self.mark_operation($clock, $block, $end_pc);
-                } else {
-                    self.mark_point($clock, $block, $end_pc);
                 }
             };
         }
@@ -303,8 +302,11 @@ impl Cpu {
                     self.note_stretch(end_pc, self.last_point_at, clock);
                     break $run Leave::LevelEnd;
                 }
+                if !OPERATION_POINTS {
+                    self.mark_point(clock, ended, end_pc);
+                }
                 if level_end {
-                    point_here!(clock, ended, end_pc);
+                    leaving_point!(clock, ended, end_pc);
                     self.last_op = (ended, end_pc);
                     break $run Leave::LevelEnd;
                 }
@@ -322,12 +324,9 @@ impl Cpu {
                 let resume = frame.resume as usize;
                 move_to!(resume, frame.start as usize);
                 if clock >= self.attention_at {
-                    point_here!(clock, ended, end_pc);
+                    leaving_point!(clock, ended, end_pc);
                     self.last_op = (ended, end_pc);
                     break $run Leave::Point(Point::BlockEnd);
-                }
-                if !OPERATION_POINTS {
-                    self.mark_point(clock, ended, end_pc);
                 }
             }};
         }
@@ -381,17 +380,17 @@ impl Cpu {
                 pc = entry;
                 time_base = clock;
                 rebase!();
+                if !OPERATION_POINTS {
+                    self.mark_point(clock, caller, call_pc);
+                }
                 if TRACING && self.tracer.enabled {
                     self.clock = clock;
                     self.trace_call(caller, target);
                 }
                 if clock >= self.attention_at {
-                    point_here!(clock, caller, call_pc);
+                    leaving_point!(clock, caller, call_pc);
                     self.last_op = (caller, call_pc);
                     break $run Leave::Point(Point::BlockCall);
-                }
-                if !OPERATION_POINTS {
-                    self.mark_point(clock, caller, call_pc);
                 }
                 continue $run;
             }};

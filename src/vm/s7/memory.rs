@@ -131,16 +131,18 @@ fn data_fault(text: String) -> Fault {
 }
 
 impl Cpu {
-    /// A STEP 7 block call (the frame is pushed): the caller's registers saved, the callee's
-    /// local data placed after the caller's. `false` when the L stack has no room for them.
+    /// A STEP 7 block call (the frame is pushed): the caller's registers saved beside it, the
+    /// callee's local data placed after the caller's. `false` when the L stack has no room.
     #[inline(always)]
     pub(crate) fn enter_s7_block(&mut self, callee: u16) -> bool {
-        // As deep as the block stack, whose push came first: this one always has room.
-        self.s7_frames.push(crate::vm::S7Frame {
-            db: self.level.db,
-            di: self.level.di,
-            local_base: self.level.local_base,
-        });
+        // As long as the block stack's room, whose push came first: the slot is there.
+        if let Some(saved) = self.s7_frames.get_mut(self.frames.len() - 1) {
+            *saved = crate::vm::S7Frame {
+                db: self.level.db,
+                di: self.level.di,
+                local_base: self.level.local_base,
+            };
+        }
         self.level.local_base = self.level.local_end;
         self.level.local_end = self.level.local_base + self.program.local_bytes(callee);
         self.level.local_end as usize <= self.local.len()
@@ -149,7 +151,7 @@ impl Cpu {
     /// A STEP 7 block's end (its frame popped): the caller's registers back.
     #[inline(always)]
     pub(crate) fn leave_s7_block(&mut self) {
-        if let Some(saved) = self.s7_frames.pop() {
+        if let Some(saved) = self.s7_frames.get(self.frames.len()) {
             self.level.db = saved.db;
             self.level.di = saved.di;
             // The called block's locals began where the caller's end.
