@@ -514,6 +514,12 @@ pub static PROFILES: &[Profile] = &[
                 every_ms: 0,
             },
             InterruptOb {
+                ob: 86,
+                priority: 26,
+                summary: "DP slave failure / return",
+                every_ms: 0,
+            },
+            InterruptOb {
                 ob: 41,
                 priority: 17,
                 summary: "hardware interrupt",
@@ -563,6 +569,8 @@ pub static PROFILES: &[Profile] = &[
              OB 80 (priority 26); no OB 80: STOP cause OB80 (System Software for S7-300/400 \
              System and Standard Functions, 1.16 Time Error Organization Block (OB80); VIPA \
              SPEED7 operation list, OB 80)",
+            "a DP station's failure and its return ([[event]] station) call OB 86 (priority \
+             26); no OB 86: STOP cause OB86 (VIPA SPEED7 operation list, OB 86)",
             "SFC 39 DIS_IRT discards new events of all interrupt and asynchronous error OBs \
              (MODE 0), of a class (1) or of one OB (2) until SFC 40 EN_IRT; SFC 41 DIS_AIRT \
              delays those of a higher priority until as many SFC 42 EN_AIRT calls, or until the \

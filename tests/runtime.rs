@@ -65,6 +65,11 @@ fn every_stop_cause_renders_with_line_and_block_stack() {
             "ORGANIZATION_BLOCK OB 1\nBEGIN\n      NOP 0;\nEND_ORGANIZATION_BLOCK\nORGANIZATION_BLOCK OB 35\nBEGIN\n      L 200;\nm:    T MW 0;\n      L 1000;\nn:    LOOP n;\n      L MW 0;\n      LOOP m;\nEND_ORGANIZATION_BLOCK\n",
             "cpu = \"speed7\"\nrun = { for = \"5ms\" }\n[ob35]\ninterval = \"1ms\"\n",
         ),
+        (
+            "awl::stop::ob86",
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A I 0.0;\n      = Q 4.0;\nEND_ORGANIZATION_BLOCK\n",
+            "cpu = \"speed7\"\nrun = { for = \"5ms\" }\n[[event]]\nat = \"2ms\"\nstation = { number = 3, failed = true }\n",
+        ),
     ];
     for (code, program, scenario) in cases {
         let rendered = stop_rendering(&code.replace("::", "_"), program, scenario);

@@ -482,3 +482,69 @@ fn awlsims_reboot_parses_with_the_extensions_and_stops_when_run() {
         _ => panic!("SFC -2 parsed without the extensions"),
     }
 }
+
+/// OB 86 keeps the start information of each call: the failure's in MD 0/4/8, the return's in
+/// MD 12/16/20.
+const OB86: &str = "
+ORGANIZATION_BLOCK OB 86
+BEGIN
+      L     LB 0;
+      L     B#16#39;
+      ==I;
+      JCN   back;
+      L     LD 0;
+      T     MD 0;
+      L     LD 4;
+      T     MD 4;
+      L     LD 8;
+      T     MD 8;
+      BEU;
+back: L     LD 0;
+      T     MD 12;
+      L     LD 4;
+      T     MD 16;
+      L     LD 8;
+      T     MD 20;
+END_ORGANIZATION_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+      L     1;
+END_ORGANIZATION_BLOCK
+";
+
+#[test]
+fn ob86_has_the_station_s_failure_and_return() {
+    passes(
+        OB86,
+        "run = { for = \"10ms\" }\n\
+         [[event]]\nat = \"2ms\"\nstation = { number = 5, failed = true }\n\
+         [[event]]\nat = \"6ms\"\nstation = { number = 5, failed = false }\n\
+         [expect]\n\"MD 0\" = 0x39C41A56\n\"MD 4\" = 0x000007FF\n\"MD 8\" = 0x00000105\n\
+         \"MD 12\" = 0x38C41A56\n\"MD 20\" = 0x00000105\n",
+    );
+}
+
+#[test]
+fn a_station_event_without_ob86_stops_the_cpu() {
+    let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L     1;\nEND_ORGANIZATION_BLOCK\n";
+    passes(
+        program,
+        "run = { for = \"10ms\" }\n\
+         [[event]]\nat = \"2ms\"\nstation = { number = 5, failed = true }\n\
+         [expect]\nmode = \"STOP\"\nstop_cause = \"OB86\"\n",
+    );
+    let Err(NotRun::Failed(reports)) = awl_station_on_s5() else {
+        panic!("a scenario error");
+    };
+    assert!(format!("{reports:?}").contains("`station` belongs to the speed7 profile"));
+}
+
+/// A station event in a scenario for an S5 CPU.
+fn awl_station_on_s5() -> Result<awl::runner::Ran, NotRun> {
+    common::step7::run_on(
+        "s5-115u",
+        "PB 1\n      BE\n",
+        "run = { cycles = 1 }\n[[event]]\nat = \"0ms\"\nstation = { number = 5, failed = true }\n",
+    )
+}

@@ -201,6 +201,18 @@ pub fn cpu_stop_report(cpu: &Cpu, stop: &Stop) -> Report {
         },
         (StopCause::Ob80, StopDetail::Ob(ob)) => StopError::TimeError { ob: *ob, at, stack },
         (StopCause::Ob80, _) => StopError::TimeError { ob: 35, at, stack },
+        (StopCause::Ob86, &StopDetail::Station { station, failed }) => StopError::StationEvent {
+            station,
+            event: station_event(failed),
+            at,
+            stack,
+        },
+        (StopCause::Ob86, _) => StopError::StationEvent {
+            station: 0,
+            event: station_event(true),
+            at,
+            stack,
+        },
         // A halt is reported as one, not as a STOP; should it reach here, it says what it was.
         (StopCause::Halt, _) => StopError::Operation {
             problem: "the run was halted here".into(),
@@ -209,4 +221,9 @@ pub fn cpu_stop_report(cpu: &Cpu, stop: &Stop) -> Report {
         },
     };
     diagnostics::with_source(&cpu.sources, at, error)
+}
+
+/// What happened to a DP station, for a message.
+fn station_event(failed: bool) -> &'static str {
+    if failed { "failed" } else { "returned" }
 }

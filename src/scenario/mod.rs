@@ -382,10 +382,11 @@ impl Scenario {
             let at_ns = errors.keep(duration(&event.at));
             let kinds = usize::from(event.set.is_some())
                 + usize::from(event.interrupt.is_some())
-                + usize::from(event.hw_interrupt.is_some());
+                + usize::from(event.hw_interrupt.is_some())
+                + usize::from(event.station.is_some());
             if kinds != 1 {
                 errors.push(invalid(
-                    "an [[event]] has exactly one of `set`, `interrupt`, `hw_interrupt`",
+                    "an [[event]] has exactly one of `set`, `interrupt`, `hw_interrupt`, `station`",
                     if kinds == 0 { event_span } else { at_span },
                     "this event",
                     None,
@@ -401,6 +402,8 @@ impl Scenario {
                     .map(|ob| happening(Happening::Interrupt { ob }))
             } else if let Some(hardware) = &event.hw_interrupt {
                 errors.keep(self.hardware(hardware)).map(happening)
+            } else if let Some(station) = &event.station {
+                errors.keep(self.station(station)).map(happening)
             } else {
                 None
             };
@@ -503,6 +506,22 @@ impl Scenario {
             module: inner.module,
             channel: inner.channel,
             active_for_ns: duration(&inner.active_for)?,
+        })
+    }
+
+    fn station(&self, station: &Spanned<raw::RawStation>) -> Result<Happening, ScenarioError> {
+        if self.profile.family != Family::Speed7 {
+            return Err(invalid(
+                "`station` belongs to the speed7 profile",
+                span(station),
+                format!("{} has no DP stations", self.profile.name),
+                None,
+            ));
+        }
+        let inner = station.get_ref();
+        Ok(Happening::Station {
+            station: inner.number,
+            failed: inner.failed,
         })
     }
 

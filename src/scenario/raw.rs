@@ -111,6 +111,15 @@ pub struct RawEvent {
     pub set: Option<SpannedTable>,
     pub interrupt: Option<Spanned<String>>,
     pub hw_interrupt: Option<Spanned<RawHardware>>,
+    pub station: Option<Spanned<RawStation>>,
+}
+
+/// A DP station's failure (`failed = true`) or return.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStation {
+    pub number: u8,
+    pub failed: bool,
 }
 
 #[derive(Debug, Deserialize)]

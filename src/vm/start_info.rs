@@ -45,6 +45,8 @@ pub enum Cause {
     /// OB 80: OB `ob` of priority `priority` was requested again while its last request was
     /// still pending or it still ran.
     TimeError { ob: u8, priority: u8 },
+    /// OB 86: DP station `station` failed (`failed`) or returned.
+    Station { station: u8, failed: bool },
 }
 
 /// Event class 1, "start events of standard OBs", identifier 1 ("System Software for
@@ -63,6 +65,14 @@ const OB_NOT_LOADED: u8 = 0xA1;
 const OB_STILL_RUNNING: u8 = 0x02;
 /// The first cyclic interrupt OB; OB 30 + n has event number 16#31 + n (OB 35: 16#36).
 const FIRST_CYCLIC_OB: u8 = 30;
+/// Event class 3, identifier 8: an outgoing event (OB 86: a station's return).
+const OUTGOING_ERROR: u8 = 0x38;
+/// OB 86's error code 16#C4: "failure of a DP station" (VIPA SPEED7 operation list, OB 86).
+const DP_STATION_FAILURE: u8 = 0xC4;
+/// OB86_MDL_ADDR: the logical base address of the DP master, awl's one master system.
+const DP_MASTER_ADDRESS: u16 = 2047;
+/// The DP master system ID in OB86_Z23 (bits 8–15).
+const DP_MASTER_SYSTEM: u8 = 1;
 /// OB 82's error code.
 const DIAGNOSTIC_INTERRUPT: u8 = 0x42;
 /// OB40_IO_FLAG, OB82_IO_FLAG: the module is an input module (awl's modules are).
@@ -244,6 +254,36 @@ impl Cpu {
                     missed[1],
                     missed[2],
                     missed[3],
+                ]
+            }
+            // OB86_Z23 (bytes 8–11): the station's number (bits 0–7) and its master system
+            // (bits 8–15); its own logical address (bits 16–30) is 0, an input (bit 31 0).
+            (86, cause) => {
+                let (class, station) = match cause {
+                    Cause::Station { station, failed } => (
+                        if failed {
+                            INCOMING_ERROR
+                        } else {
+                            OUTGOING_ERROR
+                        },
+                        station,
+                    ),
+                    _ => (INCOMING_ERROR, 0),
+                };
+                let master = DP_MASTER_ADDRESS.to_be_bytes();
+                [
+                    class,
+                    DP_STATION_FAILURE,
+                    priority,
+                    ob,
+                    0,
+                    0,
+                    master[0],
+                    master[1],
+                    0,
+                    0,
+                    DP_MASTER_SYSTEM,
+                    station,
                 ]
             }
             // OB35_PHASE_OFFSET (bytes 6–7) 0, OB35_EXC_FREQ (bytes 10–11) the interval in ms.

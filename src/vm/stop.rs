@@ -28,6 +28,8 @@ pub enum StopCause {
     Ob85,
     /// A time error (OB 35 behind), and no OB 80.
     Ob80,
+    /// A DP station failed or returned, and no OB 86.
+    Ob86,
     /// An awlsim test assertion (`__ASSERT==` …) did not hold.
     Assert,
     /// No STOP: a probe (program status, the debugger) ended the run here.
@@ -37,7 +39,7 @@ pub enum StopCause {
 impl StopCause {
     /// Every code [`StopCause::code`] gives.
     pub const CODES: &'static [&'static str] = &[
-        "ZYK", "STUEB", "LZF", "BCF", "STP", "WECK", "OB85", "OB80", "ASSERT",
+        "ZYK", "STUEB", "LZF", "BCF", "STP", "WECK", "OB85", "OB80", "OB86", "ASSERT",
     ];
 
     /// The cause as the PG shows it (and as scenario files expect it).
@@ -51,6 +53,7 @@ impl StopCause {
             StopCause::Weck => "WECK",
             StopCause::Ob85 => "OB85",
             StopCause::Ob80 => "OB80",
+            StopCause::Ob86 => "OB86",
             StopCause::Assert => "ASSERT",
             StopCause::Halt => "HALT",
         }
@@ -214,6 +217,20 @@ pub enum StopError {
         at: Span,
         stack: String,
     },
+    #[error("STOP OB86: DP station {station} {event}, and OB 86 is not programmed")]
+    #[diagnostic(
+        code(awl::stop::ob86),
+        help(
+            "{stack}\nprogram OB 86 to handle a slave's failure and return: \"If OB 86 has not been programmed, the CPU changes to the STOP mode\" (VIPA SPEED7 operation list, OB 86)"
+        )
+    )]
+    StationEvent {
+        station: u8,
+        event: &'static str,
+        #[label("running here when the station {event}")]
+        at: Span,
+        stack: String,
+    },
 }
 
 impl StopError {
@@ -229,7 +246,8 @@ impl StopError {
             | StopError::WakeUp { at, .. }
             | StopError::IntervalNotAboveDelay { at, .. }
             | StopError::MissingOb85 { at, .. }
-            | StopError::TimeError { at, .. } => *at,
+            | StopError::TimeError { at, .. }
+            | StopError::StationEvent { at, .. } => *at,
         }
     }
 }
@@ -252,6 +270,11 @@ pub enum StopDetail {
     None,
     Text(String),
     Ob(u8),
+    /// SPEED7: DP station `station` failed (`failed`) or returned.
+    Station {
+        station: u8,
+        failed: bool,
+    },
     Module {
         module: u16,
         ob: u8,

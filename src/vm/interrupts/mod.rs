@@ -50,6 +50,8 @@ pub enum Happening {
         channel: u16,
         active_for_ns: u64,
     },
+    /// SPEED7: a DP station fails (`failed`) or returns.
+    Station { station: u8, failed: bool },
 }
 
 /// A change of the input modules: a bit (`bytes` 0) or 1, 2 or 4 bytes from `byte`.
@@ -267,6 +269,16 @@ pub trait Rules {
         _cpu: &mut Cpu,
         _at: u64,
         _source: HardwareSource,
+    ) -> Result<(), Stop> {
+        Ok(())
+    }
+    /// A DP station fails or returns (only the SPEED7 has them).
+    fn station_event(
+        &mut self,
+        _cpu: &mut Cpu,
+        _at: u64,
+        _station: u8,
+        _failed: bool,
     ) -> Result<(), Stop> {
         Ok(())
     }
@@ -628,6 +640,9 @@ impl Cpu {
                     active_until: at.saturating_add(active_for_ns),
                 };
                 self.with_rules(|rules, cpu| rules.hardware_event(cpu, at, source))
+            }
+            &Happening::Station { station, failed } => {
+                self.with_rules(|rules, cpu| rules.station_event(cpu, at, station, failed))
             }
         }
     }

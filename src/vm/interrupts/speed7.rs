@@ -29,6 +29,11 @@
 //! programmed, the CPU changes to the STOP mode"; the SPEED7 operation list, "OB 80 -
 //! CYCL_FLT", says the same). The new request runs later ("The cyclic interrupt that caused the
 //! error is executed later") unless one is still pending: an OB holds one pending request.
+//!
+//! A DP station's failure and its return (VIPA SPEED7 operation list, "OB 86 - RACK_FLT - Slave
+//! Failure / Restart"): "The operating system of the CPU calls OB 86 whenever the failure of a
+//! slave is detected (both when entering and outgoing event). If OB 86 has not been programmed,
+//! the CPU changes to the STOP mode"; "OB 86 may be delayed by means of the SFC 41".
 
 use crate::trace::Event;
 
@@ -66,6 +71,8 @@ pub struct Speed7 {
 /// The cyclic interrupt OB and the time error OB.
 const CYCLIC_OB: u8 = 35;
 const TIME_ERROR_OB: u8 = 80;
+/// The slave failure / restart OB.
+const STATION_OB: u8 = 86;
 const OB35_BEHIND: &str = "its last request has not run yet: a time error (System Software \
      for S7-300/400 System and Standard Functions, 1.16)";
 
@@ -236,6 +243,22 @@ impl Speed7 {
 }
 
 impl Rules for Speed7 {
+    fn station_event(
+        &mut self,
+        cpu: &mut Cpu,
+        at: u64,
+        station: u8,
+        failed: bool,
+    ) -> Result<(), Stop> {
+        let disabled = cpu.engine.disabled.has(STATION_OB);
+        if cpu.program.ob(STATION_OB).is_none() && !disabled {
+            let detail = StopDetail::Station { station, failed };
+            return Err(cpu.stop_at_last_op(StopCause::Ob86, detail));
+        }
+        cpu.request_for(STATION_OB, at, None, Cause::Station { station, failed });
+        Ok(())
+    }
+
     fn hardware_event(
         &mut self,
         cpu: &mut Cpu,
