@@ -28,7 +28,7 @@ pub struct ConformanceArgs {
     /// off]
     #[arg(long)]
     pub quiet: bool,
-    /// A STEP 7 symbol table (ASCII export or CSV with `;`) every test is run with, as
+    /// A STEP 7 symbol table (ASCII export, SDF or CSV with `;`) every test is run with, as
     /// awlsim's project files give one; repeatable [default: none]
     #[arg(long = "symbols", value_name = "FILE")]
     pub symbols: Vec<PathBuf>,

@@ -385,7 +385,7 @@ fn wrong_dialect(file: crate::source::FileId, text: &str, step7: bool) -> Symbol
         SymbolError::WrongDialect {
             found: "STEP 5",
             program: "STEP 7",
-            help: "a STEP 7 program takes a STEP 7 symbol table: the ASCII export (`126,` and fixed columns) or CSV `Symbol;Address;Data type;Comment`",
+            help: "a STEP 7 program takes a STEP 7 symbol table: the ASCII export (`126,` and fixed columns), the System Data Format export (`\"Start\",\"I 0.0\",\"BOOL\",\"\"`) or CSV `Symbol;Address;Data type;Comment`",
             at,
         }
     } else {

@@ -1,8 +1,9 @@
 //! Reading a STEP 7 symbol table: the SIMATIC Manager's ASCII export (`.ASC`, the "SEQ"
 //! format: each line `126,` then the symbol in 24 columns, the address in 12, the data type in
-//! 10, then the comment) or the same four fields as CSV separated by `;` (`"Motor";"Q
-//! 4.0";"BOOL";"Motor contactor"`, quotes optional, `""` a quote inside quotes, a header line
-//! `Symbol;Address;…` allowed). Addresses are read in either mnemonic set (`E 0.0`/`I 0.0`,
+//! 10, then the comment), its System Data Format export (`.SDF`: the four fields quoted and
+//! separated by `,`, `"Motor","Q       4.0","BOOL","Motor contactor"`), or the same four fields
+//! as CSV separated by `;` (`"Motor";"Q 4.0";"BOOL";"Motor contactor"`, quotes optional, `""` a
+//! quote inside quotes, a header line `Symbol;Address;…` allowed). Addresses are read in either mnemonic set (`E 0.0`/`I 0.0`,
 //! `PEW 256`/`PIW 256`, `Z 1`/`C 1`); the data type must fit the address (STEP 7's symbol
 //! editor refuses `MW 10` as BOOL).
 
@@ -20,6 +21,8 @@ pub enum Format {
     Asc,
     /// STEP 7's fields separated by `;`.
     Csv,
+    /// STEP 7's System Data Format: the fields quoted, separated by `,`.
+    Sdf,
     /// A STEP 5 assignment list (`E 1.0  START  comment`, or CSV with commas).
     Step5,
 }
@@ -32,7 +35,8 @@ const TYPE_COLUMNS: usize = 10;
 impl Format {
     /// The format of `text`: ASC when its first line starts with `126,`, CSV when it splits
     /// into three or four `;` fields (a STEP 5 list only starts comment lines with `;`), else
-    /// a STEP 5 list.
+    /// a STEP 5 list; SDF when it is three or four quoted fields separated by `,` (a STEP 5 CSV
+    /// list does not quote its fields).
     pub fn detect(text: &str) -> Format {
         let Some(first) = text
             .lines()
@@ -45,6 +49,11 @@ impl Format {
             return Format::Asc;
         }
         let trimmed = first.trim_start();
+        let sdf = separated_fields(first, 0, ',');
+        let all_quoted = sdf.iter().all(|field| field.quoted);
+        if trimmed.starts_with('"') && (3..=4).contains(&sdf.len()) && all_quoted {
+            return Format::Sdf;
+        }
         let fields = csv_fields(first, 0).len();
         if !trimmed.starts_with(';') && !trimmed.starts_with('#') && (3..=4).contains(&fields) {
             Format::Csv
@@ -60,6 +69,8 @@ struct Field {
     text: String,
     start: usize,
     end: usize,
+    /// It was written in quotes.
+    quoted: bool,
 }
 
 impl Field {
@@ -74,17 +85,20 @@ impl Field {
 
 /// `;`-separated fields, each trimmed; a quoted field loses its quotes and `""` in it is `"`.
 fn csv_fields(line: &str, at: usize) -> Vec<Field> {
+    separated_fields(line, at, ';')
+}
+
+/// The fields of `line` separated by `separator` outside quotes, as [`csv_fields`] reads them.
+fn separated_fields(line: &str, at: usize, separator: char) -> Vec<Field> {
     let mut fields = Vec::new();
     let mut start = 0;
     let mut quoted = false;
-    for (index, c) in line.char_indices().chain([(line.len(), ';')]) {
-        match c {
-            '"' => quoted = !quoted,
-            ';' if !quoted => {
-                fields.push(trimmed_field(&line[start..index], at + start, true));
-                start = index + 1;
-            }
-            _ => {}
+    for (index, c) in line.char_indices().chain([(line.len(), separator)]) {
+        if c == '"' {
+            quoted = !quoted;
+        } else if c == separator && !quoted {
+            fields.push(trimmed_field(&line[start..index], at + start, true));
+            start = index + c.len_utf8();
         }
     }
     fields
@@ -104,11 +118,13 @@ fn trimmed_field(raw: &str, at: usize, csv: bool) -> Field {
             text: inner.replace("\"\"", "\""),
             start: start + 1,
             end: start + 1 + inner.len(),
+            quoted: true,
         },
         None => Field {
             text: text.to_string(),
             start,
             end: start + text.len(),
+            quoted: false,
         },
     }
 }
@@ -177,6 +193,7 @@ pub fn read(file: FileId, text: &str, format: Format, profile: &'static Profile)
                 });
                 continue;
             }
+            Format::Sdf => separated_fields(line, at, ','),
             _ => csv_fields(line, at),
         };
         let header = std::mem::take(&mut first)
@@ -586,6 +603,18 @@ mod tests {
         assert_eq!(address_of(&entries[5]).bit, 1);
         // The name's span is its text in the file, without the padding.
         assert_eq!(&text[entries[1].name_span.start as usize..][..5], "Speed");
+    }
+
+    #[test]
+    fn the_system_data_format_export_is_read() {
+        let text = "\"Start\",\"I       0.0\",\"BOOL\",\"start, the button\"\r\n\
+                    \"Valve\",\"FB    5\",\"FB    5\",\"\"\r\n";
+        assert_eq!(Format::detect(text), Format::Sdf);
+        let (entries, errors) = read_text(text);
+        assert!(errors.is_empty(), "{errors:?}");
+        assert_eq!(entries.len(), 2);
+        assert_eq!(entries[0].name, "Start");
+        assert_eq!(Format::detect("E 1.0,START,button\n"), Format::Step5);
     }
 
     #[test]
