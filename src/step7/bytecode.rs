@@ -340,6 +340,29 @@ pub struct FbCall {
     pub pointers: Vec<(u16, u32)>,
 }
 
+impl FbCall {
+    /// A call of an FB (`system`: of a system FB awl runs itself) on its instance data, with no
+    /// parameter copies yet.
+    pub fn on(
+        instance_db: u16,
+        instance_slot: u16,
+        multi_instance: Option<u32>,
+        system: Option<u16>,
+    ) -> Self {
+        FbCall {
+            instance_db,
+            instance_slot,
+            multi_instance,
+            system,
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            blocks_in: Vec::new(),
+            blocks_out: Vec::new(),
+            pointers: Vec::new(),
+        }
+    }
+}
+
 /// A parameter of a complex type (ARRAY, STRUCT, UDT, STRING, DATE_AND_TIME) copied byte by
 /// byte between its actual and the instance data, `byte` bytes into them.
 #[derive(Debug, Clone, PartialEq)]

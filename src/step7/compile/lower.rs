@@ -1143,22 +1143,9 @@ impl super::Compiler<'_> {
             });
         };
         let instance_slot = self.db_slot(*db, at);
-        let mut fb_call = FbCall {
-            instance_db: *db,
-            instance_slot,
-            multi_instance: None,
-            system: Some(number),
-            inputs: Vec::new(),
-            outputs: Vec::new(),
-            blocks_in: Vec::new(),
-            blocks_out: Vec::new(),
-            pointers: Vec::new(),
-        };
+        let mut fb_call = FbCall::on(*db, instance_slot, None, Some(number));
         self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
-        self.tables.fb_calls.push(fb_call);
-        let index = (self.tables.fb_calls.len() - 1) as u16;
-        self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
-        self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
+        self.emit_fb_call(out, fb_call, None, span);
         Ok(())
     }
 
@@ -1329,19 +1316,9 @@ impl super::Compiler<'_> {
             });
         };
         let instance_slot = self.db_slot(*db, at);
-        let mut fb_call = FbCall {
-            instance_db: *db,
-            instance_slot,
-            multi_instance: None,
-            system: None,
-            inputs: Vec::new(),
-            outputs: Vec::new(),
-            blocks_in: Vec::new(),
-            blocks_out: Vec::new(),
-            pointers: Vec::new(),
-        };
+        let mut fb_call = FbCall::on(*db, instance_slot, None, None);
         self.fb_param_copies(call, &id.to_string(), interface, scope, &mut fb_call);
-        self.emit_fb_call(out, fb_call, block, span);
+        self.emit_fb_call(out, fb_call, Some(block), span);
         Ok(())
     }
 
@@ -1500,22 +1477,9 @@ impl super::Compiler<'_> {
                     at,
                 });
             };
-            let mut fb_call = FbCall {
-                instance_db: 0,
-                instance_slot: 0,
-                multi_instance: Some(offset.0),
-                system: Some(number),
-                inputs: Vec::new(),
-                outputs: Vec::new(),
-                blocks_in: Vec::new(),
-                blocks_out: Vec::new(),
-                pointers: Vec::new(),
-            };
+            let mut fb_call = FbCall::on(0, 0, Some(offset.0), Some(number));
             self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
-            self.tables.fb_calls.push(fb_call);
-            let index = (self.tables.fb_calls.len() - 1) as u16;
-            self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
-            self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
+            self.emit_fb_call(out, fb_call, None, span);
             return Ok(());
         }
         let label = format!("{} {number}", kind.name());
@@ -1524,39 +1488,29 @@ impl super::Compiler<'_> {
             number,
         };
         let interface = self.interfaces.get(&id).cloned().unwrap_or_default();
-        let mut fb_call = FbCall {
-            instance_db: 0,
-            instance_slot: 0,
-            multi_instance: Some(offset.0),
-            system: None,
-            inputs: Vec::new(),
-            outputs: Vec::new(),
-            blocks_in: Vec::new(),
-            blocks_out: Vec::new(),
-            pointers: Vec::new(),
-        };
+        let mut fb_call = FbCall::on(0, 0, Some(offset.0), None);
         self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
         let Some(block) = self.loaded_or_missing(out, id, false, at, span) else {
             return Ok(());
         };
-        self.emit_fb_call(out, fb_call, block, span);
+        self.emit_fb_call(out, fb_call, Some(block), span);
         Ok(())
     }
 
-    /// An FB call as its three ops: copy in and open the instance, run FB `block`, copy out.
-    fn emit_fb_call(&mut self, out: &mut Emitter, call: FbCall, block: u16, span: Span) {
+    /// An FB call as its ops: copy in and open the instance, run FB `block` (none for a system
+    /// FB, which the copy-in op runs itself), copy out.
+    fn emit_fb_call(&mut self, out: &mut Emitter, call: FbCall, block: Option<u16>, span: Span) {
         self.tables.fb_calls.push(call);
         let index = (self.tables.fb_calls.len() - 1) as u16;
         self.emit(out, Op::S7(S7Code::FbEnter { call: index }), span);
-        self.emit(
-            out,
-            Op::Call {
+        if let Some(block) = block {
+            let call = Op::Call {
                 block,
                 conditional: false,
                 params: NO_PARAMS,
-            },
-            span,
-        );
+            };
+            self.emit(out, call, span);
+        }
         self.emit(out, Op::S7(S7Code::FbLeave { call: index }), span);
     }
 }
