@@ -1,5 +1,6 @@
-//! Long runs on a terminal: a progress line after about a second, and Ctrl-C or SIGTERM halting
-//! at the next cycle boundary with a finished trace, the summary and exit code 130.
+//! Long runs on a terminal: a progress line after about a second (never from the background),
+//! and Ctrl-C or SIGTERM halting at the next cycle boundary with a finished trace, the summary
+//! and exit code 130.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -76,4 +77,55 @@ fn a_short_run_shows_no_progress() {
     let output = session.exp_eof().unwrap();
     assert!(!output.contains("running:"), "{output}");
     assert!(output.contains("cycles: 3"), "{output}");
+}
+
+/// An interactive shell on a terminal, with job control, in the repository.
+fn shell() -> rexpect::session::PtyReplSession {
+    let mut shell = rexpect::spawn_bash(Some(30_000)).unwrap();
+    shell.send_line("set -m").unwrap();
+    shell.wait_for_prompt().unwrap();
+    shell
+}
+
+#[test]
+fn a_background_run_draws_nothing_and_halts_with_its_summary() {
+    let mut shell = shell();
+    shell
+        .send_line(&format!(
+            "{AWL} run programs/fig5_2.awl --for 3600s & sleep 2; kill -TERM $!; wait $!; echo EXIT=$?"
+        ))
+        .unwrap();
+    let output = shell.exp_string("EXIT=130").unwrap();
+    assert!(output.contains("halted: interrupted"), "{output}");
+    assert!(output.contains("cpu: sinumerik-840c"), "{output}");
+    assert!(
+        !output.contains("running:"),
+        "no progress line from the background: {output}"
+    );
+}
+
+#[test]
+fn a_run_under_timeout_on_a_terminal_ends_with_its_summary() {
+    let mut shell = shell();
+    shell
+        .send_line(&format!(
+            "timeout 2 {AWL} run programs/fig5_2.awl --cycles 100000000; echo EXIT=$?"
+        ))
+        .unwrap();
+    let output = shell.exp_string("EXIT=124").unwrap();
+    assert!(output.contains("halted: interrupted"), "{output}");
+    assert!(output.contains("instructions:"), "{output}");
+}
+
+#[test]
+fn the_debugger_does_not_prompt_from_the_background() {
+    let mut shell = shell();
+    shell
+        .send_line(&format!(
+            "{AWL} debug programs/fig5_2.awl & wait $!; echo EXIT=$?"
+        ))
+        .unwrap();
+    let output = shell.exp_string("EXIT=2").unwrap();
+    assert!(output.contains("awl::debug::background"), "{output}");
+    assert!(output.contains("--commands"), "{output}");
 }

@@ -13,6 +13,7 @@ use crate::debug::{Debugger, Session};
 use crate::runner;
 
 use super::run::{ProgramArgs, RunLength, not_run, program_options};
+use super::terminal::in_foreground;
 use super::watch::{install_handler, take_interrupt};
 use super::{Console, EXIT_OK, EXIT_STOP, EXIT_USAGE};
 
@@ -39,15 +40,39 @@ struct CommandsFileError {
     reason: String,
 }
 
-fn input(args: &DebugArgs) -> Result<Input, CommandsFileError> {
+#[derive(Debug, Error, Diagnostic)]
+#[error("awl debug runs in the background, so the terminal is not its to prompt on")]
+#[diagnostic(
+    code(awl::debug::background),
+    help("run it in the foreground (`fg`), or give the commands with `--commands FILE`")
+)]
+struct BackgroundError;
+
+#[derive(Debug, Error, Diagnostic)]
+enum InputError {
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    CommandsFile(#[from] CommandsFileError),
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Background(#[from] BackgroundError),
+}
+
+fn input(args: &DebugArgs) -> Result<Input, InputError> {
+    let stdin = std::io::stdin();
     match &args.commands {
         Some(path) => std::fs::read_to_string(path)
             .map(|text| Input::script(&text))
-            .map_err(|error| CommandsFileError {
-                path: path.display().to_string(),
-                reason: error.to_string(),
+            .map_err(|error| {
+                CommandsFileError {
+                    path: path.display().to_string(),
+                    reason: error.to_string(),
+                }
+                .into()
             }),
-        None if std::io::stdin().is_terminal() => Ok(Input::prompt().unwrap_or_else(Input::stdin)),
+        None if in_foreground(&stdin) => Ok(Input::prompt().unwrap_or_else(Input::stdin)),
+        // Reading a terminal another job holds would stop awl (SIGTTIN) until it is killed.
+        None if stdin.is_terminal() => Err(BackgroundError.into()),
         None => Ok(Input::stdin()),
     }
 }

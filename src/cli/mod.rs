@@ -9,6 +9,7 @@ mod help;
 mod run;
 mod source;
 mod status;
+mod terminal;
 mod watch;
 
 use std::path::PathBuf;

@@ -1,13 +1,13 @@
 //! Long runs: a progress line on a terminal, and Ctrl-C or SIGTERM halting the run at the next
 //! cycle boundary (a second one ends the process at once).
 
-use std::io::IsTerminal;
 use std::sync::Once;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use super::terminal::in_foreground;
 use crate::trace::format_ms;
 use crate::vm::Cpu;
 
@@ -46,7 +46,6 @@ pub struct Watch {
     started: Instant,
     boundaries: u64,
     bar: Option<ProgressBar>,
-    terminal: bool,
 }
 
 impl Watch {
@@ -56,7 +55,6 @@ impl Watch {
             started: Instant::now(),
             boundaries: 0,
             bar: None,
-            terminal: std::io::stderr().is_terminal(),
         }
     }
 
@@ -66,11 +64,16 @@ impl Watch {
             return false;
         }
         self.boundaries += 1;
-        if !self.terminal || !self.boundaries.is_multiple_of(CYCLES_PER_LOOK) {
+        if !self.boundaries.is_multiple_of(CYCLES_PER_LOOK) {
             return true;
         }
         let wall = self.started.elapsed();
         if wall < QUIET_FOR {
+            return true;
+        }
+        // Asked at every look: a job can be moved to the background and back (`bg`, `fg`).
+        if !in_foreground(&std::io::stderr()) {
+            self.remove_bar();
             return true;
         }
         let bar = self.bar.get_or_insert_with(|| {
@@ -89,10 +92,18 @@ impl Watch {
     }
 
     /// Removes the progress line; whether the run was halted by Ctrl-C or SIGTERM.
-    pub fn finish(self) -> bool {
-        if let Some(bar) = self.bar {
+    pub fn finish(mut self) -> bool {
+        self.remove_bar();
+        HALT.load(Ordering::Relaxed)
+    }
+
+    /// Clears the progress line, or leaves it as it is when the terminal is no longer awl's.
+    fn remove_bar(&mut self) {
+        if let Some(bar) = self.bar.take() {
+            if !in_foreground(&std::io::stderr()) {
+                bar.set_draw_target(ProgressDrawTarget::hidden());
+            }
             bar.finish_and_clear();
         }
-        HALT.load(Ordering::Relaxed)
     }
 }
