@@ -38,8 +38,8 @@ fn build() -> PathBuf {
     let page = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/web/awl-playground.html");
     let size = std::fs::metadata(&page).expect("the page is built").len();
     // One file for the page, the wasm of both dialects' front ends and VM (with STEP 7's
-    // complex types, pointers and system blocks), and the samples: 1.05 MB with the module
-    // gzipped and without its names section (3.60 MB before).
+    // complex types, pointers and system blocks), and the samples: 1.05 MB, the module gzipped
+    // and without its names section.
     assert!(size < 1_200_000, "the page is {size} bytes");
     page
 }
