@@ -891,11 +891,13 @@ function togglePause() {
 
 // ---------------------------------------------------------------------------------------------
 
-function wasmBytes() {
-  const binary = atob(AWL_WASM_BASE64);
-  const bytes = new Uint8Array(binary.length);
-  for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);
-  return bytes;
+/** The module's bytes: the page holds them gzipped (a third of their size), as base64. */
+async function wasmBytes() {
+  const binary = atob(AWL_WASM_GZIP_BASE64);
+  const gzipped = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; i++) gzipped[i] = binary.charCodeAt(i);
+  const inflated = new Blob([gzipped]).stream().pipeThrough(new DecompressionStream("gzip"));
+  return new Response(inflated).arrayBuffer();
 }
 
 function wire() {
@@ -950,18 +952,10 @@ function wire() {
   $("pause").addEventListener("click", togglePause);
 }
 
-// Compiled once, synchronously where the browser allows it for a module of this size (current
-// ones do), else asynchronously; the page and each worker instantiate the same module.
-function start() {
-  const bytes = wasmBytes();
-  let module = null;
-  try {
-    module = new WebAssembly.Module(bytes);
-  } catch (refused) {
-    status("loading…");
-    WebAssembly.compile(bytes).then(begin);
-  }
-  if (module) begin(module);
+// Compiled once; the page and each worker instantiate the same module.
+async function start() {
+  status("loading…");
+  begin(await WebAssembly.compile(await wasmBytes()));
 }
 
 function begin(module) {
@@ -976,4 +970,7 @@ function begin(module) {
   applyAddress();
 }
 
-start();
+start().catch((error) => {
+  status(`awl could not load in this browser: ${error}`);
+  throw error;
+});
