@@ -324,7 +324,12 @@ fn the_json_state_adds_the_declared_view_beside_the_bytes() {
     let db5 = state["declared_data_blocks"]["DB 5"].as_array().unwrap();
     assert_eq!(keys(&db5[1]), ["address", "name", "type", "value"]);
     assert_eq!(
-        (&db5[1]["name"], &db5[1]["type"], &db5[1]["address"], &db5[1]["value"]),
+        (
+            &db5[1]["name"],
+            &db5[1]["type"],
+            &db5[1]["address"],
+            &db5[1]["value"]
+        ),
         (
             &Value::from("gain"),
             &Value::from("DINT"),

@@ -127,7 +127,13 @@ fn value_at(name: String, at: BitOffset, format: Format) -> DeclaredValue {
 }
 
 /// `ty` at `at` named `name`, element by element.
-fn flatten(out: &mut Vec<DeclaredValue>, name: String, at: BitOffset, ty: &DataType, types: &Types) {
+fn flatten(
+    out: &mut Vec<DeclaredValue>,
+    name: String,
+    at: BitOffset,
+    ty: &DataType,
+    types: &Types,
+) {
     let format = match ty {
         DataType::Bool => Format::Bool,
         DataType::Byte => Format::Byte,
@@ -181,7 +187,13 @@ fn members_of(
     let (offsets, _) = struct_layout(members, types);
     for (member, offset) in members.iter().zip(offsets) {
         let member_at = BitOffset(at.0 + offset.0);
-        flatten(out, format!("{name}.{}", member.name.text), member_at, &member.ty, types);
+        flatten(
+            out,
+            format!("{name}.{}", member.name.text),
+            member_at,
+            &member.ty,
+            types,
+        );
     }
 }
 
@@ -205,17 +217,18 @@ fn instance(
 /// The indices of an array's elements in storage order, the last one fastest: `1`, `2` or
 /// `1,0`, `1,1`.
 fn indices(dims: &[(i32, i32)]) -> Vec<String> {
-    dims.iter().fold(vec![String::new()], |prefixes, &(low, high)| {
-        prefixes
-            .iter()
-            .flat_map(|prefix| {
-                (low..=high).map(move |index| match prefix.as_str() {
-                    "" => index.to_string(),
-                    _ => format!("{prefix},{index}"),
+    dims.iter()
+        .fold(vec![String::new()], |prefixes, &(low, high)| {
+            prefixes
+                .iter()
+                .flat_map(|prefix| {
+                    (low..=high).map(move |index| match prefix.as_str() {
+                        "" => index.to_string(),
+                        _ => format!("{prefix},{index}"),
+                    })
                 })
-            })
-            .collect()
-    })
+                .collect()
+        })
 }
 
 /// Each declared value of a data block with its value in `bytes`.
@@ -240,7 +253,12 @@ fn text(declared: &DeclaredValue, bytes: &[u8]) -> String {
     let word = || u16::from_be_bytes([raw[0], raw[1]]);
     let double = || u32::from_be_bytes([raw[0], raw[1], raw[2], raw[3]]);
     match declared.format {
-        Format::Bool => if raw[0] >> declared.bit & 1 == 1 { "TRUE" } else { "FALSE" }.into(),
+        Format::Bool => if raw[0] >> declared.bit & 1 == 1 {
+            "TRUE"
+        } else {
+            "FALSE"
+        }
+        .into(),
         Format::Byte => s7::byte(raw[0]),
         Format::Char => char_text(raw[0]),
         Format::Word => format!("W#16#{:04X}", word()),

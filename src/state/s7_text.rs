@@ -55,7 +55,11 @@ fn data_block(out: &mut String, state: &State, db: u16, bytes: &BTreeMap<String,
 /// A data block by its declaration, as STEP 7's data view lists it: `DB5.setpoint = 1234`,
 /// the names aligned.
 fn declared_block(out: &mut String, db: u16, values: &[ValueView]) {
-    let width = values.iter().map(|value| value.name.len()).max().unwrap_or(0);
+    let width = values
+        .iter()
+        .map(|value| value.name.len())
+        .max()
+        .unwrap_or(0);
     for value in values {
         let _ = writeln!(out, "  DB{db}.{:<width$} = {}", value.name, value.value);
     }

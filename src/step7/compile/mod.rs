@@ -99,7 +99,10 @@ pub fn compile(
         .map(|(&number, layout)| (number, declared::values(layout, &compiler.types)))
         .filter(|(_, values)| !values.is_empty())
         .collect();
-    compiler.tables.declared_dbs.sort_by_key(|(number, _)| *number);
+    compiler
+        .tables
+        .declared_dbs
+        .sort_by_key(|(number, _)| *number);
     let blocks = logic
         .iter()
         .map(|(block, id, set)| compiler.compile_block(block, *id, *set))
