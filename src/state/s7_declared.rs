@@ -336,7 +336,9 @@ fn time_of_day(ms: u32) -> String {
 fn date(days: u16) -> String {
     let mut year = 1990u32;
     let mut days = u32::from(days);
-    let leap = |year: u32| year % 4 == 0 && (year % 100 != 0 || year % 400 == 0);
+    let leap = |year: u32| {
+        year.is_multiple_of(4) && (!year.is_multiple_of(100) || year.is_multiple_of(400))
+    };
     loop {
         let in_year = if leap(year) { 366 } else { 365 };
         if days < in_year {
@@ -380,7 +382,7 @@ mod tests {
         assert_eq!(shown(Format::Real, &1.5f32.to_be_bytes()), "1.5");
         assert_eq!(shown(Format::Word, &[0x12, 0x34]), "W#16#1234");
         assert_eq!(shown(Format::Bool, &[1]), "TRUE");
-        assert_eq!(shown(Format::Char, &[b'A']), "'A'");
+        assert_eq!(shown(Format::Char, b"A"), "'A'");
         assert_eq!(shown(Format::Time, &1500i32.to_be_bytes()), "T#1S500MS");
         assert_eq!(shown(Format::Time, &(-1000i32).to_be_bytes()), "T#-1S");
         assert_eq!(shown(Format::S5Time, &[0x12, 0x50]), "S5T#25S");
