@@ -13,7 +13,7 @@ use crate::ast::{
     Statement,
 };
 use crate::compiler::describe_decl;
-use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode, ParamKind};
+use crate::mnemonics::{self, BlockKind, ConstFormat, MnemonicSet, OpCode, ParamKind};
 use crate::parser::ParseError;
 use crate::source::Span;
 
@@ -23,7 +23,8 @@ const OB_1: BlockId = BlockId {
 };
 
 /// Gives each file's fragment (`fragments[i]`: file `i` starts with one, in `blocks[0]`) its
-/// block, and returns the notes and the errors of undeclared formal operands.
+/// block, declares the formal operands a fragment or an FB without `DES` lines uses, and
+/// returns the notes.
 pub fn place(units: &mut [SourceUnit], fragments: &[bool]) -> Vec<ParseError> {
     let is_fragment = |file: usize, index: usize| index == 0 && fragments[file];
     let mut used = HashSet::new();
@@ -50,17 +51,26 @@ pub fn place(units: &mut [SourceUnit], fragments: &[bool]) -> Vec<ParseError> {
     });
     let mut diagnostics = Vec::new();
     for (file, unit) in units.iter_mut().enumerate() {
+        let set = unit.mnemonics;
+        for (index, block) in unit.blocks.iter_mut().enumerate() {
+            if let BlockBody::Logic(body) = &mut block.body
+                && !is_fragment(file, index)
+                && block.id.kind.is_function()
+                && body.params.is_empty()
+            {
+                diagnostics.extend(declare_from_use(body, set));
+            }
+        }
         if !fragments[file] {
             continue;
         }
-        let set = unit.mnemonics;
         let block = &mut unit.blocks[0];
         let BlockBody::Logic(body) = &mut block.body else {
             continue;
         };
         let needs_fb = needs_function_block(body);
         if needs_fb {
-            diagnostics.extend(declare_undeclared(body, set));
+            diagnostics.extend(declare_from_use(body, set));
         }
         end_block(body, block.header);
         let mut calls = false;
@@ -206,48 +216,76 @@ fn generated_ob1(fb: BlockId, at: Span) -> Block {
     }
 }
 
-/// Formal operands `=NAME` the fragment uses without a `DES` line: one error per name, with the
-/// line to add; the name is then declared with the kind its first use implies, so its uses are
-/// not reported again. A jump's `=M001` is a label, not a formal operand.
-fn declare_undeclared(body: &mut LogicBody, set: MnemonicSet) -> Vec<ParseError> {
-    let mut errors = Vec::new();
-    for index in 0..body.statements.len() {
-        let statement = &body.statements[index];
+/// Formal operands `=NAME` a block uses without a `DES` line (a fragment's, or an FB printed
+/// without its declarations): each is declared with the kind and format its uses imply, and
+/// one note lists them with the lines that would declare them. A jump's `=M001` and the
+/// block's own labels are no formal operands.
+fn declare_from_use(body: &mut LogicBody, set: MnemonicSet) -> Option<ParseError> {
+    let labels: HashSet<String> = body
+        .statements
+        .iter()
+        .filter_map(|statement| Some(statement.label.as_ref()?.text.to_ascii_uppercase()))
+        .collect();
+    let declared = body.params.len();
+    for statement in &body.statements {
         let Operand::Symbol(name) = &statement.operand else {
             continue;
         };
-        let declared = body
-            .params
-            .iter()
-            .any(|param| param.name.text.eq_ignore_ascii_case(name));
-        if declared || is_label_jump(statement.op) {
+        if is_label_jump(statement.op) || labels.contains(&name.to_ascii_uppercase()) {
             continue;
         }
         let (kind, format) = implied_kind(statement.op);
-        let decl = ParamDecl {
-            name: Name {
-                text: name.clone(),
+        match body
+            .params
+            .iter_mut()
+            .position(|param| param.name.text.eq_ignore_ascii_case(name))
+        {
+            // A later write makes an input of the same format an output (`A =X` … `= =X`).
+            Some(index) if index >= declared => {
+                let param = &mut body.params[index];
+                if param.kind == ParamKind::Input
+                    && kind == ParamKind::Output
+                    && param.format == format
+                {
+                    param.kind = kind;
+                }
+            }
+            Some(_) => {}
+            None => body.params.push(ParamDecl {
+                name: Name {
+                    text: name.clone(),
+                    span: statement.operand_span,
+                },
+                kind,
+                format,
                 span: statement.operand_span,
-            },
-            kind,
-            format,
-            span: statement.operand_span,
-        };
-        let des = match set {
-            MnemonicSet::English => mnemonics::DECLARATION_EN,
-            MnemonicSet::German => mnemonics::DECLARATION_DE,
-        };
-        errors.push(ParseError::UndeclaredFormal {
-            name: name.clone(),
-            at: statement.operand_span,
-            help: format!(
-                "declare it before the first statement: `{des} :{name} {}`",
-                describe_decl(&decl, set)
-            ),
-        });
-        body.params.push(decl);
+            }),
+        }
     }
-    errors
+    let inferred = &body.params[declared..];
+    let first = inferred.first()?;
+    let des = match set {
+        MnemonicSet::English => mnemonics::DECLARATION_EN,
+        MnemonicSet::German => mnemonics::DECLARATION_DE,
+    };
+    let list: Vec<String> = inferred
+        .iter()
+        .map(|param| format!("={} ({})", param.name.text, describe_decl(param, set)))
+        .collect();
+    let lines: Vec<String> = inferred
+        .iter()
+        .map(|param| format!("`{des} :{} {}`", param.name.text, describe_decl(param, set)))
+        .collect();
+    Some(ParseError::FormalsFromUse {
+        list: list.join(", "),
+        first: first.name.text.clone(),
+        at: first.span,
+        help: format!(
+            "no `{des}` line declares them; to choose their kinds, declare them before the \
+             first statement: {}",
+            lines.join(", ")
+        ),
+    })
 }
 
 fn is_label_jump(op: OpCode) -> bool {
@@ -263,17 +301,26 @@ fn is_label_jump(op: OpCode) -> bool {
     )
 }
 
-/// The parameter kind a use implies: a bit input for scanning, a bit output for `=`, `S`, `R`,
-/// a word for `L` and `T`, a timer or counter for their operations.
+/// The parameter kind a use implies: a bit input for scanning, a bit output for `=`, `S`, `R`
+/// and `RB`, a word input for `L`, a word output for `T`, a timer or counter for their
+/// operations (`RD` resets either: a timer), a data constant for `LW` (`KH`) and `LD` (`KF`).
 fn implied_kind(op: OpCode) -> (ParamKind, Option<ParamFormat>) {
     use OpCode::*;
     match op {
         And | AndNot | Or | OrNot => (ParamKind::Input, Some(ParamFormat::Bit)),
-        Assign | Set | Reset => (ParamKind::Output, Some(ParamFormat::Bit)),
+        Assign | Set | Reset | ResetBinary => (ParamKind::Output, Some(ParamFormat::Bit)),
         Transfer => (ParamKind::Output, Some(ParamFormat::Word)),
         TimerPulse | TimerExtendedPulse | TimerOnDelay | TimerStoredOnDelay | TimerOffDelay
-        | Enable => (ParamKind::Timer, None),
+        | Enable | ResetDigital => (ParamKind::Timer, None),
         CountUp | CountDown => (ParamKind::Counter, None),
+        LoadBitPattern => (
+            ParamKind::Data,
+            Some(ParamFormat::Constant(ConstFormat::Hex)),
+        ),
+        LoadDecimal => (
+            ParamKind::Data,
+            Some(ParamFormat::Constant(ConstFormat::Fixed)),
+        ),
         _ => (ParamKind::Input, Some(ParamFormat::Word)),
     }
 }
@@ -352,25 +399,54 @@ mod tests {
     }
 
     #[test]
-    fn undeclared_formal_operands_are_reported_once_per_name() {
-        let built =
-            check(&["      A =EIN\n      AN =EIN\n      = =AUS\n      JC =M001\nM001 :BE\n"]);
+    fn undeclared_formal_operands_are_declared_from_their_use_with_one_note() {
+        let built = check(&[
+            "      A =EIN\n      AN =EIN\n      = =AUS\n      L =WERT\n      T =ZIEL\n\
+             \x20     JC =M001\nM001 :A =MERK\n      = =MERK\n      RB =FMSS\n      LW =KON\n",
+        ]);
         let codes = codes_and_messages(&built);
         assert_eq!(
             codes,
             [
                 "awl::parse::fragment: statements before any block header are taken as FB 1",
-                "awl::parse::undeclared_formal: formal operand `=EIN` is not declared",
-                "awl::parse::undeclared_formal: formal operand `=AUS` is not declared",
+                "awl::parse::formals_from_use: formal operands declared from their use: \
+                 =EIN (I BI), =AUS (Q BI), =WERT (I W), =ZIEL (Q W), =MERK (Q BI), =FMSS (Q BI), \
+                 =KON (D KH)",
             ]
         );
-        let help = |index: usize| {
-            miette::Diagnostic::help(&built.diagnostics[index])
-                .unwrap()
-                .to_string()
-        };
-        assert!(help(1).ends_with("`DES :EIN I BI`"), "{}", help(1));
-        assert!(help(2).ends_with("`DES :AUS Q BI`"), "{}", help(2));
+        assert!(!built.has_errors());
+        let help = miette::Diagnostic::help(&built.diagnostics[1])
+            .unwrap()
+            .to_string();
+        assert!(help.contains("`DES :EIN I BI`, `DES :AUS Q BI`"), "{help}");
+    }
+
+    #[test]
+    fn an_fb_printed_without_its_des_lines_gets_them_from_its_use() {
+        let built = check(&[
+            "OB 1\n      JU FB 5\nNAME :MOTOR\nEIN  :I 0.0\nAUS  :Q 4.0\n      BE\n\
+             FB 5\nNAME :MOTOR\n      A =EIN\n      = =AUS\n      JC =M001\nM001 :BE\n",
+        ]);
+        assert_eq!(
+            codes_and_messages(&built),
+            [
+                "awl::parse::formals_from_use: formal operands declared from their use: \
+              =EIN (I BI), =AUS (Q BI)"
+            ]
+        );
+    }
+
+    #[test]
+    fn an_fb_with_des_lines_keeps_its_undefined_operand_errors() {
+        let built = check(&[
+            "OB 1\n      BE\nFB 5\nNAME :MOTOR\nDES :EIN I BI\n      A =EIN\n      = =AUS\n      BE\n",
+        ]);
+        assert!(built.has_errors());
+        assert!(
+            codes_and_messages(&built)
+                .iter()
+                .all(|code| !code.contains("formals_from_use"))
+        );
     }
 
     #[test]
@@ -378,5 +454,6 @@ mod tests {
         let built = check(&["      U =EIN\n      = A 4.0\n"]);
         let help = miette::Diagnostic::help(&built.diagnostics[1]).unwrap();
         assert!(help.to_string().ends_with("`BEZ :EIN E BI`"), "{help}");
+        assert!(!built.has_errors());
     }
 }

@@ -472,19 +472,28 @@ pub static PROFILES: &[Profile] = &[
         title: "VIPA SPEED7: hardware interrupts OB 40/OB 41, cyclic interrupt OB 35, OB 80/82/85, \
                 SFC 39-42",
         manual: "VIPA SPEED7 operation list, OB 40/OB 41 hardware interrupts, OB 35, OB 80, OB 82, \
-                 OB 85; System Software for S7-300/400 System and Standard Functions, 12",
+                 OB 85; System Software for S7-300/400 System and Standard Functions, 12; \
+                 operand ranges: VIPA System 300S SPEED7 CPU manual (CPU 315SB, HB140), \
+                 Hardware description, Technical data",
         sizes: Sizes {
-            // The SPEED7 CPUs' sizes: process images of 256 bytes each (their preset; larger
-            // ones are set in a hardware configuration, which a text program lacks), 8192 flag
-            // bytes, 8192 bytes of peripheral inputs and outputs (VIPA System 300S CPU
-            // manuals, technical data).
+            // The SPEED7 CPUs' sizes, from the technical data table of the VIPA System 300S
+            // SPEED7 CPU manuals (CPU 315SB/DPM 315-2AG12, HB140, Hardware description,
+            // Technical data: "Timers/Counters", "Bit memories", "Input/Output I/O address
+            // area", "Process image"): process images of 256 bytes each (their preset; up to
+            // 2048 are set in a hardware configuration, which a text program lacks, see
+            // `MAX_S7_IMAGE_BYTES`), 8192 flag bytes, 8192 bytes of peripheral inputs and
+            // outputs, 512 S7 timers and 512 S7 counters, twice an S7-300's 256.
             image_bytes: 256,
             flag_bytes: 8192,
             peripheral_bytes: 8192,
-            timers: 256,
-            counters: 256,
+            timers: 512,
+            counters: 512,
             data_words: 4096,
         },
+        // Nesting depth per priority class 16 (same table, "Blocks"); the table's 8191 data
+        // blocks and 1024 bytes of local data per priority class are stated in the rules:
+        // awl takes DB numbers up to 65535 and one 64 KB L stack, so a program written for a
+        // larger CPU still runs.
         nesting_limit: 16,
         nesting: Nesting::PerLevel,
         accumulators: 2,
@@ -569,6 +578,12 @@ pub static PROFILES: &[Profile] = &[
              OB 80 (priority 26); no OB 80: STOP cause OB80 (System Software for S7-300/400 \
              System and Standard Functions, 1.16 Time Error Organization Block (OB80); VIPA \
              SPEED7 operation list, OB 80)",
+            "operand ranges: T 0 to 511, C 0 to 511, M bytes 0 to 8191, I/Q bytes 0 to 255 (the \
+             preset process image; up to 2047 with a hardware configuration's), PI/PQ bytes 0 to \
+             8191, block nesting depth 16 per priority class; the CPU has DB 1 to 8191 and 1024 \
+             bytes of local data per priority class, where awl takes DB numbers up to 65535 and \
+             one 64 KB L stack (VIPA System 300S SPEED7 CPU manual, CPU 315SB, Hardware \
+             description, Technical data)",
             "a DP station's failure and its return ([[event]] station) call OB 86 (priority \
              26); no OB 86: STOP cause OB86 (VIPA SPEED7 operation list, OB 86)",
             "SFC 39 DIS_IRT discards new events of all interrupt and asynchronous error OBs \

@@ -70,6 +70,8 @@ fn operand_ranges_per_area_and_cpu() {
         ("s5-95f", "L  DW", "255", "256", "DW 0…255"),
         ("speed7", "A  F", "8191.0", "8192.0", "F 0…8191"),
         ("speed7", "L  IW", "254", "255", "IW 0…254"),
+        ("speed7", "A  T", "511", "512", "T 0…511"),
+        ("speed7", "A  C", "511", "512", "C 0…511"),
     ];
     for (cpu, op, highest, beyond, range) in cases {
         let ok = in_pb(&format!("{op} {highest}"));

@@ -60,9 +60,14 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
             "0000 :A  I 0.0\n0001 :AN F 10.1\n0002 :=  Q 4.0\n".into(),
         ),
         (
-            "awl::parse::undeclared_formal",
+            "awl::parse::bare_constant",
             "sinumerik-840c",
-            "      A  =EIN\n      AN =EIN\n      =  Q 4.0\n".into(),
+            "PB 1\n      L  1\n      T  FW 10\n      BE\n".into(),
+        ),
+        (
+            "awl::parse::formals_from_use",
+            "sinumerik-840c",
+            "      A  =EIN\n      AN =EIN\n      =  =AUS\n".into(),
         ),
         (
             "awl::parse::step7_source",

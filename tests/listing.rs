@@ -110,6 +110,10 @@ fn each_listing_element_alone() {
         "PB 3\n0000 :NOP 0\n0001 :***\n***\n:***\n      BE\n",
         // A label after the address.
         "PB 3\n0000 M001 :NOP 0\n      BE\n",
+        // A label between the address's colon and its own (`0037: M004: L DW12`).
+        "PB 3\n0000: M001: NOP 0\n      BE\n",
+        "PB 3\n0000 :M001 :NOP 0\n      BE\n",
+        "PB 3\n0000 :NOP 0\n001F :M001 :NOP 0\n      BE\n",
     ];
     for case in cases {
         let built = build(&[("case.awl", case)], &[]);
@@ -413,4 +417,15 @@ fn the_sample_listings_are_true_to_the_pg() {
         assert!(!built.has_errors(), "{:#?}", built.diagnostics);
         assert_eq!(awl::dump::listing::listing(&built), text, "{program}");
     }
+}
+
+#[test]
+fn a_label_after_the_address_s_colon_is_the_statement_s_label() {
+    let pg = "FB 1\nNAME :X\n0000 :A I 0.0\n0001 :JC =M004\n0002 :L KF +1\n\
+              0037: M004: L DW12\n0038 :M005 :T DW 13\n0039 :JU =M005\n003A :BE\n";
+    let plain = "FB 1\nNAME :X\n      A I 0.0\n      JC =M004\n      L KF +1\n\
+                 M004: L DW12\nM005: T DW 13\n      JU =M005\n      BE\n";
+    let listing = clean(&[("pg.awl", pg)], &[]);
+    let written = clean(&[("plain.awl", plain)], &[]);
+    assert_eq!(code(&listing, "FB 1"), code(&written, "FB 1"));
 }

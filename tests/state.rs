@@ -123,6 +123,7 @@ fn json_state_of_a_step7_program_has_bytes_registers_and_br() {
             "accu",
             "counters",
             "data_blocks",
+            "declared_data_blocks",
             "images",
             "mode",
             "open_db",
@@ -270,4 +271,85 @@ fn an_fb_s_word_parameter_and_a_word_to_an_output_module_are_words() {
         lines,
         ["QW 6    = KF +300 = KH 012C", "FW 8    = KF -2 = KH FFFE"]
     );
+}
+
+/// The `--state` lines of a STEP 7 program from its first data block on.
+fn step7_data_lines(program: &str) -> Vec<String> {
+    let (stdout, stderr) = awl(&["run", program, "--cycles", "2", "--state"]);
+    assert!(stderr.is_empty(), "{stderr}");
+    stdout
+        .lines()
+        .skip_while(|line| !line.trim_start().starts_with("DB5."))
+        .map(|line| line.trim().to_string())
+        .collect()
+}
+
+#[test]
+fn a_step7_data_block_shows_by_its_declaration_and_an_instance_db_by_its_fb() {
+    let lines = step7_data_lines("tests/inputs/s7/state_declared.awl");
+    assert_eq!(
+        lines,
+        [
+            "DB5.setpoint      = 1234",
+            "DB5.gain          = L#70000",
+            "DB5.on            = TRUE",
+            "DB5.ratio         = 1.5",
+            "DB5.delay         = T#1S500MS",
+            "DB5.pulse         = S5T#25S",
+            "DB5.letter        = 'A'",
+            "DB5.mask          = W#16#0063",
+            "DB5.table[1]      = 0",
+            "DB5.table[2]      = 7",
+            "DB5.table[3]      = 0",
+            "DB5.motor.speed   = 0",
+            "DB5.motor.running = FALSE",
+            "DB6.start = TRUE",
+            "DB6.count = 2",
+        ]
+    );
+}
+
+#[test]
+fn the_json_state_adds_the_declared_view_beside_the_bytes() {
+    let (stdout, _) = awl(&[
+        "run",
+        "tests/inputs/s7/state_declared.awl",
+        "--cycles",
+        "2",
+        "--state-format",
+        "json",
+    ]);
+    let state: Value = serde_json::from_str(&stdout).expect("JSON");
+    assert_eq!(state["data_blocks"]["DB 5"]["1"], 0xD2, "the bytes stay");
+    let db5 = state["declared_data_blocks"]["DB 5"].as_array().unwrap();
+    assert_eq!(keys(&db5[1]), ["address", "name", "type", "value"]);
+    assert_eq!(
+        (
+            &db5[1]["name"],
+            &db5[1]["type"],
+            &db5[1]["address"],
+            &db5[1]["value"]
+        ),
+        (
+            &Value::from("gain"),
+            &Value::from("DINT"),
+            &Value::from("2.0"),
+            &Value::from("L#70000")
+        )
+    );
+    assert_eq!(state["declared_data_blocks"]["DB 6"][1]["value"], "2");
+}
+
+#[test]
+fn a_step5_state_has_no_declared_view() {
+    let (stdout, _) = awl(&[
+        "run",
+        "tests/inputs/state_widths.awl",
+        "--cycles",
+        "1",
+        "--state-format",
+        "json",
+    ]);
+    let state: Value = serde_json::from_str(&stdout).expect("JSON");
+    assert!(state.get("declared_data_blocks").is_none());
 }

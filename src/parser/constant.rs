@@ -155,6 +155,27 @@ fn hex(texts: &[&str], kinds: &[TokenKind], max_digits: usize) -> Option<u32> {
     }
 }
 
+/// The constant a bare number after `L` stands for, with the format STEP 5 needs (`1` →
+/// `KF +1`, `-5` → `KF -5`, `40000` → `KH 9C40`, `0FFH` or `1A` → `KH 00FF`, `KH 001A`, a
+/// number past 16 bits → `DH`); `None` when `text` is no number.
+pub fn format_for_bare(negative: bool, text: &str) -> Option<String> {
+    if let Ok(value) = text.parse::<i64>() {
+        let value = if negative { -value } else { value };
+        return Some(match value {
+            -32768..=32767 => format!("KF {value:+}"),
+            32768..=65535 => format!("KH {value:04X}"),
+            _ => format!("DH {:08X}", i32::try_from(value).ok()? as u32),
+        });
+    }
+    let digits = text.strip_suffix(['H', 'h']).unwrap_or(text);
+    let value = u32::from_str_radix(digits, 16).ok().filter(|_| !negative)?;
+    Some(if value <= 0xFFFF {
+        format!("KH {value:04X}")
+    } else {
+        format!("DH {value:08X}")
+    })
+}
+
 /// Binary-coded decimal of a value 0…999.
 pub fn bcd(value: u32) -> u32 {
     ((value / 100) << 8) | ((value / 10 % 10) << 4) | (value % 10)
@@ -283,6 +304,20 @@ pub fn decimal_float_warnings(file: FileId, source: &str, tokens: &[Token]) -> V
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_bare_number_gets_the_format_its_value_needs() {
+        assert_eq!(super::format_for_bare(false, "1").unwrap(), "KF +1");
+        assert_eq!(super::format_for_bare(true, "5").unwrap(), "KF -5");
+        assert_eq!(super::format_for_bare(false, "40000").unwrap(), "KH 9C40");
+        assert_eq!(
+            super::format_for_bare(false, "70000").unwrap(),
+            "DH 00011170"
+        );
+        assert_eq!(super::format_for_bare(false, "0FFH").unwrap(), "KH 00FF");
+        assert_eq!(super::format_for_bare(false, "1A").unwrap(), "KH 001A");
+        assert_eq!(super::format_for_bare(false, "1Z"), None);
+    }
     use super::*;
 
     #[test]

@@ -114,6 +114,17 @@ pub enum ParseError {
         expected: String,
     },
 
+    #[error("a constant needs its format: `{op} {constant}`")]
+    #[diagnostic(code(awl::parse::bare_constant))]
+    BareConstant {
+        op: String,
+        constant: String,
+        #[label("a number without a constant format")]
+        at: Span,
+        #[help]
+        help: String,
+    },
+
     #[error("{format} constant out of range")]
     #[diagnostic(code(awl::check::constant_range))]
     ConstantRange {
@@ -186,11 +197,12 @@ pub enum ParseError {
         pg_form: String,
     },
 
-    #[error("formal operand `={name}` is not declared")]
-    #[diagnostic(code(awl::parse::undeclared_formal))]
-    UndeclaredFormal {
-        name: String,
-        #[label("first use; no `DES` line declares it")]
+    #[error("formal operands declared from their use: {list}")]
+    #[diagnostic(code(awl::parse::formals_from_use), severity(Advice))]
+    FormalsFromUse {
+        list: String,
+        first: String,
+        #[label("`={first}` first used here")]
         at: Span,
         #[help]
         help: String,
@@ -210,13 +222,14 @@ impl ParseError {
             | ParseError::OutsideBlock { at }
             | ParseError::BlockNumber { at, .. }
             | ParseError::BadConstant { at, .. }
+            | ParseError::BareConstant { at, .. }
             | ParseError::ConstantRange { at, .. }
             | ParseError::BadDeclaration { at, .. }
             | ParseError::BadDataWord { at, .. }
             | ParseError::Step7Source { at, .. }
             | ParseError::Fragment { at, .. }
             | ParseError::DecimalFloat { at, .. }
-            | ParseError::UndeclaredFormal { at, .. } => *at,
+            | ParseError::FormalsFromUse { at, .. } => *at,
         }
     }
 }

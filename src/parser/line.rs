@@ -310,9 +310,10 @@ pub fn param_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult
     }
 }
 
-/// `[LABEL :] [:] OPERATION [OPERAND]`
+/// `[:] [LABEL :] [:] OPERATION [OPERAND]`
 pub fn statement<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, Statement> {
     move |input: Tokens<'a>| {
+        let input = without_colon_before_label(input);
         let span = remaining_span(context, input.tokens).unwrap_or_default();
         let (rest, label) = opt(terminated(
             kind(TokenKind::Word, "label"),
@@ -401,6 +402,21 @@ fn divide<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, Par
                 inline_operand: None,
             },
         ))
+    }
+}
+
+/// The line without the `:` a PG printout puts before a label (`0037: M004: L DW12`,
+/// `0037 :M004 :L DW12`, the address already taken off).
+fn without_colon_before_label(input: Tokens<'_>) -> Tokens<'_> {
+    match input.tokens {
+        [colon, label, label_colon, _, ..]
+            if colon.kind == TokenKind::Colon
+                && label.kind == TokenKind::Word
+                && label_colon.kind == TokenKind::Colon =>
+        {
+            Tokens::new(&input.tokens[1..])
+        }
+        _ => input,
     }
 }
 
@@ -644,9 +660,41 @@ fn operand_for<'a>(
             },
             Shape::Optional if input.is_empty() => Ok((input, (Operand::None, empty_span))),
             Shape::Required if input.is_empty() => Err(missing()),
+            Shape::Required if info.op == OpCode::Load => match bare_constant(context, input) {
+                Some(error) => Err(LineError::diagnostic(error)),
+                None => operand(context, Some(info.op))(input),
+            },
             _ => operand(context, Some(info.op))(input),
         }
     }
+}
+
+/// `L 1`, `L -5`, `L 0FFH`: a number without its constant format, with the constant STEP 5
+/// writes for it (`L KF +1`).
+fn bare_constant(context: Context<'_>, input: Tokens<'_>) -> Option<ParseError> {
+    let (negative, number) = match input.tokens {
+        [number] if number.kind == TokenKind::Number => (false, *number),
+        [sign, number] if matches!(sign.kind, TokenKind::Plus | TokenKind::Minus) => {
+            (sign.kind == TokenKind::Minus, *number)
+        }
+        _ => return None,
+    };
+    if number.kind != TokenKind::Number {
+        return None;
+    }
+    let constant = super::constant::format_for_bare(negative, context.text(number))?;
+    let op = match context.set {
+        mnemonics::MnemonicSet::English => mnemonics::op_info(OpCode::Load).en,
+        mnemonics::MnemonicSet::German => mnemonics::op_info(OpCode::Load).de,
+    };
+    Some(ParseError::BareConstant {
+        op: op.to_string(),
+        help: "STEP 5 writes a constant with its format: KF fixed point -32768 to +32767, KH \
+               hexadecimal, KB a byte, KT a time, KZ a count"
+            .to_string(),
+        constant,
+        at: context.span_of(input.tokens[0], number),
+    })
 }
 
 /// An operand: `=NAME`, a number, a block (`PB 3`), an address (`I 0.0`, `FW 10`, `T 5`) or a

@@ -418,8 +418,8 @@ END_ORGANIZATION_BLOCK
         );
         assert!(reason("Q 256.0").contains("Q bytes 0 to 255"));
         assert!(reason("PIW 8192").contains("PI bytes 0 to 8191"));
-        assert!(reason("T 256").contains("T 0 to 255"));
-        assert!(reason("Z 256").contains("C 0 to 255"));
+        assert!(reason("T 512").contains("T 0 to 511"));
+        assert!(reason("Z 512").contains("C 0 to 511"));
         assert_eq!(reason("DB9.DBW 0"), "DB 9 is not in the program");
         assert_eq!(help("DB9.DBW 0"), "the program's data blocks: DB 5");
         assert_eq!(

@@ -6,6 +6,7 @@
 
 pub mod operand;
 pub mod s7;
+pub mod s7_declared;
 mod s7_text;
 pub mod text;
 pub mod watch;
@@ -141,6 +142,10 @@ pub struct State {
     /// `"DB 10"` → word number → value, the non-zero words only; a STEP 7 program's data
     /// blocks byte by byte: byte offset → value.
     pub data_blocks: BTreeMap<String, BTreeMap<String, u16>>,
+    /// A STEP 7 program's data blocks with declarations: `"DB 5"` → each declared value in
+    /// address order, as STEP 7's data view shows it (the bytes stay in `data_blocks`).
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub declared_data_blocks: BTreeMap<String, Vec<s7_declared::ValueView>>,
     /// At a STOP: the running level first, then the interrupted ones.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub levels: Option<Vec<LevelView>>,
@@ -352,6 +357,7 @@ impl State {
             } else {
                 data_blocks(cpu)
             },
+            declared_data_blocks: s7::declared_data_blocks(cpu),
             levels: stop
                 .filter(|_| cpu.mode == Mode::Stop)
                 .map(|stop| levels(cpu, stop)),

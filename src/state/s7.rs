@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use super::s7_declared::{self, ValueView};
 use crate::vm::Cpu;
 
 /// The registers of a STEP 7 program's running level.
@@ -125,6 +126,20 @@ pub fn data_blocks(cpu: &Cpu) -> BTreeMap<String, BTreeMap<String, u16>> {
                 .map(|(n, byte)| (n.to_string(), u16::from(*byte)))
                 .collect();
             (format!("DB {number}"), non_zero)
+        })
+        .collect()
+}
+
+/// The STEP 7 data blocks with declarations: `"DB 5"` → its values by name, in their types.
+pub fn declared_data_blocks(cpu: &Cpu) -> BTreeMap<String, Vec<ValueView>> {
+    let tables = &cpu.program.s7;
+    tables
+        .declared_dbs
+        .iter()
+        .filter_map(|(number, values)| {
+            let slot = tables.db_slot(*number)?;
+            let bytes = cpu.s7_data.get(usize::from(slot))?.as_ref()?;
+            Some((format!("DB {number}"), s7_declared::view(values, bytes)))
         })
         .collect()
 }

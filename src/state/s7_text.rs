@@ -7,6 +7,7 @@ use std::fmt::Write;
 
 use super::State;
 use super::s7::{self, Registers};
+use super::s7_declared::ValueView;
 use super::text::{TIME_BASES, istack_text, numeric};
 
 /// One address in the width the program used: `MB 1 = B#16#16 = 2#0001_0110`,
@@ -48,6 +49,19 @@ fn data_block(out: &mut String, state: &State, db: u16, bytes: &BTreeMap<String,
     for (at, width) in state.widths.s7_data_ranges(bytes.keys().copied()) {
         let text = line(names, at, width, value_at(&bytes, at, width));
         let _ = writeln!(out, "  DB{db}.{text}");
+    }
+}
+
+/// A data block by its declaration, as STEP 7's data view lists it: `DB5.setpoint = 1234`,
+/// the names aligned.
+fn declared_block(out: &mut String, db: u16, values: &[ValueView]) {
+    let width = values
+        .iter()
+        .map(|value| value.name.len())
+        .max()
+        .unwrap_or(0);
+    for value in values {
+        let _ = writeln!(out, "  DB{db}.{:<width$} = {}", value.name, value.value);
     }
 }
 
@@ -119,7 +133,10 @@ pub fn render_titled(state: &State, title: &str) -> String {
         );
     }
     for (db, bytes) in numeric(&state.data_blocks, "DB ") {
-        data_block(&mut out, state, db, bytes);
+        match state.declared_data_blocks.get(&format!("DB {db}")) {
+            Some(values) => declared_block(&mut out, db, values),
+            None => data_block(&mut out, state, db, bytes),
+        }
     }
     if let Some(levels) = &state.levels {
         out.push_str(&istack_text(levels));

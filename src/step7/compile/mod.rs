@@ -3,10 +3,10 @@
 //! out, the data blocks' initial bytes made, then each logic block's statements lowered.
 
 mod block_sfcs;
-mod complex;
+pub(crate) mod complex;
 mod data;
 mod interrupt_sfcs;
-mod layout;
+pub(crate) mod layout;
 mod lower;
 mod operand;
 mod pointers;
@@ -21,6 +21,7 @@ use crate::compiler::{CheckError, Compiled, Program, Resolved};
 use crate::mnemonics::BlockKind;
 use crate::profile::Profile;
 use crate::source::{SourceSet, Span};
+use crate::state::s7_declared as declared;
 use crate::step7::ast::{
     S7Block, S7BlockKind, S7BlockRef, S7Body, S7Op, S7Operand, S7Unit, VarDecl, VarKind,
 };
@@ -92,6 +93,16 @@ pub fn compile(
     compiler.check_udts(units);
     compiler.make_data_blocks(units);
     compiler.number_data_blocks();
+    compiler.tables.declared_dbs = compiler
+        .db_layouts
+        .iter()
+        .map(|(&number, layout)| (number, declared::values(layout, &compiler.types)))
+        .filter(|(_, values)| !values.is_empty())
+        .collect();
+    compiler
+        .tables
+        .declared_dbs
+        .sort_by_key(|(number, _)| *number);
     let blocks = logic
         .iter()
         .map(|(block, id, set)| compiler.compile_block(block, *id, *set))
