@@ -1,6 +1,7 @@
-//! The scenario file as TOML, with spans kept for diagnostics. Every top-level key, and every
-//! entry of `[[event]]`, `[[check]]` and `[[hw_module]]`, is read on its own, so one bad key does not hide
-//! the errors of the others.
+//! The scenario file as TOML, with spans kept for diagnostics. Every key of the file and of each
+//! of its tables (`run`, `[ob13]`, `[[event]]`, …) is read on its own against that table's keys,
+//! so one bad key does not hide the errors of the others, and each error is told in the format's
+//! words: what the key takes, with an example, or the table's closest key.
 
 use std::collections::BTreeMap;
 use std::ops::Range;
