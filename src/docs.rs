@@ -199,7 +199,7 @@ fn without_link_targets(text: &str) -> String {
             let target_end = after[target_start..].find(')')? + target_start;
             let target = &after[target_start..target_end];
             let inside = &after[..close];
-            let plain = !inside.contains('\n') && !target.contains(char::is_whitespace);
+            let plain = !inside.contains(['\n', '[', ']']) && !target.contains(char::is_whitespace);
             (plain && !target.starts_with("http")).then_some((inside, target_end + 1))
         });
         match link {
@@ -359,4 +359,29 @@ pub fn error_list() -> String {
         }
     }
     text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn links_keep_their_text_and_lose_a_file_target() {
+        assert_eq!(
+            without_link_targets("see [`awl help mnemonics`](mnemonics.md#x), [web](https://a.b)"),
+            "see `awl help mnemonics`, [web](https://a.b)"
+        );
+        assert_eq!(
+            without_link_targets("[[event]]\nat = 1 [x] and [y](t.md)"),
+            "[[event]]\nat = 1 [x] and y"
+        );
+    }
+
+    #[test]
+    fn a_section_ends_at_a_heading_of_its_level_or_higher() {
+        let file = "# A\n## B\ntext\n### C\nmore\n## D\nrest\n";
+        assert_eq!(section(file, "## B"), "## B\ntext\n### C\nmore\n");
+        assert_eq!(section(file, "### C"), "### C\nmore\n");
+        assert_eq!(section(file, "## D"), "## D\nrest\n");
+    }
 }
