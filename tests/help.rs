@@ -357,3 +357,13 @@ fn a_scenario_s_key_errors_point_to_the_help_not_the_repository() {
     );
     assert!(awl::diagnostics::render_plain(&reports[0]).contains("awl help scenario"));
 }
+
+#[test]
+fn only_error_takes_a_second_word() {
+    let (ok, out, err) = awl(&["help", "scenario", "run"]);
+    assert!(!ok && out.is_empty(), "{out}");
+    assert!(
+        err.contains("`scenario run` is neither a help topic nor a command"),
+        "{err}"
+    );
+}

@@ -33,6 +33,11 @@ pub fn help(args: &HelpArgs, console: &mut Console) -> u8 {
     if asked.trim().eq_ignore_ascii_case("error") {
         return error(args.code.as_deref(), console);
     }
+    // Only `error` takes a second word: `awl help scenario run` asks for no topic awl has.
+    let asked = match &args.code {
+        Some(code) => &format!("{asked} {code}"),
+        None => asked,
+    };
     if let Some(topic) = docs::find(asked) {
         console.out(&topic.text());
         return EXIT_OK;
