@@ -643,7 +643,7 @@ pub static OPERATIONS: &[OpInfo] = &[
         Feature::AddConstant,
     ),
     // System and register operations on absolute addresses: parsed and timed, but running one
-    // stops the CPU (awl has no S5 memory map; see grammar/README.md).
+    // stops the CPU (awl has no S5 memory map; `awl help language` says why).
     needs(
         supp(
             TransferBytes,

@@ -109,6 +109,7 @@ fn every_scenario_error_names_its_key_and_line() {
             "[[event]]\nat = \"1ms\"\ninterrupt = \"OB 9\"\n",
         ),
         ("awl::scenario::bad_duration", "run = { for = \"100\" }\n"),
+        ("awl::scenario::wrong_type", "run = \"3s\"\n"),
         (
             "awl::scenario::invalid",
             "cpu = \"s5-95f\"\nmode = \"special\"\n",
@@ -119,6 +120,51 @@ fn every_scenario_error_names_its_key_and_line() {
         assert!(rendered.contains(code), "{code}:\n{rendered}");
         insta::assert_snapshot!(code.replace("::", "__"), rendered);
     }
+}
+
+#[test]
+fn a_typo_for_a_key_of_expect_or_check_is_corrected() {
+    let program = "OB 1\n      A  I 0.0\n      =  Q 4.0\n      BE\n";
+    for (name, scenario, typo, meant) in [
+        ("expect_mdoe", "[expect]\nmdoe = \"RUN\"\n", "mdoe", "mode"),
+        (
+            "expect_stop_caus",
+            "[expect]\nstop_caus = \"ZYK\"\n",
+            "stop_caus",
+            "stop_cause",
+        ),
+        (
+            "check_att",
+            "[[check]]\natt = \"1ms\"\n\"Q 4.0\" = 1\n",
+            "att",
+            "at",
+        ),
+    ] {
+        let rendered = scenario_error(name, program, scenario);
+        assert!(
+            rendered.contains(&format!("unknown key `{typo}`")),
+            "{rendered}"
+        );
+        assert!(
+            rendered.contains(&format!("did you mean `{meant}`?")),
+            "{rendered}"
+        );
+        assert_eq!(rendered.matches("awl::scenario::").count(), 1, "{rendered}");
+    }
+}
+
+#[test]
+fn a_check_s_moment_is_asked_for_as_a_duration() {
+    let rendered = scenario_error(
+        "check_at_number",
+        "OB 1\n      BE\n",
+        "[[check]]\nat = 100\n\"Q 4.0\" = 0\n",
+    );
+    assert!(
+        rendered.contains("`at` in [[check]] takes a duration in quotes"),
+        "{rendered}"
+    );
+    assert!(rendered.contains("at = \"250ms\""), "{rendered}");
 }
 
 #[test]

@@ -9,10 +9,14 @@ use super::{Cli, Console, EXIT_OK, EXIT_USAGE};
 
 #[derive(Debug, clap::Args)]
 pub struct HelpArgs {
-    /// A format (scenario, trace, timeline, state, analysis, exit-codes, listing, symbols,
-    /// language, errors) or a command (run, test, …) [default: the list of both]
+    /// A topic (scenario, language, mnemonics, errors, …), `error` or a command (run, test, …)
+    /// [default: the list of topics and commands]
     #[arg(value_name = "TOPIC")]
     pub topic: Option<String>,
+    /// After `error`: the diagnostic code to explain, with or without `awl::`
+    /// (`awl help error parse::unknown_operation`) [default: the list of codes]
+    #[arg(value_name = "CODE")]
+    pub code: Option<String>,
 }
 
 pub fn help(args: &HelpArgs, console: &mut Console) -> u8 {
@@ -26,8 +30,16 @@ pub fn help(args: &HelpArgs, console: &mut Console) -> u8 {
         ));
         return EXIT_OK;
     };
+    if asked.trim().eq_ignore_ascii_case("error") {
+        return error(args.code.as_deref(), console);
+    }
+    // Only `error` takes a second word: `awl help scenario run` asks for no topic awl has.
+    let asked = match &args.code {
+        Some(code) => &format!("{asked} {code}"),
+        None => asked,
+    };
     if let Some(topic) = docs::find(asked) {
-        console.out(topic.text());
+        console.out(&topic.text());
         return EXIT_OK;
     }
     if let Some(command) = cli.find_subcommand(asked.trim()) {
@@ -43,6 +55,7 @@ pub fn help(args: &HelpArgs, console: &mut Console) -> u8 {
         topics: docs::TOPICS
             .iter()
             .map(|topic| topic.name)
+            .chain(["error CODE"])
             .collect::<Vec<_>>()
             .join(", "),
         commands: cli
@@ -53,4 +66,22 @@ pub fn help(args: &HelpArgs, console: &mut Console) -> u8 {
     };
     console.report(&Report::new(error));
     EXIT_USAGE
+}
+
+/// `awl help error [CODE]`: one code's page, or the list of codes.
+fn error(code: Option<&str>, console: &mut Console) -> u8 {
+    let Some(code) = code else {
+        console.out(&docs::error_list());
+        return EXIT_OK;
+    };
+    match docs::error_page(code) {
+        Ok(page) => {
+            console.out(&page);
+            EXIT_OK
+        }
+        Err(unknown) => {
+            console.report(&Report::new(unknown));
+            EXIT_USAGE
+        }
+    }
 }

@@ -28,9 +28,10 @@ pub use console::Console;
 #[command(
     name = "awl",
     version,
-    about = "Run STEP 5 STL (AWL) programs on a simulated S5 CPU with interrupts",
-    after_help = "The formats (scenario files, traces, listings, symbols, …): `awl help` lists them, \
-        `awl help scenario` prints one.",
+    about = "Run STEP 5 and STEP 7 STL (AWL) programs on a simulated S5 or S7 CPU with interrupts",
+    after_help = "The language, the mnemonics and the formats (scenario files, traces, listings, \
+        symbols, …): `awl help` lists them, `awl help scenario` prints one; `awl help error CODE` \
+        explains a diagnostic.",
     disable_help_subcommand = true
 )]
 pub struct Cli {
@@ -102,7 +103,7 @@ pub struct SourceOptions {
     /// STL source files (.awl)
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// CPU profile (see `awl cpus`) [default: sinumerik-840c]
+    /// CPU profile (see `awl cpus`) [default: speed7 for STEP 7 files, else sinumerik-840c]
     #[arg(long, value_parser = profile::names())]
     pub cpu: Option<String>,
     #[command(flatten)]
@@ -146,8 +147,8 @@ pub enum Command {
     Conformance(conformance::ConformanceArgs),
     /// List the CPU profiles with their rules and timings
     Cpus,
-    /// Print a format (`awl help scenario`, `trace`, `listing`, `symbols`, …) or a command's
-    /// help (`awl help run`)
+    /// Print the language, the mnemonics, a format (`awl help scenario`, `trace`, …), a
+    /// diagnostic's page (`awl help error CODE`) or a command's help (`awl help run`)
     Help(help::HelpArgs),
 }
 

@@ -70,7 +70,7 @@ pub struct ProgramArgs {
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// CPU profile (see `awl cpus`); overrides the scenario's [default: the scenario's, else
-    /// sinumerik-840c]
+    /// speed7 for STEP 7 files, else sinumerik-840c]
     #[arg(long, value_parser = profile::names())]
     pub cpu: Option<String>,
     /// Where interrupts are serviced [default: the scenario's, else the CPU's: block on the

@@ -545,7 +545,7 @@ fn suggest_operation(context: Context<'_>, word: &str, next: Option<Token>) -> O
     Some(match best {
         Some((_, candidate)) => format!("did you mean `{candidate}`?"),
         None => format!(
-            "`awl help language` lists the operations of the {} set",
+            "`awl help mnemonics` lists the operations of the {} set",
             set.name()
         ),
     })

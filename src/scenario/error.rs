@@ -13,7 +13,7 @@ pub enum ScenarioError {
     #[diagnostic(
         code(awl::scenario::syntax),
         help(
-            "the keys a scenario has: program, symbols, dialect, extended, cpu, mode, interrupt_points, run, watchdog, watch, [ob13], [[hw_module]], [[event]], [expect], [[check]]; `awl help scenario` describes them"
+            "a scenario is TOML: `key = value` lines, text and durations in quotes (`watchdog = \"300ms\"`), tables under `[expect]` or `[[event]]`; `awl help scenario` describes the keys"
         )
     )]
     Syntax {
@@ -26,10 +26,25 @@ pub enum ScenarioError {
     #[diagnostic(code(awl::scenario::unknown_key))]
     UnknownKey {
         key: String,
-        #[label("not a scenario key")]
+        /// "not a scenario key", "not a key of [[event]]".
+        #[label("{label}")]
         at: SourceSpan,
+        label: String,
         #[help]
         help: Option<String>,
+    },
+
+    /// `key`: how the key is named, "`run`" or "`at` in [[event]]".
+    #[error("{key} takes {takes}")]
+    #[diagnostic(code(awl::scenario::wrong_type), help("e.g. {example}"))]
+    WrongType {
+        key: String,
+        takes: &'static str,
+        example: &'static str,
+        /// What the value is instead: "a string", "a whole number", …
+        #[label("{found}")]
+        at: SourceSpan,
+        found: String,
     },
 
     #[error("unknown operand `{operand}`")]
@@ -136,6 +151,7 @@ impl ScenarioError {
             ScenarioError::Read { .. } => 0,
             ScenarioError::Syntax { at, .. } => at.map_or(0, |at| at.offset()),
             ScenarioError::UnknownKey { at, .. }
+            | ScenarioError::WrongType { at, .. }
             | ScenarioError::UnknownOperand { at, .. }
             | ScenarioError::UnknownSymbol { at, .. }
             | ScenarioError::BadValue { at, .. }

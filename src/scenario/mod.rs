@@ -617,7 +617,14 @@ impl Scenario {
                         None
                     }
                 },
-                _ => self.expected_value(key, value, program, set, &mut errors),
+                _ => self.expected_value(
+                    ("[expect]", &["mode", "stop_cause"]),
+                    key,
+                    value,
+                    program,
+                    set,
+                    &mut errors,
+                ),
             };
             if let Some(expected) = expected {
                 expectations.push(Expectation {
@@ -635,9 +642,11 @@ impl Scenario {
 }
 
 impl Scenario {
-    /// An operand's expected value in `[expect]` or a `[[check]]`.
+    /// An operand's expected value in `[expect]` or a `[[check]]` (`table`), whose other keys
+    /// are `keys`: a key that is no operand but close to one of them is taken for its typo.
     fn expected_value(
         &self,
+        (table, keys): (&str, &[&str]),
         key: &Spanned<String>,
         value: &Spanned<toml::Value>,
         program: &Program,
@@ -646,7 +655,18 @@ impl Scenario {
     ) -> Option<Expected> {
         let operand = key.get_ref();
         let at = self.key_span(key);
-        let target = errors.keep(parse_target(operand, at, set, program))?;
+        let target = parse_target(operand, at, set, program).map_err(|error| {
+            match did_you_mean(operand, keys.iter().copied()) {
+                Some(known) => ScenarioError::UnknownKey {
+                    key: operand.clone(),
+                    at,
+                    label: format!("neither an operand nor a key of {table}"),
+                    help: Some(format!("did you mean `{known}`?")),
+                },
+                None => error,
+            }
+        });
+        let target = errors.keep(target)?;
         let (written, wanted) = errors.keep(Scenario::value(target, value, operand, program))?;
         Some(Expected::Value {
             target,
@@ -668,7 +688,15 @@ impl Scenario {
                 .get_ref()
                 .iter()
                 .find(|(key, _)| key.get_ref() == "at");
+            let misspelt_at = || {
+                table
+                    .get_ref()
+                    .keys()
+                    .any(|key| did_you_mean(key.get_ref(), std::iter::once("at")).is_some())
+            };
             let at_ns = match at {
+                // The misspelt key is reported with its correction.
+                None if misspelt_at() => None,
                 None => {
                     errors.push(invalid(
                         "a [[check]] needs `at`, the moment it is verified after",
@@ -686,9 +714,12 @@ impl Scenario {
                         errors.keep(duration(&Spanned::new(value.span(), text.to_string())))
                     }
                     None => {
-                        errors.push(ScenarioError::BadDuration {
-                            text: value.get_ref().to_string(),
+                        errors.push(ScenarioError::WrongType {
+                            key: "`at` in [[check]]".into(),
+                            takes: raw::DURATION,
+                            example: "`at = \"250ms\"`",
                             at: span(value),
+                            found: raw::found(value.get_ref().type_str()).into(),
                         });
                         None
                     }
@@ -712,7 +743,10 @@ impl Scenario {
                     ));
                     continue;
                 }
-                if let Some(expected) = self.expected_value(key, value, program, set, &mut errors) {
+                let keys = ("[[check]]", &["at"][..]);
+                if let Some(expected) =
+                    self.expected_value(keys, key, value, program, set, &mut errors)
+                {
                     expectations.push(Expectation {
                         name: key.get_ref().clone(),
                         expected,

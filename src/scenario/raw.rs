@@ -1,39 +1,220 @@
-//! The scenario file as TOML, with spans kept for diagnostics. Every top-level key, and every
-//! entry of `[[event]]`, `[[check]]` and `[[hw_module]]`, is read on its own, so one bad key does not hide
-//! the errors of the others.
+//! The scenario file as TOML, with spans kept for diagnostics. Every key of the file and of each
+//! of its tables (`run`, `[ob13]`, `[[event]]`, …) is read on its own against that table's keys,
+//! so one bad key does not hide the errors of the others, and each error is told in the format's
+//! words: what the key takes, with an example, or the table's closest key.
 
 use std::collections::BTreeMap;
+use std::ops::Range;
 
 use serde::Deserialize;
 use serde::de::DeserializeOwned;
 use toml::Spanned;
-use toml::de::{DeTable, DeValue, ValueDeserializer};
+use toml::de::{DeString, DeTable, DeValue, ValueDeserializer};
 
 use super::error::ScenarioError;
 
 /// A table whose keys keep their spans (`set = { "I 0.0" = 1 }`, `[expect]`).
 pub type SpannedTable = BTreeMap<Spanned<String>, Spanned<toml::Value>>;
 
-/// The top-level keys of a scenario file.
-pub const KEYS: &[&str] = &[
-    "program",
-    "cpu",
-    "mode",
-    "interrupt_points",
-    "run",
-    "watchdog",
-    "ob13",
-    "ob35",
-    "hw_module",
-    "event",
-    "expect",
-    "watch",
-    "check",
-    "symbols",
-    "dialect",
-    "extended",
-    "clock_memory",
-];
+/// A key of a scenario table: what its value is, in the words `awl help scenario` uses, and a
+/// line that gives one.
+pub struct Key {
+    pub name: &'static str,
+    pub takes: &'static str,
+    pub example: &'static str,
+}
+
+/// A table of the scenario format, as the user writes it, and its keys.
+pub struct Table {
+    /// `[[event]]`, `run`; empty for the file's top level.
+    pub name: &'static str,
+    pub keys: &'static [Key],
+}
+
+const fn key(name: &'static str, takes: &'static str, example: &'static str) -> Key {
+    Key {
+        name,
+        takes,
+        example,
+    }
+}
+
+pub const DURATION: &str = "a duration in quotes, with its unit";
+
+/// A TOML value's kind (as `type_str` names it) in the user's words.
+pub fn found(kind: &str) -> &'static str {
+    match kind {
+        "string" => "a string",
+        "integer" => "a whole number",
+        "float" => "a decimal number",
+        "boolean" => "true or false",
+        "datetime" => "a date or time",
+        "array" => "a list",
+        _ => "a table",
+    }
+}
+
+/// The top level of a scenario file.
+pub const SCENARIO: Table = Table {
+    name: "",
+    keys: &[
+        key(
+            "program",
+            "a program file in quotes, or a list of them",
+            "`program = [\"conveyor.awl\"]`",
+        ),
+        key(
+            "symbols",
+            "an assignment list or symbol table in quotes, or a list of them",
+            "`symbols = [\"symbols.seq\"]`",
+        ),
+        key(
+            "cpu",
+            "a CPU profile in quotes (`awl cpus`)",
+            "`cpu = \"s5-115u\"`",
+        ),
+        key("dialect", "\"s5\" or \"s7\"", "`dialect = \"s7\"`"),
+        key("extended", "true or false", "`extended = true`"),
+        key("mode", "\"normal\" or \"special\"", "`mode = \"special\"`"),
+        key(
+            "interrupt_points",
+            "\"block\" or \"operation\"",
+            "`interrupt_points = \"operation\"`",
+        ),
+        key(
+            "run",
+            "a table with `for` (a duration) or `cycles` (a count)",
+            "`run = { for = \"100ms\" }` or `run = { cycles = 20 }`",
+        ),
+        key("watchdog", DURATION, "`watchdog = \"300ms\"`"),
+        key("clock_memory", "a flag byte number", "`clock_memory = 100`"),
+        key(
+            "ob13",
+            "a table `[ob13]` with `interval`",
+            "`[ob13]` with `interval = \"100ms\"`",
+        ),
+        key(
+            "ob35",
+            "a table `[ob35]` with `interval`",
+            "`[ob35]` with `interval = \"100ms\"`",
+        ),
+        key(
+            "hw_module",
+            "`[[hw_module]]` tables with `module` and `ob`",
+            "`[[hw_module]]` with `module = 4` and `ob = 40`",
+        ),
+        key(
+            "event",
+            "`[[event]]` tables with `at` and what happens",
+            "`[[event]]` with `at = \"25us\"` and `interrupt = \"OB 3\"`",
+        ),
+        key(
+            "expect",
+            "a table `[expect]` of operands and their values",
+            "`[expect]` with `\"Q 4.0\" = 1`",
+        ),
+        key(
+            "watch",
+            "a list of operands in quotes",
+            "`watch = [\"Q 4.0\", \"FW 10\"]`",
+        ),
+        key(
+            "check",
+            "`[[check]]` tables with `at` and operands",
+            "`[[check]]` with `at = \"250ms\"` and `\"Q 4.0\" = 1`",
+        ),
+    ],
+};
+
+const RUN: Table = Table {
+    name: "`run`",
+    keys: &[
+        key("for", DURATION, "`run = { for = \"100ms\" }`"),
+        key(
+            "cycles",
+            "a whole number of cycles",
+            "`run = { cycles = 20 }`",
+        ),
+    ],
+};
+
+const OB13: Table = Table {
+    name: "[ob13]",
+    keys: &[
+        key("interval", DURATION, "`interval = \"100ms\"`"),
+        key("delay", DURATION, "`delay = \"1ms\"`"),
+        key("max_delay", DURATION, "`max_delay = \"2ms\"`"),
+    ],
+};
+
+const OB35: Table = Table {
+    name: "[ob35]",
+    keys: &[key("interval", DURATION, "`interval = \"100ms\"`")],
+};
+
+const HW_MODULE: Table = Table {
+    name: "[[hw_module]]",
+    keys: &[
+        key("module", "a module number, 0 to 65535", "`module = 4`"),
+        key("ob", "the OB number 40 or 41", "`ob = 40`"),
+        key(
+            "address",
+            "a logical base address, 0 to 65535",
+            "`address = 256`",
+        ),
+    ],
+};
+
+const EVENT: Table = Table {
+    name: "[[event]]",
+    keys: &[
+        key("at", DURATION, "`at = \"100ms\"`"),
+        key("every", DURATION, "`every = \"10ms\"`"),
+        key("count", "a whole number of times", "`count = 5`"),
+        key("until", DURATION, "`until = \"1s\"`"),
+        key(
+            "set",
+            "a table of operands in quotes and their values",
+            "`set = { \"I 0.0\" = 1 }`",
+        ),
+        key(
+            "interrupt",
+            "an interrupt OB in quotes",
+            "`interrupt = \"OB 3\"`",
+        ),
+        key(
+            "hw_interrupt",
+            "a table with `module`, `channel` and `active_for`",
+            "`hw_interrupt = { module = 4, channel = 1, active_for = \"200us\" }`",
+        ),
+        key(
+            "station",
+            "a table with `number` and `failed`",
+            "`station = { number = 3, failed = true }`",
+        ),
+    ],
+};
+
+const HW_INTERRUPT: Table = Table {
+    name: "`hw_interrupt`",
+    keys: &[
+        key("module", "a module number, 0 to 65535", "`module = 4`"),
+        key("channel", "a channel number, 0 to 65535", "`channel = 1`"),
+        key("active_for", DURATION, "`active_for = \"200us\"`"),
+    ],
+};
+
+const STATION: Table = Table {
+    name: "`station`",
+    keys: &[
+        key("number", "a DP station number, 0 to 255", "`number = 3`"),
+        key(
+            "failed",
+            "true (the station fails) or false (it returns)",
+            "`failed = true`",
+        ),
+    ],
+};
 
 #[derive(Debug, Default)]
 pub struct RawScenario {
@@ -68,16 +249,13 @@ pub enum ProgramList {
     Many(Vec<String>),
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug)]
 pub struct RawRun {
-    #[serde(rename = "for")]
     pub duration: Option<Spanned<String>>,
     pub cycles: Option<Spanned<u64>>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug)]
 pub struct RawOb13 {
     pub interval: Spanned<String>,
     pub delay: Option<Spanned<String>>,
@@ -85,14 +263,12 @@ pub struct RawOb13 {
 }
 
 /// `[ob35]`: the cyclic interrupt OB 35 of an S7 CPU.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug)]
 pub struct RawOb35 {
     pub interval: Option<Spanned<String>>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug)]
 pub struct RawHwModule {
     pub module: Spanned<u16>,
     pub ob: Spanned<u8>,
@@ -100,8 +276,7 @@ pub struct RawHwModule {
     pub address: Option<Spanned<u16>>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug)]
 pub struct RawEvent {
     pub at: Spanned<String>,
     /// Repeats the event this often, `count` times or until `until`.
@@ -115,59 +290,299 @@ pub struct RawEvent {
 }
 
 /// A DP station's failure (`failed = true`) or return.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug)]
 pub struct RawStation {
     pub number: u8,
     pub failed: bool,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug)]
 pub struct RawHardware {
     pub module: u16,
     pub channel: u16,
     pub active_for: Spanned<String>,
 }
 
-fn span_of(range: std::ops::Range<usize>) -> miette::SourceSpan {
+fn span_of(range: Range<usize>) -> miette::SourceSpan {
     (range.start, range.end - range.start).into()
 }
 
-/// A TOML error at its place (or at `fallback` when it has none).
-fn toml_error(error: toml::de::Error, fallback: std::ops::Range<usize>) -> ScenarioError {
+/// A TOML syntax error at its place (or at `fallback` when it has none).
+fn syntax_error(error: toml::de::Error, fallback: Range<usize>) -> ScenarioError {
     ScenarioError::Syntax {
         message: error.message().to_string(),
         at: Some(span_of(error.span().unwrap_or(fallback))),
     }
 }
 
-fn read<T: DeserializeOwned>(value: &Spanned<DeValue<'_>>) -> Result<T, ScenarioError> {
-    T::deserialize(ValueDeserializer::from(value.clone())).map_err(|e| toml_error(e, value.span()))
+impl Table {
+    fn key(&self, name: &str) -> &'static Key {
+        self.keys
+            .iter()
+            .find(|key| key.name == name)
+            .expect("a key of the table")
+    }
+
+    /// How a key of this table is named in a message: `run`, `at` in [[event]].
+    fn named(&self, key: &str) -> String {
+        if self.name.is_empty() {
+            format!("`{key}`")
+        } else {
+            format!("`{key}` in {}", self.name)
+        }
+    }
+
+    fn names(&self) -> String {
+        let names: Vec<&str> = self.keys.iter().map(|key| key.name).collect();
+        names.join(", ")
+    }
+
+    fn unknown_key(&self, key: &Spanned<DeString<'_>>) -> ScenarioError {
+        let written = key.get_ref().as_ref();
+        let close = super::did_you_mean(written, self.keys.iter().map(|key| key.name))
+            .map(|known| format!("did you mean `{known}`? "))
+            .unwrap_or_default();
+        let (label, help) = if self.name.is_empty() {
+            let list = if close.is_empty() {
+                format!(
+                    "the keys of a scenario: {}; `awl help scenario` describes them",
+                    self.names()
+                )
+            } else {
+                "`awl help scenario` describes the keys".to_string()
+            };
+            ("not a scenario key".to_string(), format!("{close}{list}"))
+        } else {
+            (
+                format!("not a key of {}", self.name),
+                format!("{close}the keys of {}: {}", self.name, self.names()),
+            )
+        };
+        ScenarioError::UnknownKey {
+            key: written.to_string(),
+            at: span_of(key.span()),
+            label,
+            help: Some(help),
+        }
+    }
+
+    /// A value of `key` that is not what the key takes.
+    fn wrong_value(&self, key: &'static Key, value: &Spanned<DeValue<'_>>) -> ScenarioError {
+        ScenarioError::WrongType {
+            key: self.named(key.name),
+            takes: key.takes,
+            example: key.example,
+            at: span_of(value.span()),
+            found: found(value.get_ref().type_str()).to_string(),
+        }
+    }
+
+    /// A value of one of this table's keys; a value the key does not take is reported.
+    fn read<T: DeserializeOwned>(
+        &self,
+        key: &str,
+        value: &Spanned<DeValue<'_>>,
+        errors: &mut Vec<ScenarioError>,
+    ) -> Option<T> {
+        T::deserialize(ValueDeserializer::from(value.clone()))
+            .map_err(|error| {
+                let mut wrong = self.wrong_value(self.key(key), value);
+                // serde's words for a value of the right kind that does not fit (`ob = 300`).
+                if error.message().starts_with("invalid value")
+                    && let ScenarioError::WrongType { found, .. } = &mut wrong
+                {
+                    *found = "out of range".into();
+                }
+                errors.push(wrong);
+            })
+            .ok()
+    }
+
+    /// The entries of `value`, which `holder` of `parent` holds, when it is a table of this
+    /// kind; every key it does not have is reported.
+    fn entries<'t, 'i>(
+        &'static self,
+        parent: &Table,
+        holder: &str,
+        value: &'t Spanned<DeValue<'i>>,
+        errors: &mut Vec<ScenarioError>,
+    ) -> Option<Entries<'t, 'i>> {
+        let Some(table) = value.get_ref().as_table() else {
+            errors.push(parent.wrong_value(parent.key(holder), value));
+            return None;
+        };
+        for key in table.keys() {
+            if !self.keys.iter().any(|known| known.name == key.get_ref()) {
+                errors.push(self.unknown_key(key));
+            }
+        }
+        Some(Entries {
+            table: self,
+            entries: table,
+            span: value.span(),
+        })
+    }
 }
 
-/// Each element of an array of tables, read on its own.
-fn read_each<T: DeserializeOwned>(
+/// The entries of one table of the format, read key by key.
+struct Entries<'t, 'i> {
+    table: &'static Table,
+    entries: &'t DeTable<'i>,
+    span: Range<usize>,
+}
+
+impl Entries<'_, '_> {
+    /// The value of an optional key; `None` when it is absent or reported.
+    fn get<T: DeserializeOwned>(&self, key: &str, errors: &mut Vec<ScenarioError>) -> Option<T> {
+        let value = self.entries.get(key)?;
+        self.table.read(key, value, errors)
+    }
+
+    /// The value of a key the table needs; its absence is reported.
+    fn needs<T: DeserializeOwned>(&self, key: &str, errors: &mut Vec<ScenarioError>) -> Option<T> {
+        let misspelt = self
+            .entries
+            .keys()
+            .any(|written| super::did_you_mean(written.get_ref(), std::iter::once(key)).is_some());
+        if !self.entries.contains_key(key) && !misspelt {
+            let known = self.table.key(key);
+            errors.push(ScenarioError::Invalid {
+                message: format!("{} has no `{key}`", self.table.name),
+                at: span_of(self.span.clone()),
+                label: format!("needs `{key}`: {}", known.takes),
+                help: Some(format!("e.g. {}", known.example)),
+            });
+            return None;
+        }
+        self.get(key, errors)
+    }
+
+    /// The table an optional key holds, read by `read`.
+    fn table<T>(
+        &self,
+        key: &str,
+        errors: &mut Vec<ScenarioError>,
+        read: fn(&Spanned<DeValue<'_>>, &mut Vec<ScenarioError>) -> Option<T>,
+    ) -> Option<Spanned<T>> {
+        let value = self.entries.get(key)?;
+        read(value, errors).map(|read| Spanned::new(value.span(), read))
+    }
+}
+
+/// The tables of an array of tables (`[[event]]`), each read on its own by `read`.
+fn read_each<T>(
+    key: &str,
     value: &Spanned<DeValue<'_>>,
     errors: &mut Vec<ScenarioError>,
+    read: impl Fn(&Spanned<DeValue<'_>>, &mut Vec<ScenarioError>) -> Option<T>,
 ) -> Vec<Spanned<T>> {
     let Some(items) = value.get_ref().as_array() else {
-        errors.push(ScenarioError::Syntax {
-            message: "expected an array of tables, e.g. `[[event]]`".into(),
-            at: Some(span_of(value.span())),
-        });
+        errors.push(SCENARIO.wrong_value(SCENARIO.key(key), value));
         return Vec::new();
     };
     items
         .iter()
-        .filter_map(|item| match read::<T>(item) {
-            Ok(value) => Some(Spanned::new(item.span(), value)),
-            Err(error) => {
-                errors.push(error);
-                None
-            }
-        })
+        .filter_map(|item| read(item, errors).map(|read| Spanned::new(item.span(), read)))
         .collect()
+}
+
+/// `read`'s result when it reported no error.
+fn unless_reported<T>(
+    errors: &mut Vec<ScenarioError>,
+    read: impl FnOnce(&mut Vec<ScenarioError>) -> Option<T>,
+) -> Option<T> {
+    let before = errors.len();
+    let value = read(errors);
+    value.filter(|_| errors.len() == before)
+}
+
+fn run(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawRun> {
+    unless_reported(errors, |errors| {
+        let entries = RUN.entries(&SCENARIO, "run", value, errors)?;
+        Some(RawRun {
+            duration: entries.get("for", errors),
+            cycles: entries.get("cycles", errors),
+        })
+    })
+}
+
+fn ob13(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawOb13> {
+    unless_reported(errors, |errors| {
+        let entries = OB13.entries(&SCENARIO, "ob13", value, errors)?;
+        let interval = entries.needs("interval", errors);
+        Some(RawOb13 {
+            delay: entries.get("delay", errors),
+            max_delay: entries.get("max_delay", errors),
+            interval: interval?,
+        })
+    })
+}
+
+fn ob35(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawOb35> {
+    unless_reported(errors, |errors| {
+        let entries = OB35.entries(&SCENARIO, "ob35", value, errors)?;
+        Some(RawOb35 {
+            interval: entries.get("interval", errors),
+        })
+    })
+}
+
+fn hw_module(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawHwModule> {
+    unless_reported(errors, |errors| {
+        let entries = HW_MODULE.entries(&SCENARIO, "hw_module", value, errors)?;
+        let (module, ob) = (entries.needs("module", errors), entries.needs("ob", errors));
+        Some(RawHwModule {
+            address: entries.get("address", errors),
+            module: module?,
+            ob: ob?,
+        })
+    })
+}
+
+fn hardware(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawHardware> {
+    let entries = HW_INTERRUPT.entries(&EVENT, "hw_interrupt", value, errors)?;
+    let (module, channel) = (
+        entries.needs("module", errors),
+        entries.needs("channel", errors),
+    );
+    Some(RawHardware {
+        active_for: entries.needs("active_for", errors)?,
+        module: module?,
+        channel: channel?,
+    })
+}
+
+fn station(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawStation> {
+    let entries = STATION.entries(&EVENT, "station", value, errors)?;
+    let number = entries.needs("number", errors);
+    Some(RawStation {
+        failed: entries.needs("failed", errors)?,
+        number: number?,
+    })
+}
+
+fn event(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawEvent> {
+    unless_reported(errors, |errors| {
+        let entries = EVENT.entries(&SCENARIO, "event", value, errors)?;
+        let hw_interrupt = entries.table("hw_interrupt", errors, hardware);
+        let station = entries.table("station", errors, station);
+        let at = entries.needs("at", errors);
+        Some(RawEvent {
+            every: entries.get("every", errors),
+            count: entries.get("count", errors),
+            until: entries.get("until", errors),
+            set: entries.get("set", errors),
+            interrupt: entries.get("interrupt", errors),
+            hw_interrupt,
+            station,
+            at: at?,
+        })
+    })
+}
+
+/// A `[[check]]` table: `at` and operands, checked against the program later.
+fn check(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<SpannedTable> {
+    SCENARIO.read("check", value, errors)
 }
 
 /// Reads the file: what could be read, and every error found on the way.
@@ -175,41 +590,272 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
     let (table, syntax) = DeTable::parse_recoverable(text);
     let mut errors: Vec<ScenarioError> = syntax
         .into_iter()
-        .map(|error| toml_error(error, 0..0))
+        .map(|error| syntax_error(error, 0..0))
         .collect();
     let mut raw = RawScenario::default();
     for (key, value) in table.get_ref() {
-        let mut keep = |result: Result<(), ScenarioError>| {
-            if let Err(error) = result {
-                errors.push(error);
-            }
-        };
-        match key.get_ref().as_ref() {
-            "program" => keep(read(value).map(|v| raw.program = Some(v))),
-            "symbols" => keep(read(value).map(|v| raw.symbols = Some(v))),
-            "cpu" => keep(read(value).map(|v| raw.cpu = Some(v))),
-            "dialect" => keep(read(value).map(|v| raw.dialect = Some(v))),
-            "extended" => keep(read(value).map(|v| raw.extended = Some(v))),
-            "mode" => keep(read(value).map(|v| raw.mode = Some(v))),
-            "interrupt_points" => keep(read(value).map(|v| raw.interrupt_points = Some(v))),
-            "run" => keep(read(value).map(|v| raw.run = Some(v))),
-            "watchdog" => keep(read(value).map(|v| raw.watchdog = Some(v))),
-            "ob13" => keep(read(value).map(|v| raw.ob13 = Some(v))),
-            "ob35" => keep(read(value).map(|v| raw.ob35 = Some(v))),
-            "clock_memory" => keep(read(value).map(|v| raw.clock_memory = Some(v))),
-            "expect" => keep(read(value).map(|v| raw.expect = v)),
-            "watch" => keep(read(value).map(|v| raw.watch = v)),
-            "hw_module" => raw.hw_module = read_each(value, &mut errors),
-            "event" => raw.event = read_each(value, &mut errors),
-            "check" => raw.check = read_each(value, &mut errors),
-            other => errors.push(ScenarioError::UnknownKey {
-                key: other.to_string(),
-                at: span_of(key.span()),
-                help: super::did_you_mean(other, KEYS.iter().copied()).map(|known| {
-                    format!("did you mean `{known}`? `awl help scenario` lists the keys")
-                }),
-            }),
+        let errors = &mut errors;
+        let name = key.get_ref().as_ref();
+        match name {
+            "program" => raw.program = SCENARIO.read(name, value, errors),
+            "symbols" => raw.symbols = SCENARIO.read(name, value, errors),
+            "cpu" => raw.cpu = SCENARIO.read(name, value, errors),
+            "dialect" => raw.dialect = SCENARIO.read(name, value, errors),
+            "extended" => raw.extended = SCENARIO.read(name, value, errors),
+            "mode" => raw.mode = SCENARIO.read(name, value, errors),
+            "interrupt_points" => raw.interrupt_points = SCENARIO.read(name, value, errors),
+            "watchdog" => raw.watchdog = SCENARIO.read(name, value, errors),
+            "clock_memory" => raw.clock_memory = SCENARIO.read(name, value, errors),
+            "expect" => raw.expect = SCENARIO.read(name, value, errors).unwrap_or_default(),
+            "watch" => raw.watch = SCENARIO.read(name, value, errors).unwrap_or_default(),
+            "run" => raw.run = run(value, errors).map(|run| Spanned::new(value.span(), run)),
+            "ob13" => raw.ob13 = ob13(value, errors).map(|ob13| Spanned::new(value.span(), ob13)),
+            "ob35" => raw.ob35 = ob35(value, errors).map(|ob35| Spanned::new(value.span(), ob35)),
+            "hw_module" => raw.hw_module = read_each(name, value, errors, hw_module),
+            "event" => raw.event = read_each(name, value, errors, event),
+            "check" => raw.check = read_each(name, value, errors, check),
+            _ => errors.push(SCENARIO.unknown_key(key)),
         }
     }
     (raw, errors)
+}
+
+#[cfg(test)]
+mod tests {
+    use miette::Diagnostic;
+
+    use super::*;
+
+    /// Each error of `text`: its message, labels and help on one line.
+    fn errors(text: &str) -> Vec<String> {
+        let (_, errors) = parse(text);
+        errors
+            .iter()
+            .map(|error| {
+                let labels: Vec<String> = error
+                    .labels()
+                    .into_iter()
+                    .flatten()
+                    .filter_map(|label| label.label().map(str::to_string))
+                    .collect();
+                let help = error.help().map(|help| help.to_string());
+                format!(
+                    "{error} | {} | {}",
+                    labels.join(", "),
+                    help.unwrap_or_default()
+                )
+            })
+            .collect()
+    }
+
+    fn one_error(text: &str) -> String {
+        let found = errors(text);
+        assert_eq!(found.len(), 1, "{text}: {found:#?}");
+        found.into_iter().next().unwrap()
+    }
+
+    /// Words of Rust and serde that mean nothing to a user of the format.
+    fn assert_in_user_words(error: &str) {
+        for word in [
+            "Raw",
+            "struct",
+            "sequence",
+            "map",
+            "variant",
+            "u8",
+            "u16",
+            "u64",
+            "i64",
+            "field",
+            "Spanned",
+            "ProgramList",
+            "expected",
+        ] {
+            assert!(!error.contains(word), "`{word}` in {error}");
+        }
+    }
+
+    #[test]
+    fn a_value_of_the_wrong_kind_says_what_the_key_takes() {
+        for (text, says, example) in [
+            (
+                "run = \"3s\"\n",
+                "`run` takes a table with `for`",
+                "run = { for = \"100ms\" }",
+            ),
+            (
+                "[[event]]\nat = 100\ninterrupt = \"OB 3\"\n",
+                "`at` in [[event]] takes a duration in quotes",
+                "at = \"100ms\"",
+            ),
+            (
+                "[[event]]\nat = \"1ms\"\nevery = 5\ncount = 2\ninterrupt = \"OB 3\"\n",
+                "`every` in [[event]] takes a duration",
+                "every = \"10ms\"",
+            ),
+            (
+                "watchdog = 300\n",
+                "`watchdog` takes a duration",
+                "watchdog = \"300ms\"",
+            ),
+            (
+                "watch = \"Q 4.0\"\n",
+                "`watch` takes a list of operands",
+                "watch = [",
+            ),
+            (
+                "program = 5\n",
+                "`program` takes a program file",
+                "program = [",
+            ),
+            (
+                "extended = \"yes\"\n",
+                "`extended` takes true or false",
+                "extended = true",
+            ),
+            ("expect = 5\n", "`expect` takes a table", "[expect]"),
+            (
+                "event = 3\n",
+                "`event` takes `[[event]]` tables",
+                "[[event]]",
+            ),
+            (
+                "check = [1]\n",
+                "`check` takes `[[check]]` tables",
+                "[[check]]",
+            ),
+            (
+                "[ob13]\ninterval = 5\n",
+                "`interval` in [ob13] takes a duration",
+                "interval =",
+            ),
+            (
+                "ob35 = \"100ms\"\n",
+                "`ob35` takes a table `[ob35]`",
+                "[ob35]",
+            ),
+            (
+                "[[event]]\nat = \"1ms\"\nhw_interrupt = { module = 4, channel = 1, active_for = 5 }\n",
+                "`active_for` in `hw_interrupt` takes a duration",
+                "active_for = \"200us\"",
+            ),
+            (
+                "[[event]]\nat = \"1ms\"\nstation = { number = 3, failed = \"yes\" }\n",
+                "`failed` in `station` takes true",
+                "failed = true",
+            ),
+        ] {
+            let error = one_error(text);
+            assert!(error.starts_with(says), "{text}: {error}");
+            assert!(error.contains(example), "{text}: {error}");
+            assert_in_user_words(&error);
+        }
+    }
+
+    #[test]
+    fn a_number_out_of_range_is_labelled_so() {
+        let error = one_error("[[hw_module]]\nmodule = 4\nob = 400\n");
+        assert!(
+            error.starts_with("`ob` in [[hw_module]] takes the OB number 40 or 41 | out of range"),
+            "{error}"
+        );
+    }
+
+    #[test]
+    fn a_typo_in_a_table_is_answered_with_that_table_s_keys() {
+        for (text, typo, meant, table) in [
+            (
+                "[[event]]\natt = \"1ms\"\ninterrupt = \"OB 3\"\n",
+                "att",
+                "at",
+                "[[event]]",
+            ),
+            (
+                "[ob13]\nintervall = \"1ms\"\n",
+                "intervall",
+                "interval",
+                "[ob13]",
+            ),
+            (
+                "[ob35]\nintervl = \"1ms\"\n",
+                "intervl",
+                "interval",
+                "[ob35]",
+            ),
+            (
+                "[[hw_module]]\nmodul = 4\nob = 40\n",
+                "modul",
+                "module",
+                "[[hw_module]]",
+            ),
+            ("run = { fro = \"1s\" }\n", "fro", "for", "`run`"),
+            (
+                "[[event]]\nat = \"1ms\"\nhw_interrupt = { module = 4, chanel = 1, active_for = \"1ms\" }\n",
+                "chanel",
+                "channel",
+                "`hw_interrupt`",
+            ),
+            (
+                "[[event]]\nat = \"1ms\"\nstation = { numbr = 3, failed = true }\n",
+                "numbr",
+                "number",
+                "`station`",
+            ),
+        ] {
+            let error = one_error(text);
+            assert!(
+                error.starts_with(&format!("unknown key `{typo}` | not a key of {table} |")),
+                "{error}"
+            );
+            assert!(
+                error.contains(&format!("did you mean `{meant}`? the keys of {table}: ")),
+                "{error}"
+            );
+            assert!(!error.contains("program"), "the top-level keys in {error}");
+        }
+    }
+
+    #[test]
+    fn a_top_level_typo_lists_the_keys_when_none_is_close() {
+        let error = one_error("colour = \"red\"\n");
+        assert!(
+            error.contains("the keys of a scenario: program, symbols"),
+            "{error}"
+        );
+        assert!(
+            error.contains("clock_memory") && error.contains("ob35"),
+            "{error}"
+        );
+        assert!(error.contains("`awl help scenario`"), "{error}");
+    }
+
+    #[test]
+    fn a_missing_key_is_named_with_an_example() {
+        let error = one_error("[[hw_module]]\nob = 40\n");
+        assert!(
+            error.starts_with("[[hw_module]] has no `module`"),
+            "{error}"
+        );
+        assert!(error.contains("e.g. `module = 4`"), "{error}");
+        let error = one_error("[[event]]\ninterrupt = \"OB 3\"\n");
+        assert!(error.starts_with("[[event]] has no `at`"), "{error}");
+    }
+
+    #[test]
+    fn a_toml_syntax_error_gets_help_on_the_format_not_a_key_list() {
+        let error = one_error("watchdog = \"1s\n");
+        assert!(error.contains("a scenario is TOML"), "{error}");
+        assert!(!error.contains("interrupt_points"), "{error}");
+    }
+
+    #[test]
+    fn a_good_file_reads_without_errors() {
+        let text = "program = \"a.awl\"\nrun = { cycles = 3 }\nwatchdog = \"300ms\"\nwatch = [\"Q 4.0\"]\n[[hw_module]]\nmodule = 4\nob = 40\naddress = 8\n[[event]]\nat = \"1ms\"\nevery = \"1ms\"\ncount = 2\nhw_interrupt = { module = 4, channel = 1, active_for = \"1ms\" }\n[[event]]\nat = \"2ms\"\nstation = { number = 3, failed = true }\n[expect]\nmode = \"RUN\"\n[[check]]\nat = \"1ms\"\n\"Q 4.0\" = 1\n";
+        let (raw, errors) = parse(text);
+        assert!(errors.is_empty(), "{errors:?}");
+        assert_eq!(raw.event.len(), 2);
+        assert_eq!(raw.hw_module.len(), 1);
+        assert_eq!(raw.check.len(), 1);
+        assert!(raw.run.is_some() && raw.watchdog.is_some());
+    }
 }

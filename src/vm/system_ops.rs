@@ -46,7 +46,7 @@ pub fn not_simulated(op: OpCode, operand: u16) -> (StopCause, StopDetail) {
         ),
     };
     let text = format!(
-        "`{statement}` is not simulated: {needs}, and awl has no S5 memory map (grammar/README.md, \"System and register operations\")"
+        "`{statement}` is not simulated: {needs}, and awl has no S5 memory map (`awl help language`, \"System and register operations\")"
     );
     (StopCause::Bcf, StopDetail::Text(text))
 }
