@@ -1,169 +1,47 @@
-//! An awlsim project file (`clockmem.awlpro`, XML, format version 1): awlsim's harness runs
-//! some tests through one instead of a bare `.awl` file. awl reads what it can honour: the
-//! number of accumulators, the clock memory byte, whether the OBs' start information is
-//! written, the mnemonics, the program's STL sources and the symbol tables (each a file beside
-//! the project or text inside it). The cycle time limit, run time limit and extended
-//! instructions are read and checked, but awlsim's harness overrides them from its command
-//! line (the `.conf`'s `cycle_limit` and `max_runtime`, the extensions always on), and so does
-//! awl. Whatever else would change the run (FUP or KOP sources, library blocks, hardware
-//! modules, CPU sizes other than awlsim's defaults, a target cycle time) is reported, since
-//! awl cannot run it; the rest (the GUI's and the core server's settings) is ignored.
+//! awlsim's project format version 1 (awlsim 0.77.1 writes it): XML, `<awlsim_project
+//! format_version="1">` holding `<cpu>` (`<specs nr_accus=…>`, `<config mnemonics=…>`), the
+//! sources of each language (`<language_awl><source type="0" file=… enabled=…>`, the text
+//! inside the element when there is no file), the symbol tables (`<symbols>`), library
+//! selections, hardware modules and the GUI's and core server's settings.
 
-use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
-use miette::{Diagnostic, NamedSource, Report, SourceSpan};
-use thiserror::Error;
+use super::{Kind, Reader, Setting, invalid, not_run, span};
 
-use crate::mnemonics::MnemonicSet;
-
-/// The format version awlsim 0.77.1 writes and reads.
+/// The format version this module reads.
 const FORMAT_VERSION: &str = "1";
-
-/// awlsim's CPU sizes that awl runs on the speed7 profile: a project may ask for these or less
-/// (a program fits a larger CPU), not more. The defaults of awlsim 0.77.1 (`S7CPUSpecs`) but
-/// for the process images (up to the SPEED7's largest, set as a project asks) and the flags,
-/// where the SPEED7 CPU has more; `nr_accus` is read on its own.
-const SPEED7_SPECS: &[(&str, i64)] = &[
-    ("nr_timers", 256),
-    ("nr_counters", 256),
-    ("nr_flags", 8192),
-    ("nr_inputs", 2048),
-    ("nr_outputs", 2048),
-    ("nr_localbytes", 1024),
-    ("parenthesis_stack_size", 7),
-    ("call_stack_size", 256),
-];
-
-/// The speed7 profile's process images, in bytes: a project asking for more gets them.
-const PRESET_IMAGE_BYTES: i64 = 256;
 
 /// awlsim's source types (`type=`): STL sources and symbol tables.
 const AWL_SOURCE: &str = "0";
 const SYMBOL_TABLE: &str = "3";
 
-/// What a project file asks for, as awl runs it.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Project {
-    /// `<specs nr_accus=…>`: 2 or 4.
-    pub accus: u8,
-    /// `<specs nr_inputs=… nr_outputs=…>`: bytes of each process image, when the larger is
-    /// more than the speed7 profile's preset.
-    pub image_bytes: Option<u16>,
-    /// `<config clock_memory_byte=…>`: the flag byte, when not −1.
-    pub clock_memory: Option<u16>,
-    /// `ob_startinfo_enable`: whether the OBs' start information is written.
-    pub start_info: bool,
-    /// `mnemonics`: `None` (0) detects them; 1 English, 2 German.
-    pub mnemonics: Option<MnemonicSet>,
-    /// `ext_insns_enable`, overridden by awlsim's harness (always on).
-    pub extensions: bool,
-    /// `cycle_time_limit_us`, in nanoseconds; overridden by the harness's `cycle_limit`.
-    pub cycle_limit_ns: u64,
-    /// `run_time_limit_us`, in nanoseconds (`None`: −1, no limit); overridden by the
-    /// harness's `max_runtime`.
-    pub max_runtime_ns: Option<u64>,
-    /// The enabled STL sources, in order: a name and the text.
-    pub programs: Vec<(PathBuf, Vec<u8>)>,
-    /// The enabled symbol tables, in order.
-    pub symbols: Vec<(PathBuf, Vec<u8>)>,
-}
-
-#[derive(Debug, Error, Diagnostic)]
-pub enum ProjectError {
-    #[error("cannot read `{path}`: {reason}")]
-    #[diagnostic(
-        code(awl::conformance::read_project),
-        help("an awlsim project file is XML text in UTF-8")
-    )]
-    Read { path: String, reason: String },
-
-    #[error("{message}")]
-    #[diagnostic(code(awl::conformance::bad_project))]
-    Bad {
-        message: String,
-        #[label("{label}")]
-        at: SourceSpan,
-        label: String,
-        #[help]
-        help: Option<String>,
-    },
-
-    #[error("{message}")]
-    #[diagnostic(code(awl::conformance::project_not_run))]
-    NotRun {
-        message: String,
-        #[label("{label}")]
-        at: SourceSpan,
-        label: String,
-        #[help]
-        help: Option<String>,
-    },
-}
-
-/// Reads the project file `path` and the source files it names (relative to it).
-pub fn read_project(path: &Path) -> Result<Project, Vec<Report>> {
-    let read = |reason: String| {
-        vec![Report::new(ProjectError::Read {
-            path: path.display().to_string(),
-            reason,
-        })]
-    };
-    let bytes = std::fs::read(path).map_err(|error| read(error.to_string()))?;
-    let text = String::from_utf8(bytes).map_err(|error| read(error.to_string()))?;
-    let dir = path.parent().unwrap_or(Path::new(""));
-    parse_project(&text, path, &mut |file| std::fs::read(dir.join(file))).map_err(|errors| {
-        let source = NamedSource::new(path.display().to_string(), Arc::<str>::from(text));
-        errors
-            .into_iter()
-            .map(|error| Report::new(error).with_source_code(source.clone()))
-            .collect()
-    })
-}
-
-/// Reads project text; `path` names its inline sources, `read` reads a source file by the
-/// name the project gives. Every error found, each at its place.
-pub fn parse_project(
-    text: &str,
-    path: &Path,
-    read: &mut dyn FnMut(&str) -> std::io::Result<Vec<u8>>,
-) -> Result<Project, Vec<ProjectError>> {
+/// Reads project text in format 1 into `reader`.
+pub(super) fn read(text: &str, reader: &mut Reader<'_>) {
     let document = match roxmltree::Document::parse(text) {
         Ok(document) => document,
         Err(error) => {
             let at = offset_of(text, error.pos());
-            return Err(vec![bad(
+            reader.errors.push(invalid(
                 format!("not an awlsim project file: {error}"),
                 (at, 0).into(),
                 "here",
-                Some("an awlsim project file is XML; awl reads format version 1".into()),
-            )]);
+                Some(
+                    "an awlsim project file is XML (format 1) or begins with `[AWLSIM_PROJECT]` \
+                     (format 0)"
+                        .into(),
+                ),
+            ));
+            return;
         }
-    };
-    let mut reader = Reader {
-        project: Project {
-            accus: 2,
-            image_bytes: None,
-            clock_memory: None,
-            start_info: false,
-            mnemonics: None,
-            extensions: false,
-            cycle_limit_ns: 1_000_000_000,
-            max_runtime_ns: None,
-            programs: Vec::new(),
-            symbols: Vec::new(),
-        },
-        errors: Vec::new(),
     };
     let root = document.root_element();
     if root.tag_name().name() != "awlsim_project" {
-        reader.errors.push(bad(
+        reader.errors.push(invalid(
             format!("`<{}>` is not an awlsim project", root.tag_name().name()),
             tag_span(root),
             "not `<awlsim_project>`",
             Some("an awlsim project file's root element is `<awlsim_project>`".into()),
         ));
-        return Err(reader.errors);
+        return;
     }
     match root.attribute_node("format_version") {
         Some(version) if version.value() == FORMAT_VERSION => {}
@@ -171,9 +49,9 @@ pub fn parse_project(
             format!("project format version {} is not read", version.value()),
             span(version.range_value()),
             "this version",
-            Some("awl reads awlsim's project format version 1 (awlsim 0.77.1 writes it)".into()),
+            Some("awl reads awlsim's XML projects of format version 1 (awlsim 0.77.1 writes it)".into()),
         )),
-        None => reader.errors.push(bad(
+        None => reader.errors.push(invalid(
             "the project has no format version",
             tag_span(root),
             "no `format_version`",
@@ -184,15 +62,16 @@ pub fn parse_project(
         match section.tag_name().name() {
             "cpu" => {
                 for part in section.children().filter(roxmltree::Node::is_element) {
+                    let settings = |name: &str| attribute(part, name);
                     match part.tag_name().name() {
-                        "specs" => reader.specs(part),
-                        "config" => reader.config(part),
+                        "specs" => reader.specs(&settings),
+                        "config" => reader.config(&settings),
                         _ => {}
                     }
                 }
             }
-            "language_awl" => reader.sources(section, AWL_SOURCE, path, read, false),
-            "symbols" => reader.sources(section, SYMBOL_TABLE, path, read, true),
+            "language_awl" => sources(reader, section, AWL_SOURCE, Kind::Program),
+            "symbols" => sources(reader, section, SYMBOL_TABLE, Kind::SymbolTable),
             "language_fup" | "language_kop" => {
                 let language = if section.tag_name().name() == "language_fup" {
                     "FUP (function block diagram)"
@@ -208,292 +87,77 @@ pub fn parse_project(
                     ));
                 }
             }
-            "libraries" => reader.refuse_each(
+            "libraries" => refuse_each(
+                reader,
                 section,
                 "lib_selection",
                 "a block of awlsim's libraries is not run",
                 "this library block",
                 "awl has no copy of awlsim's library blocks (IEC, …)",
             ),
-            "hardware" => reader.refuse_each(
+            "hardware" => refuse_each(
+                reader,
                 section,
                 "module",
                 "an awlsim hardware module is not simulated",
                 "this module",
-                "awl runs awlsim's tests on its dummy hardware only",
+                "awl runs awlsim's projects on its dummy hardware only",
             ),
             // The core server's link and the GUI's settings do not touch the run.
             _ => {}
         }
     }
-    if reader.errors.is_empty() {
-        Ok(reader.project)
-    } else {
-        Err(reader.errors)
+}
+
+/// An attribute as a setting.
+fn attribute<'a>(node: roxmltree::Node<'a, '_>, name: &str) -> Option<Setting<'a>> {
+    node.attribute_node(name).map(|attribute| Setting {
+        value: attribute.value(),
+        at: attribute.range_value(),
+    })
+}
+
+/// An error for each `tag` element of `section`: a part of the project awl cannot run.
+fn refuse_each(
+    reader: &mut Reader<'_>,
+    section: roxmltree::Node<'_, '_>,
+    tag: &str,
+    message: &str,
+    label: &str,
+    help: &str,
+) {
+    for node in section.children().filter(|node| node.has_tag_name(tag)) {
+        reader
+            .errors
+            .push(not_run(message, span(node.range()), label, Some(help.into())));
     }
 }
 
-struct Reader {
-    project: Project,
-    errors: Vec<ProjectError>,
-}
-
-impl Reader {
-    /// An error for each `tag` element of `section`: a part of the project awl cannot run.
-    fn refuse_each(
-        &mut self,
-        section: roxmltree::Node<'_, '_>,
-        tag: &str,
-        message: &str,
-        label: &str,
-        help: &str,
-    ) {
-        for node in section.children().filter(|node| node.has_tag_name(tag)) {
-            self.errors.push(not_run(
-                message,
-                span(node.range()),
-                label,
-                Some(help.into()),
-            ));
-        }
-    }
-
-    /// An integer attribute, or `default` when absent; `None` (an error kept) when bad.
-    fn int(&mut self, node: roxmltree::Node<'_, '_>, name: &str, default: i64) -> Option<i64> {
-        let Some(attribute) = node.attribute_node(name) else {
-            return Some(default);
-        };
-        match attribute.value().trim().parse::<i64>() {
-            Ok(value) => Some(value),
-            Err(_) => {
-                self.errors.push(bad(
-                    format!("`{name}` is not a number"),
-                    span(attribute.range_value()),
-                    "this value",
-                    Some(format!("write a whole number, e.g. `{name}=\"{default}\"`")),
-                ));
-                None
-            }
-        }
-    }
-
-    /// `value` checked by `fits`; `None` (an error kept, `expected` its help) when it does
-    /// not fit.
-    fn checked<T>(
-        &mut self,
-        node: roxmltree::Node<'_, '_>,
-        name: &str,
-        default: i64,
-        fits: impl Fn(i64) -> Option<T>,
-        expected: &str,
-    ) -> Option<T> {
-        let value = self.int(node, name, default)?;
-        let result = fits(value);
-        if result.is_none() {
-            let at = node
-                .attribute_node(name)
-                .map_or(node.range(), |attribute| attribute.range_value());
-            self.errors.push(bad(
-                format!("`{name}` {value} is out of range"),
-                span(at),
-                "this value",
-                Some(expected.into()),
-            ));
-        }
-        result
-    }
-
-    fn specs(&mut self, node: roxmltree::Node<'_, '_>) {
-        if let Some(accus) = self.checked(
-            node,
-            "nr_accus",
-            2,
-            |n| matches!(n, 2 | 4).then_some(n as u8),
-            "2 (as an S7-300) or 4 (as an S7-400)",
-        ) {
-            self.project.accus = accus;
-        }
-        for &(name, limit) in SPEED7_SPECS {
-            let Some(value) = self.int(node, name, limit) else {
-                continue;
-            };
-            if matches!(name, "nr_inputs" | "nr_outputs")
-                && (PRESET_IMAGE_BYTES..=limit).contains(&value)
-                && value
-                    > i64::from(
-                        self.project
-                            .image_bytes
-                            .unwrap_or(PRESET_IMAGE_BYTES as u16),
-                    )
-            {
-                self.project.image_bytes = Some(value as u16);
-            }
-            if value > limit {
-                let at = node
-                    .attribute_node(name)
-                    .map_or(node.range(), |attribute| attribute.range_value());
-                self.errors.push(not_run(
-                    format!("`{name}` {value} is more than awl's CPU has"),
-                    span(at),
-                    "not run as given",
-                    Some(format!(
-                        "awl runs awlsim's tests on the speed7 CPU, which has {name} {limit}"
-                    )),
-                ));
-            }
-        }
-    }
-
-    fn config(&mut self, node: roxmltree::Node<'_, '_>) {
-        if let Some(byte) = self.checked(
-            node,
-            "clock_memory_byte",
-            -1,
-            |n| match n {
-                -1 => Some(None),
-                0..2048 => Some(Some(n as u16)),
-                _ => None,
-            },
-            "a flag byte, 0 to 2047 (awlsim's 2048 flag bytes), or -1 for none",
-        ) {
-            self.project.clock_memory = byte;
-        }
-        if let Some(mnemonics) = self.checked(
-            node,
-            "mnemonics",
-            0,
-            |n| match n {
-                0 => Some(None),
-                1 => Some(Some(MnemonicSet::English)),
-                2 => Some(Some(MnemonicSet::German)),
-                _ => None,
-            },
-            "0 (detected), 1 (English) or 2 (German)",
-        ) {
-            self.project.mnemonics = mnemonics;
-        }
-        let flag = |n: i64| Some(n != 0);
-        if let Some(on) = self.checked(node, "ob_startinfo_enable", 0, flag, "0 or 1") {
-            self.project.start_info = on;
-        }
-        if let Some(on) = self.checked(node, "ext_insns_enable", 0, flag, "0 or 1") {
-            self.project.extensions = on;
-        }
-        if let Some(limit) = self.checked(
-            node,
-            "cycle_time_limit_us",
-            1_000_000,
-            |n| {
-                (1..=i64::from(u32::MAX))
-                    .contains(&n)
-                    .then(|| n as u64 * 1000)
-            },
-            "microseconds, above 0",
-        ) {
-            self.project.cycle_limit_ns = limit;
-        }
-        if let Some(limit) = self.checked(
-            node,
-            "run_time_limit_us",
-            -1,
-            |n| match n {
-                ..0 => Some(None),
-                0..=1_000_000_000_000 => Some(Some(n as u64 * 1000)),
-                _ => None,
-            },
-            "microseconds, or -1 for no limit",
-        ) {
-            self.project.max_runtime_ns = limit;
-        }
-        if let Some(target) = self.int(node, "cycle_time_target_us", 0)
-            && target != 0
+/// The `<source>`s of a section: each a file (relative to the project) or text inside.
+fn sources(reader: &mut Reader<'_>, section: roxmltree::Node<'_, '_>, type_id: &str, kind: Kind) {
+    let tag = section.tag_name().name();
+    for (index, source) in enabled_sources(section).enumerate() {
+        if let Some(given) = source.attribute_node("type")
+            && given.value().trim() != type_id
         {
-            let at = node
-                .attribute_node("cycle_time_target_us")
-                .map_or(node.range(), |attribute| attribute.range_value());
-            self.errors.push(not_run(
-                "a target cycle time is not simulated",
-                span(at),
-                "not 0",
-                Some("awl's cycles take the time their operations take".into()),
+            reader.errors.push(invalid(
+                format!("a source of type {} in `<{tag}>`", given.value()),
+                span(given.range_value()),
+                "this type",
+                Some(format!("awlsim writes type {type_id} for the sources of `<{tag}>`")),
             ));
+            continue;
         }
-    }
-
-    /// The `<source>`s of a section: each a file (relative to the project) or text inside.
-    fn sources(
-        &mut self,
-        section: roxmltree::Node<'_, '_>,
-        kind: &str,
-        path: &Path,
-        read: &mut dyn FnMut(&str) -> std::io::Result<Vec<u8>>,
-        symbols: bool,
-    ) {
-        for (index, source) in enabled_sources(section).enumerate() {
-            if let Some(given) = source.attribute_node("type")
-                && given.value().trim() != kind
-            {
-                self.errors.push(bad(
-                    format!(
-                        "a source of type {} in `<{}>`",
-                        given.value(),
-                        section.tag_name().name()
-                    ),
-                    span(given.range_value()),
-                    "this type",
-                    Some(format!(
-                        "awlsim writes type {kind} for the sources of `<{}>`",
-                        section.tag_name().name()
-                    )),
-                ));
-                continue;
-            }
-            let loaded = match source
-                .attribute_node("file")
-                .filter(|f| !f.value().is_empty())
-            {
-                Some(file) => match read(file.value()) {
-                    Ok(bytes) => {
-                        let dir = path.parent().unwrap_or(Path::new(""));
-                        (dir.join(file.value()), bytes)
-                    }
-                    Err(error) => {
-                        self.errors.push(bad(
-                            format!("cannot read `{}`: {error}", file.value()),
-                            span(file.range_value()),
-                            "this file",
-                            Some("a source file's name is relative to the project file".into()),
-                        ));
-                        continue;
-                    }
-                },
-                None => {
-                    let name = source.attribute("name").unwrap_or("source");
-                    let text: String = source
-                        .descendants()
-                        .filter(roxmltree::Node::is_text)
-                        .filter_map(|node| node.text())
-                        .collect();
-                    if text.trim().is_empty() {
-                        // An empty table, as awlsim writes one for a new project: nothing.
-                        continue;
-                    }
-                    let named = format!(
-                        "{} [{} {}: {name}]",
-                        path.display(),
-                        section.tag_name().name(),
-                        index + 1
-                    );
-                    (
-                        PathBuf::from(named),
-                        text.trim_matches(['\r', '\n']).as_bytes().to_vec(),
-                    )
-                }
-            };
-            if symbols {
-                self.project.symbols.push(loaded);
-            } else {
-                self.project.programs.push(loaded);
+        match attribute(source, "file").filter(|file| !file.value.is_empty()) {
+            Some(file) => reader.source_file(kind, file),
+            None => {
+                let name = source.attribute("name").unwrap_or("source");
+                let text: String = source
+                    .descendants()
+                    .filter(roxmltree::Node::is_text)
+                    .filter_map(|node| node.text())
+                    .collect();
+                reader.inline_source(kind, &format!("{tag} {}: {name}", index + 1), &text);
             }
         }
     }
@@ -525,45 +189,16 @@ fn offset_of(text: &str, pos: roxmltree::TextPos) -> usize {
 }
 
 /// An element's start: `<` and its name.
-fn tag_span(node: roxmltree::Node<'_, '_>) -> SourceSpan {
+fn tag_span(node: roxmltree::Node<'_, '_>) -> miette::SourceSpan {
     (node.range().start, node.tag_name().name().len() + 1).into()
-}
-
-fn span(range: std::ops::Range<usize>) -> SourceSpan {
-    (range.start, range.len()).into()
-}
-
-fn bad(
-    message: impl Into<String>,
-    at: SourceSpan,
-    label: &str,
-    help: Option<String>,
-) -> ProjectError {
-    ProjectError::Bad {
-        message: message.into(),
-        at,
-        label: label.into(),
-        help,
-    }
-}
-
-fn not_run(
-    message: impl Into<String>,
-    at: SourceSpan,
-    label: &str,
-    help: Option<String>,
-) -> ProjectError {
-    ProjectError::NotRun {
-        message: message.into(),
-        at,
-        label: label.into(),
-        help,
-    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use std::path::Path;
+
+    use super::super::{Project, ProjectError, parse_project};
+    use crate::mnemonics::MnemonicSet;
 
     fn parse(text: &str) -> Result<Project, Vec<ProjectError>> {
         parse_project(text, Path::new("dir/p.awlpro"), &mut |file| match file {
