@@ -14,7 +14,8 @@ use super::{
 };
 
 /// Runs the front end and prints its diagnostics; `None` when a file could not be read. With
-/// `with_profiles` and no `--cpu`, also the profiles the program compiles on without errors.
+/// `with_profiles`, no `--cpu` and no project, also the profiles the program compiles on
+/// without errors.
 fn build(
     options: &SourceOptions,
     console: &mut Console,
@@ -43,7 +44,8 @@ fn build(
             project.as_ref().map_or(profile, |project| project.cpu(profile))
         }
     };
-    let runs_on = (with_profiles && options.cpu.is_none())
+    // A project sets its CPU itself: which profiles would do instead is not asked.
+    let runs_on = (with_profiles && options.cpu.is_none() && project.is_none())
         .then(|| frontend::profiles_without_errors(&sources, &symbol_files, language));
     let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
     for diagnostic in &built.diagnostics {

@@ -147,10 +147,7 @@ pub enum ProjectError {
 /// Whether `bytes`, the file `path`, is an awlsim project: named `.awlpro`, or beginning as
 /// awlsim's projects do (awlsim itself looks at the text, not the name).
 pub fn is_project(path: &Path, bytes: &[u8]) -> bool {
-    if path
-        .extension()
-        .is_some_and(|ext| ext.eq_ignore_ascii_case("awlpro"))
-    {
+    if has_project_name(path) {
         return true;
     }
     let head = &bytes[..bytes.len().min(4096)];
@@ -160,6 +157,12 @@ pub fn is_project(path: &Path, bytes: &[u8]) -> bool {
         || head
             .lines()
             .any(|line| line.starts_with("<awlsim_project"))
+}
+
+/// Whether `path` is named as awlsim names its projects: `.awlpro`.
+pub fn has_project_name(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|ext| ext.eq_ignore_ascii_case("awlpro"))
 }
 
 /// Reads the project file `path` from `store`, and the source files it names (relative to it).
