@@ -78,9 +78,11 @@ pub fn read_program(
     let mut read = ProgramFiles::default();
     let mut errors: Vec<Report> = Vec::new();
     let mut project_symbols = Vec::new();
-    for path in programs {
+    for (index, path) in programs.iter().enumerate() {
         if has_extension(path, "toml") {
-            errors.push(Report::new(SourceError::ScenarioAsProgram { path: path.clone() }));
+            errors.push(Report::new(SourceError::ScenarioAsProgram {
+                path: path.clone(),
+            }));
             continue;
         }
         let bytes = match store.read(path) {
@@ -91,7 +93,11 @@ pub fn read_program(
             }
         };
         if !project::is_project(path, &bytes) {
-            errors.extend(add_source(&mut read.sources, path, bytes));
+            match add_source(&mut read.sources, path, bytes) {
+                Added::Yes => {}
+                Added::NotText(report) => errors.push(report),
+                Added::Full => return Err(vec![too_many(&read, programs.len() - index)]),
+            }
             continue;
         }
         if read.project.is_some() {
@@ -101,7 +107,11 @@ pub fn read_program(
         match project::project_of(store, path, bytes) {
             Ok(mut project) => {
                 for (name, bytes) in std::mem::take(&mut project.programs) {
-                    errors.extend(add_source(&mut read.sources, &name, bytes));
+                    match add_source(&mut read.sources, &name, bytes) {
+                        Added::Yes => {}
+                        Added::NotText(report) => errors.push(report),
+                        Added::Full => return Err(vec![too_many(&read, programs.len() - index)]),
+                    }
                 }
                 project_symbols = std::mem::take(&mut project.symbols);
                 read.project = Some(project);
@@ -113,7 +123,7 @@ pub fn read_program(
         .into_iter()
         .map(|(name, bytes)| SourceFile::from_bytes(name.display().to_string(), bytes))
         .collect();
-    match read_symbol_files_in(store, symbols) {
+    match read_symbol_files(store, symbols) {
         Ok(files) => read.symbol_files.extend(files),
         Err(more) => errors.extend(more.into_iter().map(Report::new)),
     }
@@ -124,24 +134,39 @@ pub fn read_program(
     }
 }
 
-/// Adds the program file `path` to `sources` unless it is binary; the error, if any.
-fn add_source(sources: &mut SourceSet, path: &Path, bytes: Vec<u8>) -> Option<Report> {
+/// What became of a program file.
+enum Added {
+    Yes,
+    /// A binary file: its error.
+    NotText(Report),
+    /// The set holds as many files as a span can name.
+    Full,
+}
+
+/// Adds the program file `path` to `sources` unless it is binary or the set is full.
+fn add_source(sources: &mut SourceSet, path: &Path, bytes: Vec<u8>) -> Added {
     if let Some(reason) = source::binary_reason(&bytes) {
-        return Some(Report::new(SourceError::NotText {
+        return Added::NotText(Report::new(SourceError::NotText {
             path: path.to_path_buf(),
             reason,
         }));
     }
-    let count = sources.files.len() + 1;
-    let file = SourceFile::from_bytes(path.display().to_string(), bytes);
-    match sources.add(file) {
-        Some(_) => None,
-        None => Some(Report::new(SourceError::TooMany { count })),
+    match sources.add(SourceFile::from_bytes(path.display().to_string(), bytes)) {
+        Some(_) => Added::Yes,
+        None => Added::Full,
     }
 }
 
+/// The error for a program of more files than a span can name: those read and the `left`
+/// paths from the one that did not fit on (each a file at least).
+fn too_many(read: &ProgramFiles, left: usize) -> Report {
+    Report::new(SourceError::TooMany {
+        count: read.sources.files.len() + left,
+    })
+}
+
 /// Reads the assignment lists from `store`; every file that cannot be read is reported.
-fn read_symbol_files_in(
+fn read_symbol_files(
     store: &Files,
     paths: &[impl AsRef<Path>],
 ) -> Result<Vec<SourceFile>, Vec<SourceError>> {
@@ -195,18 +220,27 @@ mod tests {
         result
             .expect_err("errors")
             .iter()
-            .map(|report| report.code().map(|code| code.to_string()).unwrap_or_default())
+            .map(|report| {
+                report
+                    .code()
+                    .map(|code| code.to_string())
+                    .unwrap_or_default()
+            })
             .collect()
     }
 
-    const PROJECT: &[u8] = b"[AWLSIM_PROJECT]\nfile_version=0\n[CPU]\nawl_file_0=a.awl\nnr_accus=4\n\
+    const PROJECT: &[u8] =
+        b"[AWLSIM_PROJECT]\nfile_version=0\n[CPU]\nawl_file_0=a.awl\nnr_accus=4\n\
                              [SYMBOLS]\nsym_tab_file_0=a.sym\n";
 
     #[test]
     fn a_project_opens_into_its_sources_and_symbol_tables() {
         let files = store(&[
             ("p/x.awlpro", PROJECT),
-            ("p/a.awl", b"ORGANIZATION_BLOCK OB 1\nBEGIN\nEND_ORGANIZATION_BLOCK\n"),
+            (
+                "p/a.awl",
+                b"ORGANIZATION_BLOCK OB 1\nBEGIN\nEND_ORGANIZATION_BLOCK\n",
+            ),
             ("p/a.sym", b"\"Start\" I 0.0 BOOL\n"),
             ("b.awl", b"FUNCTION FC 1 : VOID\nBEGIN\nEND_FUNCTION\n"),
             ("more.sym", b"\"Stop\" I 0.1 BOOL\n"),
@@ -226,7 +260,10 @@ mod tests {
         let files = store(&[
             ("x.awlpro", PROJECT),
             ("y.awlpro", PROJECT),
-            ("a.awl", b"ORGANIZATION_BLOCK OB 1\nBEGIN\nEND_ORGANIZATION_BLOCK\n"),
+            (
+                "a.awl",
+                b"ORGANIZATION_BLOCK OB 1\nBEGIN\nEND_ORGANIZATION_BLOCK\n",
+            ),
             ("a.sym", b""),
             ("picture.png", b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR"),
         ]);
@@ -249,7 +286,10 @@ mod tests {
     #[test]
     fn a_binary_source_of_a_project_is_told_too() {
         let files = store(&[
-            ("x.awlpro", b"[AWLSIM_PROJECT]\nfile_version=0\n[CPU]\nawl_file_0=a.s5d\n"),
+            (
+                "x.awlpro",
+                b"[AWLSIM_PROJECT]\nfile_version=0\n[CPU]\nawl_file_0=a.s5d\n",
+            ),
             ("a.s5d", b"\0\x01\x02S5D\0\0"),
         ]);
         assert_eq!(

@@ -126,7 +126,9 @@ pub fn binary_reason(bytes: &[u8]) -> Option<String> {
     };
     let odd: usize = head
         .utf8_chunks()
-        .map(|chunk| chunk.valid().as_bytes().iter().filter(control).count() + chunk.invalid().len())
+        .map(|chunk| {
+            chunk.valid().as_bytes().iter().filter(control).count() + chunk.invalid().len()
+        })
         .sum();
     // Text has a few such bytes at most; binary data has them everywhere.
     (odd * 10 > head.len() * 3).then(|| {
@@ -332,9 +334,15 @@ mod tests {
     fn binary_files_are_told_from_text() {
         let png = b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\x01\0";
         assert!(binary_reason(png).unwrap().contains("NUL"));
-        let noise: Vec<u8> = (0..2000u32).map(|n| (n * 7919 % 251) as u8 | 0x80).collect();
+        let noise: Vec<u8> = (0..2000u32)
+            .map(|n| (n * 7919 % 251) as u8 | 0x80)
+            .collect();
         assert!(binary_reason(&noise).unwrap().contains("not UTF-8"));
-        let controls: Vec<u8> = b"OB 1\n".iter().chain(&[1u8, 2, 3, 4, 5, 6, 7, 8]).copied().collect();
+        let controls: Vec<u8> = b"OB 1\n"
+            .iter()
+            .chain(&[1u8, 2, 3, 4, 5, 6, 7, 8])
+            .copied()
+            .collect();
         assert!(binary_reason(&controls).is_some());
         let text: [&[u8]; 7] = [
             b"",

@@ -41,7 +41,9 @@ fn build(
         Some(name) => selected_profile(Some(name)),
         None => {
             let profile = frontend::default_profile(&sources, language);
-            project.as_ref().map_or(profile, |project| project.cpu(profile))
+            project
+                .as_ref()
+                .map_or(profile, |project| project.cpu(profile))
         }
     };
     // A project sets its CPU itself: which profiles would do instead is not asked.

@@ -208,7 +208,8 @@ fn check(
     if let Some(reason) = skip_reason(&conf) {
         return Some(checked(Verdict::Skip(reason), Vec::new()));
     }
-    let project = match collect::is_project(path).then(|| project::read_project(&Files::Disk, path)) {
+    let project = match collect::is_project(path).then(|| project::read_project(&Files::Disk, path))
+    {
         None => None,
         Some(Ok(project)) => Some(project),
         Some(Err(reports)) => {

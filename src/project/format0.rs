@@ -309,7 +309,10 @@ fn sections<'a>(text: &'a str, reader: &mut Reader<'_>) -> Option<Vec<Section<'a
                 "neither a `[SECTION]` nor a `key = value` line",
                 span(at),
                 "this line",
-                Some("a format 0 project holds `[SECTION]` lines and `key = value` below them".into()),
+                Some(
+                    "a format 0 project holds `[SECTION]` lines and `key = value` below them"
+                        .into(),
+                ),
             ));
             continue;
         };
@@ -399,7 +402,16 @@ mod tests {
 
     #[test]
     fn base64_decodes_as_rfc_4648_says() {
-        for text in ["", "f", "fo", "foo", "foob", "fooba", "foobar", "Zähler\r\n"] {
+        for text in [
+            "",
+            "f",
+            "fo",
+            "foo",
+            "foob",
+            "fooba",
+            "foobar",
+            "Zähler\r\n",
+        ] {
             assert_eq!(base64(&encode(text)).unwrap(), text.as_bytes(), "{text}");
         }
         assert_eq!(base64("Zm9v\n  YmFy").unwrap(), b"foobar");
@@ -513,9 +525,10 @@ mod tests {
 
     #[test]
     fn awlsim_s_other_settings_in_cpu_are_its_defaults() {
-        let project =
-            parse("[AWLSIM_PROJECT]\nfile_version=0\n[CPU]\nnr_flags=99999\ncycle_time_target_us=5\n")
-                .unwrap();
+        let project = parse(
+            "[AWLSIM_PROJECT]\nfile_version=0\n[CPU]\nnr_flags=99999\ncycle_time_target_us=5\n",
+        )
+        .unwrap();
         assert_eq!(project, Project::default());
     }
 }

@@ -4,7 +4,6 @@
 //! inside the element when there is no file), the symbol tables (`<symbols>`), library
 //! selections, hardware modules and the GUI's and core server's settings.
 
-
 use super::{Kind, Reader, Setting, invalid, not_run, span};
 
 /// The format version this module reads.
@@ -49,7 +48,10 @@ pub(super) fn read(text: &str, reader: &mut Reader<'_>) {
             format!("project format version {} is not read", version.value()),
             span(version.range_value()),
             "this version",
-            Some("awl reads awlsim's XML projects of format version 1 (awlsim 0.77.1 writes it)".into()),
+            Some(
+                "awl reads awlsim's XML projects of format version 1 (awlsim 0.77.1 writes it)"
+                    .into(),
+            ),
         )),
         None => reader.errors.push(invalid(
             "the project has no format version",
@@ -127,9 +129,12 @@ fn refuse_each(
     help: &str,
 ) {
     for node in section.children().filter(|node| node.has_tag_name(tag)) {
-        reader
-            .errors
-            .push(not_run(message, span(node.range()), label, Some(help.into())));
+        reader.errors.push(not_run(
+            message,
+            span(node.range()),
+            label,
+            Some(help.into()),
+        ));
     }
 }
 
@@ -144,7 +149,9 @@ fn sources(reader: &mut Reader<'_>, section: roxmltree::Node<'_, '_>, type_id: &
                 format!("a source of type {} in `<{tag}>`", given.value()),
                 span(given.range_value()),
                 "this type",
-                Some(format!("awlsim writes type {type_id} for the sources of `<{tag}>`")),
+                Some(format!(
+                    "awlsim writes type {type_id} for the sources of `<{tag}>`"
+                )),
             ));
             continue;
         }

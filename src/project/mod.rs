@@ -154,9 +154,7 @@ pub fn is_project(path: &Path, bytes: &[u8]) -> bool {
     let head = String::from_utf8_lossy(head);
     let head = head.trim_start_matches('\u{feff}');
     head.trim_start().starts_with(format0::MAGIC)
-        || head
-            .lines()
-            .any(|line| line.starts_with("<awlsim_project"))
+        || head.lines().any(|line| line.starts_with("<awlsim_project"))
 }
 
 /// Whether `path` is named as awlsim names its projects: `.awlpro`.
@@ -505,8 +503,14 @@ mod tests {
         let xml = b"<?xml version=\"1.0\"?>\n<awlsim_project format_version=\"1\"/>";
         assert!(is_project(Path::new("p.AWLPRO"), b"anything"));
         assert!(is_project(Path::new("p.awl"), xml));
-        assert!(is_project(Path::new("p"), b"\xEF\xBB\xBF\n[AWLSIM_PROJECT]\n"));
-        assert!(!is_project(Path::new("p.awl"), b"ORGANIZATION_BLOCK OB 1\n"));
+        assert!(is_project(
+            Path::new("p"),
+            b"\xEF\xBB\xBF\n[AWLSIM_PROJECT]\n"
+        ));
+        assert!(!is_project(
+            Path::new("p.awl"),
+            b"ORGANIZATION_BLOCK OB 1\n"
+        ));
     }
 
     #[test]
