@@ -77,8 +77,10 @@ pub fn read_program(
 ) -> Result<ProgramFiles, Vec<Report>> {
     let mut read = ProgramFiles::default();
     let mut errors: Vec<Report> = Vec::new();
+    // Each program text with its name: the files, and a project's sources in its place.
+    let mut texts: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     let mut project_symbols = Vec::new();
-    for (index, path) in programs.iter().enumerate() {
+    for path in programs {
         if has_extension(path, "toml") {
             errors.push(Report::new(SourceError::ScenarioAsProgram {
                 path: path.clone(),
@@ -93,30 +95,29 @@ pub fn read_program(
             }
         };
         if !project::is_project(path, &bytes) {
-            match add_source(&mut read.sources, path, bytes) {
-                Added::Yes => {}
-                Added::NotText(report) => errors.push(report),
-                Added::Full => return Err(vec![too_many(&read, programs.len() - index)]),
-            }
-            continue;
-        }
-        if read.project.is_some() {
+            texts.push((path.clone(), bytes));
+        } else if read.project.is_some() {
             errors.push(Report::new(SourceError::TwoProjects { path: path.clone() }));
+        } else {
+            match project::project_of(store, path, bytes) {
+                Ok(mut project) => {
+                    texts.append(&mut project.programs);
+                    project_symbols = std::mem::take(&mut project.symbols);
+                    read.project = Some(project);
+                }
+                Err(reports) => errors.extend(reports),
+            }
+        }
+    }
+    let count = texts.len();
+    for (name, bytes) in texts {
+        if let Some(reason) = source::binary_reason(&bytes) {
+            errors.push(Report::new(SourceError::NotText { path: name, reason }));
             continue;
         }
-        match project::project_of(store, path, bytes) {
-            Ok(mut project) => {
-                for (name, bytes) in std::mem::take(&mut project.programs) {
-                    match add_source(&mut read.sources, &name, bytes) {
-                        Added::Yes => {}
-                        Added::NotText(report) => errors.push(report),
-                        Added::Full => return Err(vec![too_many(&read, programs.len() - index)]),
-                    }
-                }
-                project_symbols = std::mem::take(&mut project.symbols);
-                read.project = Some(project);
-            }
-            Err(reports) => errors.extend(reports),
+        let file = SourceFile::from_bytes(name.display().to_string(), bytes);
+        if read.sources.add(file).is_none() {
+            return Err(vec![Report::new(SourceError::TooMany { count })]);
         }
     }
     read.symbol_files = project_symbols
@@ -132,37 +133,6 @@ pub fn read_program(
     } else {
         Err(errors)
     }
-}
-
-/// What became of a program file.
-enum Added {
-    Yes,
-    /// A binary file: its error.
-    NotText(Report),
-    /// The set holds as many files as a span can name.
-    Full,
-}
-
-/// Adds the program file `path` to `sources` unless it is binary or the set is full.
-fn add_source(sources: &mut SourceSet, path: &Path, bytes: Vec<u8>) -> Added {
-    if let Some(reason) = source::binary_reason(&bytes) {
-        return Added::NotText(Report::new(SourceError::NotText {
-            path: path.to_path_buf(),
-            reason,
-        }));
-    }
-    match sources.add(SourceFile::from_bytes(path.display().to_string(), bytes)) {
-        Some(_) => Added::Yes,
-        None => Added::Full,
-    }
-}
-
-/// The error for a program of more files than a span can name: those read and the `left`
-/// paths from the one that did not fit on (each a file at least).
-fn too_many(read: &ProgramFiles, left: usize) -> Report {
-    Report::new(SourceError::TooMany {
-        count: read.sources.files.len() + left,
-    })
 }
 
 /// Reads the assignment lists from `store`; every file that cannot be read is reported.
@@ -276,8 +246,8 @@ mod tests {
             [
                 "awl::cli::scenario_as_program",
                 "awl::cli::read_file",
-                "awl::cli::not_text",
                 "awl::cli::two_projects",
+                "awl::cli::not_text",
                 "awl::cli::read_file",
             ]
         );
