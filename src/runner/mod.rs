@@ -17,9 +17,9 @@ use crate::compiler::Program;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend, Language};
 use crate::mnemonics::MnemonicSet;
-use crate::profile::{Family, InterruptPoints, Profile};
+use crate::profile::{self, Family, InterruptPoints, Profile};
 use crate::program_files::{ProgramFiles, read_program};
-use crate::project::Project;
+use crate::project::{self, Project};
 use crate::scenario::check::{CheckOutcome, Checker};
 use crate::scenario::expect::{self, Mismatch};
 use crate::scenario::modify::Modifier;
@@ -299,8 +299,22 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     // compiled (its operands), so a file shows all of them at once.
     let (scenario, mut scenario_errors) = match &options.scenario {
         Some(path) => {
-            let (scenario, errors) = Scenario::load_in(&options.store, path, options.cpu)
-                .map_err(|error| NotRun::Failed(vec![error]))?;
+            let load = |cpu| {
+                Scenario::load_in(&options.store, path, cpu)
+                    .map_err(|error| NotRun::Failed(vec![error]))
+            };
+            let (mut scenario, mut errors) = load(options.cpu)?;
+            // A scenario without `cpu` runs a project named on the command line on the STEP 7
+            // CPU, as it would had it named the project itself; its keys are checked for that.
+            if scenario.cpu.is_none()
+                && options.cpu.is_none()
+                && options
+                    .files
+                    .iter()
+                    .any(|file| project::has_project_name(file))
+            {
+                (scenario, errors) = load(profile::find(profile::DEFAULT_STEP7_PROFILE))?;
+            }
             (Some(scenario), errors)
         }
         None => (None, Vec::new()),
