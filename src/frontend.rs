@@ -1,10 +1,5 @@
-//! The whole front end in one call: read files, parse each, compile them together, and keep
-//! every diagnostic of every file.
-
-use std::path::{Path, PathBuf};
-
-use miette::Diagnostic;
-use thiserror::Error;
+//! The whole front end in one call: parse each file read ([`crate::program_files`]), compile
+//! them together, and keep every diagnostic of every file.
 
 use crate::ast::SourceUnit;
 use crate::compiler::{self, Compiled};
@@ -14,33 +9,8 @@ use crate::fragment;
 use crate::mnemonics::MnemonicSet;
 use crate::parser;
 use crate::profile::Profile;
-use crate::source::{Files, SourceFile, SourceSet};
+use crate::source::{SourceFile, SourceSet};
 use crate::symbols;
-
-/// Why the source files could not be loaded.
-#[derive(Debug, Error, Diagnostic)]
-pub enum SourceError {
-    #[error("cannot read `{}`: {reason}", path.display())]
-    #[diagnostic(
-        code(awl::cli::read_file),
-        help("check the path; program files are plain text (.awl)")
-    )]
-    Read { path: PathBuf, reason: String },
-
-    #[error("`{}` is a scenario file, not a program", path.display())]
-    #[diagnostic(
-        code(awl::cli::scenario_as_program),
-        help("run a scenario with `awl run --scenario {}`", path.display())
-    )]
-    ScenarioAsProgram { path: PathBuf },
-
-    #[error("{count} source files: awl reads at most 65,536 at once")]
-    #[diagnostic(
-        code(awl::cli::too_many_files),
-        help("join the files, or check them in parts")
-    )]
-    TooMany { count: usize },
-}
 
 /// What language the sources are read as: each choice left open (`None`, `false`) is the
 /// default, so `Language::default()` is what a file says by itself.
@@ -86,77 +56,6 @@ impl Frontend {
         self.diagnostics
             .iter()
             .any(|diagnostic| !diagnostic.is_warning())
-    }
-}
-
-/// Reads the assignment lists; every file that cannot be read is reported.
-pub fn read_symbol_files(paths: &[impl AsRef<Path>]) -> Result<Vec<SourceFile>, Vec<SourceError>> {
-    read_symbol_files_in(&Files::Disk, paths)
-}
-
-/// [`read_symbol_files`] from `store`.
-pub fn read_symbol_files_in(
-    store: &Files,
-    paths: &[impl AsRef<Path>],
-) -> Result<Vec<SourceFile>, Vec<SourceError>> {
-    let mut files = Vec::new();
-    let mut errors = Vec::new();
-    for path in paths {
-        let path = path.as_ref();
-        match store.source(path) {
-            Ok(file) => files.push(file),
-            Err(error) => errors.push(SourceError::Read {
-                path: path.to_path_buf(),
-                reason: error.to_string(),
-            }),
-        }
-    }
-    if errors.is_empty() {
-        Ok(files)
-    } else {
-        Err(errors)
-    }
-}
-
-/// Reads every file; every file that cannot be read is reported.
-pub fn read_sources(paths: &[impl AsRef<Path>]) -> Result<SourceSet, Vec<SourceError>> {
-    read_sources_in(&Files::Disk, paths)
-}
-
-/// [`read_sources`] from `store`.
-pub fn read_sources_in(
-    store: &Files,
-    paths: &[impl AsRef<Path>],
-) -> Result<SourceSet, Vec<SourceError>> {
-    let mut sources = SourceSet::default();
-    let mut errors = Vec::new();
-    for path in paths {
-        let path = path.as_ref();
-        if path
-            .extension()
-            .is_some_and(|ext| ext.eq_ignore_ascii_case("toml"))
-        {
-            errors.push(SourceError::ScenarioAsProgram {
-                path: path.to_path_buf(),
-            });
-            continue;
-        }
-        match store.source(path) {
-            Ok(file) => {
-                if sources.add(file).is_none() {
-                    return Err(vec![SourceError::TooMany { count: paths.len() }]);
-                }
-            }
-            Err(error) => errors.push(SourceError::Read {
-                path: path.to_path_buf(),
-                reason: error.to_string(),
-            }),
-        }
-    }
-    if errors.is_empty() {
-        Ok(sources)
-    } else {
-        Err(errors)
     }
 }
 

@@ -105,6 +105,40 @@ impl SourceFile {
     }
 }
 
+/// How many bytes from a file's start [`binary_reason`] looks at.
+const SNIFFED_BYTES: usize = 4096;
+
+/// Why `bytes` are a binary file rather than text (a picture, an executable, a STEP 5 PG's
+/// `.S5D`), or `None` for text: text holds no NUL byte (but UTF-16 with its byte-order mark,
+/// which is text), and few control characters or bytes that are not UTF-8 (ISO-8859-1 text has
+/// some: its umlauts). Only the file's first few KB are looked at.
+pub fn binary_reason(bytes: &[u8]) -> Option<String> {
+    if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
+        return None;
+    }
+    let head = &bytes[..bytes.len().min(SNIFFED_BYTES)];
+    if head.contains(&0) {
+        return Some("it holds NUL bytes, as binary files do".into());
+    }
+    let control = |byte: &&u8| {
+        (**byte < 0x20 && !matches!(**byte, b'\t' | b'\n' | b'\r' | 0x0B | 0x0C | 0x1A))
+            || **byte == 0x7F
+    };
+    let odd: usize = head
+        .utf8_chunks()
+        .map(|chunk| {
+            chunk.valid().as_bytes().iter().filter(control).count() + chunk.invalid().len()
+        })
+        .sum();
+    // Text has a few such bytes at most; binary data has them everywhere.
+    (odd * 10 > head.len() * 3).then(|| {
+        format!(
+            "{odd} of its first {} bytes are control characters or not UTF-8",
+            head.len()
+        )
+    })
+}
+
 fn decode(bytes: Vec<u8>) -> String {
     match bytes.as_slice() {
         [0xEF, 0xBB, 0xBF, rest @ ..] => String::from_utf8_lossy(rest).into_owned(),
@@ -294,6 +328,34 @@ mod tests {
         assert_eq!(clean(plain), plain);
         assert_eq!(clean("A\r\nB\rC"), "A\r\nB\nC");
         assert_eq!(clean("A\x01B\x7F"), "A\u{2401}B\u{2421}");
+    }
+
+    #[test]
+    fn binary_files_are_told_from_text() {
+        let png = b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\x01\0";
+        assert!(binary_reason(png).unwrap().contains("NUL"));
+        let noise: Vec<u8> = (0..2000u32)
+            .map(|n| (n * 7919 % 251) as u8 | 0x80)
+            .collect();
+        assert!(binary_reason(&noise).unwrap().contains("not UTF-8"));
+        let controls: Vec<u8> = b"OB 1\n"
+            .iter()
+            .chain(&[1u8, 2, 3, 4, 5, 6, 7, 8])
+            .copied()
+            .collect();
+        assert!(binary_reason(&controls).is_some());
+        let text: [&[u8]; 7] = [
+            b"",
+            b"OB 1\n  A I 0.0\n  BE\n",
+            b"\xEF\xBB\xBFPB 1\r\nBE\r\n",
+            b"\xFF\xFEP\0B\0",
+            b"PB 1\rBE\r",
+            b"OB 1\n  A I 0.0\x07\x1b[31m\n  BE\n\x1a",
+            b"; Z\xe4hler f\xfcr \xd6l\nPB 1\n  BE\n",
+        ];
+        for bytes in text {
+            assert_eq!(binary_reason(bytes), None, "{bytes:?}");
+        }
     }
 
     #[test]

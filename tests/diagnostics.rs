@@ -304,9 +304,14 @@ fn every_front_end_code_renders() {
 
 #[test]
 fn cli_read_error_renders() {
-    let mut errors = frontend::read_sources(&["does/not/exist.awl"]).unwrap_err();
+    let errors = awl::program_files::read_program(
+        &awl::source::Files::Disk,
+        &[std::path::PathBuf::from("does/not/exist.awl")],
+        &[],
+    )
+    .unwrap_err();
     assert_eq!(errors.len(), 1);
-    let rendered = render_plain(&miette::Report::new(errors.remove(0)));
+    let rendered = render_plain(&errors[0]);
     assert!(rendered.contains("awl::cli::read_file"));
     insta::assert_snapshot!("awl__cli__read_file", rendered);
 }

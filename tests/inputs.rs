@@ -1,12 +1,22 @@
 //! Source files as they come: byte-order marks, UTF-16, lone CRs, control characters, and more
 //! files than a span can name.
 
+use std::path::PathBuf;
+
 use awl::diagnostics::{render_plain, report};
-use awl::frontend::{self, SourceError};
+use awl::frontend;
 use awl::profile;
+use awl::program_files::read_program;
+use awl::source::Files;
+
+fn paths(names: &[&str]) -> Vec<PathBuf> {
+    names.iter().map(PathBuf::from).collect()
+}
 
 fn rendered(path: &str) -> Vec<String> {
-    let sources = frontend::read_sources(&[path]).unwrap();
+    let sources = read_program(&Files::Disk, &paths(&[path]), &[])
+        .unwrap()
+        .sources;
     let built = frontend::build(
         sources,
         frontend::Language::default(),
@@ -46,17 +56,41 @@ fn control_characters_are_shown_as_pictures() {
 
 #[test]
 fn more_files_than_a_span_can_name_are_an_error() {
-    let paths = vec!["tests/inputs/bom.awl"; 65_537];
-    let errors = frontend::read_sources(&paths).unwrap_err();
-    assert!(matches!(
-        errors[..],
-        [SourceError::TooMany { count: 65_537 }]
-    ));
+    let paths = paths(&vec!["tests/inputs/bom.awl"; 65_537]);
+    let errors = read_program(&Files::Disk, &paths, &[]).unwrap_err();
+    assert_eq!(errors.len(), 1);
     assert_eq!(
-        frontend::read_sources(&paths[..65_536])
+        errors[0].to_string(),
+        "65537 source files: awl reads at most 65,536 at once"
+    );
+    assert_eq!(
+        read_program(&Files::Disk, &paths[..65_536], &[])
             .unwrap()
+            .sources
             .files
             .len(),
         65_536
     );
+}
+
+#[test]
+fn a_binary_file_is_one_error_text_with_odd_bytes_is_text() {
+    for binary in [
+        "tests/inputs/binary/program.s5d",
+        "tests/inputs/binary/noise.awl",
+    ] {
+        let errors = read_program(&Files::Disk, &paths(&[binary]), &[]).unwrap_err();
+        assert_eq!(errors.len(), 1, "{binary}");
+        assert!(
+            errors[0].to_string().contains("is not STL text"),
+            "{binary}"
+        );
+    }
+    let text = [
+        "tests/inputs/bom.awl",
+        "tests/inputs/utf16.awl",
+        "tests/inputs/cr_only.awl",
+        "tests/inputs/control.awl",
+    ];
+    assert!(read_program(&Files::Disk, &paths(&text), &[]).is_ok());
 }

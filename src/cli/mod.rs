@@ -100,7 +100,7 @@ impl LanguageArgs {
 /// Options every command that reads source files shares.
 #[derive(Debug, clap::Args)]
 pub struct SourceOptions {
-    /// STL source files (.awl)
+    /// STL source files (.awl) or an awlsim project (.awlpro)
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// CPU profile (see `awl cpus`) [default: speed7 for STEP 7 files, else sinumerik-840c]

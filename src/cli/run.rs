@@ -62,7 +62,8 @@ pub enum StateFormat {
 /// the CPU.
 #[derive(Debug, clap::Args)]
 pub struct ProgramArgs {
-    /// STL source files (.awl); optional with a scenario that names them
+    /// STL source files (.awl) or an awlsim project (.awlpro); optional with a scenario that
+    /// names them
     #[arg(required_unless_present = "scenario")]
     pub files: Vec<PathBuf>,
     /// Scenario file (TOML; `awl help scenario` describes its keys) [default: none: no

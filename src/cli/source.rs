@@ -5,6 +5,8 @@ use miette::Report;
 use crate::analyze::warnings::program_warnings;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend};
+use crate::program_files::{ProgramFiles, read_program};
+use crate::source::Files;
 
 use super::{
     Console, DumpArgs, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_USAGE, SourceOptions, plural,
@@ -12,36 +14,40 @@ use super::{
 };
 
 /// Runs the front end and prints its diagnostics; `None` when a file could not be read. With
-/// `with_profiles` and no `--cpu`, also the profiles the program compiles on without errors.
+/// `with_profiles`, no `--cpu` and no project, also the profiles the program compiles on
+/// without errors.
 fn build(
     options: &SourceOptions,
     console: &mut Console,
     with_profiles: bool,
 ) -> Option<(Frontend, Option<Vec<&'static str>>)> {
-    let sources = match frontend::read_sources(&options.files) {
-        Ok(sources) => sources,
+    let read = match read_program(&Files::Disk, &options.files, &options.symbols) {
+        Ok(read) => read,
         Err(errors) => {
-            for error in errors {
-                console.report(&Report::new(error));
-            }
+            console.reports(&errors);
             return None;
         }
     };
-    let symbol_files = match frontend::read_symbol_files(&options.symbols) {
-        Ok(files) => files,
-        Err(errors) => {
-            for error in errors {
-                console.report(&Report::new(error));
-            }
-            return None;
-        }
-    };
-    let language = options.language.language();
+    let ProgramFiles {
+        sources,
+        symbol_files,
+        project,
+    } = read;
+    let mut language = options.language.language();
+    if let Some(project) = &project {
+        language = project.language(language);
+    }
     let profile = match options.cpu.as_deref() {
         Some(name) => selected_profile(Some(name)),
-        None => frontend::default_profile(&sources, language),
+        None => {
+            let profile = frontend::default_profile(&sources, language);
+            project
+                .as_ref()
+                .map_or(profile, |project| project.cpu(profile))
+        }
     };
-    let runs_on = (with_profiles && options.cpu.is_none())
+    // A project sets its CPU itself: which profiles would do instead is not asked.
+    let runs_on = (with_profiles && options.cpu.is_none() && project.is_none())
         .then(|| frontend::profiles_without_errors(&sources, &symbol_files, language));
     let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
     for diagnostic in &built.diagnostics {

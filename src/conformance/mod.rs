@@ -5,22 +5,24 @@
 //! 0 when the program stops the CPU by `CALL SFC 46` or the run time is over, and with 30 when
 //! the simulator reports an error: a source error, a failed assertion, any other STOP. A test
 //! passes when awl ends as awlsim must. An awlsim project file (`.awlpro`) is a test too: its
-//! sources and settings ([`project`]) make the program and the CPU.
+//! sources and settings ([`crate::project`]) make the program and the CPU.
 
 pub mod collect;
 pub mod conf;
-pub mod project;
 pub mod run;
 
 use std::path::{Path, PathBuf};
 
 use miette::Report;
 
+use crate::project;
+use crate::source::Files;
+
 use crate::vm::stop::StopCause;
 
 pub use collect::{Entry, collect};
 pub use conf::{Conf, parse_conf, read_conf};
-pub use project::{Project, parse_project, read_project};
+pub use project::Project;
 pub use run::run_test;
 
 /// awlsim's exit code when the simulator reported an error (`EXIT_ERR_SIM`).
@@ -206,7 +208,8 @@ fn check(
     if let Some(reason) = skip_reason(&conf) {
         return Some(checked(Verdict::Skip(reason), Vec::new()));
     }
-    let project = match collect::is_project(path).then(|| read_project(path)) {
+    let project = match collect::is_project(path).then(|| project::read_project(&Files::Disk, path))
+    {
         None => None,
         Some(Ok(project)) => Some(project),
         Some(Err(reports)) => {

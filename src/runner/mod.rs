@@ -17,7 +17,9 @@ use crate::compiler::Program;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend, Language};
 use crate::mnemonics::MnemonicSet;
-use crate::profile::{Family, InterruptPoints, Profile};
+use crate::profile::{self, Family, InterruptPoints, Profile};
+use crate::program_files::{ProgramFiles, read_program};
+use crate::project::{self, Project};
 use crate::scenario::check::{CheckOutcome, Checker};
 use crate::scenario::expect::{self, Mismatch};
 use crate::scenario::modify::Modifier;
@@ -297,8 +299,22 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     // compiled (its operands), so a file shows all of them at once.
     let (scenario, mut scenario_errors) = match &options.scenario {
         Some(path) => {
-            let (scenario, errors) = Scenario::load_in(&options.store, path, options.cpu)
-                .map_err(|error| NotRun::Failed(vec![error]))?;
+            let load = |cpu| {
+                Scenario::load_in(&options.store, path, cpu)
+                    .map_err(|error| NotRun::Failed(vec![error]))
+            };
+            let (mut scenario, mut errors) = load(options.cpu)?;
+            // A scenario without `cpu` runs a project named on the command line on the STEP 7
+            // CPU, as it would had it named the project itself; its keys are checked for that.
+            if scenario.cpu.is_none()
+                && options.cpu.is_none()
+                && options
+                    .files
+                    .iter()
+                    .any(|file| project::has_project_name(file))
+            {
+                (scenario, errors) = load(profile::find(profile::DEFAULT_STEP7_PROFILE))?;
+            }
             (Some(scenario), errors)
         }
         None => (None, Vec::new()),
@@ -345,16 +361,23 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
             symbol_paths.push(path.clone());
         }
     }
-    let store = &options.store;
-    let read = frontend::read_sources_in(store, &files).and_then(|sources| {
-        frontend::read_symbol_files_in(store, &symbol_paths).map(|symbols| (sources, symbols))
-    });
-    let (sources, symbol_files) = read.map_err(|errors| {
-        scenario_errors.extend(errors.into_iter().map(Report::new));
+    let read = read_program(&options.store, &files, &symbol_paths).map_err(|errors| {
+        scenario_errors.extend(errors);
         NotRun::Failed(std::mem::take(&mut scenario_errors))
     })?;
-    let language = language(options.language, scenario.as_ref());
+    let ProgramFiles {
+        sources,
+        symbol_files,
+        project,
+    } = read;
+    let language = language(options.language, scenario.as_ref(), project.as_ref());
     let profile = chosen.unwrap_or_else(|| frontend::default_profile(&sources, language));
+    // A CPU the command line or the scenario names is taken as it is; else the project's.
+    let cpu_named = options.cpu.is_some() || scenario.as_ref().is_some_and(|s| s.cpu.is_some());
+    let profile = match &project {
+        Some(project) if !cpu_named => project.cpu(profile),
+        _ => profile,
+    };
     if options.special_mode.is_some() && profile.family != Family::Sinumerik840c {
         return Err(NotRun::Usage(Report::new(RunError::ModeNotForCpu {
             cpu: profile.name,
@@ -432,22 +455,41 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         watchdog_ns: options
             .watchdog_ns
             .or(scenario.as_ref().and_then(|s| s.watchdog_ns))
+            .or(project.as_ref().map(|project| project.cycle_limit_ns))
             .unwrap_or(profile.watchdog_ns),
     };
     if profile.family == Family::Sinumerik840c && !special_mode {
         warnings.extend(warnings::normal_mode_calls(&program, &built.sources));
     }
     warnings.extend(warnings::obs_never_run(&program, &built.sources, &config));
-    let given_limit = options.limit.or(scenario.as_ref().and_then(|s| s.limit));
+    // A run time limit of no time ends at the first cycle end, as awlsim checks it there.
+    let project_limit = project
+        .as_ref()
+        .and_then(|project| project.max_runtime_ns)
+        .map(|limit| RunLimit::Duration(limit.max(1)));
+    let given_limit = options
+        .limit
+        .or(scenario.as_ref().and_then(|s| s.limit))
+        .or(project_limit);
     let sources = Arc::new(built.sources.clone());
     let levels = trace::levels(profile, &program);
     let caption = caption(options, &files, &config, profile);
     let mut cpu = Cpu::new(program, sources);
     cpu.engine = Engine::new(profile, config, plan.schedule);
+    // A project's clock memory byte is one of awlsim's 2048 flag bytes, which a CPU set by
+    // the command line or the scenario may lack.
+    let flag_bytes = cpu.program.profile.sizes.flag_bytes;
     cpu.clock_memory = scenario
         .as_ref()
         .and_then(|s| s.clock_memory)
+        .or(project
+            .as_ref()
+            .and_then(|project| project.clock_memory)
+            .filter(|&byte| byte < flag_bytes))
         .map(|byte| cpu.program.layout.flag_base() + byte);
+    if let Some(project) = &project {
+        cpu.writes_start_info = project.start_info;
+    }
     let trace_to_stdout = options
         .trace
         .as_ref()
@@ -555,16 +597,21 @@ impl Prepared {
     }
 }
 
-/// The language the program is read in: the command line's choices, and the scenario's where
-/// the command line leaves them open.
-fn language(command_line: Language, scenario: Option<&Scenario>) -> Language {
-    Language {
+/// The language the program is read in: the command line's choices, the scenario's where the
+/// command line leaves them open, then the project's.
+fn language(
+    command_line: Language,
+    scenario: Option<&Scenario>,
+    project: Option<&Project>,
+) -> Language {
+    let given = Language {
         dialect: command_line
             .dialect
             .or(scenario.and_then(|scenario| scenario.dialect)),
         extensions: command_line.extensions || scenario.is_some_and(|scenario| scenario.extended),
         ..command_line
-    }
+    };
+    project.map_or(given, |project| project.language(given))
 }
 
 /// The watched operands: the scenario's `watch`, then the command line's.
@@ -615,7 +662,7 @@ mod tests {
         let s7 = scenario("dialect = \"s7\"\nextended = true\n");
         let open = Language::default();
         assert_eq!(
-            language(open, Some(&s7)),
+            language(open, Some(&s7), None),
             Language {
                 dialect: Some(Dialect::Step7),
                 extensions: true,
@@ -628,13 +675,27 @@ mod tests {
             extensions: false,
         };
         assert_eq!(
-            language(s5, Some(&s7)),
+            language(s5, Some(&s7), None),
             Language {
                 extensions: true,
                 ..s5
             }
         );
-        assert_eq!(language(s5, None), s5);
-        assert_eq!(language(open, Some(&scenario(""))), open);
+        assert_eq!(language(s5, None, None), s5);
+        assert_eq!(language(open, Some(&scenario("")), None), open);
+        // A project's mnemonics and STEP 7 count where the command line leaves them open.
+        let project = Project {
+            mnemonics: Some(MnemonicSet::English),
+            ..Project::default()
+        };
+        assert_eq!(
+            language(open, None, Some(&project)),
+            Language {
+                dialect: Some(Dialect::Step7),
+                mnemonics: Some(MnemonicSet::English),
+                extensions: false
+            }
+        );
+        assert_eq!(language(s5, None, Some(&project)), s5);
     }
 }

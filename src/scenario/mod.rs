@@ -22,6 +22,7 @@ use crate::compiler::Program;
 use crate::dialect::Dialect;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
+use crate::project;
 use crate::vm::cycle::RunLimit;
 use crate::vm::interrupts::{Happening, InputChange, InputTarget, Ob13Timing, Scheduled};
 use crate::vm::stop::StopCause;
@@ -90,6 +91,17 @@ pub struct Scenario {
     expect: SpannedTable,
     watch: Vec<Spanned<String>>,
     checks: Vec<Spanned<SpannedTable>>,
+}
+
+/// The CPU of a scenario that names none: the STEP 7 one for an awlsim project (awlsim
+/// simulates S7 CPUs), else the default.
+fn default_profile(programs: &[PathBuf]) -> &'static Profile {
+    let name = if programs.iter().any(|path| project::has_project_name(path)) {
+        profile::DEFAULT_STEP7_PROFILE
+    } else {
+        profile::DEFAULT_PROFILE
+    };
+    profile::find(name).expect("the default profiles exist")
 }
 
 fn span<T>(spanned: &Spanned<T>) -> SourceSpan {
@@ -255,7 +267,7 @@ impl Scenario {
         });
         let profile = cpu_override
             .or(cpu)
-            .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile"));
+            .unwrap_or_else(|| default_profile(&programs));
         let dialect = raw
             .dialect
             .as_ref()
