@@ -5,6 +5,11 @@
 //! `NETWORK n`, the heading of a STEP 5 listing's segment.
 
 use crate::lexer::{Token, TokenKind};
+use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
+use crate::parser::ParseError;
+use crate::source::Span;
+use crate::step7::ast::{Cmp, S7Op};
+use crate::step7::lexer::{self as s7, Token as S7Token, TokenKind as S7Kind};
 
 /// The STL dialects awl tells apart.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -96,6 +101,360 @@ fn step7_in_line(source: &str, line: &[Token]) -> Option<Evidence> {
         });
         (data_area && b.kind == TokenKind::Number)
             .then(|| evidence(a, b, "a STEP 7 data block address"))
+    })
+}
+
+/// The words of a text that only one dialect writes, counted per dialect with the first of
+/// each: what decides a text that has none of [`detect`]'s certain evidence (a flat statement
+/// list, a forum post). The words are derived from the two mnemonic tables, so they stay in
+/// step with them.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct WordEvidence {
+    pub step7: Tally,
+    pub step5: Tally,
+}
+
+/// How many lines show one dialect, and the first of them.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct Tally {
+    pub lines: usize,
+    pub first: Option<Evidence>,
+}
+
+impl Tally {
+    fn add(&mut self, evidence: Evidence) {
+        self.lines += 1;
+        self.first.get_or_insert(evidence);
+    }
+}
+
+/// The words of `source` that only STEP 7 or only STEP 5 writes, one per line at most. The
+/// text is read with the STEP 7 lexer (it knows `+I`, `==I`, `L#5`) and each line only up to
+/// its first `;`, which ends a STEP 7 statement and starts a STEP 5 comment.
+pub fn word_evidence(source: &str) -> WordEvidence {
+    let tokens = s7::lex(source);
+    let mut evidence = WordEvidence::default();
+    for line in tokens.split(|token| token.kind == S7Kind::Newline) {
+        let statement = line
+            .split(|token| token.kind == S7Kind::Semicolon)
+            .next()
+            .unwrap_or_default();
+        match line_evidence(source, statement) {
+            Some(found) if found.dialect == Dialect::Step7 => evidence.step7.add(found),
+            Some(found) => evidence.step5.add(found),
+            None => {}
+        }
+    }
+    evidence
+}
+
+/// What a jump to a label written without `=` is, as evidence.
+const JUMP_LABEL: &str = "a STEP 7 jump label, written without `=`";
+
+/// What an operand area only STEP 7 has is, as evidence.
+const STEP7_AREA: &str = "a STEP 7 operand area";
+
+const SETS: [MnemonicSet; 2] = [MnemonicSet::English, MnemonicSet::German];
+
+/// A word that STEP 7 has as an operation and STEP 5 has not, in either mnemonic set (`ITB`,
+/// `+I`, `==I`, `LOOP`).
+pub fn step7_only_operation(upper: &str) -> Option<S7Op> {
+    let s7 = SETS
+        .iter()
+        .find_map(|set| crate::step7::mnemonics::operation(*set, upper))?;
+    let s5 = SETS
+        .iter()
+        .any(|set| mnemonics::operation(*set, upper).is_some());
+    (!s5).then_some(s7)
+}
+
+/// An operand area that STEP 7 has and STEP 5 has not (`LW`, `DBX`, `PIW`); `MW` is German
+/// STEP 5 too.
+pub fn step7_only_area(upper: &str) -> bool {
+    let s7 = SETS
+        .iter()
+        .any(|set| crate::step7::mnemonics::area(*set, upper).is_some());
+    s7 && !step5_operand_word(upper)
+}
+
+/// An operand word of STEP 5: an area, a constant format or a block.
+fn step5_operand_word(upper: &str) -> bool {
+    BlockKind::from_word(upper).is_some()
+        || SETS.iter().any(|set| {
+            mnemonics::area(*set, upper).is_some()
+                || mnemonics::constant_format(*set, upper).is_some()
+        })
+}
+
+fn step5_only_operation(upper: &str) -> bool {
+    SETS.iter()
+        .any(|set| mnemonics::operation(*set, upper).is_some())
+        && !SETS
+            .iter()
+            .any(|set| crate::step7::mnemonics::operation(*set, upper).is_some())
+}
+
+fn step5_only_operand(upper: &str) -> bool {
+    step5_operand_word(upper)
+        && BlockKind::from_word(upper).is_none()
+        && !SETS
+            .iter()
+            .any(|set| crate::step7::mnemonics::area(*set, upper).is_some())
+}
+
+/// The tokens after a PG listing's address (`0034 :`), a label (`M001 :`, `m1:`) and a
+/// listing's leading `:`.
+fn without_label(line: &[S7Token]) -> &[S7Token] {
+    let mut line = line;
+    for kind in [S7Kind::Number, S7Kind::Word] {
+        if let [first, colon, rest @ ..] = line
+            && first.kind == kind
+            && colon.kind == S7Kind::Colon
+        {
+            line = rest;
+        }
+    }
+    match line {
+        [colon, rest @ ..] if colon.kind == S7Kind::Colon => rest,
+        _ => line,
+    }
+}
+
+/// The operation word of a statement as the tables spell it (`A(`, `RND+`, `+I`, `==I`), and
+/// the tokens after it.
+fn operation_word<'t>(source: &str, line: &'t [S7Token]) -> Option<(String, &'t [S7Token])> {
+    let (first, rest) = line.split_first()?;
+    match first.kind {
+        S7Kind::Word => {
+            let upper = first.text(source).to_ascii_uppercase();
+            match rest.first() {
+                // STEP 5's `X F` (fixed-point multiply), not STEP 7's `X` (XOR).
+                Some(next)
+                    if upper == "X"
+                        && next.kind == S7Kind::Word
+                        && mnemonics::operation(
+                            MnemonicSet::English,
+                            &format!("X {}", next.text(source).to_ascii_uppercase()),
+                        )
+                        .is_some() =>
+                {
+                    Some((
+                        format!("X {}", next.text(source).to_ascii_uppercase()),
+                        &rest[1..],
+                    ))
+                }
+                Some(next)
+                    if first.touches(*next)
+                        && matches!(next.kind, S7Kind::LParen | S7Kind::Plus | S7Kind::Minus) =>
+                {
+                    Some((format!("{upper}{}", next.text(source)), &rest[1..]))
+                }
+                _ => Some((upper, rest)),
+            }
+        }
+        S7Kind::SignedWord | S7Kind::Compare => {
+            Some((first.text(source).to_ascii_uppercase(), rest))
+        }
+        _ => None,
+    }
+}
+
+fn line_evidence(source: &str, line: &[S7Token]) -> Option<Evidence> {
+    let at = |first: S7Token, last: S7Token, dialect, what| Evidence {
+        dialect,
+        start: first.start,
+        end: last.end,
+        what,
+    };
+    let (&first, &last) = (line.first()?, line.last()?);
+    let upper = |token: S7Token| token.text(source).to_ascii_uppercase();
+    if first.kind == S7Kind::Number && line.get(1).is_some_and(|t| t.kind == S7Kind::Colon) {
+        return Some(at(first, line[1], Dialect::Step5, "a PG listing's address"));
+    }
+    if first.kind == S7Kind::Word {
+        let word = upper(first);
+        let declaration = [
+            mnemonics::NAME_WORD,
+            mnemonics::DECLARATION_EN,
+            mnemonics::DECLARATION_DE,
+        ]
+        .contains(&word.as_str())
+            && line.get(1).is_some_and(|t| t.kind == S7Kind::Colon);
+        if declaration {
+            return Some(at(
+                first,
+                first,
+                Dialect::Step5,
+                "a STEP 5 block's `NAME` or `DES` line",
+            ));
+        }
+        if let [_, number] = line
+            && number.kind == S7Kind::Number
+            && BlockKind::from_word(&word).is_some()
+        {
+            return Some(at(first, *number, Dialect::Step5, "a STEP 5 block header"));
+        }
+    }
+    let line = without_label(line);
+    let (op, rest) = operation_word(source, line)?;
+    let op_first = line[0];
+    let op_last = line[line.len() - rest.len() - 1];
+    if step7_only_operation(&op).is_some() {
+        return Some(at(op_first, op_last, Dialect::Step7, "a STEP 7 operation"));
+    }
+    if step5_only_operation(&op) {
+        return Some(at(op_first, op_last, Dialect::Step5, "a STEP 5 operation"));
+    }
+    let operand = rest.first()?;
+    match operand.kind {
+        S7Kind::Equals if rest.get(1).is_some_and(|name| operand.touches(*name)) => {
+            return Some(at(
+                *operand,
+                rest[1],
+                Dialect::Step5,
+                "a STEP 5 label or formal operand (`=NAME`)",
+            ));
+        }
+        S7Kind::Word => {}
+        _ => return None,
+    }
+    let word = upper(*operand);
+    let is_jump = SETS.iter().any(|set| {
+        crate::step7::mnemonics::operation(*set, &op).is_some_and(crate::step7::parser::takes_label)
+    });
+    if is_jump {
+        let block = crate::step7::parser::letters_and_digits(&word)
+            .map_or(word.as_str(), |(letters, _)| letters);
+        let bare_label = rest.len() == 1 && BlockKind::from_word(block).is_none();
+        return bare_label.then(|| at(*operand, *operand, Dialect::Step7, JUMP_LABEL));
+    }
+    let (area, addressed) = match crate::step7::parser::letters_and_digits(&word) {
+        Some((letters, _)) => (letters, true),
+        None => (
+            word.as_str(),
+            rest.get(1).is_some_and(|t| t.kind == S7Kind::Number),
+        ),
+    };
+    if mnemonics::constant_format(MnemonicSet::English, &word).is_some() {
+        return Some(at(*operand, last, Dialect::Step5, "a STEP 5 constant"));
+    }
+    if !addressed {
+        return None;
+    }
+    if step7_only_area(area) {
+        return Some(at(*operand, last, Dialect::Step7, STEP7_AREA));
+    }
+    step5_only_operand(area).then(|| at(*operand, last, Dialect::Step5, "a STEP 5 operand"))
+}
+
+/// A STEP 5 parse error on a line that holds a word only STEP 7 writes, said as such: what
+/// STEP 5 writes instead where it has the operation (`+F` for `+I`), and `--dialect s7` for a
+/// STEP 7 text. Other errors come back as they are.
+pub fn explain_step7_word(source: &str, set: MnemonicSet, error: ParseError) -> ParseError {
+    let explained = matches!(
+        error,
+        ParseError::UnexpectedCharacter { .. }
+            | ParseError::UnknownOperation { .. }
+            | ParseError::UnknownOperand { .. }
+            | ParseError::MissingOperand { .. }
+            | ParseError::UnexpectedToken { .. }
+            | ParseError::BadAddress { .. }
+    );
+    let span = error.span();
+    let start = span.start as usize;
+    if !explained || start > source.len() {
+        return error;
+    }
+    let line_start = source[..start].rfind('\n').map_or(0, |at| at + 1);
+    let line_end = source[start..]
+        .find('\n')
+        .map_or(source.len(), |at| start + at);
+    let line = &source[line_start..line_end];
+    let tokens: Vec<S7Token> = s7::lex(line)
+        .into_iter()
+        .map(|token| S7Token {
+            start: token.start + line_start as u32,
+            end: token.end + line_start as u32,
+            ..token
+        })
+        .collect();
+    let statement = tokens
+        .split(|token| token.kind == S7Kind::Semicolon)
+        .next()
+        .unwrap_or_default();
+    let Some(evidence) = line_evidence(source, statement).filter(|e| e.dialect == Dialect::Step7)
+    else {
+        return error;
+    };
+    let word = &source[evidence.start as usize..evidence.end as usize];
+    let read_as_step7 = "if the text is STEP 7, read it with `--dialect s7`";
+    let help = match step7_only_operation(&word.to_ascii_uppercase()).and_then(step5_equivalent) {
+        Some(op) => format!(
+            "STEP 5 writes `{}`; {read_as_step7}",
+            mnemonics::op_word(set, op)
+        ),
+        None if evidence.what == JUMP_LABEL => {
+            format!("STEP 5 writes a jump's label with `=`: `={word}`; {read_as_step7}")
+        }
+        None if evidence.what == STEP7_AREA => {
+            let area = word.split(|c: char| !c.is_ascii_alphabetic()).next();
+            format!(
+                "STEP 5 has no operand area `{}`; {read_as_step7}",
+                area.unwrap_or(word)
+            )
+        }
+        None => format!("STEP 5 has no `{word}`; {read_as_step7}"),
+    };
+    ParseError::Step7Word {
+        word: word.to_string(),
+        at: Span {
+            file: span.file,
+            start: evidence.start,
+            end: evidence.end,
+        },
+        what: evidence.what,
+        help,
+    }
+}
+
+/// The STEP 5 operation that does what a STEP 7 one does, where STEP 5 has one: its 16-bit
+/// fixed-point and floating-point arithmetic, comparisons and conversions.
+fn step5_equivalent(op: S7Op) -> Option<OpCode> {
+    let compare = |cmp: Cmp, fixed: [OpCode; 6]| {
+        let index = match cmp {
+            Cmp::Eq => 0,
+            Cmp::Ne => 1,
+            Cmp::Gt => 2,
+            Cmp::Ge => 3,
+            Cmp::Lt => 4,
+            Cmp::Le => 5,
+        };
+        fixed[index]
+    };
+    use OpCode::*;
+    Some(match op {
+        S7Op::AddInt => AddFixed,
+        S7Op::SubInt => SubFixed,
+        S7Op::MulInt => MulFixed,
+        S7Op::DivInt => DivFixed,
+        S7Op::AddReal => AddFloat,
+        S7Op::SubReal => SubFloat,
+        S7Op::MulReal => MulFloat,
+        S7Op::DivReal => DivFloat,
+        S7Op::CmpInt(cmp) => compare(cmp, [CmpEq, CmpNe, CmpGt, CmpGe, CmpLt, CmpLe]),
+        S7Op::CmpReal(cmp) => compare(
+            cmp,
+            [
+                CmpEqFloat, CmpNeFloat, CmpGtFloat, CmpGeFloat, CmpLtFloat, CmpLeFloat,
+            ],
+        ),
+        S7Op::IntToBcd => FixedToBcd,
+        S7Op::BcdToInt => BcdToFixed,
+        S7Op::BcdToDint => BcdToFixedDouble,
+        S7Op::DintToBcd => FixedToBcdDouble,
+        S7Op::DintToReal => FixedToFloat,
+        S7Op::Truncate => FloatToFixed,
+        _ => return None,
     })
 }
 

@@ -10,8 +10,10 @@ mod interface;
 pub use interface::TYPE_NAMES;
 mod operand;
 mod statement;
+pub(crate) use statement::takes_label;
 mod step5;
 mod tokens;
+pub(crate) use tokens::letters_and_digits;
 
 use std::cell::Cell;
 
