@@ -6,6 +6,7 @@
 //! declaration or a bad data line is dropped, a missing `END_…` is one error at its opening
 //! keyword.
 
+mod bare_names;
 mod interface;
 pub use interface::TYPE_NAMES;
 mod operand;
@@ -423,7 +424,15 @@ impl<'a> Parser<'a> {
                             members: Vec::new(),
                             initial: self.initial_lines(),
                         },
-                        _ => S7Body::Logic(self.statements(Some(end))),
+                        _ => {
+                            let mut statements = self.statements(Some(end));
+                            bare_names::declared_as_locals(
+                                self.ctx.source,
+                                &interface,
+                                &mut statements,
+                            );
+                            S7Body::Logic(statements)
+                        }
                     });
                 }
                 "STRUCT" if matches!(kind, S7BlockKind::Db | S7BlockKind::Udt) => {
