@@ -359,6 +359,8 @@ pub fn explain_step7_word(source: &str, set: MnemonicSet, error: ParseError) -> 
             | ParseError::MissingOperand { .. }
             | ParseError::UnexpectedToken { .. }
             | ParseError::BadAddress { .. }
+            // `==I` reads in STEP 5 as `=` to a formal operand `=I`.
+            | ParseError::UndeclaredFormal { .. }
     );
     let span = error.span();
     let start = span.start as usize;

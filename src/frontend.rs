@@ -204,7 +204,15 @@ fn build_step5(
         fragments.push(parsed.fragment);
     }
     let placed = fragment::place(&mut units, &fragments);
-    diagnostics.extend(placed.into_iter().map(SourceDiagnostic::Parse));
+    diagnostics.extend(placed.into_iter().map(|error| {
+        let file = error.span().file;
+        let set = units[usize::from(file)].mnemonics;
+        SourceDiagnostic::Parse(dialect::explain_step7_word(
+            &sources.get(file).text,
+            set,
+            error,
+        ))
+    }));
     for file in symbol_files {
         sources.add(file);
     }

@@ -191,7 +191,7 @@ pub enum S7ParseError {
     },
 
     #[error("read as STEP 7 STL, not STEP 5")]
-    #[diagnostic(code(awl::s7::read_as_step7), severity(Advice))]
+    #[diagnostic(code(awl::dialect::read_as_step7), severity(Advice))]
     ReadAsStep7 {
         #[label("{reason}")]
         at: Span,
