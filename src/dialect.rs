@@ -395,6 +395,11 @@ pub fn explain_step7_word(source: &str, set: MnemonicSet, error: ParseError) -> 
             "STEP 5 writes `{}`; {read_as_step7}",
             mnemonics::op_word(set, op)
         ),
+        None if word.ends_with('(') => format!(
+            "STEP 5 opens brackets with `{}` and `{}` only; {read_as_step7}",
+            mnemonics::op_word(set, OpCode::AndBracket),
+            mnemonics::op_word(set, OpCode::OrBracket)
+        ),
         None if evidence.what == JUMP_LABEL => {
             format!("STEP 5 writes a jump's label with `=`: `={word}`; {read_as_step7}")
         }
@@ -492,6 +497,65 @@ mod tests {
             what("      A DBX 0.1;\n"),
             Some("a STEP 7 data block address")
         );
+    }
+
+    #[test]
+    fn step7_only_words_come_from_both_tables() {
+        for word in [
+            "ITB", "BTI", "ITD", "DTR", "RND", "LOOP", "SPL", "JL", "+I", "-D", "*R", "/I", "==I",
+            "<>D", ">=R", "TAR1", "CALL", "OPN",
+        ] {
+            assert!(step7_only_operation(word).is_some(), "{word}");
+        }
+        // STEP 5 has these too (German and English).
+        for word in [
+            "TAK", "L", "T", "U", "A", "SPA", "JU", "SPB", "BE", "NOP", "LW", "+F",
+        ] {
+            assert!(step7_only_operation(word).is_none(), "{word}");
+        }
+        for area in [
+            "LW", "LB", "LD", "L", "DBX", "DBW", "DIW", "PIW", "PEW", "V",
+        ] {
+            assert!(step7_only_area(area), "{area}");
+        }
+        // German STEP 5 writes flag words `MW`; `EW`, `AW`, `T`, `Z` are both dialects'.
+        for area in [
+            "MW", "MB", "MD", "M", "EW", "AW", "IW", "T", "Z", "C", "DB", "KF",
+        ] {
+            assert!(!step7_only_area(area), "{area}");
+        }
+    }
+
+    fn words(source: &str) -> (Option<&'static str>, usize, Option<&'static str>, usize) {
+        let found = word_evidence(source);
+        (
+            found.step7.first.map(|e| e.what),
+            found.step7.lines,
+            found.step5.first.map(|e| e.what),
+            found.step5.lines,
+        )
+    }
+
+    #[test]
+    fn words_of_each_dialect_are_counted_per_line() {
+        assert_eq!(
+            words("      L 30\n      T LW 0\n      ITB\n      L MW 2;\n"),
+            (Some(STEP7_AREA), 2, None, 0)
+        );
+        assert_eq!(
+            words("      SPA m1\nm1:   NOP 0\n"),
+            (Some(JUMP_LABEL), 1, None, 0)
+        );
+        assert_eq!(
+            words("PB 1\n      L KF +5\n      SPA =M001\nM001 :T FW 2\n      BE\n"),
+            (None, 0, Some("a STEP 5 block header"), 4)
+        );
+        // `X F` is STEP 5's multiplication, not STEP 7's XOR; a `;` starts a STEP 5 comment.
+        assert_eq!(
+            words("      X F ; ITB\n"),
+            (None, 0, Some("a STEP 5 operation"), 1)
+        );
+        assert_eq!(words("      A I 0.0\n      = Q 4.0\n"), (None, 0, None, 0));
     }
 
     #[test]

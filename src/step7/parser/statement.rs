@@ -257,7 +257,7 @@ fn suggest_operation(ctx: Ctx<'_>, upper: &str, next: Option<Token>) -> Option<S
     Some(match best {
         Some((_, candidate)) => format!("did you mean `{candidate}`?"),
         None => format!(
-            "the operations of the {} set are listed in grammar/README.md (STEP 7)",
+            "`awl help language` lists the operations of the {} set (STEP 7)",
             ctx.set.name()
         ),
     })
