@@ -154,6 +154,9 @@ const JUMP_LABEL: &str = "a STEP 7 jump label, written without `=`";
 /// What an operand area only STEP 7 has is, as evidence.
 const STEP7_AREA: &str = "a STEP 7 operand area";
 
+/// What a typed constant is, as evidence.
+const STEP7_CONSTANT: &str = "a STEP 7 constant";
+
 const SETS: [MnemonicSet; 2] = [MnemonicSet::English, MnemonicSet::German];
 
 /// A word that STEP 7 has as an operation and STEP 5 has not, in either mnemonic set (`ITB`,
@@ -307,6 +310,8 @@ fn line_evidence(source: &str, line: &[S7Token]) -> Option<Evidence> {
     }
     let operand = rest.first()?;
     match operand.kind {
+        // `16#FF`, `2#1010`: the typed constants `detect` does not see (they start with digits).
+        S7Kind::Typed => return Some(at(*operand, *operand, Dialect::Step7, STEP7_CONSTANT)),
         S7Kind::Equals if rest.get(1).is_some_and(|name| operand.touches(*name)) => {
             return Some(at(
                 *operand,
@@ -399,6 +404,10 @@ pub fn explain_step7_word(source: &str, set: MnemonicSet, error: ParseError) -> 
             "STEP 5 opens brackets with `{}` and `{}` only; {read_as_step7}",
             mnemonics::op_word(set, OpCode::AndBracket),
             mnemonics::op_word(set, OpCode::OrBracket)
+        ),
+        None if evidence.what == STEP7_CONSTANT => format!(
+            "STEP 5 writes a constant with its format: `KF +255`, `KH 00FF`, `KM 1010…`; \
+             {read_as_step7}"
         ),
         None if evidence.what == JUMP_LABEL => {
             format!("STEP 5 writes a jump's label with `=`: `={word}`; {read_as_step7}")
@@ -556,6 +565,7 @@ mod tests {
             (None, 0, Some("a STEP 5 operation"), 1)
         );
         assert_eq!(words("      A I 0.0\n      = Q 4.0\n"), (None, 0, None, 0));
+        assert_eq!(words("      L 16#FF\n"), (Some(STEP7_CONSTANT), 1, None, 0));
     }
 
     #[test]

@@ -196,6 +196,14 @@ fn step7_words_forced_to_step5_name_their_step5_spelling() {
         ("      L     LW 2\n", "STEP 5 has no operand area `LW`"),
         ("      JU    m1\nm1:   NOP 0\n", "`=m1`"),
         ("      LOOP  next\n", "STEP 5 has no `LOOP`"),
+        (
+            "      L     2#1010\n",
+            "STEP 5 writes a constant with its format",
+        ),
+        (
+            "      A(\n      XN(\n",
+            "STEP 5 opens brackets with `A(` and `O(` only",
+        ),
     ];
     for (text, help) in cases {
         let built = forced(text, Dialect::Step5);
