@@ -1,8 +1,10 @@
-//! Which STL a text is written in. awl reads STEP 5 STL; a STEP 7 source (`ORGANIZATION_BLOCK`
-//! … `BEGIN` … `END_ORGANIZATION_BLOCK`, `S5T#2S`, `DBX 0.1`, `#local`, `"symbol"`) is told
-//! apart here, on words STEP 5 never writes, so the parser reports it once instead of failing
-//! on every line. A trailing `;` is no evidence: it starts a comment in STEP 5. Nor is
-//! `NETWORK n`, the heading of a STEP 5 listing's segment.
+//! Which STL a text is written in. awl reads STEP 5 and STEP 7 STL; a STEP 7 source
+//! (`ORGANIZATION_BLOCK` … `BEGIN` … `END_ORGANIZATION_BLOCK`, `S5T#2S`, `DBX 0.1`, `#local`,
+//! `"symbol"`) is told apart here ([`detect`]), on words STEP 5 never writes, so a STEP 5 parse
+//! reports it once instead of failing on every line. A trailing `;` is no evidence: it starts a
+//! comment in STEP 5. Nor is `NETWORK n`, the heading of a STEP 5 listing's segment. A text
+//! without that form is weighed by the words only one dialect writes ([`word_evidence`]), and a
+//! STEP 5 parse error on a STEP 7 word is said as such ([`explain_step7_word`]).
 
 use crate::lexer::{Token, TokenKind};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
@@ -18,7 +20,7 @@ pub enum Dialect {
     Step7,
 }
 
-/// The first place in a text that shows its dialect is not STEP 5.
+/// A place in a text that shows its dialect.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Evidence {
     pub dialect: Dialect,

@@ -241,6 +241,13 @@ fn a_bare_name_the_block_declares_is_its_variable() {
 }
 
 #[test]
+fn a_bare_ret_val_is_the_function_s_value() {
+    let program = "FUNCTION FC 1 : INT\nVAR_INPUT\n  x : INT;\nEND_VAR\nBEGIN\n      L     x;\n      L     2;\n      *I;\n      T     RET_VAL;\nEND_FUNCTION\n\nORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL  FC 1 (x := 21, RET_VAL := MW 4);\nEND_ORGANIZATION_BLOCK\n";
+    assert_eq!(codes(&check(program)), Vec::<String>::new());
+    passes(program, "run = { cycles = 1 }\n[expect]\n\"MW 4\" = 42\n");
+}
+
+#[test]
 fn a_quoted_name_stays_the_symbol_even_where_the_block_declares_it() {
     let program = "FUNCTION FC 1 : VOID\nVAR_INPUT\n  start : BOOL;\nEND_VAR\nBEGIN\n      A     \"start\";\n      =     Q 0.0;\nEND_FUNCTION\n";
     let built = check(program);

@@ -6,13 +6,20 @@
 
 use crate::step7::ast::{PathPart, S7Operand, S7Statement, VarSection};
 
-/// Turns each bare name that `interface` declares into the block's variable.
-pub fn declared_as_locals(source: &str, interface: &[VarSection], statements: &mut [S7Statement]) {
+/// Turns each bare name that `interface` declares into the block's variable; `RET_VAL` too in
+/// a function that `returns` a value.
+pub fn declared_as_locals(
+    source: &str,
+    interface: &[VarSection],
+    returns: bool,
+    statements: &mut [S7Statement],
+) {
     let declared = |name: &str| {
-        interface
-            .iter()
-            .flat_map(|section| &section.vars)
-            .any(|var| var.name.text.eq_ignore_ascii_case(name))
+        (returns && name.eq_ignore_ascii_case("RET_VAL"))
+            || interface
+                .iter()
+                .flat_map(|section| &section.vars)
+                .any(|var| var.name.text.eq_ignore_ascii_case(name))
     };
     let resolve = |operand: &mut S7Operand| {
         let S7Operand::Symbol { name, members } = operand else {

@@ -426,9 +426,11 @@ impl<'a> Parser<'a> {
                         },
                         _ => {
                             let mut statements = self.statements(Some(end));
+                            let returns = matches!(&header, Some((_, Some(_))));
                             bare_names::declared_as_locals(
                                 self.ctx.source,
                                 &interface,
+                                returns,
                                 &mut statements,
                             );
                             S7Body::Logic(statements)
