@@ -261,6 +261,10 @@ fn any_other_bare_name_is_a_symbol() {
     let built = check(&input("motor_fb.awl"));
     let text = text_of(&built, "awl::symbols::unknown");
     assert!(text.contains("unknown symbol `positon2`"), "{text}");
+    assert!(
+        text.contains("did you mean `position1`, a variable of FB 1?"),
+        "{text}"
+    );
     assert!(text.contains("--symbols FILE"), "{text}");
     // With a table: the closest names, and the name that is in it stands for its address.
     let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A     Start;\n      =     Motr;\nEND_ORGANIZATION_BLOCK\n";
