@@ -311,16 +311,26 @@ fn decide(sources: &SourceSet, language: Language) -> Decision {
         }
     }
     match (first_step7, step5_lines) {
-        (Some((file, evidence)), 0) => {
-            return Decision {
+        (Some((file, evidence)), 0) => Decision {
+            dialect: Dialect::Step7,
+            note: Some(words_note(sources, file, evidence)),
+        },
+        (None, lines) if lines > 0 => Decision::plain(Dialect::Step5),
+        // Both dialects show, or neither: the one the program compiles in; STEP 5 when
+        // neither (the errors of a STEP 5 text name each STEP 7 word in it).
+        _ => match step7_only_compiles(sources, language) {
+            Some(note) => Decision {
                 dialect: Dialect::Step7,
-                note: Some(words_note(sources, file, evidence)),
-            };
-        }
-        (None, lines) if lines > 0 => return Decision::plain(Dialect::Step5),
-        _ => {}
+                note: Some(note),
+            },
+            None => Decision::plain(Dialect::Step5),
+        },
     }
-    // Both dialects show, or neither: the one the program compiles in.
+}
+
+/// The note for a program that compiles as STEP 7 and not as STEP 5 (each on its dialect's
+/// default CPU, without symbol tables); `None` otherwise.
+fn step7_only_compiles(sources: &SourceSet, language: Language) -> Option<S7ParseError> {
     let default = |name| crate::profile::find(name).expect("the default profiles exist");
     let as_step5 = build_step5(
         sources.clone(),
@@ -329,9 +339,7 @@ fn decide(sources: &SourceSet, language: Language) -> Decision {
         default(crate::profile::DEFAULT_PROFILE),
     );
     let mut step5_errors = as_step5.diagnostics.iter().filter(|d| !d.is_warning());
-    let Some(first_error) = step5_errors.next() else {
-        return Decision::plain(Dialect::Step5);
-    };
+    let first_error = step5_errors.next()?;
     let as_step7 = build_step7(
         sources.clone(),
         Vec::new(),
@@ -339,24 +347,19 @@ fn decide(sources: &SourceSet, language: Language) -> Decision {
         default(crate::profile::DEFAULT_STEP7_PROFILE),
         None,
     );
-    if !as_step7.has_errors() {
-        let errors = 1 + step5_errors.count();
-        return Decision {
-            dialect: Dialect::Step7,
-            note: Some(S7ParseError::ReadAsStep7 {
-                at: first_error.span(),
-                reason: format!("as STEP 5: {first_error}"),
-                help: format!(
-                    "no word here is only STEP 7's or only STEP 5's; the text compiles as STEP 7 \
-                     and has {errors} {} as STEP 5, so it was read as STEP 7 (statements without \
-                     block keywords are OB 1); `--dialect s5` reads it as STEP 5",
-                    if errors == 1 { "error" } else { "errors" }
-                ),
-            }),
-        };
+    if as_step7.has_errors() {
+        return None;
     }
-    // The errors of a STEP 5 text name each STEP 7 word in it.
-    Decision::plain(Dialect::Step5)
+    let errors = 1 + step5_errors.count();
+    Some(S7ParseError::ReadAsStep7 {
+        at: first_error.span(),
+        reason: format!("as STEP 5: {first_error}"),
+        help: format!(
+            "the text compiles as STEP 7 and has {errors} {} as STEP 5, so it was read as STEP 7; \
+             statements without block keywords are OB 1; `--dialect s5` reads it as STEP 5",
+            if errors == 1 { "error" } else { "errors" }
+        ),
+    })
 }
 
 /// The note for a text read as STEP 7 because of a word only STEP 7 writes.
