@@ -225,29 +225,23 @@ fn without_label(line: &[S7Token]) -> &[S7Token] {
     }
 }
 
-/// The operation word of a statement as the tables spell it (`A(`, `RND+`, `+I`, `==I`), and
-/// the tokens after it.
+/// The operation word of a statement as the tables spell it (`A(`, `RND+`, `+I`, `==I`,
+/// STEP 5's `X F`), and the tokens after it.
 fn operation_word<'t>(source: &str, line: &'t [S7Token]) -> Option<(String, &'t [S7Token])> {
     let (first, rest) = line.split_first()?;
+    let upper = first.text(source).to_ascii_uppercase();
     match first.kind {
         S7Kind::Word => {
-            let upper = first.text(source).to_ascii_uppercase();
-            match rest.first() {
-                // STEP 5's `X F` (fixed-point multiply), not STEP 7's `X` (XOR).
-                Some(next)
-                    if upper == "X"
-                        && next.kind == S7Kind::Word
-                        && mnemonics::operation(
-                            MnemonicSet::English,
-                            &format!("X {}", next.text(source).to_ascii_uppercase()),
-                        )
-                        .is_some() =>
-                {
-                    Some((
-                        format!("X {}", next.text(source).to_ascii_uppercase()),
-                        &rest[1..],
-                    ))
+            // STEP 5's `X F` (fixed-point multiply), not STEP 7's `X` (XOR).
+            if upper == "X"
+                && let Some(next) = rest.first().filter(|t| t.kind == S7Kind::Word)
+            {
+                let multiply = format!("X {}", next.text(source).to_ascii_uppercase());
+                if mnemonics::operation(MnemonicSet::English, &multiply).is_some() {
+                    return Some((multiply, &rest[1..]));
                 }
+            }
+            match rest.first() {
                 Some(next)
                     if first.touches(*next)
                         && matches!(next.kind, S7Kind::LParen | S7Kind::Plus | S7Kind::Minus) =>
@@ -257,66 +251,95 @@ fn operation_word<'t>(source: &str, line: &'t [S7Token]) -> Option<(String, &'t 
                 _ => Some((upper, rest)),
             }
         }
-        S7Kind::SignedWord | S7Kind::Compare => {
-            Some((first.text(source).to_ascii_uppercase(), rest))
+        S7Kind::SignedWord | S7Kind::Compare => Some((upper, rest)),
+        _ => None,
+    }
+}
+
+fn evidence_at(first: S7Token, last: S7Token, dialect: Dialect, what: &'static str) -> Evidence {
+    Evidence {
+        dialect,
+        start: first.start,
+        end: last.end,
+        what,
+    }
+}
+
+/// The word of one statement (a line up to its `;`) that only one dialect writes, if any.
+fn line_evidence(source: &str, line: &[S7Token]) -> Option<Evidence> {
+    if let Some(found) = step5_line(source, line) {
+        return Some(found);
+    }
+    let line = without_label(line);
+    let (op, rest) = operation_word(source, line)?;
+    let (op_first, op_last) = (line[0], line[line.len() - rest.len() - 1]);
+    if step7_only_operation(&op).is_some() {
+        return Some(evidence_at(
+            op_first,
+            op_last,
+            Dialect::Step7,
+            "a STEP 7 operation",
+        ));
+    }
+    if step5_only_operation(&op) {
+        return Some(evidence_at(
+            op_first,
+            op_last,
+            Dialect::Step5,
+            "a STEP 5 operation",
+        ));
+    }
+    operand_evidence(source, &op, rest)
+}
+
+/// The lines only STEP 5 writes: a PG listing's address, a block's `NAME` or `DES` line, a
+/// block header (`PB 1`).
+fn step5_line(source: &str, line: &[S7Token]) -> Option<Evidence> {
+    let (&first, second) = (line.first()?, line.get(1));
+    let step5 = |last, what| Some(evidence_at(first, last, Dialect::Step5, what));
+    let colon = second.filter(|t| t.kind == S7Kind::Colon);
+    if let (S7Kind::Number, Some(colon)) = (first.kind, colon) {
+        return step5(*colon, "a PG listing's address");
+    }
+    if first.kind != S7Kind::Word {
+        return None;
+    }
+    let word = first.text(source).to_ascii_uppercase();
+    let declaration = [
+        mnemonics::NAME_WORD,
+        mnemonics::DECLARATION_EN,
+        mnemonics::DECLARATION_DE,
+    ];
+    if colon.is_some() && declaration.contains(&word.as_str()) {
+        return step5(first, "a STEP 5 block's `NAME` or `DES` line");
+    }
+    match line {
+        [_, number] if number.kind == S7Kind::Number && BlockKind::from_word(&word).is_some() => {
+            step5(*number, "a STEP 5 block header")
         }
         _ => None,
     }
 }
 
-fn line_evidence(source: &str, line: &[S7Token]) -> Option<Evidence> {
-    let at = |first: S7Token, last: S7Token, dialect, what| Evidence {
-        dialect,
-        start: first.start,
-        end: last.end,
-        what,
-    };
-    let (&first, &last) = (line.first()?, line.last()?);
-    let upper = |token: S7Token| token.text(source).to_ascii_uppercase();
-    if first.kind == S7Kind::Number && line.get(1).is_some_and(|t| t.kind == S7Kind::Colon) {
-        return Some(at(first, line[1], Dialect::Step5, "a PG listing's address"));
-    }
-    if first.kind == S7Kind::Word {
-        let word = upper(first);
-        let declaration = [
-            mnemonics::NAME_WORD,
-            mnemonics::DECLARATION_EN,
-            mnemonics::DECLARATION_DE,
-        ]
-        .contains(&word.as_str())
-            && line.get(1).is_some_and(|t| t.kind == S7Kind::Colon);
-        if declaration {
-            return Some(at(
-                first,
-                first,
-                Dialect::Step5,
-                "a STEP 5 block's `NAME` or `DES` line",
-            ));
-        }
-        if let [_, number] = line
-            && number.kind == S7Kind::Number
-            && BlockKind::from_word(&word).is_some()
-        {
-            return Some(at(first, *number, Dialect::Step5, "a STEP 5 block header"));
-        }
-    }
-    let line = without_label(line);
-    let (op, rest) = operation_word(source, line)?;
-    let op_first = line[0];
-    let op_last = line[line.len() - rest.len() - 1];
-    if step7_only_operation(&op).is_some() {
-        return Some(at(op_first, op_last, Dialect::Step7, "a STEP 7 operation"));
-    }
-    if step5_only_operation(&op) {
-        return Some(at(op_first, op_last, Dialect::Step5, "a STEP 5 operation"));
-    }
-    let operand = rest.first()?;
+/// The operand of the operation `op` (`rest`) when only one dialect writes it: a typed
+/// constant, `=NAME`, a jump label without `=`, a STEP 5 constant format, an area of one
+/// dialect only.
+fn operand_evidence(source: &str, op: &str, rest: &[S7Token]) -> Option<Evidence> {
+    let (&operand, &last) = (rest.first()?, rest.last()?);
+    let with = |dialect, what| Some(evidence_at(operand, last, dialect, what));
     match operand.kind {
         // `16#FF`, `2#1010`: the typed constants `detect` does not see (they start with digits).
-        S7Kind::Typed => return Some(at(*operand, *operand, Dialect::Step7, STEP7_CONSTANT)),
+        S7Kind::Typed => {
+            return Some(evidence_at(
+                operand,
+                operand,
+                Dialect::Step7,
+                STEP7_CONSTANT,
+            ));
+        }
         S7Kind::Equals if rest.get(1).is_some_and(|name| operand.touches(*name)) => {
-            return Some(at(
-                *operand,
+            return Some(evidence_at(
+                operand,
                 rest[1],
                 Dialect::Step5,
                 "a STEP 5 label or formal operand (`=NAME`)",
@@ -325,33 +348,38 @@ fn line_evidence(source: &str, line: &[S7Token]) -> Option<Evidence> {
         S7Kind::Word => {}
         _ => return None,
     }
-    let word = upper(*operand);
+    let word = operand.text(source).to_ascii_uppercase();
+    let glued = crate::step7::parser::letters_and_digits(&word);
     let is_jump = SETS.iter().any(|set| {
-        crate::step7::mnemonics::operation(*set, &op).is_some_and(crate::step7::parser::takes_label)
+        crate::step7::mnemonics::operation(*set, op).is_some_and(crate::step7::parser::takes_label)
     });
     if is_jump {
-        let block = crate::step7::parser::letters_and_digits(&word)
-            .map_or(word.as_str(), |(letters, _)| letters);
+        let block = glued.map_or(word.as_str(), |(letters, _)| letters);
         let bare_label = rest.len() == 1 && BlockKind::from_word(block).is_none();
-        return bare_label.then(|| at(*operand, *operand, Dialect::Step7, JUMP_LABEL));
+        return bare_label.then(|| evidence_at(operand, operand, Dialect::Step7, JUMP_LABEL));
     }
-    let (area, addressed) = match crate::step7::parser::letters_and_digits(&word) {
+    if SETS
+        .iter()
+        .any(|set| mnemonics::constant_format(*set, &word).is_some())
+    {
+        return with(Dialect::Step5, "a STEP 5 constant");
+    }
+    let (area, addressed) = match glued {
         Some((letters, _)) => (letters, true),
         None => (
             word.as_str(),
             rest.get(1).is_some_and(|t| t.kind == S7Kind::Number),
         ),
     };
-    if mnemonics::constant_format(MnemonicSet::English, &word).is_some() {
-        return Some(at(*operand, last, Dialect::Step5, "a STEP 5 constant"));
-    }
     if !addressed {
-        return None;
+        None
+    } else if step7_only_area(area) {
+        with(Dialect::Step7, STEP7_AREA)
+    } else if step5_only_operand(area) {
+        with(Dialect::Step5, "a STEP 5 operand")
+    } else {
+        None
     }
-    if step7_only_area(area) {
-        return Some(at(*operand, last, Dialect::Step7, STEP7_AREA));
-    }
-    step5_only_operand(area).then(|| at(*operand, last, Dialect::Step5, "a STEP 5 operand"))
 }
 
 /// A STEP 5 parse error on a line that holds a word only STEP 7 writes, said as such: what
