@@ -4,12 +4,13 @@
 use crate::ast::SourceUnit;
 use crate::compiler::{self, Compiled};
 use crate::diagnostics::SourceDiagnostic;
-use crate::dialect::Dialect;
+use crate::dialect::{self, Dialect};
 use crate::fragment;
 use crate::mnemonics::MnemonicSet;
 use crate::parser;
 use crate::profile::Profile;
-use crate::source::{SourceFile, SourceSet};
+use crate::source::{FileId, SourceFile, SourceSet, Span};
+use crate::step7::error::S7ParseError;
 use crate::symbols;
 
 /// What language the sources are read as: each choice left open (`None`, `false`) is the
@@ -66,28 +67,51 @@ pub fn build(sources: SourceSet, language: Language, profile: &'static Profile) 
 
 /// Parses every program file of `sources`, reads the assignment lists `symbol_files` (they
 /// join the set, so their diagnostics show their lines), replaces the program's symbols and
-/// compiles.
+/// compiles, in the dialect `--dialect` names or the text shows (see [`decide`]).
 pub fn build_with_symbols(
+    sources: SourceSet,
+    symbol_files: Vec<SourceFile>,
+    language: Language,
+    profile: &'static Profile,
+) -> Frontend {
+    let decision = decide(&sources, language);
+    match decision.dialect {
+        Dialect::Step7 => build_step7(sources, symbol_files, language, profile, decision.note),
+        Dialect::Step5 => build_step5(sources, symbol_files, language, profile),
+    }
+}
+
+/// The STEP 5 front end: each file parsed as STEP 5, the assignment lists read, all compiled
+/// together.
+fn build_step5(
     mut sources: SourceSet,
     symbol_files: Vec<SourceFile>,
     language: Language,
     profile: &'static Profile,
 ) -> Frontend {
-    if is_step7(&sources, language) {
-        return build_step7(sources, symbol_files, language, profile);
-    }
     let mut diagnostics = Vec::new();
     let programs = sources.files.len();
     let mut units = Vec::with_capacity(programs);
     let mut fragments = Vec::with_capacity(programs);
     for (id, file) in sources.files.iter().enumerate() {
         let parsed = parser::parse_file(id as u16, &file.text, language.mnemonics);
-        diagnostics.extend(parsed.errors.into_iter().map(SourceDiagnostic::Parse));
+        let set = parsed.unit.mnemonics;
+        diagnostics.extend(parsed.errors.into_iter().map(|error| {
+            SourceDiagnostic::Parse(dialect::explain_step7_word(&file.text, set, error))
+        }));
         units.push(parsed.unit);
         fragments.push(parsed.fragment);
     }
     let placed = fragment::place(&mut units, &fragments);
-    diagnostics.extend(placed.into_iter().map(SourceDiagnostic::Parse));
+    diagnostics.extend(placed.into_iter().map(|error| {
+        let file = error.span().file;
+        let set = units[usize::from(file)].mnemonics;
+        SourceDiagnostic::Parse(dialect::explain_step7_word(
+            &sources.get(file).text,
+            set,
+            error,
+        ))
+    }));
     for file in symbol_files {
         sources.add(file);
     }
@@ -138,22 +162,118 @@ pub fn build_with_symbols(
 /// The CPU profile a program runs on when none is chosen: the S7 CPU for a STEP 7 program,
 /// else the default STEP 5 one.
 pub fn default_profile(sources: &SourceSet, language: Language) -> &'static Profile {
-    let name = if is_step7(sources, language) {
-        crate::profile::DEFAULT_STEP7_PROFILE
-    } else {
-        crate::profile::DEFAULT_PROFILE
+    let name = match decide(sources, language).dialect {
+        Dialect::Step7 => crate::profile::DEFAULT_STEP7_PROFILE,
+        Dialect::Step5 => crate::profile::DEFAULT_PROFILE,
     };
     crate::profile::find(name).expect("the default profiles exist")
 }
 
-/// Whether the program is read as STEP 7: as `--dialect` says, else when a file shows it.
-fn is_step7(sources: &SourceSet, language: Language) -> bool {
-    match language.dialect {
-        Some(dialect) => dialect == Dialect::Step7,
-        None => sources.files.iter().any(|file| {
-            let tokens = crate::lexer::lex(&file.text);
-            crate::dialect::detect(&file.text, &tokens).is_some()
-        }),
+/// The dialect a program is read in, and the note that says why when the text decided it
+/// without block keywords.
+struct Decision {
+    dialect: Dialect,
+    note: Option<S7ParseError>,
+}
+
+impl Decision {
+    fn plain(dialect: Dialect) -> Self {
+        Decision {
+            dialect,
+            note: None,
+        }
+    }
+}
+
+/// The dialect: as `--dialect` says; else STEP 7 when a file is in STEP 7 source form
+/// (block keywords, `#local`, `"symbol"`, typed constants); else by the words only one
+/// dialect writes (`ITB`, `+I`, `LW 0`, `JU m1` against `KF +5`, `=M001`, `PB 1`); where
+/// those are missing or disagree, the dialect the program compiles in, STEP 5 when neither
+/// (its errors name the STEP 7 words).
+fn decide(sources: &SourceSet, language: Language) -> Decision {
+    if let Some(dialect) = language.dialect {
+        return Decision::plain(dialect);
+    }
+    let source_form = sources.files.iter().any(|file| {
+        let tokens = crate::lexer::lex(&file.text);
+        dialect::detect(&file.text, &tokens).is_some()
+    });
+    if source_form {
+        return Decision::plain(Dialect::Step7);
+    }
+    let (mut step5_lines, mut first_step7) = (0, None);
+    for (id, file) in sources.files.iter().enumerate() {
+        let words = dialect::word_evidence(&file.text);
+        step5_lines += words.step5.lines;
+        if first_step7.is_none() {
+            first_step7 = words.step7.first.map(|evidence| (id as FileId, evidence));
+        }
+    }
+    match (first_step7, step5_lines) {
+        (Some((file, evidence)), 0) => Decision {
+            dialect: Dialect::Step7,
+            note: Some(words_note(sources, file, evidence)),
+        },
+        (None, lines) if lines > 0 => Decision::plain(Dialect::Step5),
+        // Both dialects show, or neither: the one the program compiles in; STEP 5 when
+        // neither (the errors of a STEP 5 text name each STEP 7 word in it).
+        _ => match step7_only_compiles(sources, language) {
+            Some(note) => Decision {
+                dialect: Dialect::Step7,
+                note: Some(note),
+            },
+            None => Decision::plain(Dialect::Step5),
+        },
+    }
+}
+
+/// The note for a program that compiles as STEP 7 and not as STEP 5 (each on its dialect's
+/// default CPU, without symbol tables); `None` otherwise.
+fn step7_only_compiles(sources: &SourceSet, language: Language) -> Option<S7ParseError> {
+    let default = |name| crate::profile::find(name).expect("the default profiles exist");
+    let as_step5 = build_step5(
+        sources.clone(),
+        Vec::new(),
+        language,
+        default(crate::profile::DEFAULT_PROFILE),
+    );
+    let mut step5_errors = as_step5.diagnostics.iter().filter(|d| !d.is_warning());
+    let first_error = step5_errors.next()?;
+    let as_step7 = build_step7(
+        sources.clone(),
+        Vec::new(),
+        language,
+        default(crate::profile::DEFAULT_STEP7_PROFILE),
+        None,
+    );
+    if as_step7.has_errors() {
+        return None;
+    }
+    let errors = 1 + step5_errors.count();
+    Some(S7ParseError::ReadAsStep7 {
+        at: first_error.span(),
+        reason: format!("as STEP 5: {first_error}"),
+        help: format!(
+            "the text compiles as STEP 7 and has {errors} {} as STEP 5, so it was read as STEP 7; \
+             statements without block keywords are OB 1; `--dialect s5` reads it as STEP 5",
+            if errors == 1 { "error" } else { "errors" }
+        ),
+    })
+}
+
+/// The note for a text read as STEP 7 because of a word only STEP 7 writes.
+fn words_note(sources: &SourceSet, file: FileId, evidence: dialect::Evidence) -> S7ParseError {
+    let text = &sources.get(file).text[evidence.start as usize..evidence.end as usize];
+    S7ParseError::ReadAsStep7 {
+        at: Span {
+            file,
+            start: evidence.start,
+            end: evidence.end,
+        },
+        reason: format!("`{text}`: {}", evidence.what),
+        help: "STEP 5 does not write it; statements without block keywords are OB 1; \
+               `--dialect s5` reads the text as STEP 5"
+            .into(),
     }
 }
 
@@ -164,6 +284,7 @@ fn build_step7(
     symbol_files: Vec<SourceFile>,
     language: Language,
     profile: &'static Profile,
+    note: Option<S7ParseError>,
 ) -> Frontend {
     let options = crate::step7::ParseOptions {
         mnemonics: language.mnemonics,
@@ -211,6 +332,7 @@ fn build_step7(
             },
         ));
     }
+    diagnostics.extend(note.map(SourceDiagnostic::Step7));
     diagnostics.sort_by_key(|diagnostic| {
         let span = diagnostic.span();
         (span.file, span.start)
@@ -234,6 +356,10 @@ pub fn profiles_without_errors(
     symbol_files: &[SourceFile],
     language: Language,
 ) -> Vec<&'static str> {
+    let language = Language {
+        dialect: Some(decide(sources, language).dialect),
+        ..language
+    };
     crate::profile::PROFILES
         .iter()
         .filter(|profile| {

@@ -76,6 +76,11 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
                 .into(),
         ),
         (
+            "awl::parse::step7_word",
+            "sinumerik-840c",
+            "PB 1\n      L  KF +5\n      ITB\n      T  FW 4\n      BE\n".into(),
+        ),
+        (
             "awl::check::undeclared_local",
             "speed7",
             "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  #start;\n      =  Q 4.0;\nEND_ORGANIZATION_BLOCK\n".into(),

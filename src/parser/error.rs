@@ -162,13 +162,24 @@ pub enum ParseError {
     #[diagnostic(
         code(awl::parse::step7_source),
         help(
-            "awl reads STEP 5 STL: a block starts with a header such as `OB 1` or `FB 10` and ends with `BE`; operands are written `T 1`, `KT 200.0`, `D 0.1`, `DW 4`. Rewrite the blocks in STEP 5 form; nothing else in this file was checked"
+            "the text was read as STEP 5 because the dialect was given as STEP 5: read it with `--dialect s7` (a scenario's `dialect = \"s7\"`), or leave the dialect out and awl tells STEP 7 sources by their words; nothing else in this file was checked"
         )
     )]
     Step7Source {
         #[label("{what}")]
         at: Span,
         what: &'static str,
+    },
+
+    #[error("`{word}` is STEP 7, not STEP 5")]
+    #[diagnostic(code(awl::parse::step7_word))]
+    Step7Word {
+        word: String,
+        #[label("{what}")]
+        at: Span,
+        what: &'static str,
+        #[help]
+        help: String,
     },
 
     #[error("statements before any block header are taken as {block}")]
@@ -227,6 +238,7 @@ impl ParseError {
             | ParseError::BadDeclaration { at, .. }
             | ParseError::BadDataWord { at, .. }
             | ParseError::Step7Source { at, .. }
+            | ParseError::Step7Word { at, .. }
             | ParseError::Fragment { at, .. }
             | ParseError::DecimalFloat { at, .. }
             | ParseError::FormalsFromUse { at, .. } => *at,

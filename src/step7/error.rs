@@ -190,6 +190,16 @@ pub enum S7ParseError {
         help: String,
     },
 
+    #[error("read as STEP 7 STL, not STEP 5")]
+    #[diagnostic(code(awl::dialect::read_as_step7), severity(Advice))]
+    ReadAsStep7 {
+        #[label("{reason}")]
+        at: Span,
+        reason: String,
+        #[help]
+        help: String,
+    },
+
     #[error("`{word}` is an awlsim test extension")]
     #[diagnostic(
         code(awl::s7::extension_not_enabled),
@@ -222,6 +232,7 @@ impl S7ParseError {
             | S7ParseError::BlockNumber { at, .. }
             | S7ParseError::BadLabel { at, .. }
             | S7ParseError::Step5Spelling { at, .. }
+            | S7ParseError::ReadAsStep7 { at, .. }
             | S7ParseError::ExtensionNotEnabled { at, .. } => *at,
         }
     }

@@ -12,7 +12,7 @@ use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
 use crate::source::Span;
 use crate::step7::ast::{
-    AccessWidth, CallSpec, ConstKind, DataType, S7Address, S7Area, S7Block, S7BlockKind,
+    AccessWidth, CallParam, CallSpec, ConstKind, DataType, S7Address, S7Area, S7Block, S7BlockKind,
     S7BlockRef, S7Body, S7Op, S7Operand, S7Statement, VarKind,
 };
 use crate::step7::bytecode::{
@@ -1163,6 +1163,8 @@ impl super::Compiler<'_> {
             interface,
         } = callee;
         let mut actuals = vec![None; interface.parameters.len()];
+        // A parameter written with a bad actual is not missing too: each has its own error.
+        let mut given = vec![false; interface.parameters.len()];
         let mut fc_call = FcCall::default();
         let mut scratch_bits = 0u32;
         for param in &call.params {
@@ -1176,6 +1178,7 @@ impl super::Compiler<'_> {
                 });
                 continue;
             };
+            given[position] = true;
             let formal = &interface.variables[&name];
             if super::pointers::is_pointer_type(&formal.ty) {
                 actuals[position] = self.fc_pointer_param(
@@ -1216,6 +1219,10 @@ impl super::Compiler<'_> {
                     }
                 },
             };
+            if let Some(error) = width_mismatch(param, &id.to_string(), &formal.ty, &place) {
+                self.errors.push(error);
+                continue;
+            }
             let copy = matches!(place.target, Target::Constant(_) | Target::Instance { .. })
                 && copied(&formal.ty);
             let Some(width) = super::layout::width_of(&formal.ty).filter(|_| copy) else {
@@ -1255,8 +1262,8 @@ impl super::Compiler<'_> {
         let missing: Vec<&str> = interface
             .parameters
             .iter()
-            .zip(&actuals)
-            .filter(|(_, actual)| actual.is_none())
+            .zip(&given)
+            .filter(|(_, given)| !**given)
             .map(|(name, _)| name.as_str())
             .collect();
         if !missing.is_empty() {
@@ -1385,6 +1392,10 @@ impl super::Compiler<'_> {
                     continue;
                 }
             };
+            if let Some(error) = width_mismatch(param, fb, &variable.ty, &place) {
+                self.errors.push(error);
+                continue;
+            }
             let copy = ParamCopy {
                 actual: self.tables.place(place),
                 byte: offset.byte(),
@@ -1548,4 +1559,33 @@ pub(super) fn feature_number(operand: &S7Operand) -> Option<u8> {
         S7Operand::Constant(constant) => Some(constant.value as u8),
         _ => None,
     }
+}
+
+/// An actual of another width than its elementary parameter (`MW 4` for a BOOL): STEP 7 takes
+/// an address for a parameter of its width only. Constants are checked by their type.
+fn width_mismatch(
+    param: &CallParam,
+    block: &str,
+    ty: &DataType,
+    place: &Place,
+) -> Option<CheckError> {
+    let expected = super::layout::width_of(ty)?;
+    if place.width == expected || matches!(place.target, Target::Constant(_)) {
+        return None;
+    }
+    let example = match expected {
+        AccessWidth::Bit => "`M 0.0`",
+        AccessWidth::Byte => "`MB 0`",
+        AccessWidth::Word => "`MW 0`",
+        AccessWidth::Double => "`MD 0`",
+    };
+    Some(CheckError::ParamMismatch {
+        name: param.name.text.clone(),
+        fb: block.to_string(),
+        at: param.actual_span,
+        expected: format!(
+            "{}: an operand like {example}",
+            super::complex::type_name(ty)
+        ),
+    })
 }

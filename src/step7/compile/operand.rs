@@ -8,6 +8,7 @@ use crate::step7::ast::{
     VarKind,
 };
 use crate::step7::bytecode::{IndirectArea, Place, Target};
+use crate::symbols::SymbolError;
 
 use super::layout::{self, Home, Interface};
 
@@ -250,7 +251,9 @@ impl super::Compiler<'_> {
                 })
             }
             S7Operand::DbMember { db, path } => self.db_member_place(*db, path, at),
-            S7Operand::Symbol { name, members } => self.symbol_place(name, members, at),
+            S7Operand::Symbol { name, members } => self
+                .symbol_place(name, members, at)
+                .map_err(|error| close_variable(error, scope)),
             _ => Err(not_an_operand(at, "this operand")),
         }
     }
@@ -407,4 +410,35 @@ pub fn bytes(width: AccessWidth) -> u32 {
         AccessWidth::Word => 2,
         AccessWidth::Double => 4,
     }
+}
+
+/// An unknown bare name (`L positon1;`) close to a variable of the block: the help names the
+/// variable, the likelier meaning than a symbol.
+fn close_variable(error: CheckError, scope: &Scope<'_>) -> CheckError {
+    let CheckError::Symbol(mut symbol) = error else {
+        return error;
+    };
+    if let SymbolError::Unknown { written, help, .. } = symbol.as_mut()
+        && !written.starts_with('"')
+    {
+        let upper = written.to_ascii_uppercase();
+        let closest = scope
+            .interface
+            .variables
+            .iter()
+            .map(|(name, variable)| (strsim::damerau_levenshtein(&upper, name), variable))
+            .filter(|(distance, _)| *distance <= 2 && upper.len() > 3)
+            .min_by_key(|(distance, _)| *distance);
+        if let Some((_, variable)) = closest {
+            let named = format!(
+                "did you mean `{}`, a variable of {}?",
+                variable.declaration.name.text, scope.block
+            );
+            *help = Some(match help.take() {
+                Some(table) => format!("{named} ({table})"),
+                None => named,
+            });
+        }
+    }
+    CheckError::Symbol(symbol)
 }

@@ -167,10 +167,14 @@ impl Compiler<'_> {
                         .to_string()
                 })
             });
+        // As written: `"Start"`, or a bare `Start`.
+        let span = name.span;
+        let written =
+            self.sources.get(span.file).text[span.start as usize..span.end as usize].to_string();
         CheckError::Symbol(Box::new(SymbolError::Unknown {
-            written: format!("\"{}\"", name.text),
+            written,
             list: "symbol table",
-            at: name.span,
+            at: span,
             help,
         }))
     }

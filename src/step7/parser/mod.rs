@@ -6,12 +6,15 @@
 //! declaration or a bad data line is dropped, a missing `END_…` is one error at its opening
 //! keyword.
 
+mod bare_names;
 mod interface;
 pub use interface::TYPE_NAMES;
 mod operand;
 mod statement;
+pub(crate) use statement::takes_label;
 mod step5;
 mod tokens;
+pub(crate) use tokens::letters_and_digits;
 
 use std::cell::Cell;
 
@@ -421,7 +424,17 @@ impl<'a> Parser<'a> {
                             members: Vec::new(),
                             initial: self.initial_lines(),
                         },
-                        _ => S7Body::Logic(self.statements(Some(end))),
+                        _ => {
+                            let mut statements = self.statements(Some(end));
+                            let returns = matches!(&header, Some((_, Some(_))));
+                            bare_names::declared_as_locals(
+                                self.ctx.source,
+                                &interface,
+                                returns,
+                                &mut statements,
+                            );
+                            S7Body::Logic(statements)
+                        }
                     });
                 }
                 "STRUCT" if matches!(kind, S7BlockKind::Db | S7BlockKind::Udt) => {

@@ -164,6 +164,24 @@ fn word_operand<'a>(ctx: Ctx<'a>, input: Tokens<'a>) -> PResult<'a, S7Operand> {
     if let Some(diagnostic) = step5::operand(ctx, input) {
         return Err(Fail::with(diagnostic));
     }
+    // A bare name, as STEP 7's source compiler takes it: the block's own variable when the
+    // block declares it (see `parser::bare_names`), else a symbol.
+    let ends_operand = rest.first().is_none_or(|next| {
+        matches!(
+            next.kind,
+            TokenKind::Dot | TokenKind::LBracket | TokenKind::Comma | TokenKind::RParen
+        )
+    });
+    if ends_operand {
+        let (rest, members) = members(ctx)(rest)?;
+        return Ok((
+            rest,
+            S7Operand::Symbol {
+                name: name(ctx, first),
+                members,
+            },
+        ));
+    }
     Err(unknown_operand(ctx, first))
 }
 

@@ -294,6 +294,11 @@ fn expect_of(op: S7Op) -> Expect {
     }
 }
 
+/// The operation's operand is a jump label (`JU M001`, `LOOP NEXT`).
+pub fn takes_label(op: S7Op) -> bool {
+    expect_of(op) == Expect::Label
+}
+
 /// The operation reads or writes an operand of the common forms (an address, a constant).
 pub fn takes_address(op: S7Op) -> bool {
     expect_of(op) == Expect::Value
