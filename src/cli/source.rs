@@ -41,9 +41,12 @@ fn build(
         Some(name) => selected_profile(Some(name)),
         None => frontend::default_profile(&sources, language),
     };
-    let runs_on = (with_profiles && options.cpu.is_none())
-        .then(|| frontend::profiles_without_errors(&sources, &symbol_files, language));
+    let inputs =
+        (with_profiles && options.cpu.is_none()).then(|| (sources.clone(), symbol_files.clone()));
     let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
+    let runs_on = inputs.map(|(sources, symbol_files)| {
+        frontend::profiles_without_errors(&built, &sources, &symbol_files, language)
+    });
     for diagnostic in &built.diagnostics {
         console.report(&diagnostics::report(&built.sources, diagnostic));
     }
