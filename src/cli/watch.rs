@@ -60,6 +60,14 @@ impl Watch {
         }
     }
 
+    /// The same watch without a progress line (`--quiet`).
+    pub fn without_progress(self) -> Self {
+        Watch {
+            terminal: false,
+            ..self
+        }
+    }
+
     /// Whether the run goes on; updates the progress line now and then.
     pub fn go_on(&mut self, cpu: &Cpu) -> bool {
         if HALT.load(Ordering::Relaxed) {

@@ -155,7 +155,7 @@ pub(super) fn run_with(
     };
     let mut prepared = match runner::prepare(options) {
         Ok(prepared) => prepared,
-        Err(NotRun::SourceErrors(reports)) => return not_run(Ending::SourceErrors, reports),
+        Err(NotRun::SourceErrors(reports, _)) => return not_run(Ending::SourceErrors, reports),
         Err(NotRun::Failed(reports)) => return not_run(Ending::NotRun, reports),
         Err(NotRun::Usage(report)) => return not_run(Ending::NotRun, vec![report]),
     };
