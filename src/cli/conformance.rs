@@ -56,6 +56,9 @@ pub fn conformance(args: &ConformanceArgs, console: &mut Console) -> u8 {
         console.out(&checked.line());
         if !args.quiet {
             console.reports(&checked.reports);
+            if let Some(totals) = checked.source_totals {
+                console.totals("conformance", totals);
+            }
         }
     });
     if totals.halted {
