@@ -317,3 +317,102 @@ impl JsonWriter {
         line
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use miette::{LabeledSpan, NamedSource, miette};
+
+    fn report(code: &str, message: &str) -> Report {
+        miette!(code = code.to_string(), "{message}")
+    }
+
+    fn texts(shown: &[Shown<'_>]) -> Vec<String> {
+        shown
+            .iter()
+            .map(|shown| match shown {
+                Shown::Report(report) => report.to_string(),
+                Shown::MoreLikeThis { count, .. } => format!("+{count}"),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_flood_shows_three_then_counts_the_rest_where_it_ends() {
+        let mut reports: Vec<Report> = (0..6).map(|_| report("awl::a", "same")).collect();
+        reports.insert(2, report("awl::b", "other"));
+        reports.push(report("awl::c", "last"));
+        let reports: Vec<&Report> = reports.iter().collect();
+        assert_eq!(
+            texts(&without_floods(&reports)),
+            ["same", "same", "other", "same", "+3", "last"]
+        );
+    }
+
+    #[test]
+    fn one_code_with_other_messages_is_another_group() {
+        let reports: Vec<Report> = (0..4)
+            .map(|n| report("awl::a", &format!("message {}", n % 2)))
+            .collect();
+        let reports: Vec<&Report> = reports.iter().collect();
+        assert_eq!(without_floods(&reports).len(), 4);
+    }
+
+    #[test]
+    fn places_count_lines_and_characters_from_one() {
+        let lines = Lines::new("ab\näx = 1\n".to_string());
+        assert_eq!(lines.place(0), Place { line: 1, column: 1 });
+        assert_eq!(lines.place(3), Place { line: 2, column: 1 });
+        // `ä` is two bytes and one character.
+        assert_eq!(lines.place(5), Place { line: 2, column: 2 });
+        assert_eq!(lines.place(100), Place { line: 3, column: 1 });
+    }
+
+    #[test]
+    fn a_json_line_has_the_place_labels_and_help() {
+        let source = NamedSource::new("p.awl", "OB 1\n  A  I 200.0\n".to_string());
+        let with_label = miette!(
+            code = "awl::check::operand_range",
+            labels = vec![LabeledSpan::at(10..17, "out of range")],
+            help = "I 0…127",
+            "I 200 is out of range"
+        )
+        .with_source_code(source);
+        let mut writer = JsonWriter::default();
+        let json: serde_json::Value = serde_json::from_str(&writer.line(&with_label)).unwrap();
+        assert_eq!(
+            json,
+            serde_json::json!({
+                "code": "awl::check::operand_range",
+                "severity": "error",
+                "file": "p.awl",
+                "line": 2,
+                "column": 6,
+                "message": "I 200 is out of range",
+                "labels": [{
+                    "line": 2, "column": 6, "end_line": 2, "end_column": 13,
+                    "text": "out of range"
+                }],
+                "help": "I 0…127"
+            })
+        );
+        let plain = miette!("no source");
+        let json: serde_json::Value = serde_json::from_str(&writer.line(&plain)).unwrap();
+        assert_eq!(json["file"], serde_json::Value::Null);
+        assert_eq!(json["labels"], serde_json::json!([]));
+        assert_eq!(json["help"], serde_json::Value::Null);
+    }
+
+    #[test]
+    fn totals_say_notes_only_when_there_are_some() {
+        let totals = Totals {
+            errors: 1,
+            warnings: 2,
+            notes: 0,
+            files: 1,
+        };
+        assert_eq!(totals.to_string(), "1 error, 2 warnings in 1 file");
+        let more = Totals { notes: 2, ..totals }.with_warnings(1);
+        assert_eq!(more.to_string(), "1 error, 3 warnings, 2 notes in 1 file");
+    }
+}
