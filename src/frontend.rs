@@ -338,7 +338,6 @@ pub fn profiles_without_errors(
     symbol_files: &[SourceFile],
     language: Language,
 ) -> Vec<&'static str> {
-    let profiles = crate::profile::PROFILES.iter();
     if !built.s7_units.is_empty() {
         return step7_profiles_without_errors(built, sources, symbol_files, language);
     }
@@ -366,7 +365,8 @@ pub fn profiles_without_errors(
             index: address.index,
         });
     }
-    profiles
+    crate::profile::PROFILES
+        .iter()
         .filter(|profile| needs.met_by(profile))
         .map(|profile| profile.name)
         .collect()
