@@ -1,7 +1,8 @@
 //! Front-end speed: lex + parse + compile of a generated 100,000-line program, in the plain
 //! form and as the PG listing `awl dump --listing` writes of it (statement addresses, segment
 //! headings). Target: at least 2 million lines per second on the plain form, in release
-//! mode; the listing's rate is reported.
+//! mode; the listing's rate is reported. `awl check` without `--cpu` (the same compile, and
+//! the profiles it compiles on) is measured beside it.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
@@ -73,6 +74,14 @@ fn bench_front_end(c: &mut Criterion) {
     group.sample_size(20);
     group.bench_function("lex_parse_compile_100k_lines", |b| {
         b.iter(|| frontend::build_text("gen.awl", &source, cpu))
+    });
+    // `awl check` without `--cpu`: the same compile, and the profiles it compiles on.
+    group.bench_function("check_without_cpu_100k_lines", |b| {
+        b.iter(|| {
+            let built = frontend::build_text("gen.awl", &source, cpu);
+            let language = frontend::Language::default();
+            frontend::profiles_without_errors(&built, &built.sources, &[], language)
+        })
     });
     group.finish();
 

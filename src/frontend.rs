@@ -348,10 +348,13 @@ fn build_step7(
     }
 }
 
-/// The profiles on which the program compiles without errors, each checked as with `--cpu`;
+/// The profiles on which the program compiles without errors, as each `--cpu` would check it;
 /// `awl check` without `--cpu` names them. Every error counts, so an operation or a block a
-/// CPU lacks rules that CPU out.
+/// CPU lacks rules that CPU out. `built` is the program compiled for the default profile
+/// from `sources` and `symbol_files`: what its checks asked of the CPU is held against each
+/// profile, so the program is not compiled per profile.
 pub fn profiles_without_errors(
+    built: &Frontend,
     sources: &SourceSet,
     symbol_files: &[SourceFile],
     language: Language,
@@ -360,11 +363,73 @@ pub fn profiles_without_errors(
         dialect: Some(decide(sources, language).dialect),
         ..language
     };
+    if !built.s7_units.is_empty() {
+        return step7_profiles_without_errors(built, sources, symbol_files, language);
+    }
+    // A need the default profile did not meet may hide other checks of its statement: the
+    // program is then compiled for a CPU that meets every need some profile meets.
+    let widest;
+    let checked = if all_needs_met(built) {
+        built
+    } else {
+        widest = build_with_symbols(
+            sources.clone(),
+            symbol_files.to_vec(),
+            language,
+            crate::profile::widest(),
+        );
+        &widest
+    };
+    if checked.has_errors() {
+        return Vec::new();
+    }
+    let mut needs = checked.compiled.program.needs.clone();
+    for address in checked.compiled.program.symbols.step5_addresses() {
+        needs.add(compiler::Need::Address {
+            area: address.area,
+            index: address.index,
+        });
+    }
     crate::profile::PROFILES
         .iter()
+        .filter(|profile| needs.met_by(profile))
+        .map(|profile| profile.name)
+        .collect()
+}
+
+/// Whether the profile a STEP 5 program was compiled for met every need of its checks and of
+/// its assignment lists' operands.
+fn all_needs_met(built: &Frontend) -> bool {
+    built.compiled.program.needs.all_met()
+        && !built.diagnostics.iter().any(|diagnostic| {
+            matches!(
+                diagnostic,
+                SourceDiagnostic::Symbol(symbols::SymbolError::OutOfRange { .. })
+            )
+        })
+}
+
+/// [`profiles_without_errors`] for a STEP 7 program: a block rules out every STEP 5 CPU, and
+/// the S7 CPU it was compiled for is told by its errors. A program without blocks (only a
+/// symbol table) is quick to compile for each profile.
+fn step7_profiles_without_errors(
+    built: &Frontend,
+    sources: &SourceSet,
+    symbol_files: &[SourceFile],
+    language: Language,
+) -> Vec<&'static str> {
+    let has_block = built.s7_units.iter().any(|unit| !unit.blocks.is_empty());
+    crate::profile::PROFILES
+        .iter()
+        .filter(|profile| !has_block || profile.runs_step7())
         .filter(|profile| {
-            !build_with_symbols(sources.clone(), symbol_files.to_vec(), language, profile)
-                .has_errors()
+            let has_errors = if profile.name == built.compiled.program.profile.name {
+                built.has_errors()
+            } else {
+                build_with_symbols(sources.clone(), symbol_files.to_vec(), language, profile)
+                    .has_errors()
+            };
+            !has_errors
         })
         .map(|profile| profile.name)
         .collect()

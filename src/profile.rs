@@ -656,6 +656,66 @@ pub fn with_accumulators(profile: &'static Profile, count: u8) -> Option<&'stati
     }
 }
 
+/// A CPU with what every profile has at once: each operation group, the largest operand
+/// ranges, FX and DX blocks, every integral FB and system OB, four accumulators. A STEP 5
+/// program's errors on it are errors on every profile; `awl check` compiles for it to tell the
+/// profiles a program compiles on when the default profile's errors hide some checks.
+pub fn widest() -> &'static Profile {
+    static WIDEST: OnceLock<Profile> = OnceLock::new();
+    WIDEST.get_or_init(|| {
+        let most = |size: fn(&Sizes) -> u16| {
+            PROFILES
+                .iter()
+                .map(|profile| size(&profile.sizes))
+                .max()
+                .unwrap_or(0)
+        };
+        let mut features: Vec<Feature> = Vec::new();
+        let mut integral_fbs: Vec<u8> = Vec::new();
+        let mut system_obs: Vec<SystemOb> = Vec::new();
+        for profile in PROFILES {
+            for feature in profile.features {
+                if !features.contains(feature) {
+                    features.push(*feature);
+                }
+            }
+            for fb in profile.integral_fbs {
+                if !integral_fbs.contains(fb) {
+                    integral_fbs.push(*fb);
+                }
+            }
+            for ob in profile.system_obs {
+                if system_obs.iter().all(|known| known.ob != ob.ob) {
+                    system_obs.push(*ob);
+                }
+            }
+        }
+        let base = find(DEFAULT_PROFILE).expect("the default profile exists");
+        Profile {
+            name: "every-profile",
+            sizes: Sizes {
+                image_bytes: most(|sizes| sizes.image_bytes),
+                flag_bytes: most(|sizes| sizes.flag_bytes),
+                peripheral_bytes: most(|sizes| sizes.peripheral_bytes),
+                timers: most(|sizes| sizes.timers),
+                counters: most(|sizes| sizes.counters),
+                data_words: most(|sizes| sizes.data_words),
+            },
+            accumulators: 4,
+            bracket_depth: PROFILES
+                .iter()
+                .map(|profile| profile.bracket_depth)
+                .max()
+                .unwrap_or(0),
+            extended_blocks: true,
+            features: features.leak(),
+            integral_fbs: integral_fbs.leak(),
+            system_obs: system_obs.leak(),
+            ..base.clone()
+        }
+    })
+}
+
 /// The largest process image an S7 CPU of awl can be set to, in bytes (the SPEED7 CPUs'; VIPA
 /// System 300S CPU manuals, technical data).
 pub const MAX_S7_IMAGE_BYTES: u16 = 2048;

@@ -300,3 +300,109 @@ fn help_lists_declared_parameters_and_what_c_opens() {
         rendered("sinumerik-840c", &open)
     );
 }
+
+/// The profiles `awl check` names without `--cpu`, compiled for each profile one by one: what
+/// the single compile's needs must give.
+fn compiled_per_profile(
+    sources: &awl::source::SourceSet,
+    symbols: &[awl::source::SourceFile],
+) -> Vec<&'static str> {
+    profile::PROFILES
+        .iter()
+        .filter(|cpu| {
+            !frontend::build_with_symbols(
+                sources.clone(),
+                symbols.to_vec(),
+                frontend::Language::default(),
+                cpu,
+            )
+            .has_errors()
+        })
+        .map(|cpu| cpu.name)
+        .collect()
+}
+
+/// The profiles named from one compile for the default profile.
+fn from_one_compile(
+    sources: &awl::source::SourceSet,
+    symbols: &[awl::source::SourceFile],
+) -> Vec<&'static str> {
+    let language = frontend::Language::default();
+    let cpu = frontend::default_profile(sources, language);
+    let built = frontend::build_with_symbols(sources.clone(), symbols.to_vec(), language, cpu);
+    frontend::profiles_without_errors(&built, sources, symbols, language)
+}
+
+fn one_file(text: &str) -> awl::source::SourceSet {
+    let mut sources = awl::source::SourceSet::default();
+    sources.add(awl::source::SourceFile::new("runs_on.awl", text));
+    sources
+}
+
+#[test]
+fn one_compile_names_the_profiles_each_compile_would() {
+    let mut files: Vec<std::path::PathBuf> = Vec::new();
+    let mut dirs = vec![std::path::PathBuf::from("programs"), "tests".into()];
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                dirs.push(path);
+            } else if path.extension().is_some_and(|ext| ext == "awl") {
+                files.push(path);
+            }
+        }
+    }
+    assert!(files.len() > 50, "{} program files", files.len());
+    for path in files {
+        let sources = frontend::read_sources(&[&path]).unwrap();
+        assert_eq!(
+            from_one_compile(&sources, &[]),
+            compiled_per_profile(&sources, &[]),
+            "{}",
+            path.display()
+        );
+    }
+}
+
+#[test]
+fn one_compile_names_the_profiles_of_each_need() {
+    let programs = [
+        // Each need met by some profiles only, alone and behind another need's error.
+        in_pb("      XG\n"),
+        in_pb("      ENT\n"),
+        in_pb("      L  FW 300\n"),
+        in_pb("      SD T 200\n"),
+        in_pb("      L  FW 300\n      DED\n"),
+        in_pb("      L  PW 300\n      XG\n"),
+        in_pb("      JU FB 240\n"),
+        in_pb("      JU FB 250\n"),
+        in_pb("      JU OB 160\n"),
+        in_pb("      JU OB 251\n"),
+        in_pb("      JU FB 99\n"),
+        in_pb(&"      A(\n".repeat(8)),
+        "FX 1\n      BE\nOB 1\n      BE\n".to_string(),
+        "DX 1\n  0: KF +1\nOB 1\n      BE\n".to_string(),
+        // A need hides another error of its statement on the default profile.
+        in_pb("      L  FW 8000\n      DO FW 8000\n"),
+        in_pb("      XG FW 10\n"),
+        in_pb("      L  T 200.0\n"),
+    ];
+    for program in programs {
+        let sources = one_file(&program);
+        assert_eq!(
+            from_one_compile(&sources, &[]),
+            compiled_per_profile(&sources, &[]),
+            "{program}"
+        );
+    }
+    let symbols = [awl::source::SourceFile::new(
+        "symbols.seq",
+        "F 200.0  -HIGH\nT 200  -LATE\n",
+    )];
+    let sources = one_file(&in_pb("      A  -HIGH\n"));
+    assert_eq!(
+        from_one_compile(&sources, &symbols),
+        compiled_per_profile(&sources, &symbols)
+    );
+}

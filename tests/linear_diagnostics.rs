@@ -43,22 +43,59 @@ fn rendering_grows_linearly_with_the_errors() {
     );
 }
 
-#[test]
-fn the_command_line_shows_the_first_thousand_and_counts_the_rest() {
+/// `awl check` on `text` written to `target/test-linear/NAME`: its exit code and stderr.
+fn check(name: &str, text: &str) -> (Option<i32>, String) {
     let dir = std::path::Path::new("target/test-linear");
     std::fs::create_dir_all(dir).unwrap();
-    let path = dir.join("dup.awl");
-    std::fs::write(&path, duplicates(20_000)).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_awl"))
         .args(["check", path.to_str().unwrap()])
         .output()
         .unwrap();
-    assert_eq!(output.status.code(), Some(1));
-    let stderr = String::from_utf8(output.stderr).unwrap();
-    assert_eq!(stderr.matches("awl::check::duplicate_block").count(), 1000);
+    (
+        output.status.code(),
+        String::from_utf8(output.stderr).unwrap(),
+    )
+}
+
+/// Each block defined again and again: three reports of each, then one line counting the
+/// rest, where the last of them stood.
+#[test]
+fn the_command_line_shows_three_of_each_error_and_counts_the_rest() {
+    let (code, stderr) = check("dup.awl", &duplicates(20_000));
+    assert_eq!(code, Some(1));
+    let reports = stderr
+        .lines()
+        .filter(|line| *line == "awl::check::duplicate_block")
+        .count();
+    assert_eq!(reports, 3 * 256);
+    assert!(stderr.contains(
+        "… and 75 more like this (awl::check::duplicate_block: PB 0 is defined twice)\n"
+    ));
+    assert_eq!(stderr.matches(" more like this ").count(), 256);
     assert!(
         stderr.ends_with(
-            "awl: 18744 more diagnostics not shown (the first 1000 are above)\nawl check: 19744 errors, 0 warnings in 1 file\nnote: no CPU profile compiles it without errors\n"
+            "awl check: 19744 errors, 0 warnings in 1 file\nnote: no CPU profile compiles it without errors\n"
+        ),
+        "{}",
+        &stderr[stderr.len() - 300..]
+    );
+}
+
+/// 1,200 different errors: the first thousand, then a count of the rest.
+#[test]
+fn the_command_line_shows_the_first_thousand_and_counts_the_rest() {
+    let statements: String = (0..1200).map(|i| format!("      A  =S{i}\n")).collect();
+    let (code, stderr) = check(
+        "symbols.awl",
+        &format!("FB 1\nNAME :X\n{statements}      BE\n"),
+    );
+    assert_eq!(code, Some(1));
+    assert_eq!(stderr.matches("awl::check::undefined_symbol").count(), 1000);
+    assert!(
+        stderr.ends_with(
+            "awl: 200 more diagnostics not shown (the first 1000 are above)\nawl check: 1200 errors, 0 warnings in 1 file\nnote: no CPU profile compiles it without errors\n"
         ),
         "{}",
         &stderr[stderr.len() - 300..]

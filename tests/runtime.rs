@@ -82,7 +82,7 @@ fn every_stop_cause_renders_with_line_and_block_stack() {
 fn scenario_error(name: &str, program: &str, scenario: &str) -> String {
     match run_scenario(name, program, scenario) {
         Err(NotRun::Failed(reports)) => reports.iter().map(render_plain).collect(),
-        Err(NotRun::SourceErrors(_) | NotRun::Usage(_)) => panic!("{name}: not a scenario error"),
+        Err(NotRun::SourceErrors(..) | NotRun::Usage(_)) => panic!("{name}: not a scenario error"),
         Ok(_) => panic!("{name}: the scenario ran"),
     }
 }

@@ -20,7 +20,7 @@ fn passes(program: &str, scenario: &str) -> Ran {
             );
             ran
         }
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => {
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => {
             panic!("{reports:?}")
         }
         Err(NotRun::Usage(report)) => panic!("{report:?}"),
@@ -29,7 +29,7 @@ fn passes(program: &str, scenario: &str) -> Ran {
 
 /// The codes of the source errors of `program` on `cpu`.
 fn source_errors(program: &str, cpu: &str) -> Vec<String> {
-    let Err(NotRun::SourceErrors(reports)) = run(program, cpu, "run = { cycles = 1 }\n") else {
+    let Err(NotRun::SourceErrors(reports, _)) = run(program, cpu, "run = { cycles = 1 }\n") else {
         panic!("a source error");
     };
     reports

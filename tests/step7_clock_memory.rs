@@ -44,7 +44,7 @@ fn without_the_setting_the_flag_byte_is_the_program_s() {
 fn scenario_error(cpu: &str, scenario: &str) -> String {
     match run(cpu, scenario) {
         // On an S5 CPU the S7 program is a source error too; both are reported.
-        Err(NotRun::Failed(reports) | NotRun::SourceErrors(reports)) => {
+        Err(NotRun::Failed(reports) | NotRun::SourceErrors(reports, _)) => {
             reports.iter().map(awl::diagnostics::render_plain).collect()
         }
         _ => panic!("a scenario error"),

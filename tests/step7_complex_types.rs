@@ -12,7 +12,7 @@ use common::step7::{passes, run};
 
 /// The source errors of `program`, rendered.
 fn errors(program: &str) -> String {
-    let Err(NotRun::SourceErrors(reports)) = run(program, "run = { cycles = 1 }\n") else {
+    let Err(NotRun::SourceErrors(reports, _)) = run(program, "run = { cycles = 1 }\n") else {
         panic!("expected source errors");
     };
     reports

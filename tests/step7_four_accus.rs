@@ -26,7 +26,7 @@ fn passes(body: &str, expect: &str) {
         ..RunOptions::default()
     }) {
         Ok(ran) => ran,
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => panic!("{reports:?}"),
         Err(NotRun::Usage(report)) => panic!("{report:?}"),
     };
     assert!(

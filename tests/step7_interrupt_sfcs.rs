@@ -21,7 +21,7 @@ fn scenario(rest: &str) -> String {
 fn errors(result: Result<awl::runner::Ran, NotRun>) -> String {
     match result {
         Ok(_) => panic!("the run started"),
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => reports
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => reports
             .iter()
             .map(|report| format!("{report:?}"))
             .collect::<Vec<_>>()

@@ -21,7 +21,7 @@ fn run(program: &str, scenario: &str) -> Ran {
         ..RunOptions::default()
     }) {
         Ok(ran) => ran,
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => panic!("{reports:?}"),
         Err(NotRun::Usage(report)) => panic!("{report:?}"),
     }
 }

@@ -101,7 +101,7 @@ fn ar2_points_at_the_instance_and_comes_back() {
 #[test]
 fn a_multi_instance_call_of_an_undeclared_name_suggests_the_close_one() {
     let program = TWO_INSTANCES.replace("CALL  #right", "CALL  #rigxt");
-    let Err(NotRun::SourceErrors(reports)) = run(&program, "run = { cycles = 1 }\n") else {
+    let Err(NotRun::SourceErrors(reports, _)) = run(&program, "run = { cycles = 1 }\n") else {
         panic!("an undeclared multi-instance must be a source error");
     };
     let text = format!("{reports:?}");
@@ -112,7 +112,7 @@ fn a_multi_instance_call_of_an_undeclared_name_suggests_the_close_one() {
 #[test]
 fn calling_a_variable_that_is_no_instance_is_an_error() {
     let program = TWO_INSTANCES.replace("CALL  #right", "CALL  #guard");
-    let Err(NotRun::SourceErrors(reports)) = run(&program, "run = { cycles = 1 }\n") else {
+    let Err(NotRun::SourceErrors(reports, _)) = run(&program, "run = { cycles = 1 }\n") else {
         panic!("CALL of a WORD must be a source error");
     };
     let text = format!("{reports:?}");
@@ -123,7 +123,7 @@ fn calling_a_variable_that_is_no_instance_is_an_error() {
 #[test]
 fn an_fb_embedding_itself_is_an_error() {
     let program = TWO_INSTANCES.replace("inner : FB 3;", "inner : FB 2;");
-    let Err(NotRun::SourceErrors(reports)) = run(&program, "run = { cycles = 1 }\n") else {
+    let Err(NotRun::SourceErrors(reports, _)) = run(&program, "run = { cycles = 1 }\n") else {
         panic!("a recursive multi-instance must be a source error");
     };
     let text = format!("{reports:?}");

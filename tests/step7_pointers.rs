@@ -317,7 +317,7 @@ fn sfc_nop_sets_br() {
 
 fn errors(program: &str) -> String {
     match run(program, "") {
-        Err(NotRun::SourceErrors(reports)) => {
+        Err(NotRun::SourceErrors(reports, _)) => {
             reports.iter().map(awl::diagnostics::render_plain).collect()
         }
         Err(_) => panic!("the program has source errors, not others"),

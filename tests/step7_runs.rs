@@ -165,7 +165,7 @@ fn sfc_46_stops_the_cpu() {
 #[test]
 fn a_peripheral_address_past_the_modules_is_a_source_error() {
     let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L PIW 8192;\nEND_ORGANIZATION_BLOCK\n";
-    let Err(NotRun::SourceErrors(reports)) = run(program, "run = { cycles = 1 }\n") else {
+    let Err(NotRun::SourceErrors(reports, _)) = run(program, "run = { cycles = 1 }\n") else {
         panic!("a source error");
     };
     assert!(format!("{reports:?}").contains("operand_range"));
@@ -192,7 +192,7 @@ fn a_step7_program_on_a_step5_cpu_names_the_s7_profiles() {
         store: Files::Memory(Arc::new(files)),
         ..RunOptions::default()
     });
-    let Err(NotRun::SourceErrors(reports)) = outcome else {
+    let Err(NotRun::SourceErrors(reports, _)) = outcome else {
         panic!("a source error");
     };
     let text = format!("{reports:?}");

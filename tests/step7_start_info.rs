@@ -374,7 +374,7 @@ fn a_called_blocks_temporaries_leave_the_start_information_alone() {
 /// The source errors of `program` (with the test extensions), as text.
 fn source_errors(program: &str) -> String {
     match run(program, "extended = true\nrun = { cycles = 1 }\n") {
-        Err(NotRun::SourceErrors(reports)) => format!("{reports:?}"),
+        Err(NotRun::SourceErrors(reports, _)) => format!("{reports:?}"),
         Ok(_) => panic!("the program ran"),
         Err(NotRun::Failed(reports)) => panic!("{reports:?}"),
         Err(NotRun::Usage(report)) => panic!("{report:?}"),
@@ -385,7 +385,7 @@ fn source_errors(program: &str) -> String {
 fn stop_of(program: &str) -> String {
     let ran = match run(program, "extended = true\nrun = { cycles = 1 }\n") {
         Ok(ran) => ran,
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => panic!("{reports:?}"),
         Err(NotRun::Usage(report)) => panic!("{report:?}"),
     };
     format!("{:?}", ran.outcome.stop.expect("a STOP"))
@@ -473,7 +473,7 @@ fn awlsims_reboot_parses_with_the_extensions_and_stops_when_run() {
     assert!(other.contains("SFC -3"), "{other}");
     // Without the extensions, a negative number is no block.
     match run(program, "run = { cycles = 1 }\n") {
-        Err(NotRun::SourceErrors(reports)) => {
+        Err(NotRun::SourceErrors(reports, _)) => {
             assert!(
                 format!("{reports:?}").contains("block number -2"),
                 "{reports:?}"

@@ -64,7 +64,7 @@ fn passes(program: &str, table: &str, scenario: &str) {
             "{:#?}",
             ran.mismatches
         ),
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => panic!("{reports:?}"),
         Err(NotRun::Usage(report)) => panic!("{report:?}"),
     }
 }

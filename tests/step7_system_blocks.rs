@@ -200,7 +200,7 @@ fn set_clk_refuses_a_wrong_date_or_time_with_its_error_code() {
 
 fn errors(program: &str) -> String {
     match run(program, "") {
-        Err(NotRun::SourceErrors(reports)) => {
+        Err(NotRun::SourceErrors(reports, _)) => {
             reports.iter().map(awl::diagnostics::render_plain).collect()
         }
         _ => panic!("`{program}` has errors"),

@@ -29,7 +29,7 @@ fn time_tck_is_the_time_since_the_start() {
 fn errors(call: &str) -> String {
     let program = format!("ORGANIZATION_BLOCK OB 1\nBEGIN\n      {call}\nEND_ORGANIZATION_BLOCK\n");
     match run(&program, "") {
-        Err(NotRun::SourceErrors(reports)) => {
+        Err(NotRun::SourceErrors(reports, _)) => {
             reports.iter().map(awl::diagnostics::render_plain).collect()
         }
         _ => panic!("`{call}` has errors"),

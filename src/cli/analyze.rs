@@ -26,7 +26,7 @@ pub struct AnalyzeArgs {
 pub fn analyze(args: &AnalyzeArgs, console: &mut Console) -> u8 {
     let mut prepared = match runner::prepare(&program_options(&args.program)) {
         Ok(prepared) => prepared,
-        Err(reason) => return not_run(reason, console),
+        Err(reason) => return not_run("analyze", reason, console),
     };
     console.reports(&prepared.take_warnings());
     let cpu = &prepared.cpu;

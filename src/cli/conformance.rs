@@ -15,10 +15,11 @@ cycle until the program stops the CPU with CALL SFC 46. An awlsim project file (
 run as awlsim runs it: its STL sources and symbol tables, its accumulators, clock memory byte, \
 start information switch and mnemonics. A directory stands for every .awl and .awlpro file \
 below it, except those awlsim runs through another file of the same name (a project file or a \
-shell test, .sh). FILE.conf beside a test may set `exit_code` (0, or 30: the test must end in an \
+shell test, .sh); a FILE named alone is skipped alike. FILE.conf beside a test may set `exit_code` (0, or 30: the test must end in an \
 error), `cycle_limit` and `max_runtime` (seconds), `accus` and `disabled`, as in awlsim's \
 harness. A test passes when it ends as awlsim must: 0 when the program stops the CPU or \
-max_runtime is over; 30 for source errors, a failed assertion or any other STOP."
+max_runtime is over; 30 for source errors, a failed assertion or any other STOP. Each PASS and \
+FAIL line ends with the simulated time and the cycles the test ran."
 )]
 pub struct ConformanceArgs {
     /// awlsim test files (.awl, .awlpro) or directories of them
@@ -56,6 +57,9 @@ pub fn conformance(args: &ConformanceArgs, console: &mut Console) -> u8 {
         console.out(&checked.line());
         if !args.quiet {
             console.reports(&checked.reports);
+            if let Some(totals) = checked.source_totals {
+                console.totals("conformance", totals);
+            }
         }
     });
     if totals.halted {

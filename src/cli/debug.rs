@@ -91,7 +91,7 @@ pub fn debug(args: &DebugArgs, console: &mut Console) -> u8 {
     };
     let mut prepared = match runner::prepare(&options) {
         Ok(prepared) => prepared,
-        Err(reason) => return not_run(reason, console),
+        Err(reason) => return not_run("debug", reason, console),
     };
     console.reports(&prepared.take_warnings());
     install_handler();

@@ -115,6 +115,14 @@ pub struct SourceOptions {
 }
 
 #[derive(Debug, clap::Args)]
+pub struct CheckArgs {
+    #[command(flatten)]
+    pub source: SourceOptions,
+    #[command(flatten)]
+    pub output: run::OutputArgs,
+}
+
+#[derive(Debug, clap::Args)]
 pub struct DumpArgs {
     #[command(flatten)]
     pub source: SourceOptions,
@@ -127,7 +135,7 @@ pub struct DumpArgs {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Parse and compile; print every error found
-    Check(SourceOptions),
+    Check(CheckArgs),
     /// Print each block's bytecode with source line numbers
     Dump(DumpArgs),
     /// Compile, start the CPU (STOP → STARTUP → RUN), run, print a summary

@@ -52,6 +52,36 @@ pub enum TraceKind {
     All,
 }
 
+/// How diagnostics are printed (`--format`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DiagnosticFormat {
+    /// Text with the source lines, on stderr
+    Text,
+    /// One JSON object per diagnostic and line, on stdout
+    Json,
+}
+
+/// How a command reports: the diagnostics' format and `--quiet`.
+#[derive(Debug, clap::Args)]
+pub struct OutputArgs {
+    /// Diagnostics as text, or as JSON lines on stdout (`code`, `severity`, `file`, `line`,
+    /// `column`, `message`, `labels`, `help`) with everything else on stderr [default: text]
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub format: Option<DiagnosticFormat>,
+    /// Print only what is wrong: error diagnostics, a STOP, failed expectations and checks,
+    /// FAIL lines, and the outputs asked for (--state, --watch, a trace); no warnings, notes,
+    /// summary, totals or progress line [default: off]
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+impl OutputArgs {
+    /// Sets `console` to print as asked.
+    pub fn apply(&self, console: &mut Console) {
+        console.set_output(self.format == Some(DiagnosticFormat::Json), self.quiet);
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum StateFormat {
     Text,
@@ -164,6 +194,8 @@ pub struct RunArgs {
     /// [default: a row on each change]
     #[arg(long, value_name = "DURATION", value_parser = parse_duration_arg)]
     pub watch_every: Option<u64>,
+    #[command(flatten)]
+    pub output: OutputArgs,
 }
 
 #[derive(Debug, clap::Args)]
@@ -179,6 +211,8 @@ pub struct TestArgs {
     /// tables
     #[arg(required = true)]
     pub scenarios: Vec<PathBuf>,
+    #[command(flatten)]
+    pub output: OutputArgs,
 }
 
 pub(super) fn parse_duration_arg(text: &str) -> Result<u64, String> {
@@ -259,25 +293,32 @@ fn trace_kinds(kinds: &[TraceKind]) -> Vec<Kind> {
         .collect()
 }
 
-/// Prints why a run did not run; its exit code.
-pub(super) fn not_run(reason: NotRun, console: &mut Console) -> u8 {
+/// Prints why `awl COMMAND` did not run, source errors followed by their totals line; its
+/// exit code.
+pub(super) fn not_run(command: &str, reason: NotRun, console: &mut Console) -> u8 {
     match reason {
         NotRun::Usage(report) => {
             console.report(&report);
             EXIT_USAGE
         }
-        NotRun::SourceErrors(reports) | NotRun::Failed(reports) => {
+        NotRun::SourceErrors(reports, totals) => {
+            console.reports(&reports);
+            console.totals(command, totals);
+            EXIT_SOURCE_ERRORS
+        }
+        NotRun::Failed(reports) => {
             console.reports(&reports);
             EXIT_SOURCE_ERRORS
         }
     }
 }
 
-/// Runs with the progress line and Ctrl-C; whether the run was halted.
-fn watched_run(options: &RunOptions) -> (Result<Ran, NotRun>, bool) {
+/// Runs with Ctrl-C, and the progress line unless `console` is quiet; whether the run was
+/// halted.
+fn watched_run(options: &RunOptions, console: &Console) -> (Result<Ran, NotRun>, bool) {
     match runner::prepare(options) {
         Ok(prepared) => {
-            let (ran, halted) = watched(prepared);
+            let (ran, halted) = watched_as(prepared, console);
             (Ok(ran), halted)
         }
         Err(reason) => (Err(reason), false),
@@ -286,13 +327,22 @@ fn watched_run(options: &RunOptions) -> (Result<Ran, NotRun>, bool) {
 
 /// Runs a prepared run with the progress line and Ctrl-C; whether Ctrl-C halted it.
 pub(super) fn watched(prepared: Prepared) -> (Ran, bool) {
+    watched_as(prepared, &Console::default())
+}
+
+/// [`watched`], without the progress line when `console` is quiet.
+fn watched_as(prepared: Prepared, console: &Console) -> (Ran, bool) {
     let mut watch = Watch::start();
+    if console.is_quiet() {
+        watch = watch.without_progress();
+    }
     let ran = prepared.run(&mut |cpu| watch.go_on(cpu));
     let halted = watch.finish();
     (ran, halted)
 }
 
 pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
+    args.output.apply(console);
     let state = args
         .state_format
         .or(args.state.then_some(StateFormat::Text));
@@ -300,30 +350,48 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
         .trace
         .as_ref()
         .is_some_and(|path| path.as_os_str() == "-");
-    if state == Some(StateFormat::Json) && trace_to_stdout {
-        return not_run(
-            NotRun::Usage(miette::Report::new(runner::RunError::StdoutTwice)),
-            console,
-        );
+    let other_on_stdout = if state == Some(StateFormat::Json) {
+        Some(("--state-format json", "print the state as text"))
+    } else if console.is_json() {
+        Some(("--format json", "print the diagnostics as text"))
+    } else {
+        None
+    };
+    if let (Some((other, instead)), true) = (other_on_stdout, trace_to_stdout) {
+        let error = runner::RunError::StdoutTwice { other, instead };
+        return not_run("run", NotRun::Usage(miette::Report::new(error)), console);
     }
-    let (ran, halted) = match watched_run(&run_options(args)) {
+    let (ran, halted) = match watched_run(&run_options(args), console) {
         (Ok(ran), halted) => (ran, halted),
-        (Err(reason), _) => return not_run(reason, console),
+        (Err(reason), _) => return not_run("run", reason, console),
     };
     console.reports(&ran.warnings);
     if ran.trace_closed {
         console.close_out();
     }
     if let Some(stop) = &ran.outcome.stop {
-        console.err(&format!("{:?}\n", runner::stop_report(&ran, stop)));
+        let report = runner::stop_report(&ran, stop);
+        if console.is_json() {
+            console.report(&report);
+        } else {
+            console.err(&format!("{report:?}\n"));
+        }
     }
-    let stdout_taken = ran.trace_to_stdout || state == Some(StateFormat::Json);
+    let stdout_taken = ran.trace_to_stdout || state == Some(StateFormat::Json) || console.is_json();
     let mut report = if ran.watch.is_empty() {
         String::new()
     } else {
         ran.watch.render()
     };
-    report.push_str(&crate::report::summary(&ran));
+    if console.is_quiet() {
+        report.extend(
+            failures(&ran)
+                .iter()
+                .map(|failure| format!("failed: {failure}\n")),
+        );
+    } else {
+        report.push_str(&crate::report::summary(&ran));
+    }
     if stdout_taken {
         console.err(&report);
     } else {
@@ -332,14 +400,16 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
     if let Some(format) = state {
         let state = State::capture(&ran.cpu, ran.outcome.stop.as_ref());
         match format {
-            StateFormat::Text => console.out(&crate::state::render(&state)),
+            StateFormat::Text => console.out_text(&crate::state::render(&state)),
             StateFormat::Json => console.out(&format!(
                 "{}\n",
                 serde_json::to_string_pretty(&state).expect("the state is plain data")
             )),
         }
     }
-    console.err(&crate::report::written(&ran));
+    if !console.is_quiet() {
+        console.err(&crate::report::written(&ran));
+    }
     if halted {
         EXIT_HALTED
     } else if ran.failed() {
@@ -379,25 +449,28 @@ fn failures(ran: &Ran) -> Vec<String> {
     failures
 }
 
-/// One scenario's line: PASS, or FAIL with the reason.
+/// One scenario's line: PASS (left out when quiet), or FAIL with the reason.
 fn verdict(path: &Path, result: Result<Ran, NotRun>, console: &mut Console) -> bool {
     let failure = match result {
         Ok(ran) => {
             console.reports(&ran.warnings);
             if !ran.failed() {
-                console.out(&format!(
-                    "PASS {}  ({}, {}, mode {})\n",
-                    path.display(),
-                    super::plural(ran.expectation_count() as u64, "expectation"),
-                    super::plural(ran.outcome.cycles, "cycle"),
-                    ran.outcome.mode.name()
-                ));
+                if !console.is_quiet() {
+                    console.out_text(&format!(
+                        "PASS {}  ({}, {}, mode {})\n",
+                        path.display(),
+                        super::plural(ran.expectation_count() as u64, "expectation"),
+                        super::plural(ran.outcome.cycles, "cycle"),
+                        ran.outcome.mode.name()
+                    ));
+                }
                 return true;
             }
             failures(&ran).join("; ")
         }
-        Err(NotRun::SourceErrors(reports)) => {
+        Err(NotRun::SourceErrors(reports, totals)) => {
             console.reports(&reports);
+            console.totals("test", totals);
             "the program has errors".to_string()
         }
         Err(NotRun::Usage(report)) => {
@@ -409,18 +482,19 @@ fn verdict(path: &Path, result: Result<Ran, NotRun>, console: &mut Console) -> b
             "the scenario could not run".to_string()
         }
     };
-    console.out(&format!("FAIL {}  {failure}\n", path.display()));
+    console.out_text(&format!("FAIL {}  {failure}\n", path.display()));
     false
 }
 
 pub fn test(args: &TestArgs, console: &mut Console) -> u8 {
+    args.output.apply(console);
     let (mut passed, mut failed) = (0u64, 0u64);
     for path in &args.scenarios {
         let options = RunOptions {
             scenario: Some(path.clone()),
             ..RunOptions::default()
         };
-        let (result, halted) = watched_run(&options);
+        let (result, halted) = watched_run(&options, console);
         if halted {
             console.err("awl test: halted\n");
             return EXIT_HALTED;
@@ -431,7 +505,9 @@ pub fn test(args: &TestArgs, console: &mut Console) -> u8 {
             failed += 1;
         }
     }
-    console.out(&format!("{passed} passed, {failed} failed\n"));
+    if !console.is_quiet() {
+        console.out_text(&format!("{passed} passed, {failed} failed\n"));
+    }
     if failed == 0 {
         EXIT_OK
     } else {

@@ -9,9 +9,10 @@ use crate::program_files::{ProgramFiles, read_program};
 use crate::source::Files;
 
 use super::{
-    Console, DumpArgs, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_USAGE, SourceOptions, plural,
+    CheckArgs, Console, DumpArgs, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_USAGE, SourceOptions, plural,
     selected_profile,
 };
+use crate::diagnostics::Totals;
 
 /// Runs the front end and prints its diagnostics; `None` when a file could not be read. With
 /// `with_profiles`, no `--cpu` and no project, also the profiles the program compiles on
@@ -47,12 +48,18 @@ fn build(
         }
     };
     // A project sets its CPU itself: which profiles would do instead is not asked.
-    let runs_on = (with_profiles && options.cpu.is_none() && project.is_none())
-        .then(|| frontend::profiles_without_errors(&sources, &symbol_files, language));
+    let inputs = (with_profiles && options.cpu.is_none() && project.is_none())
+        .then(|| (sources.clone(), symbol_files.clone()));
     let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
-    for diagnostic in &built.diagnostics {
-        console.report(&diagnostics::report(&built.sources, diagnostic));
-    }
+    let runs_on = inputs.map(|(sources, symbol_files)| {
+        frontend::profiles_without_errors(&built, &sources, &symbol_files, language)
+    });
+    let reports: Vec<Report> = built
+        .diagnostics
+        .iter()
+        .map(|diagnostic| diagnostics::report(&built.sources, diagnostic))
+        .collect();
+    console.reports(&reports);
     Some((built, runs_on))
 }
 
@@ -82,44 +89,39 @@ fn cpu_cannot_help(built: &Frontend) -> bool {
     })
 }
 
-/// "0 errors, 2 warnings in 1 file": the front end's diagnostics and `more_warnings` besides.
-fn count_summary(built: &Frontend, more_warnings: usize) -> String {
-    let errors = built.diagnostics.iter().filter(|d| !d.is_warning()).count();
-    let notes = built.diagnostics.iter().filter(|d| d.is_note()).count();
-    let warnings = built.diagnostics.len() - errors - notes + more_warnings;
-    let notes = match notes {
-        0 => String::new(),
-        _ => format!(", {}", plural(notes as u64, "note")),
-    };
-    format!(
-        "{}, {}{notes} in {}",
-        plural(errors as u64, "error"),
-        plural(warnings as u64, "warning"),
-        plural(built.sources.files.len() as u64, "file")
-    )
+/// The counts of the front end's diagnostics and `more_warnings` besides.
+fn totals(built: &Frontend, more_warnings: usize) -> Totals {
+    Totals::of(&built.diagnostics, built.sources.files.len()).with_warnings(more_warnings)
 }
 
-pub fn check(options: &SourceOptions, console: &mut Console) -> u8 {
-    let Some((built, runs_on)) = build(options, console, true) else {
+/// `awl check`: the diagnostics, then the totals and the CPUs the program compiles on (on
+/// stderr with errors or `--format json`); with `--quiet` the errors alone.
+pub fn check(args: &CheckArgs, console: &mut Console) -> u8 {
+    args.output.apply(console);
+    let Some((built, runs_on)) = build(&args.source, console, true) else {
         return EXIT_SOURCE_ERRORS;
     };
     let blocks = built.compiled.program.blocks.len() + built.compiled.program.data_blocks.len();
     if built.has_errors() {
-        console.err(&format!("awl check: {}\n", count_summary(&built, 0)));
-        if let Some(profiles) = runs_on.filter(|_| !cpu_cannot_help(&built)) {
+        console.totals("check", totals(&built, 0));
+        if let Some(profiles) = runs_on.filter(|_| !cpu_cannot_help(&built) && !console.is_quiet())
+        {
             console.err(&runs_on_note(&profiles));
         }
         return EXIT_SOURCE_ERRORS;
     }
     let warnings = program_warnings(&built.compiled.program, &built.sources);
     console.reports(&warnings);
-    console.out(&format!(
+    if console.is_quiet() {
+        return EXIT_OK;
+    }
+    console.out_text(&format!(
         "awl check: ok, {}, {}\n",
         plural(blocks as u64, "block"),
-        count_summary(&built, warnings.len())
+        totals(&built, warnings.len())
     ));
     if let Some(profiles) = runs_on {
-        console.out(&runs_on_note(&profiles));
+        console.out_text(&runs_on_note(&profiles));
     }
     EXIT_OK
 }
@@ -130,7 +132,7 @@ pub fn dump(args: &DumpArgs, console: &mut Console) -> u8 {
         return EXIT_SOURCE_ERRORS;
     };
     if built.has_errors() {
-        console.err(&format!("awl dump: {}\n", count_summary(&built, 0)));
+        console.totals("dump", totals(&built, 0));
         return EXIT_SOURCE_ERRORS;
     }
     if args.listing {

@@ -139,7 +139,7 @@ pub fn status(args: &StatusArgs, console: &mut Console) -> u8 {
     };
     let mut prepared = match runner::prepare(&options) {
         Ok(prepared) => prepared,
-        Err(reason) => return not_run(reason, console),
+        Err(reason) => return not_run("status", reason, console),
     };
     let id = block_id(&prepared, &args.block);
     let index = match id.and_then(|id| logic_block(&prepared, id)) {

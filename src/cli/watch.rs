@@ -46,6 +46,8 @@ pub struct Watch {
     started: Instant,
     boundaries: u64,
     bar: Option<ProgressBar>,
+    /// Whether a progress line may be shown (not with `--quiet`).
+    progress: bool,
 }
 
 impl Watch {
@@ -55,6 +57,15 @@ impl Watch {
             started: Instant::now(),
             boundaries: 0,
             bar: None,
+            progress: true,
+        }
+    }
+
+    /// The same watch without a progress line (`--quiet`).
+    pub fn without_progress(self) -> Self {
+        Watch {
+            progress: false,
+            ..self
         }
     }
 
@@ -64,7 +75,7 @@ impl Watch {
             return false;
         }
         self.boundaries += 1;
-        if !self.boundaries.is_multiple_of(CYCLES_PER_LOOK) {
+        if !self.progress || !self.boundaries.is_multiple_of(CYCLES_PER_LOOK) {
             return true;
         }
         let wall = self.started.elapsed();

@@ -8,14 +8,23 @@ use crate::profile::Profile;
 use crate::source::Span;
 
 use super::CheckError;
+use super::needs::{Need, Needs};
 
-pub fn check(body: &LogicBody, set: MnemonicSet, profile: &Profile) -> Vec<CheckError> {
+/// The bracket errors of a block; the most brackets open at once go to `needs`.
+pub fn check(
+    body: &LogicBody,
+    set: MnemonicSet,
+    profile: &Profile,
+    needs: &mut Needs,
+) -> Vec<CheckError> {
     let mut errors = Vec::new();
     let mut open: Vec<(OpCode, Span)> = Vec::new();
+    let mut most_open = 0;
     for statement in &body.statements {
         match statement.op {
             OpCode::AndBracket | OpCode::OrBracket => {
                 open.push((statement.op, statement.op_span));
+                most_open = most_open.max(open.len());
                 if open.len() == usize::from(profile.bracket_depth) + 1 {
                     errors.push(CheckError::BracketDepth {
                         depth: profile.bracket_depth,
@@ -34,6 +43,10 @@ pub fn check(body: &LogicBody, set: MnemonicSet, profile: &Profile) -> Vec<Check
             _ => {}
         }
     }
+    needs.ask(
+        Need::Brackets(u8::try_from(most_open).unwrap_or(u8::MAX)),
+        profile,
+    );
     if let Some(end) = body.end {
         errors.extend(
             open.into_iter()

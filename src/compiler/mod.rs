@@ -11,6 +11,7 @@ pub mod cost;
 pub mod error;
 pub mod fuse;
 pub mod lower;
+pub mod needs;
 mod ranges;
 pub mod specialise;
 
@@ -20,6 +21,7 @@ pub use bytecode::Op;
 pub use calls::describe_decl;
 pub use error::CheckError;
 pub use lower::{Layout, Resolved};
+pub use needs::{Need, Needs};
 pub use ranges::{address_in_range, check_address};
 
 use crate::ast::{Block, BlockBody, BlockId, LogicBody, Operand, ParamDecl, SourceUnit, Statement};
@@ -95,6 +97,8 @@ pub struct Program {
     pub local_bytes: Vec<u32>,
     /// The tables of the STEP 7 operations (empty for a STEP 5 program).
     pub s7: crate::step7::bytecode::S7Tables,
+    /// What the STEP 5 program's checks asked of the CPU (empty for a STEP 7 program).
+    pub needs: Needs,
 }
 
 impl Program {
@@ -127,6 +131,7 @@ impl Program {
             arena,
             local_bytes,
             s7,
+            needs: Needs::default(),
         }
     }
 
@@ -179,6 +184,7 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
         param_lists: Vec::new(),
         templates: Vec::new(),
         diagnostics: Vec::new(),
+        needs: Needs::default(),
     };
     let (logic, data) = compiler.collect(units);
     let blocks: Vec<CompiledBlock> = logic
@@ -200,6 +206,7 @@ pub fn compile(units: &[SourceUnit], sources: &SourceSet, profile: &'static Prof
     );
     let mut program = program;
     program.indirect_templates = compiler.templates;
+    program.needs = compiler.needs;
     Compiled {
         program,
         diagnostics: compiler.diagnostics,
@@ -249,6 +256,7 @@ struct Compiler<'a> {
     param_lists: Vec<Vec<Resolved>>,
     templates: Vec<(OpCode, Resolved)>,
     diagnostics: Vec<CheckError>,
+    needs: Needs,
 }
 
 impl<'a> Compiler<'a> {
@@ -277,7 +285,7 @@ impl<'a> Compiler<'a> {
                 }
                 first_seen.insert(block.id, block.header);
                 if matches!(block.id.kind, BlockKind::Fx | BlockKind::Dx)
-                    && !self.profile.extended_blocks
+                    && !self.needs.ask(Need::ExtendedBlocks, self.profile)
                 {
                     self.diagnostics.push(CheckError::ExtendedBlock {
                         id: block.id.to_string(),
@@ -376,7 +384,7 @@ impl<'a> Compiler<'a> {
             });
         }
         self.diagnostics
-            .extend(brackets::check(body, set, self.profile));
+            .extend(brackets::check(body, set, self.profile, &mut self.needs));
         let labels = self.labels(body);
         let mut compiled = CompiledBlock {
             id: block.id,
@@ -450,7 +458,10 @@ impl<'a> Compiler<'a> {
     ) -> Option<(Op, Op)> {
         let info = mnemonics::op_info(statement.op);
         let op_word = mnemonics::op_word(context.set, statement.op);
-        if let Some(feature) = info.feature.filter(|feature| !self.profile.has(*feature)) {
+        if let Some(feature) = info
+            .feature
+            .filter(|feature| !self.needs.ask(Need::Feature(*feature), self.profile))
+        {
             return self.fail(CheckError::OperationNotOnCpu {
                 op: op_word.to_string(),
                 at: statement.op_span,
@@ -503,7 +514,7 @@ impl<'a> Compiler<'a> {
             Op::FloatArithmetic { kind, .. } if four_accumulators => {
                 op = Op::FloatArithmetic { kind, stack: true }
             }
-            Op::Enter if !four_accumulators => {
+            Op::Enter if !self.needs.ask(Need::FourAccumulators, self.profile) => {
                 return self.fail(CheckError::NotOnCpu {
                     op: op_word.to_string(),
                     at: statement.op_span,
@@ -586,6 +597,11 @@ impl<'a> Compiler<'a> {
             Operand::Number(value) => Some(Resolved::Number(*value)),
             Operand::Constant(constant) => Some(Resolved::Constant(constant.value)),
             Operand::Address(address) => {
+                let need = Need::Address {
+                    area: address.area,
+                    index: address.index,
+                };
+                self.needs.ask(need, self.profile);
                 if let Err(error) = ranges::check_address(*address, set, self.profile, at) {
                     return self.fail(error);
                 }
@@ -602,22 +618,22 @@ impl<'a> Compiler<'a> {
         let known_data = self.data_numbers.contains(&id) || self.generated_dbs.contains(&id.number);
         match op {
             OpCode::JumpUnconditional | OpCode::JumpConditional
-                if index.is_none() && !id.kind.is_data() && self.builtin(id).is_none() =>
+                if index.is_none() && !id.kind.is_data() =>
             {
                 let elsewhere = builtin::profiles_with(id);
-                self.diagnostics.push(if elsewhere.is_empty() {
-                    CheckError::UndefinedBlock {
+                if elsewhere.is_empty() {
+                    self.diagnostics.push(CheckError::UndefinedBlock {
                         id: id.to_string(),
                         at,
-                    }
-                } else {
-                    CheckError::BlockNotOnCpu {
+                    });
+                } else if !self.needs.ask(Need::BuiltinBlock(id), self.profile) {
+                    self.diagnostics.push(CheckError::BlockNotOnCpu {
                         id: id.to_string(),
                         at,
                         cpu: self.profile.name,
                         profiles: elsewhere.join(", "),
-                    }
-                });
+                    });
+                }
             }
             OpCode::OpenDb if id.kind.is_data() && !known_data => {
                 self.diagnostics.push(CheckError::UndefinedDb {

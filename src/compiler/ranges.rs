@@ -2,27 +2,66 @@
 
 use crate::ast::Address;
 use crate::mnemonics::{Area, MnemonicSet, OpCode, area_word};
-use crate::profile::Profile;
+use crate::profile::{Profile, Sizes};
 use crate::source::Span;
 
 use super::error::CheckError;
 
-/// The highest index an area allows on this CPU, and the range text for the diagnostic.
-fn limit(area: Area, profile: &Profile) -> u16 {
-    let sizes = &profile.sizes;
-    match area {
-        Area::Input | Area::Output | Area::InputByte | Area::OutputByte => sizes.image_bytes - 1,
-        Area::InputWord | Area::OutputWord => sizes.image_bytes - 2,
-        Area::Flag | Area::FlagByte => sizes.flag_bytes - 1,
-        Area::FlagWord => sizes.flag_bytes - 2,
-        Area::FlagDouble => sizes.flag_bytes - 4,
-        Area::Timer => sizes.timers - 1,
-        Area::Counter => sizes.counters - 1,
-        Area::DataBit | Area::DataLeft | Area::DataRight | Area::DataWord => sizes.data_words - 1,
-        Area::DataDouble => sizes.data_words - 2,
-        Area::PeripheralByte | Area::ExtendedByte => sizes.peripheral_bytes - 1,
-        Area::PeripheralWord | Area::ExtendedWord => sizes.peripheral_bytes - 2,
+/// Which of a profile's sizes an area lies in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SizeOf {
+    Image,
+    Flags,
+    Peripheral,
+    Timers,
+    Counters,
+    DataWords,
+}
+
+impl SizeOf {
+    pub const ALL: [SizeOf; 6] = [
+        SizeOf::Image,
+        SizeOf::Flags,
+        SizeOf::Peripheral,
+        SizeOf::Timers,
+        SizeOf::Counters,
+        SizeOf::DataWords,
+    ];
+
+    pub fn of(self, sizes: &Sizes) -> u16 {
+        match self {
+            SizeOf::Image => sizes.image_bytes,
+            SizeOf::Flags => sizes.flag_bytes,
+            SizeOf::Peripheral => sizes.peripheral_bytes,
+            SizeOf::Timers => sizes.timers,
+            SizeOf::Counters => sizes.counters,
+            SizeOf::DataWords => sizes.data_words,
+        }
     }
+}
+
+/// The size an area's addresses are counted in, and how many units of it one address spans
+/// (a word two bytes, a double word four).
+pub fn extent(area: Area) -> (SizeOf, u16) {
+    match area {
+        Area::Input | Area::Output | Area::InputByte | Area::OutputByte => (SizeOf::Image, 1),
+        Area::InputWord | Area::OutputWord => (SizeOf::Image, 2),
+        Area::Flag | Area::FlagByte => (SizeOf::Flags, 1),
+        Area::FlagWord => (SizeOf::Flags, 2),
+        Area::FlagDouble => (SizeOf::Flags, 4),
+        Area::Timer => (SizeOf::Timers, 1),
+        Area::Counter => (SizeOf::Counters, 1),
+        Area::DataBit | Area::DataLeft | Area::DataRight | Area::DataWord => (SizeOf::DataWords, 1),
+        Area::DataDouble => (SizeOf::DataWords, 2),
+        Area::PeripheralByte | Area::ExtendedByte => (SizeOf::Peripheral, 1),
+        Area::PeripheralWord | Area::ExtendedWord => (SizeOf::Peripheral, 2),
+    }
+}
+
+/// The highest index an area allows on this CPU.
+fn limit(area: Area, profile: &Profile) -> u16 {
+    let (size, span) = extent(area);
+    size.of(&profile.sizes) - span
 }
 
 pub fn check_address(

@@ -1,5 +1,7 @@
 //! Which files the command line names: files as given, directories as every `.awl` and
-//! `.awlpro` file below them, sorted by path, as awlsim's harness walks its test tree.
+//! `.awlpro` file below them, sorted by path, as awlsim's harness walks its test tree. A file
+//! gets the same verdict named or found: one awlsim runs through another file beside it (the
+//! source of a project file) is skipped either way.
 
 use std::path::{Path, PathBuf};
 
@@ -39,7 +41,7 @@ pub fn collect(paths: &[PathBuf]) -> Vec<Entry> {
         } else {
             entries.push(match awlsim_only(path) {
                 Some(reason) => Entry::Skip(path.clone(), reason),
-                None => Entry::Test(path.clone()),
+                None => test_or_skip(path.clone()),
             });
         }
     }
@@ -58,23 +60,25 @@ fn below(dir: &Path) -> Vec<Entry> {
             entry.file_type().is_file()
                 && (has_extension(entry.path(), "awl") || has_extension(entry.path(), "awlpro"))
         })
-        .map(|entry| {
-            let path = entry.into_path();
-            let beside = RUN_INSTEAD
-                .iter()
-                .filter(|(test, _, _)| has_extension(&path, test))
-                .map(|&(_, extension, what)| (path.with_extension(extension), what))
-                .find(|(other, _)| other.exists());
-            match beside {
-                Some((other, what)) => {
-                    let name = other.file_name().unwrap_or_default().to_string_lossy();
-                    let reason = format!("awlsim runs it through {name} ({what})");
-                    Entry::Skip(path, reason)
-                }
-                None => Entry::Test(path),
-            }
-        })
+        .map(|entry| test_or_skip(entry.into_path()))
         .collect()
+}
+
+/// A test, or a skip when awlsim runs `path` through another file of the same name beside it.
+fn test_or_skip(path: PathBuf) -> Entry {
+    let beside = RUN_INSTEAD
+        .iter()
+        .filter(|(test, _, _)| has_extension(&path, test))
+        .map(|&(_, extension, what)| (path.with_extension(extension), what))
+        .find(|(other, _)| other.exists());
+    match beside {
+        Some((other, what)) => {
+            let name = other.file_name().unwrap_or_default().to_string_lossy();
+            let reason = format!("awlsim runs it through {name} ({what})");
+            Entry::Skip(path, reason)
+        }
+        None => Entry::Test(path),
+    }
 }
 
 /// Why a file named on the command line is no test awl runs: awlsim's shell tests need
@@ -94,4 +98,32 @@ pub fn is_project(path: &Path) -> bool {
 fn has_extension(path: &Path, extension: &str) -> bool {
     path.extension()
         .is_some_and(|ext| ext.eq_ignore_ascii_case(extension))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A project's source beside its project file, named or found in its directory.
+    #[test]
+    fn a_file_gets_the_same_verdict_named_or_found() {
+        let dir = std::env::temp_dir().join(format!("awl-collect-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let source = dir.join("chain.awl");
+        std::fs::write(
+            &source,
+            "ORGANIZATION_BLOCK OB 1\nBEGIN\nEND_ORGANIZATION_BLOCK\n",
+        )
+        .unwrap();
+        std::fs::write(dir.join("chain.awlpro"), "").unwrap();
+        let named = collect(std::slice::from_ref(&source));
+        let found = collect(std::slice::from_ref(&dir));
+        std::fs::remove_dir_all(&dir).unwrap();
+        let skip = Entry::Skip(
+            source,
+            "awlsim runs it through chain.awlpro (awlsim project file)".into(),
+        );
+        assert_eq!(named, vec![skip.clone()]);
+        assert!(found.contains(&skip), "{found:?}");
+    }
 }

@@ -76,6 +76,17 @@ pub struct Tested {
     pub reports: Vec<Report>,
     /// Ctrl-C halted the run.
     pub halted: bool,
+    /// How far it ran; `None` when it did not start.
+    pub simulated: Option<Simulated>,
+    /// The counts of the source errors, when the program had some.
+    pub source_totals: Option<crate::diagnostics::Totals>,
+}
+
+/// How far a test ran: its simulated time and its cycles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Simulated {
+    pub clock_ns: u64,
+    pub cycles: u64,
 }
 
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -103,15 +114,38 @@ pub struct Checked {
     pub path: PathBuf,
     pub verdict: Verdict,
     pub reports: Vec<Report>,
+    /// How far the test ran, when it ran.
+    pub simulated: Option<Simulated>,
+    /// The counts of the source errors among `reports`, when the program had some.
+    pub source_totals: Option<crate::diagnostics::Totals>,
 }
 
 impl Checked {
-    /// `PASS path`, `FAIL path: reason`, `SKIP path: reason`.
+    /// An entry that did not run.
+    fn not_run(path: PathBuf, verdict: Verdict, reports: Vec<Report>) -> Self {
+        Checked {
+            path,
+            verdict,
+            reports,
+            simulated: None,
+            source_totals: None,
+        }
+    }
+
+    /// `PASS path  (simulated 1.250 ms, 12 cycles)`, `FAIL path: reason  (…)`, `SKIP path:
+    /// reason`; a test that did not start has no simulated time.
     pub fn line(&self) -> String {
         let path = self.path.display();
+        let ran = self.simulated.map_or(String::new(), |simulated| {
+            format!(
+                "  (simulated {:.3} ms, {})",
+                simulated.clock_ns as f64 / 1e6,
+                crate::report::plural(simulated.cycles, "cycle")
+            )
+        });
         match &self.verdict {
-            Verdict::Pass => format!("PASS {path}\n"),
-            Verdict::Fail(reason) => format!("FAIL {path}: {reason}\n"),
+            Verdict::Pass => format!("PASS {path}{ran}\n"),
+            Verdict::Fail(reason) => format!("FAIL {path}: {reason}{ran}\n"),
             Verdict::Skip(reason) => format!("SKIP {path}: {reason}\n"),
         }
     }
@@ -161,16 +195,12 @@ pub fn run_suite(
     let mut totals = Totals::default();
     for entry in collect(paths) {
         let checked = match entry {
-            Entry::Skip(path, reason) => Checked {
+            Entry::Skip(path, reason) => Checked::not_run(path, Verdict::Skip(reason), Vec::new()),
+            Entry::Empty(path) => Checked::not_run(
                 path,
-                verdict: Verdict::Skip(reason),
-                reports: Vec::new(),
-            },
-            Entry::Empty(path) => Checked {
-                path,
-                verdict: Verdict::Fail("no .awl test file below this directory".into()),
-                reports: Vec::new(),
-            },
+                Verdict::Fail("no .awl test file below this directory".into()),
+                Vec::new(),
+            ),
             Entry::Test(path) => match check(&path, run) {
                 Some(checked) => checked,
                 None => {
@@ -191,11 +221,7 @@ fn check(
     path: &Path,
     run: &mut dyn FnMut(&Path, &Conf, Option<&Project>) -> Tested,
 ) -> Option<Checked> {
-    let checked = |verdict, reports| Checked {
-        path: path.to_path_buf(),
-        verdict,
-        reports,
-    };
+    let checked = |verdict, reports| Checked::not_run(path.to_path_buf(), verdict, reports);
     let conf = match read_conf(path) {
         Ok(conf) => conf,
         Err(reports) => {
@@ -224,11 +250,15 @@ fn check(
         return None;
     }
     let verdict = judge(conf.exit_code, tested.ending);
-    let reports = match verdict {
-        Verdict::Pass => Vec::new(),
-        _ => tested.reports,
+    let (reports, source_totals) = match verdict {
+        Verdict::Pass => (Vec::new(), None),
+        _ => (tested.reports, tested.source_totals),
     };
-    Some(checked(verdict, reports))
+    Some(Checked {
+        simulated: tested.simulated,
+        source_totals,
+        ..checked(verdict, reports)
+    })
 }
 
 /// Why the `.conf` rules the test out: it is disabled. (Its `accus`, 2 or 4, the S7 CPU
@@ -357,6 +387,8 @@ mod tests {
                         ending: Ending::Stop(StopCause::Stp),
                         reports: Vec::new(),
                         halted: true,
+                        simulated: None,
+                        source_totals: None,
                     };
                 }
                 _ => Ending::SourceErrors,
@@ -365,6 +397,8 @@ mod tests {
                 ending,
                 reports: vec![miette::miette!("why {}", relative(path))],
                 halted: false,
+                simulated: None,
+                source_totals: None,
             }
         };
         let mut lines = Vec::new();

@@ -17,7 +17,7 @@ use crate::vm::cycle::RunLimit;
 
 use super::conf::Conf;
 use super::project::Project;
-use super::{Ending, Tested};
+use super::{Ending, Simulated, Tested};
 
 /// The CPU the tests run on: the S7 CPU of the profiles.
 pub const PROFILE: &str = "speed7";
@@ -152,10 +152,17 @@ pub(super) fn run_with(
         ending,
         reports,
         halted: false,
+        simulated: None,
+        source_totals: None,
     };
     let mut prepared = match runner::prepare(options) {
         Ok(prepared) => prepared,
-        Err(NotRun::SourceErrors(reports)) => return not_run(Ending::SourceErrors, reports),
+        Err(NotRun::SourceErrors(reports, totals)) => {
+            return Tested {
+                source_totals: Some(totals),
+                ..not_run(Ending::SourceErrors, reports)
+            };
+        }
         Err(NotRun::Failed(reports)) => return not_run(Ending::NotRun, reports),
         Err(NotRun::Usage(report)) => return not_run(Ending::NotRun, vec![report]),
     };
@@ -182,6 +189,11 @@ pub(super) fn run_with(
         ending,
         reports,
         halted: ran.outcome.halted,
+        simulated: Some(Simulated {
+            clock_ns: ran.outcome.clock_ns,
+            cycles: ran.outcome.cycles,
+        }),
+        source_totals: None,
     }
 }
 

@@ -198,7 +198,7 @@ fn finished(ran: &Ran) -> Outcome {
 fn refused(reason: NotRun) -> Outcome {
     match reason {
         NotRun::Usage(report) => not_run(vec![report], "the selectors".into()),
-        NotRun::SourceErrors(reports) => not_run(reports, "the program".into()),
+        NotRun::SourceErrors(reports, _) => not_run(reports, "the program".into()),
         NotRun::Failed(reports) => not_run(reports, "the scenario or its files".into()),
     }
 }

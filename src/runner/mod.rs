@@ -92,12 +92,17 @@ pub enum RunError {
         help("check that the directory exists and is writable")
     )]
     TraceWrite { path: String, reason: String },
-    #[error("`--state-format json` and `--trace -` both want stdout")]
+    #[error("`{other}` and `--trace -` both want stdout")]
     #[diagnostic(
         code(awl::cli::stdout_twice),
-        help("write the trace to a file (`--trace run.jsonl`), or print the state as text")
+        help("write the trace to a file (`--trace run.jsonl`), or {instead}")
     )]
-    StdoutTwice,
+    StdoutTwice {
+        /// The other option that writes to stdout.
+        other: &'static str,
+        /// What to do instead of it.
+        instead: &'static str,
+    },
     #[error("cannot watch `{operand}`: {reason}")]
     #[diagnostic(code(awl::cli::watch_operand))]
     WatchOperand {
@@ -173,8 +178,9 @@ impl Ran {
 pub enum NotRun {
     /// The command line asks for what cannot be (exit code 2).
     Usage(Report),
-    /// The program has errors: every diagnostic of the front end, warnings included.
-    SourceErrors(Vec<Report>),
+    /// The program has errors: every diagnostic of the front end, warnings included, and
+    /// their counts.
+    SourceErrors(Vec<Report>, crate::diagnostics::Totals),
     /// The scenario, the files or the trace output are at fault.
     Failed(Vec<Report>),
 }
@@ -391,7 +397,8 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         .collect();
     if built.has_errors() {
         warnings.append(&mut scenario_errors);
-        return Err(NotRun::SourceErrors(warnings));
+        let totals = diagnostics::Totals::of(&built.diagnostics, built.sources.files.len());
+        return Err(NotRun::SourceErrors(warnings, totals));
     }
     let program = Arc::new(built.compiled.program.clone());
     // The CPU as the program set it (`__FEATURE 0, 4`: four accumulators).

@@ -119,6 +119,14 @@ impl Symbols {
         self.entries.is_empty()
     }
 
+    /// The addresses the STEP 5 symbols stand for: each had to be in the CPU's ranges.
+    pub fn step5_addresses(&self) -> impl Iterator<Item = crate::ast::Address> + '_ {
+        self.entries.iter().filter_map(|entry| match entry.step5() {
+            Some((Operand::Address(address), _)) => Some(*address),
+            _ => None,
+        })
+    }
+
     /// Whether no list or table gave a symbol (blocks the source declares by name aside).
     pub fn none_listed(&self) -> bool {
         self.entries.len() == self.declared

@@ -123,7 +123,7 @@ pub fn of<'a>(events: &'a [serde_json::Value], kind: &str) -> Vec<&'a serde_json
 pub fn ran(result: Result<Ran, NotRun>) -> Ran {
     match result {
         Ok(ran) => ran,
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => panic!("{reports:?}"),
         Err(NotRun::Usage(report)) => panic!("{report:?}"),
     }
 }

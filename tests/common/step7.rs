@@ -37,7 +37,7 @@ pub fn passes(program: &str, scenario: &str) {
                 ran.mismatches
             );
         }
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => {
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => {
             panic!("{reports:?}")
         }
         Err(NotRun::Usage(report)) => panic!("{report:?}"),
