@@ -108,7 +108,6 @@ impl Totals {
 
 impl std::fmt::Display for Totals {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        use crate::report::plural;
         write!(
             f,
             "{}, {}",
@@ -316,6 +315,12 @@ impl JsonWriter {
         line.push('\n');
         line
     }
+}
+
+/// `1 error`, `3 errors`: a count with its word, as every summary and totals line writes it.
+pub fn plural(n: impl Into<u64>, word: &str) -> String {
+    let n = n.into();
+    format!("{n} {word}{}", if n == 1 { "" } else { "s" })
 }
 
 #[cfg(test)]

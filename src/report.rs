@@ -2,6 +2,7 @@
 
 use std::fmt::Write as _;
 
+use crate::diagnostics::plural;
 use crate::profile::{self, Family, InterruptPoints};
 use crate::vm::bound::BoundCause;
 use crate::vm::interrupts::Wait;
@@ -239,11 +240,6 @@ fn size(bytes: u64) -> String {
         KIB..1_048_576 => format!("{:.1} KiB", bytes as f64 / KIB as f64),
         _ => format!("{:.1} MiB", bytes as f64 / (KIB * KIB) as f64),
     }
-}
-
-pub fn plural(n: impl Into<u64>, word: &str) -> String {
-    let n = n.into();
-    format!("{n} {word}{}", if n == 1 { "" } else { "s" })
 }
 
 /// One line per `[[check]]`: when it was verified and how many of its operands held, then

@@ -89,7 +89,8 @@ fn the_command_line_shows_the_first_thousand_and_counts_the_rest() {
     let statements: String = (0..1200).map(|i| format!("      A  =S{i}\n")).collect();
     let (code, stderr) = check(
         "symbols.awl",
-        &format!("FB 1\nNAME :X\n{statements}      BE\n"),
+        // With a DES line the FB's formal operands are its declarations, not guessed from use.
+        &format!("FB 1\nNAME :X\nDES  :Y  I BI\n{statements}      BE\n"),
     );
     assert_eq!(code, Some(1));
     assert_eq!(stderr.matches("awl::check::undefined_symbol").count(), 1000);

@@ -42,7 +42,7 @@ fn prepared(scenario: Option<&str>, options: RunOptions) -> Prepared {
     };
     match runner::prepare(&options) {
         Ok(prepared) => prepared,
-        Err(NotRun::SourceErrors(reports) | NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => panic!("{reports:?}"),
         Err(NotRun::Usage(report)) => panic!("{report:?}"),
     }
 }

@@ -14,7 +14,7 @@ fn in_ob1(statements: &str) -> String {
 
 fn source_errors(statements: &str) -> String {
     match run(&in_ob1(statements), "run = { cycles = 1 }\n") {
-        Err(NotRun::SourceErrors(reports)) => {
+        Err(NotRun::SourceErrors(reports, _)) => {
             reports.iter().map(|report| format!("{report:?}")).collect()
         }
         Err(_) => panic!("{statements}: not a source error"),

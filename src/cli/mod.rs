@@ -192,4 +192,4 @@ fn selected_profile(name: Option<&str>) -> &'static Profile {
         .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile exists"))
 }
 
-pub use crate::report::plural;
+pub use crate::diagnostics::plural;

@@ -140,7 +140,7 @@ impl Checked {
             format!(
                 "  (simulated {:.3} ms, {})",
                 simulated.clock_ns as f64 / 1e6,
-                crate::report::plural(simulated.cycles, "cycle")
+                crate::diagnostics::plural(simulated.cycles, "cycle")
             )
         });
         match &self.verdict {

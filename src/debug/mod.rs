@@ -334,7 +334,10 @@ impl Session {
             Command::Delete(None) => {
                 let count = self.breakpoints.iter().flatten().count() as u64;
                 self.breakpoints.iter_mut().for_each(|b| *b = None);
-                format!("deleted {}\n", crate::report::plural(count, "breakpoint"))
+                format!(
+                    "deleted {}\n",
+                    crate::diagnostics::plural(count, "breakpoint")
+                )
             }
             Command::Delete(Some(n)) => match self.breakpoints.get_mut(n.wrapping_sub(1)) {
                 Some(slot @ Some(_)) => {
@@ -395,7 +398,7 @@ impl Session {
         self.out(&format!(
             "[end] {how} at {}, after {}\n",
             format_ms(cpu.clock),
-            crate::report::plural(cpu.cycle, "cycle")
+            crate::diagnostics::plural(cpu.cycle, "cycle")
         ));
         while !self.quit {
             match self.next_command() {

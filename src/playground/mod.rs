@@ -212,7 +212,7 @@ fn not_run(reports: Vec<Report>, whose: String) -> Outcome {
     Outcome {
         summary: format!(
             "not run: {} in {whose}\n",
-            crate::report::plural(errors as u64, "error")
+            crate::diagnostics::plural(errors as u64, "error")
         ),
         diagnostics,
         ..Outcome::default()
