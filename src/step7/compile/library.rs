@@ -89,10 +89,19 @@ impl super::Compiler<'_> {
         })
     }
 
+    /// The note that the program's own FC replaces the library's: once, at its first call (a
+    /// program that brings its copy of a library block calls it often).
     fn note_own(&mut self, called: String, fc: &LibraryFc, at: Span) {
+        let block = format!("FC {}", fc.number);
+        let noted = self.errors.iter().any(|error| {
+            matches!(error, CheckError::LibraryReplaced { block: other, .. } if *other == block)
+        });
+        if noted {
+            return;
+        }
         self.errors.push(CheckError::LibraryReplaced {
             called,
-            block: format!("FC {}", fc.number),
+            block,
             library: fc.label(),
             at,
             why: format!("the program defines FC {}", fc.number),
