@@ -68,6 +68,12 @@ pub const TOPICS: &[Topic] = &[
         heading: Some("Symbolic operands"),
     },
     Topic {
+        name: "library",
+        summary: "the library FCs a STEP 7 program calls without writing them (IEC FC 1–40, SCALE, UNSCALE)",
+        file: GRAMMAR,
+        heading: Some("Library blocks"),
+    },
+    Topic {
         name: "language",
         summary: "the STL awl reads: blocks, statements, operands, constants",
         file: GRAMMAR,

@@ -967,3 +967,68 @@ END_ORGANIZATION_BLOCK
         "{notes}"
     );
 }
+
+/// The STRING and DATE_AND_TIME actuals may be an FC's own parameters and temporaries and an
+/// FB's statics.
+#[test]
+fn parameters_temporaries_and_statics_are_actuals() {
+    let program = "
+FUNCTION FC 50 : VOID
+VAR_INPUT
+  text : STRING [20];
+  at : DATE_AND_TIME;
+END_VAR
+VAR_OUTPUT
+  size : INT;
+  part : INT;
+  day : INT;
+END_VAR
+VAR_TEMP
+  copy : STRING [20];
+END_VAR
+BEGIN
+      CALL  \"LEN\" (S := #text, RET_VAL := #size);
+      CALL  \"LEFT\" (IN := #text, L := 2, RET_VAL := #copy);
+      CALL  \"CONCAT\" (IN1 := #copy, IN2 := #copy, RET_VAL := #copy);
+      CALL  \"FIND\" (IN1 := #copy, IN2 := 'eH', RET_VAL := #part);
+      CALL  \"DT_DAY\" (IN := #at, RET_VAL := #day);
+END_FUNCTION
+
+FUNCTION_BLOCK FB 1
+VAR
+  name : STRING [10] := 'abc';
+  n : INT;
+END_VAR
+BEGIN
+      CALL  \"CONCAT\" (IN1 := #name, IN2 := 'd', RET_VAL := #name);
+      CALL  \"LEN\" (S := #name, RET_VAL := #n);
+      L     #n;
+      T     MW 20;
+END_FUNCTION_BLOCK
+
+DATA_BLOCK DB 1
+STRUCT
+  s1 : STRING [20] := 'Hello World';
+  t1 : DATE_AND_TIME := DT#2024-3-17-0:0:0.0;
+END_STRUCT;
+BEGIN
+END_DATA_BLOCK
+
+DATA_BLOCK DB 2 FB 1
+BEGIN
+END_DATA_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+      CALL  FC 50 (text := DB1.s1, at := DB1.t1, size := MW 0, part := MW 2, day := MW 4);
+      CALL  FB 1, DB 2;
+END_ORGANIZATION_BLOCK
+";
+    // 'He' twice is 'HeHe', 'eH' from its second character; Sunday is 1; the static grows to
+    // 'abcd'.
+    run_with_symbols(
+        program,
+        "",
+        "\"MW 0\" = 11\n\"MW 2\" = 2\n\"MW 4\" = 1\n\"MW 20\" = 4\n",
+    );
+}

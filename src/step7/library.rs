@@ -73,14 +73,14 @@ const fn output(name: &'static str, ty: ParamType) -> Param {
     }
 }
 
-/// A library FC: its number, its usual symbolic name, its parameters in the order the VM reads
-/// them, and what it does.
+/// A library FC: its number, its usual symbolic name and its parameters in the order the VM
+/// reads them. What each does is in the language reference, "Library blocks" (`awl help
+/// library`).
 #[derive(Debug)]
 pub struct LibraryFc {
     pub number: u16,
     pub name: &'static str,
     pub params: &'static [Param],
-    pub summary: &'static str,
 }
 
 use ParamType::{
@@ -98,17 +98,11 @@ const EXTREME: &[Param] = &[
     output("RET_VAL", Number),
 ];
 
-const fn fc(
-    number: u16,
-    name: &'static str,
-    params: &'static [Param],
-    summary: &'static str,
-) -> LibraryFc {
+const fn fc(number: u16, name: &'static str, params: &'static [Param]) -> LibraryFc {
     LibraryFc {
         number,
         name,
         params,
-        summary,
     }
 }
 
@@ -118,13 +112,11 @@ pub const LIBRARY: &[LibraryFc] = &[
         1,
         "AD_DT_TM",
         &[input("T", Dt), input("D", Time), output("RET_VAL", Dt)],
-        "T plus the duration D; limited to 1990-01-01 … 2089-12-31 (BR 0)",
     ),
     fc(
         2,
         "CONCAT",
         &[input("IN1", Str), input("IN2", Str), output("RET_VAL", Str)],
-        "IN1 followed by IN2",
     ),
     fc(
         3,
@@ -134,7 +126,6 @@ pub const LIBRARY: &[LibraryFc] = &[
             input("IN2", TimeOfDay),
             output("RET_VAL", Dt),
         ],
-        "the DATE IN1 at the TIME_OF_DAY IN2",
     ),
     fc(
         4,
@@ -145,55 +136,31 @@ pub const LIBRARY: &[LibraryFc] = &[
             input("P", Int),
             output("RET_VAL", Str),
         ],
-        "IN without the L characters from position P",
     ),
-    fc(
-        5,
-        "DI_STRNG",
-        &[input("I", Dint), output("RET_VAL", Str)],
-        "the DINT as a sign and digits (at least STRING[11])",
-    ),
+    fc(5, "DI_STRNG", &[input("I", Dint), output("RET_VAL", Str)]),
     fc(
         6,
         "DT_DATE",
         &[input("IN", Dt), output("RET_VAL", ParamType::Date)],
-        "the date of a DATE_AND_TIME",
     ),
-    fc(
-        7,
-        "DT_DAY",
-        &[input("IN", Dt), output("RET_VAL", Int)],
-        "the weekday of a DATE_AND_TIME: 1 Sunday … 7 Saturday",
-    ),
+    fc(7, "DT_DAY", &[input("IN", Dt), output("RET_VAL", Int)]),
     fc(
         8,
         "DT_TOD",
         &[input("IN", Dt), output("RET_VAL", TimeOfDay)],
-        "the time of day of a DATE_AND_TIME",
     ),
-    fc(9, "EQ_DT", DT_COMPARE, "DT1 = DT2"),
-    fc(10, "EQ_STRNG", STRING_COMPARE, "S1 = S2"),
+    fc(9, "EQ_DT", DT_COMPARE),
+    fc(10, "EQ_STRNG", STRING_COMPARE),
     fc(
         11,
         "FIND",
         &[input("IN1", Str), input("IN2", Str), output("RET_VAL", Int)],
-        "the position of IN2 in IN1, 0 when it is not there",
     ),
-    fc(12, "GE_DT", DT_COMPARE, "DT1 >= DT2"),
-    fc(
-        13,
-        "GE_STRNG",
-        STRING_COMPARE,
-        "S1 >= S2 (by character codes)",
-    ),
-    fc(14, "GT_DT", DT_COMPARE, "DT1 > DT2"),
-    fc(15, "GT_STRNG", STRING_COMPARE, "S1 > S2"),
-    fc(
-        16,
-        "I_STRNG",
-        &[input("I", Int), output("RET_VAL", Str)],
-        "the INT as a sign and digits (at least STRING[6])",
-    ),
+    fc(12, "GE_DT", DT_COMPARE),
+    fc(13, "GE_STRNG", STRING_COMPARE),
+    fc(14, "GT_DT", DT_COMPARE),
+    fc(15, "GT_STRNG", STRING_COMPARE),
+    fc(16, "I_STRNG", &[input("I", Int), output("RET_VAL", Str)]),
     fc(
         17,
         "INSERT",
@@ -203,17 +170,11 @@ pub const LIBRARY: &[LibraryFc] = &[
             input("P", Int),
             output("RET_VAL", Str),
         ],
-        "IN1 with IN2 inserted after its character P",
     ),
-    fc(18, "LE_DT", DT_COMPARE, "DT1 <= DT2"),
-    fc(19, "LE_STRNG", STRING_COMPARE, "S1 <= S2"),
-    fc(20, "LEFT", SIDE, "the first L characters of IN"),
-    fc(
-        21,
-        "LEN",
-        &[input("S", Str), output("RET_VAL", Int)],
-        "the current length of S",
-    ),
+    fc(18, "LE_DT", DT_COMPARE),
+    fc(19, "LE_STRNG", STRING_COMPARE),
+    fc(20, "LEFT", SIDE),
+    fc(21, "LEN", &[input("S", Str), output("RET_VAL", Int)]),
     fc(
         22,
         "LIMIT",
@@ -223,11 +184,10 @@ pub const LIBRARY: &[LibraryFc] = &[
             input("MX", Number),
             output("RET_VAL", Number),
         ],
-        "IN limited to MN … MX",
     ),
-    fc(23, "LT_DT", DT_COMPARE, "DT1 < DT2"),
-    fc(24, "LT_STRNG", STRING_COMPARE, "S1 < S2"),
-    fc(25, "MAX", EXTREME, "the largest of IN1, IN2, IN3"),
+    fc(23, "LT_DT", DT_COMPARE),
+    fc(24, "LT_STRNG", STRING_COMPARE),
+    fc(25, "MAX", EXTREME),
     fc(
         26,
         "MID",
@@ -237,17 +197,11 @@ pub const LIBRARY: &[LibraryFc] = &[
             input("P", Int),
             output("RET_VAL", Str),
         ],
-        "the L characters of IN from position P",
     ),
-    fc(27, "MIN", EXTREME, "the smallest of IN1, IN2, IN3"),
-    fc(28, "NE_DT", DT_COMPARE, "DT1 <> DT2"),
-    fc(29, "NE_STRNG", STRING_COMPARE, "S1 <> S2"),
-    fc(
-        30,
-        "R_STRNG",
-        &[input("IN", Real), output("RET_VAL", Str)],
-        "the REAL as ±v.nnnnnnnE±xx (at least STRING[14])",
-    ),
+    fc(27, "MIN", EXTREME),
+    fc(28, "NE_DT", DT_COMPARE),
+    fc(29, "NE_STRNG", STRING_COMPARE),
+    fc(30, "R_STRNG", &[input("IN", Real), output("RET_VAL", Str)]),
     fc(
         31,
         "REPLACE",
@@ -258,26 +212,22 @@ pub const LIBRARY: &[LibraryFc] = &[
             input("P", Int),
             output("RET_VAL", Str),
         ],
-        "IN1 with its L characters from position P replaced by IN2",
     ),
-    fc(32, "RIGHT", SIDE, "the last L characters of IN"),
+    fc(32, "RIGHT", SIDE),
     fc(
         33,
         "S5TI_TIM",
         &[input("IN", S5Time), output("RET_VAL", Time)],
-        "an S5TIME as a TIME",
     ),
     fc(
         34,
         "SB_DT_DT",
         &[input("IN1", Dt), input("IN2", Dt), output("RET_VAL", Time)],
-        "IN1 minus IN2 as a TIME; limited to the TIME range (BR 0)",
     ),
     fc(
         35,
         "SB_DT_TM",
         &[input("IN1", Dt), input("IN2", Time), output("RET_VAL", Dt)],
-        "IN1 minus the duration IN2; limited to 1990 … 2089 (BR 0)",
     ),
     fc(
         36,
@@ -288,31 +238,14 @@ pub const LIBRARY: &[LibraryFc] = &[
             input("IN1", Elementary),
             output("RET_VAL", Elementary),
         ],
-        "IN0 when G is 0, IN1 when G is 1",
     ),
-    fc(
-        37,
-        "STRNG_DI",
-        &[input("S", Str), output("RET_VAL", Dint)],
-        "the DINT a sign and digits spell",
-    ),
-    fc(
-        38,
-        "STRNG_I",
-        &[input("S", Str), output("RET_VAL", Int)],
-        "the INT a sign and digits spell",
-    ),
-    fc(
-        39,
-        "STRNG_R",
-        &[input("S", Str), output("RET_VAL", Real)],
-        "the REAL ±v.nnnnnnnE±xx spells",
-    ),
+    fc(37, "STRNG_DI", &[input("S", Str), output("RET_VAL", Dint)]),
+    fc(38, "STRNG_I", &[input("S", Str), output("RET_VAL", Int)]),
+    fc(39, "STRNG_R", &[input("S", Str), output("RET_VAL", Real)]),
     fc(
         40,
         "TIM_S5TI",
         &[input("IN", Time), output("RET_VAL", S5Time)],
-        "a TIME as an S5TIME, cut to its time base; at most 9990 s (BR 0)",
     ),
     fc(
         105,
@@ -325,8 +258,6 @@ pub const LIBRARY: &[LibraryFc] = &[
             output("RET_VAL", Word),
             output("OUT", Real),
         ],
-        "IN (0 … 27648, bipolar -27648 … 27648) scaled to LO_LIM … HI_LIM; \
-         beyond: OUT limited, RET_VAL 16#0008",
     ),
     fc(
         106,
@@ -339,8 +270,6 @@ pub const LIBRARY: &[LibraryFc] = &[
             output("RET_VAL", Word),
             output("OUT", Int),
         ],
-        "IN (LO_LIM … HI_LIM) scaled to 0 … 27648 (bipolar -27648 … 27648); \
-         beyond: OUT limited, RET_VAL 16#0008",
     ),
 ];
 
@@ -359,50 +288,6 @@ impl LibraryFc {
     pub fn label(&self) -> String {
         format!("FC {} ({})", self.number, self.name)
     }
-
-    /// The call with every parameter, for help.
-    pub fn signature(&self) -> String {
-        let params: Vec<String> = self
-            .params
-            .iter()
-            .map(|param| {
-                let direction = if param.output { "out" } else { "in" };
-                format!("{} {direction} {}", param.name, param.ty.name())
-            })
-            .collect();
-        format!(
-            "FC {:<3} {:<8} ({})",
-            self.number,
-            self.name,
-            params.join(", ")
-        )
-    }
-}
-
-/// The text of `awl help library`.
-pub fn help_text() -> String {
-    let mut text = String::from(
-        "The library blocks: a STEP 7 program calls them without writing them, by number \
-         (`CALL FC 105`) or by their usual name (`CALL \"SCALE\"`), with every parameter.\n\
-         The IEC functions FC 1 to FC 40 (\"System Software for S7-300/400 System and Standard \
-         Functions\", IEC functions) and the TI-S7 converting blocks FC 105 and FC 106.\n\
-         A program's own FC of the same number, or a symbol table entry that gives the name to \
-         another block, is called instead (with a note).\n\
-         On an error BR (ENO) is 0: a string result longer than its destination is cut to it; \
-         a conversion out of range gives the limit; LEFT, RIGHT, MID, DELETE, INSERT and \
-         REPLACE give an empty string for a negative length or position; a DATE_AND_TIME that \
-         is none leaves the result unchanged.\n\
-         STRING and DATE_AND_TIME parameters take variables (a temporary, a DB member) or, for \
-         inputs, constants; the ANY parameters of LIMIT, MAX, MIN and SEL take variables or \
-         constants of one type for the whole call (an address takes the type of the others).\n\n",
-    );
-    for fc in LIBRARY {
-        text.push_str(&fc.signature());
-        text.push_str("\n        ");
-        text.push_str(fc.summary);
-        text.push('\n');
-    }
-    text
 }
 
 /// One `CALL` of a library FC: the places of its parameters in the order of
@@ -426,4 +311,52 @@ pub enum AnyType {
     Real,
     /// Any other elementary type of SEL, copied as it is.
     Bits,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The language reference's table, which `awl help library` prints, gives each block with
+    /// its parameters as they are here.
+    #[test]
+    fn the_reference_lists_every_block_with_its_interface() {
+        let reference = include_str!("../../grammar/README.md");
+        let type_name = |ty: ParamType| match ty {
+            ParamType::Number | ParamType::Elementary => "ANY",
+            other => other.name(),
+        };
+        let list = |output: bool, fc: &LibraryFc| {
+            let params: Vec<String> = fc
+                .params
+                .iter()
+                .filter(|param| param.output == output)
+                .map(|param| format!("{} {}", param.name, type_name(param.ty)))
+                .collect();
+            params.join(", ")
+        };
+        let rows = reference
+            .lines()
+            .filter(|line| line.starts_with("| FC "))
+            .count();
+        assert_eq!(rows, LIBRARY.len());
+        for fc in LIBRARY {
+            let row = format!(
+                "| FC {} | {} | {} | {} | ",
+                fc.number,
+                fc.name,
+                list(false, fc),
+                list(true, fc)
+            );
+            assert!(reference.contains(&row), "{row}");
+        }
+    }
+
+    #[test]
+    fn blocks_are_found_by_number_and_by_name_in_any_case() {
+        assert_eq!(by_number(105).map(|fc| fc.name), Some("SCALE"));
+        assert_eq!(by_name("unscale").map(|fc| fc.number), Some(106));
+        assert_eq!(by_name("Strng_R").map(|fc| fc.number), Some(39));
+        assert!(by_number(41).is_none() && by_name("SFC").is_none());
+    }
 }
