@@ -969,7 +969,8 @@ END_ORGANIZATION_BLOCK
 }
 
 /// The STRING and DATE_AND_TIME actuals may be an FC's own parameters and temporaries and an
-/// FB's statics.
+/// FB's statics. A temporary STRING's maximum length is the program's to set (STL does not),
+/// here for `#copy` at L 0.
 #[test]
 fn parameters_temporaries_and_statics_are_actuals() {
     let program = "
@@ -987,6 +988,8 @@ VAR_TEMP
   copy : STRING [20];
 END_VAR
 BEGIN
+      L     20;
+      T     LB 0;
       CALL  \"LEN\" (S := #text, RET_VAL := #size);
       CALL  \"LEFT\" (IN := #text, L := 2, RET_VAL := #copy);
       CALL  \"CONCAT\" (IN1 := #copy, IN2 := #copy, RET_VAL := #copy);
