@@ -922,10 +922,15 @@ fn the_programs_own_fc_of_the_number_is_called_with_a_note() {
         "{notes}"
     );
     assert!(notes.contains("the program defines FC 105"), "{notes}");
+    assert!(
+        notes.contains("\"SCALE\" calls the program's own FC 105"),
+        "{notes}"
+    );
+    // Once, and not for `CALL FC 105`, which names the program's block.
     assert_eq!(
         notes.matches("library_block_replaced").count(),
         1,
-        "once: {notes}"
+        "{notes}"
     );
     let program = "
 ORGANIZATION_BLOCK OB 1

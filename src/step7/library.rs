@@ -337,7 +337,7 @@ mod tests {
         };
         let rows = reference
             .lines()
-            .filter(|line| line.starts_with("| FC "))
+            .filter(|line| line.starts_with("| FC ") && !line.starts_with("| FC |"))
             .count();
         assert_eq!(rows, LIBRARY.len());
         for fc in LIBRARY {

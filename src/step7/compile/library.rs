@@ -33,15 +33,16 @@ impl super::Compiler<'_> {
         })
     }
 
-    /// Whether `reference` calls a library FC; a note when the program's own block is called
-    /// in its place.
+    /// Whether `reference` calls a library FC. A note when the library's usual name, which the
+    /// symbol table does not list, or gives to another block, calls the program's own block
+    /// (`CALL FC 20` of a program with an FC 20 is simply its own block).
     pub(super) fn library_target(&mut self, reference: &S7BlockRef, at: Span) -> Target7 {
         let program = Target7::Program(reference.clone());
-        let (number, written) = match reference {
+        let (number, by_library_name) = match reference {
             S7BlockRef::Number {
                 kind: S7BlockKind::Fc,
                 number,
-            } => (*number, format!("FC {number}")),
+            } => (*number, None),
             S7BlockRef::Symbol(name) => {
                 let written = format!("\"{}\"", name.text);
                 match self.symbol(name) {
@@ -49,7 +50,7 @@ impl super::Compiler<'_> {
                         kind: S7BlockKind::Fc,
                         number,
                     }) if library::by_name(&name.text).is_none_or(|fc| fc.number == number) => {
-                        (number, written)
+                        (number, None)
                     }
                     Ok(S7Symbol::Block { kind, number }) => {
                         if let Some(fc) = library::by_name(&name.text) {
@@ -69,7 +70,7 @@ impl super::Compiler<'_> {
                     Ok(_) => return program,
                     // A library name the table does not list stands for the library's number.
                     Err(_) => match library::by_name(&name.text) {
-                        Some(fc) => (fc.number, written),
+                        Some(fc) => (fc.number, Some(written)),
                         None => return program,
                     },
                 }
@@ -82,15 +83,17 @@ impl super::Compiler<'_> {
         if !self.defines_fc(number) {
             return Target7::Library(fc);
         }
-        self.note_own(written, fc, at);
+        if let Some(written) = by_library_name {
+            self.note_own(written, fc, at);
+        }
         Target7::Program(S7BlockRef::Number {
             kind: S7BlockKind::Fc,
             number,
         })
     }
 
-    /// The note that the program's own FC replaces the library's: once, at its first call (a
-    /// program that brings its copy of a library block calls it often).
+    /// The note that the program's own FC replaces the library's: once, at its first call by
+    /// the library's name.
     fn note_own(&mut self, called: String, fc: &LibraryFc, at: Span) {
         let block = format!("FC {}", fc.number);
         let noted = self.errors.iter().any(|error| {
