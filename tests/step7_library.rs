@@ -427,7 +427,7 @@ fn strings_become_numbers() {
 /// The eight BCD bytes of a DATE_AND_TIME: year, month, day, hour, minute, second (whole),
 /// weekday (1 Sunday).
 fn bcd(parts: [u8; 6], weekday: u8) -> [u8; 8] {
-    let b = |value: u8| (value / 10) << 4 | value % 10;
+    let b = |value: u8| ((value / 10) << 4) | (value % 10);
     [
         b(parts[0]),
         b(parts[1]),

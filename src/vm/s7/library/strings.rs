@@ -240,7 +240,7 @@ impl Cpu {
             }
             26 => self.mid(call),
             31 => self.replace(call),
-            37 | 38 | 39 => self.text_to_number(call),
+            37..=39 => self.text_to_number(call),
             _ => self.compare_texts(call),
         }
     }
