@@ -293,9 +293,9 @@ impl super::Compiler<'_> {
                 fb: label.into(),
                 at: param.actual_span,
                 expected: if formal.output {
-                    format!("a {what} to write to")
+                    format!("{} {what} to write to", article(what))
                 } else {
-                    format!("a {what}")
+                    format!("{} {what}", article(what))
                 },
             });
         }
@@ -346,7 +346,8 @@ impl super::Compiler<'_> {
                         fb: fc.label(),
                         at: param.actual_span,
                         expected: format!(
-                            "a {} as the other parameters (the first at {})",
+                            "{} {} as the other parameters (the first at {})",
+                            article(any_type_name(other)),
                             any_type_name(other),
                             self.where_is(at)
                         ),
@@ -430,5 +431,14 @@ fn any_type_name(ty: AnyType) -> &'static str {
         AnyType::Dint => "DINT",
         AnyType::Real => "REAL",
         AnyType::Bits => "value",
+    }
+}
+
+/// "an" before a type name that is spoken with a vowel first (INT, S5TIME), else "a".
+fn article(name: &str) -> &'static str {
+    if name.starts_with(['A', 'E', 'I', 'O', 'U']) || name.starts_with("S5") {
+        "an"
+    } else {
+        "a"
     }
 }
