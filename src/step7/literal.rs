@@ -225,6 +225,9 @@ fn s5time(rest: &str) -> Literal {
 /// finer than the base cut off; `None` beyond 9990 s.
 pub fn s5time_word(ms: u32) -> Option<u32> {
     const BASES: [u32; 4] = [10, 100, 1_000, 10_000];
+    if ms > 9_990_000 {
+        return None;
+    }
     let (base, count) = BASES
         .iter()
         .enumerate()

@@ -360,10 +360,12 @@ impl super::Compiler<'_> {
         if let Some((ty, _)) = found {
             return Some(ty);
         }
-        // Only addresses: their width says.
+        // Only addresses: their width says (a bad one is reported with its parameter).
         let (_, param) = anys[0];
-        let place = self.place(&param.actual, param.actual_span, scope).ok()?;
-        Some(if place.width == AccessWidth::Double {
+        let width = self
+            .place(&param.actual, param.actual_span, scope)
+            .map(|place| place.width);
+        Some(if width == Ok(AccessWidth::Double) {
             AnyType::Dint
         } else {
             AnyType::Int
