@@ -86,6 +86,11 @@ pub const TOPICS: &[Topic] = &[
         body: Body::Section(GRAMMAR, "## Symbolic operands"),
     },
     Topic {
+        name: "library",
+        summary: "the library FCs a STEP 7 program calls without writing them (IEC FC 1–40, SCALE, UNSCALE)",
+        body: Body::Section(GRAMMAR, "## Library blocks"),
+    },
+    Topic {
         name: "language",
         summary: "the STL awl reads, STEP 5 and STEP 7: blocks, statements, operands, constants",
         body: Body::File(GRAMMAR),

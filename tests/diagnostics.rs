@@ -104,6 +104,13 @@ fn cases() -> Vec<(&'static str, &'static str, String)> {
                 .into(),
         ),
         (
+            "awl::check::library_block_replaced",
+            "speed7",
+            "FUNCTION FC 21 : INT\nBEGIN\n      L  0;\n      T  #RET_VAL;\nEND_FUNCTION\n\
+             ORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL \"LEN\" (RET_VAL := MW 0);\nEND_ORGANIZATION_BLOCK\n"
+                .into(),
+        ),
+        (
             "awl::check::undefined_type",
             "speed7",
             "DATA_BLOCK DB 5\nUDT 9\nBEGIN\nEND_DATA_BLOCK\n\

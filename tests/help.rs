@@ -40,6 +40,7 @@ fn each_topic_prints_the_repository_s_text_of_it() {
         ("trace", "programs/README.md", Some("Traces")),
         ("listing", "grammar/README.md", Some("PG listings")),
         ("symbols", "grammar/README.md", Some("Symbolic operands")),
+        ("library", "grammar/README.md", Some("Library blocks")),
         ("errors", "grammar/errors.md", None),
         ("language", "grammar/README.md", None),
         ("mnemonics", "grammar/mnemonics.md", None),

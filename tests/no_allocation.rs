@@ -236,3 +236,34 @@ fn hardware_interrupts_allocate_nothing_on_the_speed7() {
     assert!(cpu.engine.stats(82).serviced > 0 && cpu.engine.stats(85).serviced > 0);
     assert_eq!(count, 0, "allocations while servicing");
 }
+
+#[test]
+fn library_fcs_allocate_nothing() {
+    // String, date and scaling blocks, with constants copied in and results cut (BR 0).
+    let source = "
+DATA_BLOCK DB 1
+STRUCT
+  text : STRING [20] := 'Hello';
+  short : STRING [3];
+  at : DATE_AND_TIME := DT#2024-3-15-12:00:00.000;
+  later : DATE_AND_TIME;
+END_STRUCT;
+BEGIN
+END_DATA_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+      CALL  \"CONCAT\" (IN1 := DB1.text, IN2 := ' World', RET_VAL := DB1.short);
+      CALL  \"R_STRNG\" (IN := 1234.5, RET_VAL := DB1.text);
+      CALL  \"STRNG_R\" (S := DB1.text, RET_VAL := MD 0);
+      CALL  \"AD_DT_TM\" (T := DB1.at, D := T#1H, RET_VAL := DB1.later);
+      CALL  \"SCALE\" (IN := MW 4, HI_LIM := 100.0, LO_LIM := 0.0, BIPOLAR := FALSE,
+        RET_VAL := MW 6, OUT := MD 8);
+      CALL  \"MAX\" (IN1 := MW 4, IN2 := 7, IN3 := -1, RET_VAL := MW 12);
+END_ORGANIZATION_BLOCK
+";
+    let mut cpu = machine(source, "speed7");
+    let count = allocations(&mut cpu, RunLimit::Cycles(1), RunLimit::Cycles(2000));
+    assert!(cpu.instructions > 10_000);
+    assert_eq!(count, 0, "allocations while running");
+}

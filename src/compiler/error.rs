@@ -187,6 +187,21 @@ pub enum CheckError {
         at: Span,
     },
 
+    #[error("{called} calls the program's own {block}, not the library's {library}")]
+    #[diagnostic(
+        code(awl::check::library_block_replaced),
+        severity(Advice),
+        help("rename or renumber the program's block to call the library's")
+    )]
+    LibraryReplaced {
+        called: String,
+        block: String,
+        library: String,
+        #[label("{why}")]
+        at: Span,
+        why: String,
+    },
+
     #[error("{id} is not in the program")]
     #[diagnostic(
         code(awl::check::undefined_type),
@@ -398,6 +413,7 @@ impl CheckError {
             | CheckError::RecursiveInstance { at, .. }
             | CheckError::UndefinedLabel { at, .. }
             | CheckError::NotSimulated { at, .. }
+            | CheckError::LibraryReplaced { at, .. }
             | CheckError::Step7OnStep5Cpu { at, .. } => *at,
         }
     }
@@ -405,7 +421,9 @@ impl CheckError {
     pub fn is_warning(&self) -> bool {
         matches!(
             self,
-            CheckError::UndefinedBlock { .. } | CheckError::UndefinedDb { .. }
+            CheckError::UndefinedBlock { .. }
+                | CheckError::UndefinedDb { .. }
+                | CheckError::LibraryReplaced { .. }
         )
     }
 }

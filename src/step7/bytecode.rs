@@ -119,6 +119,11 @@ pub enum S7Code {
     Sfc {
         call: u16,
     },
+    /// `CALL FC n (…)` of a library FC the program does not define (see
+    /// [`crate::step7::library`]), with its parameters in [`S7Tables::library_calls`].
+    Library {
+        call: u16,
+    },
     /// `__ASSERT== a, b`: the two places' indexes are `left` and `left + 1`.
     Assert {
         cmp: Cmp,
@@ -468,6 +473,7 @@ pub struct S7Tables {
     pub fb_calls: Vec<FbCall>,
     pub fc_calls: Vec<FcCall>,
     pub sfc_calls: Vec<SfcCall>,
+    pub library_calls: Vec<super::library::LibraryCall>,
     /// The data blocks' initial bytes, by DB number.
     pub data_blocks: Vec<(u16, Vec<u8>)>,
     /// The data blocks by slot: the numbers of the data blocks the program defines or names
@@ -535,7 +541,7 @@ pub fn cost(code: S7Code, t: &crate::profile::Timings) -> u32 {
         S7Code::FbEnter { .. } | S7Code::FbLeave { .. } => t.load_word,
         // Part of the call's own time (the copies are the CALL's parameter passing).
         S7Code::FcEnter { .. } | S7Code::FcLeave { .. } => 0,
-        S7Code::Sfc { .. } => t.block_call + t.block_end,
+        S7Code::Sfc { .. } | S7Code::Library { .. } => t.block_call + t.block_end,
         _ => t.other,
     }
 }

@@ -214,17 +214,26 @@ fn duration_ms(text: &str, format: &'static str) -> Result<i64, LiteralError> {
 /// `S5T#…`: the finest time base that holds the value; what is finer than the base is cut off.
 fn s5time(rest: &str) -> Literal {
     let ms = duration_ms(rest, "S5TIME")?;
+    let word = u32::try_from(ms)
+        .ok()
+        .and_then(s5time_word)
+        .ok_or_else(|| range("S5TIME", "0 to 2H_46M_30S (9990 s)"))?;
+    Ok(constant(ConstKind::S5Time, word))
+}
+
+/// The S5TIME word of `ms` milliseconds: the finest time base that holds the value, what is
+/// finer than the base cut off; `None` beyond 9990 s.
+pub fn s5time_word(ms: u32) -> Option<u32> {
+    const BASES: [u32; 4] = [10, 100, 1_000, 10_000];
     if ms > 9_990_000 {
-        return Err(range("S5TIME", "0 to 2H_46M_30S (9990 s)"));
+        return None;
     }
-    const BASES: [i64; 4] = [10, 100, 1_000, 10_000];
     let (base, count) = BASES
         .iter()
         .enumerate()
         .map(|(code, unit)| (code as u32, ms / unit))
-        .find(|(_, count)| *count <= 999)
-        .ok_or_else(|| range("S5TIME", "0 to 2H_46M_30S (9990 s)"))?;
-    Ok(constant(ConstKind::S5Time, base << 12 | bcd(count as u32)))
+        .find(|(_, count)| *count <= 999)?;
+    Some(base << 12 | bcd(count))
 }
 
 /// Three (or four) BCD digits.

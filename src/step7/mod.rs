@@ -7,6 +7,7 @@ pub mod bytecode;
 pub mod compile;
 pub mod error;
 pub mod lexer;
+pub mod library;
 pub mod literal;
 pub mod mnemonics;
 pub mod parser;

@@ -82,7 +82,7 @@ fn size_bytes(ty: &DataType, types: &layout::Types) -> u32 {
 
 /// A constant as the bytes of a parameter of type `ty`: a STRING's maximum and actual length
 /// then its characters, a DATE_AND_TIME's eight BCD bytes; `None` when it is not of the type.
-fn constant_bytes(ty: &DataType, constant: &S7Constant) -> Option<Vec<u8>> {
+pub(super) fn constant_bytes(ty: &DataType, constant: &S7Constant) -> Option<Vec<u8>> {
     match (ty, constant.kind) {
         (DataType::String(max), ConstKind::String | ConstKind::Char) => {
             let text = &constant.bytes;
@@ -100,7 +100,12 @@ fn constant_bytes(ty: &DataType, constant: &S7Constant) -> Option<Vec<u8>> {
 
 impl super::Compiler<'_> {
     /// The type of an actual that names a variable (`#local.member`, `DB5.values`), if it does.
-    fn actual_type(&self, actual: &S7Operand, at: Span, scope: &Scope<'_>) -> Option<DataType> {
+    pub(super) fn actual_type(
+        &self,
+        actual: &S7Operand,
+        at: Span,
+        scope: &Scope<'_>,
+    ) -> Option<DataType> {
         match actual {
             S7Operand::Local(path) => self
                 .resolve_local(path, at, scope)
@@ -225,7 +230,7 @@ impl super::Compiler<'_> {
     }
 
     /// `bytes` bytes of the caller's L stack after its temporaries, from an even byte.
-    fn scratch(&mut self, scratch_bits: &mut u32, bytes: u32) -> u16 {
+    pub(super) fn scratch(&mut self, scratch_bits: &mut u32, bytes: u32) -> u16 {
         let start = scratch_bits.div_ceil(16) * 16;
         *scratch_bits = start + bytes * 8;
         self.tables.place(Place {

@@ -912,6 +912,25 @@ impl super::Compiler<'_> {
         at: Span,
         span: Span,
     ) -> Result<(), CheckError> {
+        let reference = &match self.library_target(reference, at) {
+            super::library::Target7::Library(fc) => {
+                // Each of its parameters is missing: the error says which.
+                let call = CallSpec {
+                    block: reference.clone(),
+                    instance: None,
+                    multi_instance: None,
+                    params: Vec::new(),
+                };
+                let empty = super::layout::Interface::default();
+                let scope = Scope {
+                    interface: &empty,
+                    block: String::new(),
+                };
+                self.library_call(fc, &call, at, &scope);
+                return Ok(());
+            }
+            super::library::Target7::Program(block) => block,
+        };
         if let S7BlockRef::Number {
             kind: S7BlockKind::Sfc,
             number,
@@ -1031,6 +1050,18 @@ impl super::Compiler<'_> {
         if let Some(name) = &call.multi_instance {
             return self.call_multi_instance(out, call, name, at, span, scope);
         }
+        let call = &match self.library_target(&call.block, at) {
+            super::library::Target7::Library(fc) => {
+                if let Some(call) = self.library_call(fc, call, at, scope) {
+                    self.emit(out, Op::S7(S7Code::Library { call }), span);
+                }
+                return Ok(());
+            }
+            super::library::Target7::Program(block) => CallSpec {
+                block,
+                ..call.clone()
+            },
+        };
         let Some(call) = &self.numbered_call(call) else {
             return Ok(());
         };

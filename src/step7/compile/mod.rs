@@ -7,6 +7,7 @@ pub(crate) mod complex;
 mod data;
 mod interrupt_sfcs;
 pub(crate) mod layout;
+mod library;
 mod lower;
 mod operand;
 mod pointers;

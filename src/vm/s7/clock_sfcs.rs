@@ -25,7 +25,7 @@ impl Cpu {
     }
 
     /// The eight bytes of the DATE_AND_TIME at `place`.
-    fn fetch_date_and_time(&mut self, place: u16) -> Result<[u8; 8], Fault> {
+    pub(super) fn fetch_date_and_time(&mut self, place: u16) -> Result<[u8; 8], Fault> {
         let (at, _) = self.locate_index(place)?;
         let high = self.fetch(at, AccessWidth::Double)?;
         let low = self.fetch(at.offset(4, 0), AccessWidth::Double)?;
@@ -35,7 +35,7 @@ impl Cpu {
         Ok(bytes)
     }
 
-    fn store_date_and_time(&mut self, place: u16, bytes: [u8; 8]) -> Result<(), Fault> {
+    pub(super) fn store_date_and_time(&mut self, place: u16, bytes: [u8; 8]) -> Result<(), Fault> {
         let (at, _) = self.locate_index(place)?;
         let [a, b, c, d, e, f, g, h] = bytes;
         self.store(at, AccessWidth::Double, u32::from_be_bytes([a, b, c, d]))?;

@@ -20,7 +20,7 @@ impl Cpu {
         Ok(())
     }
 
-    fn write_bytes(&mut self, to: Located, bytes: &[u8]) -> Result<(), Fault> {
+    pub(super) fn write_bytes(&mut self, to: Located, bytes: &[u8]) -> Result<(), Fault> {
         for (at, byte) in bytes.iter().enumerate() {
             self.store(to.offset(at as u32, 0), AccessWidth::Byte, u32::from(*byte))?;
         }

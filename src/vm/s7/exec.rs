@@ -143,6 +143,7 @@ impl Cpu {
             S7Code::FbEnter { call } => self.fb_enter(call)?,
             S7Code::FbLeave { call } => self.fb_leave(call)?,
             S7Code::Sfc { call } => self.system_function(call)?,
+            S7Code::Library { call } => self.library_fc(call)?,
             S7Code::Assert { cmp, left } => self.assert(cmp, left)?,
             S7Code::Mcr(code) => self.mcr(code)?,
             S7Code::ResetStatusWord => bridge::reset_status_word(&mut self.level),

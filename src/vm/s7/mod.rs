@@ -39,6 +39,7 @@ pub mod convert;
 pub mod exec;
 pub mod integer;
 pub mod jump;
+mod library;
 pub mod mcr;
 pub mod memory;
 pub mod real;
