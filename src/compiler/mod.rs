@@ -16,11 +16,11 @@ pub mod specialise;
 
 use std::collections::HashMap;
 
+use crate::address::Layout;
 pub use bytecode::Op;
 pub use calls::describe_decl;
 pub use error::CheckError;
-pub use lower::{Layout, Resolved};
-pub use ranges::{address_in_range, check_address};
+pub use lower::Resolved;
 
 use crate::ast::{Block, BlockBody, BlockId, LogicBody, Operand, ParamDecl, SourceUnit, Statement};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};

@@ -2,13 +2,14 @@
 //! operand with its area in the block's mnemonic set (`count up Z 1` in a German file), a
 //! constant as it was written (`load constant KF +20`), jump targets by their label.
 
+use crate::address::Layout;
 use crate::ast::{CallParam, ParamDecl, Statement};
+use crate::compiler::Program;
 use crate::compiler::builtin::Builtin;
 use crate::compiler::bytecode::{
     Arith, BitSource, BitTarget, Comparison, DataPart, ImageBit, IndirectSource, JumpCondition,
     Logic, Op, TimerKind, Width, WordLogic, Write,
 };
-use crate::compiler::{Layout, Program};
 use crate::mnemonics::{self, Area, MnemonicSet, OpCode};
 use crate::source::SourceSet;
 

@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::compiler::Layout;
+use crate::address::Layout;
 use crate::vm::counters::Counter;
 use crate::vm::status::Status;
 use crate::vm::stop::Stop;

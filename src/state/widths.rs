@@ -7,8 +7,9 @@
 
 use std::collections::BTreeMap;
 
+use crate::address::Layout;
 use crate::compiler::bytecode::DataPart;
-use crate::compiler::{Layout, Op, Program};
+use crate::compiler::{Op, Program};
 use crate::step7::ast::AccessWidth;
 use crate::step7::bytecode::{MemOp, Place, S7Code, Target as S7Target};
 
