@@ -4,6 +4,7 @@
 //! in either mnemonic set ([`operand`]).
 
 mod layout;
+pub mod notation;
 pub mod operand;
 pub mod range;
 
