@@ -4,7 +4,6 @@
 //! (`--state`) or as JSON (`--state-format json`); `programs/README.md` documents the schema.
 //! A STEP 7 program's state is shown the STEP 7 way, with its registers ([`registers`]).
 
-pub mod operand;
 pub mod registers;
 pub mod text;
 pub mod watch;
