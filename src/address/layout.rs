@@ -3,6 +3,14 @@
 use crate::mnemonics::Area;
 use crate::profile::Sizes;
 
+/// The image areas: the process images of the inputs and outputs, and the flags (STEP 7's M).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ImageArea {
+    Input,
+    Output,
+    Flag,
+}
+
 /// Where the areas lie in the VM's flat image memory.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
@@ -39,5 +47,19 @@ impl Layout {
             _ => return None,
         };
         Some(base + index)
+    }
+
+    /// The image area an image byte lies in, and its byte number there.
+    pub fn image_area_of(self, offset: u16) -> Option<(ImageArea, u16)> {
+        if offset < self.output_base() {
+            Some((ImageArea::Input, offset))
+        } else if offset < self.flag_base() {
+            Some((ImageArea::Output, offset - self.output_base()))
+        } else {
+            offset
+                .checked_sub(self.flag_base())
+                .filter(|byte| *byte < self.flag_bytes)
+                .map(|byte| (ImageArea::Flag, byte))
+        }
     }
 }

@@ -8,5 +8,5 @@ pub mod notation;
 pub mod operand;
 pub mod range;
 
-pub use layout::Layout;
+pub use layout::{ImageArea, Layout};
 pub use operand::{Places, Refusal, Target};

@@ -531,7 +531,7 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
             let operand = match source {
                 IndirectSource::FlagWord(byte) => context.sized(Width::Word, byte),
                 IndirectSource::DataWord(word) => context.numbered(Area::DataWord, word),
-                // STEP 7's `UC FC [MW 50]`: its own dump (`dump::s7`) shows the statement.
+                // STEP 7's `UC FC [MW 50]`: its own dump (`dump::step7`) shows the statement.
                 IndirectSource::S7Block(_) => return "call the block numbered in the word".into(),
             };
             format!("{} {operand}", verb(OpCode::Indirect))

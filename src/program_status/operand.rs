@@ -4,6 +4,7 @@
 //! timers `S5T#…`, counters `C#…`; an S7 operand (`#start`, `DB1.DBW 2`, a parameter) is read
 //! where the running block sees it, without touching the CPU (a status must not open a DB).
 
+use crate::address::notation;
 use crate::compiler::bytecode::{BitSource, BitTarget, DataPart, ImageBit, Width};
 use crate::compiler::{Op, Resolved};
 use crate::scenario::operand::Target;
@@ -215,31 +216,8 @@ fn respell(text: &str) -> String {
 /// `050.1` (50 × 100 ms) → `S5T#5S`.
 fn s5_time(kt: &str) -> Option<String> {
     let (count, base) = kt.split_once('.')?;
-    let count: u64 = count.parse().ok()?;
-    let unit_ms = match base {
-        "0" => 10,
-        "1" => 100,
-        "2" => 1_000,
-        "3" => 10_000,
-        _ => return None,
-    };
-    Some(format!("S5T#{}", duration(count * unit_ms)))
-}
-
-/// `1H2M3S40MS`, `0MS`.
-fn duration(ms: u64) -> String {
-    let parts = [
-        (ms / 3_600_000, "H"),
-        (ms / 60_000 % 60, "M"),
-        (ms / 1_000 % 60, "S"),
-        (ms % 1_000, "MS"),
-    ];
-    let text: String = parts
-        .iter()
-        .filter(|(count, _)| *count > 0)
-        .map(|(count, unit)| format!("{count}{unit}"))
-        .collect();
-    if text.is_empty() { "0MS".into() } else { text }
+    let base: u8 = base.parse().ok().filter(|base| *base <= 3)?;
+    Some(notation::s5time(count.parse().ok()?, base))
 }
 
 /// Where `place` is in `context`; `None` for what status does not show (indirect
