@@ -9,7 +9,8 @@ use crate::compiler::Program;
 use crate::dialect::Dialect;
 use crate::mnemonics::{self, Area, MnemonicSet};
 use crate::profile::Profile;
-use crate::step7::ast::AccessWidth;
+use crate::step7::ast::{AccessWidth, S7Area};
+use crate::step7::mnemonics::AREAS;
 
 use super::Layout;
 use super::range::address_in_range;
@@ -233,55 +234,23 @@ fn step5_target(text: &str, set: MnemonicSet, places: &Places) -> Result<Target,
 /// The S7 operand forms, for the help of an operand that is none.
 pub const FORMS: &str = "use I, Q, M bits (`I 0.0`, German `E 0.0`, `A 4.0`), IB IW ID, QB QW QD (German EB EW ED, AB AW AD), MB MW MD, PIB PIW PID, PQB PQW PQD (German PEB PEW PED, PAB PAW PAD), T 5, C 3 (German Z 3), or data block operands `DB5.DBX 0.1`, `DB5.DBB 2`, `DB5.DBW 4`, `DB5.DBD 6`";
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum S7Area {
-    Input,
-    Output,
-    Flag,
-    PeripheralInput,
-    PeripheralOutput,
-    Timer,
-    Counter,
-}
-
-/// A STEP 7 area word of either set: the area and the access width.
+/// An area word of either set that a scenario may name: the area and the access width. Local
+/// data and the DB registers' data blocks change while the program runs.
 fn s7_area(word: &str) -> Option<(S7Area, AccessWidth)> {
-    use AccessWidth::*;
     use S7Area::*;
-    Some(match word {
-        "I" | "E" => (Input, Bit),
-        "IB" | "EB" => (Input, Byte),
-        "IW" | "EW" => (Input, Word),
-        "ID" | "ED" => (Input, Double),
-        "Q" | "A" => (Output, Bit),
-        "QB" | "AB" => (Output, Byte),
-        "QW" | "AW" => (Output, Word),
-        "QD" | "AD" => (Output, Double),
-        "M" => (Flag, Bit),
-        "MB" => (Flag, Byte),
-        "MW" => (Flag, Word),
-        "MD" => (Flag, Double),
-        "PIB" | "PEB" => (PeripheralInput, Byte),
-        "PIW" | "PEW" => (PeripheralInput, Word),
-        "PID" | "PED" => (PeripheralInput, Double),
-        "PQB" | "PAB" => (PeripheralOutput, Byte),
-        "PQW" | "PAW" => (PeripheralOutput, Word),
-        "PQD" | "PAD" => (PeripheralOutput, Double),
-        "T" => (Timer, Word),
-        "C" | "Z" => (Counter, Word),
-        _ => return None,
-    })
+    AREAS
+        .iter()
+        .filter(|words| !matches!(words.area, Local | PreviousLocal | Data | Instance))
+        .find(|words| words.en == word || words.de == word)
+        .map(|words| (words.area, words.width))
 }
 
-/// The data block area words after `DBn.`.
+/// The data block area words after `DBn.`: `DBX`, `DBB`, `DBW`, `DBD`.
 fn data_width(word: &str) -> Option<AccessWidth> {
-    Some(match word {
-        "DBX" => AccessWidth::Bit,
-        "DBB" => AccessWidth::Byte,
-        "DBW" => AccessWidth::Word,
-        "DBD" => AccessWidth::Double,
-        _ => return None,
-    })
+    AREAS
+        .iter()
+        .find(|words| words.area == S7Area::Data && words.en == word)
+        .map(|words| words.width)
 }
 
 fn byte_count(width: AccessWidth) -> u8 {
@@ -402,6 +371,7 @@ fn step7_target(text: &str, places: &Places) -> Result<Target, Refusal> {
         S7Area::PeripheralOutput => periphery("PQ"),
         S7Area::Timer => numbered(sizes.timers, "T").map(Target::TimerBit),
         S7Area::Counter => numbered(sizes.counters, "C").map(Target::CounterValue),
+        _ => Err(not_an_area(letters)),
     }
 }
 

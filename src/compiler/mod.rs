@@ -16,7 +16,7 @@ pub mod specialise;
 
 use std::collections::HashMap;
 
-use crate::address::Layout;
+use crate::address::{Layout, range};
 pub use bytecode::Op;
 pub use calls::describe_decl;
 pub use error::CheckError;
@@ -586,8 +586,14 @@ impl<'a> Compiler<'a> {
             Operand::Number(value) => Some(Resolved::Number(*value)),
             Operand::Constant(constant) => Some(Resolved::Constant(constant.value)),
             Operand::Address(address) => {
-                if let Err(error) = ranges::check_address(*address, set, self.profile, at) {
-                    return self.fail(error);
+                if let Err(out) = range::check(*address, set, self.profile) {
+                    let (what, range, cpu) = (out.what, out.range, self.profile.name);
+                    return self.fail(CheckError::OperandRange {
+                        what,
+                        at,
+                        range,
+                        cpu,
+                    });
                 }
                 Some(Resolved::Address(*address))
             }

@@ -1,27 +1,7 @@
-//! Operand range checks of the compiler: the address model's ranges as check errors, and the
-//! numbers of operations that take a plain number.
+//! The numbers of operations that take a plain number (the address ranges are the address
+//! model's, [`crate::address::range`]).
 
-use crate::address::range;
-use crate::ast::Address;
-use crate::mnemonics::{MnemonicSet, OpCode};
-use crate::profile::Profile;
-use crate::source::Span;
-
-use super::error::CheckError;
-
-pub fn check_address(
-    address: Address,
-    set: MnemonicSet,
-    profile: &'static Profile,
-    at: Span,
-) -> Result<(), CheckError> {
-    range::check(address, set, profile).map_err(|out| CheckError::OperandRange {
-        what: out.what,
-        at,
-        range: out.range,
-        cpu: profile.name,
-    })
-}
+use crate::mnemonics::OpCode;
 
 /// The allowed numbers of operations that take a plain number.
 pub fn number_range(op: OpCode) -> Option<&'static str> {
