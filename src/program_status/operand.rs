@@ -4,10 +4,10 @@
 //! timers `S5T#…`, counters `C#…`; an S7 operand (`#start`, `DB1.DBW 2`, a parameter) is read
 //! where the running block sees it, without touching the CPU (a status must not open a DB).
 
+use crate::address::Target;
 use crate::address::notation;
 use crate::compiler::bytecode::{BitSource, BitTarget, DataPart, ImageBit, Width};
 use crate::compiler::{Op, Resolved};
-use crate::scenario::operand::Target;
 use crate::state::watch::natural;
 use crate::step7::ast::AccessWidth;
 use crate::step7::bytecode::{Place, S7Code, Target as S7Target};
