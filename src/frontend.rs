@@ -2,7 +2,7 @@
 //! them together, and keep every diagnostic of every file.
 
 use crate::ast::SourceUnit;
-use crate::compiler::{self, Compiled};
+use crate::compiler::{self, CheckError, Compiled};
 use crate::diagnostics::SourceDiagnostic;
 use crate::dialect::{self, Dialect};
 use crate::fragment;
@@ -137,7 +137,13 @@ fn build_step5(
         let set = units
             .get(usize::from(error.span().file))
             .map_or(default, |unit| unit.mnemonics);
-        diagnostics.push(match uses.explain(error, &symbols, &sources, set) {
+        let explained = match error {
+            CheckError::OperandNotAllowed { op, at, .. } => {
+                uses.explain(op, *at, &symbols, &sources, set)
+            }
+            _ => None,
+        };
+        diagnostics.push(match explained {
             Some(explained) => SourceDiagnostic::Symbol(explained),
             None => SourceDiagnostic::Check(error.clone()),
         });

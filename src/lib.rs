@@ -7,6 +7,7 @@
 // No unsafe code anywhere: the fuzz targets run without AddressSanitizer on that ground.
 #![forbid(unsafe_code)]
 
+pub mod address;
 pub mod analyze;
 pub mod ast;
 #[cfg(not(target_arch = "wasm32"))]

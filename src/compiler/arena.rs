@@ -7,8 +7,9 @@
 
 use super::CompiledBlock;
 use super::bytecode::{NO_PARAMS, Op};
-use super::lower::{Layout, Resolved};
+use super::lower::Resolved;
 use super::{fuse, specialise};
+use crate::address::Layout;
 
 #[derive(Debug, Clone, Default)]
 pub struct Arena {

@@ -7,8 +7,9 @@ use crate::mnemonics::{self, Area, BlockKind, MnemonicSet, OpCode, ParamKind};
 
 use super::bytecode::{self, Op};
 use super::error::CheckError;
-use super::lower::{self, Layout, Resolved};
+use super::lower::{self, Resolved};
 use super::{BlockContext, Compiler};
+use crate::address::Layout;
 
 /// `I BI`, `D KF`, `T` — a declaration's kind and format as written in the file's set.
 pub fn describe_decl(decl: &ParamDecl, set: MnemonicSet) -> String {

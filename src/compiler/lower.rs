@@ -1,9 +1,9 @@
 //! Lowering: one operation with a resolved operand to one op. Used by the compiler for every
 //! statement and by the VM for operations on formal operands, once the actual is known.
 
+use crate::address::Layout;
 use crate::ast::Address;
 use crate::mnemonics::{Area, BlockKind, OpCode};
-use crate::profile::Sizes;
 
 use super::bytecode::*;
 
@@ -25,45 +25,6 @@ pub enum Resolved {
     Formal(u8),
     /// A STEP 7 actual parameter: its place in the program's S7 tables, in the caller.
     S7(u16),
-}
-
-/// Where the areas lie in the VM's flat image memory.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Layout {
-    pub image_bytes: u16,
-    pub flag_bytes: u16,
-}
-
-impl Layout {
-    pub fn new(sizes: &Sizes) -> Self {
-        Layout {
-            image_bytes: sizes.image_bytes,
-            flag_bytes: sizes.flag_bytes,
-        }
-    }
-
-    pub fn input_base(self) -> u16 {
-        0
-    }
-
-    pub fn output_base(self) -> u16 {
-        self.image_bytes
-    }
-
-    pub fn flag_base(self) -> u16 {
-        2 * self.image_bytes
-    }
-
-    /// The image byte of an address in I, Q or F (bit, byte, word or double word).
-    pub fn image_byte(self, area: Area, index: u16) -> Option<u16> {
-        let base = match area {
-            Area::Input | Area::InputByte | Area::InputWord => self.input_base(),
-            Area::Output | Area::OutputByte | Area::OutputWord => self.output_base(),
-            Area::Flag | Area::FlagByte | Area::FlagWord | Area::FlagDouble => self.flag_base(),
-            _ => return None,
-        };
-        Some(base + index)
-    }
 }
 
 /// `+G -G XG :G`; the compiler sets `stack` on CPUs with four accumulators.

@@ -17,12 +17,12 @@ pub mod specialise;
 
 use std::collections::HashMap;
 
+use crate::address::{Layout, range};
 pub use bytecode::Op;
 pub use calls::describe_decl;
 pub use error::CheckError;
-pub use lower::{Layout, Resolved};
+pub use lower::Resolved;
 pub use needs::{Need, Needs};
-pub use ranges::{address_in_range, check_address};
 
 use crate::ast::{Block, BlockBody, BlockId, LogicBody, Operand, ParamDecl, SourceUnit, Statement};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
@@ -602,8 +602,14 @@ impl<'a> Compiler<'a> {
                     index: address.index,
                 };
                 self.needs.ask(need, self.profile);
-                if let Err(error) = ranges::check_address(*address, set, self.profile, at) {
-                    return self.fail(error);
+                if let Err(out) = range::check(*address, set, self.profile) {
+                    let (what, range, cpu) = (out.what, out.range, self.profile.name);
+                    return self.fail(CheckError::OperandRange {
+                        what,
+                        at,
+                        range,
+                        cpu,
+                    });
                 }
                 Some(Resolved::Address(*address))
             }

@@ -8,7 +8,7 @@ use crate::mnemonics::{Area, BlockKind};
 use crate::profile::{Feature, Profile};
 
 use super::builtin::IntegralFb;
-use super::ranges::{SizeOf, extent};
+use crate::address::range::{SizeOf, extent};
 
 /// One thing a check asks of the CPU.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

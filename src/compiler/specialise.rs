@@ -7,7 +7,8 @@
 use crate::mnemonics::{Area, OpCode};
 
 use super::bytecode::{NO_PARAMS, Op};
-use super::lower::{self, Layout, Resolved};
+use super::lower::{self, Resolved};
+use crate::address::Layout;
 
 /// The body of FB code `code` called with the actual parameters `list`, when all of them are
 /// known (none is a formal operand of a calling FB).

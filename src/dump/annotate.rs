@@ -2,13 +2,14 @@
 //! operand with its area in the block's mnemonic set (`count up Z 1` in a German file), a
 //! constant as it was written (`load constant KF +20`), jump targets by their label.
 
+use crate::address::Layout;
 use crate::ast::{CallParam, ParamDecl, Statement};
+use crate::compiler::Program;
 use crate::compiler::builtin::Builtin;
 use crate::compiler::bytecode::{
     Arith, BitSource, BitTarget, Comparison, DataPart, ImageBit, IndirectSource, JumpCondition,
     Logic, Op, TimerKind, Width, WordLogic, Write,
 };
-use crate::compiler::{Layout, Program};
 use crate::mnemonics::{self, Area, MnemonicSet, OpCode};
 use crate::source::SourceSet;
 
@@ -530,7 +531,7 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
             let operand = match source {
                 IndirectSource::FlagWord(byte) => context.sized(Width::Word, byte),
                 IndirectSource::DataWord(word) => context.numbered(Area::DataWord, word),
-                // STEP 7's `UC FC [MW 50]`: its own dump (`dump::s7`) shows the statement.
+                // STEP 7's `UC FC [MW 50]`: its own dump (`dump::step7`) shows the statement.
                 IndirectSource::S7Block(_) => return "call the block numbered in the word".into(),
             };
             format!("{} {operand}", verb(OpCode::Indirect))

@@ -12,7 +12,7 @@ use crate::source::{SourceSet, Span};
 pub mod annotate;
 pub mod listing;
 pub mod mc5;
-pub mod s7;
+pub mod step7;
 
 pub use annotate::op_text;
 
@@ -71,7 +71,7 @@ fn header(
 /// The whole dump: a header line per block, then one line per op or data word.
 pub fn dump(built: &Frontend) -> String {
     if !built.s7_units.is_empty() {
-        return s7::dump(built);
+        return step7::dump(built);
     }
     let program = &built.compiled.program;
     let sources = &built.sources;

@@ -2,7 +2,7 @@
 //! operation — RLO, STA, ACCU 1, ACCU 2 and the operand after each — by a [`Probe`] on the
 //! stepping loop. A loop body keeps its last pass and a count.
 
-mod s7;
+mod operand;
 mod text;
 
 use std::cell::RefCell;
@@ -166,7 +166,6 @@ impl Probe for Recorder {
         self.last_pc = Some(pc);
         {
             let mut recording = self.recording.borrow_mut();
-            let step7 = recording.step7;
             let Some(slot) = recording.ops.get_mut(pc as usize) else {
                 return Flow::Go;
             };
@@ -177,11 +176,7 @@ impl Probe for Recorder {
                 sta: cpu.level.status.sta(),
                 accu1: cpu.level.accu1,
                 accu2: cpu.level.accu2,
-                operand: if step7 {
-                    s7::value(cpu, op)
-                } else {
-                    crate::state::operand::value(cpu, op)
-                },
+                operand: operand::value(cpu, op),
             });
         }
         match op {

@@ -13,27 +13,25 @@ use super::{OpStatus, Recording};
 const ACCU_WIDTH: usize = 12;
 const ACCU_WIDTH_S7: usize = 14;
 
-/// An accumulator as the PG shows a 16-bit one, with the high word only when it is used.
-fn accu(value: u32) -> String {
-    if value >> 16 == 0 {
-        format!("KH {value:04X}")
-    } else {
-        format!("KH {:04X} {:04X}", value >> 16, value & 0xFFFF)
+/// An accumulator as the PG shows a 16-bit one, with the high word only when it is used:
+/// `KH 0005`, `KH 0001 0000`; STEP 7's `W#16#0005`, `DW#16#00010000`.
+fn accu(value: u32, step7: bool) -> String {
+    match (step7, value >> 16 == 0) {
+        (false, true) => format!("KH {value:04X}"),
+        (false, false) => format!("KH {:04X} {:04X}", value >> 16, value & 0xFFFF),
+        (true, true) => format!("W#16#{value:04X}"),
+        (true, false) => format!("DW#16#{value:08X}"),
     }
 }
 
 fn columns(status: &OpStatus, step7: bool) -> String {
-    let (accu, wide) = if step7 {
-        (super::s7::accu as fn(u32) -> String, ACCU_WIDTH_S7)
-    } else {
-        (accu as fn(u32) -> String, ACCU_WIDTH)
-    };
+    let wide = if step7 { ACCU_WIDTH_S7 } else { ACCU_WIDTH };
     let mut out = format!(
         "{:>3} {:>3}  {:<wide$} {:<wide$} {:<14}",
         u8::from(status.rlo),
         u8::from(status.sta),
-        accu(status.accu1),
-        accu(status.accu2),
+        accu(status.accu1, step7),
+        accu(status.accu2, step7),
         status.operand.as_deref().unwrap_or("")
     );
     if status.runs > 1 {
@@ -124,4 +122,17 @@ pub fn render(block: &CompiledBlock, sources: &SourceSet, recording: &Recording)
         out.push_str("×n: the line ran n times (a loop); its values are those of the last pass\n");
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn accumulators_as_words_or_double_words() {
+        assert_eq!(accu(5, false), "KH 0005");
+        assert_eq!(accu(0x0001_0000, false), "KH 0001 0000");
+        assert_eq!(accu(5, true), "W#16#0005");
+        assert_eq!(accu(0x0001_0000, true), "DW#16#00010000");
+    }
 }

@@ -10,7 +10,6 @@ pub mod expect;
 pub mod modify;
 pub mod operand;
 mod raw;
-pub mod s7_operand;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

@@ -1,96 +1,14 @@
-//! Operands in `set` and `[expect]`: the program's mnemonic set or English, checked against the
-//! CPU's ranges; a STEP 7 program's operands in STEP 7 spelling ([`super::s7_operand`]).
+//! Operands in `set` and `[expect]`: an absolute operand of the address model
+//! ([`crate::address::operand`]) or a symbol of the program's assignment list.
 
 use miette::SourceSpan;
 
-use crate::ast::Address;
-use crate::compiler::{Layout, Program, address_in_range};
-use crate::mnemonics::{self, Area, MnemonicSet};
-use crate::profile::Profile;
+pub use crate::address::Target;
+use crate::address::operand::{self, Places};
+use crate::compiler::Program;
+use crate::mnemonics::MnemonicSet;
 
 use super::error::ScenarioError;
-use super::s7_operand;
-
-/// What an operand of a scenario reads or writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Target {
-    /// A bit of the image memory (I, Q, F).
-    ImageBit {
-        byte: u16,
-        bit: u8,
-    },
-    /// Bytes of the image memory (IB…FD).
-    Image {
-        byte: u16,
-        bytes: u8,
-    },
-    /// Process input or output modules (PY/PW) and the extended periphery (OY/OW).
-    Periphery {
-        byte: u16,
-        bytes: u8,
-        extended: bool,
-    },
-    TimerBit(u16),
-    CounterValue(u16),
-    /// `DB 10 DW 3` (or `DB10.DW3`).
-    DataWord {
-        db: u8,
-        word: u16,
-    },
-    /// A STEP 7 data block's bit (`bytes` 0), byte, word or double word: `DB5.DBW 4`.
-    S7Data {
-        db: u16,
-        byte: u32,
-        bit: u8,
-        bytes: u8,
-    },
-}
-
-impl Target {
-    pub fn bytes(self) -> u8 {
-        match self {
-            Target::ImageBit { .. } | Target::TimerBit(_) => 0,
-            Target::Image { bytes, .. }
-            | Target::Periphery { bytes, .. }
-            | Target::S7Data { bytes, .. } => bytes,
-            Target::CounterValue(_) | Target::DataWord { .. } => 2,
-        }
-    }
-}
-
-fn area_bytes(area: Area) -> u8 {
-    match area {
-        Area::InputByte
-        | Area::OutputByte
-        | Area::FlagByte
-        | Area::PeripheralByte
-        | Area::ExtendedByte => 1,
-        Area::FlagDouble => 4,
-        _ => 2,
-    }
-}
-
-/// Splits `"IW 2"`, `"I 0.0"`, `"DB 10 DW 3"`, `"DB10.DW3"` into words.
-fn words(text: &str) -> Vec<String> {
-    let mut spaced = String::new();
-    let mut previous: Option<char> = None;
-    for c in text.chars() {
-        if let Some(p) = previous
-            && p.is_ascii_alphabetic() != c.is_ascii_alphabetic()
-            && c != '.'
-            && p != '.'
-        {
-            spaced.push(' ');
-        }
-        spaced.push(c);
-        previous = Some(c);
-    }
-    spaced
-        .replace(".D", " D")
-        .split_whitespace()
-        .map(str::to_string)
-        .collect()
-}
 
 pub fn parse_target(
     text: &str,
@@ -98,12 +16,14 @@ pub fn parse_target(
     set: MnemonicSet,
     program: &Program,
 ) -> Result<Target, ScenarioError> {
+    let places = Places::of(program);
     let absolute = |text: &str| {
-        if program.s7.step7 {
-            s7_operand::parse(text, at, program)
-        } else {
-            parse_absolute(text, at, set, program.profile, program.layout)
-        }
+        operand::parse(text, set, &places).map_err(|refusal| ScenarioError::UnknownOperand {
+            operand: text.to_string(),
+            at,
+            reason: refusal.reason,
+            help: refusal.help,
+        })
     };
     // `-START`, or a STEP 7 symbol in its quotes: `"Motor"`.
     let Some(name) = crate::symbols::symbol_written(text) else {
@@ -123,101 +43,6 @@ pub fn parse_target(
             }),
         }),
     }
-}
-
-/// An absolute operand: `I 0.0`, `FW 10`, `T 1`, `DB 10 DW 3`.
-fn parse_absolute(
-    text: &str,
-    at: SourceSpan,
-    set: MnemonicSet,
-    profile: &'static Profile,
-    layout: Layout,
-) -> Result<Target, ScenarioError> {
-    let unknown = |reason: &str, help: Option<String>| ScenarioError::UnknownOperand {
-        operand: text.to_string(),
-        at,
-        reason: reason.to_string(),
-        help,
-    };
-    let parts = words(text);
-    let number = |part: Option<&String>| part.and_then(|p| p.parse::<u16>().ok());
-    let Some(first) = parts.first() else {
-        return Err(unknown("empty operand", None));
-    };
-    if first.eq_ignore_ascii_case("DB") {
-        let db = number(parts.get(1)).filter(|db| *db <= 255);
-        let is_dw = parts.get(2).is_some_and(|p| p.eq_ignore_ascii_case("DW"));
-        let word = number(parts.get(3));
-        return match (db, is_dw, word, parts.len()) {
-            (Some(db), true, Some(word), 4) if word < profile.sizes.data_words => {
-                Ok(Target::DataWord { db: db as u8, word })
-            }
-            _ => Err(unknown("write a data word as `DB 10 DW 3`", None)),
-        };
-    }
-    let area = mnemonics::area(set, first).or_else(|| mnemonics::area(MnemonicSet::English, first));
-    let Some(area) = area else {
-        return Err(unknown(
-            "not an operand area",
-            Some("use I, Q, F bits (`I 0.0`), IB IW QB QW FY FW FD, PY PW, T n, C n, or `DB 10 DW 3`".into()),
-        ));
-    };
-    let (index, bit) = match (area.is_bit(), parts.as_slice()) {
-        (true, [_, address]) => match address.split_once('.') {
-            Some((byte, bit)) => match (byte.parse::<u16>(), bit.parse::<u8>()) {
-                (Ok(byte), Ok(bit)) => (byte, bit),
-                _ => return Err(unknown("a bit address is byte.bit, e.g. `I 0.0`", None)),
-            },
-            None => return Err(unknown("a bit address is byte.bit, e.g. `I 0.0`", None)),
-        },
-        (false, [_, index]) => match index.parse::<u16>() {
-            Ok(index) => (index, 0),
-            Err(_) => return Err(unknown("a number must follow the area", None)),
-        },
-        _ => {
-            return Err(unknown(
-                "an area and an address, e.g. `Q 4.0` or `FW 10`",
-                None,
-            ));
-        }
-    };
-    let address = Address { area, index, bit };
-    if !address_in_range(address, profile) {
-        return Err(unknown(
-            &format!("out of range for the {} CPU", profile.name),
-            None,
-        ));
-    }
-    let image = |area, index| {
-        layout
-            .image_byte(area, index)
-            .expect("image areas have a place")
-    };
-    Ok(match area {
-        Area::Input | Area::Output | Area::Flag => Target::ImageBit {
-            byte: image(area, index),
-            bit,
-        },
-        Area::Timer => Target::TimerBit(index),
-        Area::Counter => Target::CounterValue(index),
-        Area::DataBit | Area::DataLeft | Area::DataRight | Area::DataWord | Area::DataDouble => {
-            return Err(unknown("data operands need their DB: `DB 10 DW 3`", None));
-        }
-        Area::PeripheralByte | Area::PeripheralWord => Target::Periphery {
-            byte: index,
-            bytes: area_bytes(area),
-            extended: false,
-        },
-        Area::ExtendedByte | Area::ExtendedWord => Target::Periphery {
-            byte: index,
-            bytes: area_bytes(area),
-            extended: true,
-        },
-        _ => Target::Image {
-            byte: image(area, index),
-            bytes: area_bytes(area),
-        },
-    })
 }
 
 /// What a scenario wants an operand to hold, or writes into it.
@@ -290,13 +115,6 @@ pub fn raw_value(target: Target, value: i64) -> Result<u32, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn splits_operand_text() {
-        assert_eq!(words("IW 2"), ["IW", "2"]);
-        assert_eq!(words("I0.0"), ["I", "0.0"]);
-        assert_eq!(words("DB10.DW3"), ["DB", "10", "DW", "3"]);
-    }
 
     #[test]
     fn reals_match_within_a_relative_millionth() {

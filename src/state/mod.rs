@@ -2,12 +2,9 @@
 //! the process images and flags, the timers and counters in use, the data words that are not
 //! zero, and at a STOP the processing levels (the ISTACK). One plain structure, printed as text
 //! (`--state`) or as JSON (`--state-format json`); `programs/README.md` documents the schema.
-//! A STEP 7 program's state is shown the STEP 7 way ([`s7`]).
+//! A STEP 7 program's state is shown the STEP 7 way, with its registers ([`registers`]).
 
-pub mod operand;
-pub mod s7;
-pub mod s7_declared;
-mod s7_text;
+pub mod registers;
 pub mod text;
 pub mod watch;
 pub mod widths;
@@ -16,13 +13,15 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::compiler::Layout;
+use crate::address::Layout;
+use crate::step7::declared::{self, ValueView};
 use crate::vm::counters::Counter;
 use crate::vm::status::Status;
 use crate::vm::stop::Stop;
 use crate::vm::timers::Timer;
 use crate::vm::{Cpu, IDLE, LevelState, Mode};
 
+pub use registers::Registers;
 pub use text::{istack_text, render};
 
 /// The status word, bit by bit.
@@ -134,7 +133,7 @@ pub struct State {
     pub open_db: Option<u16>,
     /// A STEP 7 program's status word, address registers, DB and DI registers.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub registers: Option<s7::Registers>,
+    pub registers: Option<Registers>,
     /// `"I"`, `"Q"`, `"F"` (STEP 7: `"M"`) → byte number → value, the non-zero bytes only.
     pub images: BTreeMap<&'static str, BTreeMap<String, u8>>,
     pub timers: Vec<TimerState>,
@@ -145,7 +144,7 @@ pub struct State {
     /// A STEP 7 program's data blocks with declarations: `"DB 5"` → each declared value in
     /// address order, as STEP 7's data view shows it (the bytes stay in `data_blocks`).
     #[serde(skip_serializing_if = "BTreeMap::is_empty")]
-    pub declared_data_blocks: BTreeMap<String, Vec<s7_declared::ValueView>>,
+    pub declared_data_blocks: BTreeMap<String, Vec<ValueView>>,
     /// At a STOP: the running level first, then the interrupted ones.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub levels: Option<Vec<LevelView>>,
@@ -230,19 +229,53 @@ fn counters(cpu: &Cpu) -> Vec<CounterState> {
         .collect()
 }
 
+/// The data blocks' units that are not 0 (a STEP 5 block's words, a STEP 7 block's bytes):
+/// `"DB 5"` → offset → value.
 fn data_blocks(cpu: &Cpu) -> BTreeMap<String, BTreeMap<String, u16>> {
-    cpu.data_blocks
-        .iter()
-        .enumerate()
-        .filter_map(|(number, words)| Some((number, words.as_ref()?)))
-        .map(|(number, words)| {
-            let non_zero = words
+    let tables = &cpu.program.s7;
+    if tables.step7 {
+        non_zero(
+            cpu.s7_data.iter().enumerate().filter_map(|(slot, bytes)| {
+                Some((tables.db_number(slot as u16), bytes.as_deref()?))
+            }),
+        )
+    } else {
+        non_zero(
+            cpu.data_blocks
                 .iter()
                 .enumerate()
-                .filter(|(_, word)| **word != 0)
-                .map(|(n, word)| (n.to_string(), *word))
+                .filter_map(|(number, words)| Some((number as u16, words.as_deref()?))),
+        )
+    }
+}
+
+fn non_zero<'a, T: Copy + Into<u16> + 'a>(
+    blocks: impl Iterator<Item = (u16, &'a [T])>,
+) -> BTreeMap<String, BTreeMap<String, u16>> {
+    blocks
+        .map(|(number, units)| {
+            let non_zero = units
+                .iter()
+                .map(|unit| (*unit).into())
+                .enumerate()
+                .filter(|(_, unit)| *unit != 0)
+                .map(|(n, unit)| (n.to_string(), unit))
                 .collect();
             (format!("DB {number}"), non_zero)
+        })
+        .collect()
+}
+
+/// The STEP 7 data blocks with declarations: `"DB 5"` → its values by name, in their types.
+fn declared_data_blocks(cpu: &Cpu) -> BTreeMap<String, Vec<ValueView>> {
+    let tables = &cpu.program.s7;
+    tables
+        .declared_dbs
+        .iter()
+        .filter_map(|(number, values)| {
+            let slot = tables.db_slot(*number)?;
+            let bytes = cpu.s7_data.get(usize::from(slot))?.as_ref()?;
+            Some((format!("DB {number}"), declared::view(values, bytes)))
         })
         .collect()
 }
@@ -348,16 +381,12 @@ impl State {
             accu: accumulators(cpu, &cpu.level),
             status: StatusBits::of(&cpu.level, step7),
             open_db: open_db(cpu, &cpu.level),
-            registers: step7.then(|| s7::Registers::of(cpu)),
+            registers: step7.then(|| Registers::of(cpu)),
             images: images(cpu),
             timers: timers(cpu),
             counters: counters(cpu),
-            data_blocks: if step7 {
-                s7::data_blocks(cpu)
-            } else {
-                data_blocks(cpu)
-            },
-            declared_data_blocks: s7::declared_data_blocks(cpu),
+            data_blocks: data_blocks(cpu),
+            declared_data_blocks: declared_data_blocks(cpu),
             levels: stop
                 .filter(|_| cpu.mode == Mode::Stop)
                 .map(|stop| levels(cpu, stop)),

@@ -9,7 +9,7 @@ use crate::scenario::operand::Target;
 use crate::trace::Event;
 use crate::vm::Cpu;
 
-use super::s7;
+use crate::address::notation as s7;
 
 /// One row: when, and every watched value in its natural notation.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -7,8 +7,9 @@
 
 use std::collections::BTreeMap;
 
+use crate::address::{ImageArea, Layout};
 use crate::compiler::bytecode::DataPart;
-use crate::compiler::{Layout, Op, Program};
+use crate::compiler::{Op, Program};
 use crate::step7::ast::AccessWidth;
 use crate::step7::bytecode::{MemOp, Place, S7Code, Target as S7Target};
 
@@ -143,17 +144,13 @@ impl Widths {
 
 /// The area and byte number of an image offset; `flags` names the flag area.
 fn area_byte(layout: Layout, offset: u16, flags: &'static str) -> Option<(&'static str, u16)> {
-    let image = layout.image_bytes;
-    if offset < image {
-        Some(("I", offset))
-    } else if offset < 2 * image {
-        Some(("Q", offset - image))
-    } else {
-        offset
-            .checked_sub(layout.flag_base())
-            .filter(|byte| *byte < layout.flag_bytes)
-            .map(|byte| (flags, byte))
-    }
+    let (area, byte) = layout.image_area_of(offset)?;
+    let name = match area {
+        ImageArea::Input => "I",
+        ImageArea::Output => "Q",
+        ImageArea::Flag => flags,
+    };
+    Some((name, byte))
 }
 
 /// Covers each address of `used` (ascending) once: with the earliest range that starts at most

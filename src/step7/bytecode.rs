@@ -487,7 +487,7 @@ pub struct S7Tables {
     /// How many slots after slot 0 hold defined data blocks.
     pub defined_dbs: usize,
     /// The data blocks with declarations, by number: their values as the state shows them.
-    pub declared_dbs: Vec<(u16, Vec<crate::state::s7_declared::DeclaredValue>)>,
+    pub declared_dbs: Vec<(u16, Vec<crate::step7::declared::DeclaredValue>)>,
     /// The awlsim test instructions may run (`awl conformance`, `--extended`).
     pub extensions: bool,
     /// The program is a STEP 7 program (it has an L stack and byte-addressed DBs).

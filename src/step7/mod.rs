@@ -5,6 +5,7 @@
 pub mod ast;
 pub mod bytecode;
 pub mod compile;
+pub mod declared;
 pub mod error;
 pub mod lexer;
 pub mod library;

@@ -252,19 +252,14 @@ fn entry(
     };
     match &value {
         Operand::Address(address) => {
-            crate::compiler::check_address(*address, context.set, profile, operand_span).map_err(
-                |error| match error {
-                    crate::compiler::CheckError::OperandRange { range, cpu, .. } => {
-                        SymbolError::OutOfRange {
-                            operand: line.operand.text.to_string(),
-                            at: operand_span,
-                            range,
-                            cpu,
-                        }
-                    }
-                    _ => bad("out of range"),
-                },
-            )?;
+            crate::address::range::check(*address, context.set, profile).map_err(|out| {
+                SymbolError::OutOfRange {
+                    operand: line.operand.text.to_string(),
+                    at: operand_span,
+                    range: out.range,
+                    cpu: profile.name,
+                }
+            })?;
         }
         Operand::Block(_) => {}
         _ => return Err(bad("a symbol stands for an address or a block")),

@@ -73,22 +73,21 @@ impl Uses {
         }
     }
 
-    /// A compiler error about an operand written as a symbol, said of the symbol.
+    /// A compiler's "not an operand of `op`" at `at`, when a symbol was written there, said of
+    /// the symbol.
     pub fn explain(
         &self,
-        error: &crate::compiler::CheckError,
+        op: &str,
+        at: Span,
         symbols: &Symbols,
         sources: &SourceSet,
         set: mnemonics::MnemonicSet,
     ) -> Option<SymbolError> {
-        let crate::compiler::CheckError::OperandNotAllowed { op, at, .. } = error else {
-            return None;
-        };
-        let (_, name) = self.resolved.iter().find(|(span, _)| span == at)?;
+        let (_, name) = self.resolved.iter().find(|(span, _)| *span == at)?;
         let entry = symbols.get(name)?;
-        let mut explained = wrong_kind(entry, None, *at, sources, set);
+        let mut explained = wrong_kind(entry, None, at, sources, set);
         if let SymbolError::WrongKind { op: slot, help, .. } = &mut explained {
-            *slot = op.clone();
+            *slot = op.to_string();
             *help = Some(format!(
                 "`{}` is defined in {} line {}; `{op}` takes another kind of operand",
                 entry.written(),

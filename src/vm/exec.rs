@@ -121,7 +121,7 @@ impl Cpu {
                         bit: 0,
                     }
                 };
-                let fits = crate::compiler::address_in_range(replaced, self.profile);
+                let fits = crate::address::range::address_in_range(replaced, self.profile);
                 fits.then_some(Resolved::Address(replaced))?
             }
             Resolved::Number(_) => Resolved::Number(value & 0xFF),

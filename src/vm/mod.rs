@@ -237,7 +237,7 @@ pub struct Cpu {
     /// For line numbers in traces and STOP reports.
     pub sources: Arc<SourceSet>,
     pub profile: &'static Profile,
-    /// PII, then PIQ, then the flags (see [`crate::compiler::Layout`]).
+    /// PII, then PIQ, then the flags (see [`crate::address::Layout`]).
     pub image: Box<ImageMemory>,
     /// The process inputs at the input modules.
     pub inputs: Vec<u8>,

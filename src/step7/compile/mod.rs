@@ -22,11 +22,11 @@ use crate::compiler::{CheckError, Compiled, Program, Resolved};
 use crate::mnemonics::BlockKind;
 use crate::profile::Profile;
 use crate::source::{SourceSet, Span};
-use crate::state::s7_declared as declared;
 use crate::step7::ast::{
     S7Block, S7BlockKind, S7BlockRef, S7Body, S7Op, S7Operand, S7Unit, VarDecl, VarKind,
 };
 use crate::step7::bytecode::S7Tables;
+use crate::step7::declared;
 use crate::symbols::Symbols;
 
 use layout::{Interface, Types};

@@ -51,7 +51,7 @@ fn indirect_area(area: S7Area) -> IndirectArea {
 impl super::Compiler<'_> {
     /// The image memory offset of an `I`/`Q`/`M` address (any width), when in range.
     pub fn image_byte(&self, address: &S7Address) -> Option<u16> {
-        let layout = crate::compiler::Layout::new(&self.profile.sizes);
+        let layout = crate::address::Layout::new(&self.profile.sizes);
         let (base, size) = match address.area {
             S7Area::Input => (layout.input_base(), layout.image_bytes),
             S7Area::Output => (layout.output_base(), layout.image_bytes),
@@ -63,7 +63,7 @@ impl super::Compiler<'_> {
     }
 
     fn range_error(&self, address: &S7Address, at: Span) -> CheckError {
-        let layout = crate::compiler::Layout::new(&self.profile.sizes);
+        let layout = crate::address::Layout::new(&self.profile.sizes);
         let (name, size) = match address.area {
             S7Area::Input => ("I", layout.image_bytes),
             S7Area::Output => ("Q", layout.image_bytes),

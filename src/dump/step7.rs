@@ -6,6 +6,7 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
+use crate::address::ImageArea;
 use crate::compiler::{CompiledBlock, Op, Program};
 use crate::frontend::Frontend;
 use crate::mnemonics::MnemonicSet;
@@ -370,13 +371,11 @@ pub(crate) fn place_text(program: &Program, place: Place, set: MnemonicSet) -> O
     };
     Some(match place.target {
         Target::Image { byte, bit } => {
-            let layout = program.layout;
-            let (area, number) = if byte >= layout.flag_base() {
-                (S7Area::Flag, byte - layout.flag_base())
-            } else if byte >= layout.output_base() {
-                (S7Area::Output, byte - layout.output_base())
-            } else {
-                (S7Area::Input, byte)
+            let (area, number) = program.layout.image_area_of(byte)?;
+            let area = match area {
+                ImageArea::Input => S7Area::Input,
+                ImageArea::Output => S7Area::Output,
+                ImageArea::Flag => S7Area::Flag,
             };
             address(area, u32::from(number), bit, None)
         }

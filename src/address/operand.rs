@@ -1,68 +1,256 @@
-//! STEP 7 operands of a scenario for a STEP 7 program: `I 0.0`, `MW 12`, `PIW 256`, `T 5`,
-//! `C 3`, `DB5.DBW 4` — in either mnemonic set, whose area letters do not collide (`E`/`A`/`Z`
-//! are German only, `I`/`Q`/`C` English only) — checked against the CPU's ranges and the
-//! program's data blocks.
+//! Operands as a scenario or the debugger names them, checked against the CPU's ranges and
+//! the program's data blocks: a STEP 5 program's in its mnemonic set or English (`I 0.0`,
+//! `FW 10`, `T 1`, `DB 10 DW 3`), a STEP 7 program's in STEP 7 spelling of either set, whose
+//! area letters do not collide (`E`/`A`/`Z` are German only, `I`/`Q`/`C` English only):
+//! `I 0.0`, `MW 12`, `PIW 256`, `T 5`, `C 3`, `DB5.DBW 4`.
 
-use miette::SourceSpan;
-
+use crate::ast::Address;
 use crate::compiler::Program;
-use crate::step7::ast::AccessWidth;
+use crate::dialect::Dialect;
+use crate::mnemonics::{self, Area, MnemonicSet};
+use crate::profile::Profile;
+use crate::step7::ast::{AccessWidth, S7Area};
+use crate::step7::mnemonics::AREAS;
 
-use super::error::ScenarioError;
-use super::operand::Target;
+use super::Layout;
+use super::range::address_in_range;
+
+/// What an operand of a scenario reads or writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    /// A bit of the image memory (I, Q, F).
+    ImageBit {
+        byte: u16,
+        bit: u8,
+    },
+    /// Bytes of the image memory (IB…FD).
+    Image {
+        byte: u16,
+        bytes: u8,
+    },
+    /// Process input or output modules (PY/PW) and the extended periphery (OY/OW).
+    Periphery {
+        byte: u16,
+        bytes: u8,
+        extended: bool,
+    },
+    TimerBit(u16),
+    CounterValue(u16),
+    /// `DB 10 DW 3` (or `DB10.DW3`).
+    DataWord {
+        db: u8,
+        word: u16,
+    },
+    /// A STEP 7 data block's bit (`bytes` 0), byte, word or double word: `DB5.DBW 4`.
+    S7Data {
+        db: u16,
+        byte: u32,
+        bit: u8,
+        bytes: u8,
+    },
+}
+
+impl Target {
+    pub fn bytes(self) -> u8 {
+        match self {
+            Target::ImageBit { .. } | Target::TimerBit(_) => 0,
+            Target::Image { bytes, .. }
+            | Target::Periphery { bytes, .. }
+            | Target::S7Data { bytes, .. } => bytes,
+            Target::CounterValue(_) | Target::DataWord { .. } => 2,
+        }
+    }
+}
+
+fn area_bytes(area: Area) -> u8 {
+    match area {
+        Area::InputByte
+        | Area::OutputByte
+        | Area::FlagByte
+        | Area::PeripheralByte
+        | Area::ExtendedByte => 1,
+        Area::FlagDouble => 4,
+        _ => 2,
+    }
+}
+
+/// Splits `"IW 2"`, `"I 0.0"`, `"DB 10 DW 3"`, `"DB10.DW3"` into words.
+fn words(text: &str) -> Vec<String> {
+    let mut spaced = String::new();
+    let mut previous: Option<char> = None;
+    for c in text.chars() {
+        if let Some(p) = previous
+            && p.is_ascii_alphabetic() != c.is_ascii_alphabetic()
+            && c != '.'
+            && p != '.'
+        {
+            spaced.push(' ');
+        }
+        spaced.push(c);
+        previous = Some(c);
+    }
+    spaced
+        .replace(".D", " D")
+        .split_whitespace()
+        .map(str::to_string)
+        .collect()
+}
+
+/// What an operand is checked against and placed by: the program's dialect, the CPU's ranges,
+/// where the image areas lie, and a STEP 7 program's data blocks.
+pub struct Places<'a> {
+    pub dialect: Dialect,
+    pub profile: &'static Profile,
+    pub layout: Layout,
+    pub data_blocks: &'a [(u16, Vec<u8>)],
+}
+
+impl<'a> Places<'a> {
+    pub fn of(program: &'a Program) -> Self {
+        Places {
+            dialect: if program.s7.step7 {
+                Dialect::Step7
+            } else {
+                Dialect::Step5
+            },
+            profile: program.profile,
+            layout: program.layout,
+            data_blocks: &program.s7.data_blocks,
+        }
+    }
+}
+
+/// Why an operand was refused, and the help that goes with it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Refusal {
+    pub reason: String,
+    pub help: Option<String>,
+}
+
+/// An absolute operand in the dialect of `places`; `set` is a STEP 5 program's mnemonic set
+/// (English is read too), a STEP 7 operand is read in either set.
+pub fn parse(text: &str, set: MnemonicSet, places: &Places) -> Result<Target, Refusal> {
+    match places.dialect {
+        Dialect::Step5 => step5_target(text, set, places),
+        Dialect::Step7 => {
+            let compact: String = text
+                .chars()
+                .filter(|c| !c.is_whitespace())
+                .collect::<String>()
+                .to_ascii_uppercase();
+            step7_target(&compact, places)
+        }
+    }
+}
+
+/// An absolute operand: `I 0.0`, `FW 10`, `T 1`, `DB 10 DW 3`.
+fn step5_target(text: &str, set: MnemonicSet, places: &Places) -> Result<Target, Refusal> {
+    let (profile, layout) = (places.profile, places.layout);
+    let unknown = |reason: &str, help: Option<String>| Refusal {
+        reason: reason.to_string(),
+        help,
+    };
+    let parts = words(text);
+    let number = |part: Option<&String>| part.and_then(|p| p.parse::<u16>().ok());
+    let Some(first) = parts.first() else {
+        return Err(unknown("empty operand", None));
+    };
+    if first.eq_ignore_ascii_case("DB") {
+        let db = number(parts.get(1)).filter(|db| *db <= 255);
+        let is_dw = parts.get(2).is_some_and(|p| p.eq_ignore_ascii_case("DW"));
+        let word = number(parts.get(3));
+        return match (db, is_dw, word, parts.len()) {
+            (Some(db), true, Some(word), 4) if word < profile.sizes.data_words => {
+                Ok(Target::DataWord { db: db as u8, word })
+            }
+            _ => Err(unknown("write a data word as `DB 10 DW 3`", None)),
+        };
+    }
+    let area = mnemonics::area(set, first).or_else(|| mnemonics::area(MnemonicSet::English, first));
+    let Some(area) = area else {
+        return Err(unknown(
+            "not an operand area",
+            Some("use I, Q, F bits (`I 0.0`), IB IW QB QW FY FW FD, PY PW, T n, C n, or `DB 10 DW 3`".into()),
+        ));
+    };
+    let (index, bit) = match (area.is_bit(), parts.as_slice()) {
+        (true, [_, address]) => match address.split_once('.') {
+            Some((byte, bit)) => match (byte.parse::<u16>(), bit.parse::<u8>()) {
+                (Ok(byte), Ok(bit)) => (byte, bit),
+                _ => return Err(unknown("a bit address is byte.bit, e.g. `I 0.0`", None)),
+            },
+            None => return Err(unknown("a bit address is byte.bit, e.g. `I 0.0`", None)),
+        },
+        (false, [_, index]) => match index.parse::<u16>() {
+            Ok(index) => (index, 0),
+            Err(_) => return Err(unknown("a number must follow the area", None)),
+        },
+        _ => {
+            return Err(unknown(
+                "an area and an address, e.g. `Q 4.0` or `FW 10`",
+                None,
+            ));
+        }
+    };
+    let address = Address { area, index, bit };
+    if !address_in_range(address, profile) {
+        return Err(unknown(
+            &format!("out of range for the {} CPU", profile.name),
+            None,
+        ));
+    }
+    let image = |area, index| {
+        layout
+            .image_byte(area, index)
+            .expect("image areas have a place")
+    };
+    Ok(match area {
+        Area::Input | Area::Output | Area::Flag => Target::ImageBit {
+            byte: image(area, index),
+            bit,
+        },
+        Area::Timer => Target::TimerBit(index),
+        Area::Counter => Target::CounterValue(index),
+        Area::DataBit | Area::DataLeft | Area::DataRight | Area::DataWord | Area::DataDouble => {
+            return Err(unknown("data operands need their DB: `DB 10 DW 3`", None));
+        }
+        Area::PeripheralByte | Area::PeripheralWord => Target::Periphery {
+            byte: index,
+            bytes: area_bytes(area),
+            extended: false,
+        },
+        Area::ExtendedByte | Area::ExtendedWord => Target::Periphery {
+            byte: index,
+            bytes: area_bytes(area),
+            extended: true,
+        },
+        _ => Target::Image {
+            byte: image(area, index),
+            bytes: area_bytes(area),
+        },
+    })
+}
 
 /// The S7 operand forms, for the help of an operand that is none.
 pub const FORMS: &str = "use I, Q, M bits (`I 0.0`, German `E 0.0`, `A 4.0`), IB IW ID, QB QW QD (German EB EW ED, AB AW AD), MB MW MD, PIB PIW PID, PQB PQW PQD (German PEB PEW PED, PAB PAW PAD), T 5, C 3 (German Z 3), or data block operands `DB5.DBX 0.1`, `DB5.DBB 2`, `DB5.DBW 4`, `DB5.DBD 6`";
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Area {
-    Input,
-    Output,
-    Flag,
-    PeripheralInput,
-    PeripheralOutput,
-    Timer,
-    Counter,
+/// An area word of either set that a scenario may name: the area and the access width. Local
+/// data and the DB registers' data blocks change while the program runs.
+fn s7_area(word: &str) -> Option<(S7Area, AccessWidth)> {
+    use S7Area::*;
+    AREAS
+        .iter()
+        .filter(|words| !matches!(words.area, Local | PreviousLocal | Data | Instance))
+        .find(|words| words.en == word || words.de == word)
+        .map(|words| (words.area, words.width))
 }
 
-/// An area word of either set: the area and the access width.
-fn area(word: &str) -> Option<(Area, AccessWidth)> {
-    use AccessWidth::*;
-    use Area::*;
-    Some(match word {
-        "I" | "E" => (Input, Bit),
-        "IB" | "EB" => (Input, Byte),
-        "IW" | "EW" => (Input, Word),
-        "ID" | "ED" => (Input, Double),
-        "Q" | "A" => (Output, Bit),
-        "QB" | "AB" => (Output, Byte),
-        "QW" | "AW" => (Output, Word),
-        "QD" | "AD" => (Output, Double),
-        "M" => (Flag, Bit),
-        "MB" => (Flag, Byte),
-        "MW" => (Flag, Word),
-        "MD" => (Flag, Double),
-        "PIB" | "PEB" => (PeripheralInput, Byte),
-        "PIW" | "PEW" => (PeripheralInput, Word),
-        "PID" | "PED" => (PeripheralInput, Double),
-        "PQB" | "PAB" => (PeripheralOutput, Byte),
-        "PQW" | "PAW" => (PeripheralOutput, Word),
-        "PQD" | "PAD" => (PeripheralOutput, Double),
-        "T" => (Timer, Word),
-        "C" | "Z" => (Counter, Word),
-        _ => return None,
-    })
-}
-
-/// The data block area words after `DBn.`.
+/// The data block area words after `DBn.`: `DBX`, `DBB`, `DBW`, `DBD`.
 fn data_width(word: &str) -> Option<AccessWidth> {
-    Some(match word {
-        "DBX" => AccessWidth::Bit,
-        "DBB" => AccessWidth::Byte,
-        "DBW" => AccessWidth::Word,
-        "DBD" => AccessWidth::Double,
-        _ => return None,
-    })
+    AREAS
+        .iter()
+        .find(|words| words.area == S7Area::Data && words.en == word)
+        .map(|words| words.width)
 }
 
 fn byte_count(width: AccessWidth) -> u8 {
@@ -72,12 +260,6 @@ fn byte_count(width: AccessWidth) -> u8 {
         AccessWidth::Word => 2,
         AccessWidth::Double => 4,
     }
-}
-
-/// Why an operand was refused, and the help that goes with it.
-struct Refusal {
-    reason: String,
-    help: Option<String>,
 }
 
 fn refuse(reason: impl Into<String>, help: Option<&str>) -> Refusal {
@@ -120,38 +302,23 @@ fn address(text: &str, width: AccessWidth) -> Result<(u32, u8), Refusal> {
     }
 }
 
-/// A STEP 7 operand of a scenario for `program`.
-pub fn parse(text: &str, at: SourceSpan, program: &Program) -> Result<Target, ScenarioError> {
-    let compact: String = text
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect::<String>()
-        .to_ascii_uppercase();
-    target(&compact, program).map_err(|refusal| ScenarioError::UnknownOperand {
-        operand: text.to_string(),
-        at,
-        reason: refusal.reason,
-        help: refusal.help,
-    })
-}
-
-fn target(text: &str, program: &Program) -> Result<Target, Refusal> {
+fn step7_target(text: &str, places: &Places) -> Result<Target, Refusal> {
     if text.is_empty() {
         return Err(refuse("empty operand", None));
     }
     if let Some(rest) = text.strip_prefix("DB")
         && rest.starts_with(|c: char| c.is_ascii_digit())
     {
-        return data_target(rest, program);
+        return data_target(rest, places);
     }
     let (letters, rest) = split_letters(text);
-    let Some((area, width)) = area(letters) else {
+    let Some((area, width)) = s7_area(letters) else {
         return Err(not_an_area(letters));
     };
     let (byte, bit) = address(rest, width)?;
-    let profile = program.profile;
+    let profile = places.profile;
     let sizes = &profile.sizes;
-    let layout = program.layout;
+    let layout = places.layout;
     let bytes = byte_count(width);
     let out_of_range = |range: String| {
         refuse(
@@ -197,13 +364,14 @@ fn target(text: &str, program: &Program) -> Result<Target, Refusal> {
         Ok(byte as u16)
     };
     match area {
-        Area::Input => image(layout.input_base(), layout.image_bytes, "I"),
-        Area::Output => image(layout.output_base(), layout.image_bytes, "Q"),
-        Area::Flag => image(layout.flag_base(), layout.flag_bytes, "M"),
-        Area::PeripheralInput => periphery("PI"),
-        Area::PeripheralOutput => periphery("PQ"),
-        Area::Timer => numbered(sizes.timers, "T").map(Target::TimerBit),
-        Area::Counter => numbered(sizes.counters, "C").map(Target::CounterValue),
+        S7Area::Input => image(layout.input_base(), layout.image_bytes, "I"),
+        S7Area::Output => image(layout.output_base(), layout.image_bytes, "Q"),
+        S7Area::Flag => image(layout.flag_base(), layout.flag_bytes, "M"),
+        S7Area::PeripheralInput => periphery("PI"),
+        S7Area::PeripheralOutput => periphery("PQ"),
+        S7Area::Timer => numbered(sizes.timers, "T").map(Target::TimerBit),
+        S7Area::Counter => numbered(sizes.counters, "C").map(Target::CounterValue),
+        _ => Err(not_an_area(letters)),
     }
 }
 
@@ -231,7 +399,7 @@ fn not_an_area(letters: &str) -> Refusal {
 }
 
 /// `5.DBW4` (after `DB`): a byte, word, double word or bit of a data block of the program.
-fn data_target(text: &str, program: &Program) -> Result<Target, Refusal> {
+fn data_target(text: &str, places: &Places) -> Result<Target, Refusal> {
     let form = || {
         refuse(
             "write a data block operand as `DB5.DBW 4`",
@@ -243,7 +411,7 @@ fn data_target(text: &str, program: &Program) -> Result<Target, Refusal> {
     let (letters, rest) = split_letters(inner);
     let width = data_width(letters).ok_or_else(form)?;
     let (byte, bit) = address(rest, width)?;
-    let blocks = &program.s7.data_blocks;
+    let blocks = places.data_blocks;
     let Some((_, bytes)) = blocks.iter().find(|(number, _)| *number == db) else {
         let known: Vec<String> = blocks.iter().map(|(n, _)| format!("DB {n}")).collect();
         let help = if known.is_empty() {
@@ -305,10 +473,15 @@ END_ORGANIZATION_BLOCK
     }
 
     fn parsed(program: &Program, text: &str) -> Result<Target, (String, Option<String>)> {
-        parse(text, (0, 0).into(), program).map_err(|error| match error {
-            ScenarioError::UnknownOperand { reason, help, .. } => (reason, help),
-            other => panic!("not an unknown operand: {other:?}"),
-        })
+        parse(text, MnemonicSet::English, &Places::of(program))
+            .map_err(|refusal| (refusal.reason, refusal.help))
+    }
+
+    #[test]
+    fn splits_operand_text() {
+        assert_eq!(words("IW 2"), ["IW", "2"]);
+        assert_eq!(words("I0.0"), ["I", "0.0"]);
+        assert_eq!(words("DB10.DW3"), ["DB", "10", "DW", "3"]);
     }
 
     #[test]

@@ -1,38 +1,31 @@
-//! The state of a STEP 7 program in STEP 7 notation: `MB 1 = B#16#16`, `MW 10 = 22`,
-//! `MD 20 = DW#16#3FC00000 = 1.5`, `S5T#2S500MS`, `C#5`, pointers `P#DBX 2.0`, and the registers
-//! a STEP 7 PG shows beside the accumulators: the status word with BR, AR1, AR2, and the DB and
-//! DI registers.
+//! How each dialect writes the values an address holds. STEP 5: `KH 7B = 0111 1011`,
+//! `KF +123 = KH 007B`, `DH 00010002 = +65538`. STEP 7: `B#16#7B`, `2#0111_1011`,
+//! `22 = W#16#0016`, `DW#16#3FC00000 = 1.5`, `S5T#2S500MS`, pointers `P#DBX 2.0`, and the
+//! status word with BR.
 
-use std::collections::BTreeMap;
+use crate::dialect::Dialect;
 
-use serde::Serialize;
-
-use super::s7_declared::{self, ValueView};
-use crate::vm::Cpu;
-
-/// The registers of a STEP 7 program's running level.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct Registers {
-    /// The status word as `L STW` loads it.
-    pub stw: u16,
-    pub ar1: u32,
-    pub ar2: u32,
-    /// The DB register's data block; 0 when none is open.
-    pub db: u16,
-    /// The DI register's (instance) data block; 0 when none is open.
-    pub di: u16,
+/// A byte with its bits: `KH 7B = 0111 1011`, `B#16#7B = 2#0111_1011`.
+pub fn byte_and_bits(dialect: Dialect, value: u8) -> String {
+    match dialect {
+        Dialect::Step5 => format!("KH {value:02X} = {:04b} {:04b}", value >> 4, value & 0xF),
+        Dialect::Step7 => format!("{} = {}", byte(value), bits(value)),
+    }
 }
 
-impl Registers {
-    pub fn of(cpu: &Cpu) -> Registers {
-        let level = &cpu.level;
-        Registers {
-            stw: level.status.to_word(level.br),
-            ar1: level.ar1,
-            ar2: level.ar2,
-            db: cpu.program.s7.db_number(level.db),
-            di: cpu.program.s7.db_number(level.di),
-        }
+/// A word as an integer and in hex: `KF +123 = KH 007B`, `123 = W#16#007B`.
+pub fn integer_word(dialect: Dialect, value: u16) -> String {
+    match dialect {
+        Dialect::Step5 => format!("KF {:+} = KH {value:04X}", value as i16),
+        Dialect::Step7 => word(value),
+    }
+}
+
+/// A double word in hex and as a number: `DH 00010002 = +65538`, `DW#16#3FC00000 = 1.5`.
+pub fn hex_double(dialect: Dialect, value: u32) -> String {
+    match dialect {
+        Dialect::Step5 => format!("DH {value:08X} = {:+}", value as i32),
+        Dialect::Step7 => double(value),
     }
 }
 
@@ -110,38 +103,6 @@ pub fn status_word(stw: u16) -> String {
         .map(|(n, name)| format!("{name} {}", stw >> n & 1))
         .collect();
     format!("W#16#{stw:04X}  {}", bits.join("  "))
-}
-
-/// The STEP 7 data blocks: `"DB 5"` → byte offset → value, the bytes that are not 0.
-pub fn data_blocks(cpu: &Cpu) -> BTreeMap<String, BTreeMap<String, u16>> {
-    cpu.s7_data
-        .iter()
-        .enumerate()
-        .filter_map(|(slot, bytes)| Some((cpu.program.s7.db_number(slot as u16), bytes.as_ref()?)))
-        .map(|(number, bytes)| {
-            let non_zero = bytes
-                .iter()
-                .enumerate()
-                .filter(|(_, byte)| **byte != 0)
-                .map(|(n, byte)| (n.to_string(), u16::from(*byte)))
-                .collect();
-            (format!("DB {number}"), non_zero)
-        })
-        .collect()
-}
-
-/// The STEP 7 data blocks with declarations: `"DB 5"` → its values by name, in their types.
-pub fn declared_data_blocks(cpu: &Cpu) -> BTreeMap<String, Vec<ValueView>> {
-    let tables = &cpu.program.s7;
-    tables
-        .declared_dbs
-        .iter()
-        .filter_map(|(number, values)| {
-            let slot = tables.db_slot(*number)?;
-            let bytes = cpu.s7_data.get(usize::from(slot))?.as_ref()?;
-            Some((format!("DB {number}"), s7_declared::view(values, bytes)))
-        })
-        .collect()
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ use crate::step7::compile::layout::{
     BitOffset, Home, Interface, Types, element_stride, struct_layout,
 };
 
-use super::s7;
+use crate::address::notation;
 
 /// How a declared value's bytes read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -259,13 +259,13 @@ fn text(declared: &DeclaredValue, bytes: &[u8]) -> String {
             "FALSE"
         }
         .into(),
-        Format::Byte => s7::byte(raw[0]),
+        Format::Byte => notation::byte(raw[0]),
         Format::Char => char_text(raw[0]),
         Format::Word => format!("W#16#{:04X}", word()),
         Format::Int => (word() as i16).to_string(),
         Format::S5Time => {
             let word = word();
-            s7::s5time(bcd(word & 0x0FFF), (word >> 12 & 3) as u8)
+            notation::s5time(bcd(word & 0x0FFF), (word >> 12 & 3) as u8)
         }
         Format::Date => date(word()),
         Format::Dword => format!("DW#16#{:08X}", double()),

@@ -1,0 +1,13 @@
+//! The address model of both dialects: where the image areas lie ([`Layout`]), the CPU's
+//! ranges ([`range`]), and the operands a scenario, the debugger or a watch names — STEP 5's
+//! word-addressed data blocks (`DB 10 DW 3`) and STEP 7's byte-addressed ones (`DB5.DBW 4`),
+//! in either mnemonic set ([`operand`]) — and how each dialect writes the values they hold
+//! ([`notation`]).
+
+mod layout;
+pub mod notation;
+pub mod operand;
+pub mod range;
+
+pub use layout::{ImageArea, Layout};
+pub use operand::{Places, Refusal, Target};
