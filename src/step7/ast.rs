@@ -4,6 +4,8 @@
 use crate::ast::Name;
 use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
+/// The status conditions (`==0`, `OV`, `BR` …) are the VM's: one definition with their rule.
+pub use crate::vm::s7::jump::Condition;
 
 /// One parsed STEP 7 source file.
 #[derive(Debug, Clone)]
@@ -250,32 +252,6 @@ pub enum S7Operand {
         ar: u8,
         offset: u32,
     },
-}
-
-/// The status conditions bit logic can read: the results of the last arithmetic or comparison
-/// (CC 1 and CC 0), overflow, stored overflow, unordered, and the binary result.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Condition {
-    /// `==0`: result zero.
-    Zero,
-    /// `<>0`
-    NotZero,
-    /// `>0`
-    Positive,
-    /// `<0`
-    Negative,
-    /// `>=0`
-    PositiveOrZero,
-    /// `<=0`
-    NegativeOrZero,
-    /// `OV`
-    Overflow,
-    /// `OS`
-    StoredOverflow,
-    /// `UO`: unordered (a REAL operation with an invalid number).
-    Unordered,
-    /// `BR` (German `BIE`)
-    BinaryResult,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

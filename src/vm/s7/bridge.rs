@@ -2,7 +2,7 @@
 //! each operation is, with which registers.
 
 use crate::compiler::bytecode::{Arith, Comparison, WordLogic};
-use crate::step7::ast::{self, Cmp, S7Op};
+use crate::step7::ast::{Cmp, S7Op};
 use crate::step7::bytecode::MemOp;
 use crate::vm::LevelState;
 use crate::vm::status::{Combination, Status};
@@ -271,19 +271,7 @@ pub fn close_bracket(level: &mut LevelState) -> bool {
     level.brackets.close_step7(&mut level.status, &mut level.br)
 }
 
-pub fn condition(level: &LevelState, condition: ast::Condition) -> bool {
-    let condition = match condition {
-        ast::Condition::Zero => Condition::Zero,
-        ast::Condition::NotZero => Condition::NotZero,
-        ast::Condition::Positive => Condition::Positive,
-        ast::Condition::Negative => Condition::Negative,
-        ast::Condition::PositiveOrZero => Condition::PositiveOrZero,
-        ast::Condition::NegativeOrZero => Condition::NegativeOrZero,
-        ast::Condition::Unordered => Condition::Unordered,
-        ast::Condition::Overflow => Condition::Overflow,
-        ast::Condition::StoredOverflow => Condition::StoredOverflow,
-        ast::Condition::BinaryResult => Condition::BinaryResult,
-    };
+pub fn condition(level: &LevelState, condition: Condition) -> bool {
     condition.holds(level.status, level.br)
 }
 
