@@ -2,21 +2,14 @@
 //! Spans and execution times live in arrays parallel to the code, so ops stay at 8 bytes.
 
 use crate::mnemonics::{BlockKind, OpCode};
+/// The STEP 5 bit logic is a status rule: it lives with the status word.
+pub use crate::vm::status::Logic;
 
 /// A bit in the VM's flat image memory (PII, then PIQ, then flags).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ImageBit {
     pub byte: u16,
     pub bit: u8,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(u8)]
-pub enum Logic {
-    And,
-    AndNot,
-    Or,
-    OrNot,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
