@@ -8,9 +8,8 @@
 use serde::Serialize;
 
 use crate::step7::ast::{DataType, S7BlockKind, VarDecl, VarKind};
-use crate::step7::compile::complex::is_complex;
 use crate::step7::compile::layout::{
-    BitOffset, Home, Interface, Types, element_stride, struct_layout,
+    BitOffset, Home, Interface, Types, element_stride, is_complex, struct_layout,
 };
 
 use super::s7;

@@ -1191,7 +1191,7 @@ impl super::Compiler<'_> {
                 );
                 continue;
             }
-            if super::complex::is_complex(&formal.ty) {
+            if super::layout::is_complex(&formal.ty) {
                 let block = id.to_string();
                 match self.complex_fc_actual(
                     param,
@@ -1364,7 +1364,7 @@ impl super::Compiler<'_> {
                 fb_call.inputs.extend(copies.unwrap_or_default());
                 continue;
             }
-            if super::complex::is_complex(&variable.ty) {
+            if super::layout::is_complex(&variable.ty) {
                 if let Err(error) = self.complex_fb_param(param, variable, fb, scope, fb_call) {
                     self.errors.push(error);
                 }
