@@ -6,6 +6,8 @@ use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
 /// The status conditions (`==0`, `OV`, `BR` …) are the VM's: one definition with their rule.
 pub use crate::vm::s7::jump::Condition;
+/// So are the REAL functions of ACCU 1.
+pub use crate::vm::s7::real::Function;
 
 /// One parsed STEP 7 source file.
 #[derive(Debug, Clone)]
@@ -447,16 +449,8 @@ pub enum S7Op {
     /// `+ 5`, `+ L#5`
     AddConstant,
     Abs,
-    Sqr,
-    Sqrt,
-    Exp,
-    Ln,
-    Sin,
-    Cos,
-    Tan,
-    Asin,
-    Acos,
-    Atan,
+    /// `SQR SQRT EXP LN SIN COS TAN ASIN ACOS ATAN`
+    Real(Function),
     NegInt,
     NegDint,
     NegReal,

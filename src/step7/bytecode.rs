@@ -9,6 +9,7 @@
 //! [`Op::S7`]: crate::compiler::Op::S7
 
 use super::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
+use crate::vm::status::Combination;
 
 /// A STEP 7 operation with its operand decoded: small and `Copy`, so [`crate::compiler::Op`]
 /// stays at 8 bytes.
@@ -51,13 +52,13 @@ pub enum S7Code {
         entries: u16,
         target: u16,
     },
-    /// `A(` … `XN(` that STEP 5 does not have.
-    Bracket(S7Op),
+    /// `A(` … `XN(` that STEP 5 does not have: how the bracket's result will combine.
+    Bracket(Combination),
     /// `)` closing any bracket (S7 brackets keep BR).
     CloseBracket,
     /// `A ==0`, `O OV`, `AN BR`: a status condition as a bit operand.
     Condition {
-        logic: MemOp,
+        combination: Combination,
         condition: Condition,
     },
     /// `OPN DB n` / `OPN DI n`: the DB's slot (see [`S7Tables::db_numbers`]).
@@ -156,12 +157,8 @@ pub enum McrCode {
 /// What an [`S7Code::Mem`] does with its place.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MemOp {
-    And,
-    AndNot,
-    Or,
-    OrNot,
-    Xor,
-    XorNot,
+    /// `A AN O ON X XN`: how the bit combines with the RLO.
+    Scan(Combination),
     Assign,
     Set,
     Reset,

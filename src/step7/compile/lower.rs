@@ -74,14 +74,37 @@ fn timer_kind(op: S7Op) -> Option<TimerKind> {
     })
 }
 
-fn mem_op(op: S7Op) -> Option<MemOp> {
+/// `A AN O ON X XN`: how the scanned bit combines with the RLO.
+fn scan(op: S7Op) -> Option<Combination> {
     Some(match op {
-        S7Op::And => MemOp::And,
-        S7Op::AndNot => MemOp::AndNot,
-        S7Op::Or => MemOp::Or,
-        S7Op::OrNot => MemOp::OrNot,
-        S7Op::Xor => MemOp::Xor,
-        S7Op::XorNot => MemOp::XorNot,
+        S7Op::And => Combination::And,
+        S7Op::AndNot => Combination::AndNot,
+        S7Op::Or => Combination::Or,
+        S7Op::OrNot => Combination::OrNot,
+        S7Op::Xor => Combination::Xor,
+        S7Op::XorNot => Combination::XorNot,
+        _ => return None,
+    })
+}
+
+/// `A( AN( O( ON( X( XN(`: how the bracket's result combines with the RLO.
+fn bracket(op: S7Op) -> Option<Combination> {
+    Some(match op {
+        S7Op::AndBracket => Combination::And,
+        S7Op::AndNotBracket => Combination::AndNot,
+        S7Op::OrBracket => Combination::Or,
+        S7Op::OrNotBracket => Combination::OrNot,
+        S7Op::XorBracket => Combination::Xor,
+        S7Op::XorNotBracket => Combination::XorNot,
+        _ => return None,
+    })
+}
+
+fn mem_op(op: S7Op) -> Option<MemOp> {
+    if let Some(combination) = scan(op) {
+        return Some(MemOp::Scan(combination));
+    }
+    Some(match op {
         S7Op::Assign => MemOp::Assign,
         S7Op::Set => MemOp::Set,
         S7Op::Reset => MemOp::Reset,
@@ -131,16 +154,7 @@ fn accumulator_only(op: S7Op) -> bool {
             | MulReal
             | DivReal
             | Abs
-            | Sqr
-            | Sqrt
-            | Exp
-            | Ln
-            | Sin
-            | Cos
-            | Tan
-            | Asin
-            | Acos
-            | Atan
+            | Real(_)
             | NegInt
             | NegDint
             | NegReal
@@ -349,11 +363,11 @@ impl super::Compiler<'_> {
             | S7Op::Set
             | S7Op::Reset => {
                 if let S7Operand::Condition(condition) = operand {
-                    let logic = mem_op(op).unwrap_or(MemOp::And);
+                    let combination = scan(op).unwrap_or(Combination::And);
                     self.emit(
                         out,
                         Op::S7(S7Code::Condition {
-                            logic,
+                            combination,
                             condition: *condition,
                         }),
                         span,
@@ -390,11 +404,11 @@ impl super::Compiler<'_> {
                     return Ok(());
                 }
                 if let S7Operand::Condition(condition) = operand {
-                    let logic = mem_op(op).unwrap_or(MemOp::Xor);
+                    let combination = scan(op).unwrap_or(Combination::Xor);
                     self.emit(
                         out,
                         Op::S7(S7Code::Condition {
-                            logic,
+                            combination,
                             condition: *condition,
                         }),
                         span,
@@ -412,7 +426,8 @@ impl super::Compiler<'_> {
             | S7Op::OrNotBracket
             | S7Op::XorBracket
             | S7Op::XorNotBracket => {
-                self.emit(out, Op::S7(S7Code::Bracket(op)), span);
+                let combination = bracket(op).unwrap_or_default();
+                self.emit(out, Op::S7(S7Code::Bracket(combination)), span);
                 Ok(())
             }
             S7Op::CloseBracket => {
@@ -785,13 +800,10 @@ impl super::Compiler<'_> {
             byte: self.image_byte(address)?,
             bit: address.bit,
         };
+        if let Some(combination) = scan(op) {
+            return Some(Op::S7Scan(combination, bit));
+        }
         Some(match op {
-            S7Op::And => Op::S7Scan(Combination::And, bit),
-            S7Op::AndNot => Op::S7Scan(Combination::AndNot, bit),
-            S7Op::Or => Op::S7Scan(Combination::Or, bit),
-            S7Op::OrNot => Op::S7Scan(Combination::OrNot, bit),
-            S7Op::Xor => Op::S7Scan(Combination::Xor, bit),
-            S7Op::XorNot => Op::S7Scan(Combination::XorNot, bit),
             S7Op::Assign => Op::S7Write(Write::Assign, bit),
             S7Op::Set => Op::S7Write(Write::Set, bit),
             S7Op::Reset => Op::S7Write(Write::Reset, bit),

@@ -3,7 +3,6 @@
 
 use crate::compiler::bytecode::{Arith, Comparison, WordLogic};
 use crate::step7::ast::{Cmp, S7Op};
-use crate::step7::bytecode::MemOp;
 use crate::vm::LevelState;
 use crate::vm::status::{Combination, Status};
 use crate::vm::stop::{StopCause, StopDetail};
@@ -12,7 +11,7 @@ use super::accu::{self, Accus};
 use super::convert::{self, Rounding};
 use super::jump::{self, Condition, Jump};
 use super::memory::Fault;
-use super::real::{self, Function};
+use super::real;
 use super::shift::{self, Shift};
 use super::{bit_logic, compare, integer, word_logic};
 
@@ -103,30 +102,7 @@ pub fn accumulator(level: &mut LevelState, op: S7Op, count: u8) -> Result<(), Fa
         }
         S7Op::Abs => real::abs(accu1),
         S7Op::NegReal => real::negate(accu1),
-        S7Op::Sqr
-        | S7Op::Sqrt
-        | S7Op::Exp
-        | S7Op::Ln
-        | S7Op::Sin
-        | S7Op::Cos
-        | S7Op::Tan
-        | S7Op::Asin
-        | S7Op::Acos
-        | S7Op::Atan => {
-            let function = match op {
-                S7Op::Sqr => Function::Sqr,
-                S7Op::Sqrt => Function::Sqrt,
-                S7Op::Exp => Function::Exp,
-                S7Op::Ln => Function::Ln,
-                S7Op::Sin => Function::Sin,
-                S7Op::Cos => Function::Cos,
-                S7Op::Tan => Function::Tan,
-                S7Op::Asin => Function::Asin,
-                S7Op::Acos => Function::Acos,
-                _ => Function::Atan,
-            };
-            real::function(function, accu1, status);
-        }
+        S7Op::Real(function) => real::function(function, accu1, status),
         S7Op::NegInt => integer::negate_int(accu1, status),
         S7Op::NegDint => integer::negate_dint(accu1, status),
         S7Op::InvInt => integer::invert_int(accu1),
@@ -250,21 +226,10 @@ pub fn loop_taken(accu1: &mut u32) -> bool {
     jump::loop_taken(accu1)
 }
 
-fn combination(op: S7Op) -> Combination {
-    match op {
-        S7Op::AndNotBracket => Combination::AndNot,
-        S7Op::OrBracket => Combination::Or,
-        S7Op::OrNotBracket => Combination::OrNot,
-        S7Op::XorBracket => Combination::Xor,
-        S7Op::XorNotBracket => Combination::XorNot,
-        _ => Combination::And,
-    }
-}
-
-pub fn open_bracket(level: &mut LevelState, op: S7Op, depth: u8) -> bool {
+pub fn open_bracket(level: &mut LevelState, combination: Combination, depth: u8) -> bool {
     level
         .brackets
-        .open_step7(&mut level.status, level.br, combination(op), depth)
+        .open_step7(&mut level.status, level.br, combination, depth)
 }
 
 pub fn close_bracket(level: &mut LevelState) -> bool {
@@ -276,15 +241,7 @@ pub fn condition(level: &LevelState, condition: Condition) -> bool {
 }
 
 /// `A AN O ON X XN` with a bit whose signal state is `value`.
-pub fn combine(status: &mut Status, op: MemOp, value: bool) {
-    let combination = match op {
-        MemOp::AndNot => Combination::AndNot,
-        MemOp::Or => Combination::Or,
-        MemOp::OrNot => Combination::OrNot,
-        MemOp::Xor => Combination::Xor,
-        MemOp::XorNot => Combination::XorNot,
-        _ => Combination::And,
-    };
+pub fn combine(status: &mut Status, combination: Combination, value: bool) {
     status.scanned_step7(combination, value);
 }
 

@@ -120,7 +120,7 @@ fn multiply_infinity(accu1: &mut u32, accu2: u32, status: &mut Status) {
 }
 
 /// The REAL functions of ACCU 1.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[repr(u8)]
 pub enum Function {
     Sqr,
