@@ -478,11 +478,43 @@ pub struct S7Tables {
     /// How many slots after slot 0 hold defined data blocks.
     pub defined_dbs: usize,
     /// The data blocks with declarations, by number: their values as the state shows them.
-    pub declared_dbs: Vec<(u16, Vec<crate::state::s7_declared::DeclaredValue>)>,
+    pub declared_dbs: Vec<(u16, Vec<DeclaredValue>)>,
     /// The awlsim test instructions may run (`awl conformance`, `--extended`).
     pub extensions: bool,
     /// The program is a STEP 7 program (it has an L stack and byte-addressed DBs).
     pub step7: bool,
+}
+
+/// How a declared value's bytes read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Bool,
+    Byte,
+    Char,
+    Word,
+    Int,
+    S5Time,
+    Date,
+    Dword,
+    Dint,
+    Real,
+    Time,
+    TimeOfDay,
+    /// `STRING[n]`: maximum and actual length, then the characters.
+    String(u8),
+    /// What the data view shows as raw bytes: DATE_AND_TIME, POINTER, ANY, an in/out's
+    /// pointer.
+    Bytes(u8),
+}
+
+/// One elementary value of a data block's declaration and where it lies.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DeclaredValue {
+    /// `setpoint`, `motor.speed`, `table[2]`.
+    pub name: String,
+    pub byte: u32,
+    pub bit: u8,
+    pub format: Format,
 }
 
 impl S7Tables {
