@@ -4,6 +4,8 @@
 use crate::mnemonics::{BlockKind, OpCode};
 /// The STEP 5 bit logic is a status rule: it lives with the status word.
 pub use crate::vm::status::Logic;
+/// So are the kinds of arithmetic, comparison and word logic: they live with their rules.
+pub use crate::vm::arith::{Arith, Comparison, WordLogic};
 
 /// A bit in the VM's flat image memory (PII, then PIQ, then flags).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -69,24 +71,6 @@ pub enum TimerKind {
     OffDelay,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Arith {
-    Add,
-    Sub,
-    Mul,
-    Div,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Comparison {
-    Eq,
-    Ne,
-    Gt,
-    Ge,
-    Lt,
-    Le,
-}
-
 /// The conversions of ACCU 1 (CPU 928B programming guide, table 3-21).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Conversion {
@@ -126,13 +110,6 @@ pub enum JumpCondition {
     Positive,
     Minus,
     Overflow,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum WordLogic {
-    And,
-    Or,
-    Xor,
 }
 
 /// Where `DO` takes the parameter of the next operation from.

@@ -6,7 +6,8 @@ use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
 /// The status conditions (`==0`, `OV`, `BR` …) are the VM's: one definition with their rule.
 pub use crate::vm::s7::jump::Condition;
-/// So are the REAL functions of ACCU 1.
+/// So are the REAL functions of ACCU 1 and the six comparisons.
+pub use crate::vm::arith::Comparison as Cmp;
 pub use crate::vm::s7::real::Function;
 
 /// One parsed STEP 7 source file.
@@ -550,15 +551,4 @@ pub enum S7Op {
     ResetStatusWord,
     Sleep,
     Feature,
-}
-
-/// The six comparisons.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Cmp {
-    Eq,
-    Ne,
-    Gt,
-    Lt,
-    Ge,
-    Le,
 }

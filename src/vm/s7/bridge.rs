@@ -1,8 +1,8 @@
 //! From the compiled S7 operations to the semantics in this module's siblings: which function
 //! each operation is, with which registers.
 
-use crate::compiler::bytecode::{Arith, Comparison, WordLogic};
-use crate::step7::ast::{Cmp, S7Op};
+use crate::vm::arith::{Arith, WordLogic};
+use crate::step7::ast::S7Op;
 use crate::vm::LevelState;
 use crate::vm::status::{Combination, Status};
 use crate::vm::stop::{StopCause, StopDetail};
@@ -14,17 +14,6 @@ use super::memory::Fault;
 use super::real;
 use super::shift::{self, Shift};
 use super::{bit_logic, compare, integer, word_logic};
-
-fn comparison(cmp: Cmp) -> Comparison {
-    match cmp {
-        Cmp::Eq => Comparison::Eq,
-        Cmp::Ne => Comparison::Ne,
-        Cmp::Gt => Comparison::Gt,
-        Cmp::Lt => Comparison::Lt,
-        Cmp::Ge => Comparison::Ge,
-        Cmp::Le => Comparison::Le,
-    }
-}
 
 fn accus(count: u8) -> Accus {
     if count >= 4 { Accus::Four } else { Accus::Two }
@@ -107,9 +96,9 @@ pub fn accumulator(level: &mut LevelState, op: S7Op, count: u8) -> Result<(), Fa
         S7Op::NegDint => integer::negate_dint(accu1, status),
         S7Op::InvInt => integer::invert_int(accu1),
         S7Op::InvDint => integer::invert_dint(accu1),
-        S7Op::CmpInt(cmp) => compare::int(comparison(cmp), *accu1, *accu2, status),
-        S7Op::CmpDint(cmp) => compare::dint(comparison(cmp), *accu1, *accu2, status),
-        S7Op::CmpReal(cmp) => compare::real(comparison(cmp), *accu1, *accu2, status),
+        S7Op::CmpInt(cmp) => compare::int(cmp, *accu1, *accu2, status),
+        S7Op::CmpDint(cmp) => compare::dint(cmp, *accu1, *accu2, status),
+        S7Op::CmpReal(cmp) => compare::real(cmp, *accu1, *accu2, status),
         S7Op::IntToDint => convert::int_to_dint(accu1),
         S7Op::IntToBcd => convert::int_to_bcd(accu1, status),
         S7Op::BcdToInt => convert::bcd_to_int(accu1).map_err(|_| bcd_fault())?,

@@ -689,15 +689,7 @@ impl Cpu {
     fn assert(&mut self, cmp: Cmp, left: u16) -> Result<(), Fault> {
         let a = self.assert_operand(left)?;
         let b = self.assert_operand(left + 1)?;
-        let holds = match cmp {
-            Cmp::Eq => a == b,
-            Cmp::Ne => a != b,
-            Cmp::Gt => a > b,
-            Cmp::Lt => a < b,
-            Cmp::Ge => a >= b,
-            Cmp::Le => a <= b,
-        };
-        if holds {
+        if cmp.holds(&a, &b) {
             bridge::after_assert(&mut self.level.status);
             return Ok(());
         }
