@@ -2,7 +2,7 @@
 
 use crate::vm::Cpu;
 use crate::vm::cycle::RunOutcome;
-use crate::vm::exec::read_bytes;
+use crate::vm::bytes::read_bytes;
 
 use super::operand::{Target, Wanted};
 
