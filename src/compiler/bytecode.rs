@@ -2,10 +2,10 @@
 //! Spans and execution times live in arrays parallel to the code, so ops stay at 8 bytes.
 
 use crate::mnemonics::{BlockKind, OpCode};
+/// The kinds of arithmetic, comparison and word logic live with their rules in the VM.
+pub use crate::vm::arith::{Arith, Comparison, WordLogic};
 /// The STEP 5 bit logic is a status rule: it lives with the status word.
 pub use crate::vm::status::Logic;
-/// So are the kinds of arithmetic, comparison and word logic: they live with their rules.
-pub use crate::vm::arith::{Arith, Comparison, WordLogic};
 
 /// A bit in the VM's flat image memory (PII, then PIQ, then flags).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

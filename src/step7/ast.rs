@@ -4,10 +4,11 @@
 use crate::ast::Name;
 use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
-/// The status conditions (`==0`, `OV`, `BR` …) are the VM's: one definition with their rule.
-pub use crate::vm::s7::jump::Condition;
-/// So are the REAL functions of ACCU 1 and the six comparisons.
+/// The six comparisons are the VM's, defined once with their rule.
 pub use crate::vm::arith::Comparison as Cmp;
+/// So are the status conditions (`==0`, `OV`, `BR` …).
+pub use crate::vm::s7::jump::Condition;
+/// And the REAL functions of ACCU 1.
 pub use crate::vm::s7::real::Function;
 
 /// One parsed STEP 7 source file.

@@ -14,8 +14,8 @@
 //!   than the BCD holds (3, or 7) leave ACCU 1 and set OV and OS.
 
 use crate::compiler::bytecode::Conversion;
-use crate::vm::arith::{Arith, Comparison};
 use crate::s5_float::{self, Outcome};
+use crate::vm::arith::{Arith, Comparison};
 
 use super::status::Status;
 

@@ -1,9 +1,9 @@
 //! From the compiled S7 operations to the semantics in this module's siblings: which function
 //! each operation is, with which registers.
 
-use crate::vm::arith::{Arith, WordLogic};
 use crate::step7::ast::S7Op;
 use crate::vm::LevelState;
+use crate::vm::arith::{Arith, WordLogic};
 use crate::vm::status::{Combination, Status};
 use crate::vm::stop::{StopCause, StopDetail};
 
