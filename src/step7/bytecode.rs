@@ -9,6 +9,7 @@
 //! [`Op::S7`]: crate::compiler::Op::S7
 
 use super::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
+use crate::vm::s7::jump::Jump;
 use crate::vm::status::Combination;
 
 /// A STEP 7 operation with its operand decoded: small and `Copy`, so [`crate::compiler::Op`]
@@ -40,7 +41,7 @@ pub enum S7Code {
     },
     /// A conditional jump STEP 5 does not have, to op `target` of the block.
     Jump {
-        op: S7Op,
+        jump: Jump,
         target: u16,
     },
     /// `LOOP label`

@@ -20,6 +20,7 @@ use crate::step7::bytecode::{
     FbCall, FcCall, McrCode, MemOp, ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK,
     Target, WAIT,
 };
+use crate::vm::s7::jump::Jump;
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
 
@@ -98,6 +99,22 @@ fn bracket(op: S7Op) -> Option<Combination> {
         S7Op::XorNotBracket => Combination::XorNot,
         _ => return None,
     })
+}
+
+/// A conditional jump STEP 5 does not have (`JC` … `JUO`), as the VM runs it.
+fn step7_jump(op: S7Op) -> Jump {
+    match op {
+        S7Op::JumpIfRlo => Jump::Rlo,
+        S7Op::JumpIfNotRlo => Jump::NotRlo,
+        S7Op::JumpIfRloSave => Jump::RloSavingBr,
+        S7Op::JumpIfNotRloSave => Jump::NotRloSavingBr,
+        S7Op::JumpIfBr => Jump::Br,
+        S7Op::JumpIfNotBr => Jump::NotBr,
+        S7Op::JumpIfStoredOverflow => Jump::StoredOverflow,
+        S7Op::JumpIfPositiveOrZero => Jump::PositiveOrZero,
+        S7Op::JumpIfMinusOrZero => Jump::MinusOrZero,
+        _ => Jump::Unordered,
+    }
 }
 
 fn mem_op(op: S7Op) -> Option<MemOp> {
@@ -288,8 +305,8 @@ impl super::Compiler<'_> {
             };
             out.code[at] = match out.code[at] {
                 Op::Jump(condition, _) => Op::Jump(condition, target),
-                Op::S7(S7Code::Jump { op, .. }) => Op::S7(S7Code::Jump {
-                    op,
+                Op::S7(S7Code::Jump { jump, .. }) => Op::S7(S7Code::Jump {
+                    jump,
                     target: target as u16,
                 }),
                 Op::S7(S7Code::Loop { .. }) => Op::S7(S7Code::Loop {
@@ -609,7 +626,8 @@ impl super::Compiler<'_> {
             | S7Op::JumpIfPositiveOrZero
             | S7Op::JumpIfMinusOrZero
             | S7Op::JumpIfUnordered => {
-                self.jump(out, Op::S7(S7Code::Jump { op, target: 0 }), statement)
+                let jump = step7_jump(op);
+                self.jump(out, Op::S7(S7Code::Jump { jump, target: 0 }), statement)
             }
             S7Op::Loop => self.jump(out, Op::S7(S7Code::Loop { target: 0 }), statement),
             S7Op::JumpList => self.jump(

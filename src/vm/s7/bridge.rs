@@ -186,29 +186,8 @@ pub fn word_logic(level: &mut LevelState, op: S7Op, operand: u32) {
     }
 }
 
-fn jump_of(op: S7Op) -> Option<Jump> {
-    Some(match op {
-        S7Op::JumpIfRlo => Jump::Rlo,
-        S7Op::JumpIfNotRlo => Jump::NotRlo,
-        S7Op::JumpIfRloSave => Jump::RloSavingBr,
-        S7Op::JumpIfNotRloSave => Jump::NotRloSavingBr,
-        S7Op::JumpIfBr => Jump::Br,
-        S7Op::JumpIfNotBr => Jump::NotBr,
-        S7Op::JumpIfOverflow => Jump::Overflow,
-        S7Op::JumpIfStoredOverflow => Jump::StoredOverflow,
-        S7Op::JumpIfZero => Jump::Zero,
-        S7Op::JumpIfNotZero => Jump::NotZero,
-        S7Op::JumpIfPositive => Jump::Positive,
-        S7Op::JumpIfMinus => Jump::Minus,
-        S7Op::JumpIfPositiveOrZero => Jump::PositiveOrZero,
-        S7Op::JumpIfMinusOrZero => Jump::MinusOrZero,
-        S7Op::JumpIfUnordered => Jump::Unordered,
-        _ => return None,
-    })
-}
-
-pub fn jump_taken(level: &mut LevelState, op: S7Op) -> bool {
-    jump_of(op).is_some_and(|jump| jump::taken(jump, &mut level.status, &mut level.br))
+pub fn jump_taken(level: &mut LevelState, jump: Jump) -> bool {
+    jump::taken(jump, &mut level.status, &mut level.br)
 }
 
 pub fn loop_taken(accu1: &mut u32) -> bool {

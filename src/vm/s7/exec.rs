@@ -54,8 +54,8 @@ impl Cpu {
                 let value = self.program.s7.constants[usize::from(constant)];
                 self.level.accu1 = self.level.accu1.wrapping_add(value);
             }
-            S7Code::Jump { op, target } => {
-                if bridge::jump_taken(&mut self.level, op) {
+            S7Code::Jump { jump, target } => {
+                if bridge::jump_taken(&mut self.level, jump) {
                     return Ok(Flow::Jump(u32::from(target)));
                 }
             }
