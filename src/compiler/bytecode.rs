@@ -2,21 +2,16 @@
 //! Spans and execution times live in arrays parallel to the code, so ops stay at 8 bytes.
 
 use crate::mnemonics::{BlockKind, OpCode};
+/// The kinds of arithmetic, comparison and word logic live with their rules in the VM.
+pub use crate::vm::arith::{Arith, Comparison, WordLogic};
+/// The STEP 5 bit logic is a status rule: it lives with the status word.
+pub use crate::vm::status::Logic;
 
 /// A bit in the VM's flat image memory (PII, then PIQ, then flags).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ImageBit {
     pub byte: u16,
     pub bit: u8,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(u8)]
-pub enum Logic {
-    And,
-    AndNot,
-    Or,
-    OrNot,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -76,24 +71,6 @@ pub enum TimerKind {
     OffDelay,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Arith {
-    Add,
-    Sub,
-    Mul,
-    Div,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Comparison {
-    Eq,
-    Ne,
-    Gt,
-    Ge,
-    Lt,
-    Le,
-}
-
 /// The conversions of ACCU 1 (CPU 928B programming guide, table 3-21).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Conversion {
@@ -133,13 +110,6 @@ pub enum JumpCondition {
     Positive,
     Minus,
     Overflow,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum WordLogic {
-    And,
-    Or,
-    Xor,
 }
 
 /// Where `DO` takes the parameter of the next operation from.

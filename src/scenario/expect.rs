@@ -1,8 +1,8 @@
 //! Checking `[expect]` at the end of a run.
 
 use crate::vm::Cpu;
+use crate::vm::bytes::read_bytes;
 use crate::vm::cycle::RunOutcome;
-use crate::vm::exec::read_bytes;
 
 use super::operand::{Target, Wanted};
 

@@ -4,6 +4,12 @@
 use crate::ast::Name;
 use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
+/// The six comparisons are the VM's, defined once with their rule.
+pub use crate::vm::arith::Comparison as Cmp;
+/// So are the status conditions (`==0`, `OV`, `BR` …).
+pub use crate::vm::s7::jump::Condition;
+/// And the REAL functions of ACCU 1.
+pub use crate::vm::s7::real::Function;
 
 /// One parsed STEP 7 source file.
 #[derive(Debug, Clone)]
@@ -252,32 +258,6 @@ pub enum S7Operand {
     },
 }
 
-/// The status conditions bit logic can read: the results of the last arithmetic or comparison
-/// (CC 1 and CC 0), overflow, stored overflow, unordered, and the binary result.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Condition {
-    /// `==0`: result zero.
-    Zero,
-    /// `<>0`
-    NotZero,
-    /// `>0`
-    Positive,
-    /// `<0`
-    Negative,
-    /// `>=0`
-    PositiveOrZero,
-    /// `<=0`
-    NegativeOrZero,
-    /// `OV`
-    Overflow,
-    /// `OS`
-    StoredOverflow,
-    /// `UO`: unordered (a REAL operation with an invalid number).
-    Unordered,
-    /// `BR` (German `BIE`)
-    BinaryResult,
-}
-
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DbRegister {
     /// `DBNO`: the number of the DB in the DB register.
@@ -471,16 +451,8 @@ pub enum S7Op {
     /// `+ 5`, `+ L#5`
     AddConstant,
     Abs,
-    Sqr,
-    Sqrt,
-    Exp,
-    Ln,
-    Sin,
-    Cos,
-    Tan,
-    Asin,
-    Acos,
-    Atan,
+    /// `SQR SQRT EXP LN SIN COS TAN ASIN ACOS ATAN`
+    Real(Function),
     NegInt,
     NegDint,
     NegReal,
@@ -580,15 +552,4 @@ pub enum S7Op {
     ResetStatusWord,
     Sleep,
     Feature,
-}
-
-/// The six comparisons.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Cmp {
-    Eq,
-    Ne,
-    Gt,
-    Lt,
-    Ge,
-    Le,
 }

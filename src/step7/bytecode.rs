@@ -9,6 +9,8 @@
 //! [`Op::S7`]: crate::compiler::Op::S7
 
 use super::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
+use crate::vm::s7::jump::Jump;
+use crate::vm::status::Combination;
 
 /// A STEP 7 operation with its operand decoded: small and `Copy`, so [`crate::compiler::Op`]
 /// stays at 8 bytes.
@@ -39,7 +41,7 @@ pub enum S7Code {
     },
     /// A conditional jump STEP 5 does not have, to op `target` of the block.
     Jump {
-        op: S7Op,
+        jump: Jump,
         target: u16,
     },
     /// `LOOP label`
@@ -51,13 +53,13 @@ pub enum S7Code {
         entries: u16,
         target: u16,
     },
-    /// `A(` … `XN(` that STEP 5 does not have.
-    Bracket(S7Op),
+    /// `A(` … `XN(` that STEP 5 does not have: how the bracket's result will combine.
+    Bracket(Combination),
     /// `)` closing any bracket (S7 brackets keep BR).
     CloseBracket,
     /// `A ==0`, `O OV`, `AN BR`: a status condition as a bit operand.
     Condition {
-        logic: MemOp,
+        combination: Combination,
         condition: Condition,
     },
     /// `OPN DB n` / `OPN DI n`: the DB's slot (see [`S7Tables::db_numbers`]).
@@ -161,12 +163,8 @@ pub enum McrCode {
 /// What an [`S7Code::Mem`] does with its place.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MemOp {
-    And,
-    AndNot,
-    Or,
-    OrNot,
-    Xor,
-    XorNot,
+    /// `A AN O ON X XN`: how the bit combines with the RLO.
+    Scan(Combination),
     Assign,
     Set,
     Reset,
@@ -487,11 +485,43 @@ pub struct S7Tables {
     /// How many slots after slot 0 hold defined data blocks.
     pub defined_dbs: usize,
     /// The data blocks with declarations, by number: their values as the state shows them.
-    pub declared_dbs: Vec<(u16, Vec<crate::step7::declared::DeclaredValue>)>,
+    pub declared_dbs: Vec<(u16, Vec<DeclaredValue>)>,
     /// The awlsim test instructions may run (`awl conformance`, `--extended`).
     pub extensions: bool,
     /// The program is a STEP 7 program (it has an L stack and byte-addressed DBs).
     pub step7: bool,
+}
+
+/// How a declared value's bytes read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Bool,
+    Byte,
+    Char,
+    Word,
+    Int,
+    S5Time,
+    Date,
+    Dword,
+    Dint,
+    Real,
+    Time,
+    TimeOfDay,
+    /// `STRING[n]`: maximum and actual length, then the characters.
+    String(u8),
+    /// What the data view shows as raw bytes: DATE_AND_TIME, POINTER, ANY, an in/out's
+    /// pointer.
+    Bytes(u8),
+}
+
+/// One elementary value of a data block's declaration and where it lies.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DeclaredValue {
+    /// `setpoint`, `motor.speed`, `table[2]`.
+    pub name: String,
+    pub byte: u32,
+    pub bit: u8,
+    pub format: Format,
 }
 
 impl S7Tables {

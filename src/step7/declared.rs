@@ -8,34 +8,14 @@
 use serde::Serialize;
 
 use crate::step7::ast::{DataType, S7BlockKind, VarDecl, VarKind};
-use crate::step7::compile::complex::is_complex;
 use crate::step7::compile::layout::{
-    BitOffset, Home, Interface, Types, element_stride, struct_layout,
+    BitOffset, Home, Interface, Types, element_stride, is_complex, struct_layout,
 };
 
 use crate::address::notation;
 
-/// How a declared value's bytes read.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Format {
-    Bool,
-    Byte,
-    Char,
-    Word,
-    Int,
-    S5Time,
-    Date,
-    Dword,
-    Dint,
-    Real,
-    Time,
-    TimeOfDay,
-    /// `STRING[n]`: maximum and actual length, then the characters.
-    String(u8),
-    /// What the data view shows as raw bytes: DATE_AND_TIME, POINTER, ANY, an in/out's
-    /// pointer.
-    Bytes(u8),
-}
+/// What the compiler lays out for the state to show: the plain types live with its tables.
+pub use crate::step7::bytecode::{DeclaredValue, Format};
 
 impl Format {
     /// The type's name as STEP 7 writes it.
@@ -67,16 +47,6 @@ impl Format {
             Format::Bytes(count) => usize::from(count),
         }
     }
-}
-
-/// One elementary value of a data block's declaration and where it lies.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct DeclaredValue {
-    /// `setpoint`, `motor.speed`, `table[2]`.
-    pub name: String,
-    pub byte: u32,
-    pub bit: u8,
-    pub format: Format,
 }
 
 /// One value of a data block as the state shows it (the JSON's `declared_data_blocks`).

@@ -9,7 +9,7 @@ use std::sync::OnceLock;
 
 use crate::mnemonics::MnemonicSet;
 
-use super::ast::{AccessWidth, Cmp, Condition, S7Area, S7Op};
+use super::ast::{AccessWidth, Cmp, Condition, Function, S7Area, S7Op};
 
 /// One operation: its meaning and its word in each set.
 #[derive(Debug, Clone, Copy)]
@@ -83,16 +83,16 @@ pub const OPERATIONS: &[OpWords] = &[
     op(DivReal, "/R", "/R"),
     op(AddConstant, "+", "+"),
     op(Abs, "ABS", "ABS"),
-    op(Sqr, "SQR", "SQR"),
-    op(Sqrt, "SQRT", "SQRT"),
-    op(Exp, "EXP", "EXP"),
-    op(Ln, "LN", "LN"),
-    op(Sin, "SIN", "SIN"),
-    op(Cos, "COS", "COS"),
-    op(Tan, "TAN", "TAN"),
-    op(Asin, "ASIN", "ASIN"),
-    op(Acos, "ACOS", "ACOS"),
-    op(Atan, "ATAN", "ATAN"),
+    op(Real(Function::Sqr), "SQR", "SQR"),
+    op(Real(Function::Sqrt), "SQRT", "SQRT"),
+    op(Real(Function::Exp), "EXP", "EXP"),
+    op(Real(Function::Ln), "LN", "LN"),
+    op(Real(Function::Sin), "SIN", "SIN"),
+    op(Real(Function::Cos), "COS", "COS"),
+    op(Real(Function::Tan), "TAN", "TAN"),
+    op(Real(Function::Asin), "ASIN", "ASIN"),
+    op(Real(Function::Acos), "ACOS", "ACOS"),
+    op(Real(Function::Atan), "ATAN", "ATAN"),
     op(NegInt, "NEGI", "NEGI"),
     op(NegDint, "NEGD", "NEGD"),
     op(NegReal, "NEGR", "NEGR"),

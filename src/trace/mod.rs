@@ -165,7 +165,8 @@ pub enum Event {
     /// A row of the watch table: the watched operands' values at a cycle boundary.
     Watch {
         cycle: u64,
-        values: crate::state::watch::WatchValues,
+        /// Operand → the value as the watch table shows it (formatted by the state layer).
+        values: std::collections::BTreeMap<String, String>,
         /// The same values as numbers, for counters (Chrome trace).
         #[serde(skip)]
         numbers: Vec<(String, i64)>,

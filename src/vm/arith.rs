@@ -11,9 +11,50 @@
 //! - word logic and shifts set CC1/CC0 and leave the overflow bit alone (S5-101U manual,
 //!   5.2.5).
 
-use crate::compiler::bytecode::{Arith, Comparison, WordLogic};
-
 use super::status::Status;
+
+/// The four basic operations, of every number format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Arith {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+/// The six comparisons (STEP 7 writes them `==I`, `<>R` …).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Comparison {
+    Eq,
+    Ne,
+    Gt,
+    Ge,
+    Lt,
+    Le,
+}
+
+impl Comparison {
+    /// Whether `a` (ACCU 2's value) compares so with `b` (ACCU 1's).
+    #[inline(always)]
+    pub fn holds<T: PartialOrd>(self, a: &T, b: &T) -> bool {
+        match self {
+            Comparison::Eq => a == b,
+            Comparison::Ne => a != b,
+            Comparison::Gt => a > b,
+            Comparison::Ge => a >= b,
+            Comparison::Lt => a < b,
+            Comparison::Le => a <= b,
+        }
+    }
+}
+
+/// `AW OW XOW`, and STEP 5's `UW OW XOW`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WordLogic {
+    And,
+    Or,
+    Xor,
+}
 
 fn low(accu: u32) -> i16 {
     accu as u16 as i16
@@ -70,14 +111,7 @@ pub fn compare(op: Comparison, accu1: u32, accu2: u32, status: &mut Status) {
 
 /// ACCU 2's value `a` compared with ACCU 1's `b`: the RLO, and CC 1/CC 0 for `a > b`/`a < b`.
 pub fn compare_values<T: PartialOrd>(op: Comparison, a: T, b: T, status: &mut Status) {
-    let result = match op {
-        Comparison::Eq => a == b,
-        Comparison::Ne => a != b,
-        Comparison::Gt => a > b,
-        Comparison::Ge => a >= b,
-        Comparison::Lt => a < b,
-        Comparison::Le => a <= b,
-    };
+    let result = op.holds(&a, &b);
     status.set_condition(a > b, a < b);
     status.load(result);
 }

@@ -13,8 +13,9 @@
 //! - `DEF DED` (BCD to fixed point) leave the status; `DUF DUD` of a number with more digits
 //!   than the BCD holds (3, or 7) leave ACCU 1 and set OV and OS.
 
-use crate::compiler::bytecode::{Arith, Comparison, Conversion};
+use crate::compiler::bytecode::Conversion;
 use crate::s5_float::{self, Outcome};
+use crate::vm::arith::{Arith, Comparison};
 
 use super::status::Status;
 

@@ -7,6 +7,7 @@
 pub mod arith;
 pub mod block_stack;
 pub mod bound;
+pub mod bytes;
 pub mod counters;
 pub mod cycle;
 pub mod exec;

@@ -11,7 +11,7 @@
 
 use crate::step7::literal::date_and_time_bytes;
 
-use super::interrupts::Request;
+use super::interrupts::{Cause, Request};
 use super::{Cpu, IDLE};
 
 /// The date and time a run begins at, for the DATE_AND_TIME of the start information.
@@ -25,29 +25,6 @@ pub const START_INFO_BYTES: u32 = 20;
 
 /// The bytes before the DATE_AND_TIME.
 pub type Head = [u8; 12];
-
-/// Why the operating system requested an error OB, for its start information.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Cause {
-    #[default]
-    None,
-    /// OB 82: a module's event on a channel was lost between identification and
-    /// acknowledgement (VIPA SPEED7 operation list, OB 40/OB 41).
-    LostChannel { module: u16 },
-    /// OB 85: a module's hardware interrupt for `ob`, which is not loaded; `active_ob` of
-    /// priority `active_priority` was running.
-    MissingOb {
-        ob: u8,
-        module: u16,
-        active_ob: u8,
-        active_priority: u8,
-    },
-    /// OB 80: OB `ob` of priority `priority` was requested again while its last request was
-    /// still pending or it still ran.
-    TimeError { ob: u8, priority: u8 },
-    /// OB 86: DP station `station` failed (`failed`) or returned.
-    Station { station: u8, failed: bool },
-}
 
 /// Event class 1, "start events of standard OBs", identifier 1 ("System Software for
 /// S7-300/400", SFC 6 RD_SINFO): OB 1 and the hardware interrupt OBs.

@@ -12,8 +12,6 @@
 //! [`Status::to_word`] and [`Status::from_word`] give the STEP 7 status word (`L STW`, `T STW`)
 //! with BR as its bit 8.
 
-use crate::compiler::bytecode::Logic;
-
 const RLO: u8 = 1;
 /// A logic string is in progress: the next `A`/`O` combines instead of loading.
 const FIRST_CHECK_DONE: u8 = 2;
@@ -202,6 +200,16 @@ const fn or(bits: u8, value: bool) -> u8 {
         bits & OR_BIT != 0
     };
     bits & !(RLO | OR_BIT) | FIRST_CHECK_DONE | (before | value) as u8
+}
+
+/// STEP 5's `A AN O ON` with a bit operand (the first four [`Combination`]s).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Logic {
+    And,
+    AndNot,
+    Or,
+    OrNot,
 }
 
 /// The status after each of [`Logic`]'s operations, by `status << 1 | signal state`.

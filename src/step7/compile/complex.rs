@@ -11,21 +11,8 @@ use crate::step7::ast::{
 };
 use crate::step7::bytecode::{BlockCopy, CopySource, FbCall, FcCall, Place, Target};
 
-use super::layout::{self, Home, Variable};
+use super::layout::{self, Home, Variable, is_complex};
 use super::operand::Scope;
-
-/// Whether STEP 7 passes a parameter of type `ty` as a whole block of bytes (by DB pointer to
-/// an FC): the complex types. POINTER and ANY are parameter types of their own.
-pub fn is_complex(ty: &DataType) -> bool {
-    matches!(
-        ty,
-        DataType::Array { .. }
-            | DataType::Struct(_)
-            | DataType::Udt(_)
-            | DataType::String(_)
-            | DataType::DateAndTime
-    )
-}
 
 /// A type as STEP 7 writes it, for messages.
 pub fn type_name(ty: &DataType) -> String {
@@ -62,16 +49,6 @@ pub fn type_name(ty: &DataType) -> String {
         DataType::BlockDb => "BLOCK_DB".into(),
         DataType::BlockFb => "BLOCK_FB".into(),
         DataType::BlockFc => "BLOCK_FC".into(),
-    }
-}
-
-/// The bits a variable of type `ty` takes in an FB's instance data: an in/out of a complex
-/// type is a 6-byte DB pointer to its actual.
-pub fn instance_bits(kind: VarKind, ty: &DataType, types: &layout::Types) -> u32 {
-    if kind == VarKind::InOut && is_complex(ty) {
-        48
-    } else {
-        layout::size_bits(ty, types)
     }
 }
 

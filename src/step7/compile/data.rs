@@ -133,7 +133,7 @@ pub fn instance_image(
     for variable in interface.variables.values() {
         // An in/out of a complex type holds the DB pointer its call writes, no value.
         let pointer = variable.kind == crate::step7::ast::VarKind::InOut
-            && super::complex::is_complex(&variable.ty);
+            && super::layout::is_complex(&variable.ty);
         if let (layout::Home::Instance(at), false) = (variable.home, pointer) {
             put_declared(
                 &mut bytes,
@@ -157,7 +157,7 @@ pub fn instance_image(
             continue;
         };
         if variable.kind == crate::step7::ast::VarKind::InOut
-            && super::complex::is_complex(&variable.ty)
+            && super::layout::is_complex(&variable.ty)
         {
             let problem = "an in/out of a complex type holds the pointer its call passes";
             errors.push(bad_member(problem.into(), value));

@@ -204,7 +204,7 @@ impl Interface {
                     _ if in_instance => {
                         data = aligned(data, &var.ty);
                         let home = Home::Instance(data);
-                        let bits = super::complex::instance_bits(*kind, &var.ty, types);
+                        let bits = instance_bits(*kind, &var.ty, types);
                         data = BitOffset(data.0 + bits);
                         home
                     }
@@ -320,4 +320,27 @@ pub fn member(ty: &DataType, path: &[PathPart], types: &Types) -> Result<(u32, D
         }
     }
     Ok((offset, ty))
+}
+
+/// Whether STEP 7 passes a parameter of type `ty` as a whole block of bytes (by DB pointer to
+/// an FC): the complex types. POINTER and ANY are parameter types of their own.
+pub fn is_complex(ty: &DataType) -> bool {
+    matches!(
+        ty,
+        DataType::Array { .. }
+            | DataType::Struct(_)
+            | DataType::Udt(_)
+            | DataType::String(_)
+            | DataType::DateAndTime
+    )
+}
+
+/// The bits a variable of type `ty` takes in an FB's instance data: an in/out of a complex
+/// type is a 6-byte DB pointer to its actual.
+fn instance_bits(kind: VarKind, ty: &DataType, types: &Types) -> u32 {
+    if kind == VarKind::InOut && is_complex(ty) {
+        48
+    } else {
+        size_bits(ty, types)
+    }
 }

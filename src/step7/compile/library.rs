@@ -407,7 +407,7 @@ impl super::Compiler<'_> {
         for (formal, param) in anys {
             let complex = matches!(
                 self.actual_type(&param.actual, param.actual_span, scope),
-                Some(ty) if super::complex::is_complex(&ty)
+                Some(ty) if super::layout::is_complex(&ty)
             );
             let Ok(place) = self.place(&param.actual, param.actual_span, scope) else {
                 continue;

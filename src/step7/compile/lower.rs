@@ -20,6 +20,7 @@ use crate::step7::bytecode::{
     FbCall, FcCall, McrCode, MemOp, ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK,
     Target, WAIT,
 };
+use crate::vm::s7::jump::Jump;
 use crate::vm::start_info::START_INFO_BYTES;
 use crate::vm::status::Combination;
 
@@ -74,14 +75,53 @@ fn timer_kind(op: S7Op) -> Option<TimerKind> {
     })
 }
 
-fn mem_op(op: S7Op) -> Option<MemOp> {
+/// `A AN O ON X XN`: how the scanned bit combines with the RLO.
+fn scan(op: S7Op) -> Option<Combination> {
     Some(match op {
-        S7Op::And => MemOp::And,
-        S7Op::AndNot => MemOp::AndNot,
-        S7Op::Or => MemOp::Or,
-        S7Op::OrNot => MemOp::OrNot,
-        S7Op::Xor => MemOp::Xor,
-        S7Op::XorNot => MemOp::XorNot,
+        S7Op::And => Combination::And,
+        S7Op::AndNot => Combination::AndNot,
+        S7Op::Or => Combination::Or,
+        S7Op::OrNot => Combination::OrNot,
+        S7Op::Xor => Combination::Xor,
+        S7Op::XorNot => Combination::XorNot,
+        _ => return None,
+    })
+}
+
+/// `A( AN( O( ON( X( XN(`: how the bracket's result combines with the RLO.
+fn bracket(op: S7Op) -> Option<Combination> {
+    Some(match op {
+        S7Op::AndBracket => Combination::And,
+        S7Op::AndNotBracket => Combination::AndNot,
+        S7Op::OrBracket => Combination::Or,
+        S7Op::OrNotBracket => Combination::OrNot,
+        S7Op::XorBracket => Combination::Xor,
+        S7Op::XorNotBracket => Combination::XorNot,
+        _ => return None,
+    })
+}
+
+/// A conditional jump STEP 5 does not have (`JC` … `JUO`), as the VM runs it.
+fn step7_jump(op: S7Op) -> Jump {
+    match op {
+        S7Op::JumpIfRlo => Jump::Rlo,
+        S7Op::JumpIfNotRlo => Jump::NotRlo,
+        S7Op::JumpIfRloSave => Jump::RloSavingBr,
+        S7Op::JumpIfNotRloSave => Jump::NotRloSavingBr,
+        S7Op::JumpIfBr => Jump::Br,
+        S7Op::JumpIfNotBr => Jump::NotBr,
+        S7Op::JumpIfStoredOverflow => Jump::StoredOverflow,
+        S7Op::JumpIfPositiveOrZero => Jump::PositiveOrZero,
+        S7Op::JumpIfMinusOrZero => Jump::MinusOrZero,
+        _ => Jump::Unordered,
+    }
+}
+
+fn mem_op(op: S7Op) -> Option<MemOp> {
+    if let Some(combination) = scan(op) {
+        return Some(MemOp::Scan(combination));
+    }
+    Some(match op {
         S7Op::Assign => MemOp::Assign,
         S7Op::Set => MemOp::Set,
         S7Op::Reset => MemOp::Reset,
@@ -131,16 +171,7 @@ fn accumulator_only(op: S7Op) -> bool {
             | MulReal
             | DivReal
             | Abs
-            | Sqr
-            | Sqrt
-            | Exp
-            | Ln
-            | Sin
-            | Cos
-            | Tan
-            | Asin
-            | Acos
-            | Atan
+            | Real(_)
             | NegInt
             | NegDint
             | NegReal
@@ -274,8 +305,8 @@ impl super::Compiler<'_> {
             };
             out.code[at] = match out.code[at] {
                 Op::Jump(condition, _) => Op::Jump(condition, target),
-                Op::S7(S7Code::Jump { op, .. }) => Op::S7(S7Code::Jump {
-                    op,
+                Op::S7(S7Code::Jump { jump, .. }) => Op::S7(S7Code::Jump {
+                    jump,
                     target: target as u16,
                 }),
                 Op::S7(S7Code::Loop { .. }) => Op::S7(S7Code::Loop {
@@ -349,11 +380,11 @@ impl super::Compiler<'_> {
             | S7Op::Set
             | S7Op::Reset => {
                 if let S7Operand::Condition(condition) = operand {
-                    let logic = mem_op(op).unwrap_or(MemOp::And);
+                    let combination = scan(op).unwrap_or(Combination::And);
                     self.emit(
                         out,
                         Op::S7(S7Code::Condition {
-                            logic,
+                            combination,
                             condition: *condition,
                         }),
                         span,
@@ -390,11 +421,11 @@ impl super::Compiler<'_> {
                     return Ok(());
                 }
                 if let S7Operand::Condition(condition) = operand {
-                    let logic = mem_op(op).unwrap_or(MemOp::Xor);
+                    let combination = scan(op).unwrap_or(Combination::Xor);
                     self.emit(
                         out,
                         Op::S7(S7Code::Condition {
-                            logic,
+                            combination,
                             condition: *condition,
                         }),
                         span,
@@ -412,7 +443,8 @@ impl super::Compiler<'_> {
             | S7Op::OrNotBracket
             | S7Op::XorBracket
             | S7Op::XorNotBracket => {
-                self.emit(out, Op::S7(S7Code::Bracket(op)), span);
+                let combination = bracket(op).unwrap_or_default();
+                self.emit(out, Op::S7(S7Code::Bracket(combination)), span);
                 Ok(())
             }
             S7Op::CloseBracket => {
@@ -594,7 +626,8 @@ impl super::Compiler<'_> {
             | S7Op::JumpIfPositiveOrZero
             | S7Op::JumpIfMinusOrZero
             | S7Op::JumpIfUnordered => {
-                self.jump(out, Op::S7(S7Code::Jump { op, target: 0 }), statement)
+                let jump = step7_jump(op);
+                self.jump(out, Op::S7(S7Code::Jump { jump, target: 0 }), statement)
             }
             S7Op::Loop => self.jump(out, Op::S7(S7Code::Loop { target: 0 }), statement),
             S7Op::JumpList => self.jump(
@@ -785,13 +818,10 @@ impl super::Compiler<'_> {
             byte: self.image_byte(address)?,
             bit: address.bit,
         };
+        if let Some(combination) = scan(op) {
+            return Some(Op::S7Scan(combination, bit));
+        }
         Some(match op {
-            S7Op::And => Op::S7Scan(Combination::And, bit),
-            S7Op::AndNot => Op::S7Scan(Combination::AndNot, bit),
-            S7Op::Or => Op::S7Scan(Combination::Or, bit),
-            S7Op::OrNot => Op::S7Scan(Combination::OrNot, bit),
-            S7Op::Xor => Op::S7Scan(Combination::Xor, bit),
-            S7Op::XorNot => Op::S7Scan(Combination::XorNot, bit),
             S7Op::Assign => Op::S7Write(Write::Assign, bit),
             S7Op::Set => Op::S7Write(Write::Set, bit),
             S7Op::Reset => Op::S7Write(Write::Reset, bit),
@@ -1222,7 +1252,7 @@ impl super::Compiler<'_> {
                 );
                 continue;
             }
-            if super::complex::is_complex(&formal.ty) {
+            if super::layout::is_complex(&formal.ty) {
                 let block = id.to_string();
                 match self.complex_fc_actual(
                     param,
@@ -1395,7 +1425,7 @@ impl super::Compiler<'_> {
                 fb_call.inputs.extend(copies.unwrap_or_default());
                 continue;
             }
-            if super::complex::is_complex(&variable.ty) {
+            if super::layout::is_complex(&variable.ty) {
                 if let Err(error) = self.complex_fb_param(param, variable, fb, scope, fb_call) {
                     self.errors.push(error);
                 }

@@ -299,7 +299,7 @@ impl<'a> Compiler<'a> {
             .iter_mut()
             .filter(|(kind, _)| *kind == VarKind::InOut)
         {
-            for var in vars.iter_mut().filter(|var| complex::is_complex(&var.ty)) {
+            for var in vars.iter_mut().filter(|var| layout::is_complex(&var.ty)) {
                 var.ty = crate::step7::ast::DataType::Pointer;
             }
         }

@@ -303,7 +303,7 @@ impl super::Compiler<'_> {
         let (byte, bit) = (offset / 8, (offset % 8) as u8);
         let target = match variable.home {
             Home::Instance(base)
-                if variable.kind == VarKind::InOut && super::complex::is_complex(&variable.ty) =>
+                if variable.kind == VarKind::InOut && super::layout::is_complex(&variable.ty) =>
             {
                 Target::InstanceThrough {
                     pointer: base.byte(),
@@ -325,7 +325,7 @@ impl super::Compiler<'_> {
                     bit: (at_bits % 8) as u8,
                 }
             }
-            Home::Parameter(param) if super::complex::is_complex(&variable.ty) => {
+            Home::Parameter(param) if super::layout::is_complex(&variable.ty) => {
                 Target::Through { param, byte, bit }
             }
             Home::Parameter(param) => Target::Parameter { param, byte, bit },

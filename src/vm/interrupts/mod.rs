@@ -28,7 +28,6 @@ use crate::trace::Event;
 
 use super::io_trace::Modules;
 use super::place::Place;
-use super::start_info::Cause;
 use super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, IDLE, Mode, Point, StretchKind};
 
@@ -76,7 +75,7 @@ impl InputChange {
                 modules[at] &= !mask
             }
         } else {
-            super::exec::write_bytes(modules, at, usize::from(self.bytes), self.value);
+            super::bytes::write_bytes(modules, at, usize::from(self.bytes), self.value);
         }
     }
 }
@@ -217,6 +216,29 @@ pub struct HardwareSource {
     pub module: u16,
     pub channel: u16,
     pub active_until: u64,
+}
+
+/// Why the operating system requested an error OB, for its start information.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Cause {
+    #[default]
+    None,
+    /// OB 82: a module's event on a channel was lost between identification and
+    /// acknowledgement (VIPA SPEED7 operation list, OB 40/OB 41).
+    LostChannel { module: u16 },
+    /// OB 85: a module's hardware interrupt for `ob`, which is not loaded; `active_ob` of
+    /// priority `active_priority` was running.
+    MissingOb {
+        ob: u8,
+        module: u16,
+        active_ob: u8,
+        active_priority: u8,
+    },
+    /// OB 80: OB `ob` of priority `priority` was requested again while its last request was
+    /// still pending or it still ran.
+    TimeError { ob: u8, priority: u8 },
+    /// OB 86: DP station `station` failed (`failed`) or returned.
+    Station { station: u8, failed: bool },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -21,7 +21,7 @@
 
 use crate::profile::Profile;
 
-use super::super::exec::{read_bytes, write_bytes};
+use super::super::bytes::{read_bytes, write_bytes};
 use super::super::io_trace::Modules;
 use super::super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, EngineConfig, Ob13Timing, Request, Rules};

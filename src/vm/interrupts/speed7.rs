@@ -38,7 +38,7 @@
 use crate::trace::Event;
 
 use super::super::place::Place;
-use super::super::start_info::Cause;
+use super::Cause;
 
 use super::super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, EngineConfig, Happening, HardwareSource, Request, Rules, Scheduled, Wait};

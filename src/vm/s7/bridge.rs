@@ -1,10 +1,9 @@
 //! From the compiled S7 operations to the semantics in this module's siblings: which function
 //! each operation is, with which registers.
 
-use crate::compiler::bytecode::{Arith, Comparison, WordLogic};
-use crate::step7::ast::{self, Cmp, S7Op};
-use crate::step7::bytecode::MemOp;
+use crate::step7::ast::S7Op;
 use crate::vm::LevelState;
+use crate::vm::arith::{Arith, WordLogic};
 use crate::vm::status::{Combination, Status};
 use crate::vm::stop::{StopCause, StopDetail};
 
@@ -12,20 +11,9 @@ use super::accu::{self, Accus};
 use super::convert::{self, Rounding};
 use super::jump::{self, Condition, Jump};
 use super::memory::Fault;
-use super::real::{self, Function};
+use super::real;
 use super::shift::{self, Shift};
 use super::{bit_logic, compare, integer, word_logic};
-
-fn comparison(cmp: Cmp) -> Comparison {
-    match cmp {
-        Cmp::Eq => Comparison::Eq,
-        Cmp::Ne => Comparison::Ne,
-        Cmp::Gt => Comparison::Gt,
-        Cmp::Lt => Comparison::Lt,
-        Cmp::Ge => Comparison::Ge,
-        Cmp::Le => Comparison::Le,
-    }
-}
 
 fn accus(count: u8) -> Accus {
     if count >= 4 { Accus::Four } else { Accus::Two }
@@ -103,37 +91,14 @@ pub fn accumulator(level: &mut LevelState, op: S7Op, count: u8) -> Result<(), Fa
         }
         S7Op::Abs => real::abs(accu1),
         S7Op::NegReal => real::negate(accu1),
-        S7Op::Sqr
-        | S7Op::Sqrt
-        | S7Op::Exp
-        | S7Op::Ln
-        | S7Op::Sin
-        | S7Op::Cos
-        | S7Op::Tan
-        | S7Op::Asin
-        | S7Op::Acos
-        | S7Op::Atan => {
-            let function = match op {
-                S7Op::Sqr => Function::Sqr,
-                S7Op::Sqrt => Function::Sqrt,
-                S7Op::Exp => Function::Exp,
-                S7Op::Ln => Function::Ln,
-                S7Op::Sin => Function::Sin,
-                S7Op::Cos => Function::Cos,
-                S7Op::Tan => Function::Tan,
-                S7Op::Asin => Function::Asin,
-                S7Op::Acos => Function::Acos,
-                _ => Function::Atan,
-            };
-            real::function(function, accu1, status);
-        }
+        S7Op::Real(function) => real::function(function, accu1, status),
         S7Op::NegInt => integer::negate_int(accu1, status),
         S7Op::NegDint => integer::negate_dint(accu1, status),
         S7Op::InvInt => integer::invert_int(accu1),
         S7Op::InvDint => integer::invert_dint(accu1),
-        S7Op::CmpInt(cmp) => compare::int(comparison(cmp), *accu1, *accu2, status),
-        S7Op::CmpDint(cmp) => compare::dint(comparison(cmp), *accu1, *accu2, status),
-        S7Op::CmpReal(cmp) => compare::real(comparison(cmp), *accu1, *accu2, status),
+        S7Op::CmpInt(cmp) => compare::int(cmp, *accu1, *accu2, status),
+        S7Op::CmpDint(cmp) => compare::dint(cmp, *accu1, *accu2, status),
+        S7Op::CmpReal(cmp) => compare::real(cmp, *accu1, *accu2, status),
         S7Op::IntToDint => convert::int_to_dint(accu1),
         S7Op::IntToBcd => convert::int_to_bcd(accu1, status),
         S7Op::BcdToInt => convert::bcd_to_int(accu1).map_err(|_| bcd_fault())?,
@@ -221,82 +186,30 @@ pub fn word_logic(level: &mut LevelState, op: S7Op, operand: u32) {
     }
 }
 
-fn jump_of(op: S7Op) -> Option<Jump> {
-    Some(match op {
-        S7Op::JumpIfRlo => Jump::Rlo,
-        S7Op::JumpIfNotRlo => Jump::NotRlo,
-        S7Op::JumpIfRloSave => Jump::RloSavingBr,
-        S7Op::JumpIfNotRloSave => Jump::NotRloSavingBr,
-        S7Op::JumpIfBr => Jump::Br,
-        S7Op::JumpIfNotBr => Jump::NotBr,
-        S7Op::JumpIfOverflow => Jump::Overflow,
-        S7Op::JumpIfStoredOverflow => Jump::StoredOverflow,
-        S7Op::JumpIfZero => Jump::Zero,
-        S7Op::JumpIfNotZero => Jump::NotZero,
-        S7Op::JumpIfPositive => Jump::Positive,
-        S7Op::JumpIfMinus => Jump::Minus,
-        S7Op::JumpIfPositiveOrZero => Jump::PositiveOrZero,
-        S7Op::JumpIfMinusOrZero => Jump::MinusOrZero,
-        S7Op::JumpIfUnordered => Jump::Unordered,
-        _ => return None,
-    })
-}
-
-pub fn jump_taken(level: &mut LevelState, op: S7Op) -> bool {
-    jump_of(op).is_some_and(|jump| jump::taken(jump, &mut level.status, &mut level.br))
+pub fn jump_taken(level: &mut LevelState, jump: Jump) -> bool {
+    jump::taken(jump, &mut level.status, &mut level.br)
 }
 
 pub fn loop_taken(accu1: &mut u32) -> bool {
     jump::loop_taken(accu1)
 }
 
-fn combination(op: S7Op) -> Combination {
-    match op {
-        S7Op::AndNotBracket => Combination::AndNot,
-        S7Op::OrBracket => Combination::Or,
-        S7Op::OrNotBracket => Combination::OrNot,
-        S7Op::XorBracket => Combination::Xor,
-        S7Op::XorNotBracket => Combination::XorNot,
-        _ => Combination::And,
-    }
-}
-
-pub fn open_bracket(level: &mut LevelState, op: S7Op, depth: u8) -> bool {
+pub fn open_bracket(level: &mut LevelState, combination: Combination, depth: u8) -> bool {
     level
         .brackets
-        .open_step7(&mut level.status, level.br, combination(op), depth)
+        .open_step7(&mut level.status, level.br, combination, depth)
 }
 
 pub fn close_bracket(level: &mut LevelState) -> bool {
     level.brackets.close_step7(&mut level.status, &mut level.br)
 }
 
-pub fn condition(level: &LevelState, condition: ast::Condition) -> bool {
-    let condition = match condition {
-        ast::Condition::Zero => Condition::Zero,
-        ast::Condition::NotZero => Condition::NotZero,
-        ast::Condition::Positive => Condition::Positive,
-        ast::Condition::Negative => Condition::Negative,
-        ast::Condition::PositiveOrZero => Condition::PositiveOrZero,
-        ast::Condition::NegativeOrZero => Condition::NegativeOrZero,
-        ast::Condition::Unordered => Condition::Unordered,
-        ast::Condition::Overflow => Condition::Overflow,
-        ast::Condition::StoredOverflow => Condition::StoredOverflow,
-        ast::Condition::BinaryResult => Condition::BinaryResult,
-    };
+pub fn condition(level: &LevelState, condition: Condition) -> bool {
     condition.holds(level.status, level.br)
 }
 
 /// `A AN O ON X XN` with a bit whose signal state is `value`.
-pub fn combine(status: &mut Status, op: MemOp, value: bool) {
-    let combination = match op {
-        MemOp::AndNot => Combination::AndNot,
-        MemOp::Or => Combination::Or,
-        MemOp::OrNot => Combination::OrNot,
-        MemOp::Xor => Combination::Xor,
-        MemOp::XorNot => Combination::XorNot,
-        _ => Combination::And,
-    };
+pub fn combine(status: &mut Status, combination: Combination, value: bool) {
     status.scanned_step7(combination, value);
 }
 

@@ -8,7 +8,7 @@
 //! +infinity equals +infinity). A REAL comparison with a NaN is unordered: CC1 CC0 = 1 1, OV
 //! and OS, and every comparison is false, `<>R` too.
 
-use crate::compiler::bytecode::Comparison;
+use crate::vm::arith::Comparison;
 use crate::vm::status::Status;
 
 #[inline(always)]

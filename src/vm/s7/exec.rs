@@ -54,8 +54,8 @@ impl Cpu {
                 let value = self.program.s7.constants[usize::from(constant)];
                 self.level.accu1 = self.level.accu1.wrapping_add(value);
             }
-            S7Code::Jump { op, target } => {
-                if bridge::jump_taken(&mut self.level, op) {
+            S7Code::Jump { jump, target } => {
+                if bridge::jump_taken(&mut self.level, jump) {
                     return Ok(Flow::Jump(u32::from(target)));
                 }
             }
@@ -72,9 +72,9 @@ impl Cpu {
                     u32::from(target)
                 }));
             }
-            S7Code::Bracket(op) => {
+            S7Code::Bracket(combination) => {
                 let depth = self.profile.bracket_depth;
-                if !bridge::open_bracket(&mut self.level, op, depth) {
+                if !bridge::open_bracket(&mut self.level, combination, depth) {
                     return Err(fault(format!("more than {depth} nested brackets")));
                 }
             }
@@ -83,9 +83,12 @@ impl Cpu {
                     return Err(fault("`)` without an open bracket"));
                 }
             }
-            S7Code::Condition { logic, condition } => {
+            S7Code::Condition {
+                combination,
+                condition,
+            } => {
                 let value = bridge::condition(&self.level, condition);
-                bridge::combine(&mut self.level.status, logic, value);
+                bridge::combine(&mut self.level.status, combination, value);
             }
             S7Code::OpenDb { instance, slot } => self.open_s7_db(instance, slot)?,
             S7Code::OpenDbFrom { instance, place } => {
@@ -276,12 +279,12 @@ impl Cpu {
         let (located, width) = self.locate_index(place)?;
         let rlo = self.level.status.rlo();
         match op {
-            MemOp::And | MemOp::AndNot | MemOp::Or | MemOp::OrNot | MemOp::Xor | MemOp::XorNot => {
+            MemOp::Scan(combination) => {
                 let value = match located {
                     Located::Special(_) => self.special_value(located)? & 1 != 0,
                     other => self.fetch_bit(other)?,
                 };
-                bridge::combine(&mut self.level.status, op, value);
+                bridge::combine(&mut self.level.status, combination, value);
             }
             MemOp::Assign => {
                 self.store_bit(located, rlo)?;
@@ -687,15 +690,7 @@ impl Cpu {
     fn assert(&mut self, cmp: Cmp, left: u16) -> Result<(), Fault> {
         let a = self.assert_operand(left)?;
         let b = self.assert_operand(left + 1)?;
-        let holds = match cmp {
-            Cmp::Eq => a == b,
-            Cmp::Ne => a != b,
-            Cmp::Gt => a > b,
-            Cmp::Lt => a < b,
-            Cmp::Ge => a >= b,
-            Cmp::Le => a <= b,
-        };
-        if holds {
+        if cmp.holds(&a, &b) {
             bridge::after_assert(&mut self.level.status);
             return Ok(());
         }

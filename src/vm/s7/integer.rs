@@ -15,7 +15,7 @@
 //! On a CPU with four accumulators ACCU 3 and 4 move down after these (see
 //! [`super::accu::leave`]); the functions here see only ACCU 1 and 2.
 
-use crate::compiler::bytecode::Arith;
+use crate::vm::arith::Arith;
 use crate::vm::status::Status;
 
 #[inline(always)]

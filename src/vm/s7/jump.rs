@@ -16,8 +16,10 @@
 
 use crate::vm::status::Status;
 
-/// A condition of the status word, as a bit operand (`A ==0`) and as a jump condition.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// A condition of the status word, as a bit operand (`A ==0`) and as a jump condition: the
+/// results of the last arithmetic or comparison (CC 1 and CC 0), overflow, stored overflow,
+/// unordered, and the binary result.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[repr(u8)]
 pub enum Condition {
     /// `==0`: CC1 CC0 = 0 0.
@@ -32,13 +34,13 @@ pub enum Condition {
     PositiveOrZero,
     /// `<=0`: CC1 = 0.
     NegativeOrZero,
-    /// `UO`: CC1 CC0 = 1 1.
+    /// `UO`: CC1 CC0 = 1 1, unordered (a REAL operation with an invalid number).
     Unordered,
     /// `OV`
     Overflow,
     /// `OS`
     StoredOverflow,
-    /// `BR`
+    /// `BR` (German `BIE`)
     BinaryResult,
 }
 

@@ -22,7 +22,7 @@
 //! else ACCU 2 with its sign flipped when ACCU 1 is negative; results of `SIN COS TAN` within
 //! 1e-7 of −1, 0 or 1 are those values, `TAN` of an argument within 1e-7 of ±π/2 is ±infinity.
 
-use crate::compiler::bytecode::Arith;
+use crate::vm::arith::Arith;
 use crate::vm::status::Status;
 
 /// The NaN `+R -R *R /R` give.
@@ -120,7 +120,7 @@ fn multiply_infinity(accu1: &mut u32, accu2: u32, status: &mut Status) {
 }
 
 /// The REAL functions of ACCU 1.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[repr(u8)]
 pub enum Function {
     Sqr,

@@ -2,7 +2,7 @@
 //! is not zero, CC0 = 0, OV = 0; OS is kept ("Statement List (STL) for S7-300 and S7-400
 //! Programming", the chapter on word logic instructions).
 
-use crate::compiler::bytecode::WordLogic;
+use crate::vm::arith::WordLogic;
 use crate::vm::status::Status;
 
 #[inline(always)]
