@@ -97,7 +97,7 @@ fn build_step5(
         let parsed = parser::parse_file(id as u16, &file.text, language.mnemonics);
         let set = parsed.unit.mnemonics;
         diagnostics.extend(parsed.errors.into_iter().map(|error| {
-            SourceDiagnostic::Parse(dialect::explain_step7_word(&file.text, set, error))
+            SourceDiagnostic::Parse(parser::explain_step7_word(&file.text, set, error))
         }));
         units.push(parsed.unit);
         fragments.push(parsed.fragment);
@@ -106,7 +106,7 @@ fn build_step5(
     diagnostics.extend(placed.into_iter().map(|error| {
         let file = error.span().file;
         let set = units[usize::from(file)].mnemonics;
-        SourceDiagnostic::Parse(dialect::explain_step7_word(
+        SourceDiagnostic::Parse(parser::explain_step7_word(
             &sources.get(file).text,
             set,
             error,

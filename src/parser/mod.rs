@@ -7,10 +7,12 @@ pub mod line;
 pub mod listing;
 #[cfg(test)]
 mod spellings;
+mod step7_word;
 pub mod tokens;
 
 pub use constant::bcd;
 pub use error::ParseError;
+pub use step7_word::explain_step7_word;
 
 use crate::ast::{Block, BlockBody, BlockId, DataWord, LogicBody, Operand, SourceUnit, Statement};
 use crate::dialect;
@@ -28,7 +30,7 @@ pub struct ParsedFile {
     pub unit: SourceUnit,
     pub errors: Vec<ParseError>,
     /// The file starts with statements before any block header: `unit.blocks[0]` holds them,
-    /// as a provisional FB 0 until [`crate::fragment::place`] gives them their block.
+    /// as a provisional FB 0 until the front end, knowing all files, gives them their block.
     pub fragment: bool,
 }
 
