@@ -8,6 +8,7 @@
 
 use crate::lexer::{Token, TokenKind};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
+use crate::source::{FileId, Span};
 use crate::step7::ast::{Cmp, S7Op};
 use crate::step7::lexer::{self as s7, Token as S7Token, TokenKind as S7Kind};
 
@@ -27,6 +28,16 @@ pub struct Evidence {
     pub end: u32,
     /// What the evidence is, for the diagnostic's label.
     pub what: &'static str,
+}
+
+impl Evidence {
+    pub fn span(&self, file: FileId) -> Span {
+        Span {
+            file,
+            start: self.start,
+            end: self.end,
+        }
+    }
 }
 
 /// Words that open a line of a STEP 7 source and never one of STEP 5.

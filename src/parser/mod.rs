@@ -93,11 +93,7 @@ fn step7_file(
             blocks: Vec::new(),
         },
         errors: vec![ParseError::Step7Source {
-            at: Span {
-                file,
-                start: evidence.start,
-                end: evidence.end,
-            },
+            at: evidence.span(file),
             what: evidence.what,
         }],
         fragment: false,

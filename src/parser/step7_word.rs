@@ -2,7 +2,6 @@
 
 use crate::dialect;
 use crate::mnemonics::MnemonicSet;
-use crate::source::Span;
 
 use super::ParseError;
 
@@ -31,11 +30,7 @@ pub fn explain_step7_word(source: &str, set: MnemonicSet, error: ParseError) -> 
     };
     ParseError::Step7Word {
         word: source[evidence.start as usize..evidence.end as usize].to_string(),
-        at: Span {
-            file: span.file,
-            start: evidence.start,
-            end: evidence.end,
-        },
+        at: evidence.span(span.file),
         what: evidence.what,
         help,
     }
