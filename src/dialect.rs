@@ -11,6 +11,7 @@ use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
 use crate::source::{FileId, Span};
 use crate::step7::ast::{Cmp, S7Op};
 use crate::step7::lexer::{self as s7, Token as S7Token, TokenKind as S7Kind};
+use crate::syntax::token::runs;
 
 /// The STL dialects awl tells apart.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -59,16 +60,9 @@ pub const STEP7_LINE_WORDS: &[&str] = &[
 /// Addresses of STEP 7's data blocks (`DBX 0.1`, `DBW 4`); STEP 5 writes `D 0.1`, `DW 4`.
 const STEP7_DATA_AREAS: &[&str] = &["DBX", "DBB", "DBW", "DBD", "DIX", "DIB", "DIW", "DID"];
 
-/// The text's tokens split into lines, as the lexer gives them.
-fn lines(tokens: &[Token]) -> impl Iterator<Item = &[Token]> {
-    tokens
-        .split(|token| token.kind == TokenKind::Newline)
-        .filter(|line| !line.is_empty())
-}
-
 /// The first STEP 7 evidence in the text, if any: the text is STEP 5 otherwise.
 pub fn detect(source: &str, tokens: &[Token]) -> Option<Evidence> {
-    lines(tokens).find_map(|line| step7_in_line(source, line))
+    runs(tokens, |kind| kind == TokenKind::Newline).find_map(|line| step7_in_line(source, line))
 }
 
 fn step7_in_line(source: &str, line: &[Token]) -> Option<Evidence> {

@@ -19,6 +19,7 @@ use crate::dialect;
 use crate::lexer::{Token, TokenKind, lex};
 use crate::mnemonics::{self, MnemonicSet, OpCode, Position};
 use crate::source::{FileId, Span};
+use crate::syntax::token::runs;
 use crate::syntax::votes::Votes;
 
 use line::describe;
@@ -40,10 +41,7 @@ pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> Pa
     if let Some(evidence) = dialect::detect(source, &tokens) {
         return step7_file(file, forced, evidence);
     }
-    let lines: Vec<&[Token]> = tokens
-        .split(|token| token.kind == TokenKind::Newline)
-        .filter(|line| !line.is_empty())
-        .collect();
+    let lines: Vec<&[Token]> = runs(&tokens, |kind| kind == TokenKind::Newline).collect();
     let detected = detect(source, &lines);
     let set = forced
         .or(detected.map(|(set, _)| set))

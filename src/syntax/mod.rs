@@ -1,5 +1,5 @@
-//! The front-end toolkit both dialects' parsers are built on: the token with its span and the
-//! lexer core over a dialect's logos token kind ([`token`]), the token-slice input for nom with
+//! The front-end toolkit both dialects' parsers are built on: the token with its span, the
+//! lexer core over a dialect's logos token kind and the split into lines ([`token`]), the token-slice input for nom with
 //! its failure type and primitive parsers ([`input`]), and the tally that decides a file's
 //! mnemonic set ([`votes`]). Each dialect keeps only its token kinds, its error variants and its
 //! grammar.

@@ -50,6 +50,17 @@ impl<K: Copy> Token<K> {
     }
 }
 
+/// The runs of tokens between those whose kind `ends` a line or a statement; empty runs are
+/// left out.
+pub fn runs<K: Copy>(
+    tokens: &[Token<K>],
+    ends: impl Fn(K) -> bool,
+) -> impl Iterator<Item = &[Token<K>]> {
+    tokens
+        .split(move |token| ends(token.kind))
+        .filter(|run| !run.is_empty())
+}
+
 /// Splits a whole file into tokens. Characters that start no token become [`Kind::INVALID`].
 pub fn lex<'s, K>(source: &'s str) -> Vec<Token<K>>
 where

@@ -21,6 +21,7 @@ use std::cell::Cell;
 use crate::ast::Name;
 use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
+use crate::syntax::token::runs;
 use crate::syntax::votes::Votes;
 
 use super::ast::{
@@ -164,7 +165,9 @@ fn mixed(ctx: Ctx<'_>, token: Token, operation: bool, decided_by: Option<Span>) 
 fn detect(source: &str, tokens: &[Token], flat: bool) -> Option<(MnemonicSet, Span)> {
     let mut votes = Votes::default();
     let mut in_body = flat;
-    for line in tokens.split(|t| matches!(t.kind, TokenKind::Newline | TokenKind::Semicolon)) {
+    for line in runs(tokens, |kind| {
+        matches!(kind, TokenKind::Newline | TokenKind::Semicolon)
+    }) {
         let words: Vec<String> = line
             .iter()
             .filter(|t| t.kind == TokenKind::Word)
