@@ -15,7 +15,7 @@ use super::constant::parse_constant;
 use super::error::ParseError;
 use super::listing::header_information;
 use super::tokens::{
-    Context, LineError, LineResult, Tokens, decimal, end_of_line, keyword, kind, touching,
+    Context, LineError, LineResult, Tokens, decimal, end_of_line, fail, keyword, kind, touching,
 };
 
 /// What one line holds.
@@ -95,11 +95,7 @@ fn kind_number<'a>(context: Context<'a>, input: Tokens<'a>) -> LineResult<'a, u8
                 block_number(context, token, value)?,
             ))
         }
-        _ => Err(nom::Err::Error(LineError {
-            at: input.first(),
-            expected: "a block number 0…255",
-            diagnostic: None,
-        })),
+        _ => Err(fail(input, "a block number 0…255")),
     }
 }
 
@@ -119,11 +115,7 @@ pub fn name_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<
         let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
         // The PG takes any characters in a name (`RAD:GP`, `RLG:AE`): the rest of the line.
         let (Some(first), Some(last)) = (rest.first(), rest.tokens.last().copied()) else {
-            return Err(nom::Err::Error(LineError {
-                at: None,
-                expected: "the block's name",
-                diagnostic: None,
-            }));
+            return Err(fail(rest, "the block's name"));
         };
         let span = context.span_of(first, last);
         Ok((
@@ -280,11 +272,7 @@ pub fn param_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult
         let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
         let (rest, (actual, actual_span)) = operand(context, None)(rest)?;
         if actual == Operand::None || matches!(actual, Operand::Number(_)) {
-            return Err(nom::Err::Error(LineError {
-                at: rest.first(),
-                expected: "",
-                diagnostic: None,
-            }));
+            return Err(fail(rest, ""));
         }
         let (rest, _) = end_of_line(rest)?;
         let span = remaining_span(context, input.tokens).unwrap_or_default();
@@ -431,11 +419,7 @@ fn without_colon(input: Tokens<'_>) -> Tokens<'_> {
 fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParsedOp> {
     move |input: Tokens<'a>| {
         let Some(first) = input.first() else {
-            return Err(nom::Err::Error(LineError {
-                at: None,
-                expected: "an operation",
-                diagnostic: None,
-            }));
+            return Err(fail(input, "an operation"));
         };
         let mut rest = Tokens::new(&input.tokens[1..]);
         let mut last = first;
@@ -706,11 +690,7 @@ pub fn operand<'a>(
 ) -> impl Fn(Tokens<'a>) -> LineResult<'a, (Operand, Span)> {
     move |input: Tokens<'a>| {
         let Some(first) = input.first() else {
-            return Err(nom::Err::Error(LineError {
-                at: None,
-                expected: "an operand",
-                diagnostic: None,
-            }));
+            return Err(fail(input, "an operand"));
         };
         let rest = Tokens::new(&input.tokens[1..]);
         match first.kind {

@@ -23,7 +23,7 @@ use crate::syntax::token::runs;
 use crate::syntax::votes::Votes;
 
 use line::describe;
-use tokens::{Context, LineError, Tokens};
+use tokens::{Context, LineError, Tokens, fail};
 
 /// The result of parsing one file: whatever blocks could be built, and every error found.
 #[derive(Debug)]
@@ -448,11 +448,7 @@ impl<'a> Builder<'a> {
         let run = |set: MnemonicSet| -> Result<T, LineError> {
             match parser(self.context(set))(Tokens::new(line)) {
                 Ok((rest, value)) if rest.is_empty() => Ok(value),
-                Ok((rest, _)) => Err(LineError {
-                    at: rest.first(),
-                    expected: "end of line",
-                    diagnostic: None,
-                }),
+                Ok((rest, _)) => Err(LineError::of(fail(rest, "end of line"))),
                 Err(error) => Err(LineError::of(error)),
             }
         };

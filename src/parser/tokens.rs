@@ -4,9 +4,8 @@
 use crate::lexer::{Token, TokenKind};
 use crate::source::{FileId, Span};
 use crate::syntax::Kind;
-use crate::syntax::input::fail;
 
-pub use crate::syntax::input::kind;
+pub use crate::syntax::input::{fail, kind};
 
 use super::error::ParseError;
 
