@@ -64,6 +64,10 @@ pub enum TokenKind {
 /// One STEP 5 token: its kind and where it stands in the file.
 pub type Token = crate::syntax::Token<TokenKind>;
 
+impl crate::syntax::Kind for TokenKind {
+    const INVALID: Self = TokenKind::Invalid;
+}
+
 /// Splits a whole file into tokens. Characters that start no token become [`TokenKind::Invalid`].
 pub fn lex(source: &str) -> Vec<Token> {
     crate::syntax::token::lex(source)

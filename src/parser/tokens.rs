@@ -3,15 +3,13 @@
 
 use crate::lexer::{Token, TokenKind};
 use crate::source::{FileId, Span};
-use crate::syntax::Kind;
+use crate::syntax::Grammar;
 
 pub use crate::syntax::input::{fail, kind};
 
 use super::error::ParseError;
 
-/// Here rather than in the lexer, which knows no parse errors.
-impl Kind for TokenKind {
-    const INVALID: Self = TokenKind::Invalid;
+impl Grammar for TokenKind {
     type Error = ParseError;
 }
 

@@ -6,6 +6,11 @@ use nom::{IResult, Needed};
 
 use super::token::{Kind, Token};
 
+/// A token kind a dialect's grammar parses, with the error that grammar reports.
+pub trait Grammar: Kind {
+    type Error: Clone + PartialEq + std::fmt::Debug;
+}
+
 /// A run of tokens as nom input: the tokens of a STEP 5 line or of a STEP 7 statement.
 #[derive(Debug, Clone, Copy)]
 pub struct Tokens<'a, K> {
@@ -88,14 +93,14 @@ impl<'a, K: Copy> nom::Input for Tokens<'a, K> {
 
 /// A failed parse: where it failed and, when known, the dialect's diagnostic to report.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Failure<K: Kind> {
+pub struct Failure<K: Grammar> {
     /// The token the parser stopped at; `None` at the end of the input.
     pub at: Option<Token<K>>,
     pub expected: &'static str,
     pub diagnostic: Option<Box<K::Error>>,
 }
 
-impl<K: Kind> Failure<K> {
+impl<K: Grammar> Failure<K> {
     /// A failure that carries its diagnostic (no alternative is tried after it).
     pub fn with(diagnostic: K::Error) -> nom::Err<Self> {
         nom::Err::Failure(Failure {
@@ -118,7 +123,7 @@ impl<K: Kind> Failure<K> {
     }
 }
 
-impl<'a, K: Kind> nom::error::ParseError<Tokens<'a, K>> for Failure<K> {
+impl<'a, K: Grammar> nom::error::ParseError<Tokens<'a, K>> for Failure<K> {
     fn from_error_kind(input: Tokens<'a, K>, _kind: ErrorKind) -> Self {
         Failure {
             at: input.first(),
@@ -136,7 +141,7 @@ impl<'a, K: Kind> nom::error::ParseError<Tokens<'a, K>> for Failure<K> {
 pub type Parsed<'a, K, T> = IResult<Tokens<'a, K>, T, Failure<K>>;
 
 /// A failure at the input's first token, saying what was expected there.
-pub fn fail<K: Kind>(input: Tokens<'_, K>, expected: &'static str) -> nom::Err<Failure<K>> {
+pub fn fail<K: Grammar>(input: Tokens<'_, K>, expected: &'static str) -> nom::Err<Failure<K>> {
     nom::Err::Error(Failure {
         at: input.first(),
         expected,
@@ -145,7 +150,7 @@ pub fn fail<K: Kind>(input: Tokens<'_, K>, expected: &'static str) -> nom::Err<F
 }
 
 /// One token of the given kind.
-pub fn kind<'a, K: Kind>(
+pub fn kind<'a, K: Grammar>(
     wanted: K,
     expected: &'static str,
 ) -> impl Fn(Tokens<'a, K>) -> Parsed<'a, K, Token<K>> {
@@ -156,7 +161,7 @@ pub fn kind<'a, K: Kind>(
 }
 
 /// Succeeds only at the end of the input; `expected` names that end.
-pub fn at_end<'a, K: Kind>(input: Tokens<'a, K>, expected: &'static str) -> Parsed<'a, K, ()> {
+pub fn at_end<'a, K: Grammar>(input: Tokens<'a, K>, expected: &'static str) -> Parsed<'a, K, ()> {
     if input.is_empty() {
         Ok((input, ()))
     } else {

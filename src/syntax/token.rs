@@ -4,13 +4,9 @@ use logos::Logos;
 
 use crate::source::{FileId, Span};
 
-/// A dialect's token kind: what its characters no token starts with become, and the error its
-/// parser reports.
+/// A dialect's token kind, with the one its characters no token starts with become.
 pub trait Kind: Copy + PartialEq + std::fmt::Debug {
-    /// A character no token starts with.
     const INVALID: Self;
-    /// The dialect's parse error.
-    type Error: Clone + PartialEq + std::fmt::Debug;
 }
 
 /// One token: its kind (a STEP 5 or a STEP 7 one) and where it stands in the file.

@@ -7,13 +7,11 @@ use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
 use crate::step7::error::S7ParseError;
 use crate::step7::lexer::{Token, TokenKind};
-use crate::syntax::Kind;
+use crate::syntax::Grammar;
 
 pub use crate::syntax::input::{fail, kind};
 
-/// Here rather than in the lexer, which knows no parse errors.
-impl Kind for TokenKind {
-    const INVALID: Self = TokenKind::Invalid;
+impl Grammar for TokenKind {
     type Error = S7ParseError;
 }
 
