@@ -4,14 +4,14 @@
 //! reports it once instead of failing on every line. A trailing `;` is no evidence: it starts a
 //! comment in STEP 5. Nor is `NETWORK n`, the heading of a STEP 5 listing's segment. A text
 //! without that form is weighed by the words only one dialect writes ([`word_evidence`]), and a
-//! STEP 5 parse error on a STEP 7 word is said as such ([`explain_step7_word`]).
+//! STEP 5 parse error on a STEP 7 word is said as such ([`step7_word_on_line`]).
 
 use crate::lexer::{Token, TokenKind};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
-use crate::parser::ParseError;
-use crate::source::Span;
+use crate::source::{FileId, Span};
 use crate::step7::ast::{Cmp, S7Op};
 use crate::step7::lexer::{self as s7, Token as S7Token, TokenKind as S7Kind};
+use crate::syntax::token::runs;
 
 /// The STL dialects awl tells apart.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,6 +29,16 @@ pub struct Evidence {
     pub end: u32,
     /// What the evidence is, for the diagnostic's label.
     pub what: &'static str,
+}
+
+impl Evidence {
+    pub fn span(&self, file: FileId) -> Span {
+        Span {
+            file,
+            start: self.start,
+            end: self.end,
+        }
+    }
 }
 
 /// Words that open a line of a STEP 7 source and never one of STEP 5.
@@ -50,16 +60,9 @@ pub const STEP7_LINE_WORDS: &[&str] = &[
 /// Addresses of STEP 7's data blocks (`DBX 0.1`, `DBW 4`); STEP 5 writes `D 0.1`, `DW 4`.
 const STEP7_DATA_AREAS: &[&str] = &["DBX", "DBB", "DBW", "DBD", "DIX", "DIB", "DIW", "DID"];
 
-/// The text's tokens split into lines, as the lexer gives them.
-fn lines(tokens: &[Token]) -> impl Iterator<Item = &[Token]> {
-    tokens
-        .split(|token| token.kind == TokenKind::Newline)
-        .filter(|line| !line.is_empty())
-}
-
 /// The first STEP 7 evidence in the text, if any: the text is STEP 5 otherwise.
 pub fn detect(source: &str, tokens: &[Token]) -> Option<Evidence> {
-    lines(tokens).find_map(|line| step7_in_line(source, line))
+    runs(tokens, |kind| kind == TokenKind::Newline).find_map(|line| step7_in_line(source, line))
 }
 
 fn step7_in_line(source: &str, line: &[Token]) -> Option<Evidence> {
@@ -382,25 +385,19 @@ fn operand_evidence(source: &str, op: &str, rest: &[S7Token]) -> Option<Evidence
     }
 }
 
-/// A STEP 5 parse error on a line that holds a word only STEP 7 writes, said as such: what
-/// STEP 5 writes instead where it has the operation (`+F` for `+I`), and `--dialect s7` for a
-/// STEP 7 text. Other errors come back as they are.
-pub fn explain_step7_word(source: &str, set: MnemonicSet, error: ParseError) -> ParseError {
-    let explained = matches!(
-        error,
-        ParseError::UnexpectedCharacter { .. }
-            | ParseError::UnknownOperation { .. }
-            | ParseError::UnknownOperand { .. }
-            | ParseError::MissingOperand { .. }
-            | ParseError::UnexpectedToken { .. }
-            | ParseError::BadAddress { .. }
-            // `==I` reads in STEP 5 as `=` to a formal operand `=I`.
-            | ParseError::FormalsFromUse { .. }
-    );
-    let span = error.span();
-    let start = span.start as usize;
-    if !explained || start > source.len() {
-        return error;
+/// A word only STEP 7 writes, found on a line a STEP 5 parse failed on: where it stands, what it
+/// is, and what STEP 5 writes instead where it has the operation (`+F` for `+I`), with
+/// `--dialect s7` for a STEP 7 text.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Step7Word {
+    pub evidence: Evidence,
+    pub help: String,
+}
+
+/// The word only STEP 7 writes in the first statement of the line holding byte `start`, if any.
+pub fn step7_word_on_line(source: &str, set: MnemonicSet, start: usize) -> Option<Step7Word> {
+    if start > source.len() {
+        return None;
     }
     let line_start = source[..start].rfind('\n').map_or(0, |at| at + 1);
     let line_end = source[start..]
@@ -419,10 +416,7 @@ pub fn explain_step7_word(source: &str, set: MnemonicSet, error: ParseError) -> 
         .split(|token| token.kind == S7Kind::Semicolon)
         .next()
         .unwrap_or_default();
-    let Some(evidence) = line_evidence(source, statement).filter(|e| e.dialect == Dialect::Step7)
-    else {
-        return error;
-    };
+    let evidence = line_evidence(source, statement).filter(|e| e.dialect == Dialect::Step7)?;
     let word = &source[evidence.start as usize..evidence.end as usize];
     let read_as_step7 = "if the text is STEP 7, read it with `--dialect s7`";
     let help = match step7_only_operation(&word.to_ascii_uppercase()).and_then(step5_equivalent) {
@@ -451,16 +445,7 @@ pub fn explain_step7_word(source: &str, set: MnemonicSet, error: ParseError) -> 
         }
         None => format!("STEP 5 has no `{word}`; {read_as_step7}"),
     };
-    ParseError::Step7Word {
-        word: word.to_string(),
-        at: Span {
-            file: span.file,
-            start: evidence.start,
-            end: evidence.end,
-        },
-        what: evidence.what,
-        help,
-    }
+    Some(Step7Word { evidence, help })
 }
 
 /// The STEP 5 operation that does what a STEP 7 one does, where STEP 5 has one: its 16-bit

@@ -9,7 +9,7 @@ use crate::fragment;
 use crate::mnemonics::MnemonicSet;
 use crate::parser;
 use crate::profile::Profile;
-use crate::source::{FileId, SourceFile, SourceSet, Span};
+use crate::source::{FileId, SourceFile, SourceSet};
 use crate::step7::error::S7ParseError;
 use crate::symbols;
 
@@ -97,7 +97,7 @@ fn build_step5(
         let parsed = parser::parse_file(id as u16, &file.text, language.mnemonics);
         let set = parsed.unit.mnemonics;
         diagnostics.extend(parsed.errors.into_iter().map(|error| {
-            SourceDiagnostic::Parse(dialect::explain_step7_word(&file.text, set, error))
+            SourceDiagnostic::Parse(parser::explain_step7_word(&file.text, set, error))
         }));
         units.push(parsed.unit);
         fragments.push(parsed.fragment);
@@ -106,7 +106,7 @@ fn build_step5(
     diagnostics.extend(placed.into_iter().map(|error| {
         let file = error.span().file;
         let set = units[usize::from(file)].mnemonics;
-        SourceDiagnostic::Parse(dialect::explain_step7_word(
+        SourceDiagnostic::Parse(parser::explain_step7_word(
             &sources.get(file).text,
             set,
             error,
@@ -271,11 +271,7 @@ fn step7_only_compiles(sources: &SourceSet, language: Language) -> Option<S7Pars
 fn words_note(sources: &SourceSet, file: FileId, evidence: dialect::Evidence) -> S7ParseError {
     let text = &sources.get(file).text[evidence.start as usize..evidence.end as usize];
     S7ParseError::ReadAsStep7 {
-        at: Span {
-            file,
-            start: evidence.start,
-            end: evidence.end,
-        },
+        at: evidence.span(file),
         reason: format!("`{text}`: {}", evidence.what),
         help: "STEP 5 does not write it; statements without block keywords are OB 1; \
                `--dialect s5` reads the text as STEP 5"

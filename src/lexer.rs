@@ -61,40 +61,16 @@ pub enum TokenKind {
     Invalid,
 }
 
-/// One token: its kind (a STEP 5 [`TokenKind`], or the STEP 7 lexer's) and where it stands
-/// in the file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Token<K = TokenKind> {
-    pub kind: K,
-    pub start: u32,
-    pub end: u32,
-}
+/// One STEP 5 token: its kind and where it stands in the file.
+pub type Token = crate::syntax::Token<TokenKind>;
 
-impl<K: Copy> Token<K> {
-    pub fn text(self, source: &str) -> &str {
-        &source[self.start as usize..self.end as usize]
-    }
-
-    /// True when `next` starts right where this token ends (`A(`, `:F`, `I0.1`).
-    pub fn touches(self, next: Token<K>) -> bool {
-        self.end == next.start
-    }
+impl crate::syntax::Kind for TokenKind {
+    const INVALID: Self = TokenKind::Invalid;
 }
 
 /// Splits a whole file into tokens. Characters that start no token become [`TokenKind::Invalid`].
 pub fn lex(source: &str) -> Vec<Token> {
-    let mut lexer = TokenKind::lexer(source);
-    let mut tokens = Vec::with_capacity(source.len() / 3);
-    while let Some(result) = lexer.next() {
-        let span = lexer.span();
-        let kind = result.unwrap_or(TokenKind::Invalid);
-        tokens.push(Token {
-            kind,
-            start: span.start as u32,
-            end: span.end as u32,
-        });
-    }
-    tokens
+    crate::syntax::token::lex(source)
 }
 
 #[cfg(test)]

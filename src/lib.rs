@@ -38,6 +38,7 @@ pub mod source;
 pub mod state;
 pub mod step7;
 pub mod symbols;
+pub mod syntax;
 pub mod timeline;
 pub mod trace;
 pub mod vm;

@@ -5,7 +5,7 @@ use crate::ast::Constant;
 use crate::lexer::{Token, TokenKind};
 use crate::mnemonics::ConstFormat;
 use crate::s5_float;
-use crate::source::{FileId, Span};
+use crate::source::FileId;
 
 use super::error::ParseError;
 use super::tokens::Context;
@@ -289,11 +289,7 @@ pub fn decimal_float_warnings(file: FileId, source: &str, tokens: &[Token]) -> V
             let digits = |token: &Token| token.text(source).bytes().all(|b| b.is_ascii_digit());
             if decimal && digits(integer) && digits(fraction) {
                 warnings.push(ParseError::DecimalFloat {
-                    at: Span {
-                        file,
-                        start: token.start,
-                        end: fraction.end,
-                    },
+                    at: token.span_to(*fraction, file),
                     pg_form: pg_float_form(negative, integer.text(source), fraction.text(source)),
                 });
             }

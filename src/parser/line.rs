@@ -15,7 +15,7 @@ use super::constant::parse_constant;
 use super::error::ParseError;
 use super::listing::header_information;
 use super::tokens::{
-    Context, LineError, LineResult, Tokens, decimal, end_of_line, keyword, kind, touching,
+    Context, LineError, LineResult, Tokens, decimal, end_of_line, fail, keyword, kind, touching,
 };
 
 /// What one line holds.
@@ -95,17 +95,13 @@ fn kind_number<'a>(context: Context<'a>, input: Tokens<'a>) -> LineResult<'a, u8
                 block_number(context, token, value)?,
             ))
         }
-        _ => Err(nom::Err::Error(LineError {
-            at: input.first(),
-            expected: "a block number 0…255",
-            diagnostic: None,
-        })),
+        _ => Err(fail(input, "a block number 0…255")),
     }
 }
 
 fn block_number(context: Context<'_>, token: Token, value: u32) -> Result<u8, nom::Err<LineError>> {
     u8::try_from(value).map_err(|_| {
-        LineError::diagnostic(ParseError::BlockNumber {
+        LineError::with(ParseError::BlockNumber {
             number: context.text(token).to_string(),
             at: context.span(token),
         })
@@ -119,11 +115,7 @@ pub fn name_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<
         let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
         // The PG takes any characters in a name (`RAD:GP`, `RLG:AE`): the rest of the line.
         let (Some(first), Some(last)) = (rest.first(), rest.tokens.last().copied()) else {
-            return Err(nom::Err::Error(LineError {
-                at: None,
-                expected: "the block's name",
-                diagnostic: None,
-            }));
+            return Err(fail(rest, "the block's name"));
         };
         let span = context.span_of(first, last);
         Ok((
@@ -159,7 +151,7 @@ pub fn declaration<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResul
         let (rest, start) = keyword(context, words, "DES")(input)?;
         let line_span = remaining_span(context, input.tokens).unwrap_or_default();
         let bad = |reason: &str, at: Span| {
-            LineError::diagnostic(ParseError::BadDeclaration {
+            LineError::with(ParseError::BadDeclaration {
                 at,
                 reason: reason.to_string(),
             })
@@ -258,8 +250,8 @@ pub fn data_word<'a>(
             }));
         };
         let (rest, _) = opt(kind(TokenKind::Equals, "`=`")).parse(rest)?;
-        let constant = parse_constant(context, format, format_token, rest.tokens)
-            .map_err(LineError::diagnostic)?;
+        let constant =
+            parse_constant(context, format, format_token, rest.tokens).map_err(LineError::with)?;
         Ok((
             Tokens::new(&[]),
             (index.map(|(value, _)| value), constant, span),
@@ -280,11 +272,7 @@ pub fn param_line<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult
         let (rest, _) = kind(TokenKind::Colon, "`:`")(rest)?;
         let (rest, (actual, actual_span)) = operand(context, None)(rest)?;
         if actual == Operand::None || matches!(actual, Operand::Number(_)) {
-            return Err(nom::Err::Error(LineError {
-                at: rest.first(),
-                expected: "",
-                diagnostic: None,
-            }));
+            return Err(fail(rest, ""));
         }
         let (rest, _) = end_of_line(rest)?;
         let span = remaining_span(context, input.tokens).unwrap_or_default();
@@ -330,7 +318,7 @@ pub fn statement<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<
         }?;
         end_of_line(rest).map_err(|_| {
             let extra = remaining_span(context, rest.tokens).unwrap_or_default();
-            LineError::diagnostic(ParseError::UnexpectedToken {
+            LineError::with(ParseError::UnexpectedToken {
                 found: describe(context, rest.first()),
                 at: extra,
                 expected: "end of line".to_string(),
@@ -431,11 +419,7 @@ fn without_colon(input: Tokens<'_>) -> Tokens<'_> {
 fn operation<'a>(context: Context<'a>) -> impl Fn(Tokens<'a>) -> LineResult<'a, ParsedOp> {
     move |input: Tokens<'a>| {
         let Some(first) = input.first() else {
-            return Err(nom::Err::Error(LineError {
-                at: None,
-                expected: "an operation",
-                diagnostic: None,
-            }));
+            return Err(fail(input, "an operation"));
         };
         let mut rest = Tokens::new(&input.tokens[1..]);
         let mut last = first;
@@ -633,7 +617,7 @@ fn operand_for<'a>(
                 mnemonics::MnemonicSet::English => (info.en, info.example_en),
                 mnemonics::MnemonicSet::German => (info.de, info.example_de),
             };
-            LineError::diagnostic(ParseError::MissingOperand {
+            LineError::with(ParseError::MissingOperand {
                 op: example.0.to_string(),
                 at: context.span(op_last),
                 help: (!example.1.is_empty())
@@ -648,7 +632,7 @@ fn operand_for<'a>(
                 Some(token) if token.kind == TokenKind::Number => {
                     let (rest, (value, token)) =
                         decimal(context, "a number")(input).map_err(|_| {
-                            LineError::diagnostic(ParseError::UnexpectedToken {
+                            LineError::with(ParseError::UnexpectedToken {
                                 found: describe(context, Some(token)),
                                 at: context.span(token),
                                 expected: "a decimal number".to_string(),
@@ -661,7 +645,7 @@ fn operand_for<'a>(
             Shape::Optional if input.is_empty() => Ok((input, (Operand::None, empty_span))),
             Shape::Required if input.is_empty() => Err(missing()),
             Shape::Required if info.op == OpCode::Load => match bare_constant(context, input) {
-                Some(error) => Err(LineError::diagnostic(error)),
+                Some(error) => Err(LineError::with(error)),
                 None => operand(context, Some(info.op))(input),
             },
             _ => operand(context, Some(info.op))(input),
@@ -706,11 +690,7 @@ pub fn operand<'a>(
 ) -> impl Fn(Tokens<'a>) -> LineResult<'a, (Operand, Span)> {
     move |input: Tokens<'a>| {
         let Some(first) = input.first() else {
-            return Err(nom::Err::Error(LineError {
-                at: None,
-                expected: "an operand",
-                diagnostic: None,
-            }));
+            return Err(fail(input, "an operand"));
         };
         let rest = Tokens::new(&input.tokens[1..]);
         match first.kind {
@@ -803,7 +783,7 @@ fn word_operand<'a>(
         (Some(kind), _) if block_first || area.is_none() => {
             let number_token = rest.first().unwrap_or(word);
             let (rest, number) = kind_number(context, rest).map_err(|error| match error {
-                nom::Err::Error(_) => LineError::diagnostic(ParseError::BadAddress {
+                nom::Err::Error(_) => LineError::with(ParseError::BadAddress {
                     area: text.to_string(),
                     at: context.span(word),
                     expected: "a block number 0…255 must follow".to_string(),
@@ -911,8 +891,7 @@ fn constant_operand<'a>(
     rest: Tokens<'a>,
 ) -> LineResult<'a, (Operand, Span)> {
     let (rest, _) = opt(kind(TokenKind::Equals, "=")).parse(rest)?;
-    let constant =
-        parse_constant(context, format, word, rest.tokens).map_err(LineError::diagnostic)?;
+    let constant = parse_constant(context, format, word, rest.tokens).map_err(LineError::with)?;
     let last = rest.tokens.last().copied().unwrap_or(word);
     Ok((
         Tokens::new(&[]),
@@ -928,7 +907,7 @@ fn address<'a>(
 ) -> LineResult<'a, (Operand, Span)> {
     let area_text = context.text(word).to_uppercase();
     let bad = |expected: &str, at: Span| {
-        LineError::diagnostic(ParseError::BadAddress {
+        LineError::with(ParseError::BadAddress {
             area: area_text.clone(),
             at,
             expected: expected.to_string(),

@@ -7,19 +7,23 @@ pub mod line;
 pub mod listing;
 #[cfg(test)]
 mod spellings;
+mod step7_word;
 pub mod tokens;
 
 pub use constant::bcd;
 pub use error::ParseError;
+pub use step7_word::explain_step7_word;
 
 use crate::ast::{Block, BlockBody, BlockId, DataWord, LogicBody, Operand, SourceUnit, Statement};
 use crate::dialect;
 use crate::lexer::{Token, TokenKind, lex};
 use crate::mnemonics::{self, MnemonicSet, OpCode, Position};
 use crate::source::{FileId, Span};
+use crate::syntax::token::runs;
+use crate::syntax::votes::Votes;
 
 use line::describe;
-use tokens::{Context, LineError, Tokens};
+use tokens::{Context, LineError, Tokens, fail};
 
 /// The result of parsing one file: whatever blocks could be built, and every error found.
 #[derive(Debug)]
@@ -27,7 +31,7 @@ pub struct ParsedFile {
     pub unit: SourceUnit,
     pub errors: Vec<ParseError>,
     /// The file starts with statements before any block header: `unit.blocks[0]` holds them,
-    /// as a provisional FB 0 until [`crate::fragment::place`] gives them their block.
+    /// as a provisional FB 0 until the front end, knowing all files, gives them their block.
     pub fragment: bool,
 }
 
@@ -37,10 +41,7 @@ pub fn parse_file(file: FileId, source: &str, forced: Option<MnemonicSet>) -> Pa
     if let Some(evidence) = dialect::detect(source, &tokens) {
         return step7_file(file, forced, evidence);
     }
-    let lines: Vec<&[Token]> = tokens
-        .split(|token| token.kind == TokenKind::Newline)
-        .filter(|line| !line.is_empty())
-        .collect();
+    let lines: Vec<&[Token]> = runs(&tokens, |kind| kind == TokenKind::Newline).collect();
     let detected = detect(source, &lines);
     let set = forced
         .or(detected.map(|(set, _)| set))
@@ -90,11 +91,7 @@ fn step7_file(
             blocks: Vec::new(),
         },
         errors: vec![ParseError::Step7Source {
-            at: Span {
-                file,
-                start: evidence.start,
-                end: evidence.end,
-            },
+            at: evidence.span(file),
             what: evidence.what,
         }],
         fragment: false,
@@ -104,16 +101,7 @@ fn step7_file(
 /// Decides the mnemonic set from the words that only one set has in their position: the set with
 /// more such words wins; the span is its first word.
 fn detect(source: &str, lines: &[&[Token]]) -> Option<(MnemonicSet, Span)> {
-    let mut votes: [(usize, Option<Span>); 2] = [(0, None), (0, None)];
-    let mut vote = |set: MnemonicSet, token: Token| {
-        let slot = &mut votes[set as usize];
-        slot.0 += 1;
-        slot.1.get_or_insert(Span {
-            file: 0,
-            start: token.start,
-            end: token.end,
-        });
-    };
+    let mut votes = Votes::default();
     for line in lines {
         let mut words = strip_label(line)
             .iter()
@@ -121,29 +109,23 @@ fn detect(source: &str, lines: &[&[Token]]) -> Option<(MnemonicSet, Span)> {
         let Some(first) = words.next() else { continue };
         let text = first.text(source);
         if text.eq_ignore_ascii_case(mnemonics::DECLARATION_EN) {
-            vote(MnemonicSet::English, *first);
+            votes.vote(MnemonicSet::English, *first);
             continue;
         }
         if text.eq_ignore_ascii_case(mnemonics::DECLARATION_DE) {
-            vote(MnemonicSet::German, *first);
+            votes.vote(MnemonicSet::German, *first);
             continue;
         }
         if let Some(set) = mnemonics::evidence(Position::Operation, text) {
-            vote(set, *first);
+            votes.vote(set, *first);
         }
         if let Some(second) = words.next()
             && let Some(set) = mnemonics::evidence(Position::Operand, second.text(source))
         {
-            vote(set, *second);
+            votes.vote(set, *second);
         }
     }
-    let [english, german] = votes;
-    match (english, german) {
-        ((0, _), (0, _)) => None,
-        ((e, Some(span)), (g, _)) if e >= g => Some((MnemonicSet::English, span)),
-        (_, (_, Some(span))) => Some((MnemonicSet::German, span)),
-        _ => None,
-    }
+    votes.winner()
 }
 
 /// The tokens after an optional listing address, an optional `LABEL :` and the optional
@@ -202,12 +184,7 @@ impl<'a> Builder<'a> {
     }
 
     fn span_of(&self, line: &[Token]) -> Span {
-        let (first, last) = (line[0], line[line.len() - 1]);
-        Span {
-            file: self.file,
-            start: first.start,
-            end: last.end,
-        }
+        line[0].span_to(line[line.len() - 1], self.file)
     }
 
     fn line(&mut self, line: &'a [Token]) {
@@ -215,11 +192,7 @@ impl<'a> Builder<'a> {
         if let Some(invalid) = invalid.filter(|_| !self.is_name_line(line)) {
             self.errors.push(ParseError::UnexpectedCharacter {
                 found: invalid.text(self.source).to_string(),
-                at: Span {
-                    file: self.file,
-                    start: invalid.start,
-                    end: invalid.end,
-                },
+                at: invalid.span(self.file),
             });
             return;
         }
@@ -335,11 +308,7 @@ impl<'a> Builder<'a> {
         };
         let word = first.text(self.source);
         if mnemonics::operation(self.set, word).is_some_and(|info| info.op == OpCode::BlockEnd) {
-            body.end = Some(Span {
-                file: self.file,
-                start: first.start,
-                end: first.end,
-            });
+            body.end = Some(first.span(self.file));
             self.ended = true;
         }
     }
@@ -479,17 +448,8 @@ impl<'a> Builder<'a> {
         let run = |set: MnemonicSet| -> Result<T, LineError> {
             match parser(self.context(set))(Tokens::new(line)) {
                 Ok((rest, value)) if rest.is_empty() => Ok(value),
-                Ok((rest, _)) => Err(LineError {
-                    at: rest.first(),
-                    expected: "end of line",
-                    diagnostic: None,
-                }),
-                Err(nom::Err::Error(error) | nom::Err::Failure(error)) => Err(error),
-                Err(nom::Err::Incomplete(_)) => Err(LineError {
-                    at: None,
-                    expected: "more",
-                    diagnostic: None,
-                }),
+                Ok((rest, _)) => Err(LineError::of(fail(rest, "end of line"))),
+                Err(error) => Err(LineError::of(error)),
             }
         };
         match run(self.set) {
@@ -509,11 +469,7 @@ impl<'a> Builder<'a> {
     fn error_span(&self, error: &LineError, line: &[Token]) -> Span {
         match (&error.diagnostic, error.at) {
             (Some(diagnostic), _) => diagnostic.span(),
-            (None, Some(token)) => Span {
-                file: self.file,
-                start: token.start,
-                end: token.end,
-            },
+            (None, Some(token)) => token.span(self.file),
             (None, None) => {
                 let last = line[line.len() - 1];
                 Span {

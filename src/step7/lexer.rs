@@ -78,21 +78,15 @@ pub enum TokenKind {
 }
 
 /// One STEP 7 token: its kind and where it stands in the file.
-pub type Token = crate::lexer::Token<TokenKind>;
+pub type Token = crate::syntax::Token<TokenKind>;
+
+impl crate::syntax::Kind for TokenKind {
+    const INVALID: Self = TokenKind::Invalid;
+}
 
 /// Splits a whole file into tokens. Characters that start no token become [`TokenKind::Invalid`].
 pub fn lex(source: &str) -> Vec<Token> {
-    let mut lexer = TokenKind::lexer(source);
-    let mut tokens = Vec::with_capacity(source.len() / 3);
-    while let Some(result) = lexer.next() {
-        let span = lexer.span();
-        tokens.push(Token {
-            kind: result.unwrap_or(TokenKind::Invalid),
-            start: span.start as u32,
-            end: span.end as u32,
-        });
-    }
-    tokens
+    crate::syntax::token::lex(source)
 }
 
 #[cfg(test)]

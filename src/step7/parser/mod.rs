@@ -21,6 +21,8 @@ use std::cell::Cell;
 use crate::ast::Name;
 use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
+use crate::syntax::token::runs;
+use crate::syntax::votes::Votes;
 
 use super::ast::{
     DataType, S7Block, S7BlockKind, S7BlockRef, S7Body, S7Statement, S7Unit, VarSection,
@@ -161,18 +163,11 @@ fn mixed(ctx: Ctx<'_>, token: Token, operation: bool, decided_by: Option<Span>) 
 /// `E 0.0` German; `A`, `JU`, `I 0.0` English): the set with more such words wins; the span is
 /// its first word.
 fn detect(source: &str, tokens: &[Token], flat: bool) -> Option<(MnemonicSet, Span)> {
-    let mut votes: [(usize, Option<Span>); 2] = [(0, None), (0, None)];
-    let mut vote = |set: MnemonicSet, token: Token| {
-        let slot = &mut votes[set as usize];
-        slot.0 += 1;
-        slot.1.get_or_insert(Span {
-            file: 0,
-            start: token.start,
-            end: token.end,
-        });
-    };
+    let mut votes = Votes::default();
     let mut in_body = flat;
-    for line in tokens.split(|t| matches!(t.kind, TokenKind::Newline | TokenKind::Semicolon)) {
+    for line in runs(tokens, |kind| {
+        matches!(kind, TokenKind::Newline | TokenKind::Semicolon)
+    }) {
         let words: Vec<String> = line
             .iter()
             .filter(|t| t.kind == TokenKind::Word)
@@ -195,7 +190,7 @@ fn detect(source: &str, tokens: &[Token], flat: bool) -> Option<(MnemonicSet, Sp
             if let Some(actual) = line.get(assign + 1).filter(|t| t.kind == TokenKind::Word)
                 && let Some(set) = area_evidence(source, *actual)
             {
-                vote(set, *actual);
+                votes.vote(set, *actual);
             }
             continue;
         }
@@ -218,7 +213,7 @@ fn detect(source: &str, tokens: &[Token], flat: bool) -> Option<(MnemonicSet, Sp
             _ => op,
         };
         if let Some(set) = mnemonics::operation_evidence(&op) {
-            vote(set, *op_token);
+            votes.vote(set, *op_token);
         }
         let takes_address = [MnemonicSet::English, MnemonicSet::German]
             .iter()
@@ -229,16 +224,10 @@ fn detect(source: &str, tokens: &[Token], flat: bool) -> Option<(MnemonicSet, Sp
             .filter(|t| t.kind == TokenKind::Word && takes_address)
             && let Some(set) = area_evidence(source, *operand)
         {
-            vote(set, *operand);
+            votes.vote(set, *operand);
         }
     }
-    let [english, german] = votes;
-    match (english, german) {
-        ((0, _), (0, _)) => None,
-        ((e, Some(span)), (g, _)) if e >= g => Some((MnemonicSet::English, span)),
-        (_, (_, Some(span))) => Some((MnemonicSet::German, span)),
-        _ => None,
-    }
+    votes.winner()
 }
 
 /// The set whose area word `operand` is (`E`, `EW` German; `I`, `IW` English), if only one's.

@@ -803,13 +803,7 @@ fn pointer_to<'a>(ctx: Ctx<'a>, input: Tokens<'a>) -> Option<PResult<'a, S7Opera
         .collect();
     let inner = match value(ctx, Tokens::new(&relexed)) {
         Ok((rest, operand)) if rest.is_empty() => operand,
-        Ok((rest, _)) => {
-            return Some(Err(nom::Err::Error(Fail {
-                at: rest.first(),
-                expected: "the end of the pointer",
-                diagnostic: None,
-            })));
-        }
+        Ok((rest, _)) => return Some(Err(fail(rest, "the end of the pointer"))),
         Err(error) => return Some(Err(error)),
     };
     Some(Ok((input.skip(end), S7Operand::PointerTo(Box::new(inner)))))

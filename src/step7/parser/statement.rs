@@ -94,8 +94,9 @@ pub fn finish<'a, T>(
     last: Token,
     result: PResult<'a, T>,
 ) -> Result<(Tokens<'a>, T), S7ParseError> {
-    result.map_err(|error| match error {
-        nom::Err::Error(fail) | nom::Err::Failure(fail) => match (fail.diagnostic, fail.at) {
+    result.map_err(|error| {
+        let fail = Fail::of(error);
+        match (fail.diagnostic, fail.at) {
             (Some(diagnostic), _) => *diagnostic,
             (None, Some(at)) => unexpected(ctx, at, fail.expected),
             (None, None) => S7ParseError::UnexpectedToken {
@@ -103,12 +104,7 @@ pub fn finish<'a, T>(
                 at: ctx.span(last),
                 expected: fail.expected.into(),
             },
-        },
-        nom::Err::Incomplete(_) => S7ParseError::UnexpectedToken {
-            found: "end of statement".into(),
-            at: ctx.span(last),
-            expected: "more".into(),
-        },
+        }
     })
 }
 

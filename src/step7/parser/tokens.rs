@@ -1,67 +1,27 @@
-//! The token-slice input for nom 8 over STEP 7 tokens (the STEP 5 parser's wrapper,
-//! `crate::parser::tokens::Tokens`), and the primitive parsers the statement, operand and
-//! declaration grammars are built from.
+//! The STEP 7 names of the front-end toolkit's token input and failure, and the primitive
+//! parsers the statement, operand and declaration grammars are built from.
 
 use std::cell::Cell;
-
-use nom::IResult;
-use nom::error::ErrorKind;
 
 use crate::mnemonics::MnemonicSet;
 use crate::source::{FileId, Span};
 use crate::step7::error::S7ParseError;
 use crate::step7::lexer::{Token, TokenKind};
+use crate::syntax::Grammar;
 
-/// A run of STEP 7 tokens, as nom input: the STEP 5 parser's wrapper over this lexer's tokens.
-pub type Tokens<'a> = crate::parser::tokens::Tokens<'a, Token>;
+pub use crate::syntax::input::{fail, kind};
 
-impl<'a> Tokens<'a> {
-    pub fn second(&self) -> Option<Token> {
-        self.tokens.get(1).copied()
-    }
-
-    pub fn skip(&self, count: usize) -> Self {
-        Tokens {
-            tokens: &self.tokens[count.min(self.tokens.len())..],
-        }
-    }
+impl Grammar for TokenKind {
+    type Error = S7ParseError;
 }
+
+/// A run of STEP 7 tokens as nom input.
+pub type Tokens<'a> = crate::syntax::Tokens<'a, TokenKind>;
 
 /// A failed parse: where it failed and, when known, the diagnostic to report.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Fail {
-    /// The token the parser stopped at; `None` at the end of the input.
-    pub at: Option<Token>,
-    pub expected: &'static str,
-    pub diagnostic: Option<Box<S7ParseError>>,
-}
+pub type Fail = crate::syntax::Failure<TokenKind>;
 
-impl Fail {
-    /// A failure that carries its diagnostic (no alternative is tried after it).
-    pub fn with(diagnostic: S7ParseError) -> nom::Err<Fail> {
-        nom::Err::Failure(Fail {
-            at: None,
-            expected: "",
-            diagnostic: Some(Box::new(diagnostic)),
-        })
-    }
-}
-
-impl<'a> nom::error::ParseError<Tokens<'a>> for Fail {
-    fn from_error_kind(input: Tokens<'a>, _kind: ErrorKind) -> Self {
-        Fail {
-            at: input.first(),
-            expected: "",
-            diagnostic: None,
-        }
-    }
-
-    fn append(_input: Tokens<'a>, _kind: ErrorKind, other: Self) -> Self {
-        other
-    }
-}
-
-pub type PResult<'a, T> = IResult<Tokens<'a>, T, Fail>;
+pub type PResult<'a, T> = crate::syntax::Parsed<'a, TokenKind, T>;
 
 /// What the parsers need besides the tokens.
 #[derive(Debug, Clone, Copy)]
@@ -86,20 +46,12 @@ impl<'a> Ctx<'a> {
     }
 
     pub fn span(&self, token: Token) -> Span {
-        Span {
-            file: self.file,
-            start: token.start,
-            end: token.end,
-        }
+        token.span(self.file)
     }
 
     /// The span from `first` to `last`, inclusive.
     pub fn span_of(&self, first: Token, last: Token) -> Span {
-        Span {
-            file: self.file,
-            start: first.start,
-            end: last.end.max(first.end),
-        }
+        first.span_to(last, self.file)
     }
 
     /// The span of the tokens consumed between `before` and `after`.
@@ -133,25 +85,6 @@ impl<'a> Ctx<'a> {
     }
 }
 
-pub fn fail(input: Tokens<'_>, expected: &'static str) -> nom::Err<Fail> {
-    nom::Err::Error(Fail {
-        at: input.first(),
-        expected,
-        diagnostic: None,
-    })
-}
-
-/// One token of the given kind.
-pub fn kind<'a>(
-    wanted: TokenKind,
-    expected: &'static str,
-) -> impl Fn(Tokens<'a>) -> PResult<'a, Token> {
-    move |input: Tokens<'a>| match input.first() {
-        Some(token) if token.kind == wanted => Ok((input.skip(1), token)),
-        _ => Err(fail(input, expected)),
-    }
-}
-
 /// A decimal number without fraction, as `i64`.
 pub fn integer<'a>(ctx: Ctx<'a>) -> impl Fn(Tokens<'a>) -> PResult<'a, (i64, Token)> {
     move |input: Tokens<'a>| match input.first() {
@@ -181,11 +114,7 @@ pub fn signed_integer<'a>(ctx: Ctx<'a>) -> impl Fn(Tokens<'a>) -> PResult<'a, (i
 
 /// Succeeds only at the end of the input.
 pub fn end(input: Tokens<'_>) -> PResult<'_, ()> {
-    if input.is_empty() {
-        Ok((input, ()))
-    } else {
-        Err(fail(input, "the end of the statement"))
-    }
+    crate::syntax::input::at_end(input, "the end of the statement")
 }
 
 /// A word split into its letters and the digits after them: `MW10` → (`MW`, `10`),

@@ -1,0 +1,77 @@
+//! Tokens with byte spans, and the lexer core both dialects' lexers run (logos).
+
+use logos::Logos;
+
+use crate::source::{FileId, Span};
+
+/// A dialect's token kind, with the one its characters no token starts with become.
+pub trait Kind: Copy + PartialEq + std::fmt::Debug {
+    const INVALID: Self;
+}
+
+/// One token: its kind (a STEP 5 or a STEP 7 one) and where it stands in the file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Token<K> {
+    pub kind: K,
+    pub start: u32,
+    pub end: u32,
+}
+
+impl<K: Copy> Token<K> {
+    pub fn text(self, source: &str) -> &str {
+        &source[self.start as usize..self.end as usize]
+    }
+
+    /// True when `next` starts right where this token ends (`A(`, `:F`, `I0.1`).
+    pub fn touches(self, next: Token<K>) -> bool {
+        self.end == next.start
+    }
+
+    /// Where the token stands in `file`.
+    pub fn span(self, file: FileId) -> Span {
+        Span {
+            file,
+            start: self.start,
+            end: self.end,
+        }
+    }
+
+    /// The span from this token to `last`, inclusive.
+    pub fn span_to(self, last: Token<K>, file: FileId) -> Span {
+        Span {
+            file,
+            start: self.start,
+            end: last.end.max(self.end),
+        }
+    }
+}
+
+/// The runs of tokens between those whose kind `ends` a line or a statement; empty runs are
+/// left out.
+pub fn runs<K: Copy>(
+    tokens: &[Token<K>],
+    ends: impl Fn(K) -> bool,
+) -> impl Iterator<Item = &[Token<K>]> {
+    tokens
+        .split(move |token| ends(token.kind))
+        .filter(|run| !run.is_empty())
+}
+
+/// Splits a whole file into tokens. Characters that start no token become [`Kind::INVALID`].
+pub fn lex<'s, K>(source: &'s str) -> Vec<Token<K>>
+where
+    K: Kind + Logos<'s, Source = str>,
+    K::Extras: Default,
+{
+    let mut lexer = K::lexer(source);
+    let mut tokens = Vec::with_capacity(source.len() / 3);
+    while let Some(result) = lexer.next() {
+        let span = lexer.span();
+        tokens.push(Token {
+            kind: result.unwrap_or(K::INVALID),
+            start: span.start as u32,
+            end: span.end as u32,
+        });
+    }
+    tokens
+}
