@@ -358,7 +358,8 @@ fn one_compile_names_the_profiles_each_compile_would() {
     assert!(files.len() > 50, "{} program files", files.len());
     for path in files {
         // The binary files that test the reader are not programs.
-        let Ok(read) = program_files::read_program(&Files::Disk, &[path.clone()], &[]) else {
+        let Ok(read) = program_files::read_program(&Files::Disk, std::slice::from_ref(&path), &[])
+        else {
             continue;
         };
         let sources = read.sources;
