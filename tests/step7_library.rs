@@ -300,6 +300,15 @@ fn len_and_find() {
     assert_eq!((data.int(), data.ok()), (11, true));
     let data = after(HELLO, "      CALL  FC 21 (S := '', RET_VAL := DB1.n);");
     assert_eq!(data.int(), 0);
+    // LEN gives the current-length byte as it stands, even past the maximum length.
+    let data = after(
+        HELLO,
+        &format!(
+            "      L     9;\n      T     DB1.DBB {};\n      CALL  \"LEN\" (S := DB1.tiny, RET_VAL := DB1.n);",
+            TINY + 1
+        ),
+    );
+    assert_eq!((data.int(), data.ok()), (9, true));
     let find = |what: &str| {
         after(
             HELLO,

@@ -10,7 +10,7 @@
 
 use std::ops::Range;
 
-use super::{Kind, Reader, Setting, invalid, not_run, span};
+use super::{Kind, LIBRARY_HELP, Reader, Setting, built_in_library_block, invalid, not_run, span};
 
 /// How a format 0 project begins.
 pub(super) const MAGIC: &str = "[AWLSIM_PROJECT]";
@@ -131,26 +131,46 @@ pub(super) fn read(text: &str, reader: &mut Reader<'_>) {
             ));
         }
     }
-    for (name, prefix, message, help) in [
-        (
-            "LIBS",
-            "lib_name",
-            "a block of awlsim's libraries is not run",
-            "awl has no copy of awlsim's library blocks (IEC, …)",
-        ),
-        (
-            "HWMODS",
-            "loaded_mod",
+    if let Some(libraries) = section("LIBS") {
+        refuse_foreign_libraries(reader, libraries);
+    }
+    for entry in section("HWMODS")
+        .into_iter()
+        .flat_map(|s| numbered(s, "loaded_mod"))
+    {
+        reader.errors.push(not_run(
             "an awlsim hardware module is not simulated",
-            "awl runs awlsim's projects on its dummy hardware only",
-        ),
-    ] {
-        for entry in section(name).into_iter().flat_map(|s| numbered(s, prefix)) {
+            span(entry.key_at.clone()),
+            "this entry",
+            Some("awl runs awlsim's projects on its dummy hardware only".into()),
+        ));
+    }
+}
+
+/// The library blocks of `[LIBS]` (`lib_name_N` in base64, `lib_block_N` as `FC 21`,
+/// `lib_block_effective_N`): those awl has built in are called as they are, each other one is
+/// an error.
+fn refuse_foreign_libraries(reader: &mut Reader<'_>, libraries: &Section<'_>) {
+    for (index, entry) in numbered(libraries, "lib_name").into_iter().enumerate() {
+        let value = |key: &str| {
+            libraries
+                .get(&format!("{key}_{index}"))
+                .map(|entry| entry.value())
+                .unwrap_or_default()
+        };
+        let library = base64(&entry.value())
+            .ok()
+            .and_then(|bytes| String::from_utf8(bytes).ok())
+            .unwrap_or_default();
+        let block = value("lib_block");
+        let (kind, number) = block.trim().split_once(' ').unwrap_or(("", ""));
+        let effective = value("lib_block_effective");
+        if !built_in_library_block(&library, kind, number, &effective) {
             reader.errors.push(not_run(
-                message,
+                "a block of awlsim's libraries is not run",
                 span(entry.key_at.clone()),
                 "this entry",
-                Some(help.into()),
+                Some(LIBRARY_HELP.into()),
             ));
         }
     }
@@ -398,6 +418,31 @@ mod tests {
             .iter()
             .map(ToString::to_string)
             .collect()
+    }
+
+    #[test]
+    fn an_iec_function_under_its_own_number_is_built_in() {
+        // `SUVD` is "IEC" in base64.
+        let libraries = |block: &str, effective: &str| {
+            messages(&format!(
+                "[AWLSIM_PROJECT]\nfile_version=0\n[LIBS]\nlib_name_0=SUVD\n\
+                 lib_block_0={block}\nlib_block_effective_0={effective}\n"
+            ))
+        };
+        assert!(
+            parse(
+                "[AWLSIM_PROJECT]\nfile_version=0\n[LIBS]\nlib_name_0=SUVD\n\
+                 lib_block_0=FC 21\nlib_block_effective_0=21\n"
+            )
+            .is_ok()
+        );
+        for (block, effective) in [("FC 21", "5"), ("FB 21", "21"), ("FC 99", "99")] {
+            assert_eq!(
+                libraries(block, effective),
+                ["a block of awlsim's libraries is not run"],
+                "{block}"
+            );
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! inside the element when there is no file), the symbol tables (`<symbols>`), library
 //! selections, hardware modules and the GUI's and core server's settings.
 
-use super::{Kind, Reader, Setting, invalid, not_run, span};
+use super::{Kind, LIBRARY_HELP, Reader, Setting, built_in_library_block, invalid, not_run, span};
 
 /// The format version this module reads.
 const FORMAT_VERSION: &str = "1";
@@ -89,14 +89,7 @@ pub(super) fn read(text: &str, reader: &mut Reader<'_>) {
                     ));
                 }
             }
-            "libraries" => refuse_each(
-                reader,
-                section,
-                "lib_selection",
-                "a block of awlsim's libraries is not run",
-                "this library block",
-                "awl has no copy of awlsim's library blocks (IEC, …)",
-            ),
+            "libraries" => libraries(reader, section),
             "hardware" => refuse_each(
                 reader,
                 section,
@@ -107,6 +100,30 @@ pub(super) fn read(text: &str, reader: &mut Reader<'_>) {
             ),
             // The core server's link and the GUI's settings do not touch the run.
             _ => {}
+        }
+    }
+}
+
+/// The library blocks a project selects: those awl has built in are called as they are, each
+/// other one is an error.
+fn libraries(reader: &mut Reader<'_>, section: roxmltree::Node<'_, '_>) {
+    for node in section
+        .children()
+        .filter(|node| node.has_tag_name("lib_selection"))
+    {
+        let value = |name: &str| node.attribute(name).unwrap_or("");
+        if !built_in_library_block(
+            value("name"),
+            value("type"),
+            value("index"),
+            value("effective_index"),
+        ) {
+            reader.errors.push(not_run(
+                "a block of awlsim's libraries is not run",
+                span(node.range()),
+                "this library block",
+                Some(LIBRARY_HELP.into()),
+            ));
         }
     }
 }
@@ -301,6 +318,41 @@ mod tests {
             messages("<awlsim_project format_version=\"0\"/>"),
             ["project format version 0 is not read"]
         );
+    }
+
+    #[test]
+    fn an_iec_function_under_its_own_number_is_built_in() {
+        let libraries = |selections: &str| {
+            messages(&format!(
+                "<awlsim_project format_version=\"1\"><libraries>{selections}</libraries>\
+                 </awlsim_project>"
+            ))
+        };
+        let selection = |name: &str, kind: &str, index: u16, effective: u16| {
+            format!(
+                "<lib_selection name=\"{name}\" type=\"{kind}\" index=\"{index}\" \
+                 effective_index=\"{effective}\"/>"
+            )
+        };
+        assert!(
+            parse(&format!(
+                "<awlsim_project format_version=\"1\"><libraries>{}</libraries></awlsim_project>",
+                selection("IEC", "FC", 21, 21)
+            ))
+            .is_ok()
+        );
+        for refused in [
+            selection("IEC", "FC", 21, 5),
+            selection("IEC", "FC", 41, 41),
+            selection("IEC", "FB", 21, 21),
+            selection("TI-S7", "FC", 105, 105),
+        ] {
+            assert_eq!(
+                libraries(&refused),
+                ["a block of awlsim's libraries is not run"],
+                "{refused}"
+            );
+        }
     }
 
     #[test]

@@ -462,6 +462,20 @@ impl Reader<'_> {
     }
 }
 
+/// Whether awl has a library block a project selects built in, under the number the program
+/// calls it by: an IEC function (FC 1 to 40) not moved to another number.
+fn built_in_library_block(library: &str, kind: &str, number: &str, effective: &str) -> bool {
+    let number = number.trim().parse::<u16>().ok();
+    library.trim().eq_ignore_ascii_case("IEC")
+        && kind.trim().eq_ignore_ascii_case("FC")
+        && number.is_some_and(|number| crate::step7::library::by_number(number).is_some())
+        && number == effective.trim().parse::<u16>().ok()
+}
+
+/// The help for a library block awl does not run.
+const LIBRARY_HELP: &str = "awl has the IEC functions (FC 1 to 40) built in under their own \
+    numbers; other libraries, and a library block moved to another number, are not run";
+
 fn span(range: Range<usize>) -> SourceSpan {
     (range.start, range.len()).into()
 }

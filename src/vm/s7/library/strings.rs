@@ -233,9 +233,12 @@ impl Cpu {
             11 => self.find(call),
             17 => self.insert(call),
             20 | 32 => self.side(call),
+            // The current-length byte as it is, even past the maximum (the other functions
+            // read no further than the maximum).
             21 => {
-                let text = self.text(call, 0)?;
-                self.write_arg(call, 1, text.len as u32)?;
+                let (at, _) = self.arg(call, 0)?;
+                let len = self.fetch(at.offset(1, 0), AccessWidth::Byte)?;
+                self.write_arg(call, 1, len)?;
                 Ok(true)
             }
             26 => self.mid(call),
