@@ -601,12 +601,29 @@ fn instants_compare() {
         .map(|other| compare(name, other));
         assert_eq!(found, expected, "{name}");
     }
-    // One that is none: BR 0.
-    let data = after(
-        "  t1 := DT#2024-3-15-12:00:00.000;",
-        "      CALL  FC 9 (DT1 := DB1.t1, DT2 := DB1.t2, RET_VAL := DB1.flag);",
-    );
+    // The orderings take any bytes but a year that is no BCD number (BR 0, RET_VAL as it
+    // was); EQ_DT and NE_DT compare the bytes as they are and report no error.
+    let t2 = T1 + 8;
+    let with_bad_year = |call: &str| {
+        after(
+            "  t1 := DT#2024-3-15-12:00:00.000;\n  t2 := DT#2024-3-15-12:00:00.000;",
+            &format!("      L     B#16#AF;\n      T     DB1.DBB {t2};\n{call}"),
+        )
+    };
+    let data =
+        with_bad_year("      CALL  FC 12 (DT1 := DB1.t1, DT2 := DB1.t2, RET_VAL := DB1.flag);");
     assert!(!data.ok());
+    let data =
+        with_bad_year("      CALL  FC 28 (DT1 := DB1.t1, DT2 := DB1.t2, RET_VAL := DB1.flag);");
+    assert!(data.ok());
+    assert!(data.0[OK] & 2 != 0, "not equal");
+    let data = after(
+        "  t1 := DT#2024-3-15-12:00:00.000;\n  t2 := DT#2024-3-15-12:00:00.000;",
+        "      L     DW#16#FFFFFFFF;\n      T     DB1.DBD 88;\n      T     DB1.DBD 96;\n\
+         \x20     CALL  FC 9 (DT1 := DB1.t1, DT2 := DB1.t2, RET_VAL := DB1.flag);",
+    );
+    assert!(data.ok());
+    assert!(data.0[OK] & 2 != 0, "the same bytes, though no date");
 }
 
 // FC 33 S5TI_TIM, FC 40 TIM_S5TI.

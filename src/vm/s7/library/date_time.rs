@@ -103,23 +103,49 @@ impl Cpu {
                 self.write_arg(call, 1, word)?;
                 Ok(limited == ms)
             }
-            // The comparisons: DT1 against DT2.
+            // EQ_DT and NE_DT compare the eight bytes as they are and report no error, as the
+            // library's own code does (a value that is no date compares like any other).
+            9 | 28 => {
+                let first = self.fetch_date_and_time(call.params[0])?;
+                let second = self.fetch_date_and_time(call.params[1])?;
+                let equal = first == second;
+                self.write_arg(call, 2, u32::from(equal == (call.number == 9)))?;
+                Ok(true)
+            }
+            // The other comparisons order by the year (1990 to 2089), then by the other seven
+            // bytes as they are, as the library's own code does: only a year that is no BCD
+            // number is an error.
             _ => {
-                let (Some(first), Some(second)) = (self.read_dt(call, 0)?, self.read_dt(call, 1)?)
-                else {
+                let first = self.fetch_date_and_time(call.params[0])?;
+                let second = self.fetch_date_and_time(call.params[1])?;
+                let (Some(first), Some(second)) = (order_key(first), order_key(second)) else {
                     return Ok(false);
                 };
                 let result = match call.number {
-                    9 => first == second,
                     12 => first >= second,
                     14 => first > second,
                     18 => first <= second,
-                    23 => first < second,
-                    _ => first != second,
+                    _ => first < second,
                 };
                 self.write_arg(call, 2, u32::from(result))?;
                 Ok(true)
             }
         }
     }
+}
+
+/// What the ordering comparisons compare a DATE_AND_TIME by: its year with the century (BCD
+/// 90 to 99 the 1990s, 00 to 89 the 2000s), then its other bytes; `None` when the year is no
+/// BCD number.
+fn order_key(bytes: [u8; 8]) -> Option<(u16, [u8; 7])> {
+    let year = bytes[0];
+    let (tens, ones) = (year >> 4, year & 0x0F);
+    if tens > 9 || ones > 9 {
+        return None;
+    }
+    let in_century = u16::from(tens * 10 + ones);
+    let full_year = if in_century >= 90 { 1900 } else { 2000 } + in_century;
+    let mut rest = [0; 7];
+    rest.copy_from_slice(&bytes[1..]);
+    Some((full_year, rest))
 }
