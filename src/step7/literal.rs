@@ -405,6 +405,16 @@ pub enum BadDateAndTime {
     Time,
 }
 
+/// The year a DATE_AND_TIME's first byte holds: two BCD digits, 90–99 the years 1990–1999,
+/// 00–89 2000–2089; `None` when the byte is no BCD number.
+pub fn date_and_time_year(byte: u8) -> Option<u32> {
+    let (tens, ones) = (byte >> 4, byte & 15);
+    (tens < 10 && ones < 10).then(|| {
+        let two = u32::from(tens) * 10 + u32::from(ones);
+        if two >= 90 { 1900 + two } else { 2000 + two }
+    })
+}
+
 /// The inverse of [`date_and_time_bytes`]: the day after 1990-01-01 and the milliseconds
 /// after midnight. The weekday nibble is not checked: STEP 7 computes it from the date.
 pub fn date_and_time_from_bytes(bytes: [u8; 8]) -> Result<(u32, u32), BadDateAndTime> {
@@ -412,9 +422,7 @@ pub fn date_and_time_from_bytes(bytes: [u8; 8]) -> Result<(u32, u32), BadDateAnd
         (byte >> 4 < 10 && byte & 15 < 10).then(|| u32::from(byte >> 4) * 10 + u32::from(byte & 15))
     };
     let date = || -> Option<u32> {
-        let two = digits(bytes[0])?;
-        // Two digits: 90–99 are 1990–1999, 00–89 2000–2089.
-        let year = if two >= 90 { 1900 + two } else { 2000 + two };
+        let year = date_and_time_year(bytes[0])?;
         let (month, day) = (digits(bytes[1])?, digits(bytes[2])?);
         ((1..=12).contains(&month) && day >= 1 && day <= days_in_month(year, month))
             .then(|| (days_from_civil(year, month, day) - days_from_civil(1990, 1, 1)) as u32)

@@ -5,7 +5,9 @@
 //! is no BCD digit of the calendar) is an error and the result stays as it was.
 
 use crate::step7::library::LibraryCall;
-use crate::step7::literal::{date_and_time_bytes, date_and_time_from_bytes, s5time_word};
+use crate::step7::literal::{
+    date_and_time_bytes, date_and_time_from_bytes, date_and_time_year, s5time_word,
+};
 use crate::vm::Cpu;
 use crate::vm::timers::decode_time;
 
@@ -134,18 +136,11 @@ impl Cpu {
     }
 }
 
-/// What the ordering comparisons compare a DATE_AND_TIME by: its year with the century (BCD
-/// 90 to 99 the 1990s, 00 to 89 the 2000s), then its other bytes; `None` when the year is no
-/// BCD number.
-fn order_key(bytes: [u8; 8]) -> Option<(u16, [u8; 7])> {
-    let year = bytes[0];
-    let (tens, ones) = (year >> 4, year & 0x0F);
-    if tens > 9 || ones > 9 {
-        return None;
-    }
-    let in_century = u16::from(tens * 10 + ones);
-    let full_year = if in_century >= 90 { 1900 } else { 2000 } + in_century;
+/// What the ordering comparisons compare a DATE_AND_TIME by: its year, then its other bytes;
+/// `None` when the year is no BCD number.
+fn order_key(bytes: [u8; 8]) -> Option<(u32, [u8; 7])> {
+    let year = date_and_time_year(bytes[0])?;
     let mut rest = [0; 7];
     rest.copy_from_slice(&bytes[1..]);
-    Some((full_year, rest))
+    Some((year, rest))
 }
