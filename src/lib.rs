@@ -34,6 +34,8 @@ pub mod report;
 pub mod runner;
 pub mod s5_float;
 pub mod scenario;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod serve;
 pub mod source;
 pub mod state;
 pub mod step7;
