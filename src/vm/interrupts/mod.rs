@@ -674,7 +674,12 @@ impl Cpu {
         let Happening::SetInputs(changes) = &self.engine.schedule[index].what else {
             return;
         };
-        let change = changes[change];
+        self.deliver_inputs(changes[change]);
+    }
+
+    /// The input modules deliver `change` now: a scenario's `set`, or a network client's write
+    /// to the inputs. The program sees it in the PII at the next cycle start.
+    pub fn deliver_inputs(&mut self, change: InputChange) {
         let extended = change.target == InputTarget::Extended;
         let (at, count) = (usize::from(change.byte), usize::from(change.bytes.max(1)));
         let before = self.modules_before(Modules::Inputs, extended, at, count);
