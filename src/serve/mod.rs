@@ -1,5 +1,12 @@
 //! `awl serve`: the CPU as a virtual PLC on the network, paced to the wall clock. The protocol
 //! servers (S7comm, Modbus TCP) sit here at the edge; they reach the CPU only through the
-//! requests of [`request`], served at the cycle control point.
+//! requests of [`request`], served at the cycle control point by [`station`].
 
+pub mod access;
+pub mod identity;
+pub mod notation;
+pub mod pacing;
 pub mod request;
+pub mod station;
+#[cfg(test)]
+mod testing;

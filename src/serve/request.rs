@@ -44,15 +44,29 @@ pub enum Item {
     Read(Range),
     /// Bytes (two per timer or counter) written from `range.start`; `bytes.len()` is the
     /// range's length in bytes.
-    Write { range: Range, bytes: Vec<u8> },
+    Write {
+        range: Range,
+        bytes: Vec<u8>,
+    },
     /// One bit: `byte` of `area`, bit 0–7.
-    ReadBit { area: Area, byte: u32, bit: u8 },
+    ReadBit {
+        area: Area,
+        byte: u32,
+        bit: u8,
+    },
     WriteBit {
         area: Area,
         byte: u32,
         bit: u8,
         value: bool,
     },
+}
+
+impl Item {
+    /// Whether the item writes.
+    pub fn writes(&self) -> bool {
+        matches!(self, Item::Write { .. } | Item::WriteBit { .. })
+    }
 }
 
 /// Why one item failed; the other items of the request are served.
@@ -85,8 +99,8 @@ pub struct CpuStatus {
     pub mode: CpuMode,
     /// The CPU profile's name (`speed7`, `s5-115u`, …).
     pub profile: &'static str,
-    /// The order code a real CPU of the profile reports.
-    pub order_code: &'static str,
+    /// The order code the CPU reports (SZL 0x0011).
+    pub order_code: String,
     /// The CPU's date and time of day: the simulated clock, in milliseconds since
     /// 1990-01-01 00:00 (the S7 epoch), as SFC 1 READ_CLK reads it.
     pub clock_ms: i64,
@@ -151,7 +165,10 @@ pub enum Request {
         reply: oneshot::Sender<Result<(), ControlError>>,
     },
     /// A client connected (`true`) or left: the status line counts them.
-    Connection { client: Client, open: bool },
+    Connection {
+        client: Client,
+        open: bool,
+    },
 }
 
 /// The sending end the protocol servers hold; the CPU holds the receiving end.

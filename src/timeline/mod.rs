@@ -159,6 +159,7 @@ impl Recorder {
             Event::Stop { cause, .. } => ((Mark::Stop, 0, 0), format!("STOP {cause}")),
             Event::Input { .. } => point(Mark::Input, 0),
             Event::Output { .. } => point(Mark::Output, 0),
+            Event::ClientWrite { client, .. } => ((Mark::ClientWrite, 0, 0), client.clone()),
             Event::Mode { .. }
             | Event::CycleEnd { .. }
             | Event::DataCycle { .. }

@@ -30,6 +30,8 @@ pub enum Mark {
     Stop,
     Input,
     Output,
+    /// A network client's write (`awl serve`).
+    ClientWrite,
 }
 
 impl Mark {
@@ -52,6 +54,7 @@ impl Mark {
             Mark::Stop => "stop",
             Mark::Input => "input",
             Mark::Output => "output",
+            Mark::ClientWrite => "client-write",
         }
     }
 
@@ -75,6 +78,7 @@ impl Mark {
             Mark::Stop => "STOPs",
             Mark::Input => "input changes",
             Mark::Output => "output changes",
+            Mark::ClientWrite => "client writes",
         }
     }
 }

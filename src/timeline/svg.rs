@@ -117,7 +117,9 @@ pub fn render(scene: &Scene) -> String {
     let lanes = scene.lanes();
     let lanes_bottom = lanes.last().map_or(TOP, |lane| lane.top + lane.height);
     let system_top = lanes_bottom + GAP;
-    let io = scene.has(Mark::Input) || scene.has(Mark::Output);
+    let io = [Mark::Input, Mark::Output, Mark::ClientWrite]
+        .into_iter()
+        .any(|mark| scene.has(mark));
     let io_top = system_top + STRIP + GAP;
     let axis_top = if io { io_top + STRIP + GAP } else { io_top };
     // The marks of SFC 39–42 get a legend line of their own, only when the run has them.
@@ -384,7 +386,11 @@ fn draw_io(svg: &mut String, scene: &Scene, top: f64) {
         top + ROW - 4.0
     );
     let y = top + STRIP / 2.0;
-    for (mark, fill) in [(Mark::Input, "#2ca02c"), (Mark::Output, "#9467bd")] {
+    for (mark, fill) in [
+        (Mark::Input, "#2ca02c"),
+        (Mark::Output, "#9467bd"),
+        (Mark::ClientWrite, "#1f77b4"),
+    ] {
         for (_, item) in scene.items(mark, 0) {
             let x = scene.x(item.start);
             let _ = write!(

@@ -134,7 +134,8 @@ impl Activity {
             | Event::ModuleEvent { .. }
             | Event::Watch { .. }
             | Event::Input { .. }
-            | Event::Output { .. } => {}
+            | Event::Output { .. }
+            | Event::ClientWrite { .. } => {}
         }
     }
 

@@ -277,6 +277,9 @@ impl Chrome {
             Event::Input { operand, value } | Event::Output { operand, value } => {
                 self.counter(operand, i64::from(*value), t_ns)
             }
+            Event::ClientWrite {
+                client, operand, ..
+            } => self.global(format!("{client} wrote {operand}"), t_ns, event),
             Event::CycleStart { .. }
             | Event::CycleEnd { .. }
             | Event::BlockCall { .. }

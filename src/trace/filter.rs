@@ -47,7 +47,10 @@ pub fn kind(event: &Event) -> Option<Kind> {
         | Event::DelayEnd { .. }
         | Event::IrtCall { .. }
         | Event::ModuleEvent { .. } => Some(Kind::Interrupts),
-        Event::Watch { .. } | Event::Input { .. } | Event::Output { .. } => Some(Kind::Io),
+        Event::Watch { .. }
+        | Event::Input { .. }
+        | Event::Output { .. }
+        | Event::ClientWrite { .. } => Some(Kind::Io),
     }
 }
 

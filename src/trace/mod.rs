@@ -181,6 +181,15 @@ pub enum Event {
         operand: String,
         value: u32,
     },
+    /// A network client wrote to the CPU's memory (`awl serve`), at the cycle control point.
+    ClientWrite {
+        /// The protocol and the client's number (`s7 #2`, `modbus #1`).
+        client: String,
+        /// What it wrote, in the program's notation (`MW 10`, `DB1.DBX 0.1`).
+        operand: String,
+        /// The value: a bit's 0 or 1, up to four bytes as `16#…`, else the bytes in hex.
+        value: String,
+    },
 }
 
 /// Where the events go: a trace file, the timeline picture. Every output sees every event in

@@ -51,9 +51,9 @@ impl Text {
             | Event::IrqService {
                 block: Some(block), ..
             } => *block = name(block),
-            Event::Input { operand, .. } | Event::Output { operand, .. } => {
-                *operand = name(operand)
-            }
+            Event::Input { operand, .. }
+            | Event::Output { operand, .. }
+            | Event::ClientWrite { operand, .. } => *operand = name(operand),
             _ => {}
         }
         Cow::Owned(event)
@@ -228,6 +228,11 @@ pub fn line(event: &Event) -> String {
         ),
         Event::Input { operand, value } => format!("input {operand} = {value}"),
         Event::Output { operand, value } => format!("output {operand} = {value}"),
+        Event::ClientWrite {
+            client,
+            operand,
+            value,
+        } => format!("{client} wrote {operand} = {value}"),
         Event::Watch { values, .. } => {
             let values: Vec<String> = values
                 .iter()

@@ -66,7 +66,7 @@ pub struct RunOutcome {
 }
 
 impl Cpu {
-    fn set_mode(&mut self, to: Mode, cause: Option<&'static str>) {
+    pub(super) fn set_mode(&mut self, to: Mode, cause: Option<&'static str>) {
         let from = self.mode;
         self.mode = to;
         if self.tracer.enabled {

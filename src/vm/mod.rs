@@ -18,6 +18,7 @@ mod io_trace;
 pub mod place;
 pub mod probe;
 pub mod pulse;
+mod restart;
 mod run_loop;
 pub mod s7;
 pub mod start_info;

@@ -167,6 +167,20 @@ impl Timer {
         (end.saturating_sub(now).div_ceil(base)).min(999) as u16
     }
 
+    /// A PG's or an HMI's write of a time word (BCD value, base in bits 12–13): a running
+    /// timer runs on from now with the new remaining time, a stopped one holds the value.
+    pub fn write_coded(&mut self, word: u32, now: u64) {
+        self.settle(now);
+        let (value, base) = decode_time(word);
+        self.base = base;
+        if self.running {
+            self.start_ns = now;
+            self.duration_ns = u64::from(value) * BASE_NS[usize::from(base)];
+        } else {
+            self.stopped_value = value;
+        }
+    }
+
     /// BCD value with the time base in bits 12–13 (`LC T n`).
     pub fn coded(&mut self, now: u64) -> u32 {
         self.settle(now);

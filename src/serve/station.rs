@@ -1,0 +1,228 @@
+//! The CPU's side of `awl serve`: the cycle control point, where the clients' requests are
+//! served between two cycles (one consistent state for each) and the cycle waits for the wall
+//! clock; and the STOP, where requests are served until a client starts the CPU again.
+
+use std::sync::mpsc::{Receiver, RecvTimeoutError};
+use std::time::{Duration, Instant};
+
+use crate::vm::{Cpu, Mode};
+
+use super::access::serve_items;
+use super::pacing::Pacer;
+use super::request::{Control, ControlError, CpuMode, CpuStatus, Request};
+
+/// How often the status is reported and a halt looked for while the CPU waits.
+const LOOK_EVERY: Duration = Duration::from_millis(100);
+
+/// What a client asked the CPU's mode to become.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Wanted {
+    Stop,
+    Start { cold: bool },
+}
+
+/// The figures the status line shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Snapshot {
+    pub mode: Mode,
+    pub cycle: u64,
+    pub min_cycle_ns: u64,
+    pub max_cycle_ns: u64,
+    pub clients: usize,
+    pub requests_per_second: f64,
+}
+
+/// Counts of what was served, for the summary.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Served {
+    pub requests: u64,
+    pub writes: u64,
+    pub connections: u64,
+}
+
+pub struct Station<'a> {
+    requests: Receiver<Request>,
+    read_only: bool,
+    pub pacer: Pacer,
+    open_clients: usize,
+    pub served: Served,
+    wanted: Option<Wanted>,
+    halted: &'a dyn Fn() -> bool,
+    report: &'a mut dyn FnMut(&Snapshot),
+    last_report: Instant,
+    requests_at_last_report: u64,
+}
+
+impl<'a> Station<'a> {
+    pub fn new(
+        requests: Receiver<Request>,
+        read_only: bool,
+        pacer: Pacer,
+        halted: &'a dyn Fn() -> bool,
+        report: &'a mut dyn FnMut(&Snapshot),
+    ) -> Self {
+        Station {
+            requests,
+            read_only,
+            pacer,
+            open_clients: 0,
+            served: Served::default(),
+            wanted: None,
+            halted,
+            report,
+            last_report: Instant::now(),
+            requests_at_last_report: 0,
+        }
+    }
+
+    /// At a cycle boundary in RUN: serves what came, then waits for the wall clock to reach
+    /// the CPU's simulated time, serving what comes meanwhile. `false` leaves the run: a
+    /// client's STOP or a halt (Ctrl-C).
+    pub fn at_control_point(&mut self, cpu: &mut Cpu) -> bool {
+        let deadline = self.pacer.deadline(cpu.clock);
+        loop {
+            if !self.serve_waiting(cpu) {
+                return false;
+            }
+            let now = Instant::now();
+            if now >= deadline {
+                self.pacer.record_start(deadline, now);
+                break;
+            }
+            self.wait_for_request(cpu, (deadline - now).min(LOOK_EVERY));
+        }
+        self.report_now_and_then(cpu);
+        true
+    }
+
+    /// In STOP: serves requests until a client starts the CPU (`Some(cold)`) or a halt
+    /// (`None`).
+    pub fn while_stopped(&mut self, cpu: &mut Cpu) -> Option<bool> {
+        loop {
+            if (self.halted)() {
+                return None;
+            }
+            if let Some(Wanted::Start { cold }) = self.wanted.take() {
+                return Some(cold);
+            }
+            self.wait_for_request(cpu, LOOK_EVERY);
+            self.report_now_and_then(cpu);
+        }
+    }
+
+    /// Serves every request that has come; `false` when the run is to be left.
+    fn serve_waiting(&mut self, cpu: &mut Cpu) -> bool {
+        while let Ok(request) = self.requests.try_recv() {
+            self.serve(cpu, request);
+        }
+        if (self.halted)() {
+            return false;
+        }
+        match self.wanted {
+            Some(Wanted::Stop) => {
+                self.wanted = None;
+                cpu.stop_from_outside("client");
+                false
+            }
+            _ => true,
+        }
+    }
+
+    fn wait_for_request(&mut self, cpu: &mut Cpu, longest: Duration) {
+        match self.requests.recv_timeout(longest) {
+            Ok(request) => self.serve(cpu, request),
+            Err(RecvTimeoutError::Timeout) => {}
+            // No server is left to send anything: only the clock is waited for.
+            Err(RecvTimeoutError::Disconnected) => std::thread::sleep(longest),
+        }
+    }
+
+    fn serve(&mut self, cpu: &mut Cpu, request: Request) {
+        self.served.requests += 1;
+        match request {
+            Request::Access {
+                client,
+                items,
+                reply,
+            } => {
+                let results = serve_items(cpu, client, &items, self.read_only);
+                self.served.writes += items.iter().filter(|item| item.writes()).count() as u64;
+                // A client that left before its answer needs none.
+                let _ = reply.send(results);
+            }
+            Request::Status { reply } => {
+                let _ = reply.send(status(cpu));
+            }
+            Request::Control { command, reply, .. } => {
+                let _ = reply.send(self.control(cpu, command));
+            }
+            Request::Connection { open, .. } => {
+                if open {
+                    self.open_clients += 1;
+                    self.served.connections += 1;
+                } else {
+                    self.open_clients = self.open_clients.saturating_sub(1);
+                }
+            }
+        }
+    }
+
+    /// A mode change a client asks for; it happens when the CPU gets to it (the STOP at the
+    /// cycle boundary, the start from STOP).
+    fn control(&mut self, cpu: &Cpu, command: Control) -> Result<(), ControlError> {
+        if self.read_only {
+            return Err(ControlError::ReadOnly);
+        }
+        let stopped = cpu.mode == Mode::Stop;
+        match command {
+            Control::Stop => {
+                if !stopped {
+                    self.wanted = Some(Wanted::Stop);
+                }
+                Ok(())
+            }
+            Control::HotStart | Control::ColdStart if !stopped => Err(ControlError::AlreadyRunning),
+            Control::HotStart => {
+                self.wanted = Some(Wanted::Start { cold: false });
+                Ok(())
+            }
+            Control::ColdStart => {
+                self.wanted = Some(Wanted::Start { cold: true });
+                Ok(())
+            }
+        }
+    }
+
+    fn report_now_and_then(&mut self, cpu: &Cpu) {
+        let elapsed = self.last_report.elapsed();
+        if elapsed < Duration::from_millis(250) {
+            return;
+        }
+        let requests = self.served.requests - self.requests_at_last_report;
+        (self.report)(&Snapshot {
+            mode: cpu.mode,
+            cycle: cpu.cycle,
+            min_cycle_ns: cpu.cycle_times.min_ns,
+            max_cycle_ns: cpu.cycle_times.max_ns,
+            clients: self.open_clients,
+            requests_per_second: requests as f64 / elapsed.as_secs_f64(),
+        });
+        self.last_report = Instant::now();
+        self.requests_at_last_report = self.served.requests;
+    }
+}
+
+/// What the CPU reports of itself.
+pub fn status(cpu: &Cpu) -> CpuStatus {
+    CpuStatus {
+        mode: match cpu.mode {
+            Mode::Run => CpuMode::Run,
+            Mode::Stop => CpuMode::Stop,
+            Mode::Startup => CpuMode::Startup,
+        },
+        profile: cpu.profile.name,
+        order_code: super::identity::order_code(cpu.profile),
+        clock_ms: cpu.clock_ms() as i64,
+        cycles: cpu.cycle,
+    }
+}
