@@ -3,3 +3,4 @@
 //! requests of [`request`], served at the cycle control point.
 
 pub mod request;
+pub mod s7comm;
