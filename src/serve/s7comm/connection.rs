@@ -91,11 +91,8 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
     }
 
     async fn write(&mut self, bytes: &[u8]) -> Served {
-        let written = tokio::time::timeout(
-            self.settings.packet_timeout,
-            self.stream.write_all(bytes),
-        )
-        .await;
+        let written =
+            tokio::time::timeout(self.settings.packet_timeout, self.stream.write_all(bytes)).await;
         match written {
             Ok(Ok(())) => Ok(()),
             _ => Err(Closed),
@@ -155,7 +152,8 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
         } else {
             piece.len()
         };
-        self.message.extend_from_slice(&piece[..room.min(piece.len())]);
+        self.message
+            .extend_from_slice(&piece[..room.min(piece.len())]);
     }
 
     async fn serve_message(&mut self) -> Served {
@@ -186,7 +184,20 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
     /// Refuses a request longer than the PDU length from its first bytes.
     async fn refuse_unread(&mut self, head: &[u8]) -> Served {
         match head {
-            [decode::PROTOCOL_ID, _, _, _, high, low, _, _, _, _, function, ..] => {
+            [
+                decode::PROTOCOL_ID,
+                _,
+                _,
+                _,
+                high,
+                low,
+                _,
+                _,
+                _,
+                _,
+                function,
+                ..,
+            ] => {
                 let reference = u16::from_be_bytes([*high, *low]);
                 let refusal = encode::refusal(reference, *function, error::WRONG_FRAMES);
                 self.answer(&refusal).await
@@ -225,7 +236,10 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
     }
 
     /// Asks the CPU; `None` when it is gone.
-    async fn ask<T>(&self, request: impl FnOnce(oneshot::Sender<T>) -> Request) -> Result<T, Closed> {
+    async fn ask<T>(
+        &self,
+        request: impl FnOnce(oneshot::Sender<T>) -> Request,
+    ) -> Result<T, Closed> {
         let (reply, answer) = oneshot::channel();
         self.requests.send(request(reply)).map_err(|_| Closed)?;
         answer.await.map_err(|_| Closed)
@@ -355,7 +369,11 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
         self.ask(|reply| Request::Status { reply }).await
     }
 
-    async fn userdata(&mut self, reference: u16, request: &Userdata<'_>) -> Result<Vec<u8>, Closed> {
+    async fn userdata(
+        &mut self,
+        reference: u16,
+        request: &Userdata<'_>,
+    ) -> Result<Vec<u8>, Closed> {
         let mut answer = UserdataAnswer {
             reference,
             group: request.group,
@@ -366,8 +384,7 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
         };
         match (request.group, request.subfunction) {
             (SZL_GROUP, READ_SZL) if request.follow_up => {
-                let Some(pending) = self.pending.take_if(|p| p.sequence == request.sequence)
-                else {
+                let Some(pending) = self.pending.take_if(|p| p.sequence == request.sequence) else {
                     answer.result = Err(error::NO_SUCH_SZL);
                     return Ok(encode::userdata(&answer));
                 };

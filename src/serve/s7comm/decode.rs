@@ -185,8 +185,16 @@ fn decode_job<'a>(parameters: &'a [u8], data: &'a [u8]) -> Result<Message<'a>, R
         SETUP_COMMUNICATION => {
             // Function, a reserved byte, the parallel jobs each side may have open, the PDU
             // length the client proposes.
-            let &[_, _, calling_high, calling_low, called_high, called_low, high, low] =
-                parameters
+            let &[
+                _,
+                _,
+                calling_high,
+                calling_low,
+                called_high,
+                called_low,
+                high,
+                low,
+            ] = parameters
             else {
                 return Err(Refusal::Malformed);
             };
@@ -201,7 +209,9 @@ fn decode_job<'a>(parameters: &'a [u8], data: &'a [u8]) -> Result<Message<'a>, R
             if !data.is_empty() {
                 return Err(Refusal::Malformed);
             }
-            Ok(Message::Read(specifications.into_iter().map(address).collect()))
+            Ok(Message::Read(
+                specifications.into_iter().map(address).collect(),
+            ))
         }
         WRITE_VAR => decode_write(parameters, data),
         PLC_STOP => {
@@ -293,8 +303,18 @@ mod area_code {
 /// One item specification of the S7ANY syntax (0x10): transport size, count, DB number, area,
 /// and the address (in bits; for timers and counters their number).
 fn address(specification: &[u8]) -> Result<Address, u8> {
-    let &[0x10, transport, count_high, count_low, db_high, db_low, area, a0, a1, a2] =
-        specification
+    let &[
+        0x10,
+        transport,
+        count_high,
+        count_low,
+        db_high,
+        db_low,
+        area,
+        a0,
+        a1,
+        a2,
+    ] = specification
     else {
         return Err(return_code::TYPE_NOT_SUPPORTED);
     };
@@ -418,8 +438,17 @@ fn decode_write<'a>(parameters: &'a [u8], data: &'a [u8]) -> Result<Message<'a>,
 /// follow-up), the method (0x11 request, 0x12 follow-up), type and function group,
 /// subfunction, sequence number; then its data: a return code, transport size, length, data.
 fn decode_userdata<'a>(parameters: &'a [u8], data: &'a [u8]) -> Result<Userdata<'a>, Refusal> {
-    let [0x00, 0x01, 0x12, length, method, type_group, subfunction, sequence, rest @ ..] =
-        parameters
+    let [
+        0x00,
+        0x01,
+        0x12,
+        length,
+        method,
+        type_group,
+        subfunction,
+        sequence,
+        rest @ ..,
+    ] = parameters
     else {
         return Err(Refusal::Malformed);
     };
@@ -625,13 +654,27 @@ mod tests {
         stop.extend_from_slice(b"P_PROGRAM");
         assert!(matches!(
             decode(&job(2, &stop, &[])),
-            Ok(Pdu { message: Message::Control { function: PLC_STOP, service: b"P_PROGRAM", argument: &[] }, .. })
+            Ok(Pdu {
+                message: Message::Control {
+                    function: PLC_STOP,
+                    service: b"P_PROGRAM",
+                    argument: &[]
+                },
+                ..
+            })
         ));
         let mut cold = vec![PI_START, 0, 0, 0, 0, 0, 0, 0xFD, 0, 2, b'C', b' ', 9];
         cold.extend_from_slice(b"P_PROGRAM");
         assert!(matches!(
             decode(&job(3, &cold, &[])),
-            Ok(Pdu { message: Message::Control { function: PI_START, service: b"P_PROGRAM", argument: b"C " }, .. })
+            Ok(Pdu {
+                message: Message::Control {
+                    function: PI_START,
+                    service: b"P_PROGRAM",
+                    argument: b"C "
+                },
+                ..
+            })
         ));
     }
 

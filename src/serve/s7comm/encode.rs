@@ -122,7 +122,12 @@ pub const USERDATA_OVERHEAD: usize = 10 + 12 + 4;
 pub fn userdata(answer: &UserdataAnswer<'_>) -> Vec<u8> {
     let error = answer.result.err().unwrap_or(0);
     let mut parameters = vec![0x00, 0x01, 0x12, 0x08, 0x12, 0x80 | answer.group];
-    parameters.extend_from_slice(&[answer.subfunction, answer.sequence, 0, u8::from(answer.more)]);
+    parameters.extend_from_slice(&[
+        answer.subfunction,
+        answer.sequence,
+        0,
+        u8::from(answer.more),
+    ]);
     parameters.extend_from_slice(&error.to_be_bytes());
     let mut data = Vec::new();
     match answer.result {
@@ -151,7 +156,9 @@ mod tests {
     fn setup_answers_with_the_granted_pdu_length() {
         assert_eq!(
             setup(1, 1, 1, 960),
-            [0x32, 3, 0, 0, 0, 1, 0, 8, 0, 0, 0, 0, 0xF0, 0, 0, 1, 0, 1, 0x03, 0xC0]
+            [
+                0x32, 3, 0, 0, 0, 1, 0, 8, 0, 0, 0, 0, 0xF0, 0, 0, 1, 0, 1, 0x03, 0xC0
+            ]
         );
     }
 
@@ -223,7 +230,9 @@ mod tests {
         };
         assert_eq!(
             userdata(&refused)[10..],
-            [0, 1, 0x12, 8, 0x12, 0x84, 1, 2, 0, 0, 0xD4, 0x02, 0x0A, 0, 0, 0]
+            [
+                0, 1, 0x12, 8, 0x12, 0x84, 1, 2, 0, 0, 0xD4, 0x02, 0x0A, 0, 0, 0
+            ]
         );
     }
 }

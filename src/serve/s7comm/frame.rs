@@ -259,10 +259,7 @@ mod tests {
         };
         assert_eq!(request.source_reference, 1);
         assert_eq!(request.tpdu_size_code, Some(0x0A));
-        assert_eq!(
-            request.tsaps,
-            vec![(0xC1, vec![1, 0]), (0xC2, vec![1, 2])]
-        );
+        assert_eq!(request.tsaps, vec![(0xC1, vec![1, 0]), (0xC2, vec![1, 2])]);
     }
 
     #[test]
@@ -276,8 +273,7 @@ mod tests {
         assert_eq!(
             connection_confirm(&request, granted),
             [
-                3, 0, 0, 22, 17, 0xD0, 0, 1, 0, 1, 0, 0xC0, 1, 0x0A, 0xC1, 2, 1, 0, 0xC2, 2, 1,
-                2
+                3, 0, 0, 22, 17, 0xD0, 0, 1, 0, 1, 0, 0xC0, 1, 0x0A, 0xC1, 2, 1, 0, 0xC2, 2, 1, 2
             ]
         );
     }
@@ -310,7 +306,10 @@ mod tests {
                 payload: &[]
             })
         );
-        assert_eq!(decode(&[6, 0x80, 0, 1, 0, 1, 0]), Ok(Tpdu::DisconnectRequest));
+        assert_eq!(
+            decode(&[6, 0x80, 0, 1, 0, 1, 0]),
+            Ok(Tpdu::DisconnectRequest)
+        );
     }
 
     #[test]
@@ -346,7 +345,10 @@ mod tests {
             Ok(Packet::Oversized(head)) if head.len() == OVERSIZED_HEAD
         ));
         // A length that promises more than the client sends.
-        assert!(matches!(read(&[3, 0, 0xFF, 0xFF, 1], 100), Err(ReadError::Closed)));
+        assert!(matches!(
+            read(&[3, 0, 0xFF, 0xFF, 1], 100),
+            Err(ReadError::Closed)
+        ));
         assert!(matches!(read(&[4, 0, 0, 7], 100), Err(ReadError::NotTpkt)));
         assert!(matches!(read(&[3, 0, 0, 4], 100), Err(ReadError::NotTpkt)));
         assert!(matches!(read(&[], 100), Err(ReadError::Closed)));

@@ -64,8 +64,9 @@ fn module_identification(status: &CpuStatus) -> Vec<u8> {
     records
 }
 
-/// Records 0x0001 to 0x0005 and 0x0007: index and a text field of 32 bytes, its text as long
-/// as the record's field (24 characters, 26 for the copyright, 32 for the module type).
+/// Records 0x0001 to 0x0005, 0x0007, 0x0008 and 0x000B: index and a text field of 32 bytes,
+/// its text as long as the record's field (24 characters, 26 for the copyright, 32 for the
+/// module type and the location).
 fn component_identification(status: &CpuStatus) -> Vec<u8> {
     let module = format!("awl {}", status.profile);
     let texts = [
@@ -75,6 +76,9 @@ fn component_identification(status: &CpuStatus) -> Vec<u8> {
         (4, "awl, MIT licence", 26),
         (5, "AWL 0000001", 24),
         (7, module.as_str(), 32),
+        // The memory card's serial number and the location designation: none.
+        (8, "", 32),
+        (11, "", 32),
     ];
     let mut records = Vec::with_capacity(texts.len() * 34);
     for (index, text, length) in texts {
@@ -168,7 +172,7 @@ mod tests {
     #[test]
     fn component_identification_has_the_fields_at_their_places() {
         let list = partial_list(COMPONENT_IDENTIFICATION, 0, &status(CpuMode::Run, 0)).unwrap();
-        assert_eq!(list[..8], [0, 0x1C, 0, 0, 0, 34, 0, 6]);
+        assert_eq!(list[..8], [0, 0x1C, 0, 0, 0, 34, 0, 8]);
         let records = &list[8..];
         let text = |at: usize, length: usize| {
             String::from_utf8_lossy(&records[at..at + length])

@@ -6,8 +6,8 @@
 
 use crate::step7::library::LibraryCall;
 use crate::step7::literal::{
-    DATE_AND_TIME_DAYS as DAYS, DATE_AND_TIME_LAST_MS as LAST_MS, DAY_MS,
-    date_and_time_from_bytes, date_and_time_of_instant, date_and_time_year, s5time_word,
+    DATE_AND_TIME_DAYS as DAYS, DATE_AND_TIME_LAST_MS as LAST_MS, DAY_MS, date_and_time_from_bytes,
+    date_and_time_of_instant, date_and_time_year, s5time_word,
 };
 use crate::vm::Cpu;
 use crate::vm::timers::decode_time;
