@@ -396,6 +396,20 @@ pub fn date_and_time_bytes(days: u32, ms: u32) -> [u8; 8] {
     ]
 }
 
+/// The milliseconds of a day.
+pub const DAY_MS: i64 = 86_400_000;
+/// 1990-01-01 to 2089-12-31: the days a DATE_AND_TIME holds (25 leap years).
+pub const DATE_AND_TIME_DAYS: i64 = 100 * 365 + 25;
+/// The last millisecond a DATE_AND_TIME holds.
+pub const DATE_AND_TIME_LAST_MS: i64 = DATE_AND_TIME_DAYS * DAY_MS - 1;
+
+/// The DATE_AND_TIME of the instant `ms` milliseconds after 1990-01-01, limited to the range a
+/// DATE_AND_TIME holds.
+pub fn date_and_time_of_instant(ms: i64) -> [u8; 8] {
+    let limited = ms.clamp(0, DATE_AND_TIME_LAST_MS);
+    date_and_time_bytes((limited / DAY_MS) as u32, (limited % DAY_MS) as u32)
+}
+
 /// What is wrong with the eight bytes of a DATE_AND_TIME, for SFC 0 (SET_CLK)'s RET_VAL.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BadDateAndTime {

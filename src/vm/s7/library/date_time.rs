@@ -6,18 +6,14 @@
 
 use crate::step7::library::LibraryCall;
 use crate::step7::literal::{
-    date_and_time_bytes, date_and_time_from_bytes, date_and_time_year, s5time_word,
+    DATE_AND_TIME_DAYS as DAYS, DATE_AND_TIME_LAST_MS as LAST_MS, DAY_MS, date_and_time_from_bytes,
+    date_and_time_of_instant, date_and_time_year, s5time_word,
 };
 use crate::vm::Cpu;
 use crate::vm::timers::decode_time;
 
 use super::super::memory::Fault;
 
-const DAY_MS: i64 = 86_400_000;
-/// 1990-01-01 to 2089-12-31: the days a DATE_AND_TIME holds (25 leap years).
-const DAYS: i64 = 100 * 365 + 25;
-/// The last millisecond a DATE_AND_TIME holds.
-const LAST_MS: i64 = DAYS * DAY_MS - 1;
 /// The longest S5TIME, 999 × 10 s.
 const S5TIME_MS: i32 = 9_990_000;
 /// The milliseconds of the S5TIME bases 0 to 3.
@@ -35,10 +31,8 @@ impl Cpu {
     /// Writes the instant `ms` milliseconds after 1990-01-01, limited to the range of a
     /// DATE_AND_TIME; whether it was within.
     fn write_dt(&mut self, call: &LibraryCall, index: usize, ms: i64) -> Result<bool, Fault> {
-        let limited = ms.clamp(0, LAST_MS);
-        let bytes = date_and_time_bytes((limited / DAY_MS) as u32, (limited % DAY_MS) as u32);
-        self.store_date_and_time(call.params[index], bytes)?;
-        Ok(limited == ms)
+        self.store_date_and_time(call.params[index], date_and_time_of_instant(ms))?;
+        Ok((0..=LAST_MS).contains(&ms))
     }
 
     pub(super) fn date_time_fc(&mut self, call: &LibraryCall) -> Result<bool, Fault> {
