@@ -4,7 +4,8 @@
 //! scenario's `[modbus]` table moves each to another area and start. A table runs from its start
 //! to the end of its area: the CPU refuses what lies past it.
 
-use crate::address::{ImageArea, Layout, Target};
+use crate::address::{ImageArea, Layout, Places, Target};
+use crate::dialect::Dialect;
 use crate::serve::request::Area;
 
 /// Where one table's address 0 lies: a bit table counts bits from bit 0 of byte 0 of `area`, a
@@ -43,8 +44,21 @@ pub struct Misfit {
     pub help: &'static str,
 }
 
-const BIT_HELP: &str = "a bit table starts at a bit of I, Q, M (STEP 5: F) or a data block: `I 0.0`, `M 10.0`, `DB1.DBX 0.0`";
-const WORD_HELP: &str = "a register table starts at a word of I, Q, M (STEP 5: F) or a data block: `IW 0`, `MW 100`, `DB1.DBW 0` (STEP 5: `FW 100`, `DB 10 DW 0`)";
+/// Which operands start a bit table, and a register table, in the program's dialect.
+fn help(dialect: Dialect, bits: bool) -> &'static str {
+    match (dialect, bits) {
+        (Dialect::Step7, true) => {
+            "a bit table starts at a bit of I, Q, M or a data block: `I 0.0`, `M 10.0`, `DB1.DBX 0.0`"
+        }
+        (Dialect::Step5, true) => "a bit table starts at a bit of I, Q or F: `I 0.0`, `F 10.0`",
+        (Dialect::Step7, false) => {
+            "a register table starts at a word of I, Q, M or a data block: `IW 0`, `MW 100`, `DB1.DBW 0`"
+        }
+        (Dialect::Step5, false) => {
+            "a register table starts at a word of I, Q, F or a data block: `IW 0`, `FW 100`, `DB 10 DW 0`"
+        }
+    }
+}
 
 fn image_area(layout: Layout, byte: u16) -> Option<(Area, u32)> {
     let (area, byte) = layout.image_area_of(byte)?;
@@ -73,7 +87,8 @@ fn kind(target: Target) -> &'static str {
 
 impl Table {
     /// The bit table (discrete inputs, coils) whose address 0 is the bit `target`.
-    pub fn of_bits(target: Target, layout: Layout) -> Result<Table, Misfit> {
+    pub fn of_bits(target: Target, places: &Places) -> Result<Table, Misfit> {
+        let layout = places.layout;
         let start = match target {
             Target::ImageBit { byte, bit } => {
                 image_area(layout, byte).map(|(area, byte)| (area, byte, bit))
@@ -93,12 +108,13 @@ impl Table {
             })
             .ok_or(Misfit {
                 found: kind(target),
-                help: BIT_HELP,
+                help: help(places.dialect, true),
             })
     }
 
     /// The register table (input, holding registers) whose register 0 is the word `target`.
-    pub fn of_registers(target: Target, layout: Layout) -> Result<Table, Misfit> {
+    pub fn of_registers(target: Target, places: &Places) -> Result<Table, Misfit> {
+        let layout = places.layout;
         let start = match target {
             Target::Image { byte, bytes: 2 } => image_area(layout, byte),
             Target::S7Data {
@@ -113,7 +129,7 @@ impl Table {
             .map(|(area, start)| Table { area, start })
             .ok_or(Misfit {
                 found: kind(target),
-                help: WORD_HELP,
+                help: help(places.dialect, false),
             })
     }
 }
@@ -150,11 +166,14 @@ mod tests {
     }
 
     fn bits(program: &Program, text: &str) -> Result<Table, Misfit> {
-        Table::of_bits(target(program, MnemonicSet::English, text), program.layout)
+        Table::of_bits(
+            target(program, MnemonicSet::English, text),
+            &Places::of(program),
+        )
     }
 
     fn registers(program: &Program, set: MnemonicSet, text: &str) -> Result<Table, Misfit> {
-        Table::of_registers(target(program, set, text), program.layout)
+        Table::of_registers(target(program, set, text), &Places::of(program))
     }
 
     #[test]
@@ -224,5 +243,10 @@ mod tests {
                 .help
                 .contains("`I 0.0`")
         );
+        let program = step5();
+        let misfit = bits(&program, "FW 0").expect_err("a word");
+        assert!(misfit.help.contains("`F 10.0`"), "{}", misfit.help);
+        let misfit = registers(&program, english, "F 0.0").expect_err("a bit");
+        assert!(misfit.help.contains("`DB 10 DW 0`"), "{}", misfit.help);
     }
 }
