@@ -22,7 +22,9 @@ struct Memory {
 }
 
 fn pattern(size: usize, factor: usize, offset: usize) -> Vec<u8> {
-    (0..size).map(|n| ((n * factor + offset) % 256) as u8).collect()
+    (0..size)
+        .map(|n| ((n * factor + offset) % 256) as u8)
+        .collect()
 }
 
 impl Memory {
@@ -62,9 +64,7 @@ impl Memory {
                     .copy_from_slice(&bytes);
                 Ok(Vec::new())
             }
-            Item::ReadBit { area, byte, bit } => {
-                Ok(vec![self.bytes(area, byte, 1)?[0] >> bit & 1])
-            }
+            Item::ReadBit { area, byte, bit } => Ok(vec![self.bytes(area, byte, 1)?[0] >> bit & 1]),
             Item::WriteBit {
                 area,
                 byte,
@@ -218,7 +218,11 @@ fn a_moved_map_reaches_the_areas_it_names() {
     if !server.client("modbus_moved_map.py") {
         return;
     }
-    assert_eq!(server.byte(Area::Inputs, 1), 0xFF, "coils 8–15 are I 1.0–1.7");
+    assert_eq!(
+        server.byte(Area::Inputs, 1),
+        0xFF,
+        "coils 8–15 are I 1.0–1.7"
+    );
     assert_eq!(server.byte(Area::DataBlock(1), 18), 0xCA);
     assert_eq!(server.byte(Area::DataBlock(1), 19), 0xFE);
 }

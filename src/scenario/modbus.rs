@@ -24,15 +24,31 @@ impl Scenario {
         let bits: (&str, Place) = ("a bit", Table::of_bits);
         let words: (&str, Place) = ("a word", Table::of_registers);
         for (key, operand, (takes, place), table) in [
-            ("discrete_inputs", &raw.discrete_inputs, bits, &mut map.discrete_inputs),
+            (
+                "discrete_inputs",
+                &raw.discrete_inputs,
+                bits,
+                &mut map.discrete_inputs,
+            ),
             ("coils", &raw.coils, bits, &mut map.coils),
-            ("input_registers", &raw.input_registers, words, &mut map.input_registers),
-            ("holding_registers", &raw.holding_registers, words, &mut map.holding_registers),
+            (
+                "input_registers",
+                &raw.input_registers,
+                words,
+                &mut map.input_registers,
+            ),
+            (
+                "holding_registers",
+                &raw.holding_registers,
+                words,
+                &mut map.holding_registers,
+            ),
         ] {
             let Some(operand) = operand else {
                 continue;
             };
-            if let Some(placed) = errors.keep(self.place(key, operand, (takes, place), program, set))
+            if let Some(placed) =
+                errors.keep(self.place(key, operand, (takes, place), program, set))
             {
                 *table = placed;
             }
@@ -161,11 +177,23 @@ mod tests {
         let text = "[modbus]\ncoils = \"X 0.0\"\nholding_registers = \"DB9.DBW 0\"\n";
         let errors = map(text, &program, MnemonicSet::English).expect_err("errors");
         assert_eq!(errors.len(), 2, "{errors:#?}");
-        assert!(errors[0].contains("awl::scenario::unknown_operand"), "{}", errors[0]);
-        assert!(errors[1].contains("DB 9 is not in the program"), "{}", errors[1]);
+        assert!(
+            errors[0].contains("awl::scenario::unknown_operand"),
+            "{}",
+            errors[0]
+        );
+        assert!(
+            errors[1].contains("DB 9 is not in the program"),
+            "{}",
+            errors[1]
+        );
         let program = self::program("s5-115u", STEP5);
-        let errors = map("[modbus]\nholding_registers = \"MW 0\"\n", &program, MnemonicSet::English)
-            .expect_err("no M in the English set of STEP 5");
+        let errors = map(
+            "[modbus]\nholding_registers = \"MW 0\"\n",
+            &program,
+            MnemonicSet::English,
+        )
+        .expect_err("no M in the English set of STEP 5");
         assert!(errors[0].contains("`MW 0`"), "{}", errors[0]);
     }
 }

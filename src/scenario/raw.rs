@@ -901,12 +901,14 @@ mod tests {
 
     #[test]
     fn modbus_keys_are_read_and_checked_one_by_one() {
-        let (raw, errors) = parse(
-            "[modbus]\ncoils = \"I 0.0\"\nholding_registers = \"DB1.DBW 0\"\n",
-        );
+        let (raw, errors) =
+            parse("[modbus]\ncoils = \"I 0.0\"\nholding_registers = \"DB1.DBW 0\"\n");
         assert!(errors.is_empty(), "{errors:?}");
         let modbus = raw.modbus;
-        assert_eq!(modbus.coils.map(|coils| coils.into_inner()), Some("I 0.0".into()));
+        assert_eq!(
+            modbus.coils.map(|coils| coils.into_inner()),
+            Some("I 0.0".into())
+        );
         assert!(modbus.discrete_inputs.is_none() && modbus.input_registers.is_none());
         assert!(modbus.holding_registers.is_some());
         let error = one_error("[modbus]\ncoil = \"I 0.0\"\n");
@@ -921,9 +923,15 @@ mod tests {
             ),
             "{error}"
         );
-        assert!(error.contains("e.g. `input_registers = \"IW 0\"`"), "{error}");
+        assert!(
+            error.contains("e.g. `input_registers = \"IW 0\"`"),
+            "{error}"
+        );
         let error = one_error("modbus = \"I 0.0\"\n");
-        assert!(error.starts_with("`modbus` takes a table `[modbus]`"), "{error}");
+        assert!(
+            error.starts_with("`modbus` takes a table `[modbus]`"),
+            "{error}"
+        );
         assert_in_user_words(&error);
     }
 

@@ -112,3 +112,43 @@ impl Drop for Connection {
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    use tokio::time::{Instant, timeout};
+
+    use super::*;
+
+    #[tokio::test]
+    async fn a_frame_that_stalls_is_closed_and_an_idle_client_is_not() {
+        let listener = TcpListener::bind("127.0.0.1:0").await.expect("a port");
+        let address = listener.local_addr().expect("its address");
+        let (requests, served) = std::sync::mpsc::channel();
+        let frame_timeout = Duration::from_millis(200);
+        tokio::spawn(serve_with(
+            listener,
+            requests,
+            Map::default(),
+            4,
+            frame_timeout,
+        ));
+        let mut idle = TcpStream::connect(address).await.expect("a connection");
+        let mut stalled = TcpStream::connect(address).await.expect("another");
+        stalled.write_all(&[0, 1, 0]).await.expect("a header begun");
+        let began = Instant::now();
+        let read = timeout(Duration::from_secs(5), stalled.read(&mut [0u8; 8])).await;
+        assert!(matches!(read, Ok(Ok(0))), "closed: {read:?}");
+        assert!(began.elapsed() >= frame_timeout - Duration::from_millis(50));
+        let waited = timeout(3 * frame_timeout, idle.read(&mut [0u8; 8])).await;
+        assert!(
+            waited.is_err(),
+            "the idle client is still served: {waited:?}"
+        );
+        let announced: Vec<bool> = served
+            .try_iter()
+            .map(|request| matches!(request, Request::Connection { open: true, .. }))
+            .collect();
+        assert_eq!(announced, [true, true, false]);
+    }
+}
