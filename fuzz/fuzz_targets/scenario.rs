@@ -42,8 +42,11 @@ fuzz_target!(
         let program = &built.compiled.program;
         let schedule = scenario.schedule_at_most(program, set, awl_fuzz::MAX_EVENTS);
         let expectations = scenario.expectations(program, set);
+        let modbus = scenario.modbus_map(program, set);
         let schedule_errors = schedule.as_ref().err().into_iter().flatten();
-        for error in schedule_errors.chain(expectations.as_ref().err().into_iter().flatten()) {
+        let modbus_errors = modbus.as_ref().err().into_iter().flatten();
+        let expectation_errors = expectations.as_ref().err().into_iter().flatten();
+        for error in schedule_errors.chain(expectation_errors).chain(modbus_errors) {
             awl_fuzz::check_report(error, &text, render);
         }
         let (Ok(schedule), Ok(_), true) = (schedule, expectations, errors.is_empty()) else {

@@ -114,6 +114,20 @@ pub enum ScenarioError {
         at: SourceSpan,
     },
 
+    /// `key`: the `[modbus]` key; `takes`: "a bit" or "a word"; `found`: what the operand is.
+    #[error("`{key}` in [modbus] starts at {takes}, not at `{operand}`")]
+    #[diagnostic(code(awl::scenario::modbus_table))]
+    ModbusTable {
+        key: &'static str,
+        takes: &'static str,
+        operand: String,
+        #[label("{found}")]
+        at: SourceSpan,
+        found: &'static str,
+        #[help]
+        help: &'static str,
+    },
+
     #[error("{message}")]
     #[diagnostic(code(awl::scenario::invalid))]
     Invalid {
@@ -158,6 +172,7 @@ impl ScenarioError {
             | ScenarioError::UnknownOb { at, .. }
             | ScenarioError::BadDuration { at, .. }
             | ScenarioError::EventAfterEnd { at, .. }
+            | ScenarioError::ModbusTable { at, .. }
             | ScenarioError::Invalid { at, .. } => at.offset(),
         }
     }

@@ -7,6 +7,8 @@
 pub mod check;
 pub mod error;
 pub mod expect;
+#[cfg(not(target_arch = "wasm32"))]
+mod modbus;
 pub mod modify;
 pub mod operand;
 mod raw;
@@ -90,6 +92,9 @@ pub struct Scenario {
     expect: SpannedTable,
     watch: Vec<Spanned<String>>,
     checks: Vec<Spanned<SpannedTable>>,
+    /// `[modbus]`, resolved by `Scenario::modbus_map` once the program is known.
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
+    modbus: raw::RawModbus,
 }
 
 /// The CPU of a scenario that names none: the STEP 7 one for an awlsim project (awlsim
@@ -319,6 +324,7 @@ impl Scenario {
             expect: raw.expect,
             watch: raw.watch,
             checks: raw.check,
+            modbus: raw.modbus,
         }
     }
 

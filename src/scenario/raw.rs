@@ -123,6 +123,11 @@ pub const SCENARIO: Table = Table {
             "`[[check]]` tables with `at` and operands",
             "`[[check]]` with `at = \"250ms\"` and `\"Q 4.0\" = 1`",
         ),
+        key(
+            "modbus",
+            "a table `[modbus]` of where the Modbus tables start",
+            "`[modbus]` with `coils = \"I 0.0\"`",
+        ),
     ],
 };
 
@@ -161,6 +166,31 @@ const HW_MODULE: Table = Table {
             "address",
             "a logical base address, 0 to 65535",
             "`address = 256`",
+        ),
+    ],
+};
+
+const BIT_OPERAND: &str = "a bit operand in quotes";
+const WORD_OPERAND: &str = "a word operand in quotes";
+
+const MODBUS: Table = Table {
+    name: "[modbus]",
+    keys: &[
+        key(
+            "discrete_inputs",
+            BIT_OPERAND,
+            "`discrete_inputs = \"I 0.0\"`",
+        ),
+        key("coils", BIT_OPERAND, "`coils = \"Q 0.0\"`"),
+        key(
+            "input_registers",
+            WORD_OPERAND,
+            "`input_registers = \"IW 0\"`",
+        ),
+        key(
+            "holding_registers",
+            WORD_OPERAND,
+            "`holding_registers = \"MW 0\"`",
         ),
     ],
 };
@@ -240,6 +270,16 @@ pub struct RawScenario {
     pub watch: Vec<Spanned<String>>,
     /// `[[check]]` tables: `at` and operands.
     pub check: Vec<Spanned<SpannedTable>>,
+    pub modbus: RawModbus,
+}
+
+/// `[modbus]`: the operand each Modbus table starts at, as written.
+#[derive(Debug, Default)]
+pub struct RawModbus {
+    pub discrete_inputs: Option<Spanned<String>>,
+    pub coils: Option<Spanned<String>>,
+    pub input_registers: Option<Spanned<String>>,
+    pub holding_registers: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -580,6 +620,16 @@ fn event(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Optio
     })
 }
 
+fn modbus(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawModbus> {
+    let entries = MODBUS.entries(&SCENARIO, "modbus", value, errors)?;
+    Some(RawModbus {
+        discrete_inputs: entries.get("discrete_inputs", errors),
+        coils: entries.get("coils", errors),
+        input_registers: entries.get("input_registers", errors),
+        holding_registers: entries.get("holding_registers", errors),
+    })
+}
+
 /// A `[[check]]` table: `at` and operands, checked against the program later.
 fn check(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<SpannedTable> {
     SCENARIO.read("check", value, errors)
@@ -614,6 +664,7 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "hw_module" => raw.hw_module = read_each(name, value, errors, hw_module),
             "event" => raw.event = read_each(name, value, errors, event),
             "check" => raw.check = read_each(name, value, errors, check),
+            "modbus" => raw.modbus = modbus(value, errors).unwrap_or_default(),
             _ => errors.push(SCENARIO.unknown_key(key)),
         }
     }
@@ -846,6 +897,42 @@ mod tests {
         let error = one_error("watchdog = \"1s\n");
         assert!(error.contains("a scenario is TOML"), "{error}");
         assert!(!error.contains("interrupt_points"), "{error}");
+    }
+
+    #[test]
+    fn modbus_keys_are_read_and_checked_one_by_one() {
+        let (raw, errors) =
+            parse("[modbus]\ncoils = \"I 0.0\"\nholding_registers = \"DB1.DBW 0\"\n");
+        assert!(errors.is_empty(), "{errors:?}");
+        let modbus = raw.modbus;
+        assert_eq!(
+            modbus.coils.map(|coils| coils.into_inner()),
+            Some("I 0.0".into())
+        );
+        assert!(modbus.discrete_inputs.is_none() && modbus.input_registers.is_none());
+        assert!(modbus.holding_registers.is_some());
+        let error = one_error("[modbus]\ncoil = \"I 0.0\"\n");
+        assert!(
+            error.starts_with("unknown key `coil` | not a key of [modbus] | did you mean `coils`?"),
+            "{error}"
+        );
+        let error = one_error("[modbus]\ncoils = \"I 0.0\"\ninput_registers = 4\n");
+        assert!(
+            error.starts_with(
+                "`input_registers` in [modbus] takes a word operand in quotes | a whole number"
+            ),
+            "{error}"
+        );
+        assert!(
+            error.contains("e.g. `input_registers = \"IW 0\"`"),
+            "{error}"
+        );
+        let error = one_error("modbus = \"I 0.0\"\n");
+        assert!(
+            error.starts_with("`modbus` takes a table `[modbus]`"),
+            "{error}"
+        );
+        assert_in_user_words(&error);
     }
 
     #[test]

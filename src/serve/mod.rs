@@ -4,6 +4,7 @@
 
 pub mod access;
 pub mod identity;
+pub mod modbus;
 pub mod notation;
 pub mod pacing;
 pub mod request;
