@@ -132,7 +132,7 @@ impl Memory {
                 let _ = reply.send(CpuStatus {
                     mode: self.mode,
                     profile: "speed7",
-                    order_code: "6ES7 315-2AG10-0AB0",
+                    order_code: "6ES7 315-2AG10-0AB0".to_string(),
                     clock_ms: CLOCK_MS,
                     cycles: 0,
                 });

@@ -7,6 +7,7 @@ mod console;
 mod debug;
 mod help;
 mod run;
+mod serve;
 mod source;
 mod status;
 mod terminal;
@@ -148,6 +149,9 @@ pub enum Command {
     /// The worst cases from the program, before it runs: each block's time and longest
     /// stretch, the response bounds, the nesting, the wake-up and watchdog risks
     Analyze(analyze::AnalyzeArgs),
+    /// A virtual PLC: run the program in real time, reached over S7comm and Modbus TCP by
+    /// HMIs, plant simulations and test scripts
+    Serve(serve::ServeArgs),
     /// Run scenario files and check their [expect] and [[check]] tables
     Test(run::TestArgs),
     /// Run awlsim's test files (STEP 7 STL with `__ASSERT…`) as awlsim's harness does: PASS or
@@ -175,6 +179,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Status(args) => status::status(&args, &mut console),
         Command::Debug(args) => debug::debug(&args, &mut console),
         Command::Test(args) => run::test(&args, &mut console),
+        Command::Serve(args) => serve::serve(&args, &mut console),
         Command::Conformance(args) => conformance::conformance(&args, &mut console),
         Command::Analyze(args) => analyze::analyze(&args, &mut console),
         Command::Help(args) => help::help(&args, &mut console),

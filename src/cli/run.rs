@@ -36,6 +36,16 @@ pub enum Format {
     Chrome,
 }
 
+impl Format {
+    pub fn trace_format(self) -> TraceFormat {
+        match self {
+            Format::Text => TraceFormat::Text,
+            Format::Jsonl => TraceFormat::Jsonl,
+            Format::Chrome => TraceFormat::Chrome,
+        }
+    }
+}
+
 /// A kind of trace events (`--trace-filter`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum TraceKind {
@@ -254,11 +264,7 @@ pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
 fn run_options(args: &RunArgs) -> RunOptions {
     RunOptions {
         trace: args.trace.clone(),
-        trace_format: args.trace_format.map(|format| match format {
-            Format::Text => TraceFormat::Text,
-            Format::Jsonl => TraceFormat::Jsonl,
-            Format::Chrome => TraceFormat::Chrome,
-        }),
+        trace_format: args.trace_format.map(Format::trace_format),
         trace_filter: trace_kinds(&args.trace_filter),
         from_ns: args.from,
         to_ns: args.to,

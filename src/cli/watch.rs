@@ -35,6 +35,11 @@ pub fn install_handler() {
     });
 }
 
+/// Whether Ctrl-C or SIGTERM asked to end (`awl serve` ends then).
+pub fn halt_requested() -> bool {
+    HALT.load(Ordering::Relaxed)
+}
+
 /// Whether Ctrl-C was pressed since the last look (the debugger pauses then, instead of
 /// halting).
 pub fn take_interrupt() -> bool {

@@ -277,6 +277,11 @@ pub fn run(options: &RunOptions) -> Result<Ran, NotRun> {
     Ok(prepare(options)?.run(&mut |_| true))
 }
 
+/// Runs a CPU to a limit, calling the observer at every cycle boundary; see
+/// [`Prepared::run_driven`].
+pub type Drive<'a> =
+    dyn FnMut(&mut Cpu, RunLimit, &mut dyn FnMut(&mut Cpu) -> bool) -> RunOutcome + 'a;
+
 /// A run set up and ready to go: the CPU in STOP with its program, engine and trace.
 pub struct Prepared {
     pub frontend: Frontend,
@@ -521,6 +526,14 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
 }
 
 impl Prepared {
+    /// Where the Modbus server's tables lie: the scenario's `[modbus]`, else the defaults.
+    pub fn modbus_map(&self) -> Result<crate::serve::modbus::Map, Vec<Report>> {
+        match &self.scenario {
+            Some(scenario) => scenario.modbus_map(&self.cpu.program, self.mnemonics),
+            None => Ok(crate::serve::modbus::Map::default()),
+        }
+    }
+
     /// The warnings found so far (the program's, the setup's), to show before the run.
     pub fn take_warnings(&mut self) -> Vec<Report> {
         std::mem::take(&mut self.warnings)
@@ -528,6 +541,15 @@ impl Prepared {
 
     /// Runs to the limit, a STOP, or a halt (`go_on`, a probe).
     pub fn run(self, go_on: &mut dyn FnMut(&Cpu) -> bool) -> Ran {
+        self.run_driven(&mut |cpu, limit, observe| {
+            cpu.run_watched(limit, &mut |cpu| observe(cpu) && go_on(cpu))
+        })
+    }
+
+    /// As [`Prepared::run`], with `drive` running the CPU to `limit`: it calls `observe` at
+    /// every cycle boundary (the watch table, the checks, the scenario's writes) and may run
+    /// the CPU in several stretches (`awl serve`: a STOP and a restart between them).
+    pub fn run_driven(self, drive: &mut Drive) -> Ran {
         let Prepared {
             frontend,
             mut cpu,
@@ -544,11 +566,11 @@ impl Prepared {
             ..
         } = self;
         // The cycle end is seen as it is; a data block write comes after, before the next cycle.
-        let outcome = cpu.run_watched(limit, &mut |cpu| {
+        let outcome = drive(&mut cpu, limit, &mut |cpu| {
             watch.observe(cpu);
             checker.observe(cpu);
             modifier.observe(cpu);
-            go_on(cpu)
+            true
         });
         watch.observe(&mut cpu);
         // The run's end is a cycle end unless it went to STOP or was halted inside a cycle.

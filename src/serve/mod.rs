@@ -7,6 +7,7 @@ pub mod identity;
 pub mod modbus;
 pub mod notation;
 pub mod pacing;
+pub mod plc;
 pub mod request;
 pub mod s7comm;
 pub mod station;

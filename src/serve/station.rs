@@ -146,7 +146,11 @@ impl<'a> Station<'a> {
                 reply,
             } => {
                 let results = serve_items(cpu, client, &items, self.read_only);
-                self.served.writes += items.iter().filter(|item| item.writes()).count() as u64;
+                self.served.writes += items
+                    .iter()
+                    .zip(&results)
+                    .filter(|(item, result)| item.writes() && result.is_ok())
+                    .count() as u64;
                 // A client that left before its answer needs none.
                 let _ = reply.send(results);
             }

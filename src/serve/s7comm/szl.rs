@@ -53,7 +53,7 @@ fn module_identification(status: &CpuStatus) -> Vec<u8> {
     let [major, minor, patch] = version();
     let mut records = Vec::with_capacity(2 * 28);
     for (index, name, versions) in [
-        (1u16, status.order_code, [0, 0, 0, 0]),
+        (1u16, status.order_code.as_str(), [0, 0, 0, 0]),
         (7, "", [b'V', major, minor, patch]),
     ] {
         records.extend_from_slice(&index.to_be_bytes());

@@ -1,0 +1,231 @@
+//! The virtual PLC: the servers bound and started on their own threads, the CPU run on this
+//! one, paced to the wall clock, from STOP through STARTUP to RUN and on until a halt, the
+//! scenario's run length, or for ever; a client may stop and restart it on the way.
+
+use std::net::{SocketAddr, TcpListener};
+use std::sync::mpsc;
+
+use miette::{Diagnostic, Report};
+use thiserror::Error;
+
+use crate::runner::{self, NotRun, Ran, RunOptions};
+use crate::vm::Cpu;
+use crate::vm::cycle::{RunLimit, RunOutcome};
+
+use super::pacing::{Lateness, Pacer};
+use super::request::Requests;
+use super::station::{Served, Snapshot, Station};
+
+/// What `awl serve` is asked to do.
+#[derive(Debug, Clone)]
+pub struct ServeOptions {
+    pub run: RunOptions,
+    /// Simulated time per wall time: 1 is real time, 0.1 slow motion, 10 ten times faster.
+    pub speed: f64,
+    pub s7: Option<SocketAddr>,
+    pub modbus: Option<SocketAddr>,
+    /// Every write and control request is refused.
+    pub read_only: bool,
+    pub max_connections: usize,
+}
+
+/// Where the servers listen, with the ports the system gave for port 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Listening {
+    pub s7: Option<SocketAddr>,
+    pub modbus: Option<SocketAddr>,
+}
+
+/// A finished serve: the run as `awl run` reports it, and what was served.
+pub struct ServedRun {
+    pub ran: Ran,
+    pub served: Served,
+    pub lateness: Option<Lateness>,
+}
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum ServeError {
+    #[error("cannot listen for {server} on {address}: {reason}")]
+    #[diagnostic(code(awl::serve::bind))]
+    Bind {
+        server: &'static str,
+        address: SocketAddr,
+        reason: String,
+        #[help]
+        help: String,
+    },
+    #[error("cannot start the network servers: {reason}")]
+    #[diagnostic(
+        code(awl::serve::runtime),
+        help("the system refused the threads or sockets the servers need; free some and retry")
+    )]
+    Runtime { reason: String },
+}
+
+/// Binds the servers' sockets now, so that a port in use is told before the CPU starts.
+fn bind(server: &'static str, address: SocketAddr) -> Result<TcpListener, NotRun> {
+    TcpListener::bind(address)
+        .and_then(|listener| listener.set_nonblocking(true).map(|()| listener))
+        .map_err(|error| {
+            let why = match error.kind() {
+                std::io::ErrorKind::AddrInUse => "another program listens on that port",
+                std::io::ErrorKind::PermissionDenied => {
+                    "ports below 1024 need administrator rights"
+                }
+                _ => "the address is not one of this machine's, or the system refused it",
+            };
+            NotRun::Usage(Report::new(ServeError::Bind {
+                server,
+                address,
+                reason: error.to_string(),
+                help: format!("{why}; {}", free_port_help(server, address)),
+            }))
+        })
+}
+
+/// A free alternative to give, and where the client takes the port.
+fn free_port_help(server: &str, address: SocketAddr) -> String {
+    let host = address.ip();
+    if server == "S7" {
+        format!(
+            "serve on another port, e.g. `--s7 {host}:1102`, and give the client that port \
+             (python-snap7: `client.connect(\"{host}\", 0, 1, tcp_port=1102)`)"
+        )
+    } else {
+        format!(
+            "serve on another port, e.g. `--modbus {host}:1502`, and give the client that port \
+             (pymodbus: `ModbusTcpClient(\"{host}\", port=1502)`)"
+        )
+    }
+}
+
+/// Serves until `halted` says so, the scenario's or the command line's run length ends, or
+/// forever. `listening` hears where the servers listen once they do, with the program's and
+/// the setup's warnings; `report` gets the status now and then.
+pub fn serve(
+    options: &ServeOptions,
+    halted: &dyn Fn() -> bool,
+    listening: &mut dyn FnMut(&Listening, Vec<Report>),
+    report: &mut dyn FnMut(&Snapshot),
+) -> Result<ServedRun, NotRun> {
+    let mut prepared = runner::prepare(&options.run)?;
+    let modbus_map = prepared.modbus_map().map_err(NotRun::Failed)?;
+    let s7 = options.s7.map(|address| bind("S7", address)).transpose()?;
+    let modbus = options
+        .modbus
+        .map(|address| bind("Modbus TCP", address))
+        .transpose()?;
+    let bound = Listening {
+        s7: s7.as_ref().and_then(|listener| listener.local_addr().ok()),
+        modbus: modbus
+            .as_ref()
+            .and_then(|listener| listener.local_addr().ok()),
+    };
+    let (requests, received) = mpsc::channel();
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .map_err(|error| runtime_error(&error))?;
+    let servers = Servers {
+        s7,
+        modbus,
+        modbus_map,
+        requests,
+        max_connections: options.max_connections,
+    };
+    servers
+        .start(&runtime)
+        .map_err(|error| runtime_error(&error))?;
+    listening(&bound, prepared.take_warnings());
+    let limit = if prepared.limit_given {
+        prepared.limit
+    } else {
+        RunLimit::Duration(u64::MAX)
+    };
+    prepared.limit = limit;
+    let pacer = Pacer::new(options.speed, prepared.cpu.clock);
+    let mut station = Station::new(received, options.read_only, pacer, halted, report);
+    let ran =
+        prepared.run_driven(&mut |cpu, limit, observe| drive(cpu, limit, observe, &mut station));
+    let served = station.served;
+    let lateness = station.pacer.lateness();
+    drop(station);
+    runtime.shutdown_background();
+    Ok(ServedRun {
+        ran,
+        served,
+        lateness,
+    })
+}
+
+fn runtime_error(error: &std::io::Error) -> NotRun {
+    NotRun::Failed(vec![Report::new(ServeError::Runtime {
+        reason: error.to_string(),
+    })])
+}
+
+/// Runs the CPU with the station at its control point; a STOP (the program's or a client's)
+/// is served until a client restarts the CPU or a halt ends the serve.
+fn drive(
+    cpu: &mut Cpu,
+    limit: RunLimit,
+    observe: &mut dyn FnMut(&mut Cpu) -> bool,
+    station: &mut Station,
+) -> RunOutcome {
+    let started = std::time::Instant::now();
+    loop {
+        let mut outcome = cpu.run_watched(limit, &mut |cpu| {
+            observe(cpu) && station.at_control_point(cpu)
+        });
+        outcome.wall = started.elapsed();
+        let stopped = cpu.mode == crate::vm::Mode::Stop;
+        if !stopped {
+            return outcome;
+        }
+        match station.while_stopped(cpu) {
+            Some(cold) => {
+                cpu.prepare_restart(cold);
+                station.pacer.rebase(cpu.clock);
+            }
+            None => {
+                outcome.halted = true;
+                outcome.wall = started.elapsed();
+                return outcome;
+            }
+        }
+    }
+}
+
+/// The servers to start on the runtime's threads.
+struct Servers {
+    s7: Option<TcpListener>,
+    modbus: Option<TcpListener>,
+    modbus_map: super::modbus::Map,
+    requests: Requests,
+    max_connections: usize,
+}
+
+impl Servers {
+    fn start(self, runtime: &tokio::runtime::Runtime) -> std::io::Result<()> {
+        let _entered = runtime.enter();
+        if let Some(listener) = self.s7 {
+            let listener = tokio::net::TcpListener::from_std(listener)?;
+            runtime.spawn(super::s7comm::serve(
+                listener,
+                self.requests.clone(),
+                self.max_connections,
+            ));
+        }
+        if let Some(listener) = self.modbus {
+            let listener = tokio::net::TcpListener::from_std(listener)?;
+            runtime.spawn(super::modbus::serve(
+                listener,
+                self.requests.clone(),
+                self.modbus_map,
+                self.max_connections,
+            ));
+        }
+        Ok(())
+    }
+}
