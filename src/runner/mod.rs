@@ -527,6 +527,7 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
 
 impl Prepared {
     /// Where the Modbus server's tables lie: the scenario's `[modbus]`, else the defaults.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn modbus_map(&self) -> Result<crate::serve::modbus::Map, Vec<Report>> {
         match &self.scenario {
             Some(scenario) => scenario.modbus_map(&self.cpu.program, self.mnemonics),
