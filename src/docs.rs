@@ -71,6 +71,11 @@ pub const TOPICS: &[Topic] = &[
         body: Body::Section(PROGRAMS, "#### OB start information"),
     },
     Topic {
+        name: "serve",
+        summary: "`awl serve`: the virtual PLC on the network (S7comm, Modbus TCP), its areas and maps",
+        body: Body::Section(PROGRAMS, "## The virtual PLC (`awl serve`)"),
+    },
+    Topic {
         name: "exit-codes",
         summary: "what each command's exit codes mean",
         body: Body::Section(PROGRAMS, "## Exit codes"),

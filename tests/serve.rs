@@ -279,3 +279,40 @@ fn a_port_in_use_is_one_error_that_names_a_free_alternative() {
     assert!(stderr.contains("tcp_port=1102"), "{stderr}");
     assert!(output.stdout.is_empty(), "no listening line");
 }
+
+/// The code block after `<!-- serve-snippet: NAME -->` in the README.
+fn readme_snippet(name: &str) -> String {
+    let readme = std::fs::read_to_string(repo("README.md")).expect("the README");
+    let marker = format!("<!-- serve-snippet: {name} -->\n```python\n");
+    let start = readme.find(&marker).expect("the snippet's marker") + marker.len();
+    let end = readme[start..].find("```").expect("the snippet's end") + start;
+    readme[start..end].to_string()
+}
+
+#[test]
+fn the_readme_s_snippets_run_as_printed() {
+    let Some(python) = python() else { return };
+    let served = serve(&["programs/s7/tank_hmi.awl"]);
+    for (name, printed) in [("s7", "300\n1\nTrue\n"), ("modbus", "[300]\nTrue\n")] {
+        // The README serves on ports 1102 and 1502; here the system picked them.
+        let snippet = readme_snippet(name)
+            .replace("1102", &served.s7.to_string())
+            .replace("1502", &served.modbus.to_string());
+        let output = Command::new(&python)
+            .args(["-c", &snippet])
+            .output()
+            .expect("python runs");
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        assert_eq!(
+            String::from_utf8_lossy(&output.stdout),
+            printed,
+            "the {name} snippet"
+        );
+    }
+    let (code, _, stderr) = served.terminate();
+    assert_eq!(code, Some(0), "{stderr}");
+}

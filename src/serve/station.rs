@@ -14,11 +14,10 @@ use super::request::{Control, ControlError, CpuMode, CpuStatus, Request};
 /// How often the status is reported and a halt looked for while the CPU waits.
 const LOOK_EVERY: Duration = Duration::from_millis(100);
 
-/// What a client asked the CPU's mode to become.
+/// A start a client asked for, made once the CPU gets to it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Wanted {
-    Stop,
-    Start { cold: bool },
+struct Start {
+    cold: bool,
 }
 
 /// The figures the status line shows.
@@ -46,7 +45,7 @@ pub struct Station<'a> {
     pub pacer: Pacer,
     open_clients: usize,
     pub served: Served,
-    wanted: Option<Wanted>,
+    wanted: Option<Start>,
     halted: &'a dyn Fn() -> bool,
     report: &'a mut dyn FnMut(&Snapshot),
     last_report: Instant,
@@ -102,8 +101,8 @@ impl<'a> Station<'a> {
             if (self.halted)() {
                 return None;
             }
-            if let Some(Wanted::Start { cold }) = self.wanted.take() {
-                return Some(cold);
+            if let Some(start) = self.wanted.take() {
+                return Some(start.cold);
             }
             self.wait_for_request(cpu, LOOK_EVERY);
             self.report_now_and_then(cpu);
@@ -115,17 +114,7 @@ impl<'a> Station<'a> {
         while let Ok(request) = self.requests.try_recv() {
             self.serve(cpu, request);
         }
-        if (self.halted)() {
-            return false;
-        }
-        match self.wanted {
-            Some(Wanted::Stop) => {
-                self.wanted = None;
-                cpu.stop_from_outside("client");
-                false
-            }
-            _ => true,
-        }
+        !(self.halted)() && cpu.mode != Mode::Stop
     }
 
     fn wait_for_request(&mut self, cpu: &mut Cpu, longest: Duration) {
@@ -171,27 +160,25 @@ impl<'a> Station<'a> {
         }
     }
 
-    /// A mode change a client asks for; it happens when the CPU gets to it (the STOP at the
-    /// cycle boundary, the start from STOP).
-    fn control(&mut self, cpu: &Cpu, command: Control) -> Result<(), ControlError> {
+    /// A mode change a client asks for: the STOP at once (requests are served between two
+    /// cycles), a start once the CPU gets back to its STOP loop.
+    fn control(&mut self, cpu: &mut Cpu, command: Control) -> Result<(), ControlError> {
         if self.read_only {
             return Err(ControlError::ReadOnly);
         }
         let stopped = cpu.mode == Mode::Stop;
         match command {
             Control::Stop => {
-                if !stopped {
-                    self.wanted = Some(Wanted::Stop);
-                }
+                cpu.stop_from_outside("client");
+                self.wanted = None;
                 Ok(())
             }
-            Control::HotStart | Control::ColdStart if !stopped => Err(ControlError::AlreadyRunning),
-            Control::HotStart => {
-                self.wanted = Some(Wanted::Start { cold: false });
-                Ok(())
+            Control::HotStart | Control::ColdStart if !stopped || self.wanted.is_some() => {
+                Err(ControlError::AlreadyRunning)
             }
-            Control::ColdStart => {
-                self.wanted = Some(Wanted::Start { cold: true });
+            Control::HotStart | Control::ColdStart => {
+                let cold = command == Control::ColdStart;
+                self.wanted = Some(Start { cold });
                 Ok(())
             }
         }
