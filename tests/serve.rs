@@ -117,7 +117,7 @@ impl Served {
     }
 
     /// Ends the serve with SIGTERM, as a service manager does; its exit status and output.
-    fn terminate(mut self) -> (Option<i32>, String, String) {
+    fn terminate(self) -> (Option<i32>, String, String) {
         let pid = self.child.id().to_string();
         let sent = Command::new("kill").args(["-TERM", &pid]).status();
         assert!(sent.is_ok_and(|status| status.success()), "kill -TERM");

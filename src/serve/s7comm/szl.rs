@@ -128,7 +128,7 @@ mod tests {
         CpuStatus {
             mode,
             profile: "speed7",
-            order_code: "6ES7 315-2AG10-0AB0",
+            order_code: "6ES7 315-2AG10-0AB0".to_string(),
             clock_ms,
             cycles: 0,
         }
