@@ -464,6 +464,7 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
             .or(scenario.as_ref().and_then(|s| s.watchdog_ns))
             .or(project.as_ref().map(|project| project.cycle_limit_ns))
             .unwrap_or(profile.watchdog_ns),
+        interrupt_inputs: plan.interrupt_inputs,
     };
     if profile.family == Family::Sinumerik840c && !special_mode {
         warnings.extend(warnings::normal_mode_calls(&program, &built.sources));
