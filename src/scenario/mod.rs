@@ -89,6 +89,8 @@ pub struct Scenario {
     pub hw_addresses: Vec<(u16, u16)>,
     /// The clock memory byte's number (`clock_memory = 100`: MB 100).
     pub clock_memory: Option<u16>,
+    /// S7: the minimum cycle time (`min_cycle`).
+    pub min_cycle_ns: Option<u64>,
     interrupt_inputs: Vec<Spanned<RawInterruptInput>>,
     events: Vec<Spanned<RawEvent>>,
     expect: SpannedTable,
@@ -301,6 +303,10 @@ impl Scenario {
             .clock_memory
             .as_ref()
             .and_then(|byte| errors.keep(check_clock_memory(byte, profile)));
+        let min_cycle_ns = raw
+            .min_cycle
+            .as_ref()
+            .and_then(|min_cycle| errors.keep(check_min_cycle(min_cycle, watchdog_ns, profile)));
         Scenario {
             path: path.to_path_buf(),
             text,
@@ -319,6 +325,7 @@ impl Scenario {
             hw_modules,
             hw_addresses,
             clock_memory,
+            min_cycle_ns,
             interrupt_inputs: raw.interrupt_input,
             events: raw.event,
             expect: raw.expect,
@@ -1195,6 +1202,43 @@ fn check_edge(edge: &Spanned<String>) -> Result<Edge, ScenarioError> {
             Some("`rising` raises the interrupt when the input goes 0 → 1, `falling` 1 → 0, `both` on either change".into()),
         )),
     }
+}
+
+/// The minimum cycle time (`min_cycle`): an S7 CPU's setting, below the cycle monitoring time
+/// (S7-400 Automation System, CPU Specifications, 9.3 Different cycle times, "Minimum cycle
+/// time"; the SPEED7 is set in STEP 7's hardware configuration as an S7-300 CPU, "Cycle/Clock
+/// Memory"). `watchdog_ns` is the scenario's, else the CPU's.
+fn check_min_cycle(
+    min_cycle: &Spanned<String>,
+    watchdog_ns: Option<u64>,
+    profile: &Profile,
+) -> Result<u64, ScenarioError> {
+    if !profile.runs_step7() {
+        return Err(invalid(
+            format!("the {} CPU has no minimum cycle time", profile.name),
+            span(min_cycle),
+            "an S7 CPU's setting",
+            Some(format!(
+                "a minimum scan cycle time is set in an S7 CPU's hardware configuration; the S7 \
+                 profiles: {}",
+                profile::step7_profiles().join(", ")
+            )),
+        ));
+    }
+    let ns = duration(min_cycle)?;
+    let watchdog = watchdog_ns.unwrap_or(profile.watchdog_ns);
+    if ns == 0 || ns >= watchdog {
+        return Err(invalid(
+            format!(
+                "the minimum cycle time must be above 0 and below the watchdog ({})",
+                crate::trace::format_ms(watchdog)
+            ),
+            span(min_cycle),
+            "out of range",
+            Some("a cycle waits for the minimum cycle time, and a cycle longer than the watchdog is STOP `ZYK`: set a longer `watchdog`, or a shorter `min_cycle`".into()),
+        ));
+    }
+    Ok(ns)
 }
 
 /// The clock memory byte: a flag byte of an S7 CPU (set in its hardware configuration, "Cycle/

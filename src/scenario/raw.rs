@@ -87,6 +87,7 @@ pub const SCENARIO: Table = Table {
             "`run = { for = \"100ms\" }` or `run = { cycles = 20 }`",
         ),
         key("watchdog", DURATION, "`watchdog = \"300ms\"`"),
+        key("min_cycle", DURATION, "`min_cycle = \"10ms\"`"),
         key("clock_memory", "a flag byte number", "`clock_memory = 100`"),
         key(
             "ob13",
@@ -255,6 +256,8 @@ pub struct RawScenario {
     pub hw_module: Vec<Spanned<RawHwModule>>,
     /// `[[interrupt_input]]`: input bits whose edges raise interrupts.
     pub interrupt_input: Vec<Spanned<RawInterruptInput>>,
+    /// S7: the minimum cycle time.
+    pub min_cycle: Option<Spanned<String>>,
     /// The S7 CPU's clock memory byte (`MB n`).
     pub clock_memory: Option<Spanned<i64>>,
     pub event: Vec<Spanned<RawEvent>>,
@@ -654,6 +657,7 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "mode" => raw.mode = SCENARIO.read(name, value, errors),
             "interrupt_points" => raw.interrupt_points = SCENARIO.read(name, value, errors),
             "watchdog" => raw.watchdog = SCENARIO.read(name, value, errors),
+            "min_cycle" => raw.min_cycle = SCENARIO.read(name, value, errors),
             "clock_memory" => raw.clock_memory = SCENARIO.read(name, value, errors),
             "expect" => raw.expect = SCENARIO.read(name, value, errors).unwrap_or_default(),
             "watch" => raw.watch = SCENARIO.read(name, value, errors).unwrap_or_default(),

@@ -123,6 +123,8 @@ pub struct EngineConfig {
     pub watchdog_ns: u64,
     /// The input bits whose edges raise interrupts (`[[interrupt_input]]`).
     pub interrupt_inputs: Vec<InterruptInput>,
+    /// S7: the minimum cycle time; 0 for none.
+    pub min_cycle_ns: u64,
 }
 
 /// OB 35's interval when the scenario gives none: 100 ms, the default of the S7-300 class and
@@ -151,6 +153,7 @@ impl Default for EngineConfig {
             ob35_interval_ns: OB35_DEFAULT_NS,
             watchdog_ns: 150_000_000,
             interrupt_inputs: Vec::new(),
+            min_cycle_ns: 0,
         }
     }
 }
