@@ -130,6 +130,7 @@ fn stretch_text(cpu: &Cpu, kind: StretchKind) -> String {
         StretchKind::ProcessImageRead => "the process image read (PII) at the cycle start".into(),
         StretchKind::ProcessImageWrite => "the process image write (PIQ) after OB 1".into(),
         StretchKind::OsTime => "the operating-system time at the cycle end".into(),
+        StretchKind::MinCycleWait => "the wait for the minimum cycle time".into(),
         StretchKind::InterruptEnd { block } => {
             format!("the end of {} with its data cycle", cpu.block_id(block))
         }

@@ -314,6 +314,8 @@ fn run(
             hw_addresses: Vec::new(),
             ob35_interval_ns: awl::vm::interrupts::OB35_DEFAULT_NS,
             watchdog_ns: 150_000_000,
+            interrupt_inputs: Vec::new(),
+            min_cycle_ns: 0,
         },
         schedule,
     );

@@ -267,3 +267,61 @@ END_ORGANIZATION_BLOCK
     assert!(cpu.instructions > 10_000);
     assert_eq!(count, 0, "allocations while running");
 }
+
+#[test]
+fn interrupts_raised_by_input_edges_allocate_nothing() {
+    use awl::vm::interrupts::inputs::{Edge, InterruptInput, Raises};
+    // `input(2, 1)` and `input(2, 2)` in turn toggle I 3.0 and I 3.1.
+    let tied = |bit, edge, raises| InterruptInput {
+        byte: 3,
+        bit,
+        edge,
+        raises,
+    };
+    let hardware = |module, channel| Raises::Hardware { module, channel };
+    for (cpu_name, obs, inputs, modules) in [
+        (
+            "speed7",
+            vec![40, 85],
+            vec![
+                tied(0, Edge::Both, hardware(1, 0)),
+                tied(1, Edge::Rising, hardware(1, 1)),
+                tied(1, Edge::Falling, hardware(3, 0)),
+            ],
+            vec![(1, 40), (3, 41)],
+        ),
+        (
+            "s5-115u-944",
+            vec![2, 3],
+            vec![
+                tied(0, Edge::Both, Raises::Ob(2)),
+                tied(1, Edge::Falling, Raises::Ob(3)),
+            ],
+            Vec::new(),
+        ),
+    ] {
+        let source = obs
+            .iter()
+            .fold(CYCLIC.to_string(), |text, &ob| text + &interrupt_ob(ob));
+        let mut cpu = machine(&source, cpu_name);
+        let events = schedule(1_000, 100 * MS, 7_000, &[input(2, 1), input(2, 2)]);
+        cpu.engine = Engine::new(
+            cpu.profile,
+            EngineConfig {
+                points: InterruptPoints::Operation,
+                hw_modules: modules,
+                interrupt_inputs: inputs,
+                ..EngineConfig::default()
+            },
+            events,
+        );
+        let count = allocations(
+            &mut cpu,
+            RunLimit::Duration(2 * MS),
+            RunLimit::Duration(100 * MS),
+        );
+        let stats = total(&cpu);
+        assert!(stats.serviced > 1000, "{cpu_name}: {stats:?}");
+        assert_eq!(count, 0, "allocations while raising ({cpu_name})");
+    }
+}

@@ -312,6 +312,8 @@ proptest! {
                 hw_addresses: Vec::new(),
                 ob35_interval_ns: awl::vm::interrupts::OB35_DEFAULT_NS,
                 watchdog_ns: 150_000_000,
+                interrupt_inputs: Vec::new(),
+                min_cycle_ns: 0,
             };
             let mut machine = awl::vm::Cpu::new(
                 std::sync::Arc::new(built.compiled.program.clone()),

@@ -60,6 +60,8 @@ fuzz_target!(
             hw_addresses: scenario.hw_addresses.clone(),
             ob35_interval_ns: scenario.ob35_interval_ns.unwrap_or(OB35_DEFAULT_NS),
             watchdog_ns: scenario.watchdog_ns.unwrap_or(profile.watchdog_ns),
+            interrupt_inputs: Vec::new(),
+            min_cycle_ns: scenario.min_cycle_ns.unwrap_or(0),
         };
         let setup = awl_fuzz::Setup {
             profile,

@@ -252,6 +252,7 @@ mod tests {
         assert_eq!(project.mnemonics, None);
         assert_eq!(project.cycle_limit_ns, 1_000_000_000);
         assert_eq!(project.max_runtime_ns, None);
+        assert_eq!(project.min_cycle_ns, None);
         assert!(project.programs.is_empty() && project.symbols.is_empty());
     }
 
@@ -261,7 +262,8 @@ mod tests {
             "<awlsim_project format_version=\"1\"><cpu>\
              <specs nr_accus=\"4\" nr_inputs=\"1024\" nr_outputs=\"512\"/>\
              <config clock_memory_byte=\"7\" mnemonics=\"1\" ob_startinfo_enable=\"1\" \
-             ext_insns_enable=\"1\" cycle_time_limit_us=\"2000\" run_time_limit_us=\"300\"/>\
+             ext_insns_enable=\"1\" cycle_time_limit_us=\"2000\" run_time_limit_us=\"300\" \
+             cycle_time_target_us=\"500\"/>\
              </cpu><language_awl>\
              <source enabled=\"1\" file=\"a.awl\" type=\"0\"/>\
              <source enabled=\"0\" type=\"0\">not read</source>\
@@ -277,6 +279,7 @@ mod tests {
         assert!(project.start_info && project.extensions);
         assert_eq!(project.cycle_limit_ns, 2_000_000);
         assert_eq!(project.max_runtime_ns, Some(300_000));
+        assert_eq!(project.min_cycle_ns, Some(500_000));
         let names: Vec<String> = project
             .programs
             .iter()
@@ -360,7 +363,7 @@ mod tests {
         let found = messages(
             "<awlsim_project format_version=\"1\"><cpu>\
              <specs nr_accus=\"3\" nr_flags=\"9000\"/>\
-             <config clock_memory_byte=\"5000\" mnemonics=\"x\" cycle_time_target_us=\"1\"/>\
+             <config clock_memory_byte=\"5000\" mnemonics=\"x\" cycle_time_target_us=\"-1\"/>\
              </cpu><language_awl><source file=\"gone.awl\" type=\"0\"/>\
              <source file=\"a.awl\" type=\"3\"/></language_awl>\
              <language_kop><source type=\"2\"/></language_kop>\
@@ -374,7 +377,7 @@ mod tests {
                 "`nr_flags` 9000 is more than awl's CPU has",
                 "`clock_memory_byte` 5000 is out of range",
                 "`mnemonics` is not a number",
-                "a target cycle time is not simulated",
+                "`cycle_time_target_us` -1 is out of range",
                 "cannot read `gone.awl`: no such file",
                 "a source of type 3 in `<language_awl>`",
                 "a KOP (ladder) source is not run",

@@ -66,6 +66,9 @@ pub struct Project {
     pub cycle_limit_ns: u64,
     /// `run_time_limit_us`, in nanoseconds (`None`: −1, no limit).
     pub max_runtime_ns: Option<u64>,
+    /// `cycle_time_target_us`, in nanoseconds (`None`: 0, none): the minimum cycle time, at
+    /// most half the cycle monitoring time, as awlsim holds it.
+    pub min_cycle_ns: Option<u64>,
     /// The STL sources, in order: a name and the text.
     pub programs: Vec<(PathBuf, Vec<u8>)>,
     /// The symbol tables, in order.
@@ -84,6 +87,7 @@ impl Default for Project {
             extensions: false,
             cycle_limit_ns: 1_000_000_000,
             max_runtime_ns: None,
+            min_cycle_ns: None,
             programs: Vec::new(),
             symbols: Vec::new(),
         }
@@ -413,16 +417,21 @@ impl Reader<'_> {
         ) {
             self.project.max_runtime_ns = limit;
         }
-        if let Some(target) = self.int(settings, "cycle_time_target_us", 0)
-            && target != 0
-            && let Some(setting) = settings("cycle_time_target_us")
-        {
-            self.errors.push(not_run(
-                "a target cycle time is not simulated",
-                span(setting.at),
-                "not 0",
-                Some("awl's cycles take the time their operations take".into()),
-            ));
+        if let Some(target) = self.checked(
+            settings,
+            "cycle_time_target_us",
+            0,
+            |n| match n {
+                0 => Some(None),
+                1..=0x7FFF_FFFF => Some(Some(n as u64 * 1000)),
+                _ => None,
+            },
+            "microseconds, or 0 for none",
+        ) {
+            // awlsim waits at most half the cycle time limit: a project's own watchdog never
+            // trips on the wait.
+            let half_limit = self.project.cycle_limit_ns / 2;
+            self.project.min_cycle_ns = target.map(|ns| ns.min(half_limit));
         }
     }
 

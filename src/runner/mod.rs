@@ -469,6 +469,13 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
             .or(scenario.as_ref().and_then(|s| s.watchdog_ns))
             .or(project.as_ref().map(|project| project.cycle_limit_ns))
             .unwrap_or(profile.watchdog_ns),
+        interrupt_inputs: plan.interrupt_inputs,
+        min_cycle_ns: scenario
+            .as_ref()
+            .and_then(|s| s.min_cycle_ns)
+            .or(project.as_ref().and_then(|project| project.min_cycle_ns))
+            .filter(|_| profile.runs_step7())
+            .unwrap_or(0),
     };
     if profile.family == Family::Sinumerik840c && !special_mode {
         warnings.extend(warnings::normal_mode_calls(&program, &built.sources));

@@ -25,6 +25,7 @@ use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
 use crate::project;
 use crate::vm::cycle::RunLimit;
+use crate::vm::interrupts::inputs::{Edge, InterruptInput, Raises};
 use crate::vm::interrupts::{Happening, InputChange, InputTarget, Ob13Timing, Scheduled};
 use crate::vm::stop::StopCause;
 
@@ -33,7 +34,7 @@ pub use error::ScenarioError;
 pub use expect::{Expectation, Expected};
 pub use modify::DataWrite;
 use operand::{Target, Wanted, parse_target, raw_value, real_value};
-use raw::{ProgramList, RawEvent, RawScenario, SpannedTable};
+use raw::{ProgramList, RawEvent, RawInterruptInput, RawScenario, SpannedTable};
 
 /// The longest cycle watchdog a scenario may set: the longest cycle monitoring time of the
 /// S7-300 class CPUs the VIPA SPEED7 follows (6000 ms); the S5 CPUs allow less.
@@ -48,6 +49,8 @@ pub const MAX_EVENTS: usize = 1_000_000;
 pub struct Plan {
     pub schedule: Vec<Scheduled>,
     pub writes: Vec<DataWrite>,
+    /// The input bits whose edges raise interrupts (`[[interrupt_input]]`).
+    pub interrupt_inputs: Vec<InterruptInput>,
 }
 
 impl Plan {
@@ -88,6 +91,9 @@ pub struct Scenario {
     pub hw_addresses: Vec<(u16, u16)>,
     /// The clock memory byte's number (`clock_memory = 100`: MB 100).
     pub clock_memory: Option<u16>,
+    /// S7: the minimum cycle time (`min_cycle`).
+    pub min_cycle_ns: Option<u64>,
+    interrupt_inputs: Vec<Spanned<RawInterruptInput>>,
     events: Vec<Spanned<RawEvent>>,
     expect: SpannedTable,
     watch: Vec<Spanned<String>>,
@@ -302,6 +308,10 @@ impl Scenario {
             .clock_memory
             .as_ref()
             .and_then(|byte| errors.keep(check_clock_memory(byte, profile)));
+        let min_cycle_ns = raw
+            .min_cycle
+            .as_ref()
+            .and_then(|min_cycle| errors.keep(check_min_cycle(min_cycle, watchdog_ns, profile)));
         Scenario {
             path: path.to_path_buf(),
             text,
@@ -320,6 +330,8 @@ impl Scenario {
             hw_modules,
             hw_addresses,
             clock_memory,
+            min_cycle_ns,
+            interrupt_inputs: raw.interrupt_input,
             events: raw.event,
             expect: raw.expect,
             watch: raw.watch,
@@ -392,6 +404,10 @@ impl Scenario {
     ) -> Result<Plan, Vec<Report>> {
         let mut errors = Errors::default();
         let mut plan = Plan::default();
+        for input in &self.interrupt_inputs {
+            let resolved = self.interrupt_input(input, program, set, &mut errors);
+            plan.interrupt_inputs.extend(resolved);
+        }
         for event in &self.events {
             let at_span = span(&event.get_ref().at);
             let event_span = span(event);
@@ -498,27 +514,8 @@ impl Scenario {
     }
 
     fn hardware(&self, hardware: &Spanned<raw::RawHardware>) -> Result<Happening, ScenarioError> {
-        if self.profile.family != Family::Speed7 {
-            return Err(invalid(
-                "`hw_interrupt` belongs to the speed7 profile",
-                span(hardware),
-                format!("{} has no hardware interrupts", self.profile.name),
-                None,
-            ));
-        }
         let inner = hardware.get_ref();
-        if !self
-            .hw_modules
-            .iter()
-            .any(|(module, _)| *module == inner.module)
-        {
-            return Err(invalid(
-                format!("module {} has no [[hw_module]] entry", inner.module),
-                span(hardware),
-                "unknown module",
-                Some("add [[hw_module]] with `module` and `ob = 40` or `41`".into()),
-            ));
-        }
+        self.hardware_module("`hw_interrupt`", inner.module, span(hardware))?;
         Ok(Happening::Hardware {
             module: inner.module,
             channel: inner.channel,
@@ -542,14 +539,55 @@ impl Scenario {
         })
     }
 
+    /// A module whose hardware interrupts `what` names: the CPU must be the SPEED7 and the
+    /// module mapped by a `[[hw_module]]`.
+    fn hardware_module(
+        &self,
+        what: &str,
+        module: u16,
+        at: SourceSpan,
+    ) -> Result<(), ScenarioError> {
+        if self.profile.family != Family::Speed7 {
+            return Err(invalid(
+                format!("{what} belongs to the speed7 profile"),
+                at,
+                format!("{} has no hardware interrupts", self.profile.name),
+                None,
+            ));
+        }
+        if !self.hw_modules.iter().any(|(known, _)| *known == module) {
+            return Err(invalid(
+                format!("module {module} has no [[hw_module]] entry"),
+                at,
+                "unknown module",
+                Some("add [[hw_module]] with `module` and `ob = 40` or `41`".into()),
+            ));
+        }
+        Ok(())
+    }
+
     fn interrupt_ob(&self, text: &Spanned<String>) -> Result<u8, ScenarioError> {
-        let profile = self.profile;
         let name = text.get_ref();
         let digits = name
             .trim()
             .strip_prefix("OB")
             .or_else(|| name.trim().strip_prefix("ob"))
             .map(str::trim);
+        let speed7 = "SPEED7 interrupts come from modules: use `hw_interrupt = { module, channel, active_for }`";
+        let ob = digits.and_then(|digits| digits.parse::<u8>().ok());
+        self.requested_ob(ob, name, span(text), speed7)
+    }
+
+    /// An OB an `interrupt` event or an `[[interrupt_input]]` requests (`written` as the file
+    /// has it): an interrupt OB of the S5 CPU. `speed7` tells what the SPEED7 takes instead.
+    fn requested_ob(
+        &self,
+        ob: Option<u8>,
+        written: &str,
+        at: SourceSpan,
+        speed7: &str,
+    ) -> Result<u8, ScenarioError> {
+        let profile = self.profile;
         let allowed: Vec<u8> = profile
             .interrupt_obs
             .iter()
@@ -561,21 +599,133 @@ impl Scenario {
             })
             .collect();
         let help = match profile.family {
-            Family::Speed7 => "SPEED7 interrupts come from modules: use `hw_interrupt = { module, channel, active_for }`".to_string(),
-            Family::S5_95f => "OB 13 runs at its [ob13] interval; `interrupt` requests OB 2 or OB 3".to_string(),
+            Family::Speed7 => speed7.to_string(),
+            Family::S5_95f => {
+                "OB 13 runs at its [ob13] interval; `interrupt` requests OB 2 or OB 3".to_string()
+            }
             Family::Sinumerik840c | Family::S5 => format!(
                 "the interrupt OBs are: {}",
-                allowed.iter().map(|ob| format!("OB {ob}")).collect::<Vec<_>>().join(", ")
+                allowed
+                    .iter()
+                    .map(|ob| format!("OB {ob}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ),
         };
-        match digits.and_then(|digits| digits.parse::<u8>().ok()) {
+        match ob {
             Some(ob) if allowed.contains(&ob) => Ok(ob),
             _ => Err(ScenarioError::UnknownOb {
-                ob: name.clone(),
+                ob: written.to_string(),
                 cpu: profile.name,
-                at: span(text),
+                at,
                 help: Some(help),
             }),
+        }
+    }
+
+    /// An `[[interrupt_input]]` resolved against the compiled program; `None` with its errors
+    /// kept when it does not fit the program or the CPU.
+    fn interrupt_input(
+        &self,
+        input: &Spanned<RawInterruptInput>,
+        program: &Program,
+        set: MnemonicSet,
+        errors: &mut Errors,
+    ) -> Option<InterruptInput> {
+        let raw = input.get_ref();
+        let bit = errors.keep(self.input_bit(&raw.input, program, set));
+        let edge = match &raw.edge {
+            None => Some(Edge::Rising),
+            Some(edge) => errors.keep(check_edge(edge)),
+        };
+        let raises = errors.keep(self.raises(raw, span(input)));
+        let ((byte, bit), edge, raises) = (bit?, edge?, raises?);
+        Some(InterruptInput {
+            byte,
+            bit,
+            edge,
+            raises,
+        })
+    }
+
+    /// The input bit `input` names: its byte and bit in the input modules.
+    fn input_bit(
+        &self,
+        input: &Spanned<String>,
+        program: &Program,
+        set: MnemonicSet,
+    ) -> Result<(u16, u8), ScenarioError> {
+        let at = self.key_span(input);
+        let text = input.get_ref();
+        let target = parse_target(text, at, set, program)?;
+        match input_change(target, program, 0) {
+            Some(InputChange {
+                target: InputTarget::Process,
+                byte,
+                bit,
+                bytes: 0,
+                ..
+            }) => Ok((byte, bit)),
+            _ => Err(ScenarioError::UnknownOperand {
+                operand: text.clone(),
+                at,
+                reason: "not an input bit".into(),
+                help: Some(
+                    "an interrupt input is an input bit of the process image: `I 8.0` (German `E 8.0`)"
+                        .into(),
+                ),
+            }),
+        }
+    }
+
+    /// What an `[[interrupt_input]]` raises: `ob` on the S5 CPUs, `module` and `channel` on the
+    /// SPEED7.
+    fn raises(&self, raw: &RawInterruptInput, at: SourceSpan) -> Result<Raises, ScenarioError> {
+        match (&raw.ob, &raw.module, &raw.channel) {
+            (Some(ob), None, None) => {
+                let speed7 = "SPEED7 interrupts come from modules: give `module` and `channel` of a [[hw_module]]";
+                let number = *ob.get_ref();
+                self.requested_ob(Some(number), &format!("OB {number}"), span(ob), speed7)
+                    .map(Raises::Ob)
+            }
+            (None, Some(module), Some(channel)) => {
+                self.hardware_module(
+                    "`module` in [[interrupt_input]]",
+                    *module.get_ref(),
+                    span(module),
+                )?;
+                Ok(Raises::Hardware {
+                    module: *module.get_ref(),
+                    channel: *channel.get_ref(),
+                })
+            }
+            (Some(ob), _, _) => Err(invalid(
+                "an [[interrupt_input]] raises an OB's request or a module's hardware interrupt, not both",
+                span(ob),
+                "`ob` with `module` or `channel`",
+                Some("S5 CPUs: `ob = 2`; speed7: `module = 4` and `channel = 1`".into()),
+            )),
+            (None, module, channel) => {
+                let (message, label, at) = match (module, channel) {
+                    (Some(module), None) => {
+                        ("`module` needs `channel`", "no `channel`", span(module))
+                    }
+                    (None, Some(channel)) => {
+                        ("`channel` needs `module`", "no `module`", span(channel))
+                    }
+                    _ => (
+                        "an [[interrupt_input]] has no `ob` and no `module`",
+                        "raises nothing",
+                        at,
+                    ),
+                };
+                Err(invalid(
+                    message,
+                    at,
+                    label,
+                    Some("S5 CPUs: `ob = 2` (the OB it requests); speed7: `module = 4` and `channel = 1` (the hardware interrupt it raises)".into()),
+                ))
+            }
         }
     }
 
@@ -1043,6 +1193,58 @@ fn check_watchdog(watchdog: &Spanned<String>) -> Result<u64, ScenarioError> {
             Some("6000 ms is the longest cycle monitoring time the S7-300 class CPUs (and the SPEED7) accept; the S5 CPUs allow less".into()),
         )),
     }
+}
+
+/// The edge of an `[[interrupt_input]]`.
+fn check_edge(edge: &Spanned<String>) -> Result<Edge, ScenarioError> {
+    match edge.get_ref().as_str() {
+        "rising" => Ok(Edge::Rising),
+        "falling" => Ok(Edge::Falling),
+        "both" => Ok(Edge::Both),
+        other => Err(invalid(
+            format!("unknown edge `{other}`"),
+            span(edge),
+            "\"rising\", \"falling\" or \"both\"",
+            Some("`rising` raises the interrupt when the input goes 0 → 1, `falling` 1 → 0, `both` on either change".into()),
+        )),
+    }
+}
+
+/// The minimum cycle time (`min_cycle`): an S7 CPU's setting, below the cycle monitoring time
+/// (S7-400 Automation System, CPU Specifications, 9.3 Different cycle times, "Minimum cycle
+/// time"; the SPEED7 is set in STEP 7's hardware configuration as an S7-300 CPU, "Cycle/Clock
+/// Memory"). `watchdog_ns` is the scenario's, else the CPU's.
+fn check_min_cycle(
+    min_cycle: &Spanned<String>,
+    watchdog_ns: Option<u64>,
+    profile: &Profile,
+) -> Result<u64, ScenarioError> {
+    if !profile.runs_step7() {
+        return Err(invalid(
+            format!("the {} CPU has no minimum cycle time", profile.name),
+            span(min_cycle),
+            "an S7 CPU's setting",
+            Some(format!(
+                "a minimum scan cycle time is set in an S7 CPU's hardware configuration; the S7 \
+                 profiles: {}",
+                profile::step7_profiles().join(", ")
+            )),
+        ));
+    }
+    let ns = duration(min_cycle)?;
+    let watchdog = watchdog_ns.unwrap_or(profile.watchdog_ns);
+    if ns == 0 || ns >= watchdog {
+        return Err(invalid(
+            format!(
+                "the minimum cycle time must be above 0 and below the watchdog ({})",
+                crate::trace::format_ms(watchdog)
+            ),
+            span(min_cycle),
+            "out of range",
+            Some("a cycle waits for the minimum cycle time, and a cycle longer than the watchdog is STOP `ZYK`: set a longer `watchdog`, or a shorter `min_cycle`".into()),
+        ));
+    }
+    Ok(ns)
 }
 
 /// The clock memory byte: a flag byte of an S7 CPU (set in its hardware configuration, "Cycle/

@@ -87,6 +87,7 @@ pub const SCENARIO: Table = Table {
             "`run = { for = \"100ms\" }` or `run = { cycles = 20 }`",
         ),
         key("watchdog", DURATION, "`watchdog = \"300ms\"`"),
+        key("min_cycle", DURATION, "`min_cycle = \"10ms\"`"),
         key("clock_memory", "a flag byte number", "`clock_memory = 100`"),
         key(
             "ob13",
@@ -102,6 +103,11 @@ pub const SCENARIO: Table = Table {
             "hw_module",
             "`[[hw_module]]` tables with `module` and `ob`",
             "`[[hw_module]]` with `module = 4` and `ob = 40`",
+        ),
+        key(
+            "interrupt_input",
+            "`[[interrupt_input]]` tables with `input` and `ob`, or `module` and `channel`",
+            "`[[interrupt_input]]` with `input = \"I 8.0\"` and `ob = 2`",
         ),
         key(
             "event",
@@ -195,6 +201,21 @@ const MODBUS: Table = Table {
     ],
 };
 
+const INTERRUPT_INPUT: Table = Table {
+    name: "[[interrupt_input]]",
+    keys: &[
+        key("input", "an input bit in quotes", "`input = \"I 8.0\"`"),
+        key(
+            "edge",
+            "\"rising\", \"falling\" or \"both\"",
+            "`edge = \"falling\"`",
+        ),
+        key("ob", "an interrupt OB number", "`ob = 2`"),
+        key("module", "a module number, 0 to 65535", "`module = 4`"),
+        key("channel", "a channel number, 0 to 65535", "`channel = 1`"),
+    ],
+};
+
 const EVENT: Table = Table {
     name: "[[event]]",
     keys: &[
@@ -263,6 +284,10 @@ pub struct RawScenario {
     pub ob13: Option<Spanned<RawOb13>>,
     pub ob35: Option<Spanned<RawOb35>>,
     pub hw_module: Vec<Spanned<RawHwModule>>,
+    /// `[[interrupt_input]]`: input bits whose edges raise interrupts.
+    pub interrupt_input: Vec<Spanned<RawInterruptInput>>,
+    /// S7: the minimum cycle time.
+    pub min_cycle: Option<Spanned<String>>,
     /// The S7 CPU's clock memory byte (`MB n`).
     pub clock_memory: Option<Spanned<i64>>,
     pub event: Vec<Spanned<RawEvent>>,
@@ -314,6 +339,16 @@ pub struct RawHwModule {
     pub ob: Spanned<u8>,
     /// The module's logical base address.
     pub address: Option<Spanned<u16>>,
+}
+
+/// An input bit tied to an interrupt: an OB (S5) or a module's channel (SPEED7).
+#[derive(Debug)]
+pub struct RawInterruptInput {
+    pub input: Spanned<String>,
+    pub edge: Option<Spanned<String>>,
+    pub ob: Option<Spanned<u8>>,
+    pub module: Option<Spanned<u16>>,
+    pub channel: Option<Spanned<u16>>,
 }
 
 #[derive(Debug)]
@@ -579,6 +614,23 @@ fn hw_module(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> O
     })
 }
 
+fn interrupt_input(
+    value: &Spanned<DeValue<'_>>,
+    errors: &mut Vec<ScenarioError>,
+) -> Option<RawInterruptInput> {
+    unless_reported(errors, |errors| {
+        let entries = INTERRUPT_INPUT.entries(&SCENARIO, "interrupt_input", value, errors)?;
+        let input = entries.needs("input", errors);
+        Some(RawInterruptInput {
+            edge: entries.get("edge", errors),
+            ob: entries.get("ob", errors),
+            module: entries.get("module", errors),
+            channel: entries.get("channel", errors),
+            input: input?,
+        })
+    })
+}
+
 fn hardware(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawHardware> {
     let entries = HW_INTERRUPT.entries(&EVENT, "hw_interrupt", value, errors)?;
     let (module, channel) = (
@@ -655,6 +707,7 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "mode" => raw.mode = SCENARIO.read(name, value, errors),
             "interrupt_points" => raw.interrupt_points = SCENARIO.read(name, value, errors),
             "watchdog" => raw.watchdog = SCENARIO.read(name, value, errors),
+            "min_cycle" => raw.min_cycle = SCENARIO.read(name, value, errors),
             "clock_memory" => raw.clock_memory = SCENARIO.read(name, value, errors),
             "expect" => raw.expect = SCENARIO.read(name, value, errors).unwrap_or_default(),
             "watch" => raw.watch = SCENARIO.read(name, value, errors).unwrap_or_default(),
@@ -662,6 +715,9 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "ob13" => raw.ob13 = ob13(value, errors).map(|ob13| Spanned::new(value.span(), ob13)),
             "ob35" => raw.ob35 = ob35(value, errors).map(|ob35| Spanned::new(value.span(), ob35)),
             "hw_module" => raw.hw_module = read_each(name, value, errors, hw_module),
+            "interrupt_input" => {
+                raw.interrupt_input = read_each(name, value, errors, interrupt_input)
+            }
             "event" => raw.event = read_each(name, value, errors, event),
             "check" => raw.check = read_each(name, value, errors, check),
             "modbus" => raw.modbus = modbus(value, errors).unwrap_or_default(),

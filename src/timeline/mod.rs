@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
 
-use crate::trace::activity::{Activity, OS_TIME, Span};
+use crate::trace::activity::{Activity, CYCLE_WAIT, OS_TIME, Span};
 use crate::trace::{Event, Levels, Sink, TraceFilter, describe, format_ms};
 use rows::{Item, Mark, RowKey, Rows};
 
@@ -164,6 +164,7 @@ impl Recorder {
             | Event::CycleEnd { .. }
             | Event::DataCycle { .. }
             | Event::OsTime { .. }
+            | Event::CycleWait { .. }
             | Event::IrqEnd { .. }
             | Event::DelayEnd { .. }
             | Event::Watch { .. } => return,
@@ -233,10 +234,10 @@ fn span_item(span: &Span) -> Option<(RowKey, Item)> {
             ((Mark::Block, *ob, depth), start, end, name.to_string())
         }
         Span::System { what, start, end } => {
-            let mark = if *what == OS_TIME {
-                Mark::OsTime
-            } else {
-                Mark::DataCycle
+            let mark = match *what {
+                OS_TIME => Mark::OsTime,
+                CYCLE_WAIT => Mark::CycleWait,
+                _ => Mark::DataCycle,
             };
             ((mark, 0, 0), start, end, short(what))
         }
@@ -285,6 +286,7 @@ fn short(what: &str) -> String {
         "process image write (PIQ)" => "PIQ",
         "interrupt input data cycle" => "IDC in",
         "interrupt output data cycle" => "IDC out",
+        CYCLE_WAIT => "wait",
         _ => "OS",
     }
     .to_string()

@@ -25,6 +25,8 @@ pub enum Mark {
     ModuleEvent,
     DataCycle,
     OsTime,
+    /// S7: the wait for the minimum cycle time.
+    CycleWait,
     /// A cycle's start.
     Cycle,
     Stop,
@@ -50,6 +52,7 @@ impl Mark {
             Mark::ModuleEvent => "module-event",
             Mark::DataCycle => "data-cycle",
             Mark::OsTime => "os-time",
+            Mark::CycleWait => "cycle-wait",
             Mark::Cycle => "cycle",
             Mark::Stop => "stop",
             Mark::Input => "input",
@@ -74,6 +77,7 @@ impl Mark {
             Mark::ModuleEvent => "module events",
             Mark::DataCycle => "data cycles",
             Mark::OsTime => "stretches of operating-system time",
+            Mark::CycleWait => "waits for the minimum cycle time",
             Mark::Cycle => "cycle starts",
             Mark::Stop => "STOPs",
             Mark::Input => "input changes",

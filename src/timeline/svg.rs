@@ -355,8 +355,8 @@ fn cross(svg: &mut String, scene: &Scene, mark: Mark, item: &Item, y: f64, colou
     );
 }
 
-/// The operating system's strip (data cycles, its time at the cycle end) and their shading
-/// across the lanes.
+/// The operating system's strip (data cycles, its time at the cycle end, an S7 CPU's wait for
+/// the minimum cycle time) and their shading across the lanes.
 fn draw_system(svg: &mut String, scene: &Scene, top: f64, bottom: f64) {
     let _ = write!(
         svg,
@@ -364,7 +364,11 @@ fn draw_system(svg: &mut String, scene: &Scene, top: f64, bottom: f64) {
         LEFT - 8.0,
         top + ROW - 4.0
     );
-    for (mark, fill) in [(Mark::DataCycle, "#8c9db5"), (Mark::OsTime, "#c4c4c4")] {
+    for (mark, fill) in [
+        (Mark::DataCycle, "#8c9db5"),
+        (Mark::OsTime, "#c4c4c4"),
+        (Mark::CycleWait, "#a8d5a2"),
+    ] {
         for (_, item) in scene.items(mark, 0) {
             let x = scene.x(item.start);
             let width = (scene.x(item.end) - x).max(0.8);

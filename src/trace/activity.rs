@@ -58,6 +58,9 @@ pub struct Activity {
 /// What the operating system's time at the cycle end is called.
 pub const OS_TIME: &str = "operating-system time";
 
+/// What the wait for the minimum cycle time is called.
+pub const CYCLE_WAIT: &str = "wait for the minimum cycle time";
+
 /// What a data cycle is called in a picture.
 pub fn data_cycle_name(kind: &str, direction: &str) -> &'static str {
     match (kind, direction) {
@@ -100,6 +103,7 @@ impl Activity {
                 duration_ns,
             } => self.system(t_ns, *duration_ns, data_cycle_name(kind, direction), spans),
             Event::OsTime { duration_ns } => self.system(t_ns, *duration_ns, OS_TIME, spans),
+            Event::CycleWait { duration_ns } => self.system(t_ns, *duration_ns, CYCLE_WAIT, spans),
             Event::BlockCall { to, .. } => {
                 if let Some(level) = self.levels.last_mut() {
                     level.blocks.push((BlockName::clone(to), t_ns));

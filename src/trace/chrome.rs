@@ -286,7 +286,8 @@ impl Chrome {
             | Event::BlockEnd { .. }
             | Event::IrqEnd { .. }
             | Event::DataCycle { .. }
-            | Event::OsTime { .. } => Ok(()),
+            | Event::OsTime { .. }
+            | Event::CycleWait { .. } => Ok(()),
         }
     }
 

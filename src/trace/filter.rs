@@ -35,7 +35,8 @@ pub fn kind(event: &Event) -> Option<Kind> {
         Event::CycleStart { .. }
         | Event::CycleEnd { .. }
         | Event::DataCycle { .. }
-        | Event::OsTime { .. } => Some(Kind::Cycles),
+        | Event::OsTime { .. }
+        | Event::CycleWait { .. } => Some(Kind::Cycles),
         Event::BlockCall { .. } | Event::BlockEnd { .. } => Some(Kind::Blocks),
         Event::IrqRequest { .. }
         | Event::IrqService { .. }

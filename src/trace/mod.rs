@@ -147,6 +147,11 @@ pub enum Event {
     OsTime {
         duration_ns: u64,
     },
+    /// S7: the cycle end waits for the minimum cycle time, this long before the next thing due
+    /// (an interrupt is serviced at its end) or the end of the wait.
+    CycleWait {
+        duration_ns: u64,
+    },
     /// A module's hardware event that is no request (SPEED7: in STARTUP).
     ModuleEvent {
         module: u16,

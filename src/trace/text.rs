@@ -5,7 +5,7 @@
 use std::borrow::Cow;
 use std::io::Write;
 
-use super::activity::{Activity, data_cycle_name};
+use super::activity::{Activity, CYCLE_WAIT, data_cycle_name};
 use super::{Event, Sink, TraceFilter, format_ms, format_us};
 use crate::symbols::Symbols;
 
@@ -210,6 +210,9 @@ pub fn line(event: &Event) -> String {
         }
         Event::OsTime { duration_ns } => {
             format!("operating-system time, {}", format_us(*duration_ns))
+        }
+        Event::CycleWait { duration_ns } => {
+            format!("{CYCLE_WAIT}, {}", format_us(*duration_ns))
         }
         Event::ModuleEvent {
             module,

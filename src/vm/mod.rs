@@ -187,6 +187,8 @@ pub enum StretchKind {
     ProcessImageWrite,
     /// The operating-system time at the cycle end.
     OsTime,
+    /// S7: a stretch of the wait for the minimum cycle time, up to the next thing due.
+    MinCycleWait,
     /// An interrupt OB's last operations with its end (S5-95F OB 13: and its interrupt output
     /// data cycle).
     InterruptEnd { block: u16 },

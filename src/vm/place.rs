@@ -43,6 +43,7 @@ impl Cpu {
             StretchKind::ProcessImageRead => during("process image read (PII)"),
             StretchKind::ProcessImageWrite => during("process image write (PIQ)"),
             StretchKind::OsTime => during("operating-system time"),
+            StretchKind::MinCycleWait => during("wait for the minimum cycle time"),
         }
     }
 

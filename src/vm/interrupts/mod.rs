@@ -5,7 +5,8 @@
 //!   manual, "Introduction to STEP 5", 7.4.4 and 7.4.5);
 //! - [`speed7`]: hardware interrupts by module and channel (VIPA SPEED7 operation list,
 //!   OB 40/OB 41);
-//! - [`s5`]: the other S5 CPUs, with nothing beyond the generic engine.
+//! - [`s5`]: the other S5 CPUs, with nothing beyond the generic engine;
+//! - [`inputs`]: interrupts raised by the edges of input bits (`[[interrupt_input]]`).
 //!
 //! The rules every CPU shares (SINUMERIK 840C PLC manual, 5.3.2): a pending request is serviced
 //! at the next interrupt point when its OB's priority is above the running level's; of several,
@@ -18,6 +19,7 @@
 //! level. With nothing pending the loop pays one comparison per block change.
 
 pub mod control;
+pub mod inputs;
 pub mod s5;
 pub mod s5_95f;
 pub mod sinumerik840c;
@@ -31,6 +33,7 @@ use super::place::Place;
 use super::stop::{Stop, StopCause, StopDetail};
 use super::{Cpu, IDLE, Mode, Point, StretchKind};
 
+use inputs::InterruptInput;
 use s5::S5;
 use s5_95f::S595f;
 use sinumerik840c::Sinumerik840c;
@@ -118,6 +121,10 @@ pub struct EngineConfig {
     /// SPEED7: the cyclic interrupt OB 35's interval (`[ob35]`).
     pub ob35_interval_ns: u64,
     pub watchdog_ns: u64,
+    /// The input bits whose edges raise interrupts (`[[interrupt_input]]`).
+    pub interrupt_inputs: Vec<InterruptInput>,
+    /// S7: the minimum cycle time; 0 for none.
+    pub min_cycle_ns: u64,
 }
 
 /// OB 35's interval when the scenario gives none: 100 ms, the default of the S7-300 class and
@@ -145,6 +152,8 @@ impl Default for EngineConfig {
             hw_addresses: Vec::new(),
             ob35_interval_ns: OB35_DEFAULT_NS,
             watchdog_ns: 150_000_000,
+            interrupt_inputs: Vec::new(),
+            min_cycle_ns: 0,
         }
     }
 }
@@ -294,6 +303,9 @@ pub trait Rules {
     ) -> Result<(), Stop> {
         Ok(())
     }
+    /// The hardware event an input raised on a module's channel ends at `at`: the input
+    /// changed back.
+    fn hardware_ended(&mut self, _cpu: &mut Cpu, _module: u16, _channel: u16, _at: u64) {}
     /// A DP station fails or returns (only the SPEED7 has them).
     fn station_event(
         &mut self,
@@ -364,6 +376,20 @@ impl FamilyRules {
     }
 }
 
+/// How many hardware interrupt events `schedule` can bring at most: its `hw_interrupt` events
+/// and those its input changes raise.
+fn hardware_events(config: &EngineConfig, schedule: &[Scheduled]) -> usize {
+    let events = schedule
+        .iter()
+        .filter(|item| matches!(item.what, Happening::Hardware { .. }))
+        .count();
+    let changes = schedule.iter().flat_map(|item| match &item.what {
+        Happening::SetInputs(changes) => changes.as_slice(),
+        _ => &[],
+    });
+    events + inputs::hardware_events(&config.interrupt_inputs, changes)
+}
+
 /// Room for pending and active requests: one pending request per OB, one active level per
 /// priority.
 const LEVELS: usize = 32;
@@ -384,15 +410,14 @@ pub struct Engine {
     pub rules: FamilyRules,
     /// The OBs SFC 39 DIS_IRT has disabled.
     pub disabled: control::Disabled,
+    /// A STOP an input change from outside the run brought, for the next interrupt point.
+    stop_due: Option<Stop>,
 }
 
 impl Engine {
     pub fn new(profile: &Profile, config: EngineConfig, mut schedule: Vec<Scheduled>) -> Self {
         schedule.sort_by_key(|item| item.at_ns);
-        let hardware = schedule
-            .iter()
-            .filter(|item| matches!(item.what, Happening::Hardware { .. }))
-            .count();
+        let hardware = hardware_events(&config, &schedule);
         Engine {
             rules: FamilyRules::new(profile, &config, &schedule),
             schedule,
@@ -403,6 +428,7 @@ impl Engine {
             next_id: 0,
             run_started_at: None,
             disabled: control::Disabled::default(),
+            stop_due: None,
             config,
         }
     }
@@ -534,7 +560,7 @@ impl Cpu {
         let watchdog = self
             .cycle_started_at
             .saturating_add(self.engine.config.watchdog_ns);
-        self.engine_attention_at = if serviceable {
+        self.engine_attention_at = if serviceable || self.engine.stop_due.is_some() {
             0
         } else {
             self.engine.next_due().min(watchdog)
@@ -559,6 +585,9 @@ impl Cpu {
     /// highest pending request that outranks the running level. Returns whether an OB was
     /// entered.
     pub fn at_point(&mut self, point: Point) -> Result<bool, Stop> {
+        if let Some(stop) = self.engine.stop_due.take() {
+            return Err(stop);
+        }
         self.poll()?;
         let cycle_time = self.clock - self.cycle_started_at;
         if self.mode != Mode::Stop && cycle_time > self.engine.config.watchdog_ns {
@@ -643,7 +672,7 @@ impl Cpu {
         match &self.engine.schedule[index].what {
             Happening::SetInputs(changes) => {
                 for index_of_change in 0..changes.len() {
-                    self.set_inputs(index, index_of_change);
+                    self.set_inputs(index, index_of_change, at)?;
                 }
                 Ok(())
             }
@@ -669,28 +698,44 @@ impl Cpu {
         }
     }
 
-    /// Change `change` of the scheduled item `index` reaches the input modules.
-    fn set_inputs(&mut self, index: usize, change: usize) {
+    /// Change `change` of the scheduled item `index` reaches the input modules at `at`.
+    fn set_inputs(&mut self, index: usize, change: usize, at: u64) -> Result<(), Stop> {
         let Happening::SetInputs(changes) = &self.engine.schedule[index].what else {
-            return;
+            return Ok(());
         };
-        self.deliver_inputs(changes[change]);
+        self.inputs_change(changes[change], at)
     }
 
     /// The input modules deliver `change` now: a scenario's `set`, or a network client's write
-    /// to the inputs. The program sees it in the PII at the next cycle start.
+    /// to the inputs. The program sees it in the PII at the next cycle start, direct
+    /// (peripheral) reads at once; an interrupt input's edge raises its interrupt
+    /// ([`inputs`]). A STOP that raising brings (a SPEED7 module's OB and OB 85 both missing)
+    /// comes at the next interrupt point.
     pub fn deliver_inputs(&mut self, change: InputChange) {
+        if let Err(stop) = self.inputs_change(change, self.clock) {
+            self.engine.stop_due = Some(stop);
+            self.update_attention();
+        }
+    }
+
+    /// [`Cpu::deliver_inputs`] at `at`, with the STOP it brings.
+    fn inputs_change(&mut self, change: InputChange, at: u64) -> Result<(), Stop> {
         let extended = change.target == InputTarget::Extended;
-        let (at, count) = (usize::from(change.byte), usize::from(change.bytes.max(1)));
-        let before = self.modules_before(Modules::Inputs, extended, at, count);
+        let (first, count) = (usize::from(change.byte), usize::from(change.bytes.max(1)));
+        let before = self.modules_before(Modules::Inputs, extended, first, count);
+        let levels = self.inputs_before(&change);
         change.apply(if extended {
             &mut self.extended_inputs
         } else {
             &mut self.inputs
         });
         if let Some(before) = before {
-            self.trace_module_changes(Modules::Inputs, extended, at, &before);
+            self.trace_module_changes(Modules::Inputs, extended, first, &before);
         }
+        if self.engine.config.interrupt_inputs.is_empty() {
+            return Ok(());
+        }
+        self.raise_on_edges(&change, levels, at)
     }
 
     /// Logs and counts a request; the caller decides what becomes of it.

@@ -39,9 +39,10 @@ use crate::trace::Event;
 
 use super::super::place::Place;
 use super::Cause;
+use super::inputs::WHILE_INPUT_HOLDS;
 
 use super::super::stop::{Stop, StopCause, StopDetail};
-use super::{Cpu, EngineConfig, Happening, HardwareSource, Request, Rules, Scheduled, Wait};
+use super::{Cpu, EngineConfig, HardwareSource, Request, Rules, Scheduled, Wait};
 
 /// A hardware event held until an acknowledgement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -92,10 +93,7 @@ const NO_OB85: &str =
 impl Speed7 {
     pub fn new(config: &EngineConfig, schedule: &[Scheduled]) -> Self {
         // Each event is held at most once at a time.
-        let events = schedule
-            .iter()
-            .filter(|item| matches!(item.what, Happening::Hardware { .. }))
-            .count();
+        let events = super::hardware_events(config, schedule);
         Speed7 {
             modules: config.hw_modules.clone(),
             busy: Vec::with_capacity(config.hw_modules.len()),
@@ -243,6 +241,28 @@ impl Speed7 {
 }
 
 impl Rules for Speed7 {
+    /// Events an input raised on the channel are no longer active: one held until an
+    /// acknowledgement is then lost, one of STARTUP is no request at the transition to RUN.
+    fn hardware_ended(&mut self, _cpu: &mut Cpu, module: u16, channel: u16, at: u64) {
+        let sources = self
+            .held
+            .iter_mut()
+            .filter_map(|held| held.request.hardware.as_mut())
+            .chain(
+                self.startup_events
+                    .iter_mut()
+                    .map(|(_, _, source, _)| source),
+            );
+        for source in sources {
+            if source.module == module
+                && source.channel == channel
+                && source.active_until == WHILE_INPUT_HOLDS
+            {
+                source.active_until = at;
+            }
+        }
+    }
+
     fn station_event(
         &mut self,
         cpu: &mut Cpu,
