@@ -204,7 +204,7 @@ fn a_client_s_input_write_raises_ob_40_and_the_trace_shows_both() {
     let trace_arg = trace.display().to_string();
     let served = serve(&[
         "--scenario",
-        "programs/s7/tank_hmi.toml",
+        "tests/inputs/serve/tank_alarm.toml",
         "--trace",
         &trace_arg,
         "--trace-format",

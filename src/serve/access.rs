@@ -35,8 +35,14 @@ fn serve_item(cpu: &mut Cpu, client: Client, item: &Item, read_only: bool) -> It
         }
         Item::Write { .. } | Item::WriteBit { .. } if read_only => Err(ItemError::ReadOnly),
         Item::Write { range, bytes } => {
-            write(cpu, *range, bytes)?;
+            // The write is traced before its effects (an input's edge raising an interrupt),
+            // once the range is known to be there.
+            read(cpu, *range)?;
+            if !length_fits(*range, bytes) {
+                return Err(ItemError::NotSupported);
+            }
             trace_write(cpu, client, *range, None, bytes);
+            write(cpu, *range, bytes)?;
             Ok(Vec::new())
         }
         &Item::WriteBit {
@@ -53,8 +59,8 @@ fn serve_item(cpu: &mut Cpu, client: Client, item: &Item, read_only: bool) -> It
             } else {
                 current[0] & !mask
             };
-            write_bit(cpu, range, bit & 7, value, current[0])?;
             trace_write(cpu, client, range, Some(bit & 7), &[u8::from(value)]);
+            write_bit(cpu, range, bit & 7, value, current[0])?;
             Ok(Vec::new())
         }
     }
@@ -141,13 +147,18 @@ fn step5_words(cpu: &Cpu, number: u16) -> Result<&Vec<u16>, ItemError> {
         .ok_or(ItemError::NoSuchBlock)
 }
 
-/// Writes `bytes` (the range's length; two per timer or counter).
-fn write(cpu: &mut Cpu, range: Range, bytes: &[u8]) -> Result<(), ItemError> {
+/// Whether `bytes` are as many as the range holds: two per timer or counter.
+fn length_fits(range: Range, bytes: &[u8]) -> bool {
     let per_element = match range.area {
         Area::Timers | Area::Counters => 2,
         _ => 1,
     };
-    if bytes.len() != range.length as usize * per_element {
+    bytes.len() == range.length as usize * per_element
+}
+
+/// Writes `bytes` (the range's length; two per timer or counter).
+fn write(cpu: &mut Cpu, range: Range, bytes: &[u8]) -> Result<(), ItemError> {
+    if !length_fits(range, bytes) {
         return Err(ItemError::NotSupported);
     }
     let layout = cpu.program.layout;
