@@ -30,6 +30,11 @@ fn every_stop_cause_renders_with_line_and_block_stack() {
             "cpu = \"s5-95f\"\nrun = { cycles = 1 }\n",
         ),
         (
+            "awl::stop::lstack",
+            "ORGANIZATION_BLOCK OB 1\nVAR_TEMP\n  big : ARRAY [1 .. 30000] OF DWORD;\nEND_VAR\nBEGIN\n      L #big[1];\n      T MB 0;\nEND_ORGANIZATION_BLOCK\n",
+            "cpu = \"speed7\"\nrun = { cycles = 1 }\n",
+        ),
+        (
             "awl::stop::lzf_block",
             "OB 1\n      JU PB 1\n      BE\nPB 1\n      A  I 0.0\n      JU PB 9\n      BE\n",
             "run = { cycles = 1 }\n",

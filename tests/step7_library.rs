@@ -188,6 +188,46 @@ fn delete_takes_out_l_characters_from_position_p() {
     assert_eq!((data.out(), data.ok()), (String::new(), false));
 }
 
+#[test]
+fn delete_cuts_a_long_result_to_ret_val_without_an_error() {
+    // The manual's only error of DELETE is a negative L or P: a result longer than RET_VAL is
+    // cut to its maximum length, BR stays 1.
+    let data = after(
+        HELLO,
+        "      CALL  \"DELETE\" (IN := DB1.s1, L := 2, P := 2, RET_VAL := DB1.tiny);",
+    );
+    assert_eq!((data.text(TINY), data.ok()), ("Hlo".into(), true));
+}
+
+/// DB 2's number and DB 1's `n` with OB 1 running `call` with DB 2 open, then loading DBNO.
+fn db_register_after(call: &str) -> (u16, i16) {
+    let program = format!(
+        "{DB}  s1 := 'Hello';\nEND_DATA_BLOCK\n\nDATA_BLOCK DB 2\nSTRUCT\n  x : INT;\nEND_STRUCT;\n\
+         BEGIN\nEND_DATA_BLOCK\n\nORGANIZATION_BLOCK OB 1\nBEGIN\n      OPN   DB 2;\n{call}\n      \
+         L     DBNO;\n      T     MW 0;\nEND_ORGANIZATION_BLOCK\n"
+    );
+    match run(&program, "run = { cycles = 1 }\n") {
+        Ok(ran) => {
+            let flags = 2 * usize::from(ran.cpu.program.layout.image_bytes);
+            let dbno = u16::from_be_bytes([ran.cpu.image[flags], ran.cpu.image[flags + 1]]);
+            (dbno, Data(ran.cpu.s7_db(1).expect("DB 1").to_vec()).int())
+        }
+        Err(NotRun::SourceErrors(reports, _) | NotRun::Failed(reports)) => panic!("{reports:?}"),
+        Err(NotRun::Usage(report)) => panic!("{report:?}"),
+    }
+}
+
+#[test]
+fn a_library_call_leaves_the_db_register_as_step7_s_call_does() {
+    // A STRING actual of DB 1 travels in its DB pointer: DB 2 stays open.
+    let (dbno, len) = db_register_after("      CALL  \"LEN\" (S := DB1.s1, RET_VAL := MW 2);");
+    assert_eq!(dbno, 2);
+    assert_eq!(len, 0, "the result went to MW 2");
+    // An elementary actual of DB 1 is reached through the DB register: DB 1 is open after.
+    let (dbno, len) = db_register_after("      CALL  \"LEN\" (S := DB1.s1, RET_VAL := DB1.n);");
+    assert_eq!((dbno, len), (1, 5));
+}
+
 fn insert(p: i16) -> Data {
     after(
         "  s1 := 'Hello';\n  s2 := ' big';",

@@ -174,6 +174,8 @@ END_ORGANIZATION_BLOCK
 
 #[test]
 fn load_pointer_to_a_data_block_member() {
+    // `L`, `LAR1` and `LAR2` take the same area pointer (the DB number is no part of it); the
+    // address registers then reach the member in the open DB.
     let program = "
 DATA_BLOCK DB 3
 STRUCT
@@ -181,17 +183,26 @@ STRUCT
   b : DINT;
 END_STRUCT
 BEGIN
+  b := L#77;
 END_DATA_BLOCK
 
 ORGANIZATION_BLOCK OB 1
 BEGIN
       L     P#DB3.b;
       T     MD 0;
+      LAR1  P#DB3.b;
+      TAR1  MD 4;
+      LAR2  P#DB3.a;
+      TAR2  MD 8;
+      OPN   DB 3;
+      L     D [AR1, P#0.0];
+      T     MD 12;
 END_ORGANIZATION_BLOCK
 ";
     passes(
         program,
-        "run = { cycles = 1 }\n[expect]\n\"MD 0\" = 0x84000010\n",
+        "run = { cycles = 1 }\n[expect]\n\"MD 0\" = 0x84000010\n\"MD 4\" = 0x84000010\n\
+         \"MD 8\" = 0x84000000\n\"MD 12\" = 77\n",
     );
 }
 

@@ -203,6 +203,28 @@ fn a_step7_program_on_a_step5_cpu_names_the_s7_profiles() {
 }
 
 #[test]
+fn a_call_whose_local_data_do_not_fit_the_l_stack_stops_the_cpu() {
+    // FC 1 calls itself with 20000 bytes of temporaries each time: the fourth call would need
+    // more than the speed7 CPU's 64 KB L stack, long before the nesting depth of 16.
+    let program = "FUNCTION FC 1 : VOID\nVAR_TEMP\n  big : ARRAY [1 .. 20000] OF BYTE;\nEND_VAR\n\
+                   BEGIN\n      CALL FC 1;\nEND_FUNCTION\n\n\
+                   ORGANIZATION_BLOCK OB 1\nBEGIN\n      CALL FC 1;\nEND_ORGANIZATION_BLOCK\n";
+    let Ok(ran) = run(program, "run = { cycles = 1 }\n") else {
+        panic!("the program runs");
+    };
+    let stop = ran.outcome.stop.as_ref().expect("a STOP");
+    assert_eq!(stop.cause.code(), "LSTACK");
+    assert_eq!(stop.stack.len(), 4, "OB 1 and three FC 1: {:?}", stop.stack);
+    let report = awl::diagnostics::render_plain(&runner::stop_report(&ran, stop));
+    assert!(report.contains("awl::stop::lstack"), "{report}");
+    assert!(
+        report.contains("the local data of FC 1 need 80020 bytes of the L stack, which has 65536"),
+        "{report}"
+    );
+    assert!(report.contains("FC 1 is called here"), "{report}");
+}
+
+#[test]
 fn a_data_access_without_a_data_block_stops_with_step7_help() {
     let program = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      L DBW 0;\nEND_ORGANIZATION_BLOCK\n";
     let Ok(ran) = run(program, "run = { cycles = 1 }\n") else {

@@ -113,6 +113,7 @@ pub fn run_test(
         clock_memory: project.and_then(|project| project.clock_memory),
         // Without a project file, awl writes the start information, as it always does.
         start_info: project.is_none_or(|project| project.start_info),
+        local_bytes: project.map(|project| project.local_bytes as usize),
     };
     run_with(
         &options(path, conf, project, symbols),
@@ -129,6 +130,8 @@ pub(super) struct CpuSetup {
     pub clock_memory: Option<u16>,
     /// Whether the OBs' start information is written.
     pub start_info: bool,
+    /// The L stack's size (`None`: the CPU's).
+    pub local_bytes: Option<usize>,
 }
 
 impl Default for CpuSetup {
@@ -136,6 +139,7 @@ impl Default for CpuSetup {
         CpuSetup {
             clock_memory: None,
             start_info: true,
+            local_bytes: None,
         }
     }
 }
@@ -169,6 +173,9 @@ pub(super) fn run_with(
     // awlsim runs its tests on its dummy hardware (insn_MISC's direct reads rely on it).
     prepared.cpu.inputs_echo_pii = true;
     prepared.cpu.writes_start_info = setup.start_info;
+    if let Some(bytes) = setup.local_bytes {
+        prepared.cpu.set_local_bytes(bytes);
+    }
     if let Some(byte) = setup.clock_memory {
         let flags = prepared.cpu.program.profile.sizes.flag_bytes;
         // The project's byte is one of awlsim's flag bytes, which the S7 CPU has too.

@@ -362,7 +362,7 @@ mod tests {
     fn what_awl_cannot_honour_is_reported() {
         let found = messages(
             "<awlsim_project format_version=\"1\"><cpu>\
-             <specs nr_accus=\"3\" nr_flags=\"9000\"/>\
+             <specs nr_accus=\"3\" nr_flags=\"9000\" nr_localbytes=\"70000\"/>\
              <config clock_memory_byte=\"5000\" mnemonics=\"x\" cycle_time_target_us=\"-1\"/>\
              </cpu><language_awl><source file=\"gone.awl\" type=\"0\"/>\
              <source file=\"a.awl\" type=\"3\"/></language_awl>\
@@ -374,6 +374,7 @@ mod tests {
             found,
             [
                 "`nr_accus` 3 is out of range",
+                "`nr_localbytes` 70000 is out of range",
                 "`nr_flags` 9000 is more than awl's CPU has",
                 "`clock_memory_byte` 5000 is out of range",
                 "`mnemonics` is not a number",

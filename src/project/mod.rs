@@ -27,21 +27,24 @@ use crate::frontend::Language;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Profile};
 use crate::source::Files;
+use crate::vm::s7::memory::LOCAL_BYTES;
 
 /// awlsim's CPU sizes that awl runs on the speed7 profile: a project may ask for these or less
 /// (a program fits a larger CPU), not more. The defaults of awlsim 0.77.1 (`S7CPUSpecs`) but
 /// for the process images (up to the SPEED7's largest, set as a project asks) and the flags,
-/// where the SPEED7 CPU has more; `nr_accus` is read on its own.
+/// where the SPEED7 CPU has more; `nr_accus` and `nr_localbytes` are read on their own.
 const SPEED7_SPECS: &[(&str, i64)] = &[
     ("nr_timers", 256),
     ("nr_counters", 256),
     ("nr_flags", 8192),
     ("nr_inputs", 2048),
     ("nr_outputs", 2048),
-    ("nr_localbytes", 1024),
     ("parenthesis_stack_size", 7),
     ("call_stack_size", 256),
 ];
+
+/// awlsim's L stack when a project does not size it (`nr_localbytes`).
+const AWLSIM_LOCAL_BYTES: u32 = 1024;
 
 /// The speed7 profile's process images, in bytes: a project asking for more gets them.
 const PRESET_IMAGE_BYTES: i64 = 256;
@@ -51,6 +54,8 @@ const PRESET_IMAGE_BYTES: i64 = 256;
 pub struct Project {
     /// `nr_accus`: 2 or 4.
     pub accus: u8,
+    /// `nr_localbytes`: the L stack's size in bytes, up to the speed7 CPU's.
+    pub local_bytes: u32,
     /// `nr_inputs`, `nr_outputs`: bytes of each process image, when the larger is more than
     /// the speed7 profile's preset.
     pub image_bytes: Option<u16>,
@@ -80,6 +85,7 @@ impl Default for Project {
     fn default() -> Self {
         Project {
             accus: 2,
+            local_bytes: AWLSIM_LOCAL_BYTES,
             image_bytes: None,
             clock_memory: None,
             start_info: false,
@@ -319,6 +325,16 @@ impl Reader<'_> {
             "2 (as an S7-300) or 4 (as an S7-400)",
         ) {
             self.project.accus = accus;
+        }
+        let largest = LOCAL_BYTES as u32;
+        if let Some(bytes) = self.checked(
+            settings,
+            "nr_localbytes",
+            i64::from(AWLSIM_LOCAL_BYTES),
+            |n| u32::try_from(n).ok().filter(|&n| n <= largest),
+            &format!("bytes of the L stack, 0 to {largest} (the speed7 CPU's L stack)"),
+        ) {
+            self.project.local_bytes = bytes;
         }
         // A size not given is awlsim's default, which the speed7 CPU has.
         for &(name, limit) in SPEED7_SPECS {

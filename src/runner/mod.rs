@@ -508,6 +508,7 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         .map(|byte| cpu.program.layout.flag_base() + byte);
     if let Some(project) = &project {
         cpu.writes_start_info = project.start_info;
+        cpu.set_local_bytes(project.local_bytes as usize);
     }
     let trace_to_stdout = options
         .trace

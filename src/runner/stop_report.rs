@@ -142,7 +142,24 @@ pub fn cpu_stop_report(cpu: &Cpu, stop: &Stop) -> Report {
             at,
             stack,
         },
-        (StopCause::Stueb, _) => StopError::Nesting {
+        (StopCause::Lstack, &StopDetail::LocalData { block, end, call }) => {
+            let entered = program.blocks[usize::from(block)].id.to_string();
+            StopError::LocalOverflow {
+                needed: end,
+                size: cpu.local_bytes() as u32,
+                at,
+                place: if call {
+                    format!("{entered} is called here")
+                } else {
+                    format!("{entered} starts here")
+                },
+                entered,
+                stack,
+            }
+        }
+        // The VM gives an L stack overflow its `LocalData`; without them it is told as the
+        // block stack's.
+        (StopCause::Stueb | StopCause::Lstack, _) => StopError::Nesting {
             limit: program.profile.nesting_limit,
             block: name,
             at,
@@ -220,7 +237,7 @@ pub fn cpu_stop_report(cpu: &Cpu, stop: &Stop) -> Report {
             stack,
         },
     };
-    diagnostics::with_source(&cpu.sources, at, error)
+    diagnostics::with_source(&cpu.sources, error.span(), error)
 }
 
 /// What happened to a DP station, for a message.

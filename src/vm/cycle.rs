@@ -198,7 +198,7 @@ impl Cpu {
         self.cycle_started_at = self.clock;
         self.update_attention();
         if let Some((ob, block)) = self.startup_ob() {
-            self.enter_level(block);
+            self.enter_level(block)?;
             if !self.local.is_empty() {
                 self.write_start_info(Self::startup_start_info(ob));
             }
@@ -261,7 +261,7 @@ impl Cpu {
         }
         self.cycle_point(StretchKind::ProcessImageRead)?;
         if let Some(block) = self.program.ob(1) {
-            self.enter_level(block);
+            self.enter_level(block)?;
             if !self.local.is_empty() {
                 self.write_start_info(self.cycle_start_info());
             }

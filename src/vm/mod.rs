@@ -462,8 +462,9 @@ impl Cpu {
         self.frames.len() - self.level.level_base + 1
     }
 
-    /// Starts a level at a block (OB 1, a startup OB, an interrupt OB).
-    pub fn enter_level(&mut self, block: u16) {
+    /// Starts a level at a block (OB 1, a startup OB, an interrupt OB); a STOP when the
+    /// block's local data do not fit the L stack.
+    pub fn enter_level(&mut self, block: u16) -> Result<(), Stop> {
         self.level.level_base = self.frames.len();
         self.level.block = block;
         self.level.pc = 0;
@@ -493,6 +494,28 @@ impl Cpu {
                 (limit - 1).saturating_sub(outer.count())
             }
         };
+        if self.level.local_end as usize > self.local.len() {
+            let detail = StopDetail::LocalData {
+                block,
+                end: self.level.local_end,
+                call: false,
+            };
+            return Err(self.stop(StopCause::Lstack, stop::BEFORE_FIRST_OP, detail));
+        }
+        Ok(())
+    }
+
+    /// The L stack's size in bytes: a STEP 7 program's blocks share it.
+    pub fn local_bytes(&self) -> usize {
+        self.local.len()
+    }
+
+    /// Gives a STEP 7 program an L stack of `bytes` (an awlsim project's `nr_localbytes`),
+    /// before the run.
+    pub fn set_local_bytes(&mut self, bytes: usize) {
+        if !self.local.is_empty() {
+            self.local = vec![0; bytes];
+        }
     }
 
     /// The return points (block, op of the call) of the block stack's frames `frames`,

@@ -367,8 +367,15 @@ impl Cpu {
                     status.set_os(false);
                 }
                 if step7 && !self.enter_s7_block(target) {
-                    detail = super::s7::memory::local_overflow();
-                    break $run Leave::Stop(StopCause::Stueb, call_pc);
+                    detail = StopDetail::LocalData {
+                        block: target,
+                        end: self.level.local_end,
+                        call: true,
+                    };
+                    // The call did not happen: the caller stops at it, as at any other fault.
+                    self.frames.pop();
+                    self.leave_s7_block();
+                    break $run Leave::Stop(StopCause::Lstack, call_pc);
                 }
                 self.level.block = target;
                 self.level.params = params;

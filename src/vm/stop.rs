@@ -13,6 +13,8 @@ pub enum StopCause {
     Zyk,
     /// Block stack overflow: nesting too deep.
     Stueb,
+    /// STEP 7: a block's local data do not fit the L stack.
+    Lstack,
     /// Runtime error: a called block or opened data block is not loaded.
     LzfBlock,
     /// Runtime error: data word access with no DB open or past the DB's end.
@@ -39,7 +41,7 @@ pub enum StopCause {
 impl StopCause {
     /// Every code [`StopCause::code`] gives.
     pub const CODES: &'static [&'static str] = &[
-        "ZYK", "STUEB", "LZF", "BCF", "STP", "WECK", "OB85", "OB80", "OB86", "ASSERT",
+        "ZYK", "STUEB", "LSTACK", "LZF", "BCF", "STP", "WECK", "OB85", "OB80", "OB86", "ASSERT",
     ];
 
     /// The cause as the PG shows it (and as scenario files expect it).
@@ -47,6 +49,7 @@ impl StopCause {
         match self {
             StopCause::Zyk => "ZYK",
             StopCause::Stueb => "STUEB",
+            StopCause::Lstack => "LSTACK",
             StopCause::LzfBlock | StopCause::LzfData => "LZF",
             StopCause::Bcf => "BCF",
             StopCause::Stp => "STP",
@@ -59,6 +62,10 @@ impl StopCause {
         }
     }
 }
+
+/// The op index of a STOP that came before its block's first operation (the block's local
+/// data did not fit the L stack): every view of the STOP shows the block's header there.
+pub const BEFORE_FIRST_OP: u32 = u32::MAX;
 
 /// One BSTACK entry: a block that was called, and where it continues.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -98,6 +105,27 @@ pub enum StopError {
         block: String,
         #[label("this call exceeds the block stack")]
         at: Span,
+        stack: String,
+    },
+
+    #[error(
+        "STOP LSTACK: the local data of {entered} need {needed} bytes of the L stack, which has {size}"
+    )]
+    #[diagnostic(
+        code(awl::stop::lstack),
+        help(
+            "{stack}\nthe L stack holds the temporary variables of every block of the call chain; declare fewer or smaller ones, call fewer blocks deep, or give the CPU a larger L stack (an awlsim project's `nr_localbytes`)"
+        )
+    )]
+    LocalOverflow {
+        entered: String,
+        /// The L stack's bytes up to the end of the block's local data.
+        needed: u32,
+        size: u32,
+        #[label("{place}")]
+        at: Span,
+        /// "OB 1 starts here", "FC 2 is called here".
+        place: String,
         stack: String,
     },
 
@@ -238,6 +266,7 @@ impl StopError {
         match self {
             StopError::CycleTime { at, .. }
             | StopError::Nesting { at, .. }
+            | StopError::LocalOverflow { at, .. }
             | StopError::BlockNotLoaded { at, .. }
             | StopError::DataAccess { at, .. }
             | StopError::Operation { at, .. }
@@ -282,6 +311,13 @@ pub enum StopDetail {
     Cycle {
         cycle_ns: u64,
         watchdog_ns: u64,
+    },
+    /// The local data of block `block` would end at byte `end` of the L stack: past its end.
+    /// `call`: it was called (else its level was starting).
+    LocalData {
+        block: u16,
+        end: u32,
+        call: bool,
     },
     /// S5-95F: the OB 13 interval is not above the maximum delay.
     Ob13Interval {

@@ -497,7 +497,7 @@ impl super::Compiler<'_> {
                         constant: self.tables.constant(constant.value),
                     },
                     S7Operand::PointerTo(inner) => {
-                        let pointer = self.pointer_to(inner, at, scope)?;
+                        let pointer = self.pointer_constant(inner, at, scope)?;
                         S7Code::LoadArConstant {
                             ar,
                             constant: self.tables.constant(pointer),
@@ -887,6 +887,20 @@ impl super::Compiler<'_> {
         Ok(area << 24 | (base + offset))
     }
 
+    /// The area pointer `P#…` gives to `L`, `LAR1` and `LAR2`: to a member of a data block
+    /// (`P#DB1.text`, area DB; the DB number is not part of it) or to a variable of the block.
+    fn pointer_constant(
+        &mut self,
+        inner: &S7Operand,
+        at: Span,
+        scope: &Scope<'_>,
+    ) -> Result<u32, CheckError> {
+        match self.db_member_area_pointer(inner, at) {
+            Some(pointer) => pointer,
+            None => self.pointer_to(inner, at, scope),
+        }
+    }
+
     fn load(
         &mut self,
         out: &mut Emitter,
@@ -922,10 +936,7 @@ impl super::Compiler<'_> {
                     self.emit(out, Op::S7(S7Code::LoadParamPointer { param }), span);
                     return Ok(());
                 }
-                let pointer = match self.db_member_area_pointer(inner, at) {
-                    Some(pointer) => pointer?,
-                    None => self.pointer_to(inner, at, scope)?,
-                };
+                let pointer = self.pointer_constant(inner, at, scope)?;
                 self.emit(out, Op::LoadConstant(pointer), span);
                 Ok(())
             }

@@ -933,7 +933,7 @@ impl Cpu {
             .program
             .ob(request.ob)
             .expect("requests are only pending for programmed OBs");
-        self.enter_level(block);
+        self.enter_level(block)?;
         if !self.local.is_empty() {
             let head = self.interrupt_start_info(&request, priority);
             self.write_start_info(head);

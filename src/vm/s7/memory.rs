@@ -117,11 +117,6 @@ pub(super) fn area_of_code(code: u32) -> Option<IndirectArea> {
 }
 
 /// The detail of a STOP when a call's local data do not fit the L stack.
-#[cold]
-pub fn local_overflow() -> StopDetail {
-    StopDetail::Text("the L stack overflows".into())
-}
-
 pub(super) fn fault(text: String) -> Fault {
     (StopCause::Bcf, StopDetail::Text(text))
 }

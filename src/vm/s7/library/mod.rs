@@ -23,13 +23,33 @@ impl Cpu {
             let (to, _) = self.locate_index(*place)?;
             self.write_bytes(to, bytes)?;
         }
+        let db = self.db_at_call(call)?;
         let ok = match call.number {
             1 | 3 | 6..=9 | 12 | 14 | 18 | 23 | 28 | 33..=35 | 40 => self.date_time_fc(call)?,
             22 | 25 | 27 | 36 | 105 | 106 => self.number_fc(call)?,
             _ => self.string_fc(call)?,
         };
+        // The block's end gives back the DB register it was called with, whatever the block
+        // opened to reach its parameters.
+        self.level.db = db;
         self.level.br = ok;
         Ok(())
+    }
+
+    /// The DB register as STEP 7's `CALL` leaves it for the block: an elementary actual of a
+    /// data block (`DB2.DBW 0`) is passed as an area pointer with that DB opened, the last such
+    /// one in the interface's order staying open; a STRING or DATE_AND_TIME actual carries its
+    /// DB number in its DB pointer and opens nothing.
+    fn db_at_call(&mut self, call: &LibraryCall) -> Result<u16, Fault> {
+        let params = crate::step7::library::by_number(call.number).map_or(&[][..], |fc| fc.params);
+        for (param, &place) in params.iter().zip(&call.params) {
+            let before = self.level.db;
+            self.locate_index(place)?;
+            if param.ty.is_complex() {
+                self.level.db = before;
+            }
+        }
+        Ok(self.level.db)
     }
 
     /// Where parameter `index` of `call` is, and its width.

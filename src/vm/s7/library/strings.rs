@@ -281,7 +281,8 @@ impl Cpu {
     }
 
     /// DELETE (IN, L, P): IN without L characters from position P; an L or P of 0, or a P
-    /// past the end, leaves IN as it is; a negative one gives an empty STRING and an error.
+    /// past the end, leaves IN as it is; a negative one gives an empty STRING and an error,
+    /// the only error the manual gives DELETE: a result longer than RET_VAL is cut to it.
     fn delete(&mut self, call: &LibraryCall) -> Result<bool, Fault> {
         let text = self.text(call, 0)?;
         let (count, position) = (self.read_int(call, 1)?, self.read_int(call, 2)?);
@@ -296,7 +297,8 @@ impl Cpu {
             self.append(&mut out, text, 0, from)?;
             self.append(&mut out, text, from + count as usize, text.len)?;
         }
-        self.write_text(call, 3, &out)
+        self.write_text(call, 3, &out)?;
+        Ok(true)
     }
 
     /// INSERT (IN1, IN2, P): IN2 after character P of IN1 (0: before the first; past the end:
