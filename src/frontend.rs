@@ -315,7 +315,7 @@ fn build_step7(
     );
     diagnostics.extend(symbol_errors.into_iter().map(SourceDiagnostic::Symbol));
     let compiled =
-        crate::step7::compile::compile(&units, &sources, profile, language.extensions, symbols);
+        crate::compiler::step7::compile(&units, &sources, profile, language.extensions, symbols);
     diagnostics.extend(
         compiled
             .diagnostics

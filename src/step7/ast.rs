@@ -3,13 +3,13 @@
 
 use crate::ast::Name;
 use crate::mnemonics::MnemonicSet;
-use crate::source::{FileId, Span};
-/// The six comparisons are the VM's, defined once with their rule.
-pub use crate::vm::arith::Comparison as Cmp;
+/// The six comparisons are the machine's rules ([`crate::rules`]), defined once.
+pub use crate::rules::arith::Comparison as Cmp;
 /// So are the status conditions (`==0`, `OV`, `BR` …).
-pub use crate::vm::s7::jump::Condition;
+pub use crate::rules::jump::Condition;
 /// And the REAL functions of ACCU 1.
-pub use crate::vm::s7::real::Function;
+pub use crate::rules::real::Function;
+use crate::source::{FileId, Span};
 
 /// One parsed STEP 7 source file.
 #[derive(Debug, Clone)]

@@ -9,8 +9,8 @@
 //! [`Op::S7`]: crate::compiler::Op::S7
 
 use super::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
-use crate::vm::s7::jump::Jump;
-use crate::vm::status::Combination;
+use crate::rules::jump::Jump;
+use crate::rules::status::Combination;
 
 /// A STEP 7 operation with its operand decoded: small and `Copy`, so [`crate::compiler::Op`]
 /// stays at 8 bytes.

@@ -4,7 +4,6 @@
 //! [`exec`] is the execution loop; [`cycle`] drives the modes and the cycle; [`interrupts`] is
 //! the engine that decides, at the interrupt points the loop reports, which OB runs.
 
-pub mod arith;
 pub mod block_stack;
 pub mod bound;
 pub mod bytes;
@@ -21,10 +20,11 @@ pub mod pulse;
 mod run_loop;
 pub mod s7;
 pub mod start_info;
-pub mod status;
 pub mod stop;
 pub mod system_ops;
 pub mod timers;
+
+pub use crate::rules::{arith, status};
 
 use std::sync::Arc;
 

@@ -10,6 +10,8 @@ use crate::compiler::bytecode::{
 };
 use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
+use crate::rules::jump::Jump;
+use crate::rules::status::Combination;
 use crate::source::Span;
 use crate::step7::ast::{
     AccessWidth, CallParam, CallSpec, ConstKind, DataType, S7Address, S7Area, S7Block, S7BlockKind,
@@ -20,11 +22,8 @@ use crate::step7::bytecode::{
     FbCall, FcCall, McrCode, MemOp, ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK,
     Target, WAIT,
 };
-use crate::vm::s7::jump::Jump;
-use crate::vm::start_info::START_INFO_BYTES;
-use crate::vm::status::Combination;
 
-use super::layout::Home;
+use super::layout::{Home, START_INFO_BYTES};
 use super::operand::{Scope, constant_value, not_an_operand};
 
 /// A called FC or FB: its id, its index in the program, its interface.

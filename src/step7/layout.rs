@@ -7,6 +7,10 @@ use std::collections::HashMap;
 
 use crate::step7::ast::{AccessWidth, DataType, PathPart, S7BlockKind, VarDecl, VarKind};
 
+/// The length of an OB's start information, the first bytes of its local data (see
+/// [`crate::vm::start_info`]).
+pub const START_INFO_BYTES: u32 = 20;
+
 /// The types a layout looks up by number: the UDTs, and the FBs and SFBs a multi-instance
 /// (`motor : FB 2;`) embeds.
 #[derive(Debug, Clone, Default)]

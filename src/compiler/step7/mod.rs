@@ -5,8 +5,8 @@
 mod block_sfcs;
 pub(crate) mod complex;
 mod data;
-mod interrupt_sfcs;
-pub(crate) mod layout;
+pub(crate) mod interrupt_sfcs;
+pub(crate) use crate::step7::layout;
 mod library;
 mod lower;
 mod operand;
@@ -17,6 +17,7 @@ mod system_functions;
 
 use std::collections::HashMap;
 
+use crate::address::declared;
 use crate::ast::BlockId;
 use crate::compiler::{CheckError, Compiled, Program, Resolved};
 use crate::mnemonics::BlockKind;
@@ -26,7 +27,6 @@ use crate::step7::ast::{
     S7Block, S7BlockKind, S7BlockRef, S7Body, S7Op, S7Operand, S7Unit, VarDecl, VarKind,
 };
 use crate::step7::bytecode::S7Tables;
-use crate::step7::declared;
 use crate::symbols::Symbols;
 
 use layout::{Interface, Types};

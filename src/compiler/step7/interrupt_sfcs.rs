@@ -1,27 +1,59 @@
 //! The parameters of SFC 39 DIS_IRT, SFC 40 EN_IRT, SFC 41 DIS_AIRT and SFC 42 EN_AIRT
 //! ("System Software for S7-300/400 System and Standard Functions", 12.2 to 12.5): every one
 //! given once, each with an operand of its type; laid out in the order the VM reads them
-//! ([`crate::vm::interrupts::control::parameters`]).
+//! ([`parameters`], which the VM's [`crate::vm::interrupts::control`] reads too).
 
 use crate::compiler::CheckError;
 use crate::source::Span;
 use crate::step7::ast::{AccessWidth, CallParam, S7Operand};
 use crate::step7::bytecode::{Place, Target};
-use crate::vm::interrupts::control;
+
+/// SFC 39 DIS_IRT.
+pub const DIS_IRT: u16 = 39;
+/// SFC 40 EN_IRT.
+pub const EN_IRT: u16 = 40;
+/// SFC 41 DIS_AIRT.
+pub const DIS_AIRT: u16 = 41;
+/// SFC 42 EN_AIRT.
+pub const EN_AIRT: u16 = 42;
+
+/// The parameters of one call, in the order the compiler lays them out: MODE, OB_NR, RET_VAL
+/// for SFC 39 and SFC 40, RET_VAL alone for SFC 41 and SFC 42.
+pub fn parameters(number: u16) -> &'static [(&'static str, AccessWidth)] {
+    match number {
+        DIS_IRT | EN_IRT => &[
+            ("MODE", AccessWidth::Byte),
+            ("OB_NR", AccessWidth::Word),
+            ("RET_VAL", AccessWidth::Word),
+        ],
+        DIS_AIRT | EN_AIRT => &[("RET_VAL", AccessWidth::Word)],
+        _ => &[],
+    }
+}
+
+/// The SFC's name, as STEP 7's library names it.
+pub fn name(number: u16) -> &'static str {
+    match number {
+        DIS_IRT => "DIS_IRT",
+        EN_IRT => "EN_IRT",
+        DIS_AIRT => "DIS_AIRT",
+        _ => "EN_AIRT",
+    }
+}
 
 /// Whether `number` is one of these SFCs.
 pub fn is_interrupt_sfc(number: u16) -> bool {
-    (control::DIS_IRT..=control::EN_AIRT).contains(&number)
+    (DIS_IRT..=EN_AIRT).contains(&number)
 }
 
 /// The call's name in diagnostics: `SFC 41 (DIS_AIRT)`.
 pub fn call_name(number: u16) -> String {
-    format!("SFC {number} ({})", control::name(number))
+    format!("SFC {number} ({})", name(number))
 }
 
 /// The declared parameters, for a help text.
 fn declared(number: u16) -> String {
-    control::parameters(number)
+    parameters(number)
         .iter()
         .map(|(name, _)| *name)
         .collect::<Vec<_>>()
@@ -32,12 +64,12 @@ fn declared(number: u16) -> String {
 pub fn missing_all(number: u16, at: Span) -> CheckError {
     CheckError::ParamCount {
         fb: call_name(number),
-        expected: control::parameters(number).len(),
+        expected: parameters(number).len(),
         found: 0,
         at,
         help: Some(format!(
             "write the call with its parameters: `CALL SFC {number} ({})`",
-            control::parameters(number)
+            parameters(number)
                 .iter()
                 .map(|(name, _)| format!("{name} := …"))
                 .collect::<Vec<_>>()
@@ -55,7 +87,7 @@ pub fn ordered(
     errors: &mut Vec<CheckError>,
     mut place: impl FnMut(&CallParam) -> Result<Place, CheckError>,
 ) -> Option<Vec<(String, Place)>> {
-    let declared_params = control::parameters(number);
+    let declared_params = parameters(number);
     let fb = call_name(number);
     let mut ok = true;
     for (index, param) in params.iter().enumerate() {

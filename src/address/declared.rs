@@ -8,7 +8,7 @@
 use serde::Serialize;
 
 use crate::step7::ast::{DataType, S7BlockKind, VarDecl, VarKind};
-use crate::step7::compile::layout::{
+use crate::step7::layout::{
     BitOffset, Home, Interface, Types, element_stride, is_complex, struct_layout,
 };
 
