@@ -6,6 +6,7 @@
 //! 1990-01-01; TIME_OF_DAY milliseconds from midnight; DATE_AND_TIME is eight BCD bytes.
 
 use crate::mnemonics::MnemonicSet;
+use crate::rules::bcd;
 
 use super::ast::{ConstKind, S7Constant};
 
@@ -233,25 +234,7 @@ pub fn s5time_word(ms: u32) -> Option<u32> {
         .enumerate()
         .map(|(code, unit)| (code as u32, ms / unit))
         .find(|(_, count)| *count <= 999)?;
-    Some(base << 12 | bcd(count))
-}
-
-/// Three (or four) BCD digits.
-fn bcd(value: u32) -> u32 {
-    let mut out = 0;
-    for (shift, digit) in [
-        value / 1000 % 10,
-        value / 100 % 10,
-        value / 10 % 10,
-        value % 10,
-    ]
-    .into_iter()
-    .rev()
-    .enumerate()
-    {
-        out |= digit << (4 * shift);
-    }
-    out
+    Some(base << 12 | bcd::encode(count, 3))
 }
 
 /// `T#-1D2H`: a DINT of milliseconds.
@@ -382,7 +365,7 @@ pub fn date_and_time_bytes(days: u32, ms: u32) -> [u8; 8] {
     let (year, month, day) = civil_from_days(i64::from(days) + days_from_civil(1990, 1, 1));
     // 1990-01-01 was a Monday: weekday 2 when Sunday is 1.
     let weekday = (days + 1) % 7 + 1;
-    let byte = |value: u32| bcd(value % 100) as u8;
+    let byte = |value: u32| bcd::encode(value % 100, 2) as u8;
     let (seconds, ms) = (ms / 1000, ms % 1000);
     [
         byte(year % 100),
@@ -465,7 +448,7 @@ fn counter(rest: &str) -> Literal {
     if value > 999 {
         return Err(range("C#", "C#0 to C#999"));
     }
-    Ok(constant(ConstKind::Counter, bcd(value)))
+    Ok(constant(ConstKind::Counter, bcd::encode(value, 3)))
 }
 
 /// `B#(1, 2)` or `B#(1, 2, 3, 4)`: bytes loaded as one WORD or DWORD.
