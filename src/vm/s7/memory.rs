@@ -4,8 +4,8 @@
 //! byte and bit; the reads and writes then check it against the memory it is in.
 
 use crate::compiler::Resolved;
-use crate::step7::ast::AccessWidth;
-use crate::step7::bytecode::{IndirectArea, Place, Target};
+use crate::step7::ast::{AccessWidth, S7Area};
+use crate::step7::bytecode::{Place, Target};
 use crate::vm::Cpu;
 use crate::vm::stop::{StopCause, StopDetail};
 
@@ -88,30 +88,30 @@ pub struct Context {
 }
 
 /// Area-pointer area codes (bits 24–26 of a pointer).
-pub fn area_code(area: IndirectArea) -> u32 {
+pub fn area_code(area: S7Area) -> u32 {
     match area {
-        IndirectArea::PeripheralInput | IndirectArea::PeripheralOutput => 0,
-        IndirectArea::Input => 1,
-        IndirectArea::Output => 2,
-        IndirectArea::Flag => 3,
-        IndirectArea::Data => 4,
-        IndirectArea::Instance => 5,
-        IndirectArea::Local => 6,
-        IndirectArea::PreviousLocal => 7,
-        IndirectArea::Timer | IndirectArea::Counter => 0,
+        S7Area::PeripheralInput | S7Area::PeripheralOutput => 0,
+        S7Area::Input => 1,
+        S7Area::Output => 2,
+        S7Area::Flag => 3,
+        S7Area::Data => 4,
+        S7Area::Instance => 5,
+        S7Area::Local => 6,
+        S7Area::PreviousLocal => 7,
+        S7Area::Timer | S7Area::Counter => 0,
     }
 }
 
-pub(super) fn area_of_code(code: u32) -> Option<IndirectArea> {
+pub(super) fn area_of_code(code: u32) -> Option<S7Area> {
     Some(match code {
-        0 => IndirectArea::PeripheralInput,
-        1 => IndirectArea::Input,
-        2 => IndirectArea::Output,
-        3 => IndirectArea::Flag,
-        4 => IndirectArea::Data,
-        5 => IndirectArea::Instance,
-        6 => IndirectArea::Local,
-        7 => IndirectArea::PreviousLocal,
+        0 => S7Area::PeripheralInput,
+        1 => S7Area::Input,
+        2 => S7Area::Output,
+        3 => S7Area::Flag,
+        4 => S7Area::Data,
+        5 => S7Area::Instance,
+        6 => S7Area::Local,
+        7 => S7Area::PreviousLocal,
         _ => return None,
     })
 }
@@ -344,7 +344,7 @@ impl Cpu {
     /// The address a pointer value (byte << 3 | bit) gives in `area`.
     pub(super) fn locate_pointer(
         &mut self,
-        area: IndirectArea,
+        area: S7Area,
         pointer: u32,
         context: Context,
     ) -> Result<Located, Fault> {
@@ -363,14 +363,14 @@ impl Cpu {
             })
         };
         match area {
-            IndirectArea::Input => image(layout.input_base(), layout.image_bytes),
-            IndirectArea::Output => image(layout.output_base(), layout.image_bytes),
-            IndirectArea::Flag => image(layout.flag_base(), layout.flag_bytes),
-            IndirectArea::Local => Ok(Located::Local {
+            S7Area::Input => image(layout.input_base(), layout.image_bytes),
+            S7Area::Output => image(layout.output_base(), layout.image_bytes),
+            S7Area::Flag => image(layout.flag_base(), layout.flag_bytes),
+            S7Area::Local => Ok(Located::Local {
                 byte: context.local_base as usize + byte,
                 bit,
             }),
-            IndirectArea::PreviousLocal => match context.previous_local {
+            S7Area::PreviousLocal => match context.previous_local {
                 Some(base) => Ok(Located::Local {
                     byte: base as usize + byte,
                     bit,
@@ -379,26 +379,26 @@ impl Cpu {
                     "V (the caller's local data) in a block without caller".into(),
                 )),
             },
-            IndirectArea::Data => Ok(Located::Data {
+            S7Area::Data => Ok(Located::Data {
                 slot: context.db,
                 byte,
                 bit,
             }),
-            IndirectArea::Instance => Ok(Located::Data {
+            S7Area::Instance => Ok(Located::Data {
                 slot: context.di,
                 byte,
                 bit,
             }),
-            IndirectArea::PeripheralInput => Ok(Located::Peripheral {
+            S7Area::PeripheralInput => Ok(Located::Peripheral {
                 output: false,
                 byte: byte as u16,
             }),
-            IndirectArea::PeripheralOutput => Ok(Located::Peripheral {
+            S7Area::PeripheralOutput => Ok(Located::Peripheral {
                 output: true,
                 byte: byte as u16,
             }),
-            IndirectArea::Timer => Ok(Located::Timer(pointer as u16)),
-            IndirectArea::Counter => Ok(Located::Counter(pointer as u16)),
+            S7Area::Timer => Ok(Located::Timer(pointer as u16)),
+            S7Area::Counter => Ok(Located::Counter(pointer as u16)),
         }
     }
 
