@@ -293,26 +293,13 @@ impl super::Compiler<'_> {
         path: &[PathPart],
         at: Span,
     ) -> Result<PointerActual, CheckError> {
-        let Some(layout) = self.db_layouts.get(&db).cloned() else {
-            return Err(CheckError::UndefinedDb {
-                id: format!("DB {db}"),
-                at,
-            });
-        };
-        let scope = Scope {
-            interface: &layout,
-            block: format!("DB {db}"),
-        };
-        let (variable, ty, offset) = self.resolve_local(path, at, &scope)?;
-        let Home::Instance(base) = variable.home else {
-            return Err(super::operand::not_an_operand(at, "this member"));
-        };
+        let (bits, ty) = self.db_member(db, path, at)?;
         let (type_code, count) = self.type_and_count(&ty);
         Ok(PointerActual::Known(Descriptor {
             type_code,
             count,
             db,
-            pointer: 0x84 << 24 | (base.0 + offset),
+            pointer: 0x84 << 24 | bits,
         }))
     }
 
