@@ -9,6 +9,8 @@ pub use crate::rules::arith::Comparison as Cmp;
 pub use crate::rules::jump::Condition;
 /// And the REAL functions of ACCU 1.
 pub use crate::rules::real::Function;
+/// And the ways a bit or a bracket combines with the RLO.
+pub use crate::rules::status::Combination;
 use crate::source::{FileId, Span};
 
 /// One parsed STEP 7 source file.
@@ -385,18 +387,10 @@ pub enum Extension {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum S7Op {
     // Bit logic
-    And,
-    AndNot,
-    Or,
-    OrNot,
-    Xor,
-    XorNot,
-    AndBracket,
-    AndNotBracket,
-    OrBracket,
-    OrNotBracket,
-    XorBracket,
-    XorNotBracket,
+    /// `A AN O ON X XN` (`O` alone is [`S7Op::OrAlone`] once the operand is known).
+    Logic(Combination),
+    /// `A( AN( O( ON( X( XN(`.
+    Bracket(Combination),
     CloseBracket,
     /// `O` without operand
     OrAlone,

@@ -76,28 +76,10 @@ fn timer_kind(op: S7Op) -> Option<TimerKind> {
 
 /// `A AN O ON X XN`: how the scanned bit combines with the RLO.
 fn scan(op: S7Op) -> Option<Combination> {
-    Some(match op {
-        S7Op::And => Combination::And,
-        S7Op::AndNot => Combination::AndNot,
-        S7Op::Or => Combination::Or,
-        S7Op::OrNot => Combination::OrNot,
-        S7Op::Xor => Combination::Xor,
-        S7Op::XorNot => Combination::XorNot,
-        _ => return None,
-    })
-}
-
-/// `A( AN( O( ON( X( XN(`: how the bracket's result combines with the RLO.
-fn bracket(op: S7Op) -> Option<Combination> {
-    Some(match op {
-        S7Op::AndBracket => Combination::And,
-        S7Op::AndNotBracket => Combination::AndNot,
-        S7Op::OrBracket => Combination::Or,
-        S7Op::OrNotBracket => Combination::OrNot,
-        S7Op::XorBracket => Combination::Xor,
-        S7Op::XorNotBracket => Combination::XorNot,
-        _ => return None,
-    })
+    match op {
+        S7Op::Logic(combination) => Some(combination),
+        _ => None,
+    }
 }
 
 /// A conditional jump STEP 5 does not have (`JC` … `JUO`), as the VM runs it.
@@ -367,14 +349,13 @@ impl super::Compiler<'_> {
         let resolved = self.resolved_operand(&statement.operand, op, at)?;
         let operand = resolved.as_ref().unwrap_or(&statement.operand);
         match op {
-            S7Op::Or if *operand == S7Operand::None => {
+            S7Op::Logic(Combination::Or) if *operand == S7Operand::None => {
                 self.emit(out, Op::S7(S7Code::Accu(S7Op::OrAlone)), span);
                 Ok(())
             }
-            S7Op::And
-            | S7Op::AndNot
-            | S7Op::Or
-            | S7Op::OrNot
+            S7Op::Logic(
+                Combination::And | Combination::AndNot | Combination::Or | Combination::OrNot,
+            )
             | S7Op::Assign
             | S7Op::Set
             | S7Op::Reset => {
@@ -412,7 +393,7 @@ impl super::Compiler<'_> {
                 }
                 self.memory(out, op, operand, at, span, scope)
             }
-            S7Op::Xor | S7Op::XorNot => {
+            S7Op::Logic(Combination::Xor | Combination::XorNot) => {
                 if let S7Operand::Address(address) = operand
                     && let Some(shared) = self.image_bit_op(op, address)
                 {
@@ -436,13 +417,7 @@ impl super::Compiler<'_> {
             S7Op::EdgePositive | S7Op::EdgeNegative => {
                 self.memory(out, op, operand, at, span, scope)
             }
-            S7Op::AndBracket
-            | S7Op::AndNotBracket
-            | S7Op::OrBracket
-            | S7Op::OrNotBracket
-            | S7Op::XorBracket
-            | S7Op::XorNotBracket => {
-                let combination = bracket(op).unwrap_or_default();
+            S7Op::Bracket(combination) => {
                 self.emit(out, Op::S7(S7Code::Bracket(combination)), span);
                 Ok(())
             }

@@ -8,7 +8,9 @@ use nom::sequence::preceded;
 
 use crate::ast::Name;
 use crate::source::Span;
-use crate::step7::ast::{CallParam, CallSpec, Cmp, S7BlockRef, S7Op, S7Operand, S7Statement};
+use crate::step7::ast::{
+    CallParam, CallSpec, Cmp, Combination, S7BlockRef, S7Op, S7Operand, S7Statement,
+};
 use crate::step7::error::S7ParseError;
 use crate::step7::lexer::{Token, TokenKind};
 use crate::step7::mnemonics;
@@ -342,11 +344,13 @@ fn needs_operand(op: S7Op) -> bool {
     use S7Op::*;
     matches!(
         op,
-        And | AndNot
-            | Xor
-            | XorNot
-            | OrNot
-            | Assign
+        Logic(
+            Combination::And
+                | Combination::AndNot
+                | Combination::Xor
+                | Combination::XorNot
+                | Combination::OrNot
+        ) | Assign
             | Set
             | Reset
             | EdgePositive
@@ -379,7 +383,7 @@ fn needs_operand(op: S7Op) -> bool {
 fn operand_example(op: S7Op) -> Option<&'static str> {
     use S7Op::*;
     Some(match op {
-        And | AndNot | Or | OrNot | Xor | XorNot | Assign | Set | Reset => "I 0.0",
+        Logic(_) | Assign | Set | Reset => "I 0.0",
         EdgePositive | EdgeNegative => "M 10.0",
         Load | Transfer => "MW 10",
         LoadCoded => "T 1",
