@@ -87,6 +87,58 @@ pub struct Context {
     pub frames: usize,
 }
 
+impl Context {
+    /// Where `target` lies when the context alone tells: the image, local, data and instance
+    /// areas, timers, counters and constants. `None` for a place the CPU must look further
+    /// for (a parameter, a pointer, the peripherals) and for V in a block without caller.
+    #[inline]
+    pub fn locate(&self, target: Target) -> Option<Located> {
+        Some(match target {
+            Target::Image { byte, bit } => Located::Image {
+                byte: usize::from(byte),
+                bit,
+            },
+            Target::Local { byte, bit } => Located::Local {
+                byte: (self.local_base + byte) as usize,
+                bit,
+            },
+            Target::PreviousLocal { byte, bit } => Located::Local {
+                byte: (self.previous_local? + byte) as usize,
+                bit,
+            },
+            Target::Data {
+                instance,
+                byte,
+                bit,
+            } => Located::Data {
+                slot: if instance { self.di } else { self.db },
+                byte: byte as usize,
+                bit,
+            },
+            Target::Instance { byte, bit } => {
+                // Area-internal: AR2's area bits do not count, its byte.bit offset does.
+                let at = (self.ar2 & 0x0007_FFFF) + (byte << 3 | u32::from(bit));
+                Located::Data {
+                    slot: self.di,
+                    byte: (at >> 3) as usize,
+                    bit: (at & 7) as u8,
+                }
+            }
+            Target::NumberedData {
+                slot, byte, bit, ..
+            } => Located::Data {
+                slot,
+                byte: byte as usize,
+                bit,
+            },
+            Target::Timer(n) => Located::Timer(n),
+            Target::Counter(n) => Located::Counter(n),
+            Target::Constant(value) => Located::Constant(value),
+            _ => return None,
+        })
+    }
+}
+
 /// Area-pointer area codes (bits 24–26 of a pointer).
 pub fn area_code(area: S7Area) -> u32 {
     match area {
@@ -209,56 +261,20 @@ impl Cpu {
 
     /// Where `place` is, resolved in `context`.
     pub fn locate(&mut self, place: Place, context: Context) -> Result<Located, Fault> {
+        if let Some(located) = context.locate(place.target) {
+            if let Target::NumberedData { slot, .. } = place.target
+                && context.frames == self.frames.len()
+            {
+                self.level.db = slot;
+            }
+            return Ok(located);
+        }
         Ok(match place.target {
-            Target::Image { byte, bit } => Located::Image {
-                byte: usize::from(byte),
-                bit,
-            },
             Target::Peripheral { output, byte } => Located::Peripheral { output, byte },
-            Target::Local { byte, bit } => Located::Local {
-                byte: (context.local_base + byte) as usize,
-                bit,
-            },
-            Target::PreviousLocal { byte, bit } => {
-                let Some(base) = context.previous_local else {
-                    return Err(fault(
-                        "V (the caller's local data) in a block without caller".into(),
-                    ));
-                };
-                Located::Local {
-                    byte: (base + byte) as usize,
-                    bit,
-                }
-            }
-            Target::Data {
-                instance,
-                byte,
-                bit,
-            } => Located::Data {
-                slot: if instance { context.di } else { context.db },
-                byte: byte as usize,
-                bit,
-            },
-            Target::Instance { byte, bit } => {
-                // Area-internal: AR2's area bits do not count, its byte.bit offset does.
-                let at = (context.ar2 & 0x0007_FFFF) + (byte << 3 | u32::from(bit));
-                Located::Data {
-                    slot: context.di,
-                    byte: (at >> 3) as usize,
-                    bit: (at & 7) as u8,
-                }
-            }
-            Target::NumberedData {
-                slot, byte, bit, ..
-            } => {
-                if context.frames == self.frames.len() {
-                    self.level.db = slot;
-                }
-                Located::Data {
-                    slot,
-                    byte: byte as usize,
-                    bit,
-                }
+            Target::PreviousLocal { .. } => {
+                return Err(fault(
+                    "V (the caller's local data) in a block without caller".into(),
+                ));
             }
             Target::Parameter { param, byte, bit } => {
                 self.locate_parameter(param, byte, bit, context)?
@@ -289,9 +305,6 @@ impl Cpu {
                 };
                 self.locate_pointer(area, sum, context)?
             }
-            Target::Timer(n) => Located::Timer(n),
-            Target::Counter(n) => Located::Counter(n),
-            Target::Constant(value) => Located::Constant(value),
             Target::TimerFrom { place: number } | Target::CounterFrom { place: number } => {
                 let number_place = self.program.s7.places[usize::from(number)];
                 let located = self.locate(number_place, context)?;
@@ -304,9 +317,8 @@ impl Cpu {
                     _ => Located::Counter(number),
                 }
             }
-            Target::Extension(_) | Target::DbRegister(_) | Target::Condition(_) => {
-                Located::Special(place.target)
-            }
+            // The test operands and registers; the others were located above.
+            _ => Located::Special(place.target),
         })
     }
 
