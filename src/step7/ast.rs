@@ -298,6 +298,17 @@ pub enum AccessWidth {
     Double,
 }
 
+impl AccessWidth {
+    /// The bytes an access of this width reads or writes (a bit's byte for a bit).
+    pub const fn bytes(self) -> u32 {
+        match self {
+            AccessWidth::Bit | AccessWidth::Byte => 1,
+            AccessWidth::Word => 2,
+            AccessWidth::Double => 4,
+        }
+    }
+}
+
 /// `I 0.1`, `MW 10`, `DB5.DBW 4`, `L 2.0`, `PIW 256`, `T 5`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct S7Address {

@@ -353,12 +353,7 @@ impl super::Compiler<'_> {
                 self.emit(out, Op::S7(S7Code::Accu(S7Op::OrAlone)), span);
                 Ok(())
             }
-            S7Op::Logic(
-                Combination::And | Combination::AndNot | Combination::Or | Combination::OrNot,
-            )
-            | S7Op::Assign
-            | S7Op::Set
-            | S7Op::Reset => {
+            S7Op::Logic(_) | S7Op::Assign | S7Op::Set | S7Op::Reset => {
                 if let S7Operand::Condition(condition) = operand {
                     let combination = scan(op).unwrap_or(Combination::And);
                     self.emit(
@@ -389,27 +384,6 @@ impl super::Compiler<'_> {
                         _ => return Err(not_an_operand(at, "a timer")),
                     };
                     self.emit(out, shared, span);
-                    return Ok(());
-                }
-                self.memory(out, op, operand, at, span, scope)
-            }
-            S7Op::Logic(Combination::Xor | Combination::XorNot) => {
-                if let S7Operand::Address(address) = operand
-                    && let Some(shared) = self.image_bit_op(op, address)
-                {
-                    self.emit(out, shared, span);
-                    return Ok(());
-                }
-                if let S7Operand::Condition(condition) = operand {
-                    let combination = scan(op).unwrap_or(Combination::Xor);
-                    self.emit(
-                        out,
-                        Op::S7(S7Code::Condition {
-                            combination,
-                            condition: *condition,
-                        }),
-                        span,
-                    );
                     return Ok(());
                 }
                 self.memory(out, op, operand, at, span, scope)
@@ -1269,7 +1243,7 @@ impl super::Compiler<'_> {
             let bits = if width == AccessWidth::Bit {
                 1
             } else {
-                8 * super::operand::bytes(width)
+                8 * width.bytes()
             };
             let start = if width == AccessWidth::Bit {
                 scratch_bits
@@ -1565,7 +1539,7 @@ impl super::Compiler<'_> {
 fn absolute_local_end(operand: &S7Operand) -> u32 {
     match operand {
         S7Operand::Address(address) if address.area == S7Area::Local => {
-            (address.byte + super::operand::bytes(address.width)).div_ceil(2) * 2
+            (address.byte + address.width.bytes()).div_ceil(2) * 2
         }
         S7Operand::Pair(first, second) => absolute_local_end(first).max(absolute_local_end(second)),
         _ => 0,

@@ -42,7 +42,7 @@ impl super::Compiler<'_> {
             S7Area::Flag => (layout.flag_base(), layout.flag_bytes),
             _ => return None,
         };
-        let end = address.byte + bytes(address.width);
+        let end = address.byte + address.width.bytes();
         (end <= u32::from(size)).then(|| base + address.byte as u16)
     }
 
@@ -74,7 +74,7 @@ impl super::Compiler<'_> {
             },
             S7Area::PeripheralInput | S7Area::PeripheralOutput => {
                 let size = self.profile.sizes.peripheral_bytes;
-                if address.byte + bytes(width) > u32::from(size) {
+                if address.byte + width.bytes() > u32::from(size) {
                     let name = if address.area == S7Area::PeripheralInput {
                         "PI"
                     } else {
@@ -395,14 +395,6 @@ pub fn not_an_operand(at: Span, what: &str) -> CheckError {
         op: "this operation".into(),
         at,
         help: Some(format!("{what} cannot be used here")),
-    }
-}
-
-pub fn bytes(width: AccessWidth) -> u32 {
-    match width {
-        AccessWidth::Bit | AccessWidth::Byte => 1,
-        AccessWidth::Word => 2,
-        AccessWidth::Double => 4,
     }
 }
 

@@ -519,7 +519,7 @@ impl super::Compiler<'_> {
                         return None;
                     };
                     pieces.push((piece, at));
-                    at += super::operand::bytes(width);
+                    at += width.bytes();
                 }
                 pieces
             }

@@ -450,7 +450,7 @@ impl Cpu {
 
     /// A peripheral access (an indirect one is known only now) within the CPU's modules.
     fn peripheral_in_range(&self, byte: u16, width: AccessWidth) -> Result<(), Fault> {
-        let end = usize::from(byte) + byte_count(width);
+        let end = usize::from(byte) + width.bytes() as usize;
         if end > self.inputs.len() {
             return Err(fault(format!(
                 "peripheral byte {byte} is past the CPU's {} peripheral bytes",
@@ -482,7 +482,7 @@ impl Cpu {
             Located::Counter(n) => Ok(u32::from(n)),
             Located::Special(_) => Err(fault("not readable".into())),
             memory => {
-                let count = byte_count(width);
+                let count = width.bytes() as usize;
                 let bytes = self.bytes_of(memory, count)?;
                 Ok(bytes
                     .iter()
@@ -512,7 +512,7 @@ impl Cpu {
                 Err(fault("not writable".into()))
             }
             memory => {
-                let count = byte_count(width);
+                let count = width.bytes() as usize;
                 let bytes = self.bytes_of(memory, count)?;
                 let all = value.to_be_bytes();
                 bytes.copy_from_slice(&all[4 - count..]);
@@ -571,14 +571,6 @@ fn bit_of(located: Located) -> u8 {
     match located {
         Located::Image { bit, .. } | Located::Local { bit, .. } | Located::Data { bit, .. } => bit,
         _ => 0,
-    }
-}
-
-fn byte_count(width: AccessWidth) -> usize {
-    match width {
-        AccessWidth::Bit | AccessWidth::Byte => 1,
-        AccessWidth::Word => 2,
-        AccessWidth::Double => 4,
     }
 }
 
