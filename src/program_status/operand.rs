@@ -227,21 +227,14 @@ fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
         return Some(located);
     }
     Some(match place.target {
-        S7Target::Parameter { param, byte, bit } => {
-            let actual = cpu
-                .program
-                .param_lists
-                .get(usize::from(context.params))?
-                .get(usize::from(param))?;
-            match *actual {
-                Resolved::Constant(value) => Located::Constant(value),
-                Resolved::S7(index) => {
-                    let place = *cpu.program.s7.places.get(usize::from(index))?;
-                    locate(cpu, place, cpu.caller_context(context)?)?.offset(byte, bit)
-                }
-                _ => return None,
+        S7Target::Parameter { param, byte, bit } => match cpu.passed(context.params, param)? {
+            Resolved::Constant(value) => Located::Constant(value),
+            Resolved::S7(index) => {
+                let place = *cpu.program.s7.places.get(usize::from(index))?;
+                locate(cpu, place, cpu.caller_context(context)?)?.offset(byte, bit)
             }
-        }
+            _ => return None,
+        },
         _ => return None,
     })
 }

@@ -558,3 +558,21 @@ pub enum S7Op {
     Sleep,
     Feature,
 }
+
+impl S7Op {
+    /// A shift or rotate that takes its count from its operand or from ACCU 2
+    /// (`SSI SSD SLW SRW SLD SRD RLD RRD`).
+    pub fn is_shift(self) -> bool {
+        matches!(
+            self,
+            S7Op::ShiftSignedInt
+                | S7Op::ShiftSignedDint
+                | S7Op::ShiftLeftWord
+                | S7Op::ShiftRightWord
+                | S7Op::ShiftLeftDouble
+                | S7Op::ShiftRightDouble
+                | S7Op::RotateLeftDouble
+                | S7Op::RotateRightDouble
+        )
+    }
+}

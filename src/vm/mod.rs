@@ -562,6 +562,12 @@ impl Cpu {
         }
     }
 
+    /// What a call passed for parameter `param`, from its parameter list `list`.
+    pub fn passed(&self, list: u16, param: u8) -> Option<Resolved> {
+        let actuals = self.program.param_lists.get(usize::from(list))?;
+        actuals.get(usize::from(param)).copied()
+    }
+
     /// Resolves an actual parameter of the running FB, following parameters passed on from the
     /// calling FBs.
     pub fn actual(&self, param: u8) -> Option<Resolved> {
@@ -569,12 +575,7 @@ impl Cpu {
         let mut frames = self.frames[self.level.level_base..].iter().rev();
         let mut index = param;
         loop {
-            let actual = *self
-                .program
-                .param_lists
-                .get(usize::from(list))?
-                .get(usize::from(index))?;
-            match actual {
+            match self.passed(list, index)? {
                 Resolved::Formal(outer) => {
                     list = frames.next()?.params;
                     index = outer;

@@ -495,14 +495,7 @@ impl super::Compiler<'_> {
                 self.emit(out, shared, span);
                 Ok(())
             }
-            S7Op::ShiftSignedInt
-            | S7Op::ShiftSignedDint
-            | S7Op::ShiftLeftWord
-            | S7Op::ShiftRightWord
-            | S7Op::ShiftLeftDouble
-            | S7Op::ShiftRightDouble
-            | S7Op::RotateLeftDouble
-            | S7Op::RotateRightDouble => {
+            op if op.is_shift() => {
                 let code = match operand {
                     S7Operand::Number(count) => S7Code::Shift {
                         op,

@@ -330,13 +330,7 @@ impl Cpu {
         bit: u8,
         context: Context,
     ) -> Result<Located, Fault> {
-        let actual = self
-            .program
-            .param_lists
-            .get(usize::from(context.params))
-            .and_then(|list| list.get(usize::from(param)))
-            .copied();
-        let Some(actual) = actual else {
+        let Some(actual) = self.passed(context.params, param) else {
             return Err(fault(format!("parameter {} has no actual", param + 1)));
         };
         match actual {
