@@ -21,6 +21,19 @@ pub struct S7Unit {
     pub blocks: Vec<S7Block>,
 }
 
+impl S7Unit {
+    /// The statements of the file's logic blocks, in file order.
+    pub fn statements(&self) -> impl Iterator<Item = &S7Statement> {
+        self.blocks
+            .iter()
+            .filter_map(|block| match &block.body {
+                S7Body::Logic(statements) => Some(statements),
+                _ => None,
+            })
+            .flatten()
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum S7BlockKind {
     Ob,

@@ -51,13 +51,50 @@ pub fn call_name(number: u16) -> String {
     format!("SFC {number} ({})", name(number))
 }
 
-/// The declared parameters, for a help text.
-fn declared(number: u16) -> String {
-    parameters(number)
-        .iter()
-        .map(|(name, _)| *name)
-        .collect::<Vec<_>>()
-        .join(", ")
+/// Each parameter of an SFC call must be one of the `declared` and be given once: an error for
+/// each that is not. Whether all were.
+pub(super) fn known_and_once(
+    fb: &str,
+    params: &[CallParam],
+    declared: &[&str],
+    errors: &mut Vec<CheckError>,
+) -> bool {
+    let mut ok = true;
+    for (index, param) in params.iter().enumerate() {
+        let name = param.name.text.to_ascii_uppercase();
+        let known = declared.contains(&name.as_str());
+        let first = !params[..index]
+            .iter()
+            .any(|other| other.name.text.eq_ignore_ascii_case(&name));
+        if !known || !first {
+            errors.push(CheckError::UnknownParam {
+                name: param.name.text.clone(),
+                fb: fb.to_string(),
+                at: param.name.span,
+                help: Some(if known {
+                    format!("`{name}` is given twice")
+                } else {
+                    format!("{fb} has {}", declared.join(", "))
+                }),
+            });
+            ok = false;
+        }
+    }
+    ok
+}
+
+/// A call of an SFC that leaves out some of its `declared` parameters: an SFC needs them all.
+pub(super) fn missing_some(fb: String, declared: usize, missing: &[&str], at: Span) -> CheckError {
+    CheckError::ParamCount {
+        fb,
+        expected: declared,
+        found: declared - missing.len(),
+        at,
+        help: Some(format!(
+            "an SFC needs every parameter; missing: {}",
+            missing.join(", ")
+        )),
+    }
 }
 
 /// A call without its parameters (`UC SFC 41`, `CALL SFC 41`).
@@ -89,29 +126,8 @@ pub fn ordered(
 ) -> Option<Vec<(String, Place)>> {
     let declared_params = parameters(number);
     let fb = call_name(number);
-    let mut ok = true;
-    for (index, param) in params.iter().enumerate() {
-        let name = param.name.text.to_ascii_uppercase();
-        let known = declared_params
-            .iter()
-            .any(|(declared, _)| *declared == name);
-        let first = !params[..index]
-            .iter()
-            .any(|other| other.name.text.eq_ignore_ascii_case(&name));
-        if !known || !first {
-            errors.push(CheckError::UnknownParam {
-                name: param.name.text.clone(),
-                fb: fb.clone(),
-                at: param.name.span,
-                help: Some(if known {
-                    format!("`{name}` is given twice")
-                } else {
-                    format!("{fb} has {}", declared(number))
-                }),
-            });
-            ok = false;
-        }
-    }
+    let names: Vec<&str> = declared_params.iter().map(|(name, _)| *name).collect();
+    let mut ok = known_and_once(&fb, params, &names, errors);
     let mut list = Vec::with_capacity(declared_params.len());
     let mut missing = Vec::new();
     for &(name, width) in declared_params {
@@ -156,16 +172,12 @@ pub fn ordered(
         list.push((name.to_string(), resolved));
     }
     if !missing.is_empty() {
-        errors.push(CheckError::ParamCount {
-            fb: fb.clone(),
-            expected: declared_params.len(),
-            found: declared_params.len() - missing.len(),
+        errors.push(missing_some(
+            fb.clone(),
+            declared_params.len(),
+            &missing,
             at,
-            help: Some(format!(
-                "an SFC needs every parameter; missing: {}",
-                missing.join(", ")
-            )),
-        });
+        ));
         ok = false;
     }
     ok.then_some(list)

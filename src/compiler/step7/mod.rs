@@ -35,12 +35,7 @@ use layout::{Interface, Types};
 fn asked_accumulators(units: &[S7Unit]) -> Option<u8> {
     units
         .iter()
-        .flat_map(|unit| &unit.blocks)
-        .filter_map(|block| match &block.body {
-            S7Body::Logic(statements) => Some(statements),
-            _ => None,
-        })
-        .flatten()
+        .flat_map(S7Unit::statements)
         .filter(|statement| statement.op == S7Op::Feature)
         .find_map(|statement| match &statement.operand {
             S7Operand::Pair(target, value) if lower::feature_number(target) == Some(0) => {
