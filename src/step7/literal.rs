@@ -525,35 +525,31 @@ fn unescape(inner: &str) -> Result<Vec<u8>, LiteralError> {
     Ok(bytes)
 }
 
-/// The area byte of an area pointer (bits 24–31), by the area word after `P#`.
+/// The area byte of an area pointer (bits 24–31), by the area word after `P#` in English and
+/// in German.
+const POINTER_AREAS: [(&str, &str, u8); 8] = [
+    ("P", "P", 0x80),
+    ("I", "E", 0x81),
+    ("Q", "A", 0x82),
+    ("M", "M", 0x83),
+    ("DBX", "DBX", 0x84),
+    ("DIX", "DIX", 0x85),
+    ("L", "L", 0x86),
+    ("V", "V", 0x87),
+];
+
+/// The area byte of an area pointer, by the area word after `P#`.
 fn pointer_area(set: MnemonicSet, upper: &str) -> Option<u8> {
-    let english = match upper {
-        "P" => 0x80,
-        "I" => 0x81,
-        "Q" => 0x82,
-        "M" => 0x83,
-        "DBX" => 0x84,
-        "DIX" => 0x85,
-        "L" => 0x86,
-        "V" => 0x87,
-        _ => 0,
-    };
-    let german = match upper {
-        "P" => 0x80,
-        "E" => 0x81,
-        "A" => 0x82,
-        "M" => 0x83,
-        "DBX" => 0x84,
-        "DIX" => 0x85,
-        "L" => 0x86,
-        "V" => 0x87,
-        _ => 0,
-    };
-    let area = match set {
-        MnemonicSet::English => english,
-        MnemonicSet::German => german,
-    };
-    (area != 0).then_some(area)
+    POINTER_AREAS
+        .iter()
+        .find(|(english, german, _)| {
+            upper
+                == match set {
+                    MnemonicSet::English => *english,
+                    MnemonicSet::German => *german,
+                }
+        })
+        .map(|(_, _, area)| *area)
 }
 
 /// The ANY type code of an element type (`P#DB1.DBX 0.0 BYTE 10`).

@@ -314,6 +314,27 @@ impl super::Compiler<'_> {
         }
     }
 
+    /// A call written without its parameters (`UC FC 105`, `UC SFC 20`), checked by `check`
+    /// as a `CALL` that gives none: each missing parameter is an error that names it.
+    fn without_params(
+        &mut self,
+        reference: &S7BlockRef,
+        check: impl FnOnce(&mut Self, &CallSpec, &Scope<'_>),
+    ) {
+        let call = CallSpec {
+            block: reference.clone(),
+            instance: None,
+            multi_instance: None,
+            params: Vec::new(),
+        };
+        let empty = super::layout::Interface::default();
+        let scope = Scope {
+            interface: &empty,
+            block: String::new(),
+        };
+        check(self, &call, &scope);
+    }
+
     fn emit(&self, out: &mut Emitter, op: Op, span: Span) {
         out.emit(op, span, &self.profile.timings);
     }
@@ -885,19 +906,9 @@ impl super::Compiler<'_> {
     ) -> Result<(), CheckError> {
         let reference = &match self.library_target(reference, at) {
             super::library::Target7::Library(fc) => {
-                // Each of its parameters is missing: the error says which.
-                let call = CallSpec {
-                    block: reference.clone(),
-                    instance: None,
-                    multi_instance: None,
-                    params: Vec::new(),
-                };
-                let empty = super::layout::Interface::default();
-                let scope = Scope {
-                    interface: &empty,
-                    block: String::new(),
-                };
-                self.library_call(fc, &call, at, &scope);
+                self.without_params(reference, |compiler, call, scope| {
+                    compiler.library_call(fc, call, at, scope);
+                });
                 return Ok(());
             }
             super::library::Target7::Program(block) => block,
@@ -911,19 +922,9 @@ impl super::Compiler<'_> {
                 return Err(super::interrupt_sfcs::missing_all(*number, at));
             }
             if matches!(*number, BLKMOV | FILL) {
-                // Each of their parameters is missing: the errors say which.
-                let call = CallSpec {
-                    block: reference.clone(),
-                    instance: None,
-                    multi_instance: None,
-                    params: Vec::new(),
-                };
-                let empty = super::layout::Interface::default();
-                let scope = Scope {
-                    interface: &empty,
-                    block: String::new(),
-                };
-                self.block_sfc(*number, &call, at, &scope);
+                self.without_params(reference, |compiler, call, scope| {
+                    compiler.block_sfc(*number, call, at, scope);
+                });
                 return Ok(());
             }
             super::system_functions::given_all(*number, 0, at)?;
