@@ -25,10 +25,14 @@ mod tests {
 
     #[test]
     fn digits_four_bits_each() {
-        assert_eq!(encode(503, 3), 0x503);
-        assert_eq!(encode(0, 3), 0);
-        assert_eq!(encode(1234567, 7), 0x1234567);
-        assert_eq!(decode(0x999, 3), 999);
-        assert_eq!(decode(0xFFF, 3), 1665);
+        for (value, digits, bcd) in [(503, 3, 0x503), (0, 3, 0), (1_234_567, 7, 0x0123_4567)] {
+            assert_eq!(encode(value, digits), bcd);
+            assert_eq!(decode(bcd, digits), value);
+        }
+        assert_eq!(
+            decode(0xFFF, 3),
+            1665,
+            "a nibble above 9 counts as what it is"
+        );
     }
 }

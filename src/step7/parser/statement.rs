@@ -247,18 +247,15 @@ fn suggest_operation(ctx: Ctx<'_>, upper: &str, next: Option<Token>) -> Option<S
             ctx.text(next)
         ));
     }
-    let best = mnemonics::operation_words(ctx.set)
-        .filter(|candidate| candidate.chars().next() == upper.chars().next())
-        .map(|candidate| (strsim::damerau_levenshtein(upper, candidate), candidate))
-        .filter(|(distance, candidate)| *distance <= 1 + usize::from(candidate.len() > 3))
-        .min_by_key(|(distance, _)| *distance);
-    Some(match best {
-        Some((_, candidate)) => format!("did you mean `{candidate}`?"),
-        None => format!(
-            "`awl help mnemonics` lists the operations of the {} set (STEP 7)",
-            ctx.set.name()
-        ),
-    })
+    Some(
+        match crate::syntax::close_spelling(upper, mnemonics::operation_words(ctx.set)) {
+            Some(candidate) => format!("did you mean `{candidate}`?"),
+            None => format!(
+                "`awl help mnemonics` lists the operations of the {} set (STEP 7)",
+                ctx.set.name()
+            ),
+        },
+    )
 }
 
 /// `L STW`, `T STW` are operations of their own; `OPN DI 2` opens the instance DB.
