@@ -53,6 +53,29 @@ pub struct Frontend {
 }
 
 impl Frontend {
+    /// The outcome of either dialect's front end, its diagnostics in file order.
+    fn new(
+        sources: SourceSet,
+        compiled: Compiled,
+        mut diagnostics: Vec<SourceDiagnostic>,
+        mnemonics: Vec<MnemonicSet>,
+        units: Vec<SourceUnit>,
+        s7_units: Vec<crate::step7::ast::S7Unit>,
+    ) -> Frontend {
+        diagnostics.sort_by_key(|diagnostic| {
+            let span = diagnostic.span();
+            (span.file, span.start)
+        });
+        Frontend {
+            sources,
+            compiled,
+            diagnostics,
+            mnemonics,
+            units,
+            s7_units,
+        }
+    }
+
     pub fn has_errors(&self) -> bool {
         self.diagnostics
             .iter()
@@ -150,19 +173,8 @@ fn build_step5(
     }
     let mut compiled = compiled;
     compiled.program.symbols = symbols;
-    diagnostics.sort_by_key(|diagnostic| {
-        let span = diagnostic.span();
-        (span.file, span.start)
-    });
     let mnemonics = units.iter().map(|unit| unit.mnemonics).collect();
-    Frontend {
-        sources,
-        compiled,
-        diagnostics,
-        mnemonics,
-        units,
-        s7_units: Vec::new(),
-    }
+    Frontend::new(sources, compiled, diagnostics, mnemonics, units, Vec::new())
 }
 
 /// The CPU profile a program runs on when none is chosen: the S7 CPU for a STEP 7 program,
@@ -315,7 +327,7 @@ fn build_step7(
     );
     diagnostics.extend(symbol_errors.into_iter().map(SourceDiagnostic::Symbol));
     let compiled =
-        crate::step7::compile::compile(&units, &sources, profile, language.extensions, symbols);
+        crate::compiler::step7::compile(&units, &sources, profile, language.extensions, symbols);
     diagnostics.extend(
         compiled
             .diagnostics
@@ -335,19 +347,8 @@ fn build_step7(
         ));
     }
     diagnostics.extend(note.map(SourceDiagnostic::Step7));
-    diagnostics.sort_by_key(|diagnostic| {
-        let span = diagnostic.span();
-        (span.file, span.start)
-    });
     let mnemonics = units.iter().map(|unit| unit.mnemonics).collect();
-    Frontend {
-        sources,
-        compiled,
-        diagnostics,
-        mnemonics,
-        units: Vec::new(),
-        s7_units: units,
-    }
+    Frontend::new(sources, compiled, diagnostics, mnemonics, Vec::new(), units)
 }
 
 /// The profiles on which the program compiles without errors, as each `--cpu` would check it;

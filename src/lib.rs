@@ -31,6 +31,7 @@ pub mod program_files;
 pub mod program_status;
 pub mod project;
 pub mod report;
+pub mod rules;
 pub mod runner;
 pub mod s5_float;
 pub mod scenario;

@@ -95,6 +95,18 @@ pub struct InterruptOb {
     pub every_ms: u32,
 }
 
+impl InterruptOb {
+    /// An OB that runs when it is requested (an interrupt or an event), never by the clock.
+    pub const fn requested(ob: u8, priority: u8, summary: &'static str) -> Self {
+        InterruptOb {
+            ob,
+            priority,
+            summary,
+            every_ms: 0,
+        }
+    }
+}
+
 /// A system OB a program may call (`JU OB 160`), as the CPU's manual lists it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SystemOb {
@@ -310,14 +322,7 @@ pub static PROFILES: &[Profile] = &[
         family: Family::Sinumerik840c,
         title: "SINUMERIK 840C/880 PLC (CPU 928B), normal mode",
         manual: "SINUMERIK 840C/880 PLC manual, 5.3.1 Normal mode, 5.3.2 Response time",
-        sizes: Sizes {
-            image_bytes: 128,
-            flag_bytes: 256,
-            peripheral_bytes: 256,
-            timers: 256,
-            counters: 256,
-            data_words: 2048,
-        },
+        sizes: s5_common::LARGE_SIZES,
         nesting_limit: 32,
         nesting: Nesting::PerLevel,
         accumulators: 4,
@@ -325,53 +330,16 @@ pub static PROFILES: &[Profile] = &[
         watchdog_ns: 150_000_000,
         startup_obs: &[21, 22],
         interrupt_obs: &[
-            InterruptOb {
-                ob: 2,
-                priority: 7,
-                summary: "interrupt (special mode only)",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 3,
-                priority: 6,
-                summary: "interrupt",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 4,
-                priority: 5,
-                summary: "interrupt",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 5,
-                priority: 4,
-                summary: "interrupt (special mode only)",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 6,
-                priority: 3,
-                summary: "interrupt",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 7,
-                priority: 2,
-                summary: "interrupt",
-                every_ms: 0,
-            },
+            InterruptOb::requested(2, 7, "interrupt (special mode only)"),
+            InterruptOb::requested(3, 6, "interrupt"),
+            InterruptOb::requested(4, 5, "interrupt"),
+            InterruptOb::requested(5, 4, "interrupt (special mode only)"),
+            InterruptOb::requested(6, 3, "interrupt"),
+            InterruptOb::requested(7, 2, "interrupt"),
         ],
         default_points: InterruptPoints::Block,
         extended_blocks: true,
-        features: &[
-            Feature::FloatingPoint,
-            Feature::DoubleBcd,
-            Feature::BcdConversions,
-            Feature::AddConstant,
-            Feature::SystemOperations,
-            Feature::RegisterOperations,
-        ],
+        features: s5_common::ALL_FEATURES,
         integral_fbs: &[],
         system_obs: &[],
         timings: SINUMERIK_840C_TIMES,
@@ -399,14 +367,7 @@ pub static PROFILES: &[Profile] = &[
         title: "S5-95F with time-controlled OB 13",
         manual: "S5-95F manual, Introduction to STEP 5, 7.4.4 Time-controlled program \
                  processing, 7.4.5 Maximum response time; 12 Interrupt processing",
-        sizes: Sizes {
-            image_bytes: 128,
-            flag_bytes: 256,
-            peripheral_bytes: 256,
-            timers: 128,
-            counters: 128,
-            data_words: 256,
-        },
+        sizes: s5_common::SMALL_SIZES,
         nesting_limit: 16,
         nesting: Nesting::WholeCpu,
         accumulators: 2,
@@ -414,24 +375,9 @@ pub static PROFILES: &[Profile] = &[
         watchdog_ns: 150_000_000,
         startup_obs: &[21, 22],
         interrupt_obs: &[
-            InterruptOb {
-                ob: 2,
-                priority: 4,
-                summary: "process interrupt (interrupt inputs)",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 3,
-                priority: 3,
-                summary: "process interrupt",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 13,
-                priority: 2,
-                summary: "time-controlled at [ob13].interval",
-                every_ms: 0,
-            },
+            InterruptOb::requested(2, 4, "process interrupt (interrupt inputs)"),
+            InterruptOb::requested(3, 3, "process interrupt"),
+            InterruptOb::requested(13, 2, "time-controlled at [ob13].interval"),
         ],
         default_points: InterruptPoints::Operation,
         extended_blocks: false,
@@ -504,49 +450,14 @@ pub static PROFILES: &[Profile] = &[
         // OB 102).
         startup_obs: &[100, 102],
         interrupt_obs: &[
-            InterruptOb {
-                ob: 80,
-                priority: 26,
-                summary: "time error (OB 35 requested again before it ran)",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 82,
-                priority: 26,
-                summary: "diagnostic interrupt",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 85,
-                priority: 26,
-                summary: "program execution error (no OB for a module)",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 86,
-                priority: 26,
-                summary: "DP slave failure / return",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 41,
-                priority: 17,
-                summary: "hardware interrupt",
-                every_ms: 0,
-            },
-            InterruptOb {
-                ob: 40,
-                priority: 16,
-                summary: "hardware interrupt",
-                every_ms: 0,
-            },
+            InterruptOb::requested(80, 26, "time error (OB 35 requested again before it ran)"),
+            InterruptOb::requested(82, 26, "diagnostic interrupt"),
+            InterruptOb::requested(85, 26, "program execution error (no OB for a module)"),
+            InterruptOb::requested(86, 26, "DP slave failure / return"),
+            InterruptOb::requested(41, 17, "hardware interrupt"),
+            InterruptOb::requested(40, 16, "hardware interrupt"),
             // Its interval is the scenario's (`[ob35]`), not the profile's.
-            InterruptOb {
-                ob: 35,
-                priority: 12,
-                summary: "cyclic interrupt",
-                every_ms: 0,
-            },
+            InterruptOb::requested(35, 12, "cyclic interrupt"),
         ],
         default_points: InterruptPoints::Operation,
         extended_blocks: false,

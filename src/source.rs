@@ -12,6 +12,23 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use miette::{MietteError, MietteSpanContents, SourceCode, SourceSpan, SpanContents};
 
+/// `span()` of an error type whose variants carry their span in a field `at`, the rule every
+/// error of awl follows: `error_span!(Error { special arms } Variant, …)`, the special arms
+/// (`pattern => span`) for the variants that find their span another way.
+macro_rules! error_span {
+    ($error:ident { $($special:pat => $span:expr),* $(,)? } $($variant:ident),+ $(,)?) => {
+        impl $error {
+            pub fn span(&self) -> $crate::source::Span {
+                match self {
+                    $($special => $span,)*
+                    $($error::$variant { at, .. })|+ => *at,
+                }
+            }
+        }
+    };
+}
+pub(crate) use error_span;
+
 /// Index of a file in a [`SourceSet`].
 pub type FileId = u16;
 

@@ -4,6 +4,7 @@
 //! in either mnemonic set ([`operand`]) — and how each dialect writes the values they hold
 //! ([`notation`]).
 
+pub mod declared;
 mod layout;
 pub mod notation;
 pub mod operand;

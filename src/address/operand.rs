@@ -5,7 +5,6 @@
 //! `I 0.0`, `MW 12`, `PIW 256`, `T 5`, `C 3`, `DB5.DBW 4`.
 
 use crate::ast::Address;
-use crate::compiler::Program;
 use crate::dialect::Dialect;
 use crate::mnemonics::{self, Area, MnemonicSet};
 use crate::profile::Profile;
@@ -103,21 +102,6 @@ pub struct Places<'a> {
     pub profile: &'static Profile,
     pub layout: Layout,
     pub data_blocks: &'a [(u16, Vec<u8>)],
-}
-
-impl<'a> Places<'a> {
-    pub fn of(program: &'a Program) -> Self {
-        Places {
-            dialect: if program.s7.step7 {
-                Dialect::Step7
-            } else {
-                Dialect::Step5
-            },
-            profile: program.profile,
-            layout: program.layout,
-            data_blocks: &program.s7.data_blocks,
-        }
-    }
 }
 
 /// Why an operand was refused, and the help that goes with it.
@@ -443,6 +427,7 @@ fn data_target(text: &str, places: &Places) -> Result<Target, Refusal> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::compiler::Program;
     use crate::frontend;
     use crate::profile;
 

@@ -2,10 +2,10 @@
 //! Spans and execution times live in arrays parallel to the code, so ops stay at 8 bytes.
 
 use crate::mnemonics::{BlockKind, OpCode};
-/// The kinds of arithmetic, comparison and word logic live with their rules in the VM.
-pub use crate::vm::arith::{Arith, Comparison, WordLogic};
+/// The kinds of arithmetic, comparison and word logic live with their rules.
+pub use crate::rules::arith::{Arith, Comparison, WordLogic};
 /// The STEP 5 bit logic is a status rule: it lives with the status word.
-pub use crate::vm::status::Logic;
+pub use crate::rules::status::Logic;
 
 /// A bit in the VM's flat image memory (PII, then PIQ, then flags).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -320,7 +320,7 @@ pub enum Op {
     /// A STEP 7 operation STEP 5 does not have, run out of line.
     S7(crate::step7::bytecode::S7Code),
     /// STEP 7's `A AN O ON X XN` on an image bit (their status rules differ from STEP 5's).
-    S7Scan(crate::vm::status::Combination, ImageBit),
+    S7Scan(crate::rules::status::Combination, ImageBit),
     /// STEP 7's `=`, `S`, `R` on an image bit (STA takes the RLO).
     S7Write(Write, ImageBit),
     /// A system or register operation on absolute addresses: running it stops the CPU.

@@ -381,43 +381,16 @@ pub enum CheckError {
     },
 }
 
-impl CheckError {
-    pub fn span(&self) -> Span {
-        match self {
-            CheckError::Symbol(error) => error.span(),
-            CheckError::DuplicateBlock { at, .. }
-            | CheckError::MissingBlockEnd { at, .. }
-            | CheckError::ExtendedBlock { at, .. }
-            | CheckError::Supplementary { at, .. }
-            | CheckError::OperandNotAllowed { at, .. }
-            | CheckError::OperandRange { at, .. }
-            | CheckError::UndefinedSymbol { at, .. }
-            | CheckError::FormalOutsideFb { at, .. }
-            | CheckError::LabelOutsideFb { at, .. }
-            | CheckError::DuplicateLabel { at, .. }
-            | CheckError::LabelTooLong { at, .. }
-            | CheckError::ParamCount { at, .. }
-            | CheckError::ParamMismatch { at, .. }
-            | CheckError::UnknownParam { at, .. }
-            | CheckError::UndefinedBlock { at, .. }
-            | CheckError::UndefinedType { at, .. }
-            | CheckError::BlockNotOnCpu { at, .. }
-            | CheckError::UndefinedDb { at, .. }
-            | CheckError::IndirectTarget { at, .. }
-            | CheckError::NotOnCpu { at, .. }
-            | CheckError::OperationNotOnCpu { at, .. }
-            | CheckError::UnclosedBracket { at, .. }
-            | CheckError::UnopenedBracket { at, .. }
-            | CheckError::BracketDepth { at, .. }
-            | CheckError::UndeclaredLocal { at, .. }
-            | CheckError::RecursiveInstance { at, .. }
-            | CheckError::UndefinedLabel { at, .. }
-            | CheckError::NotSimulated { at, .. }
-            | CheckError::LibraryReplaced { at, .. }
-            | CheckError::Step7OnStep5Cpu { at, .. } => *at,
-        }
-    }
+crate::source::error_span!(CheckError { CheckError::Symbol(error) => error.span(), }
+    DuplicateBlock, MissingBlockEnd, ExtendedBlock, Supplementary, OperandNotAllowed,
+    OperandRange, UndefinedSymbol, FormalOutsideFb, LabelOutsideFb, DuplicateLabel,
+    LabelTooLong, ParamCount, ParamMismatch, UnknownParam, UndefinedBlock, UndefinedType,
+    BlockNotOnCpu, UndefinedDb, IndirectTarget, NotOnCpu, OperationNotOnCpu, UnclosedBracket,
+    UnopenedBracket, BracketDepth, UndeclaredLocal, RecursiveInstance, UndefinedLabel,
+    NotSimulated, LibraryReplaced, Step7OnStep5Cpu,
+);
 
+impl CheckError {
     pub fn is_warning(&self) -> bool {
         matches!(
             self,

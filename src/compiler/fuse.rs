@@ -8,7 +8,7 @@
 //! `S7Write`: their status rules differ) pair only with each other.
 
 use super::bytecode::{ImageBit, Logic, Op, Write};
-use crate::vm::status::Combination;
+use crate::rules::status::Combination;
 
 /// `code` with every op that pairs with the next one replaced by the pair.
 pub fn fuse(code: &[Op]) -> Vec<Op> {

@@ -14,6 +14,7 @@ pub mod lower;
 pub mod needs;
 mod ranges;
 pub mod specialise;
+pub mod step7;
 
 use std::collections::HashMap;
 
@@ -99,6 +100,22 @@ pub struct Program {
     pub s7: crate::step7::bytecode::S7Tables,
     /// What the STEP 5 program's checks asked of the CPU (empty for a STEP 7 program).
     pub needs: Needs,
+}
+
+/// An operand's places are the program's: the address model knows no compiled program.
+impl<'a> crate::address::operand::Places<'a> {
+    pub fn of(program: &'a Program) -> Self {
+        Self {
+            dialect: if program.s7.step7 {
+                crate::dialect::Dialect::Step7
+            } else {
+                crate::dialect::Dialect::Step5
+            },
+            profile: program.profile,
+            layout: program.layout,
+            data_blocks: &program.s7.data_blocks,
+        }
+    }
 }
 
 impl Program {

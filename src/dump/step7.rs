@@ -12,7 +12,8 @@ use crate::frontend::Frontend;
 use crate::mnemonics::MnemonicSet;
 use crate::source::{SourceSet, Span};
 use crate::step7::ast::{
-    S7Address, S7Area, S7Block, S7BlockKind, S7BlockRef, S7Body, S7Operand, S7Statement, VarKind,
+    S7Address, S7Area, S7Block, S7BlockKind, S7BlockRef, S7Body, S7Operand, S7Statement, S7Unit,
+    VarKind,
 };
 use crate::step7::bytecode::{Place, S7Code, Target};
 use crate::step7::text;
@@ -23,12 +24,7 @@ pub(crate) fn statements(built: &Frontend) -> HashMap<Span, &S7Statement> {
     built
         .s7_units
         .iter()
-        .flat_map(|unit| &unit.blocks)
-        .filter_map(|block| match &block.body {
-            S7Body::Logic(statements) => Some(statements),
-            _ => None,
-        })
-        .flatten()
+        .flat_map(S7Unit::statements)
         .map(|statement| (statement.span, statement))
         .collect()
 }

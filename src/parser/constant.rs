@@ -4,6 +4,7 @@
 use crate::ast::Constant;
 use crate::lexer::{Token, TokenKind};
 use crate::mnemonics::ConstFormat;
+use crate::rules::bcd;
 use crate::s5_float;
 use crate::source::FileId;
 
@@ -114,14 +115,14 @@ pub fn parse_constant(
                 } else if base > 3 {
                     Err(out_of_range("time base 0…3 (0.01 s, 0.1 s, 1 s, 10 s)"))
                 } else {
-                    word(base << 12 | bcd(value))
+                    word(base << 12 | bcd::encode(value, 3))
                 }
             }
             _ => Err(bad("time value and base, e.g. 050.1 (50 × 0.1 s)")),
         },
         ConstFormat::Count => match kinds.as_slice() {
             [Number] => match texts[0].parse::<u32>() {
-                Ok(value) if value <= 999 => word(bcd(value)),
+                Ok(value) if value <= 999 => word(bcd::encode(value, 3)),
                 Ok(_) => Err(out_of_range("0…999")),
                 Err(_) => Err(bad("a count 0…999")),
             },
@@ -174,11 +175,6 @@ pub fn format_for_bare(negative: bool, text: &str) -> Option<String> {
     } else {
         format!("DH {value:08X}")
     })
-}
-
-/// Binary-coded decimal of a value 0…999.
-pub fn bcd(value: u32) -> u32 {
-    ((value / 100) << 8) | ((value / 10 % 10) << 4) | (value % 10)
 }
 
 /// Packs characters two to a data word; the first word is the constant's value.
@@ -315,12 +311,6 @@ mod tests {
         assert_eq!(super::format_for_bare(false, "1Z"), None);
     }
     use super::*;
-
-    #[test]
-    fn bcd_packs_digits() {
-        assert_eq!(bcd(503), 0x503);
-        assert_eq!(bcd(0), 0);
-    }
 
     fn kg(texts: &[&str], kinds: &[TokenKind]) -> f64 {
         s5_float::decode(float(texts, kinds).unwrap().unwrap())

@@ -220,28 +220,9 @@ pub enum ParseError {
     },
 }
 
-impl ParseError {
-    pub fn span(&self) -> Span {
-        match self {
-            ParseError::UnexpectedCharacter { at, .. }
-            | ParseError::UnknownOperation { at, .. }
-            | ParseError::MixedMnemonics { at, .. }
-            | ParseError::UnknownOperand { at, .. }
-            | ParseError::MissingOperand { at, .. }
-            | ParseError::UnexpectedToken { at, .. }
-            | ParseError::BadAddress { at, .. }
-            | ParseError::OutsideBlock { at }
-            | ParseError::BlockNumber { at, .. }
-            | ParseError::BadConstant { at, .. }
-            | ParseError::BareConstant { at, .. }
-            | ParseError::ConstantRange { at, .. }
-            | ParseError::BadDeclaration { at, .. }
-            | ParseError::BadDataWord { at, .. }
-            | ParseError::Step7Source { at, .. }
-            | ParseError::Step7Word { at, .. }
-            | ParseError::Fragment { at, .. }
-            | ParseError::DecimalFloat { at, .. }
-            | ParseError::FormalsFromUse { at, .. } => *at,
-        }
-    }
-}
+crate::source::error_span!(ParseError {}
+    UnexpectedCharacter, UnknownOperation, MixedMnemonics, UnknownOperand, MissingOperand,
+    UnexpectedToken, BadAddress, OutsideBlock, BlockNumber, BadConstant, BareConstant,
+    ConstantRange, BadDeclaration, BadDataWord, Step7Source, Step7Word, Fragment, DecimalFloat,
+    FormalsFromUse,
+);

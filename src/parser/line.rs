@@ -520,19 +520,15 @@ fn suggest_operation(context: Context<'_>, word: &str, next: Option<Token>) -> O
             context.text(next)
         ));
     }
-    // A close spelling that starts with the same letter: `JUU` → `JU`, but `XG` is no `G`.
-    let best = mnemonics::operation_words(set)
-        .filter(|candidate| candidate.chars().next() == upper.chars().next())
-        .map(|candidate| (strsim::damerau_levenshtein(&upper, candidate), candidate))
-        .filter(|(distance, candidate)| *distance <= 1 + usize::from(candidate.len() > 3))
-        .min_by_key(|(distance, _)| *distance);
-    Some(match best {
-        Some((_, candidate)) => format!("did you mean `{candidate}`?"),
-        None => format!(
-            "`awl help mnemonics` lists the operations of the {} set",
-            set.name()
-        ),
-    })
+    Some(
+        match crate::syntax::close_spelling(&upper, mnemonics::operation_words(set)) {
+            Some(candidate) => format!("did you mean `{candidate}`?"),
+            None => format!(
+                "`awl help mnemonics` lists the operations of the {} set",
+                set.name()
+            ),
+        },
+    )
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]

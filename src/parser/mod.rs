@@ -10,7 +10,6 @@ mod spellings;
 mod step7_word;
 pub mod tokens;
 
-pub use constant::bcd;
 pub use error::ParseError;
 pub use step7_word::explain_step7_word;
 

@@ -11,25 +11,23 @@ const INTEGRAL_RULE: &str = "integral FBs, used when the program has no FB of th
      analog value and scale it), FB 251 RLG:AA (scale a value and output it) (S5-115U manual, \
      integral blocks)";
 
-const RULES_941_943: &[&str] = &[
-    "priority OB 2 > OB 13 > OB 1",
-    PRIORITIES,
-    BLOCK_POINTS,
-    INTERRUPT_REQUESTS,
-    INTEGRAL_RULE,
-    SYSTEM_OB_CALLS,
-    STARTUP,
-];
+/// The rules of an S5-115U CPU whose interrupt OBs rank as `priority_order` says.
+const fn rules(priority_order: &'static str) -> [&'static str; 7] {
+    [
+        priority_order,
+        PRIORITIES,
+        BLOCK_POINTS,
+        INTERRUPT_REQUESTS,
+        INTEGRAL_RULE,
+        SYSTEM_OB_CALLS,
+        STARTUP,
+    ]
+}
 
-const RULES_944: &[&str] = &[
-    "priority OB 2 > OB 3 > OB 4 > OB 5 > OB 6 > OB 10 > OB 11 > OB 12 > OB 13 > OB 1",
-    PRIORITIES,
-    BLOCK_POINTS,
-    INTERRUPT_REQUESTS,
-    INTEGRAL_RULE,
-    SYSTEM_OB_CALLS,
-    STARTUP,
-];
+const RULES_941_943: &[&str] = &rules("priority OB 2 > OB 13 > OB 1");
+
+const RULES_944: &[&str] =
+    &rules("priority OB 2 > OB 3 > OB 4 > OB 5 > OB 6 > OB 10 > OB 11 > OB 12 > OB 13 > OB 1");
 
 const BASIC_FEATURES: &[Feature] = &[Feature::AddConstant, Feature::SystemOperations];
 
@@ -102,13 +100,7 @@ pub const CPU_944: Profile = Profile {
 pub const CPU_945: Profile = Profile {
     name: "s5-115u-945",
     title: "S5-115U with CPU 945",
-    features: &[
-        Feature::FloatingPoint,
-        Feature::DoubleBcd,
-        Feature::BcdConversions,
-        Feature::AddConstant,
-        Feature::SystemOperations,
-    ],
+    features: ALL_FEATURES.split_at(ALL_FEATURES.len() - 1).0,
     timings: estimated_times(
         100,
         300_000,

@@ -3,33 +3,11 @@
 use super::s5_common::*;
 use super::{Family, Feature, InterruptPoints, Nesting, Profile};
 
-const RULES: &[&str] = &[
-    PRIORITY_ORDER_135U_155U,
-    PRIORITIES,
-    BLOCK_POINTS,
-    INTERRUPT_REQUESTS,
-    SYSTEM_OB_CALLS,
-    STARTUP,
-];
+const RULES_928B: &[&str] =
+    &rules_135u_155u("four accumulators (CPU 928B programming guide, table 3-7)");
 
-const RULES_928B: &[&str] = &[
-    PRIORITY_ORDER_135U_155U,
-    PRIORITIES,
-    BLOCK_POINTS,
-    INTERRUPT_REQUESTS,
-    SYSTEM_OB_CALLS,
-    STARTUP,
-    "four accumulators (CPU 928B programming guide, table 3-7)",
-];
-
-pub(super) const ALL_FEATURES: &[Feature] = &[
-    Feature::FloatingPoint,
-    Feature::DoubleBcd,
-    Feature::BcdConversions,
-    Feature::AddConstant,
-    Feature::SystemOperations,
-    Feature::RegisterOperations,
-];
+/// The CPUs with two accumulators say nothing of them.
+const RULES: &[&str] = RULES_928B.split_at(RULES_928B.len() - 1).0;
 
 pub const CPU_922: Profile = Profile {
     name: "s5-135u-922",

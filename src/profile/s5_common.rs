@@ -1,7 +1,18 @@
 //! What the S5 profiles share: operand ranges, the time table scaled from one figure, the
 //! interrupt OB lists, the integral FBs and the rules `awl cpus` prints for every S5 CPU.
 
-use super::{InterruptOb, Sizes, SystemOb, Timings};
+use super::{Feature, InterruptOb, Sizes, SystemOb, Timings};
+
+/// Every S5 operation group: the S5-135U and S5-155U CPUs have them all. The S5-115U CPU 945
+/// lacks the last, the register operations.
+pub const ALL_FEATURES: &[Feature] = &[
+    Feature::FloatingPoint,
+    Feature::DoubleBcd,
+    Feature::BcdConversions,
+    Feature::AddConstant,
+    Feature::SystemOperations,
+    Feature::RegisterOperations,
+];
 
 /// I/Q 0…127, F 0…255, P 0…255, T and C 0…127, DW 0…255: the smallest S5 CPUs.
 pub const SMALL_SIZES: Sizes = Sizes {
@@ -67,12 +78,7 @@ const fn scale(bit_image: u32, per_mille: u32) -> u32 {
 }
 
 const fn process(ob: u8, priority: u8) -> InterruptOb {
-    InterruptOb {
-        ob,
-        priority,
-        summary: "process interrupt",
-        every_ms: 0,
-    }
+    InterruptOb::requested(ob, priority, "process interrupt")
 }
 
 /// A time-controlled OB, called every `every_ms` once the program has it.
@@ -85,12 +91,7 @@ const fn timed(ob: u8, priority: u8, summary: &'static str, every_ms: u32) -> In
     }
 }
 
-const CLOCK: InterruptOb = InterruptOb {
-    ob: 6,
-    priority: 11,
-    summary: "clock-time interrupt",
-    every_ms: 0,
-};
+const CLOCK: InterruptOb = InterruptOb::requested(6, 11, "clock-time interrupt");
 
 /// S5-95U, S5-100U and S5-115U CPU 941–943: one process interrupt OB and OB 13.
 pub const SMALL_INTERRUPTS: &[InterruptOb] = &[
@@ -98,18 +99,9 @@ pub const SMALL_INTERRUPTS: &[InterruptOb] = &[
     timed(13, 2, "time-controlled, every 100 ms", 100),
 ];
 
-/// S5-115U CPU 944 and 945: process interrupts A–D, the clock and OB 10–13.
-pub const INTERRUPTS_115U: &[InterruptOb] = &[
-    process(2, 15),
-    process(3, 14),
-    process(4, 13),
-    process(5, 12),
-    CLOCK,
-    timed(10, 10, "time-controlled, every 10 ms", 10),
-    timed(11, 9, "time-controlled, every 20 ms", 20),
-    timed(12, 8, "time-controlled, every 50 ms", 50),
-    timed(13, 7, "time-controlled, every 100 ms", 100),
-];
+/// S5-115U CPU 944 and 945: process interrupts A–D, the clock and OB 10–13, the first nine
+/// of the S5-135U's.
+pub const INTERRUPTS_115U: &[InterruptOb] = INTERRUPTS_135U_155U.split_at(9).0;
 
 /// The priorities of [`INTERRUPTS_135U_155U`], as a rule line.
 pub const PRIORITY_ORDER_135U_155U: &str = "priority OB 2 > OB 3 > OB 4 > OB 5 > OB 6 > OB 10 > \
@@ -154,19 +146,7 @@ pub const SYSTEM_OBS_115U: &[SystemOb] = &[
     system(255, "copy data blocks"),
 ];
 
-pub const SYSTEM_OBS_135U: &[SystemOb] = &[
-    TIME_LOOP,
-    system(170, "read the block stack"),
-    system(190, "transfer flags to a data block"),
-    system(191, "transfer a data block to flags"),
-    system(221, "set the scan time monitor"),
-    system(222, "restart the scan time monitor"),
-    system(223, "compare the start-up types"),
-    PID,
-    system(254, "read in data blocks"),
-    system(255, "copy data blocks"),
-];
-
+/// The CPU 948's system OBs: its own four, then the S5-135U's.
 pub const SYSTEM_OBS_948: &[SystemOb] = &[
     system(121, "set and read the system clock"),
     system(122, "disable and enable interrupts"),
@@ -183,6 +163,21 @@ pub const SYSTEM_OBS_948: &[SystemOb] = &[
     system(254, "read in data blocks"),
     system(255, "copy data blocks"),
 ];
+
+pub const SYSTEM_OBS_135U: &[SystemOb] = SYSTEM_OBS_948.split_at(4).1;
+
+/// The rules of the S5-135U and S5-155U CPUs, the last one what their accumulators do.
+pub const fn rules_135u_155u(accumulators: &'static str) -> [&'static str; 7] {
+    [
+        PRIORITY_ORDER_135U_155U,
+        PRIORITIES,
+        BLOCK_POINTS,
+        INTERRUPT_REQUESTS,
+        SYSTEM_OB_CALLS,
+        STARTUP,
+        accumulators,
+    ]
+}
 
 /// The rules every S5 profile shares, after its own.
 pub const INTERRUPT_REQUESTS: &str = "the time-controlled OBs the program has are called at \

@@ -223,61 +223,18 @@ fn s5_time(kt: &str) -> Option<String> {
 /// Where `place` is in `context`; `None` for what status does not show (indirect
 /// addresses, test operands).
 fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
+    if let Some(located) = context.locate(place.target) {
+        return Some(located);
+    }
     Some(match place.target {
-        S7Target::Image { byte, bit } => Located::Image {
-            byte: usize::from(byte),
-            bit,
-        },
-        S7Target::Local { byte, bit } => Located::Local {
-            byte: (context.local_base + byte) as usize,
-            bit,
-        },
-        S7Target::PreviousLocal { byte, bit } => Located::Local {
-            byte: (context.previous_local? + byte) as usize,
-            bit,
-        },
-        S7Target::Instance { byte, bit } => {
-            let at = (context.ar2 & 0x0007_FFFF) + (byte << 3 | u32::from(bit));
-            Located::Data {
-                slot: context.di,
-                byte: (at >> 3) as usize,
-                bit: (at & 7) as u8,
+        S7Target::Parameter { param, byte, bit } => match cpu.passed(context.params, param)? {
+            Resolved::Constant(value) => Located::Constant(value),
+            Resolved::S7(index) => {
+                let place = *cpu.program.s7.places.get(usize::from(index))?;
+                locate(cpu, place, cpu.caller_context(context)?)?.offset(byte, bit)
             }
-        }
-        S7Target::Data {
-            instance,
-            byte,
-            bit,
-        } => Located::Data {
-            slot: if instance { context.di } else { context.db },
-            byte: byte as usize,
-            bit,
+            _ => return None,
         },
-        S7Target::NumberedData {
-            slot, byte, bit, ..
-        } => Located::Data {
-            slot,
-            byte: byte as usize,
-            bit,
-        },
-        S7Target::Parameter { param, byte, bit } => {
-            let actual = cpu
-                .program
-                .param_lists
-                .get(usize::from(context.params))?
-                .get(usize::from(param))?;
-            match *actual {
-                Resolved::Constant(value) => Located::Constant(value),
-                Resolved::S7(index) => {
-                    let place = *cpu.program.s7.places.get(usize::from(index))?;
-                    locate(cpu, place, cpu.caller_context(context)?)?.offset(byte, bit)
-                }
-                _ => return None,
-            }
-        }
-        S7Target::Timer(n) => Located::Timer(n),
-        S7Target::Counter(n) => Located::Counter(n),
-        S7Target::Constant(value) => Located::Constant(value),
         _ => return None,
     })
 }

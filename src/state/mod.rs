@@ -14,9 +14,9 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::address::Layout;
-use crate::step7::declared::{self, ValueView};
+use crate::address::declared::{self, ValueView};
+use crate::rules::status::Status;
 use crate::vm::counters::Counter;
-use crate::vm::status::Status;
 use crate::vm::stop::Stop;
 use crate::vm::timers::Timer;
 use crate::vm::{Cpu, IDLE, LevelState, Mode};

@@ -6,9 +6,9 @@
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
+use crate::address::declared::ValueView;
 use crate::address::notation;
 use crate::dialect::Dialect;
-use crate::step7::declared::ValueView;
 
 use super::{LevelView, Registers, State, StatusBits};
 

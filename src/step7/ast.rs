@@ -3,13 +3,15 @@
 
 use crate::ast::Name;
 use crate::mnemonics::MnemonicSet;
-use crate::source::{FileId, Span};
-/// The six comparisons are the VM's, defined once with their rule.
-pub use crate::vm::arith::Comparison as Cmp;
+/// The six comparisons are the machine's rules ([`crate::rules`]), defined once.
+pub use crate::rules::arith::Comparison as Cmp;
 /// So are the status conditions (`==0`, `OV`, `BR` …).
-pub use crate::vm::s7::jump::Condition;
+pub use crate::rules::jump::Condition;
 /// And the REAL functions of ACCU 1.
-pub use crate::vm::s7::real::Function;
+pub use crate::rules::real::Function;
+/// And the ways a bit or a bracket combines with the RLO.
+pub use crate::rules::status::Combination;
+use crate::source::{FileId, Span};
 
 /// One parsed STEP 7 source file.
 #[derive(Debug, Clone)]
@@ -17,6 +19,19 @@ pub struct S7Unit {
     pub file: FileId,
     pub mnemonics: MnemonicSet,
     pub blocks: Vec<S7Block>,
+}
+
+impl S7Unit {
+    /// The statements of the file's logic blocks, in file order.
+    pub fn statements(&self) -> impl Iterator<Item = &S7Statement> {
+        self.blocks
+            .iter()
+            .filter_map(|block| match &block.body {
+                S7Body::Logic(statements) => Some(statements),
+                _ => None,
+            })
+            .flatten()
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -296,6 +311,17 @@ pub enum AccessWidth {
     Double,
 }
 
+impl AccessWidth {
+    /// The bytes an access of this width reads or writes (a bit's byte for a bit).
+    pub const fn bytes(self) -> u32 {
+        match self {
+            AccessWidth::Bit | AccessWidth::Byte => 1,
+            AccessWidth::Word => 2,
+            AccessWidth::Double => 4,
+        }
+    }
+}
+
 /// `I 0.1`, `MW 10`, `DB5.DBW 4`, `L 2.0`, `PIW 256`, `T 5`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct S7Address {
@@ -385,18 +411,10 @@ pub enum Extension {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum S7Op {
     // Bit logic
-    And,
-    AndNot,
-    Or,
-    OrNot,
-    Xor,
-    XorNot,
-    AndBracket,
-    AndNotBracket,
-    OrBracket,
-    OrNotBracket,
-    XorBracket,
-    XorNotBracket,
+    /// `A AN O ON X XN` (`O` alone is [`S7Op::OrAlone`] once the operand is known).
+    Logic(Combination),
+    /// `A( AN( O( ON( X( XN(`.
+    Bracket(Combination),
     CloseBracket,
     /// `O` without operand
     OrAlone,
@@ -552,4 +570,22 @@ pub enum S7Op {
     ResetStatusWord,
     Sleep,
     Feature,
+}
+
+impl S7Op {
+    /// A shift or rotate that takes its count from its operand or from ACCU 2
+    /// (`SSI SSD SLW SRW SLD SRD RLD RRD`).
+    pub fn is_shift(self) -> bool {
+        matches!(
+            self,
+            S7Op::ShiftSignedInt
+                | S7Op::ShiftSignedDint
+                | S7Op::ShiftLeftWord
+                | S7Op::ShiftRightWord
+                | S7Op::ShiftLeftDouble
+                | S7Op::ShiftRightDouble
+                | S7Op::RotateLeftDouble
+                | S7Op::RotateRightDouble
+        )
+    }
 }

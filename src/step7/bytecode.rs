@@ -8,9 +8,9 @@
 //!
 //! [`Op::S7`]: crate::compiler::Op::S7
 
-use super::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
-use crate::vm::s7::jump::Jump;
-use crate::vm::status::Combination;
+use super::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Area, S7Op};
+use crate::rules::jump::Jump;
+use crate::rules::status::Combination;
 
 /// A STEP 7 operation with its operand decoded: small and `Copy`, so [`crate::compiler::Op`]
 /// stays at 8 bytes.
@@ -276,13 +276,13 @@ pub enum Target {
     /// Memory-indirect: the pointer is read from `pointer` (a place index): a double word
     /// area-internal pointer for bits and bytes, a word for timers, counters and DB numbers.
     MemoryIndirect {
-        area: IndirectArea,
+        area: S7Area,
         pointer: u16,
     },
     /// Register-indirect: AR1/AR2 plus `offset` (a pointer value). `area` is `None` when the
     /// area comes from the register (area-crossing).
     RegisterIndirect {
-        area: Option<IndirectArea>,
+        area: Option<S7Area>,
         ar: u8,
         offset: u32,
     },
@@ -301,22 +301,6 @@ pub enum Target {
     DbRegister(DbRegister),
     /// A status condition's value (an operand of `__ASSERT`).
     Condition(Condition),
-}
-
-/// The areas an indirect address may name before its brackets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum IndirectArea {
-    Input,
-    Output,
-    Flag,
-    Local,
-    PreviousLocal,
-    Data,
-    Instance,
-    PeripheralInput,
-    PeripheralOutput,
-    Timer,
-    Counter,
 }
 
 /// One `CALL FB n, DB m (…)`, or `CALL #instance (…)` of a multi-instance.

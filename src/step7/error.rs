@@ -212,31 +212,14 @@ pub enum S7ParseError {
     },
 }
 
-impl S7ParseError {
-    pub fn span(&self) -> Span {
-        match self {
-            S7ParseError::UnexpectedCharacter { at, .. }
-            | S7ParseError::UnknownOperation { at, .. }
-            | S7ParseError::MixedMnemonics { at, .. }
-            | S7ParseError::UnknownOperand { at, .. }
-            | S7ParseError::MissingOperand { at, .. }
-            | S7ParseError::UnexpectedToken { at, .. }
-            | S7ParseError::BadAddress { at, .. }
-            | S7ParseError::BadConstant { at, .. }
-            | S7ParseError::ConstantRange { at, .. }
-            | S7ParseError::BadDeclaration { at, .. }
-            | S7ParseError::UnknownType { at, .. }
-            | S7ParseError::UnclosedBlock { at, .. }
-            | S7ParseError::MismatchedEnd { at, .. }
-            | S7ParseError::OutsideBlock { at }
-            | S7ParseError::BlockNumber { at, .. }
-            | S7ParseError::BadLabel { at, .. }
-            | S7ParseError::Step5Spelling { at, .. }
-            | S7ParseError::ReadAsStep7 { at, .. }
-            | S7ParseError::ExtensionNotEnabled { at, .. } => *at,
-        }
-    }
+crate::source::error_span!(S7ParseError {}
+    UnexpectedCharacter, UnknownOperation, MixedMnemonics, UnknownOperand, MissingOperand,
+    UnexpectedToken, BadAddress, BadConstant, ConstantRange, BadDeclaration, UnknownType,
+    UnclosedBlock, MismatchedEnd, OutsideBlock, BlockNumber, BadLabel, Step5Spelling,
+    ReadAsStep7, ExtensionNotEnabled,
+);
 
+impl S7ParseError {
     /// The code, for tests and tools.
     pub fn stable_code(&self) -> String {
         Diagnostic::code(self).map_or_else(String::new, |code| code.to_string())

@@ -6,6 +6,7 @@
 //! 1990-01-01; TIME_OF_DAY milliseconds from midnight; DATE_AND_TIME is eight BCD bytes.
 
 use crate::mnemonics::MnemonicSet;
+use crate::rules::bcd;
 
 use super::ast::{ConstKind, S7Constant};
 
@@ -233,25 +234,7 @@ pub fn s5time_word(ms: u32) -> Option<u32> {
         .enumerate()
         .map(|(code, unit)| (code as u32, ms / unit))
         .find(|(_, count)| *count <= 999)?;
-    Some(base << 12 | bcd(count))
-}
-
-/// Three (or four) BCD digits.
-fn bcd(value: u32) -> u32 {
-    let mut out = 0;
-    for (shift, digit) in [
-        value / 1000 % 10,
-        value / 100 % 10,
-        value / 10 % 10,
-        value % 10,
-    ]
-    .into_iter()
-    .rev()
-    .enumerate()
-    {
-        out |= digit << (4 * shift);
-    }
-    out
+    Some(base << 12 | bcd::encode(count, 3))
 }
 
 /// `T#-1D2H`: a DINT of milliseconds.
@@ -382,7 +365,7 @@ pub fn date_and_time_bytes(days: u32, ms: u32) -> [u8; 8] {
     let (year, month, day) = civil_from_days(i64::from(days) + days_from_civil(1990, 1, 1));
     // 1990-01-01 was a Monday: weekday 2 when Sunday is 1.
     let weekday = (days + 1) % 7 + 1;
-    let byte = |value: u32| bcd(value % 100) as u8;
+    let byte = |value: u32| bcd::encode(value % 100, 2) as u8;
     let (seconds, ms) = (ms / 1000, ms % 1000);
     [
         byte(year % 100),
@@ -479,7 +462,7 @@ fn counter(rest: &str) -> Literal {
     if value > 999 {
         return Err(range("C#", "C#0 to C#999"));
     }
-    Ok(constant(ConstKind::Counter, bcd(value)))
+    Ok(constant(ConstKind::Counter, bcd::encode(value, 3)))
 }
 
 /// `B#(1, 2)` or `B#(1, 2, 3, 4)`: bytes loaded as one WORD or DWORD.
@@ -556,35 +539,31 @@ fn unescape(inner: &str) -> Result<Vec<u8>, LiteralError> {
     Ok(bytes)
 }
 
-/// The area byte of an area pointer (bits 24–31), by the area word after `P#`.
+/// The area byte of an area pointer (bits 24–31), by the area word after `P#` in English and
+/// in German.
+const POINTER_AREAS: [(&str, &str, u8); 8] = [
+    ("P", "P", 0x80),
+    ("I", "E", 0x81),
+    ("Q", "A", 0x82),
+    ("M", "M", 0x83),
+    ("DBX", "DBX", 0x84),
+    ("DIX", "DIX", 0x85),
+    ("L", "L", 0x86),
+    ("V", "V", 0x87),
+];
+
+/// The area byte of an area pointer, by the area word after `P#`.
 fn pointer_area(set: MnemonicSet, upper: &str) -> Option<u8> {
-    let english = match upper {
-        "P" => 0x80,
-        "I" => 0x81,
-        "Q" => 0x82,
-        "M" => 0x83,
-        "DBX" => 0x84,
-        "DIX" => 0x85,
-        "L" => 0x86,
-        "V" => 0x87,
-        _ => 0,
-    };
-    let german = match upper {
-        "P" => 0x80,
-        "E" => 0x81,
-        "A" => 0x82,
-        "M" => 0x83,
-        "DBX" => 0x84,
-        "DIX" => 0x85,
-        "L" => 0x86,
-        "V" => 0x87,
-        _ => 0,
-    };
-    let area = match set {
-        MnemonicSet::English => english,
-        MnemonicSet::German => german,
-    };
-    (area != 0).then_some(area)
+    POINTER_AREAS
+        .iter()
+        .find(|(english, german, _)| {
+            upper
+                == match set {
+                    MnemonicSet::English => *english,
+                    MnemonicSet::German => *german,
+                }
+        })
+        .map(|(_, _, area)| *area)
 }
 
 /// The ANY type code of an element type (`P#DB1.DBX 0.0 BYTE 10`).

@@ -9,7 +9,7 @@ use std::sync::OnceLock;
 
 use crate::mnemonics::MnemonicSet;
 
-use super::ast::{AccessWidth, Cmp, Condition, Function, S7Area, S7Op};
+use super::ast::{AccessWidth, Cmp, Combination, Condition, Function, S7Area, S7Op};
 
 /// One operation: its meaning and its word in each set.
 #[derive(Debug, Clone, Copy)]
@@ -28,18 +28,18 @@ use S7Op::*;
 /// Every operation word. Statement-level words with an operand of their own (`L STW`) are the
 /// parser's; `CALL`, `UC`, `CC` take blocks.
 pub const OPERATIONS: &[OpWords] = &[
-    op(And, "A", "U"),
-    op(AndNot, "AN", "UN"),
-    op(Or, "O", "O"),
-    op(OrNot, "ON", "ON"),
-    op(Xor, "X", "X"),
-    op(XorNot, "XN", "XN"),
-    op(AndBracket, "A(", "U("),
-    op(AndNotBracket, "AN(", "UN("),
-    op(OrBracket, "O(", "O("),
-    op(OrNotBracket, "ON(", "ON("),
-    op(XorBracket, "X(", "X("),
-    op(XorNotBracket, "XN(", "XN("),
+    op(Logic(Combination::And), "A", "U"),
+    op(Logic(Combination::AndNot), "AN", "UN"),
+    op(Logic(Combination::Or), "O", "O"),
+    op(Logic(Combination::OrNot), "ON", "ON"),
+    op(Logic(Combination::Xor), "X", "X"),
+    op(Logic(Combination::XorNot), "XN", "XN"),
+    op(Bracket(Combination::And), "A(", "U("),
+    op(Bracket(Combination::AndNot), "AN(", "UN("),
+    op(Bracket(Combination::Or), "O(", "O("),
+    op(Bracket(Combination::OrNot), "ON(", "ON("),
+    op(Bracket(Combination::Xor), "X(", "X("),
+    op(Bracket(Combination::XorNot), "XN(", "XN("),
     op(CloseBracket, ")", ")"),
     op(Assign, "=", "="),
     op(Set, "S", "S"),
@@ -398,8 +398,8 @@ mod tests {
 
     #[test]
     fn both_sets_name_the_same_operations() {
-        assert_eq!(operation(English, "A"), Some(And));
-        assert_eq!(operation(German, "U"), Some(And));
+        assert_eq!(operation(English, "A"), Some(Logic(Combination::And)));
+        assert_eq!(operation(German, "U"), Some(Logic(Combination::And)));
         assert_eq!(operation(English, "JU"), operation(German, "SPA"));
         assert_eq!(operation(English, "BEC"), operation(German, "BEB"));
         assert_eq!(operation(German, "A"), None);

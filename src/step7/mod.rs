@@ -4,9 +4,8 @@
 
 pub mod ast;
 pub mod bytecode;
-pub mod compile;
-pub mod declared;
 pub mod error;
+pub mod layout;
 pub mod lexer;
 pub mod library;
 pub mod literal;

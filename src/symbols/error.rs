@@ -134,19 +134,7 @@ pub enum SymbolError {
     },
 }
 
-impl SymbolError {
-    pub fn span(&self) -> Span {
-        match self {
-            SymbolError::Unknown { at, .. }
-            | SymbolError::Duplicate { at, .. }
-            | SymbolError::BadOperand { at, .. }
-            | SymbolError::OutOfRange { at, .. }
-            | SymbolError::BadLine { at }
-            | SymbolError::BadName { at, .. }
-            | SymbolError::BadTableLine { at, .. }
-            | SymbolError::TypeMismatch { at, .. }
-            | SymbolError::WrongDialect { at, .. }
-            | SymbolError::WrongKind { at, .. } => *at,
-        }
-    }
-}
+crate::source::error_span!(SymbolError {}
+    Unknown, Duplicate, BadOperand, OutOfRange, BadLine, BadName, BadTableLine, TypeMismatch,
+    WrongDialect, WrongKind,
+);

@@ -440,20 +440,12 @@ fn check_range(symbol: &S7Symbol, profile: &'static Profile) -> Result<(), Strin
     };
     let last = match address.area {
         S7Area::Timer | S7Area::Counter => address.byte,
-        _ => address.byte + width_bytes(address.width) - 1,
+        _ => address.byte + address.width.bytes() - 1,
     };
     if last < count {
         Ok(())
     } else {
         Err(format!("{name} 0 to {}", count.saturating_sub(1)))
-    }
-}
-
-fn width_bytes(width: AccessWidth) -> u32 {
-    match width {
-        AccessWidth::Bit | AccessWidth::Byte => 1,
-        AccessWidth::Word => 2,
-        AccessWidth::Double => 4,
     }
 }
 

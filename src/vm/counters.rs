@@ -1,6 +1,6 @@
 //! Counters 0…999: count up and down on rising RLO edges, set to a BCD value, reset.
 
-use crate::parser::bcd;
+use crate::rules::bcd;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Counter {
@@ -63,7 +63,7 @@ impl Counter {
     }
 
     pub fn coded(&self) -> u32 {
-        bcd(u32::from(self.value))
+        bcd::encode(u32::from(self.value), 3)
     }
 }
 

@@ -83,9 +83,7 @@ pub fn convert(conversion: Conversion, accu1: &mut u32, status: &mut Status) {
 /// A BCD number of `digits` decimal digits with the sign in the nibble above them (all four
 /// bits 1 for negative, CPU 928B programming guide, table 3-21).
 fn from_bcd(bcd: u32, digits: u32) -> i32 {
-    let magnitude = (0..digits).rev().fold(0i32, |value, digit| {
-        value * 10 + ((bcd >> (4 * digit)) & 0xF) as i32
-    });
+    let magnitude = crate::rules::bcd::decode(bcd, digits) as i32;
     if (bcd >> (4 * digits)) & 0x8 != 0 {
         -magnitude
     } else {
@@ -99,11 +97,8 @@ fn to_bcd(value: i32, digits: u32) -> Option<u32> {
     if magnitude >= 10u32.pow(digits) {
         return None;
     }
-    let bcd = (0..digits).fold(0u32, |bcd, digit| {
-        bcd | (magnitude / 10u32.pow(digit) % 10) << (4 * digit)
-    });
     let sign = if value < 0 { 0xF << (4 * digits) } else { 0 };
-    Some(bcd | sign)
+    Some(crate::rules::bcd::encode(magnitude, digits) | sign)
 }
 
 #[cfg(test)]

@@ -31,9 +31,7 @@ const OUTPUT_NOMINAL: i32 = 1024;
 
 /// FB 240 `COD:B4`: four BCD decades and a sign bit (1: negative) to a fixed-point number.
 pub fn cod_b4(bcd: u16, negative: bool) -> i16 {
-    let value = (0..4).rev().fold(0i16, |value, decade| {
-        value * 10 + ((bcd >> (4 * decade)) & 0xF) as i16
-    });
+    let value = crate::rules::bcd::decode(u32::from(bcd), 4) as i16;
     if negative { -value } else { value }
 }
 
@@ -41,9 +39,7 @@ pub fn cod_b4(bcd: u16, negative: bool) -> i16 {
 /// the four lower decades in BCD.
 pub fn cod_16(value: i16) -> (bool, u8, u16) {
     let magnitude = i32::from(value).unsigned_abs();
-    let low = (0..4).fold(0u16, |bcd, decade| {
-        bcd | (((magnitude / 10u32.pow(decade)) % 10) as u16) << (4 * decade)
-    });
+    let low = crate::rules::bcd::encode(magnitude, 4) as u16;
     (value < 0, (magnitude / 10_000) as u8, low)
 }
 

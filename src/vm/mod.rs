@@ -4,7 +4,6 @@
 //! [`exec`] is the execution loop; [`cycle`] drives the modes and the cycle; [`interrupts`] is
 //! the engine that decides, at the interrupt points the loop reports, which OB runs.
 
-pub mod arith;
 pub mod block_stack;
 pub mod bound;
 pub mod bytes;
@@ -22,10 +21,11 @@ mod restart;
 mod run_loop;
 pub mod s7;
 pub mod start_info;
-pub mod status;
 pub mod stop;
 pub mod system_ops;
 pub mod timers;
+
+pub use crate::rules::{arith, status};
 
 use std::sync::Arc;
 
@@ -588,6 +588,12 @@ impl Cpu {
         }
     }
 
+    /// What a call passed for parameter `param`, from its parameter list `list`.
+    pub fn passed(&self, list: u16, param: u8) -> Option<Resolved> {
+        let actuals = self.program.param_lists.get(usize::from(list))?;
+        actuals.get(usize::from(param)).copied()
+    }
+
     /// Resolves an actual parameter of the running FB, following parameters passed on from the
     /// calling FBs.
     pub fn actual(&self, param: u8) -> Option<Resolved> {
@@ -595,12 +601,7 @@ impl Cpu {
         let mut frames = self.frames[self.level.level_base..].iter().rev();
         let mut index = param;
         loop {
-            let actual = *self
-                .program
-                .param_lists
-                .get(usize::from(list))?
-                .get(usize::from(index))?;
-            match actual {
+            match self.passed(list, index)? {
                 Resolved::Formal(outer) => {
                     list = frames.next()?.params;
                     index = outer;

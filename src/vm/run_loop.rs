@@ -12,6 +12,7 @@ use std::sync::Arc;
 
 use crate::compiler::bytecode::*;
 use crate::compiler::fuse;
+use crate::rules::jump::Condition;
 use crate::trace::Event;
 
 use super::arith;
@@ -496,11 +497,13 @@ impl Cpu {
                         let taken = match condition {
                             JumpCondition::Always => true,
                             JumpCondition::Rlo => status.rlo(),
-                            JumpCondition::Zero => !status.cc1() && !status.cc0(),
+                            // The conditions on CC1, CC0 and OV, one rule for both dialects.
+                            JumpCondition::Zero => Condition::Zero.holds(status, false),
+                            // `JN` jumps on CC1 ≠ CC0 only, unlike the condition `<>0`.
                             JumpCondition::NotZero => status.cc1() != status.cc0(),
-                            JumpCondition::Positive => status.cc1() && !status.cc0(),
-                            JumpCondition::Minus => !status.cc1() && status.cc0(),
-                            JumpCondition::Overflow => status.ov(),
+                            JumpCondition::Positive => Condition::Positive.holds(status, false),
+                            JumpCondition::Minus => Condition::Negative.holds(status, false),
+                            JumpCondition::Overflow => Condition::Overflow.holds(status, false),
                         };
                         if condition == JumpCondition::Rlo {
                             status.after_jump();

@@ -20,8 +20,7 @@ pub const START_DATE: &str = "2024-01-01 00:00:00.000 (a Monday)";
 /// [`START_DATE`] as days after 1990-01-01, the origin of STEP 7's dates.
 pub const START_DAY: u32 = 12_418;
 
-/// The length of the start information.
-pub const START_INFO_BYTES: u32 = 20;
+pub use crate::step7::layout::START_INFO_BYTES;
 
 /// The bytes before the DATE_AND_TIME.
 pub type Head = [u8; 12];

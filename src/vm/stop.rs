@@ -261,25 +261,10 @@ pub enum StopError {
     },
 }
 
-impl StopError {
-    pub fn span(&self) -> Span {
-        match self {
-            StopError::CycleTime { at, .. }
-            | StopError::Nesting { at, .. }
-            | StopError::LocalOverflow { at, .. }
-            | StopError::BlockNotLoaded { at, .. }
-            | StopError::DataAccess { at, .. }
-            | StopError::Operation { at, .. }
-            | StopError::StopOperation { at, .. }
-            | StopError::AssertionFailed { at, .. }
-            | StopError::WakeUp { at, .. }
-            | StopError::IntervalNotAboveDelay { at, .. }
-            | StopError::MissingOb85 { at, .. }
-            | StopError::TimeError { at, .. }
-            | StopError::StationEvent { at, .. } => *at,
-        }
-    }
-}
+crate::source::error_span!(StopError {}
+    CycleTime, Nesting, LocalOverflow, BlockNotLoaded, DataAccess, Operation, StopOperation,
+    AssertionFailed, WakeUp, IntervalNotAboveDelay, MissingOb85, TimeError, StationEvent,
+);
 
 /// A STOP as the VM records it: cause and details, where, and the block stack.
 #[derive(Debug, Clone, PartialEq)]

@@ -5,7 +5,7 @@
 //! off-delay (SF) starts on the falling edge and is reset by a rising one.
 
 use crate::compiler::bytecode::TimerKind;
-use crate::parser::bcd;
+use crate::rules::bcd;
 
 /// Nanoseconds of the time bases 0…3: 10 ms, 100 ms, 1 s, 10 s.
 pub const BASE_NS: [u64; 4] = [10_000_000, 100_000_000, 1_000_000_000, 10_000_000_000];
@@ -184,7 +184,7 @@ impl Timer {
     /// BCD value with the time base in bits 12–13 (`LC T n`).
     pub fn coded(&mut self, now: u64) -> u32 {
         self.settle(now);
-        bcd(u32::from(self.value(now))) | u32::from(self.base) << 12
+        bcd::encode(u32::from(self.value(now)), 3) | u32::from(self.base) << 12
     }
 }
 

@@ -8,7 +8,9 @@ use nom::sequence::preceded;
 
 use crate::ast::Name;
 use crate::source::Span;
-use crate::step7::ast::{CallParam, CallSpec, Cmp, S7BlockRef, S7Op, S7Operand, S7Statement};
+use crate::step7::ast::{
+    CallParam, CallSpec, Cmp, Combination, S7BlockRef, S7Op, S7Operand, S7Statement,
+};
 use crate::step7::error::S7ParseError;
 use crate::step7::lexer::{Token, TokenKind};
 use crate::step7::mnemonics;
@@ -245,18 +247,15 @@ fn suggest_operation(ctx: Ctx<'_>, upper: &str, next: Option<Token>) -> Option<S
             ctx.text(next)
         ));
     }
-    let best = mnemonics::operation_words(ctx.set)
-        .filter(|candidate| candidate.chars().next() == upper.chars().next())
-        .map(|candidate| (strsim::damerau_levenshtein(upper, candidate), candidate))
-        .filter(|(distance, candidate)| *distance <= 1 + usize::from(candidate.len() > 3))
-        .min_by_key(|(distance, _)| *distance);
-    Some(match best {
-        Some((_, candidate)) => format!("did you mean `{candidate}`?"),
-        None => format!(
-            "`awl help mnemonics` lists the operations of the {} set (STEP 7)",
-            ctx.set.name()
-        ),
-    })
+    Some(
+        match crate::syntax::close_spelling(upper, mnemonics::operation_words(ctx.set)) {
+            Some(candidate) => format!("did you mean `{candidate}`?"),
+            None => format!(
+                "`awl help mnemonics` lists the operations of the {} set (STEP 7)",
+                ctx.set.name()
+            ),
+        },
+    )
 }
 
 /// `L STW`, `T STW` are operations of their own; `OPN DI 2` opens the instance DB.
@@ -342,11 +341,13 @@ fn needs_operand(op: S7Op) -> bool {
     use S7Op::*;
     matches!(
         op,
-        And | AndNot
-            | Xor
-            | XorNot
-            | OrNot
-            | Assign
+        Logic(
+            Combination::And
+                | Combination::AndNot
+                | Combination::Xor
+                | Combination::XorNot
+                | Combination::OrNot
+        ) | Assign
             | Set
             | Reset
             | EdgePositive
@@ -379,7 +380,7 @@ fn needs_operand(op: S7Op) -> bool {
 fn operand_example(op: S7Op) -> Option<&'static str> {
     use S7Op::*;
     Some(match op {
-        And | AndNot | Or | OrNot | Xor | XorNot | Assign | Set | Reset => "I 0.0",
+        Logic(_) | Assign | Set | Reset => "I 0.0",
         EdgePositive | EdgeNegative => "M 10.0",
         Load | Transfer => "MW 10",
         LoadCoded => "T 1",

@@ -3,8 +3,8 @@
 
 use super::*;
 use crate::step7::ast::{
-    AccessWidth, CallSpec, Cmp, Condition, ConstKind, Extension, PathPart, S7Address, S7Area, S7Op,
-    S7Operand, VarKind,
+    AccessWidth, CallSpec, Cmp, Combination, Condition, ConstKind, Extension, PathPart, S7Address,
+    S7Area, S7Op, S7Operand, VarKind,
 };
 
 fn parse_with(text: &str, options: ParseOptions) -> Parsed {
@@ -302,9 +302,9 @@ END_FUNCTION
     assert_eq!(
         ops,
         [
-            AndBracket,
-            Or,
-            Or,
+            Bracket(Combination::And),
+            Logic(Combination::Or),
+            Logic(Combination::Or),
             CloseBracket,
             JumpIfRlo,
             LoadStatusWord,
@@ -317,8 +317,8 @@ END_FUNCTION
             AddConstant,
             AddAr1,
             CmpInt(Cmp::Eq),
-            And,
-            Or,
+            Logic(Combination::And),
+            Logic(Combination::Or),
             McrOpen,
             McrClose,
             JumpList,
@@ -415,7 +415,7 @@ fn german_files_are_detected() {
     );
     assert_eq!(unit.mnemonics, MnemonicSet::German);
     let body = statements(&unit.blocks[0]);
-    assert_eq!(body[0].op, S7Op::And);
+    assert_eq!(body[0].op, S7Op::Logic(Combination::And));
     assert!(matches!(
         body[0].operand,
         S7Operand::Address(S7Address {
@@ -578,7 +578,7 @@ fn every_bad_line_is_reported_and_the_rest_still_parses() {
     let body = statements(&parsed.unit.blocks[0]);
     assert_eq!(
         body.iter().map(|s| s.op).collect::<Vec<_>>(),
-        [S7Op::And, S7Op::Assign]
+        [S7Op::Logic(Combination::And), S7Op::Assign]
     );
     let help = miette::Diagnostic::help(&parsed.errors[0])
         .unwrap()

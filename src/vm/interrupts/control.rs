@@ -16,21 +16,15 @@
 //! An error sets the binary result BR to 0, no error to 1 (the same manual, "Evaluating Errors
 //! with Output Parameter RET_VAL").
 
-use crate::step7::ast::AccessWidth;
 use crate::trace::Event;
 use crate::vm::Cpu;
 use crate::vm::s7::memory::Fault;
 
 use super::Request;
 
-/// SFC 39 DIS_IRT.
-pub const DIS_IRT: u16 = 39;
-/// SFC 40 EN_IRT.
-pub const EN_IRT: u16 = 40;
-/// SFC 41 DIS_AIRT.
-pub const DIS_AIRT: u16 = 41;
-/// SFC 42 EN_AIRT.
-pub const EN_AIRT: u16 = 42;
+pub use crate::compiler::step7::interrupt_sfcs::{
+    DIS_AIRT, DIS_IRT, EN_AIRT, EN_IRT, name, parameters,
+};
 
 /// RET_VAL: OB_NR names no interrupt or asynchronous error OB (no class in MODE 1).
 pub const OB_NR_INVALID: u16 = 0x8090;
@@ -45,30 +39,6 @@ pub const NOT_DELAYED: u16 = 0x8080;
 /// SFC 39 does not disable synchronous errors.
 const FIRST: u8 = 10;
 const LAST: u8 = 88;
-
-/// The parameters of one call, in the order the compiler lays them out: MODE, OB_NR, RET_VAL
-/// for SFC 39 and SFC 40, RET_VAL alone for SFC 41 and SFC 42.
-pub fn parameters(number: u16) -> &'static [(&'static str, AccessWidth)] {
-    match number {
-        DIS_IRT | EN_IRT => &[
-            ("MODE", AccessWidth::Byte),
-            ("OB_NR", AccessWidth::Word),
-            ("RET_VAL", AccessWidth::Word),
-        ],
-        DIS_AIRT | EN_AIRT => &[("RET_VAL", AccessWidth::Word)],
-        _ => &[],
-    }
-}
-
-/// The SFC's name, as STEP 7's library names it.
-pub fn name(number: u16) -> &'static str {
-    match number {
-        DIS_IRT => "DIS_IRT",
-        EN_IRT => "EN_IRT",
-        DIS_AIRT => "DIS_AIRT",
-        _ => "EN_AIRT",
-    }
-}
 
 /// The OBs SFC 39 has disabled, one bit per OB number.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

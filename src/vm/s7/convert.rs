@@ -12,6 +12,7 @@
 //!   ACCU 1.
 //! - `ITD BTI BTD DTR CAW CAD` and the successful roundings change no status bit.
 
+use crate::rules::bcd;
 use crate::vm::status::Status;
 
 /// A BCD digit from 10 to 15 in ACCU 1.
@@ -77,13 +78,6 @@ pub fn bcd_to_dint(accu1: &mut u32) -> Result<(), InvalidBcd> {
     Ok(())
 }
 
-/// `magnitude` as `digits` BCD digits.
-fn to_bcd(magnitude: u32, digits: u32) -> u32 {
-    (0..digits).fold(0, |bcd, digit| {
-        bcd | (magnitude / 10u32.pow(digit) % 10) << (4 * digit)
-    })
-}
-
 /// `ITB`: INT in ACCU 1-L to 3-digit BCD (sign nibble 16#F for negative); ACCU 1-H stays.
 #[inline]
 pub fn int_to_bcd(accu1: &mut u32, status: &mut Status) {
@@ -93,7 +87,7 @@ pub fn int_to_bcd(accu1: &mut u32, status: &mut Status) {
         return status.set_overflow(true);
     }
     let sign = if value < 0 { 0xF000 } else { 0 };
-    *accu1 = *accu1 & 0xFFFF_0000 | sign | to_bcd(magnitude, 3);
+    *accu1 = *accu1 & 0xFFFF_0000 | sign | bcd::encode(magnitude, 3);
     status.set_ov(false);
 }
 
@@ -106,7 +100,7 @@ pub fn dint_to_bcd(accu1: &mut u32, status: &mut Status) {
         return status.set_overflow(true);
     }
     let sign = if value < 0 { 0xF000_0000 } else { 0 };
-    *accu1 = sign | to_bcd(magnitude, 7);
+    *accu1 = sign | bcd::encode(magnitude, 7);
     status.set_ov(false);
 }
 

@@ -1,7 +1,7 @@
 //! Runs the STEP 7 operations the loop does not run inline.
 
 use crate::compiler::bytecode::{Op, TimerKind};
-use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension, S7Op};
+use crate::step7::ast::{AccessWidth, Cmp, DbRegister, Extension};
 use crate::step7::bytecode::{
     AWLSIM_SFC_CLOCK_RESET, AWLSIM_SFC_NOP, AWLSIM_SFC_REBOOT, AWLSIM_SFC_SHUTDOWN, BLKMOV, FILL,
     McrCode, MemOp, READ_CLK, S7Code, SET_CLK, TIME_TCK, Target, WAIT,
@@ -549,13 +549,7 @@ impl Cpu {
     /// pointer to where the actual is (area V for the caller's local data).
     fn param_pointer(&mut self, param: u8) -> Result<u32, Fault> {
         let context = self.running_context();
-        let actual = self
-            .program
-            .param_lists
-            .get(usize::from(context.params))
-            .and_then(|list| list.get(usize::from(param)))
-            .copied();
-        let Some(crate::compiler::Resolved::S7(index)) = actual else {
+        let Some(crate::compiler::Resolved::S7(index)) = self.passed(context.params, param) else {
             return Err(fault(format!(
                 "parameter {} has no actual to point to",
                 param + 1
@@ -728,19 +722,4 @@ fn bytes_at(slot: u16, base: u32, byte: u32) -> Located {
         byte: ((base >> 3) + byte) as usize,
         bit: 0,
     }
-}
-
-/// Whether an op is one of the S7 operations `S7Op` lists as a shift or rotate.
-pub fn is_shift(op: S7Op) -> bool {
-    matches!(
-        op,
-        S7Op::ShiftSignedInt
-            | S7Op::ShiftSignedDint
-            | S7Op::ShiftLeftWord
-            | S7Op::ShiftRightWord
-            | S7Op::ShiftLeftDouble
-            | S7Op::ShiftRightDouble
-            | S7Op::RotateLeftDouble
-            | S7Op::RotateRightDouble
-    )
 }

@@ -4,8 +4,8 @@
 //! byte and bit; the reads and writes then check it against the memory it is in.
 
 use crate::compiler::Resolved;
-use crate::step7::ast::AccessWidth;
-use crate::step7::bytecode::{IndirectArea, Place, Target};
+use crate::step7::ast::{AccessWidth, S7Area};
+use crate::step7::bytecode::{Place, Target};
 use crate::vm::Cpu;
 use crate::vm::stop::{StopCause, StopDetail};
 
@@ -87,31 +87,83 @@ pub struct Context {
     pub frames: usize,
 }
 
-/// Area-pointer area codes (bits 24–26 of a pointer).
-pub fn area_code(area: IndirectArea) -> u32 {
-    match area {
-        IndirectArea::PeripheralInput | IndirectArea::PeripheralOutput => 0,
-        IndirectArea::Input => 1,
-        IndirectArea::Output => 2,
-        IndirectArea::Flag => 3,
-        IndirectArea::Data => 4,
-        IndirectArea::Instance => 5,
-        IndirectArea::Local => 6,
-        IndirectArea::PreviousLocal => 7,
-        IndirectArea::Timer | IndirectArea::Counter => 0,
+impl Context {
+    /// Where `target` lies when the context alone tells: the image, local, data and instance
+    /// areas, timers, counters and constants. `None` for a place the CPU must look further
+    /// for (a parameter, a pointer, the peripherals) and for V in a block without caller.
+    #[inline]
+    pub fn locate(&self, target: Target) -> Option<Located> {
+        Some(match target {
+            Target::Image { byte, bit } => Located::Image {
+                byte: usize::from(byte),
+                bit,
+            },
+            Target::Local { byte, bit } => Located::Local {
+                byte: (self.local_base + byte) as usize,
+                bit,
+            },
+            Target::PreviousLocal { byte, bit } => Located::Local {
+                byte: (self.previous_local? + byte) as usize,
+                bit,
+            },
+            Target::Data {
+                instance,
+                byte,
+                bit,
+            } => Located::Data {
+                slot: if instance { self.di } else { self.db },
+                byte: byte as usize,
+                bit,
+            },
+            Target::Instance { byte, bit } => {
+                // Area-internal: AR2's area bits do not count, its byte.bit offset does.
+                let at = (self.ar2 & 0x0007_FFFF) + (byte << 3 | u32::from(bit));
+                Located::Data {
+                    slot: self.di,
+                    byte: (at >> 3) as usize,
+                    bit: (at & 7) as u8,
+                }
+            }
+            Target::NumberedData {
+                slot, byte, bit, ..
+            } => Located::Data {
+                slot,
+                byte: byte as usize,
+                bit,
+            },
+            Target::Timer(n) => Located::Timer(n),
+            Target::Counter(n) => Located::Counter(n),
+            Target::Constant(value) => Located::Constant(value),
+            _ => return None,
+        })
     }
 }
 
-pub(super) fn area_of_code(code: u32) -> Option<IndirectArea> {
+/// Area-pointer area codes (bits 24–26 of a pointer).
+pub fn area_code(area: S7Area) -> u32 {
+    match area {
+        S7Area::PeripheralInput | S7Area::PeripheralOutput => 0,
+        S7Area::Input => 1,
+        S7Area::Output => 2,
+        S7Area::Flag => 3,
+        S7Area::Data => 4,
+        S7Area::Instance => 5,
+        S7Area::Local => 6,
+        S7Area::PreviousLocal => 7,
+        S7Area::Timer | S7Area::Counter => 0,
+    }
+}
+
+pub(super) fn area_of_code(code: u32) -> Option<S7Area> {
     Some(match code {
-        0 => IndirectArea::PeripheralInput,
-        1 => IndirectArea::Input,
-        2 => IndirectArea::Output,
-        3 => IndirectArea::Flag,
-        4 => IndirectArea::Data,
-        5 => IndirectArea::Instance,
-        6 => IndirectArea::Local,
-        7 => IndirectArea::PreviousLocal,
+        0 => S7Area::PeripheralInput,
+        1 => S7Area::Input,
+        2 => S7Area::Output,
+        3 => S7Area::Flag,
+        4 => S7Area::Data,
+        5 => S7Area::Instance,
+        6 => S7Area::Local,
+        7 => S7Area::PreviousLocal,
         _ => return None,
     })
 }
@@ -204,56 +256,20 @@ impl Cpu {
 
     /// Where `place` is, resolved in `context`.
     pub fn locate(&mut self, place: Place, context: Context) -> Result<Located, Fault> {
+        if let Some(located) = context.locate(place.target) {
+            if let Target::NumberedData { slot, .. } = place.target
+                && context.frames == self.frames.len()
+            {
+                self.level.db = slot;
+            }
+            return Ok(located);
+        }
         Ok(match place.target {
-            Target::Image { byte, bit } => Located::Image {
-                byte: usize::from(byte),
-                bit,
-            },
             Target::Peripheral { output, byte } => Located::Peripheral { output, byte },
-            Target::Local { byte, bit } => Located::Local {
-                byte: (context.local_base + byte) as usize,
-                bit,
-            },
-            Target::PreviousLocal { byte, bit } => {
-                let Some(base) = context.previous_local else {
-                    return Err(fault(
-                        "V (the caller's local data) in a block without caller".into(),
-                    ));
-                };
-                Located::Local {
-                    byte: (base + byte) as usize,
-                    bit,
-                }
-            }
-            Target::Data {
-                instance,
-                byte,
-                bit,
-            } => Located::Data {
-                slot: if instance { context.di } else { context.db },
-                byte: byte as usize,
-                bit,
-            },
-            Target::Instance { byte, bit } => {
-                // Area-internal: AR2's area bits do not count, its byte.bit offset does.
-                let at = (context.ar2 & 0x0007_FFFF) + (byte << 3 | u32::from(bit));
-                Located::Data {
-                    slot: context.di,
-                    byte: (at >> 3) as usize,
-                    bit: (at & 7) as u8,
-                }
-            }
-            Target::NumberedData {
-                slot, byte, bit, ..
-            } => {
-                if context.frames == self.frames.len() {
-                    self.level.db = slot;
-                }
-                Located::Data {
-                    slot,
-                    byte: byte as usize,
-                    bit,
-                }
+            Target::PreviousLocal { .. } => {
+                return Err(fault(
+                    "V (the caller's local data) in a block without caller".into(),
+                ));
             }
             Target::Parameter { param, byte, bit } => {
                 self.locate_parameter(param, byte, bit, context)?
@@ -284,9 +300,6 @@ impl Cpu {
                 };
                 self.locate_pointer(area, sum, context)?
             }
-            Target::Timer(n) => Located::Timer(n),
-            Target::Counter(n) => Located::Counter(n),
-            Target::Constant(value) => Located::Constant(value),
             Target::TimerFrom { place: number } | Target::CounterFrom { place: number } => {
                 let number_place = self.program.s7.places[usize::from(number)];
                 let located = self.locate(number_place, context)?;
@@ -299,9 +312,8 @@ impl Cpu {
                     _ => Located::Counter(number),
                 }
             }
-            Target::Extension(_) | Target::DbRegister(_) | Target::Condition(_) => {
-                Located::Special(place.target)
-            }
+            // The test operands and registers; the others were located above.
+            _ => Located::Special(place.target),
         })
     }
 
@@ -313,13 +325,7 @@ impl Cpu {
         bit: u8,
         context: Context,
     ) -> Result<Located, Fault> {
-        let actual = self
-            .program
-            .param_lists
-            .get(usize::from(context.params))
-            .and_then(|list| list.get(usize::from(param)))
-            .copied();
-        let Some(actual) = actual else {
+        let Some(actual) = self.passed(context.params, param) else {
             return Err(fault(format!("parameter {} has no actual", param + 1)));
         };
         match actual {
@@ -339,7 +345,7 @@ impl Cpu {
     /// The address a pointer value (byte << 3 | bit) gives in `area`.
     pub(super) fn locate_pointer(
         &mut self,
-        area: IndirectArea,
+        area: S7Area,
         pointer: u32,
         context: Context,
     ) -> Result<Located, Fault> {
@@ -358,14 +364,14 @@ impl Cpu {
             })
         };
         match area {
-            IndirectArea::Input => image(layout.input_base(), layout.image_bytes),
-            IndirectArea::Output => image(layout.output_base(), layout.image_bytes),
-            IndirectArea::Flag => image(layout.flag_base(), layout.flag_bytes),
-            IndirectArea::Local => Ok(Located::Local {
+            S7Area::Input => image(layout.input_base(), layout.image_bytes),
+            S7Area::Output => image(layout.output_base(), layout.image_bytes),
+            S7Area::Flag => image(layout.flag_base(), layout.flag_bytes),
+            S7Area::Local => Ok(Located::Local {
                 byte: context.local_base as usize + byte,
                 bit,
             }),
-            IndirectArea::PreviousLocal => match context.previous_local {
+            S7Area::PreviousLocal => match context.previous_local {
                 Some(base) => Ok(Located::Local {
                     byte: base as usize + byte,
                     bit,
@@ -374,26 +380,26 @@ impl Cpu {
                     "V (the caller's local data) in a block without caller".into(),
                 )),
             },
-            IndirectArea::Data => Ok(Located::Data {
+            S7Area::Data => Ok(Located::Data {
                 slot: context.db,
                 byte,
                 bit,
             }),
-            IndirectArea::Instance => Ok(Located::Data {
+            S7Area::Instance => Ok(Located::Data {
                 slot: context.di,
                 byte,
                 bit,
             }),
-            IndirectArea::PeripheralInput => Ok(Located::Peripheral {
+            S7Area::PeripheralInput => Ok(Located::Peripheral {
                 output: false,
                 byte: byte as u16,
             }),
-            IndirectArea::PeripheralOutput => Ok(Located::Peripheral {
+            S7Area::PeripheralOutput => Ok(Located::Peripheral {
                 output: true,
                 byte: byte as u16,
             }),
-            IndirectArea::Timer => Ok(Located::Timer(pointer as u16)),
-            IndirectArea::Counter => Ok(Located::Counter(pointer as u16)),
+            S7Area::Timer => Ok(Located::Timer(pointer as u16)),
+            S7Area::Counter => Ok(Located::Counter(pointer as u16)),
         }
     }
 
@@ -433,7 +439,7 @@ impl Cpu {
 
     /// A peripheral access (an indirect one is known only now) within the CPU's modules.
     fn peripheral_in_range(&self, byte: u16, width: AccessWidth) -> Result<(), Fault> {
-        let end = usize::from(byte) + byte_count(width);
+        let end = usize::from(byte) + width.bytes() as usize;
         if end > self.inputs.len() {
             return Err(fault(format!(
                 "peripheral byte {byte} is past the CPU's {} peripheral bytes",
@@ -465,7 +471,7 @@ impl Cpu {
             Located::Counter(n) => Ok(u32::from(n)),
             Located::Special(_) => Err(fault("not readable".into())),
             memory => {
-                let count = byte_count(width);
+                let count = width.bytes() as usize;
                 let bytes = self.bytes_of(memory, count)?;
                 Ok(bytes
                     .iter()
@@ -495,7 +501,7 @@ impl Cpu {
                 Err(fault("not writable".into()))
             }
             memory => {
-                let count = byte_count(width);
+                let count = width.bytes() as usize;
                 let bytes = self.bytes_of(memory, count)?;
                 let all = value.to_be_bytes();
                 bytes.copy_from_slice(&all[4 - count..]);
@@ -554,14 +560,6 @@ fn bit_of(located: Located) -> u8 {
     match located {
         Located::Image { bit, .. } | Located::Local { bit, .. } | Located::Data { bit, .. } => bit,
         _ => 0,
-    }
-}
-
-fn byte_count(width: AccessWidth) -> usize {
-    match width {
-        AccessWidth::Bit | AccessWidth::Byte => 1,
-        AccessWidth::Word => 2,
-        AccessWidth::Double => 4,
     }
 }
 

@@ -38,14 +38,14 @@ mod complex;
 pub mod convert;
 pub mod exec;
 pub mod integer;
-pub mod jump;
 mod library;
 pub mod mcr;
 pub mod memory;
-pub mod real;
 pub mod shift;
 mod system_blocks;
 pub mod word_logic;
+
+pub use crate::rules::{jump, real};
 
 use crate::compiler::Program;
 use crate::vm::Cpu;

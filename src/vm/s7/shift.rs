@@ -131,129 +131,73 @@ mod tests {
         )
     }
 
+    /// Each case: the shift, its count, ACCU 1 before, ACCU 1 after, CC1 CC0 OV OS after.
     #[test]
-    fn count_zero_changes_nothing() {
-        for op in [
-            SignedInt,
-            SignedDint,
-            LeftWord,
-            RightWord,
-            LeftDouble,
-            RightDouble,
-            RotateLeft,
-            RotateRight,
-        ] {
+    fn shifts_and_rotations() {
+        let cases: &[(Shift, u8, u32, u32, [u8; 4])] = &[
+            // Signed shifts fill with the sign.
+            (SignedInt, 3, 0xFFFF_0008, 0xFFFF_0001, [0, 0, 0, 1]),
+            (SignedInt, 3, 0x0000_0004, 0x0000_0000, [1, 0, 0, 1]),
+            (SignedInt, 3, 0x1234_8000, 0x1234_F000, [0, 0, 0, 1]),
+            (SignedInt, 16, 0x0000_8000, 0x0000_FFFF, [1, 0, 0, 1]),
+            (SignedInt, 200, 0x0000_7FFF, 0, [0, 0, 0, 1]),
+            (SignedDint, 3, 0x8000_0004, 0xF000_0000, [1, 0, 0, 1]),
+            (SignedDint, 32, 0x8000_0000, 0xFFFF_FFFF, [1, 0, 0, 1]),
+            (SignedDint, 255, 0x7FFF_FFFF, 0, [0, 0, 0, 1]),
+            // Word shifts keep ACCU 1-H.
+            (LeftWord, 3, 0xABCD_3001, 0xABCD_8008, [1, 0, 0, 1]),
+            (LeftWord, 3, 0xABCD_1001, 0xABCD_8008, [0, 0, 0, 1]),
+            (LeftWord, 16, 0x0000_0001, 0, [1, 0, 0, 1]),
+            (LeftWord, 17, 0x0000_FFFF, 0, [0, 0, 0, 1]),
+            (RightWord, 3, 0xABCD_800C, 0xABCD_1001, [1, 0, 0, 1]),
+            (RightWord, 16, 0x0000_8000, 0, [1, 0, 0, 1]),
+            (RightWord, 255, 0xFFFF_FFFF, 0xFFFF_0000, [0, 0, 0, 1]),
+            // Double-word shifts.
+            (LeftDouble, 3, 0x3000_0001, 0x8000_0008, [1, 0, 0, 1]),
+            (LeftDouble, 32, 0x0000_0001, 0, [1, 0, 0, 1]),
+            (LeftDouble, 40, 0xFFFF_FFFF, 0, [0, 0, 0, 1]),
+            (RightDouble, 3, 0x8000_000C, 0x1000_0001, [1, 0, 0, 1]),
+            (RightDouble, 32, 0x8000_0000, 0, [1, 0, 0, 1]),
+            (RightDouble, 33, 0xFFFF_FFFF, 0, [0, 0, 0, 1]),
+            // Rotations.
+            (RotateLeft, 3, 0x3888_30F0, 0xC441_8781, [1, 0, 0, 1]),
+            (RotateLeft, 3, 0x1888_10F0, 0xC440_8780, [0, 0, 0, 1]),
+            (RotateLeft, 32, 0x0000_0001, 0x0000_0001, [1, 0, 0, 1]),
+            (RotateLeft, 33, 0x8000_0001, 0x0000_0003, [1, 0, 0, 1]),
+            (RotateLeft, 64, 0x0000_0001, 0x0000_0001, [1, 0, 0, 1]),
+            (RotateRight, 35, 0x0000_000C, 0x8000_0001, [1, 0, 0, 1]),
+            (RotateRight, 3, 0x3888_30FC, 0x8711_061F, [1, 0, 0, 1]),
+            (RotateRight, 3, 0x1888_10F8, 0x0311_021F, [0, 0, 0, 1]),
+            (RotateRight, 32, 0x8000_0000, 0x8000_0000, [1, 0, 0, 1]),
+        ];
+        for &(op, count, before, after, status) in cases {
+            let case = format!("{op:?} {count} of {before:#010X}");
+            assert_eq!(run(op, count, before), (after, status), "{case}");
+            let unchanged = (0x8421_8421, [0, 1, 1, 1]);
             assert_eq!(
                 run(op, 0, 0x8421_8421),
-                (0x8421_8421, [0, 1, 1, 1]),
-                "{op:?}"
+                unchanged,
+                "a count of 0 changes nothing"
             );
         }
     }
 
     #[test]
-    fn signed_shifts_fill_with_the_sign() {
-        assert_eq!(run(SignedInt, 3, 0xFFFF_0008), (0xFFFF_0001, [0, 0, 0, 1]));
-        assert_eq!(run(SignedInt, 3, 0x0000_0004), (0x0000_0000, [1, 0, 0, 1]));
-        assert_eq!(run(SignedInt, 3, 0x1234_8000), (0x1234_F000, [0, 0, 0, 1]));
-        assert_eq!(run(SignedInt, 16, 0x0000_8000), (0x0000_FFFF, [1, 0, 0, 1]));
-        assert_eq!(run(SignedInt, 200, 0x0000_7FFF), (0, [0, 0, 0, 1]));
-        assert_eq!(run(SignedDint, 3, 0x8000_0004), (0xF000_0000, [1, 0, 0, 1]));
-        assert_eq!(
-            run(SignedDint, 32, 0x8000_0000),
-            (0xFFFF_FFFF, [1, 0, 0, 1])
-        );
-        assert_eq!(run(SignedDint, 255, 0x7FFF_FFFF), (0, [0, 0, 0, 1]));
-    }
-
-    #[test]
-    fn word_shifts_keep_accu_1_high() {
-        assert_eq!(run(LeftWord, 3, 0xABCD_3001), (0xABCD_8008, [1, 0, 0, 1]));
-        assert_eq!(run(LeftWord, 3, 0xABCD_1001), (0xABCD_8008, [0, 0, 0, 1]));
-        assert_eq!(run(LeftWord, 16, 0x0000_0001), (0, [1, 0, 0, 1]));
-        assert_eq!(
-            run(LeftWord, 17, 0x0000_FFFF),
-            (0, [0, 0, 0, 1]),
-            "beyond the width"
-        );
-        assert_eq!(run(RightWord, 3, 0xABCD_800C), (0xABCD_1001, [1, 0, 0, 1]));
-        assert_eq!(run(RightWord, 16, 0x0000_8000), (0, [1, 0, 0, 1]));
-        assert_eq!(
-            run(RightWord, 255, 0xFFFF_FFFF),
-            (0xFFFF_0000, [0, 0, 0, 1])
-        );
-    }
-
-    #[test]
-    fn double_shifts() {
-        assert_eq!(run(LeftDouble, 3, 0x3000_0001), (0x8000_0008, [1, 0, 0, 1]));
-        assert_eq!(run(LeftDouble, 32, 0x0000_0001), (0, [1, 0, 0, 1]));
-        assert_eq!(run(LeftDouble, 40, 0xFFFF_FFFF), (0, [0, 0, 0, 1]));
-        assert_eq!(
-            run(RightDouble, 3, 0x8000_000C),
-            (0x1000_0001, [1, 0, 0, 1])
-        );
-        assert_eq!(run(RightDouble, 32, 0x8000_0000), (0, [1, 0, 0, 1]));
-        assert_eq!(run(RightDouble, 33, 0xFFFF_FFFF), (0, [0, 0, 0, 1]));
-    }
-
-    #[test]
-    fn rotates() {
-        assert_eq!(run(RotateLeft, 3, 0x3888_30F0), (0xC441_8781, [1, 0, 0, 1]));
-        assert_eq!(run(RotateLeft, 3, 0x1888_10F0), (0xC440_8780, [0, 0, 0, 1]));
-        assert_eq!(
-            run(RotateLeft, 32, 0x0000_0001),
-            (0x0000_0001, [1, 0, 0, 1])
-        );
-        assert_eq!(
-            run(RotateLeft, 33, 0x8000_0001),
-            (0x0000_0003, [1, 0, 0, 1])
-        );
-        assert_eq!(
-            run(RotateLeft, 64, 0x0000_0001),
-            (0x0000_0001, [1, 0, 0, 1])
-        );
-        assert_eq!(
-            run(RotateRight, 35, 0x0000_000C),
-            (0x8000_0001, [1, 0, 0, 1])
-        );
-        assert_eq!(
-            run(RotateRight, 3, 0x3888_30FC),
-            (0x8711_061F, [1, 0, 0, 1])
-        );
-        assert_eq!(
-            run(RotateRight, 3, 0x1888_10F8),
-            (0x0311_021F, [0, 0, 0, 1])
-        );
-        assert_eq!(
-            run(RotateRight, 32, 0x8000_0000),
-            (0x8000_0000, [1, 0, 0, 1])
-        );
-    }
-
-    #[test]
     fn rotates_through_cc1() {
         let mut status = Status::default();
-        let mut accu = 0x8000_0000;
-        rotate_left_via_cc1(&mut accu, &mut status);
-        assert_eq!((accu, status.cc1()), (0, true));
-        accu = 0x7FFF_FFF0;
-        rotate_left_via_cc1(&mut accu, &mut status);
-        assert_eq!(
-            (accu, status.cc1()),
-            (0xFFFF_FFE1, false),
-            "CC1 came in at bit 0"
-        );
-        accu = 0x0000_0001;
-        rotate_right_via_cc1(&mut accu, &mut status);
-        assert_eq!((accu, status.cc1()), (0, true));
-        accu = 0x0000_0002;
-        rotate_right_via_cc1(&mut accu, &mut status);
-        assert_eq!(
-            (accu, status.cc1()),
-            (0x8000_0001, false),
-            "CC1 came in at bit 31"
-        );
+        // Each step: the rotation, ACCU 1 before, ACCU 1 and CC1 after; CC1 goes round with it.
+        type Rotation = fn(&mut u32, &mut Status);
+        let steps: [(Rotation, u32, u32, bool); 4] = [
+            (rotate_left_via_cc1, 0x8000_0000, 0, true),
+            (rotate_left_via_cc1, 0x7FFF_FFF0, 0xFFFF_FFE1, false),
+            (rotate_right_via_cc1, 0x0000_0001, 0, true),
+            (rotate_right_via_cc1, 0x0000_0002, 0x8000_0001, false),
+        ];
+        for (rotate, before, after, cc1) in steps {
+            let mut accu = before;
+            rotate(&mut accu, &mut status);
+            assert_eq!((accu, status.cc1()), (after, cc1), "{before:#010X}");
+        }
         assert!(!status.cc0() && !status.ov());
     }
 

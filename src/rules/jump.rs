@@ -11,10 +11,10 @@
 //!   `<>0` is CC1 or CC0, so it also holds after an unordered result, while `JN` jumps on
 //!   CC1 ≠ CC0 only.
 //!
-//! BR is not in [`Status`] (see [`crate::vm::status`]): the functions that read or write it
+//! BR is not in [`Status`] (see [`crate::rules::status`]): the functions that read or write it
 //! take it beside the status.
 
-use crate::vm::status::Status;
+use crate::rules::status::Status;
 
 /// A condition of the status word, as a bit operand (`A ==0`) and as a jump condition: the
 /// results of the last arithmetic or comparison (CC 1 and CC 0), overflow, stored overflow,

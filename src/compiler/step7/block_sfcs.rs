@@ -37,27 +37,8 @@ impl super::Compiler<'_> {
     ) -> Option<u16> {
         let names = parameters(number);
         let fb = call_name(number);
-        let mut ok = true;
-        for (index, param) in call.params.iter().enumerate() {
-            let name = param.name.text.to_ascii_uppercase();
-            let known = names.contains(&name.as_str());
-            let first = !call.params[..index]
-                .iter()
-                .any(|other| other.name.text.eq_ignore_ascii_case(&name));
-            if !known || !first {
-                self.errors.push(CheckError::UnknownParam {
-                    name: param.name.text.clone(),
-                    fb: fb.clone(),
-                    at: param.name.span,
-                    help: Some(if known {
-                        format!("`{name}` is given twice")
-                    } else {
-                        format!("{fb} has {}", names.join(", "))
-                    }),
-                });
-                ok = false;
-            }
-        }
+        let mut ok =
+            super::interrupt_sfcs::known_and_once(&fb, &call.params, &names, &mut self.errors);
         let mut params = Vec::new();
         let mut anys = Vec::new();
         let mut missing = Vec::new();
@@ -109,16 +90,8 @@ impl super::Compiler<'_> {
             }
         }
         if !missing.is_empty() {
-            self.errors.push(CheckError::ParamCount {
-                fb,
-                expected: names.len(),
-                found: names.len() - missing.len(),
-                at,
-                help: Some(format!(
-                    "an SFC needs every parameter; missing: {}",
-                    missing.join(", ")
-                )),
-            });
+            let error = super::interrupt_sfcs::missing_some(fb, names.len(), &missing, at);
+            self.errors.push(error);
             ok = false;
         }
         if !ok {

@@ -123,7 +123,7 @@ pub fn interface(number: u16, types: &Types) -> Option<Interface> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::step7::compile::layout::Home;
+    use crate::step7::layout::Home;
 
     /// The instance data as the VM reads them (src/vm/s7/system_blocks.rs): each variable's
     /// byte.bit, and the DB's length, which awlsim's tests check with `L DBLG`.

@@ -230,7 +230,7 @@ static SCANNED: [[u8; 512]; 4] = {
 
 /// How a scanned bit, or a closed bracket's result, combines with the RLO. STEP 5 uses the
 /// first four (its table is [`Logic`]'s), STEP 7 all six.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 #[repr(u8)]
 pub enum Combination {
     #[default]

@@ -7,6 +7,10 @@ use std::collections::HashMap;
 
 use crate::step7::ast::{AccessWidth, DataType, PathPart, S7BlockKind, VarDecl, VarKind};
 
+/// The length of an OB's start information, the first bytes of its local data (see
+/// [`crate::vm::start_info`]).
+pub const START_INFO_BYTES: u32 = 20;
+
 /// The types a layout looks up by number: the UDTs, and the FBs and SFBs a multi-instance
 /// (`motor : FB 2;`) embeds.
 #[derive(Debug, Clone, Default)]
@@ -58,21 +62,6 @@ impl BitOffset {
 pub fn size_bits(ty: &DataType, types: &Types) -> u32 {
     match ty {
         DataType::Bool => 1,
-        DataType::Byte | DataType::Char => 8,
-        DataType::Word
-        | DataType::Int
-        | DataType::S5Time
-        | DataType::Date
-        | DataType::Timer
-        | DataType::Counter
-        | DataType::BlockDb
-        | DataType::BlockFb
-        | DataType::BlockFc => 16,
-        DataType::Dword
-        | DataType::Dint
-        | DataType::Real
-        | DataType::Time
-        | DataType::TimeOfDay => 32,
         DataType::DateAndTime => 64,
         DataType::Pointer => 48,
         DataType::Any => 80,
@@ -97,6 +86,7 @@ pub fn size_bits(ty: &DataType, types: &Types) -> u32 {
         // The compiler replaced every name that stands for a type; one left stands for
         // nothing and was reported.
         DataType::Named(_) => 0,
+        elementary => width_of(elementary).map_or(0, |width| 8 * width.bytes()),
     }
 }
 

@@ -22,8 +22,8 @@
 //! else ACCU 2 with its sign flipped when ACCU 1 is negative; results of `SIN COS TAN` within
 //! 1e-7 of −1, 0 or 1 are those values, `TAN` of an argument within 1e-7 of ±π/2 is ±infinity.
 
-use crate::vm::arith::Arith;
-use crate::vm::status::Status;
+use crate::rules::arith::Arith;
+use crate::rules::status::Status;
 
 /// The NaN `+R -R *R /R` give.
 pub const NEGATIVE_NAN: u32 = 0xFFFF_FFFF;

@@ -10,6 +10,8 @@ use crate::compiler::bytecode::{
 };
 use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
+use crate::rules::jump::Jump;
+use crate::rules::status::Combination;
 use crate::source::Span;
 use crate::step7::ast::{
     AccessWidth, CallParam, CallSpec, ConstKind, DataType, S7Address, S7Area, S7Block, S7BlockKind,
@@ -20,11 +22,8 @@ use crate::step7::bytecode::{
     FbCall, FcCall, McrCode, MemOp, ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK,
     Target, WAIT,
 };
-use crate::vm::s7::jump::Jump;
-use crate::vm::start_info::START_INFO_BYTES;
-use crate::vm::status::Combination;
 
-use super::layout::Home;
+use super::layout::{Home, START_INFO_BYTES};
 use super::operand::{Scope, constant_value, not_an_operand};
 
 /// A called FC or FB: its id, its index in the program, its interface.
@@ -77,28 +76,10 @@ fn timer_kind(op: S7Op) -> Option<TimerKind> {
 
 /// `A AN O ON X XN`: how the scanned bit combines with the RLO.
 fn scan(op: S7Op) -> Option<Combination> {
-    Some(match op {
-        S7Op::And => Combination::And,
-        S7Op::AndNot => Combination::AndNot,
-        S7Op::Or => Combination::Or,
-        S7Op::OrNot => Combination::OrNot,
-        S7Op::Xor => Combination::Xor,
-        S7Op::XorNot => Combination::XorNot,
-        _ => return None,
-    })
-}
-
-/// `A( AN( O( ON( X( XN(`: how the bracket's result combines with the RLO.
-fn bracket(op: S7Op) -> Option<Combination> {
-    Some(match op {
-        S7Op::AndBracket => Combination::And,
-        S7Op::AndNotBracket => Combination::AndNot,
-        S7Op::OrBracket => Combination::Or,
-        S7Op::OrNotBracket => Combination::OrNot,
-        S7Op::XorBracket => Combination::Xor,
-        S7Op::XorNotBracket => Combination::XorNot,
-        _ => return None,
-    })
+    match op {
+        S7Op::Logic(combination) => Some(combination),
+        _ => None,
+    }
 }
 
 /// A conditional jump STEP 5 does not have (`JC` … `JUO`), as the VM runs it.
@@ -333,6 +314,27 @@ impl super::Compiler<'_> {
         }
     }
 
+    /// A call written without its parameters (`UC FC 105`, `UC SFC 20`), checked by `check`
+    /// as a `CALL` that gives none: each missing parameter is an error that names it.
+    fn without_params(
+        &mut self,
+        reference: &S7BlockRef,
+        check: impl FnOnce(&mut Self, &CallSpec, &Scope<'_>),
+    ) {
+        let call = CallSpec {
+            block: reference.clone(),
+            instance: None,
+            multi_instance: None,
+            params: Vec::new(),
+        };
+        let empty = super::layout::Interface::default();
+        let scope = Scope {
+            interface: &empty,
+            block: String::new(),
+        };
+        check(self, &call, &scope);
+    }
+
     fn emit(&self, out: &mut Emitter, op: Op, span: Span) {
         out.emit(op, span, &self.profile.timings);
     }
@@ -368,17 +370,11 @@ impl super::Compiler<'_> {
         let resolved = self.resolved_operand(&statement.operand, op, at)?;
         let operand = resolved.as_ref().unwrap_or(&statement.operand);
         match op {
-            S7Op::Or if *operand == S7Operand::None => {
+            S7Op::Logic(Combination::Or) if *operand == S7Operand::None => {
                 self.emit(out, Op::S7(S7Code::Accu(S7Op::OrAlone)), span);
                 Ok(())
             }
-            S7Op::And
-            | S7Op::AndNot
-            | S7Op::Or
-            | S7Op::OrNot
-            | S7Op::Assign
-            | S7Op::Set
-            | S7Op::Reset => {
+            S7Op::Logic(_) | S7Op::Assign | S7Op::Set | S7Op::Reset => {
                 if let S7Operand::Condition(condition) = operand {
                     let combination = scan(op).unwrap_or(Combination::And);
                     self.emit(
@@ -413,37 +409,10 @@ impl super::Compiler<'_> {
                 }
                 self.memory(out, op, operand, at, span, scope)
             }
-            S7Op::Xor | S7Op::XorNot => {
-                if let S7Operand::Address(address) = operand
-                    && let Some(shared) = self.image_bit_op(op, address)
-                {
-                    self.emit(out, shared, span);
-                    return Ok(());
-                }
-                if let S7Operand::Condition(condition) = operand {
-                    let combination = scan(op).unwrap_or(Combination::Xor);
-                    self.emit(
-                        out,
-                        Op::S7(S7Code::Condition {
-                            combination,
-                            condition: *condition,
-                        }),
-                        span,
-                    );
-                    return Ok(());
-                }
-                self.memory(out, op, operand, at, span, scope)
-            }
             S7Op::EdgePositive | S7Op::EdgeNegative => {
                 self.memory(out, op, operand, at, span, scope)
             }
-            S7Op::AndBracket
-            | S7Op::AndNotBracket
-            | S7Op::OrBracket
-            | S7Op::OrNotBracket
-            | S7Op::XorBracket
-            | S7Op::XorNotBracket => {
-                let combination = bracket(op).unwrap_or_default();
+            S7Op::Bracket(combination) => {
                 self.emit(out, Op::S7(S7Code::Bracket(combination)), span);
                 Ok(())
             }
@@ -547,14 +516,7 @@ impl super::Compiler<'_> {
                 self.emit(out, shared, span);
                 Ok(())
             }
-            S7Op::ShiftSignedInt
-            | S7Op::ShiftSignedDint
-            | S7Op::ShiftLeftWord
-            | S7Op::ShiftRightWord
-            | S7Op::ShiftLeftDouble
-            | S7Op::ShiftRightDouble
-            | S7Op::RotateLeftDouble
-            | S7Op::RotateRightDouble => {
+            op if op.is_shift() => {
                 let code = match operand {
                     S7Operand::Number(count) => S7Code::Shift {
                         op,
@@ -955,19 +917,9 @@ impl super::Compiler<'_> {
     ) -> Result<(), CheckError> {
         let reference = &match self.library_target(reference, at) {
             super::library::Target7::Library(fc) => {
-                // Each of its parameters is missing: the error says which.
-                let call = CallSpec {
-                    block: reference.clone(),
-                    instance: None,
-                    multi_instance: None,
-                    params: Vec::new(),
-                };
-                let empty = super::layout::Interface::default();
-                let scope = Scope {
-                    interface: &empty,
-                    block: String::new(),
-                };
-                self.library_call(fc, &call, at, &scope);
+                self.without_params(reference, |compiler, call, scope| {
+                    compiler.library_call(fc, call, at, scope);
+                });
                 return Ok(());
             }
             super::library::Target7::Program(block) => block,
@@ -981,19 +933,9 @@ impl super::Compiler<'_> {
                 return Err(super::interrupt_sfcs::missing_all(*number, at));
             }
             if matches!(*number, BLKMOV | FILL) {
-                // Each of their parameters is missing: the errors say which.
-                let call = CallSpec {
-                    block: reference.clone(),
-                    instance: None,
-                    multi_instance: None,
-                    params: Vec::new(),
-                };
-                let empty = super::layout::Interface::default();
-                let scope = Scope {
-                    interface: &empty,
-                    block: String::new(),
-                };
-                self.block_sfc(*number, &call, at, &scope);
+                self.without_params(reference, |compiler, call, scope| {
+                    compiler.block_sfc(*number, call, at, scope);
+                });
                 return Ok(());
             }
             super::system_functions::given_all(*number, 0, at)?;
@@ -1306,7 +1248,7 @@ impl super::Compiler<'_> {
             let bits = if width == AccessWidth::Bit {
                 1
             } else {
-                8 * super::operand::bytes(width)
+                8 * width.bytes()
             };
             let start = if width == AccessWidth::Bit {
                 scratch_bits
@@ -1602,7 +1544,7 @@ impl super::Compiler<'_> {
 fn absolute_local_end(operand: &S7Operand) -> u32 {
     match operand {
         S7Operand::Address(address) if address.area == S7Area::Local => {
-            (address.byte + super::operand::bytes(address.width)).div_ceil(2) * 2
+            (address.byte + address.width.bytes()).div_ceil(2) * 2
         }
         S7Operand::Pair(first, second) => absolute_local_end(first).max(absolute_local_end(second)),
         _ => 0,

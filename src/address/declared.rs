@@ -8,11 +8,12 @@
 use serde::Serialize;
 
 use crate::step7::ast::{DataType, S7BlockKind, VarDecl, VarKind};
-use crate::step7::compile::layout::{
+use crate::step7::layout::{
     BitOffset, Home, Interface, Types, element_stride, is_complex, struct_layout,
 };
 
 use crate::address::notation;
+use crate::rules::bcd;
 
 /// What the compiler lays out for the state to show: the plain types live with its tables.
 pub use crate::step7::bytecode::{DeclaredValue, Format};
@@ -235,7 +236,10 @@ fn text(declared: &DeclaredValue, bytes: &[u8]) -> String {
         Format::Int => (word() as i16).to_string(),
         Format::S5Time => {
             let word = word();
-            notation::s5time(bcd(word & 0x0FFF), (word >> 12 & 3) as u8)
+            notation::s5time(
+                bcd::decode(u32::from(word & 0x0FFF), 3) as u16,
+                (word >> 12 & 3) as u8,
+            )
         }
         Format::Date => date(word()),
         Format::Dword => format!("DW#16#{:08X}", double()),
@@ -253,11 +257,6 @@ fn text(declared: &DeclaredValue, bytes: &[u8]) -> String {
             format!("16#{}", hex.join("_"))
         }
     }
-}
-
-/// The three BCD digits of an S5TIME's count; a digit above 9 counts as what it is.
-fn bcd(digits: u16) -> u16 {
-    (digits >> 8 & 0xF) * 100 + (digits >> 4 & 0xF) * 10 + (digits & 0xF)
 }
 
 fn char_text(byte: u8) -> String {

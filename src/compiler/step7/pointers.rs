@@ -168,6 +168,24 @@ impl super::Compiler<'_> {
         by_width(super::layout::size_bits(ty, self.types()))
     }
 
+    /// The pointer a call of `callee` passes for `param`, a parameter of type `formal`, as the
+    /// called block sees it.
+    fn callee_pointer(
+        &mut self,
+        param: &CallParam,
+        formal: &DataType,
+        callee: &str,
+        scope: &Scope<'_>,
+    ) -> Result<PointerActual, CheckError> {
+        let formal = Formal {
+            ty: formal,
+            name: &param.name.text,
+            callee,
+            view: View::Callee,
+        };
+        self.pointer_actual(&param.actual, formal, param.actual_span, scope)
+    }
+
     /// The pointer the call passes to parameter `formal` for `actual`.
     pub(super) fn pointer_actual(
         &mut self,
@@ -293,26 +311,13 @@ impl super::Compiler<'_> {
         path: &[PathPart],
         at: Span,
     ) -> Result<PointerActual, CheckError> {
-        let Some(layout) = self.db_layouts.get(&db).cloned() else {
-            return Err(CheckError::UndefinedDb {
-                id: format!("DB {db}"),
-                at,
-            });
-        };
-        let scope = Scope {
-            interface: &layout,
-            block: format!("DB {db}"),
-        };
-        let (variable, ty, offset) = self.resolve_local(path, at, &scope)?;
-        let Home::Instance(base) = variable.home else {
-            return Err(super::operand::not_an_operand(at, "this member"));
-        };
+        let (bits, ty) = self.db_member(db, path, at)?;
         let (type_code, count) = self.type_and_count(&ty);
         Ok(PointerActual::Known(Descriptor {
             type_code,
             count,
             db,
-            pointer: 0x84 << 24 | (base.0 + offset),
+            pointer: 0x84 << 24 | bits,
         }))
     }
 
@@ -425,13 +430,7 @@ impl super::Compiler<'_> {
         scratch_bits: &mut u32,
         call: &mut FcCall,
     ) -> Option<Resolved> {
-        let formal_param = Formal {
-            ty: formal,
-            name: &param.name.text,
-            callee,
-            view: View::Callee,
-        };
-        let actual = self.pointer_actual(&param.actual, formal_param, param.actual_span, scope);
+        let actual = self.callee_pointer(param, formal, callee, scope);
         let descriptor = match actual {
             Ok(PointerActual::Known(descriptor)) => descriptor,
             // An FC's own POINTER or ANY parameter lies on its caller's caller's L stack,
@@ -492,13 +491,7 @@ impl super::Compiler<'_> {
         callee: &str,
         scope: &Scope<'_>,
     ) -> Option<Vec<ParamCopy>> {
-        let formal_param = Formal {
-            ty: formal,
-            name: &param.name.text,
-            callee,
-            view: View::Callee,
-        };
-        let actual = self.pointer_actual(&param.actual, formal_param, param.actual_span, scope);
+        let actual = self.callee_pointer(param, formal, callee, scope);
         let pieces: Vec<(Place, u32)> = match actual {
             Ok(PointerActual::Known(descriptor)) => descriptor
                 .pieces(formal)
@@ -532,7 +525,7 @@ impl super::Compiler<'_> {
                         return None;
                     };
                     pieces.push((piece, at));
-                    at += super::operand::bytes(width);
+                    at += width.bytes();
                 }
                 pieces
             }

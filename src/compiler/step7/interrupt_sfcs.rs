@@ -1,43 +1,112 @@
 //! The parameters of SFC 39 DIS_IRT, SFC 40 EN_IRT, SFC 41 DIS_AIRT and SFC 42 EN_AIRT
 //! ("System Software for S7-300/400 System and Standard Functions", 12.2 to 12.5): every one
 //! given once, each with an operand of its type; laid out in the order the VM reads them
-//! ([`crate::vm::interrupts::control::parameters`]).
+//! ([`parameters`], which the VM's [`crate::vm::interrupts::control`] reads too).
 
 use crate::compiler::CheckError;
 use crate::source::Span;
 use crate::step7::ast::{AccessWidth, CallParam, S7Operand};
 use crate::step7::bytecode::{Place, Target};
-use crate::vm::interrupts::control;
+
+/// SFC 39 DIS_IRT.
+pub const DIS_IRT: u16 = 39;
+/// SFC 40 EN_IRT.
+pub const EN_IRT: u16 = 40;
+/// SFC 41 DIS_AIRT.
+pub const DIS_AIRT: u16 = 41;
+/// SFC 42 EN_AIRT.
+pub const EN_AIRT: u16 = 42;
+
+/// The parameters of one call, in the order the compiler lays them out: MODE, OB_NR, RET_VAL
+/// for SFC 39 and SFC 40, RET_VAL alone for SFC 41 and SFC 42.
+pub fn parameters(number: u16) -> &'static [(&'static str, AccessWidth)] {
+    match number {
+        DIS_IRT | EN_IRT => &[
+            ("MODE", AccessWidth::Byte),
+            ("OB_NR", AccessWidth::Word),
+            ("RET_VAL", AccessWidth::Word),
+        ],
+        DIS_AIRT | EN_AIRT => &[("RET_VAL", AccessWidth::Word)],
+        _ => &[],
+    }
+}
+
+/// The SFC's name, as STEP 7's library names it.
+pub fn name(number: u16) -> &'static str {
+    match number {
+        DIS_IRT => "DIS_IRT",
+        EN_IRT => "EN_IRT",
+        DIS_AIRT => "DIS_AIRT",
+        _ => "EN_AIRT",
+    }
+}
 
 /// Whether `number` is one of these SFCs.
 pub fn is_interrupt_sfc(number: u16) -> bool {
-    (control::DIS_IRT..=control::EN_AIRT).contains(&number)
+    (DIS_IRT..=EN_AIRT).contains(&number)
 }
 
 /// The call's name in diagnostics: `SFC 41 (DIS_AIRT)`.
 pub fn call_name(number: u16) -> String {
-    format!("SFC {number} ({})", control::name(number))
+    format!("SFC {number} ({})", name(number))
 }
 
-/// The declared parameters, for a help text.
-fn declared(number: u16) -> String {
-    control::parameters(number)
-        .iter()
-        .map(|(name, _)| *name)
-        .collect::<Vec<_>>()
-        .join(", ")
+/// Each parameter of an SFC call must be one of the `declared` and be given once: an error for
+/// each that is not. Whether all were.
+pub(super) fn known_and_once(
+    fb: &str,
+    params: &[CallParam],
+    declared: &[&str],
+    errors: &mut Vec<CheckError>,
+) -> bool {
+    let mut ok = true;
+    for (index, param) in params.iter().enumerate() {
+        let name = param.name.text.to_ascii_uppercase();
+        let known = declared.contains(&name.as_str());
+        let first = !params[..index]
+            .iter()
+            .any(|other| other.name.text.eq_ignore_ascii_case(&name));
+        if !known || !first {
+            errors.push(CheckError::UnknownParam {
+                name: param.name.text.clone(),
+                fb: fb.to_string(),
+                at: param.name.span,
+                help: Some(if known {
+                    format!("`{name}` is given twice")
+                } else {
+                    format!("{fb} has {}", declared.join(", "))
+                }),
+            });
+            ok = false;
+        }
+    }
+    ok
+}
+
+/// A call of an SFC that leaves out some of its `declared` parameters: an SFC needs them all.
+pub(super) fn missing_some(fb: String, declared: usize, missing: &[&str], at: Span) -> CheckError {
+    CheckError::ParamCount {
+        fb,
+        expected: declared,
+        found: declared - missing.len(),
+        at,
+        help: Some(format!(
+            "an SFC needs every parameter; missing: {}",
+            missing.join(", ")
+        )),
+    }
 }
 
 /// A call without its parameters (`UC SFC 41`, `CALL SFC 41`).
 pub fn missing_all(number: u16, at: Span) -> CheckError {
     CheckError::ParamCount {
         fb: call_name(number),
-        expected: control::parameters(number).len(),
+        expected: parameters(number).len(),
         found: 0,
         at,
         help: Some(format!(
             "write the call with its parameters: `CALL SFC {number} ({})`",
-            control::parameters(number)
+            parameters(number)
                 .iter()
                 .map(|(name, _)| format!("{name} := …"))
                 .collect::<Vec<_>>()
@@ -55,31 +124,10 @@ pub fn ordered(
     errors: &mut Vec<CheckError>,
     mut place: impl FnMut(&CallParam) -> Result<Place, CheckError>,
 ) -> Option<Vec<(String, Place)>> {
-    let declared_params = control::parameters(number);
+    let declared_params = parameters(number);
     let fb = call_name(number);
-    let mut ok = true;
-    for (index, param) in params.iter().enumerate() {
-        let name = param.name.text.to_ascii_uppercase();
-        let known = declared_params
-            .iter()
-            .any(|(declared, _)| *declared == name);
-        let first = !params[..index]
-            .iter()
-            .any(|other| other.name.text.eq_ignore_ascii_case(&name));
-        if !known || !first {
-            errors.push(CheckError::UnknownParam {
-                name: param.name.text.clone(),
-                fb: fb.clone(),
-                at: param.name.span,
-                help: Some(if known {
-                    format!("`{name}` is given twice")
-                } else {
-                    format!("{fb} has {}", declared(number))
-                }),
-            });
-            ok = false;
-        }
-    }
+    let names: Vec<&str> = declared_params.iter().map(|(name, _)| *name).collect();
+    let mut ok = known_and_once(&fb, params, &names, errors);
     let mut list = Vec::with_capacity(declared_params.len());
     let mut missing = Vec::new();
     for &(name, width) in declared_params {
@@ -124,16 +172,12 @@ pub fn ordered(
         list.push((name.to_string(), resolved));
     }
     if !missing.is_empty() {
-        errors.push(CheckError::ParamCount {
-            fb: fb.clone(),
-            expected: declared_params.len(),
-            found: declared_params.len() - missing.len(),
+        errors.push(missing_some(
+            fb.clone(),
+            declared_params.len(),
+            &missing,
             at,
-            help: Some(format!(
-                "an SFC needs every parameter; missing: {}",
-                missing.join(", ")
-            )),
-        });
+        ));
         ok = false;
     }
     ok.then_some(list)

@@ -7,7 +7,7 @@ use crate::step7::ast::{
     AccessWidth, ConstKind, DataType, IndirectPointer, S7Address, S7Area, S7Constant, S7Operand,
     VarKind,
 };
-use crate::step7::bytecode::{IndirectArea, Place, Target};
+use crate::step7::bytecode::{Place, Target};
 use crate::symbols::SymbolError;
 
 use super::layout::{self, Home, Interface};
@@ -32,22 +32,6 @@ pub fn constant_value(constant: &S7Constant) -> u32 {
     }
 }
 
-fn indirect_area(area: S7Area) -> IndirectArea {
-    match area {
-        S7Area::Input => IndirectArea::Input,
-        S7Area::Output => IndirectArea::Output,
-        S7Area::Flag => IndirectArea::Flag,
-        S7Area::Local => IndirectArea::Local,
-        S7Area::PreviousLocal => IndirectArea::PreviousLocal,
-        S7Area::Data => IndirectArea::Data,
-        S7Area::Instance => IndirectArea::Instance,
-        S7Area::PeripheralInput => IndirectArea::PeripheralInput,
-        S7Area::PeripheralOutput => IndirectArea::PeripheralOutput,
-        S7Area::Timer => IndirectArea::Timer,
-        S7Area::Counter => IndirectArea::Counter,
-    }
-}
-
 impl super::Compiler<'_> {
     /// The image memory offset of an `I`/`Q`/`M` address (any width), when in range.
     pub fn image_byte(&self, address: &S7Address) -> Option<u16> {
@@ -58,7 +42,7 @@ impl super::Compiler<'_> {
             S7Area::Flag => (layout.flag_base(), layout.flag_bytes),
             _ => return None,
         };
-        let end = address.byte + bytes(address.width);
+        let end = address.byte + address.width.bytes();
         (end <= u32::from(size)).then(|| base + address.byte as u16)
     }
 
@@ -90,7 +74,7 @@ impl super::Compiler<'_> {
             },
             S7Area::PeripheralInput | S7Area::PeripheralOutput => {
                 let size = self.profile.sizes.peripheral_bytes;
-                if address.byte + bytes(width) > u32::from(size) {
+                if address.byte + width.bytes() > u32::from(size) {
                     let name = if address.area == S7Area::PeripheralInput {
                         "PI"
                     } else {
@@ -185,12 +169,12 @@ impl super::Compiler<'_> {
                     IndirectPointer::Memory(address) => {
                         let pointer_place = self.address_place(&address, at)?;
                         Target::MemoryIndirect {
-                            area: indirect_area(*area),
+                            area: *area,
                             pointer: self.tables.place(pointer_place),
                         }
                     }
                     IndirectPointer::Register { ar, offset } => Target::RegisterIndirect {
-                        area: Some(indirect_area(*area)),
+                        area: Some(*area),
                         ar,
                         offset,
                     },
@@ -244,7 +228,7 @@ impl super::Compiler<'_> {
                 });
                 Ok(Place {
                     target: Target::MemoryIndirect {
-                        area: indirect_area(*area),
+                        area: *area,
                         pointer,
                     },
                     width: *width,
@@ -265,21 +249,7 @@ impl super::Compiler<'_> {
         path: &[crate::step7::ast::PathPart],
         at: Span,
     ) -> Result<Place, CheckError> {
-        let Some(layout) = self.db_layouts.get(&db).cloned() else {
-            return Err(CheckError::UndefinedDb {
-                id: format!("DB {db}"),
-                at,
-            });
-        };
-        let scope = Scope {
-            interface: &layout,
-            block: format!("DB {db}"),
-        };
-        let (variable, ty, offset) = self.resolve_local(path, at, &scope)?;
-        let Home::Instance(base) = variable.home else {
-            return Err(not_an_operand(at, "this member"));
-        };
-        let bits = base.0 + offset;
+        let (bits, ty) = self.db_member(db, path, at)?;
         Ok(Place {
             target: Target::NumberedData {
                 db,
@@ -289,6 +259,30 @@ impl super::Compiler<'_> {
             },
             width: layout::width_of(&ty).unwrap_or(AccessWidth::Byte),
         })
+    }
+
+    /// Where a member of data block `db` lies (in bits from the block's start) and its type.
+    pub(super) fn db_member(
+        &self,
+        db: u16,
+        path: &[crate::step7::ast::PathPart],
+        at: Span,
+    ) -> Result<(u32, DataType), CheckError> {
+        let Some(layout) = self.db_layouts.get(&db) else {
+            return Err(CheckError::UndefinedDb {
+                id: format!("DB {db}"),
+                at,
+            });
+        };
+        let scope = Scope {
+            interface: layout,
+            block: format!("DB {db}"),
+        };
+        let (variable, ty, offset) = self.resolve_local(path, at, &scope)?;
+        let Home::Instance(base) = variable.home else {
+            return Err(not_an_operand(at, "this member"));
+        };
+        Ok((base.0 + offset, ty))
     }
 
     /// `#name.member[3]`: a variable of the block's interface.
@@ -401,14 +395,6 @@ pub fn not_an_operand(at: Span, what: &str) -> CheckError {
         op: "this operation".into(),
         at,
         help: Some(format!("{what} cannot be used here")),
-    }
-}
-
-pub fn bytes(width: AccessWidth) -> u32 {
-    match width {
-        AccessWidth::Bit | AccessWidth::Byte => 1,
-        AccessWidth::Word => 2,
-        AccessWidth::Double => 4,
     }
 }
 

@@ -5,8 +5,8 @@
 mod block_sfcs;
 pub(crate) mod complex;
 mod data;
-mod interrupt_sfcs;
-pub(crate) mod layout;
+pub(crate) mod interrupt_sfcs;
+pub(crate) use crate::step7::layout;
 mod library;
 mod lower;
 mod operand;
@@ -17,6 +17,7 @@ mod system_functions;
 
 use std::collections::HashMap;
 
+use crate::address::declared;
 use crate::ast::BlockId;
 use crate::compiler::{CheckError, Compiled, Program, Resolved};
 use crate::mnemonics::BlockKind;
@@ -26,7 +27,6 @@ use crate::step7::ast::{
     S7Block, S7BlockKind, S7BlockRef, S7Body, S7Op, S7Operand, S7Unit, VarDecl, VarKind,
 };
 use crate::step7::bytecode::S7Tables;
-use crate::step7::declared;
 use crate::symbols::Symbols;
 
 use layout::{Interface, Types};
@@ -35,12 +35,7 @@ use layout::{Interface, Types};
 fn asked_accumulators(units: &[S7Unit]) -> Option<u8> {
     units
         .iter()
-        .flat_map(|unit| &unit.blocks)
-        .filter_map(|block| match &block.body {
-            S7Body::Logic(statements) => Some(statements),
-            _ => None,
-        })
-        .flatten()
+        .flat_map(S7Unit::statements)
         .filter(|statement| statement.op == S7Op::Feature)
         .find_map(|statement| match &statement.operand {
             S7Operand::Pair(target, value) if lower::feature_number(target) == Some(0) => {
