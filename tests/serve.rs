@@ -316,3 +316,23 @@ fn the_readme_s_snippets_run_as_printed() {
     let (code, _, stderr) = served.terminate();
     assert_eq!(code, Some(0), "{stderr}");
 }
+
+#[test]
+fn on_a_terminal_one_status_line_shows_the_mode_and_ctrl_c_ends_the_serve() {
+    let mut command = Command::new(AWL);
+    command
+        .args(["serve", "programs/s7/tank_hmi.awl", "--s7", "127.0.0.1:0"])
+        .current_dir(repo("."));
+    let mut session = rexpect::session::spawn_command(command, Some(30_000)).expect("a pty");
+    session.exp_string("S7 server listening on 127.0.0.1:").expect("listening");
+    session.exp_string("RUN  cycle ").expect("the status line");
+    session.exp_string("0 clients").expect("the clients");
+    session.exp_string("requests/s  (Ctrl-C ends)").expect("the requests");
+    session.send_control('c').expect("Ctrl-C");
+    session.exp_string("served: 0 requests").expect("the summary");
+    session.exp_eof().expect("the end");
+    match session.process().wait().expect("waits") {
+        rexpect::process::WaitStatus::Exited(_, code) => assert_eq!(code, 0),
+        other => panic!("not a normal exit: {other:?}"),
+    }
+}
