@@ -26,7 +26,6 @@ const SZL_GROUP: u8 = 0x04;
 const READ_SZL: u8 = 0x01;
 const CLOCK_GROUP: u8 = 0x07;
 const READ_CLOCK: u8 = 0x01;
-const SET_CLOCK: u8 = 0x02;
 
 /// The connection ends: the client left, broke the protocol, or the CPU is gone.
 struct Closed;
@@ -235,7 +234,7 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
         self.answer(&answer).await
     }
 
-    /// Asks the CPU; `None` when it is gone.
+    /// Asks the CPU; `Closed` when it is gone.
     async fn ask<T>(
         &self,
         request: impl FnOnce(oneshot::Sender<T>) -> Request,
@@ -413,8 +412,7 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
                 answer.result = Ok(&clock);
                 Ok(encode::userdata(&answer))
             }
-            // The CPU's clock is the simulation's: a client cannot set it.
-            (CLOCK_GROUP, SET_CLOCK) => Ok(encode::userdata(&answer)),
+            // Setting the clock among them: the CPU's clock is the simulation's.
             _ => Ok(encode::userdata(&answer)),
         }
     }

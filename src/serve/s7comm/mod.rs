@@ -68,7 +68,7 @@ pub async fn serve_with(listener: TcpListener, requests: Requests, settings: Set
             continue;
         }
         let _ = stream.set_nodelay(true);
-        number += 1;
+        number = number.wrapping_add(1).max(1);
         let client = Client {
             protocol: Protocol::S7,
             number,
