@@ -149,6 +149,8 @@ impl Server {
             .arg(clients.join(script))
             .arg(self.address.port().to_string())
             .current_dir(&clients)
+            // No __pycache__ beside the scripts.
+            .env("PYTHONDONTWRITEBYTECODE", "1")
             .output()
             .expect("the client runs");
         assert!(

@@ -298,8 +298,8 @@ pub struct RawScenario {
     pub modbus: RawModbus,
 }
 
-/// `[modbus]`: the operand each Modbus table starts at, as written. The browser's playground
-/// has no network servers: there it is read (its keys checked) but never resolved.
+/// `[modbus]`: the operand each Modbus table starts at, as written. The playground (wasm32)
+/// checks the keys but serves no Modbus, so it never reads them.
 #[derive(Debug, Default)]
 #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 pub struct RawModbus {

@@ -41,8 +41,12 @@ pub fn items(request: &Request<'_>, map: &Map) -> Result<Vec<Item>, ExceptionCod
     })
 }
 
-/// The first address and the count of a request, when all of it lies below address 65536.
+/// The first address and the count of a request, when it asks for some and all of it lies
+/// below address 65536.
 fn span(address: u16, count: usize) -> Result<(u32, u32), ExceptionCode> {
+    if count == 0 {
+        return Err(ExceptionCode::IllegalDataValue);
+    }
     let (first, count) = (u32::from(address), count as u32);
     if first + count > ADDRESSES {
         return Err(ExceptionCode::IllegalDataAddress);
@@ -341,5 +345,14 @@ mod tests {
             Err(ExceptionCode::IllegalDataAddress)
         );
         assert!(items(&Request::ReadCoils(65535, 1), &map).is_ok());
+        assert_eq!(
+            items(&Request::ReadCoils(0, 0), &map),
+            Err(ExceptionCode::IllegalDataValue),
+            "nothing to read"
+        );
+        assert_eq!(
+            items(&Request::WriteMultipleCoils(0, vec![].into()), &map),
+            Err(ExceptionCode::IllegalDataValue)
+        );
     }
 }

@@ -9,7 +9,7 @@ use crate::dialect::Dialect;
 use crate::serve::request::Area;
 
 /// Where one table's address 0 lies: a bit table counts bits from bit 0 of byte 0 of `area`, a
-/// register table bytes.
+/// register table bytes. The start is an operand's, so it lies within the CPU's ranges.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Table {
     pub area: Area,
