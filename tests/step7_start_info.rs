@@ -437,15 +437,6 @@ fn a_pointer_to_an_fc_parameter_is_not_simulated() {
 }
 
 #[test]
-fn a_pointer_to_a_data_block_member_is_not_simulated() {
-    let errors = source_errors(
-        "DATA_BLOCK DB 1\nSTRUCT\n  a : INT;\nEND_STRUCT\nBEGIN\nEND_DATA_BLOCK\n\n\
-         ORGANIZATION_BLOCK OB 1\nBEGIN\n      LAR1  P#DB1.a;\nEND_ORGANIZATION_BLOCK\n",
-    );
-    assert!(errors.contains("P##name"), "{errors}");
-}
-
-#[test]
 fn feature_1_says_the_start_information_is_written() {
     passes(
         "ORGANIZATION_BLOCK OB 1\nBEGIN\n      __FEATURE 1;\n      T     MB 0;\n      __FEATURE 1, 1;\n      T     MB 1;\nEND_ORGANIZATION_BLOCK\n",

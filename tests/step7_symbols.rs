@@ -284,6 +284,30 @@ END_ORGANIZATION_BLOCK
 }
 
 #[test]
+fn a_pointer_to_a_symbol_of_an_address_is_not_simulated() {
+    // `P#"Data".value` is a data block member's area pointer; `P#"Motor"`, an output bit's, is
+    // not simulated: the error says which pointers are.
+    let program = r#"
+DATA_BLOCK "Data"
+STRUCT
+  value : INT;
+END_STRUCT;
+BEGIN
+END_DATA_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+      LAR1  P#"Data".value;
+      LAR1  P#"Motor";
+END_ORGANIZATION_BLOCK
+"#;
+    let built = build(program, "t.csv", "Data;DB 3;DB 3;\nMotor;Q 4.0;BOOL;\n");
+    assert_eq!(codes(&built), ["awl::check::operand_not_allowed"]);
+    let text = format!("{:?}", built.diagnostics);
+    assert!(text.contains("P##name"), "{text}");
+}
+
+#[test]
 fn a_member_the_data_block_does_not_declare_is_an_error() {
     let program = r#"
 DATA_BLOCK "Data"

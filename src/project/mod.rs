@@ -3,9 +3,9 @@
 //! text (version 0, [`format0`]). Every command reads one as its program; `awl conformance` runs
 //! awlsim's tests through them.
 //!
-//! awl reads what it can honour: the number of accumulators, the process images, the clock
-//! memory byte, whether the OBs' start information is written, the mnemonics, awlsim's test
-//! operations, the cycle time limit and the run time limit, the STL sources and the symbol
+//! awl reads what it can honour: the number of accumulators, the process images, the L stack,
+//! the clock memory byte, whether the OBs' start information is written, the mnemonics, awlsim's
+//! test operations, the cycle time limit and the run time limit, the STL sources and the symbol
 //! tables (each a file beside the project or text inside it). Whatever else would change the
 //! run (FUP or KOP sources, library blocks, hardware modules, CPU sizes other than awlsim's
 //! defaults, a target cycle time) is reported, since awl cannot run it; the rest (the GUI's and
