@@ -186,7 +186,8 @@ mod tests {
     fn rotates_through_cc1() {
         let mut status = Status::default();
         // Each step: the rotation, ACCU 1 before, ACCU 1 and CC1 after; CC1 goes round with it.
-        let steps: [(fn(&mut u32, &mut Status), u32, u32, bool); 4] = [
+        type Rotation = fn(&mut u32, &mut Status);
+        let steps: [(Rotation, u32, u32, bool); 4] = [
             (rotate_left_via_cc1, 0x8000_0000, 0, true),
             (rotate_left_via_cc1, 0x7FFF_FFF0, 0xFFFF_FFE1, false),
             (rotate_right_via_cc1, 0x0000_0001, 0, true),

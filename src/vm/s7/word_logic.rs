@@ -80,8 +80,8 @@ mod tests {
             (Or, 0x8000_0000, 0x0000_0001, 0x8000_0001, [1, 0, 0, 1]),
             (Xor, 0xF0F0_F0F0, 0xFFFF_0000, 0x0F0F_F0F0, [1, 0, 0, 1]),
         ];
-        let widths: [(fn(WordLogic, &mut u32, u32, &mut Status), &[Case]); 2] =
-            [(word, words), (double, doubles)];
+        type Width = fn(WordLogic, &mut u32, u32, &mut Status);
+        let widths: [(Width, &[Case]); 2] = [(word, words), (double, doubles)];
         for (width, cases) in widths {
             for &(op, accu1, operand, after, status) in cases {
                 let case = format!("{op:?} {accu1:#010X} {operand:#010X}");
