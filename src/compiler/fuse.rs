@@ -106,17 +106,11 @@ fn pack_step7(combination: Combination, bit: ImageBit) -> u8 {
 /// The combination and bit an [`Op::S7ScanPair`] or [`Op::S7ScanWrite`] packed with `byte`.
 #[inline(always)]
 pub fn unpack_step7(packed: u8, byte: u16) -> (Combination, ImageBit) {
-    const COMBINATIONS: [Combination; 8] = [
-        Combination::And,
-        Combination::AndNot,
-        Combination::Or,
-        Combination::OrNot,
-        Combination::Xor,
-        Combination::XorNot,
-        // Never packed: six combinations fill three bits' first six values.
-        Combination::And,
-        Combination::And,
-    ];
+    // Six combinations fill three bits' first six values; the other two are never packed.
+    const COMBINATIONS: [Combination; 8] = {
+        let [a, b, c, d, e, f] = Combination::ALL;
+        [a, b, c, d, e, f, Combination::And, Combination::And]
+    };
     let bit = ImageBit {
         byte,
         bit: packed & 7,

@@ -312,14 +312,19 @@ impl BlockContext<'_> {
         }
     }
 
-    fn fb_inputs(&self, statement: &S7Statement, call: u16) -> String {
-        let db = self.instance_db(call);
-        let params = self.parameters(statement, Some(&[VarKind::Input, VarKind::InOut]));
-        let params = if params.is_empty() {
+    /// The call's parameters of `kinds` as ` (A, B)`; empty when it passes none.
+    fn bracketed(&self, statement: &S7Statement, kinds: &[VarKind]) -> String {
+        let params = self.parameters(statement, Some(kinds));
+        if params.is_empty() {
             String::new()
         } else {
             format!(" ({params})")
-        };
+        }
+    }
+
+    fn fb_inputs(&self, statement: &S7Statement, call: u16) -> String {
+        let db = self.instance_db(call);
+        let params = self.bracketed(statement, &[VarKind::Input, VarKind::InOut]);
         let opened = if db.starts_with("DB") {
             "open it as the instance DB"
         } else {
@@ -330,12 +335,7 @@ impl BlockContext<'_> {
 
     fn fb_outputs(&self, statement: &S7Statement, call: u16) -> String {
         let db = self.instance_db(call);
-        let params = self.parameters(statement, Some(&[VarKind::Output, VarKind::InOut]));
-        let params = if params.is_empty() {
-            String::new()
-        } else {
-            format!(" ({params})")
-        };
+        let params = self.bracketed(statement, &[VarKind::Output, VarKind::InOut]);
         format!("copy the outputs back from {db}{params}, restore the DB registers")
     }
 }

@@ -2,7 +2,6 @@
 //! parsers the line grammar is built from.
 
 use crate::lexer::{Token, TokenKind};
-use crate::source::{FileId, Span};
 use crate::syntax::Grammar;
 
 pub use crate::syntax::input::{fail, kind};
@@ -22,27 +21,7 @@ pub type LineError = crate::syntax::Failure<TokenKind>;
 pub type LineResult<'a, T> = crate::syntax::Parsed<'a, TokenKind, T>;
 
 /// What the line parsers need besides the tokens.
-#[derive(Debug, Clone, Copy)]
-pub struct Context<'a> {
-    pub source: &'a str,
-    pub file: FileId,
-    pub set: crate::mnemonics::MnemonicSet,
-}
-
-impl<'a> Context<'a> {
-    pub fn text(&self, token: Token) -> &'a str {
-        token.text(self.source)
-    }
-
-    pub fn span(&self, token: Token) -> Span {
-        token.span(self.file)
-    }
-
-    /// The span from `first` to `last`, inclusive.
-    pub fn span_of(&self, first: Token, last: Token) -> Span {
-        first.span_to(last, self.file)
-    }
-}
+pub type Context<'a> = crate::syntax::Context<'a>;
 
 /// One token of the given kind that starts right where `previous` ends.
 pub fn touching<'a>(

@@ -242,6 +242,18 @@ pub enum Combination {
     XorNot,
 }
 
+impl Combination {
+    /// Every combination, in the order of their codes (`as u8`).
+    pub const ALL: [Combination; 6] = [
+        Combination::And,
+        Combination::AndNot,
+        Combination::Or,
+        Combination::OrNot,
+        Combination::Xor,
+        Combination::XorNot,
+    ];
+}
+
 /// STEP 7's scan of a bit operand with the signal state `value` ("Statement List (STL) for
 /// S7-300 and S7-400 Programming", the chapter on bit logic): STA = `value`, /FC = 1. `A`/`AN`
 /// keep the OR bit within a string and clear it at the first check; `O ON X XN` clear it.
@@ -270,14 +282,7 @@ const fn step7_scan(bits: u8, combination: Combination, value: bool) -> u8 {
 /// The status after each of STEP 7's scans, by [`Combination`] and `status << 1 | value`.
 static STEP7_SCANNED: [[u8; 512]; 6] = {
     let mut tables = [[0u8; 512]; 6];
-    let combinations = [
-        Combination::And,
-        Combination::AndNot,
-        Combination::Or,
-        Combination::OrNot,
-        Combination::Xor,
-        Combination::XorNot,
-    ];
+    let combinations = Combination::ALL;
     let mut kind = 0;
     while kind < 6 {
         let mut index = 0;

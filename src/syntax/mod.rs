@@ -10,7 +10,7 @@ pub mod token;
 pub mod votes;
 
 pub use input::{Failure, Grammar, Parsed, Tokens};
-pub use token::{Kind, Token};
+pub use token::{Context, Kind, Token};
 
 /// The operation word of `words` closest to the unknown `upper` that starts with the same
 /// letter (`JUU` → `JU`, but `XG` is no `G`): one edit away, two for a word of four letters

@@ -46,6 +46,30 @@ impl<K: Copy> Token<K> {
     }
 }
 
+/// What a dialect's parsers read their tokens against besides the tokens: the file's text and
+/// number, and its mnemonic set.
+#[derive(Debug, Clone, Copy)]
+pub struct Context<'a> {
+    pub source: &'a str,
+    pub file: FileId,
+    pub set: crate::mnemonics::MnemonicSet,
+}
+
+impl<'a> Context<'a> {
+    pub fn text<K: Copy>(&self, token: Token<K>) -> &'a str {
+        token.text(self.source)
+    }
+
+    pub fn span<K: Copy>(&self, token: Token<K>) -> Span {
+        token.span(self.file)
+    }
+
+    /// The span from `first` to `last`, inclusive.
+    pub fn span_of<K: Copy>(&self, first: Token<K>, last: Token<K>) -> Span {
+        first.span_to(last, self.file)
+    }
+}
+
 /// The runs of tokens between those whose kind `ends` a line or a statement; empty runs are
 /// left out.
 pub fn runs<K: Copy>(

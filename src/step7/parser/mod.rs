@@ -93,9 +93,11 @@ pub fn parse(file: FileId, text: &str, options: ParseOptions) -> Parsed {
         .unwrap_or(MnemonicSet::English);
     let foreign = Cell::new(None);
     let ctx = Ctx {
-        source: text,
-        file,
-        set,
+        context: crate::syntax::Context {
+            source: text,
+            file,
+            set,
+        },
         extensions: options.extensions,
         foreign: &foreign,
     };

@@ -974,9 +974,11 @@ mod tests {
         let tokens = lex(text);
         let foreign = Cell::new(None);
         let ctx = Ctx {
-            source: text,
-            file: 0,
-            set,
+            context: crate::syntax::Context {
+                source: text,
+                file: 0,
+                set,
+            },
             extensions: true,
             foreign: &foreign,
         };

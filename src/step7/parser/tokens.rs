@@ -3,8 +3,7 @@
 
 use std::cell::Cell;
 
-use crate::mnemonics::MnemonicSet;
-use crate::source::{FileId, Span};
+use crate::source::Span;
 use crate::step7::error::S7ParseError;
 use crate::step7::lexer::{Token, TokenKind};
 use crate::syntax::Grammar;
@@ -23,12 +22,11 @@ pub type Fail = crate::syntax::Failure<TokenKind>;
 
 pub type PResult<'a, T> = crate::syntax::Parsed<'a, TokenKind, T>;
 
-/// What the parsers need besides the tokens.
+/// What the parsers need besides the tokens: the front end's [`crate::syntax::Context`] (its
+/// fields and methods are the `Ctx`'s) and what only STEP 7 reads.
 #[derive(Debug, Clone, Copy)]
 pub struct Ctx<'a> {
-    pub source: &'a str,
-    pub file: FileId,
-    pub set: MnemonicSet,
+    pub context: crate::syntax::Context<'a>,
     /// awlsim's test extensions are allowed.
     pub extensions: bool,
     /// The first word of the other mnemonic set met so far, and whether it stood in an
@@ -36,22 +34,17 @@ pub struct Ctx<'a> {
     pub foreign: &'a Cell<Option<(Token, bool)>>,
 }
 
-impl<'a> Ctx<'a> {
-    pub fn text(&self, token: Token) -> &'a str {
-        token.text(self.source)
-    }
+impl<'a> std::ops::Deref for Ctx<'a> {
+    type Target = crate::syntax::Context<'a>;
 
+    fn deref(&self) -> &Self::Target {
+        &self.context
+    }
+}
+
+impl<'a> Ctx<'a> {
     pub fn upper(&self, token: Token) -> String {
         self.text(token).to_ascii_uppercase()
-    }
-
-    pub fn span(&self, token: Token) -> Span {
-        token.span(self.file)
-    }
-
-    /// The span from `first` to `last`, inclusive.
-    pub fn span_of(&self, first: Token, last: Token) -> Span {
-        first.span_to(last, self.file)
     }
 
     /// The span of the tokens consumed between `before` and `after`.

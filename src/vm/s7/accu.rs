@@ -76,24 +76,20 @@ mod tests {
         assert_eq!((a, b), (0x09AB_CDEF, 0x0123_4567));
     }
 
+    /// ACCU 1 to 4 after a push and after a pop of `[1, 2, 3, 4]`, with two and four accus.
     #[test]
-    fn push_and_pop_with_two_accus() {
-        let [a1, mut a2, mut a3, mut a4] = [1, 2, 3, 4];
-        push(Accus::Two, a1, &mut a2, &mut a3, &mut a4);
-        assert_eq!([a1, a2, a3, a4], [1, 1, 3, 4]);
-        let [mut a1, mut a2, mut a3, a4] = [1, 2, 3, 4];
-        pop(Accus::Two, &mut a1, &mut a2, &mut a3, a4);
-        assert_eq!([a1, a2, a3, a4], [2, 2, 3, 4]);
-    }
-
-    #[test]
-    fn push_and_pop_with_four_accus() {
-        let [a1, mut a2, mut a3, mut a4] = [1, 2, 3, 4];
-        push(Accus::Four, a1, &mut a2, &mut a3, &mut a4);
-        assert_eq!([a1, a2, a3, a4], [1, 1, 2, 3]);
-        let [mut a1, mut a2, mut a3, a4] = [1, 2, 3, 4];
-        pop(Accus::Four, &mut a1, &mut a2, &mut a3, a4);
-        assert_eq!([a1, a2, a3, a4], [2, 3, 4, 4]);
+    fn push_and_pop() {
+        for (accus, pushed, popped) in [
+            (Accus::Two, [1, 1, 3, 4], [2, 2, 3, 4]),
+            (Accus::Four, [1, 1, 2, 3], [2, 3, 4, 4]),
+        ] {
+            let [a1, mut a2, mut a3, mut a4] = [1, 2, 3, 4];
+            push(accus, a1, &mut a2, &mut a3, &mut a4);
+            assert_eq!([a1, a2, a3, a4], pushed, "push, {accus:?}");
+            let [mut a1, mut a2, mut a3, a4] = [1, 2, 3, 4];
+            pop(accus, &mut a1, &mut a2, &mut a3, a4);
+            assert_eq!([a1, a2, a3, a4], popped, "pop, {accus:?}");
+        }
     }
 
     /// `L 1337  L 31337  ENT  L 1  ENT  L 2`, then `LEAVE` three times.

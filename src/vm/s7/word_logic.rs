@@ -61,48 +61,32 @@ mod tests {
         (accu, flags(status))
     }
 
-    #[test]
-    fn word_operations_keep_accu_1_high() {
-        assert_eq!(
-            run(word, And, 0xFFFF_0F0F, 0xABCD_F0F0),
-            (0xFFFF_0000, [0, 0, 0, 1])
-        );
-        assert_eq!(
-            run(word, Or, 0x1234_0F00, 0xFFFF_00F0),
-            (0x1234_0FF0, [1, 0, 0, 1])
-        );
-        assert_eq!(run(word, Xor, 0x0000_FFFF, 0x0000_FFFF), (0, [0, 0, 0, 1]));
-        assert_eq!(
-            run(word, Xor, 0x0000_FF00, 0x0000_0FF0),
-            (0x0000_F0F0, [1, 0, 0, 1])
-        );
-    }
+    /// Each case: the operation, ACCU 1, the operand, ACCU 1 and CC1 CC0 OV OS after. The word
+    /// operations keep ACCU 1-H, and their word result alone decides CC1.
+    type Case = (WordLogic, u32, u32, u32, [u8; 4]);
 
     #[test]
-    fn the_word_result_decides_cc1_not_accu_1_high() {
-        assert_eq!(
-            run(word, And, 0xFFFF_0001, 0xFFFF_0002),
-            (0xFFFF_0000, [0, 0, 0, 1])
-        );
-    }
-
-    #[test]
-    fn double_operations() {
-        assert_eq!(
-            run(double, And, 0xFFFF_0001, 0x0001_0001),
-            (0x0001_0001, [1, 0, 0, 1])
-        );
-        assert_eq!(
-            run(double, And, 0xFFFF_0000, 0x0000_FFFF),
-            (0, [0, 0, 0, 1])
-        );
-        assert_eq!(
-            run(double, Or, 0x8000_0000, 0x0000_0001),
-            (0x8000_0001, [1, 0, 0, 1])
-        );
-        assert_eq!(
-            run(double, Xor, 0xF0F0_F0F0, 0xFFFF_0000),
-            (0x0F0F_F0F0, [1, 0, 0, 1])
-        );
+    fn word_and_double_operations() {
+        let words: &[Case] = &[
+            (And, 0xFFFF_0F0F, 0xABCD_F0F0, 0xFFFF_0000, [0, 0, 0, 1]),
+            (Or, 0x1234_0F00, 0xFFFF_00F0, 0x1234_0FF0, [1, 0, 0, 1]),
+            (Xor, 0x0000_FFFF, 0x0000_FFFF, 0, [0, 0, 0, 1]),
+            (Xor, 0x0000_FF00, 0x0000_0FF0, 0x0000_F0F0, [1, 0, 0, 1]),
+            (And, 0xFFFF_0001, 0xFFFF_0002, 0xFFFF_0000, [0, 0, 0, 1]),
+        ];
+        let doubles: &[Case] = &[
+            (And, 0xFFFF_0001, 0x0001_0001, 0x0001_0001, [1, 0, 0, 1]),
+            (And, 0xFFFF_0000, 0x0000_FFFF, 0, [0, 0, 0, 1]),
+            (Or, 0x8000_0000, 0x0000_0001, 0x8000_0001, [1, 0, 0, 1]),
+            (Xor, 0xF0F0_F0F0, 0xFFFF_0000, 0x0F0F_F0F0, [1, 0, 0, 1]),
+        ];
+        type Width = fn(WordLogic, &mut u32, u32, &mut Status);
+        let widths: [(Width, &[Case]); 2] = [(word, words), (double, doubles)];
+        for (width, cases) in widths {
+            for &(op, accu1, operand, after, status) in cases {
+                let case = format!("{op:?} {accu1:#010X} {operand:#010X}");
+                assert_eq!(run(width, op, accu1, operand), (after, status), "{case}");
+            }
+        }
     }
 }
