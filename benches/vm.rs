@@ -58,7 +58,8 @@ fn cpu_for(file: &str, points: InterruptPoints) -> Cpu {
 /// OB 1 once through the bare loop.
 fn ob1_only(cpu: &mut Cpu) {
     let ob1 = cpu.program.ob(1).unwrap();
-    cpu.enter_level(ob1).expect("OB 1's local data fit the L stack");
+    cpu.enter_level(ob1)
+        .expect("OB 1's local data fit the L stack");
     cpu.attention_at = u64::MAX;
     while !matches!(cpu.execute(false), Exit::LevelEnd) {}
 }

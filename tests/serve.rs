@@ -324,12 +324,18 @@ fn on_a_terminal_one_status_line_shows_the_mode_and_ctrl_c_ends_the_serve() {
         .args(["serve", "programs/s7/tank_hmi.awl", "--s7", "127.0.0.1:0"])
         .current_dir(repo("."));
     let mut session = rexpect::session::spawn_command(command, Some(30_000)).expect("a pty");
-    session.exp_string("S7 server listening on 127.0.0.1:").expect("listening");
+    session
+        .exp_string("S7 server listening on 127.0.0.1:")
+        .expect("listening");
     session.exp_string("RUN  cycle ").expect("the status line");
     session.exp_string("0 clients").expect("the clients");
-    session.exp_string("requests/s  (Ctrl-C ends)").expect("the requests");
+    session
+        .exp_string("requests/s  (Ctrl-C ends)")
+        .expect("the requests");
     session.send_control('c').expect("Ctrl-C");
-    session.exp_string("served: 0 requests").expect("the summary");
+    session
+        .exp_string("served: 0 requests")
+        .expect("the summary");
     session.exp_eof().expect("the end");
     match session.process().wait().expect("waits") {
         rexpect::process::WaitStatus::Exited(_, code) => assert_eq!(code, 0),

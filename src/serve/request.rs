@@ -44,9 +44,16 @@ pub enum Item {
     Read(Range),
     /// Bytes (two per timer or counter) written from `range.start`; `bytes.len()` is the
     /// range's length in bytes.
-    Write { range: Range, bytes: Vec<u8> },
+    Write {
+        range: Range,
+        bytes: Vec<u8>,
+    },
     /// One bit: `byte` of `area`, bit 0–7.
-    ReadBit { area: Area, byte: u32, bit: u8 },
+    ReadBit {
+        area: Area,
+        byte: u32,
+        bit: u8,
+    },
     WriteBit {
         area: Area,
         byte: u32,
@@ -158,7 +165,10 @@ pub enum Request {
         reply: oneshot::Sender<Result<(), ControlError>>,
     },
     /// A client connected (`true`) or left: the status line counts them.
-    Connection { client: Client, open: bool },
+    Connection {
+        client: Client,
+        open: bool,
+    },
 }
 
 /// The sending end the protocol servers hold; the CPU holds the receiving end.
