@@ -202,6 +202,8 @@ fn a_client_s_input_write_raises_ob_40_and_the_trace_shows_both() {
     let Some(python) = python() else { return };
     let trace = std::env::temp_dir().join(format!("awl-serve-{}.jsonl", std::process::id()));
     let trace_arg = trace.display().to_string();
+    let timeline = trace.with_extension("svg");
+    let timeline_arg = timeline.display().to_string();
     let served = serve(&[
         "--scenario",
         "tests/inputs/serve/tank_alarm.toml",
@@ -209,6 +211,8 @@ fn a_client_s_input_write_raises_ob_40_and_the_trace_shows_both() {
         &trace_arg,
         "--trace-format",
         "jsonl",
+        "--timeline",
+        &timeline_arg,
     ]);
     served.client(&python, "serve_interrupt_input.py");
     let (code, _, stderr) = served.terminate();
@@ -223,6 +227,12 @@ fn a_client_s_input_write_raises_ob_40_and_the_trace_shows_both() {
         .position(|line| line.contains("\"irq_request\"") && line.contains("\"ob\":40"))
         .expect("OB 40 is requested");
     assert!(write < request, "the write comes first");
+    let picture = std::fs::read_to_string(&timeline).expect("the timeline is drawn");
+    assert!(
+        picture.contains("class=\"client-write\""),
+        "the writes on the timeline"
+    );
+    assert!(picture.contains("s7 #1"), "named by their client");
 }
 
 #[test]
