@@ -7,7 +7,6 @@ use std::io::Read;
 use std::net::{SocketAddr, TcpStream};
 use std::path::Path;
 use std::process::Command;
-use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
 use std::thread;
 use std::time::Duration;
@@ -101,12 +100,12 @@ impl Server {
             .block_on(tokio::net::TcpListener::bind("127.0.0.1:0"))
             .expect("a free port");
         let address = listener.local_addr().expect("its address");
-        let (requests, served) = mpsc::channel::<Request>();
+        let (requests, mut served) = awl::serve::request::channel();
         let memory = Arc::new(Mutex::new(Memory::new(read_only)));
         let connections = Arc::new(Mutex::new(Vec::new()));
         let (cpu_memory, cpu_connections) = (memory.clone(), connections.clone());
         thread::spawn(move || {
-            for request in served {
+            while let Some(request) = served.blocking_recv() {
                 match request {
                     Request::Access { items, reply, .. } => {
                         let mut memory = cpu_memory.lock().unwrap();

@@ -7,12 +7,12 @@ use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::path::Path;
 use std::process::{Command, Output};
-use std::sync::mpsc::{Receiver, channel};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
 use awl::serve::request::{
-    Area, Control, ControlError, CpuMode, CpuStatus, Item, ItemError, ItemResult, Range, Request,
+    Area, Control, ControlError, CpuMode, CpuStatus, Item, ItemError, ItemResult, Range, Received,
+    Request,
 };
 use awl::serve::s7comm::{Settings, serve_with};
 
@@ -145,8 +145,8 @@ impl Memory {
     }
 }
 
-fn run_cpu(memory: Arc<Mutex<Memory>>, requests: Receiver<Request>) {
-    for request in requests {
+fn run_cpu(memory: Arc<Mutex<Memory>>, mut requests: Received) {
+    while let Some(request) = requests.blocking_recv() {
         lock(&memory).serve(request);
     }
 }
@@ -175,7 +175,7 @@ fn start(settings: Settings, read_only: bool) -> Server {
         .unwrap();
     let address = listener.local_addr().unwrap();
     let memory = Arc::new(Mutex::new(Memory::new(read_only)));
-    let (requests, cpu) = channel();
+    let (requests, cpu) = awl::serve::request::channel();
     let cpu_memory = Arc::clone(&memory);
     std::thread::spawn(move || run_cpu(cpu_memory, cpu));
     runtime.spawn(serve_with(listener, requests, settings));

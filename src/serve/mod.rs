@@ -5,6 +5,7 @@
 pub mod access;
 pub mod identity;
 pub mod modbus;
+pub mod network;
 pub mod notation;
 pub mod pacing;
 pub mod plc;

@@ -3,7 +3,6 @@
 //! scenario's run length, or for ever; a client may stop and restart it on the way.
 
 use std::net::{SocketAddr, TcpListener};
-use std::sync::mpsc;
 
 use miette::{Diagnostic, Report};
 use thiserror::Error;
@@ -12,6 +11,7 @@ use crate::runner::{self, NotRun, Ran, RunOptions};
 use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
 
+use super::network::Network;
 use super::pacing::{Lateness, Pacer};
 use super::request::Requests;
 use super::station::{Served, Snapshot, Station};
@@ -121,9 +121,9 @@ pub fn serve(
             .as_ref()
             .and_then(|listener| listener.local_addr().ok()),
     };
-    let (requests, received) = mpsc::channel();
-    let runtime = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
+    let (requests, received) = super::request::channel();
+    // The servers run on the CPU's own thread, at its control point (see [`Network`]).
+    let runtime = tokio::runtime::Builder::new_current_thread()
         .enable_all()
         .build()
         .map_err(|error| runtime_error(&error))?;
@@ -145,13 +145,14 @@ pub fn serve(
     };
     prepared.limit = limit;
     let pacer = Pacer::new(options.speed, prepared.cpu.clock);
-    let mut station = Station::new(received, options.read_only, pacer, halted, report);
+    let network = Network::new(runtime, received);
+    let mut station = Station::new(network, options.read_only, pacer, halted, report);
     let ran =
         prepared.run_driven(&mut |cpu, limit, observe| drive(cpu, limit, observe, &mut station));
     let served = station.served;
     let lateness = station.pacer.lateness();
+    // The servers' tasks end with their runtime, in the station.
     drop(station);
-    runtime.shutdown_background();
     Ok(ServedRun {
         ran,
         served,
@@ -197,7 +198,7 @@ fn drive(
     }
 }
 
-/// The servers to start on the runtime's threads.
+/// The servers to start on the network's runtime.
 struct Servers {
     s7: Option<TcpListener>,
     modbus: Option<TcpListener>,

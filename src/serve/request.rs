@@ -171,5 +171,13 @@ pub enum Request {
     },
 }
 
-/// The sending end the protocol servers hold; the CPU holds the receiving end.
-pub type Requests = std::sync::mpsc::Sender<Request>;
+/// The sending end the protocol servers hold; the CPU holds the receiving end, [`Received`].
+pub type Requests = tokio::sync::mpsc::UnboundedSender<Request>;
+
+/// The CPU's end of the requests.
+pub type Received = tokio::sync::mpsc::UnboundedReceiver<Request>;
+
+/// A channel for the requests: the servers' end and the CPU's.
+pub fn channel() -> (Requests, Received) {
+    tokio::sync::mpsc::unbounded_channel()
+}

@@ -2,17 +2,21 @@
 //! served between two cycles (one consistent state for each) and the cycle waits for the wall
 //! clock; and the STOP, where requests are served until a client starts the CPU again.
 
-use std::sync::mpsc::{Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 use crate::vm::{Cpu, Mode};
 
 use super::access::serve_items;
+use super::network::Network;
 use super::pacing::Pacer;
 use super::request::{Control, ControlError, CpuMode, CpuStatus, Request};
 
 /// How often the status is reported and a halt looked for while the CPU waits.
 const LOOK_EVERY: Duration = Duration::from_millis(100);
+
+/// How often the network is looked at when the CPU runs behind the clock (it does not wait
+/// then, and the connections would starve).
+const POLL_EVERY: Duration = Duration::from_millis(1);
 
 /// A start a client asked for, made once the CPU gets to it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -40,7 +44,11 @@ pub struct Served {
 }
 
 pub struct Station<'a> {
-    requests: Receiver<Request>,
+    network: Network,
+    /// When the network last ran.
+    last_poll: Instant,
+    /// An answer was given that the network has not sent yet.
+    answered: bool,
     read_only: bool,
     pub pacer: Pacer,
     open_clients: usize,
@@ -54,14 +62,16 @@ pub struct Station<'a> {
 
 impl<'a> Station<'a> {
     pub fn new(
-        requests: Receiver<Request>,
+        network: Network,
         read_only: bool,
         pacer: Pacer,
         halted: &'a dyn Fn() -> bool,
         report: &'a mut dyn FnMut(&Snapshot),
     ) -> Self {
         Station {
-            requests,
+            network,
+            last_poll: Instant::now(),
+            answered: false,
             read_only,
             pacer,
             open_clients: 0,
@@ -84,11 +94,15 @@ impl<'a> Station<'a> {
                 return false;
             }
             let now = Instant::now();
-            if now >= deadline {
+            if now < deadline {
+                self.wait_for_request(cpu, (deadline - now).min(LOOK_EVERY));
+            } else if self.answered || now - self.last_poll >= POLL_EVERY {
+                // The answers go out before the next cycle; what came meanwhile is served.
+                self.poll_network();
+            } else {
                 self.pacer.record_start(deadline, now);
                 break;
             }
-            self.wait_for_request(cpu, (deadline - now).min(LOOK_EVERY));
         }
         self.report_now_and_then(cpu);
         true
@@ -111,23 +125,33 @@ impl<'a> Station<'a> {
 
     /// Serves every request that has come; `false` when the run is to be left.
     fn serve_waiting(&mut self, cpu: &mut Cpu) -> bool {
-        while let Ok(request) = self.requests.try_recv() {
+        while let Some(request) = self.network.try_request() {
             self.serve(cpu, request);
         }
         !(self.halted)() && cpu.mode != Mode::Stop
     }
 
     fn wait_for_request(&mut self, cpu: &mut Cpu, longest: Duration) {
-        match self.requests.recv_timeout(longest) {
-            Ok(request) => self.serve(cpu, request),
-            Err(RecvTimeoutError::Timeout) => {}
-            // No server is left to send anything: only the clock is waited for.
-            Err(RecvTimeoutError::Disconnected) => std::thread::sleep(longest),
+        let request = self.network.next_request(longest);
+        self.after_network_ran();
+        if let Some(request) = request {
+            self.serve(cpu, request);
         }
+    }
+
+    fn poll_network(&mut self) {
+        self.network.poll();
+        self.after_network_ran();
+    }
+
+    fn after_network_ran(&mut self) {
+        self.last_poll = Instant::now();
+        self.answered = false;
     }
 
     fn serve(&mut self, cpu: &mut Cpu, request: Request) {
         self.served.requests += 1;
+        self.answered = true;
         match request {
             Request::Access {
                 client,

@@ -124,7 +124,7 @@ mod tests {
     async fn a_frame_that_stalls_is_closed_and_an_idle_client_is_not() {
         let listener = TcpListener::bind("127.0.0.1:0").await.expect("a port");
         let address = listener.local_addr().expect("its address");
-        let (requests, served) = std::sync::mpsc::channel();
+        let (requests, mut served) = crate::serve::request::channel();
         let frame_timeout = Duration::from_millis(200);
         tokio::spawn(serve_with(
             listener,
@@ -145,8 +145,7 @@ mod tests {
             waited.is_err(),
             "the idle client is still served: {waited:?}"
         );
-        let announced: Vec<bool> = served
-            .try_iter()
+        let announced: Vec<bool> = std::iter::from_fn(|| served.try_recv().ok())
             .map(|request| matches!(request, Request::Connection { open: true, .. }))
             .collect();
         assert_eq!(announced, [true, true, false]);
