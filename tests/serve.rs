@@ -143,7 +143,8 @@ impl Served {
             .stderr
             .take()
             .map(|mut err| err.read_to_string(&mut stderr));
-        let stdout: Vec<String> = self.stdout.try_iter().collect();
+        // The reader ends at the end of the output, which the exit has brought.
+        let stdout: Vec<String> = self.stdout.iter().collect();
         (status.code(), stdout.join("\n"), stderr)
     }
 }

@@ -3,6 +3,8 @@
 //! requests of [`request`], served at the cycle control point by [`station`].
 
 pub mod access;
+#[cfg(target_os = "linux")]
+mod alarm;
 pub mod identity;
 pub mod modbus;
 pub mod network;
