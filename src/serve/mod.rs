@@ -6,6 +6,7 @@ pub mod access;
 #[cfg(target_os = "linux")]
 mod alarm;
 pub mod identity;
+mod listen;
 pub mod modbus;
 pub mod network;
 pub mod notation;

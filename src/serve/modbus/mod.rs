@@ -6,21 +6,17 @@ pub mod connection;
 pub mod frame;
 pub mod map;
 
-use std::sync::Arc;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
 use tokio::net::{TcpListener, TcpStream};
 
 pub use map::{Map, Table};
 
-use crate::serve::request::{Client, Protocol, Request, Requests};
+use crate::serve::listen::accept_each;
+use crate::serve::request::{Protocol, Requests};
 
 /// How long a frame may take to arrive whole from its first byte, and a response to be taken.
 const FRAME_TIMEOUT: Duration = Duration::from_secs(10);
-
-/// How long to wait after the listener failed to accept (no file descriptors left, say).
-const ACCEPT_PAUSE: Duration = Duration::from_millis(100);
 
 /// Idle time before TCP keep-alive probes a silent client, as the Modbus Messaging on TCP/IP
 /// Implementation Guide advises, so a client that vanished frees its connection.
@@ -40,34 +36,11 @@ async fn serve_with(
     max_connections: usize,
     frame_timeout: Duration,
 ) {
-    let open = Arc::new(AtomicUsize::new(0));
-    let mut number = 0u32;
-    loop {
-        let stream = match listener.accept().await {
-            Ok((stream, _)) => stream,
-            Err(_) => {
-                tokio::time::sleep(ACCEPT_PAUSE).await;
-                continue;
-            }
-        };
-        if open.load(Ordering::SeqCst) >= max_connections {
-            continue;
-        }
-        number = number.wrapping_add(1);
-        let connection = Connection::open(number, requests.clone(), open.clone());
+    accept_each(listener, Protocol::Modbus, requests, max_connections, move |stream, client, requests| {
         keep_alive(&stream);
-        tokio::spawn(async move {
-            connection::converse(
-                stream,
-                connection.client,
-                &connection.requests,
-                &map,
-                frame_timeout,
-            )
-            .await;
-            drop(connection);
-        });
-    }
+        async move { connection::converse(stream, client, &requests, &map, frame_timeout).await }
+    })
+    .await;
 }
 
 /// Keep-alive is a help, not a need: a socket that refuses it is served all the same.
@@ -76,41 +49,6 @@ fn keep_alive(stream: &TcpStream) {
     #[cfg(any(target_os = "linux", target_os = "macos", target_os = "windows"))]
     let keepalive = keepalive.with_interval(Duration::from_secs(10));
     let _ = socket2::SockRef::from(stream).set_tcp_keepalive(&keepalive);
-}
-
-/// An open connection: counted and announced while it lives, its close announced when it is
-/// dropped, however its task ends.
-struct Connection {
-    client: Client,
-    requests: Requests,
-    open: Arc<AtomicUsize>,
-}
-
-impl Connection {
-    fn open(number: u32, requests: Requests, open: Arc<AtomicUsize>) -> Connection {
-        let client = Client {
-            protocol: Protocol::Modbus,
-            number,
-        };
-        open.fetch_add(1, Ordering::SeqCst);
-        // A CPU that no longer listens answers no request either; the connection learns so.
-        let _ = requests.send(Request::Connection { client, open: true });
-        Connection {
-            client,
-            requests,
-            open,
-        }
-    }
-}
-
-impl Drop for Connection {
-    fn drop(&mut self) {
-        self.open.fetch_sub(1, Ordering::SeqCst);
-        let _ = self.requests.send(Request::Connection {
-            client: self.client,
-            open: false,
-        });
-    }
 }
 
 #[cfg(test)]

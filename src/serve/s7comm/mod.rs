@@ -16,13 +16,12 @@ pub mod encode;
 pub mod frame;
 pub mod szl;
 
-use std::sync::Arc;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
 use tokio::net::TcpListener;
 
-use super::request::{Client, Protocol, Request, Requests};
+use super::listen::accept_each;
+use super::request::{Protocol, Requests};
 
 /// How the server treats its clients.
 #[derive(Debug, Clone, Copy)]
@@ -52,62 +51,13 @@ pub async fn serve(listener: TcpListener, requests: Requests, max_connections: u
 
 /// [`serve`] with all of its settings.
 pub async fn serve_with(listener: TcpListener, requests: Requests, settings: Settings) {
-    let open = Arc::new(AtomicUsize::new(0));
-    let mut number = 0u32;
-    loop {
-        let stream = match listener.accept().await {
-            Ok((stream, _)) => stream,
-            // Out of file descriptors and the like: wait for connections to close.
-            Err(_) => {
-                tokio::time::sleep(Duration::from_millis(50)).await;
-                continue;
-            }
-        };
-        if open.load(Ordering::Acquire) >= settings.max_connections {
-            drop(stream);
-            continue;
-        }
-        let _ = stream.set_nodelay(true);
-        number = number.wrapping_add(1).max(1);
-        let client = Client {
-            protocol: Protocol::S7,
-            number,
-        };
-        let guard = OpenConnection::new(client, &open, &requests);
-        let requests = requests.clone();
-        tokio::spawn(async move {
-            connection::serve(stream, client, requests, settings).await;
-            drop(guard);
-        });
-    }
-}
-
-/// Counts a connection as open and tells the CPU, from its opening to its end (whichever way
-/// its task ends).
-struct OpenConnection {
-    client: Client,
-    open: Arc<AtomicUsize>,
-    requests: Requests,
-}
-
-impl OpenConnection {
-    fn new(client: Client, open: &Arc<AtomicUsize>, requests: &Requests) -> OpenConnection {
-        open.fetch_add(1, Ordering::AcqRel);
-        let _ = requests.send(Request::Connection { client, open: true });
-        OpenConnection {
-            client,
-            open: Arc::clone(open),
-            requests: requests.clone(),
-        }
-    }
-}
-
-impl Drop for OpenConnection {
-    fn drop(&mut self) {
-        self.open.fetch_sub(1, Ordering::AcqRel);
-        let _ = self.requests.send(Request::Connection {
-            client: self.client,
-            open: false,
-        });
-    }
+    let max_connections = settings.max_connections;
+    accept_each(
+        listener,
+        Protocol::S7,
+        requests,
+        max_connections,
+        move |stream, client, requests| connection::serve(stream, client, requests, settings),
+    )
+    .await;
 }
