@@ -25,7 +25,7 @@ M001 :S  =AUS
       BE
 ";
 
-const LIST: &str = "I 0.0     START     start button, green\nQ 4.0     LAMP      running lamp\n";
+const LIST: &str = "I 0.0     START     start button (green)\nQ 4.0     LAMP      running lamp\n";
 
 const SCENARIO: &str = "program = [\"plant.awl\"]\nsymbols = [\"plant.seq\"]\ncpu = \"s5-115u\"\n";
 
@@ -181,8 +181,10 @@ fn definitions_references_and_symbols() {
     assert_eq!(block["range"]["start"]["line"], 8, "{block}");
     let symbol = client.at("textDocument/definition", &path, 1, 13);
     assert!(symbol["uri"].as_str().unwrap().ends_with("plant.seq"), "{symbol}");
-    let uses = client.at("textDocument/references", &path, 14, 10);
-    assert_eq!(uses.as_array().unwrap().len(), 4, "{uses}");
+    let uses = client.at("textDocument/references", &path, 13, 10);
+    assert_eq!(uses.as_array().unwrap().len(), 2, "{uses}");
+    let calls = client.at("textDocument/references", &path, 8, 3);
+    assert_eq!(calls.as_array().unwrap().len(), 2, "{calls}");
     let outline = client
         .request("textDocument/documentSymbol", json!({"textDocument": {"uri": uri(&path)}}))
         .result
