@@ -55,17 +55,19 @@ fn operation(analysis: &Analysis, statement: &Statement) -> Option<String> {
     let word = lookup::slice(analysis, statement.op).trim();
     let set = lookup::mnemonics_of(analysis, 0);
     let upper = word.to_uppercase();
-    let (summary, other) = if analysis.built.s7_units.is_empty() {
+    let step7 = !analysis.built.s7_units.is_empty();
+    let (summary, other, english) = if step7 {
+        let op = crate::step7::mnemonics::operation(set, &upper)?;
+        let summary = mnemonics::operation(set, &upper).map(|info| info.summary);
+        let word_in = |set| crate::step7::mnemonics::op_word(set, op);
+        (summary, word_in(set.other()), word_in(MnemonicSet::English))
+    } else {
         let info = mnemonics::operation(set, &upper)?;
         let other = match set.other() {
             MnemonicSet::English => info.en,
             MnemonicSet::German => info.de,
         };
-        (Some(info.summary), other)
-    } else {
-        let op = crate::step7::mnemonics::operation(set, &upper)?;
-        let summary = mnemonics::operation(set, &upper).map(|info| info.summary);
-        (summary, crate::step7::mnemonics::op_word(set.other(), op))
+        (Some(info.summary), other, info.en)
     };
     let mut text = format!("**`{word}`**");
     if let Some(summary) = summary {
@@ -75,6 +77,9 @@ fn operation(analysis: &Analysis, statement: &Statement) -> Option<String> {
         "\n\nIn {} mnemonics: `{other}`.",
         set.other().name()
     ));
+    for note in crate::docs::status_notes(english, step7) {
+        text.push_str(&format!("\n\n{note}"));
+    }
     if let Some(ns) = execution_time(analysis, statement.whole) {
         text.push_str(&format!(
             "\n\nExecution time on {}: {:.2} µs.",

@@ -164,6 +164,9 @@ fn hover_tells_the_operation_the_symbol_and_the_block() {
     assert!(symbol.contains("I 0.0") && symbol.contains("start button"), "{symbol}");
     let block = client.at("textDocument/hover", &path, 2, 13)["contents"]["value"].clone();
     assert!(block.as_str().unwrap().contains("DES  :EIN  I BI"), "{block}");
+    let jump = client.at("textDocument/hover", &path, 13, 6)["contents"]["value"].clone();
+    let jump = jump.as_str().unwrap();
+    assert!(jump.contains("`SPB`") && jump.contains("RLO") && jump.contains("µs"), "{jump}");
     let label = client.at("textDocument/hover", &path, 13, 10)["contents"]["value"].clone();
     assert!(label.as_str().unwrap().contains("line 17"), "{label}");
     client.finish();
