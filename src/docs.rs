@@ -234,9 +234,17 @@ fn without_link_targets(text: &str) -> String {
 /// the STEP 7 part, as `step7` says.
 pub fn status_notes(english: &str, step7: bool) -> Vec<String> {
     const MOST_NOTES: usize = 3;
-    const BITS: &[&str] = &["RLO", "STA", "OR", "OS", "OV", "CC 0", "CC0", "CC 1", "CC1", "BR", "/FC"];
-    let split = GRAMMAR.find("\n## STEP 7 operations").unwrap_or(GRAMMAR.len());
-    let part = if step7 { &GRAMMAR[split..] } else { &GRAMMAR[..split] };
+    const BITS: &[&str] = &[
+        "RLO", "STA", "OR", "OS", "OV", "CC 0", "CC0", "CC 1", "CC1", "BR", "/FC",
+    ];
+    let split = GRAMMAR
+        .find("\n## STEP 7 operations")
+        .unwrap_or(GRAMMAR.len());
+    let part = if step7 {
+        &GRAMMAR[split..]
+    } else {
+        &GRAMMAR[..split]
+    };
     let names_it = |text: &str| {
         text.split('`')
             .skip(1)
@@ -248,7 +256,8 @@ pub fn status_notes(english: &str, step7: bool) -> Vec<String> {
             text.match_indices(bit).any(|(at, _)| {
                 let before = text[..at].chars().next_back();
                 let after = text[at + bit.len()..].chars().next();
-                !before.is_some_and(char::is_alphanumeric) && !after.is_some_and(char::is_alphanumeric)
+                !before.is_some_and(char::is_alphanumeric)
+                    && !after.is_some_and(char::is_alphanumeric)
             })
         })
     };
@@ -439,7 +448,10 @@ mod tests {
         let notes = status_notes("JC", false);
         assert!(notes.iter().any(|note| note.contains("RLO")), "{notes:?}");
         let float = status_notes("+G", false);
-        assert!(float.iter().any(|note| note.starts_with("| operation |")), "{float:?}");
+        assert!(
+            float.iter().any(|note| note.starts_with("| operation |")),
+            "{float:?}"
+        );
         assert!(status_notes("NOSUCHWORD", true).is_empty());
     }
 

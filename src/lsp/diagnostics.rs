@@ -50,11 +50,7 @@ fn runs_on_note(analysis: &Analysis) -> Option<String> {
         return None;
     }
     let note = crate::cli::runs_on_note(profiles);
-    Some(
-        note.trim_end()
-            .trim_start_matches("note: ")
-            .to_string(),
-    )
+    Some(note.trim_end().trim_start_matches("note: ").to_string())
 }
 
 fn severity(report: &Report) -> DiagnosticSeverity {
@@ -68,12 +64,10 @@ fn severity(report: &Report) -> DiagnosticSeverity {
 /// One report as an LSP diagnostic of the document whose text is `text`.
 pub fn convert(report: &Report, analysis: &Analysis, text: &str, index: &LineIndex) -> Diagnostic {
     let labels: Vec<miette::LabeledSpan> = report.labels().into_iter().flatten().collect();
-    let primary = labels
-        .iter()
-        .position(|label| label.primary())
-        .unwrap_or(0);
-    let range_of =
-        |label: &miette::LabeledSpan| index.range(text, label.offset()..label.offset() + label.len());
+    let primary = labels.iter().position(|label| label.primary()).unwrap_or(0);
+    let range_of = |label: &miette::LabeledSpan| {
+        index.range(text, label.offset()..label.offset() + label.len())
+    };
     let range = labels.get(primary).map(range_of).unwrap_or_default();
     let mut message = report.to_string();
     if let Some(text) = labels.get(primary).and_then(|label| label.label()) {

@@ -10,7 +10,7 @@ use super::position::LineIndex;
 use super::workspace::Analysis;
 use crate::mnemonics::{self, MnemonicSet};
 use crate::source::Span;
-use crate::step7::ast::{S7Body, S7BlockRef};
+use crate::step7::ast::{S7BlockRef, S7Body};
 
 /// The hover text at byte `offset` of the document, as Markdown.
 pub fn hover_text(analysis: &Analysis, offset: usize) -> Option<String> {
@@ -105,7 +105,10 @@ fn execution_time(analysis: &Analysis, whole: Span) -> Option<u64> {
 
 fn line_of(analysis: &Analysis, span: Span) -> u32 {
     let text = analysis.text(span.file);
-    LineIndex::new(text).position(text, span.start as usize).line + 1
+    LineIndex::new(text)
+        .position(text, span.start as usize)
+        .line
+        + 1
 }
 
 fn label(analysis: &Analysis, target: &Target, name: &str) -> Option<String> {
@@ -120,7 +123,9 @@ fn label(analysis: &Analysis, target: &Target, name: &str) -> Option<String> {
 fn block(analysis: &Analysis, name: &str) -> Option<String> {
     for file in 0..analysis.built.sources.files.len() as u16 {
         let (blocks, _) = lookup::outline(analysis, file);
-        let Some(found) = blocks.iter().find(|block| block.name.eq_ignore_ascii_case(name))
+        let Some(found) = blocks
+            .iter()
+            .find(|block| block.name.eq_ignore_ascii_case(name))
         else {
             continue;
         };
@@ -183,7 +188,9 @@ fn variable(analysis: &Analysis, word: &str, offset: usize) -> Option<String> {
     };
     let member = member.split('.').next()?;
     let symbols = &analysis.built.compiled.program.symbols;
-    let owner_number = owner.and_then(|name| symbols.block_of(name)).map(|id| id.number);
+    let owner_number = owner
+        .and_then(|name| symbols.block_of(name))
+        .map(|id| id.number);
     for unit in &analysis.built.s7_units {
         for block in &unit.blocks {
             let is_owner = match (owner, &block.name) {
@@ -192,7 +199,9 @@ fn variable(analysis: &Analysis, word: &str, offset: usize) -> Option<String> {
                         && block.header.start as usize <= offset
                         && block.end.is_none_or(|end| offset <= end.end as usize)
                 }
-                (Some(name), S7BlockRef::Symbol(written)) => written.text.eq_ignore_ascii_case(name),
+                (Some(name), S7BlockRef::Symbol(written)) => {
+                    written.text.eq_ignore_ascii_case(name)
+                }
                 (Some(_), S7BlockRef::Number { number, .. }) => owner_number == Some(*number),
             };
             if !is_owner {
@@ -200,7 +209,11 @@ fn variable(analysis: &Analysis, word: &str, offset: usize) -> Option<String> {
             }
             let members = match &block.body {
                 S7Body::Data { members, .. } if owner.is_some() => members.iter().collect(),
-                _ => block.interface.iter().flat_map(|section| &section.vars).collect::<Vec<_>>(),
+                _ => block
+                    .interface
+                    .iter()
+                    .flat_map(|section| &section.vars)
+                    .collect::<Vec<_>>(),
             };
             if let Some(declared) = members
                 .iter()

@@ -4,7 +4,7 @@
 use crate::ast::{BlockBody, Name};
 use crate::mnemonics::MnemonicSet;
 use crate::source::Span;
-use crate::step7::ast::{S7Body, S7BlockRef};
+use crate::step7::ast::{S7BlockRef, S7Body};
 
 use super::workspace::Analysis;
 
@@ -87,7 +87,12 @@ pub fn outline(analysis: &Analysis, file: u16) -> (Vec<Block>, Vec<Statement<'_>
             });
         }
     }
-    for unit in analysis.built.s7_units.iter().filter(|unit| unit.file == file) {
+    for unit in analysis
+        .built
+        .s7_units
+        .iter()
+        .filter(|unit| unit.file == file)
+    {
         for block in &unit.blocks {
             let index = blocks.len();
             let numbered = match &block.body {
@@ -152,8 +157,12 @@ pub fn word_at(text: &str, offset: usize) -> Option<(&str, std::ops::Range<usize
 /// A block named by the text around `offset`: `PB 3`, `FC 1`, `DB 5` (the kind word and its
 /// number, the cursor on either), as the blocks' names write it.
 pub fn block_name_at(text: &str, offset: usize) -> Option<String> {
-    let line_start = text[..offset.min(text.len())].rfind('\n').map_or(0, |at| at + 1);
-    let line_end = text[line_start..].find('\n').map_or(text.len(), |at| line_start + at);
+    let line_start = text[..offset.min(text.len())]
+        .rfind('\n')
+        .map_or(0, |at| at + 1);
+    let line_end = text[line_start..]
+        .find('\n')
+        .map_or(text.len(), |at| line_start + at);
     let line = &text[line_start..line_end];
     let at = offset - line_start;
     let words: Vec<(usize, &str)> = line
@@ -170,7 +179,10 @@ pub fn block_name_at(text: &str, offset: usize) -> Option<String> {
         let covers = at >= kind_at && at <= number_at + number.len();
         let kind = kind.to_uppercase();
         let is_block = crate::mnemonics::BlockKind::from_word(&kind).is_some()
-            || matches!(kind.as_str(), "OB" | "FC" | "FB" | "DB" | "SFC" | "SFB" | "UDT");
+            || matches!(
+                kind.as_str(),
+                "OB" | "FC" | "FB" | "DB" | "SFC" | "SFB" | "UDT"
+            );
         (covers && is_block && number.chars().all(|c| c.is_ascii_digit()))
             .then(|| format!("{kind} {number}"))
     })

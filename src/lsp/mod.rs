@@ -24,15 +24,15 @@ use lsp_server::{Connection, ErrorCode, Message, Notification, Request, Response
 use lsp_types::notification::{self as notify, Notification as _};
 use lsp_types::request::{self as req, Request as _};
 use lsp_types::{
-    HoverProviderCapability, InitializeParams, OneOf, PublishDiagnosticsParams,
-    ServerCapabilities, ServerInfo, TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
+    HoverProviderCapability, InitializeParams, OneOf, PublishDiagnosticsParams, ServerCapabilities,
+    ServerInfo, TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
 };
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
-pub use workspace::{Settings, SettingsError};
 use position::LineIndex;
 use workspace::Workspace;
+pub use workspace::{Settings, SettingsError};
 
 /// What the server can do, told at `initialize`.
 pub fn capabilities() -> ServerCapabilities {
@@ -120,13 +120,11 @@ impl<'a> Server<'a> {
     fn main_loop(&mut self) -> Result<(), String> {
         for message in &self.connection.receiver {
             match message {
-                Message::Request(request) => {
-                    match self.connection.handle_shutdown(&request) {
-                        Ok(true) => return Ok(()),
-                        Ok(false) => self.answer(request),
-                        Err(error) => return Err(error.to_string()),
-                    }
-                }
+                Message::Request(request) => match self.connection.handle_shutdown(&request) {
+                    Ok(true) => return Ok(()),
+                    Ok(false) => self.answer(request),
+                    Err(error) => return Err(error.to_string()),
+                },
                 Message::Notification(notification) => self.notified(notification),
                 Message::Response(_) => {}
             }
@@ -192,9 +190,11 @@ impl<'a> Server<'a> {
             req::DocumentSymbolRequest::METHOD => {
                 let params: lsp_types::DocumentSymbolParams = params_of(request.params)?;
                 let uri = &params.text_document.uri;
-                let found = self.workspace.documents.get(uri).map(|text| {
-                    navigate::document_symbols(&self.workspace.analyse(uri, text))
-                });
+                let found = self
+                    .workspace
+                    .documents
+                    .get(uri)
+                    .map(|text| navigate::document_symbols(&self.workspace.analyse(uri, text)));
                 to_json(found)
             }
             req::WorkspaceSymbolRequest::METHOD => {
@@ -221,29 +221,45 @@ impl<'a> Server<'a> {
     fn notified(&mut self, notification: Notification) {
         match notification.method.as_str() {
             notify::DidOpenTextDocument::METHOD => {
-                if let Ok(params) = params_of::<lsp_types::DidOpenTextDocumentParams>(notification.params) {
+                if let Ok(params) =
+                    params_of::<lsp_types::DidOpenTextDocumentParams>(notification.params)
+                {
                     let uri = params.text_document.uri;
-                    self.workspace.documents.open(uri.clone(), params.text_document.text);
+                    self.workspace
+                        .documents
+                        .open(uri.clone(), params.text_document.text);
                     self.publish(&uri);
                 }
             }
             notify::DidChangeTextDocument::METHOD => {
-                if let Ok(params) = params_of::<lsp_types::DidChangeTextDocumentParams>(notification.params) {
+                if let Ok(params) =
+                    params_of::<lsp_types::DidChangeTextDocumentParams>(notification.params)
+                {
                     let uri = params.text_document.uri;
-                    self.workspace.documents.change(&uri, params.content_changes);
+                    self.workspace
+                        .documents
+                        .change(&uri, params.content_changes);
                     self.publish(&uri);
                 }
             }
             notify::DidCloseTextDocument::METHOD => {
-                if let Ok(params) = params_of::<lsp_types::DidCloseTextDocumentParams>(notification.params) {
+                if let Ok(params) =
+                    params_of::<lsp_types::DidCloseTextDocumentParams>(notification.params)
+                {
                     let uri = params.text_document.uri;
                     self.workspace.documents.close(&uri);
                     self.publish_list(uri, Vec::new());
                 }
             }
             notify::DidChangeConfiguration::METHOD => {
-                if let Ok(params) = params_of::<lsp_types::DidChangeConfigurationParams>(notification.params) {
-                    let settings = params.settings.get("awl").cloned().unwrap_or(params.settings);
+                if let Ok(params) =
+                    params_of::<lsp_types::DidChangeConfigurationParams>(notification.params)
+                {
+                    let settings = params
+                        .settings
+                        .get("awl")
+                        .cloned()
+                        .unwrap_or(params.settings);
                     self.take_settings(Some(settings));
                     let open: Vec<Uri> = self.workspace.documents.uris().cloned().collect();
                     for uri in open {
@@ -264,7 +280,10 @@ impl<'a> Server<'a> {
             Err(error) => {
                 let report = miette::Report::new(error);
                 let message = match report.help() {
-                    Some(help) => format!("{report} ({}); help: {help}", report.code().map(|c| c.to_string()).unwrap_or_default()),
+                    Some(help) => format!(
+                        "{report} ({}); help: {help}",
+                        report.code().map(|c| c.to_string()).unwrap_or_default()
+                    ),
                     None => report.to_string(),
                 };
                 let params = lsp_types::ShowMessageParams {

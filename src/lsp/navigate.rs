@@ -44,7 +44,9 @@ pub fn target_at(analysis: &Analysis, offset: usize) -> Option<Target> {
     {
         return Some(Target::Symbol(name.to_string()));
     }
-    let statement = statements.iter().find(|statement| covers(statement.whole, offset))?;
+    let statement = statements
+        .iter()
+        .find(|statement| covers(statement.whole, offset))?;
     let name = label_name(word);
     labels_of(&statements, statement.block)
         .any(|label| label.text == name)
@@ -127,7 +129,8 @@ pub fn references(analysis: &Analysis, target: &Target, include_definition: bool
                     file == 0 && statement.block == *block && label_name(written.trim()) == name
                 }
                 Target::Block(name) => {
-                    lookup::block_name_at(text, start).is_some_and(|at| at.eq_ignore_ascii_case(name))
+                    lookup::block_name_at(text, start)
+                        .is_some_and(|at| at.eq_ignore_ascii_case(name))
                         || written.trim().eq_ignore_ascii_case(name)
                 }
                 Target::Symbol(name) => lookup::word_at(text, start)
@@ -204,7 +207,8 @@ pub fn workspace_symbols(workspace: &Workspace, query: &str) -> Vec<SymbolInform
     for uri in uris {
         let text = match workspace.documents.get(&uri) {
             Some(text) => text.to_string(),
-            None => match super::workspace::path_of(&uri).and_then(|path| std::fs::read(path).ok()) {
+            None => match super::workspace::path_of(&uri).and_then(|path| std::fs::read(path).ok())
+            {
                 Some(bytes) => String::from_utf8_lossy(&bytes).into_owned(),
                 None => continue,
             },
@@ -215,8 +219,10 @@ pub fn workspace_symbols(workspace: &Workspace, query: &str) -> Vec<SymbolInform
             if !block.name.to_uppercase().contains(&query) {
                 continue;
             }
-            let range: Range =
-                index.range(&text, block.header.start as usize..block.header.end as usize);
+            let range: Range = index.range(
+                &text,
+                block.header.start as usize..block.header.end as usize,
+            );
             found.push(SymbolInformation {
                 name: block.name,
                 kind: SymbolKind::FUNCTION,
@@ -241,5 +247,8 @@ fn awl_files(root: &Path) -> impl Iterator<Item = std::path::PathBuf> {
         })
         .filter_map(Result::ok)
         .map(walkdir::DirEntry::into_path)
-        .filter(|path| path.extension().is_some_and(|ext| ext.eq_ignore_ascii_case("awl")))
+        .filter(|path| {
+            path.extension()
+                .is_some_and(|ext| ext.eq_ignore_ascii_case("awl"))
+        })
 }

@@ -59,9 +59,14 @@ impl Client {
             server: Some(thread),
             next: 0,
         };
-        let params = json!({"capabilities": {}, "rootUri": uri(root), "initializationOptions": options});
+        let params =
+            json!({"capabilities": {}, "rootUri": uri(root), "initializationOptions": options});
         let response = client.request("initialize", params);
-        assert!(response.result.unwrap()["capabilities"]["hoverProvider"].as_bool().unwrap());
+        assert!(
+            response.result.unwrap()["capabilities"]["hoverProvider"]
+                .as_bool()
+                .unwrap()
+        );
         client.notify("initialized", json!({}));
         client
     }
@@ -139,7 +144,10 @@ fn errors_come_with_their_code_and_help_and_go_when_fixed() {
     let diagnostics = published["diagnostics"].as_array().unwrap();
     let error = &diagnostics[0];
     assert_eq!(error["severity"], 1);
-    assert!(error["code"].as_str().unwrap().starts_with("awl::"), "{error}");
+    assert!(
+        error["code"].as_str().unwrap().starts_with("awl::"),
+        "{error}"
+    );
     assert_eq!(error["range"]["start"]["line"], 14, "{error}");
     client.notify(
         "textDocument/didChange",
@@ -161,12 +169,21 @@ fn hover_tells_the_operation_the_symbol_and_the_block() {
     assert!(operation.contains("s5-115u"), "{operation}");
     let symbol = client.at("textDocument/hover", &path, 1, 13)["contents"]["value"].clone();
     let symbol = symbol.as_str().unwrap();
-    assert!(symbol.contains("I 0.0") && symbol.contains("start button"), "{symbol}");
+    assert!(
+        symbol.contains("I 0.0") && symbol.contains("start button"),
+        "{symbol}"
+    );
     let block = client.at("textDocument/hover", &path, 2, 13)["contents"]["value"].clone();
-    assert!(block.as_str().unwrap().contains("DES  :EIN  I BI"), "{block}");
+    assert!(
+        block.as_str().unwrap().contains("DES  :EIN  I BI"),
+        "{block}"
+    );
     let jump = client.at("textDocument/hover", &path, 13, 6)["contents"]["value"].clone();
     let jump = jump.as_str().unwrap();
-    assert!(jump.contains("`SPB`") && jump.contains("RLO") && jump.contains("µs"), "{jump}");
+    assert!(
+        jump.contains("`SPB`") && jump.contains("RLO") && jump.contains("µs"),
+        "{jump}"
+    );
     let label = client.at("textDocument/hover", &path, 13, 10)["contents"]["value"].clone();
     assert!(label.as_str().unwrap().contains("line 17"), "{label}");
     client.finish();
@@ -183,18 +200,32 @@ fn definitions_references_and_symbols() {
     let block = client.at("textDocument/definition", &path, 2, 12);
     assert_eq!(block["range"]["start"]["line"], 8, "{block}");
     let symbol = client.at("textDocument/definition", &path, 1, 13);
-    assert!(symbol["uri"].as_str().unwrap().ends_with("plant.seq"), "{symbol}");
+    assert!(
+        symbol["uri"].as_str().unwrap().ends_with("plant.seq"),
+        "{symbol}"
+    );
     let uses = client.at("textDocument/references", &path, 13, 10);
     assert_eq!(uses.as_array().unwrap().len(), 2, "{uses}");
     let calls = client.at("textDocument/references", &path, 8, 3);
     assert_eq!(calls.as_array().unwrap().len(), 2, "{calls}");
     let outline = client
-        .request("textDocument/documentSymbol", json!({"textDocument": {"uri": uri(&path)}}))
+        .request(
+            "textDocument/documentSymbol",
+            json!({"textDocument": {"uri": uri(&path)}}),
+        )
         .result
         .unwrap();
-    let names: Vec<&str> = outline.as_array().unwrap().iter().map(|s| s["name"].as_str().unwrap()).collect();
+    let names: Vec<&str> = outline
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
     assert_eq!(names, ["OB 1", "FB 5"]);
-    let found = client.request("workspace/symbol", json!({"query": "fb"})).result.unwrap();
+    let found = client
+        .request("workspace/symbol", json!({"query": "fb"}))
+        .result
+        .unwrap();
     assert_eq!(found.as_array().unwrap().len(), 1, "{found}");
     client.finish();
 }
@@ -207,11 +238,22 @@ fn bad_requests_are_answered_and_the_server_stays() {
     let Message::Notification(message) = client.receive() else {
         panic!("a message about the setting comes first");
     };
-    assert!(message.params["message"].as_str().unwrap().contains("awl::lsp::unknown_cpu"));
+    assert!(
+        message.params["message"]
+            .as_str()
+            .unwrap()
+            .contains("awl::lsp::unknown_cpu")
+    );
     let unknown = client.request("textDocument/rename", json!({}));
-    assert_eq!(unknown.error.unwrap().code, lsp_server::ErrorCode::MethodNotFound as i32);
+    assert_eq!(
+        unknown.error.unwrap().code,
+        lsp_server::ErrorCode::MethodNotFound as i32
+    );
     let bad = client.request("textDocument/hover", json!({"nonsense": true}));
-    assert_eq!(bad.error.unwrap().code, lsp_server::ErrorCode::InvalidParams as i32);
+    assert_eq!(
+        bad.error.unwrap().code,
+        lsp_server::ErrorCode::InvalidParams as i32
+    );
     let not_open = client.at("textDocument/hover", &path, 0, 0);
     assert_eq!(not_open, Value::Null);
     client.open(&path, "\u{0}\u{1}FB \"\n((((");

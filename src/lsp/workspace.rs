@@ -42,7 +42,9 @@ pub enum SettingsError {
     #[error("the settings are not understood: {reason}")]
     #[diagnostic(
         code(awl::lsp::bad_settings),
-        help("the settings are an object such as {{\"cpu\": \"s5-115u\", \"symbols\": [\"plant.seq\"]}}")
+        help(
+            "the settings are an object such as {{\"cpu\": \"s5-115u\", \"symbols\": [\"plant.seq\"]}}"
+        )
     )]
     Malformed { reason: String },
 }
@@ -93,7 +95,9 @@ impl Analysis {
     }
 
     pub fn uri(&self, file: u16) -> Option<Uri> {
-        self.paths.get(usize::from(file)).and_then(|path| uri_of(path))
+        self.paths
+            .get(usize::from(file))
+            .and_then(|path| uri_of(path))
     }
 }
 
@@ -188,7 +192,10 @@ impl Workspace {
     /// files.
     pub fn analyse(&self, uri: &Uri, text: &str) -> Analysis {
         let path = path_of(uri).unwrap_or_else(|| PathBuf::from(uri.as_str()));
-        let scenario = path.is_absolute().then(|| self.scenario_of(&path)).flatten();
+        let scenario = path
+            .is_absolute()
+            .then(|| self.scenario_of(&path))
+            .flatten();
         let mut paths = vec![path.clone()];
         let mut sources = SourceSet::default();
         sources.add(SourceFile::new(path.display().to_string(), text));
@@ -214,7 +221,10 @@ impl Workspace {
                 Language::default(),
             ),
         };
-        for other in others.iter().filter(|other| normalize(other) != normalize(&path)) {
+        for other in others
+            .iter()
+            .filter(|other| normalize(other) != normalize(&path))
+        {
             if let Some(text) = self.text_of(other) {
                 sources.add(SourceFile::new(other.display().to_string(), text));
                 paths.push(other.clone());
@@ -227,7 +237,12 @@ impl Workspace {
                 Some(SourceFile::new(file.display().to_string(), text))
             })
             .collect();
-        paths.extend(symbols.iter().filter(|file| self.text_of(file).is_some()).cloned());
+        paths.extend(
+            symbols
+                .iter()
+                .filter(|file| self.text_of(file).is_some())
+                .cloned(),
+        );
         let profile = cpu.unwrap_or_else(|| frontend::default_profile(&sources, language));
         let built =
             frontend::build_with_symbols(sources.clone(), symbol_files.clone(), language, profile);
