@@ -3,7 +3,7 @@
 //! message; the "compiles for …" note follows the errors when no CPU was chosen.
 
 use lsp_types::{
-    Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString,
+    Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString, Uri,
 };
 use miette::Report;
 
@@ -13,21 +13,28 @@ use crate::diagnostics;
 
 const SOURCE: &str = "awl";
 
-/// The diagnostics of the document (file 0 of the analysis).
-pub fn of_document(analysis: &Analysis) -> Vec<Diagnostic> {
-    let text = analysis.text(0);
+/// The diagnostics of each file of the document's program (the document is file 0): the
+/// other program files and the assignment lists have theirs too, as `awl check` prints them.
+pub fn of_program(analysis: &Analysis) -> Vec<(Option<Uri>, Vec<Diagnostic>)> {
+    (0..analysis.built.sources.files.len() as u16)
+        .map(|file| (analysis.uri(file), of_file(analysis, file)))
+        .collect()
+}
+
+fn of_file(analysis: &Analysis, file: u16) -> Vec<Diagnostic> {
+    let text = analysis.text(file);
     let index = LineIndex::new(text);
     let mut found: Vec<Diagnostic> = analysis
         .built
         .diagnostics
         .iter()
-        .filter(|diagnostic| diagnostic.span().file == 0)
+        .filter(|diagnostic| diagnostic.span().file == file)
         .map(|diagnostic| {
             let report = diagnostics::report(&analysis.built.sources, diagnostic);
-            convert(&report, analysis, text, &index)
+            convert(&report, analysis.uri(file), text, &index)
         })
         .collect();
-    if let Some(note) = runs_on_note(analysis) {
+    if let Some(note) = runs_on_note(analysis).filter(|_| file == 0) {
         let first_error = found
             .iter()
             .find(|diagnostic| diagnostic.severity == Some(DiagnosticSeverity::ERROR))
@@ -45,11 +52,10 @@ pub fn of_document(analysis: &Analysis) -> Vec<Diagnostic> {
 
 /// "compiles without errors for --cpu …", as `awl check` says it, where a CPU would help.
 fn runs_on_note(analysis: &Analysis) -> Option<String> {
-    let profiles = analysis.runs_on.as_ref()?;
     if crate::cli::cpu_cannot_help(&analysis.built) {
         return None;
     }
-    let note = crate::cli::runs_on_note(profiles);
+    let note = crate::cli::runs_on_note(&analysis.runs_on()?);
     Some(note.trim_end().trim_start_matches("note: ").to_string())
 }
 
@@ -61,8 +67,8 @@ fn severity(report: &Report) -> DiagnosticSeverity {
     }
 }
 
-/// One report as an LSP diagnostic of the document whose text is `text`.
-pub fn convert(report: &Report, analysis: &Analysis, text: &str, index: &LineIndex) -> Diagnostic {
+/// One report as an LSP diagnostic of the file `uri` whose text is `text`.
+fn convert(report: &Report, uri: Option<Uri>, text: &str, index: &LineIndex) -> Diagnostic {
     let labels: Vec<miette::LabeledSpan> = report.labels().into_iter().flatten().collect();
     let primary = labels.iter().position(|label| label.primary()).unwrap_or(0);
     let range_of = |label: &miette::LabeledSpan| {
@@ -76,8 +82,7 @@ pub fn convert(report: &Report, analysis: &Analysis, text: &str, index: &LineInd
     if let Some(help) = report.help() {
         message.push_str(&format!("\nhelp: {help}"));
     }
-    let related: Vec<DiagnosticRelatedInformation> = analysis
-        .uri(0)
+    let related: Vec<DiagnosticRelatedInformation> = uri
         .map(|uri| {
             labels
                 .iter()

@@ -10,7 +10,6 @@ use super::position::LineIndex;
 use super::workspace::Analysis;
 use crate::mnemonics::{self, MnemonicSet};
 use crate::source::Span;
-use crate::step7::ast::{S7BlockRef, S7Body};
 
 /// The hover text at byte `offset` of the document, as Markdown.
 pub fn hover_text(analysis: &Analysis, offset: usize) -> Option<String> {
@@ -29,11 +28,10 @@ pub fn hover_text(analysis: &Analysis, offset: usize) -> Option<String> {
             Target::Label { name, .. } => label(analysis, &target, name)?,
             Target::Block(name) => block(analysis, name)?,
             Target::Symbol(name) => symbol(analysis, name)?,
+            Target::Variable(declared) => {
+                format!("```awl\n{}\n```", lookup::slice(analysis, *declared).trim())
+            }
         });
-    }
-    let (word, _) = lookup::word_at(analysis.text(0), offset)?;
-    if let Some(declared) = variable(analysis, word, offset) {
-        return Some(declared);
     }
     let statement = statement.filter(|statement| covers(statement.operand, offset))?;
     operand(analysis, lookup::slice(analysis, statement.operand))
@@ -174,57 +172,4 @@ fn operand(analysis: &Analysis, written: &str) -> Option<String> {
         text.push_str(&format!(" — {}", entry.comment.trim()));
     }
     Some(text)
-}
-
-/// A STEP 7 variable: `#speed` of the block's interface, `"Data".speed` of a data block:
-/// its declaration as written.
-fn variable(analysis: &Analysis, word: &str, offset: usize) -> Option<String> {
-    let (owner, member) = match word.strip_prefix('#') {
-        Some(local) => (None, local),
-        None => {
-            let (db, member) = word.split_once("\".")?;
-            (Some(db.trim_start_matches('"')), member)
-        }
-    };
-    let member = member.split('.').next()?;
-    let symbols = &analysis.built.compiled.program.symbols;
-    let owner_number = owner
-        .and_then(|name| symbols.block_of(name))
-        .map(|id| id.number);
-    for unit in &analysis.built.s7_units {
-        for block in &unit.blocks {
-            let is_owner = match (owner, &block.name) {
-                (None, _) => {
-                    unit.file == 0
-                        && block.header.start as usize <= offset
-                        && block.end.is_none_or(|end| offset <= end.end as usize)
-                }
-                (Some(name), S7BlockRef::Symbol(written)) => {
-                    written.text.eq_ignore_ascii_case(name)
-                }
-                (Some(_), S7BlockRef::Number { number, .. }) => owner_number == Some(*number),
-            };
-            if !is_owner {
-                continue;
-            }
-            let members = match &block.body {
-                S7Body::Data { members, .. } if owner.is_some() => members.iter().collect(),
-                _ => block
-                    .interface
-                    .iter()
-                    .flat_map(|section| &section.vars)
-                    .collect::<Vec<_>>(),
-            };
-            if let Some(declared) = members
-                .iter()
-                .find(|declared| declared.name.text.eq_ignore_ascii_case(member))
-            {
-                return Some(format!(
-                    "```awl\n{}\n```",
-                    lookup::slice(analysis, declared.span).trim()
-                ));
-            }
-        }
-    }
-    None
 }

@@ -298,17 +298,31 @@ impl<'a> Server<'a> {
         }
     }
 
-    /// The document's diagnostics, after the front end has read it.
+    /// The diagnostics of the document and of its program's files that are not open (those
+    /// have their own), after the front end has read it.
     fn publish(&self, uri: &Uri) {
         let Some(text) = self.workspace.documents.get(uri) else {
             return;
         };
         let found = std::panic::catch_unwind(AssertUnwindSafe(|| {
-            diagnostics::of_document(&self.workspace.analyse(uri, text))
+            diagnostics::of_program(&self.workspace.analyse(uri, text))
         }));
         // A front end that fails leaves the last diagnostics standing rather than the server.
-        if let Ok(found) = found {
-            self.publish_list(uri.clone(), found);
+        let Ok(found) = found else { return };
+        for (file, (file_uri, list)) in found.into_iter().enumerate() {
+            let file_uri = if file == 0 {
+                Some(uri.clone())
+            } else {
+                file_uri
+            };
+            match file_uri {
+                Some(file_uri)
+                    if file == 0 || self.workspace.documents.get(&file_uri).is_none() =>
+                {
+                    self.publish_list(file_uri, list);
+                }
+                _ => {}
+            }
         }
     }
 

@@ -9,6 +9,7 @@ use super::lookup::{self, Block, Statement, covers};
 use super::position::LineIndex;
 use super::workspace::{Analysis, Workspace, uri_of};
 use crate::source::Span;
+use crate::step7::ast::{S7BlockKind, S7BlockRef, S7Body};
 
 /// What a name at the cursor stands for.
 #[derive(Debug, Clone, PartialEq)]
@@ -19,6 +20,8 @@ pub enum Target {
     Block(String),
     /// A symbol of the assignment list, without `-` or quotes.
     Symbol(String),
+    /// A STEP 7 variable (`#speed`, `"Data".speed`), declared at the span.
+    Variable(Span),
 }
 
 /// The label name an operand or a label definition writes: `M001`, `=M001` → `M001`.
@@ -29,7 +32,7 @@ fn label_name(word: &str) -> &str {
 /// What stands at byte `offset` of the document.
 pub fn target_at(analysis: &Analysis, offset: usize) -> Option<Target> {
     let text = analysis.text(0);
-    let (blocks, statements) = lookup::outline(analysis, 0);
+    let (_, statements) = lookup::outline(analysis, 0);
     if let Some(name) = lookup::block_name_at(text, offset)
         && blocks_named(analysis, &name).next().is_some()
     {
@@ -44,6 +47,9 @@ pub fn target_at(analysis: &Analysis, offset: usize) -> Option<Target> {
     {
         return Some(Target::Symbol(name.to_string()));
     }
+    if let Some(declared) = declaration_of(analysis, word, offset) {
+        return Some(Target::Variable(declared));
+    }
     let statement = statements
         .iter()
         .find(|statement| covers(statement.whole, offset))?;
@@ -54,7 +60,6 @@ pub fn target_at(analysis: &Analysis, offset: usize) -> Option<Target> {
             block: statement.block,
             name: name.to_string(),
         })
-        .filter(|_| !blocks.is_empty())
 }
 
 fn labels_of<'a>(
@@ -96,6 +101,7 @@ pub fn definition(analysis: &Analysis, target: &Target) -> Option<Location> {
             let block = blocks_named(analysis, name).next()?;
             location(analysis, block.header)
         }
+        Target::Variable(declared) => location(analysis, *declared),
         Target::Symbol(name) => {
             let symbols = &analysis.built.compiled.program.symbols;
             let entry = symbols.get(name)?;
@@ -133,6 +139,9 @@ pub fn references(analysis: &Analysis, target: &Target, include_definition: bool
                         .is_some_and(|at| at.eq_ignore_ascii_case(name))
                         || written.trim().eq_ignore_ascii_case(name)
                 }
+                Target::Variable(declared) => lookup::word_at(text, start)
+                    .and_then(|(word, _)| declaration_of(analysis, word, start))
+                    .is_some_and(|at| at == *declared),
                 Target::Symbol(name) => lookup::word_at(text, start)
                     .and_then(|(word, _)| crate::symbols::symbol_written(word))
                     .is_some_and(|word| word.eq_ignore_ascii_case(name)),
@@ -143,6 +152,58 @@ pub fn references(analysis: &Analysis, target: &Target, include_definition: bool
         }
     }
     found
+}
+
+/// Where the STEP 7 variable `word` at `offset` of the document is declared: `#speed` in the
+/// interface of the block around it, `"Data".speed` among the members of that data block.
+pub fn declaration_of(analysis: &Analysis, word: &str, offset: usize) -> Option<Span> {
+    let (owner, member) = match word.strip_prefix('#') {
+        Some(local) => (None, local),
+        None => {
+            let (db, member) = word.split_once("\".")?;
+            (Some(db.trim_start_matches('"')), member)
+        }
+    };
+    let member = member.split('.').next()?;
+    let symbols = &analysis.built.compiled.program.symbols;
+    let owner_number = owner
+        .and_then(|name| symbols.block_of(name))
+        .map(|id| id.number);
+    for unit in &analysis.built.s7_units {
+        for block in &unit.blocks {
+            let is_owner = match (owner, &block.name) {
+                (None, _) => {
+                    unit.file == 0
+                        && block.header.start as usize <= offset
+                        && block.end.is_none_or(|end| offset <= end.end as usize)
+                }
+                (Some(name), S7BlockRef::Symbol(written)) => {
+                    written.text.eq_ignore_ascii_case(name)
+                }
+                (Some(_), S7BlockRef::Number { kind, number }) => {
+                    *kind == S7BlockKind::Db && owner_number == Some(*number)
+                }
+            };
+            if !is_owner {
+                continue;
+            }
+            let members: Vec<&crate::step7::ast::VarDecl> = match &block.body {
+                S7Body::Data { members, .. } if owner.is_some() => members.iter().collect(),
+                _ => block
+                    .interface
+                    .iter()
+                    .flat_map(|section| &section.vars)
+                    .collect(),
+            };
+            if let Some(declared) = members
+                .iter()
+                .find(|declared| declared.name.text.eq_ignore_ascii_case(member))
+            {
+                return Some(declared.span);
+            }
+        }
+    }
+    None
 }
 
 /// The document's blocks, each with its networks or segments.

@@ -97,11 +97,12 @@ impl Client {
             .expect("the server answers")
     }
 
-    /// The next diagnostics published.
-    fn diagnostics(&self) -> Value {
+    /// The next diagnostics published for `path`.
+    fn diagnostics(&self, path: &Path) -> Value {
         loop {
             if let Message::Notification(notification) = self.receive()
                 && notification.method == "textDocument/publishDiagnostics"
+                && notification.params["uri"] == uri(path)
             {
                 return notification.params;
             }
@@ -113,7 +114,7 @@ impl Client {
             "textDocument/didOpen",
             json!({"textDocument": {"uri": uri(path), "languageId": "awl", "version": 1, "text": text}}),
         );
-        self.diagnostics()
+        self.diagnostics(path)
     }
 
     fn at(&mut self, method: &str, path: &Path, line: u32, character: u32) -> Value {
@@ -153,7 +154,31 @@ fn errors_come_with_their_code_and_help_and_go_when_fixed() {
         "textDocument/didChange",
         json!({"textDocument": {"uri": uri(&path), "version": 2}, "contentChanges": [{"text": PLANT}]}),
     );
-    assert_eq!(client.diagnostics()["diagnostics"], json!([]));
+    assert_eq!(client.diagnostics(&path)["diagnostics"], json!([]));
+    client.finish();
+}
+
+#[test]
+fn an_assignment_list_s_errors_are_its_own() {
+    let folder = plant_folder("list");
+    std::fs::write(
+        folder.join("plant.seq"),
+        "I 0.0     START     start button\nQ 99999.0 LAMP\n",
+    )
+    .unwrap();
+    let path = folder.join("plant.awl");
+    let client = Client::start(&folder, Value::Null);
+    client.open(&path, PLANT);
+    let list = client.diagnostics(&folder.join("plant.seq"));
+    let error = &list["diagnostics"][0];
+    assert!(
+        error["code"]
+            .as_str()
+            .unwrap()
+            .starts_with("awl::symbols::"),
+        "{list}"
+    );
+    assert_eq!(error["range"]["start"]["line"], 1, "{list}");
     client.finish();
 }
 
@@ -270,4 +295,81 @@ fn a_client_that_vanishes_ends_the_server() {
     let server = client.server.take().unwrap();
     drop(client);
     assert_eq!(server.join().unwrap(), Ok(()));
+}
+
+const MOTOR: &str = "FUNCTION_BLOCK FB 1
+VAR_INPUT
+  start : BOOL;  // start button
+END_VAR
+BEGIN
+NETWORK
+TITLE = switch on
+      U     #start;
+      =     A 4.0;
+END_FUNCTION_BLOCK
+";
+
+#[test]
+fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
+    let folder = std::env::temp_dir().join(format!("awl-lsp-step7-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let path = folder.join("motor.awl");
+    let mut client = Client::start(&folder, Value::Null);
+    assert_eq!(client.open(&path, MOTOR)["diagnostics"], json!([]));
+    let declared = client.at("textDocument/hover", &path, 7, 14)["contents"]["value"].clone();
+    assert!(
+        declared.as_str().unwrap().contains("start : BOOL"),
+        "{declared}"
+    );
+    let operation = client.at("textDocument/hover", &path, 7, 6)["contents"]["value"].clone();
+    assert!(
+        operation
+            .as_str()
+            .unwrap()
+            .contains("English (SIMATIC) mnemonics: `A`"),
+        "{operation}"
+    );
+    let definition = client.at("textDocument/definition", &path, 7, 14);
+    assert_eq!(definition["range"]["start"]["line"], 2, "{definition}");
+    let outline = client
+        .request(
+            "textDocument/documentSymbol",
+            json!({"textDocument": {"uri": uri(&path)}}),
+        )
+        .result
+        .unwrap();
+    assert_eq!(outline[0]["name"], "FB 1", "{outline}");
+    assert_eq!(outline[0]["children"][0]["name"], "network 1", "{outline}");
+    client.finish();
+}
+
+#[test]
+fn without_a_cpu_the_errors_say_which_cpus_compile_it() {
+    let folder = std::env::temp_dir().join(format!("awl-lsp-cpus-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl"),
+    )
+    .unwrap();
+    let path = folder.join("analog.awl");
+    let client = Client::start(&folder, Value::Null);
+    let published = client.open(&path, &program);
+    let note = published["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|diagnostic| diagnostic["severity"] == 3)
+        .cloned()
+        .unwrap_or_default();
+    assert!(
+        note["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("--cpu s5-115u-941"),
+        "{published}"
+    );
+    client.finish();
+    let client = Client::start(&folder, json!({"cpu": "s5-115u-944"}));
+    assert_eq!(client.open(&path, &program)["diagnostics"], json!([]));
+    client.finish();
 }

@@ -84,14 +84,31 @@ pub struct Analysis {
     /// The path of each file of `built.sources`; the document is file 0.
     pub paths: Vec<PathBuf>,
     pub profile: &'static Profile,
-    /// Without a chosen CPU and with errors: the profiles the program compiles on.
-    pub runs_on: Option<Vec<&'static str>>,
+    /// Whether a scenario or a setting chose the CPU.
+    cpu_chosen: bool,
+    /// What the front end read, to ask which CPUs the program compiles on.
+    programs: SourceSet,
+    symbol_files: Vec<SourceFile>,
+    language: Language,
 }
 
 impl Analysis {
     /// The text of file `file`.
     pub fn text(&self, file: u16) -> &str {
         &self.built.sources.get(file).text
+    }
+
+    /// Without a chosen CPU and with errors: the profiles the program compiles on, as
+    /// `awl check` says them.
+    pub fn runs_on(&self) -> Option<Vec<&'static str>> {
+        (!self.cpu_chosen && self.built.has_errors()).then(|| {
+            frontend::profiles_without_errors(
+                &self.built,
+                &self.programs,
+                &self.symbol_files,
+                self.language,
+            )
+        })
     }
 
     pub fn uri(&self, file: u16) -> Option<Uri> {
@@ -246,13 +263,14 @@ impl Workspace {
         let profile = cpu.unwrap_or_else(|| frontend::default_profile(&sources, language));
         let built =
             frontend::build_with_symbols(sources.clone(), symbol_files.clone(), language, profile);
-        let runs_on = (cpu.is_none() && built.has_errors())
-            .then(|| frontend::profiles_without_errors(&built, &sources, &symbol_files, language));
         Analysis {
             built,
             paths,
             profile,
-            runs_on,
+            cpu_chosen: cpu.is_some(),
+            programs: sources,
+            symbol_files,
+            language,
         }
     }
 }
