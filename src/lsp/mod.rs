@@ -125,6 +125,10 @@ impl<'a> Server<'a> {
                     Ok(false) => self.answer(request),
                     Err(error) => return Err(error.to_string()),
                 },
+                // `exit` without `shutdown` first: the client is done all the same.
+                Message::Notification(notification) if notification.method == "exit" => {
+                    return Ok(());
+                }
                 Message::Notification(notification) => self.notified(notification),
                 Message::Response(_) => {}
             }
@@ -252,8 +256,10 @@ impl<'a> Server<'a> {
                 }
             }
             notify::DidChangeConfiguration::METHOD => {
+                // A client that pulls its configuration sends `null`: the settings stand.
                 if let Ok(params) =
                     params_of::<lsp_types::DidChangeConfigurationParams>(notification.params)
+                    && !params.settings.is_null()
                 {
                     let settings = params
                         .settings

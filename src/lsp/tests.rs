@@ -373,3 +373,28 @@ fn without_a_cpu_the_errors_say_which_cpus_compile_it() {
     assert_eq!(client.open(&path, &program)["diagnostics"], json!([]));
     client.finish();
 }
+
+#[test]
+fn settings_sent_later_count_and_an_exit_alone_ends_the_server() {
+    let folder = std::env::temp_dir().join(format!("awl-lsp-later-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl"),
+    )
+    .unwrap();
+    let path = folder.join("analog.awl");
+    let mut client = Client::start(&folder, Value::Null);
+    assert_ne!(client.open(&path, &program)["diagnostics"], json!([]));
+    client.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"awl": {"cpu": "s5-115u-944"}}}),
+    );
+    assert_eq!(client.diagnostics(&path)["diagnostics"], json!([]));
+    client.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": null}),
+    );
+    client.notify("exit", Value::Null);
+    let server = client.server.take().unwrap();
+    assert_eq!(server.join().unwrap(), Ok(()));
+}
