@@ -200,8 +200,8 @@ pub fn run(cli: Cli) -> ExitCode {
 fn lsp(console: &mut Console) -> u8 {
     match crate::lsp::serve_stdio() {
         Ok(()) => EXIT_OK,
-        Err(reason) => {
-            console.err(&format!("awl lsp: the connection failed: {reason}\n"));
+        Err(error) => {
+            console.report(&miette::Report::new(error));
             EXIT_USAGE
         }
     }

@@ -47,14 +47,31 @@ pub fn capabilities() -> ServerCapabilities {
     }
 }
 
+/// Why the server could not talk with its client.
+#[derive(Debug, thiserror::Error, miette::Diagnostic)]
+#[error("awl lsp: the connection to the editor failed: {reason}")]
+#[diagnostic(
+    code(awl::lsp::connection),
+    help(
+        "`awl lsp` is started by an editor, which speaks the Language Server Protocol on its \
+         stdin and stdout and sends `initialize` first"
+    )
+)]
+pub struct ConnectionError {
+    reason: String,
+}
+
 /// Runs the server on stdin and stdout until the client says `exit` or goes away.
-pub fn serve_stdio() -> Result<(), String> {
+pub fn serve_stdio() -> Result<(), ConnectionError> {
     let (connection, threads) = Connection::stdio();
     let result = serve(&connection);
     drop(connection);
-    // A client that vanished leaves the reader with an error: the server ends all the same.
-    let _ = threads.join();
-    result
+    // Once the session has begun, a client that vanished ends the server like `exit`; before
+    // it, the reader's error says what came instead of `initialize`.
+    let read = threads.join();
+    result.map_err(|reason| ConnectionError {
+        reason: read.err().map_or(reason, |error| error.to_string()),
+    })
 }
 
 /// The handshake, then the loop, on any connection (stdio, or memory in the tests).
@@ -67,15 +84,21 @@ pub fn serve(connection: &Connection) -> Result<(), String> {
         }),
     })
     .map_err(|error| error.to_string())?;
-    let (id, params) = connection
-        .initialize_start()
-        .map_err(|error| error.to_string())?;
+    let (id, params) = connection.initialize_start().map_err(protocol)?;
     connection
         .initialize_finish(id, initialize)
-        .map_err(|error| error.to_string())?;
+        .map_err(protocol)?;
     let params: InitializeParams = serde_json::from_value(params).unwrap_or_default();
     let mut server = Server::new(connection, params);
     server.main_loop()
+}
+
+fn protocol(error: lsp_server::ProtocolError) -> String {
+    if error.channel_is_disconnected() {
+        "its input ended before the session began".to_string()
+    } else {
+        error.to_string()
+    }
 }
 
 #[derive(Serialize)]
