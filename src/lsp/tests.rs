@@ -398,3 +398,40 @@ fn settings_sent_later_count_and_an_exit_alone_ends_the_server() {
     let server = client.server.take().unwrap();
     assert_eq!(server.join().unwrap(), Ok(()));
 }
+
+#[test]
+fn a_german_listing_finds_its_scenario_s_assignment_list() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("programs");
+    let path = folder.join("filling_de.awl");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut client = Client::start(&folder, Value::Null);
+    assert_eq!(client.open(&path, &text)["diagnostics"], json!([]));
+    let symbol = client.at("textDocument/hover", &path, 10, 18)["contents"]["value"].clone();
+    assert!(
+        symbol.as_str().unwrap().contains("Taster Fuellen ein"),
+        "{symbol}"
+    );
+    let operation = client.at("textDocument/hover", &path, 10, 11)["contents"]["value"].clone();
+    assert!(
+        operation
+            .as_str()
+            .unwrap()
+            .contains("English (SIMATIC) mnemonics: `A`"),
+        "{operation}"
+    );
+    let call = client.at("textDocument/definition", &path, 6, 18);
+    assert_eq!(call["range"]["start"]["line"], 8, "{call}");
+    let outline = client
+        .request(
+            "textDocument/documentSymbol",
+            json!({"textDocument": {"uri": uri(&path)}}),
+        )
+        .result
+        .unwrap();
+    assert_eq!(
+        outline[1]["children"].as_array().unwrap().len(),
+        3,
+        "{outline}"
+    );
+    client.finish();
+}
