@@ -34,6 +34,15 @@ fn of_file(analysis: &Analysis, file: u16) -> Vec<Diagnostic> {
             convert(&report, analysis.uri(file), text, &index)
         })
         .collect();
+    if file == 0 {
+        // A file named by the scenario or the settings that is missing: at the document's top.
+        found.extend(
+            analysis
+                .unread
+                .iter()
+                .map(|report| convert(report, None, text, &index)),
+        );
+    }
     if let Some(note) = runs_on_note(analysis).filter(|_| file == 0) {
         let first_error = found
             .iter()

@@ -183,6 +183,23 @@ fn an_assignment_list_s_errors_are_its_own() {
 }
 
 #[test]
+fn a_missing_assignment_list_is_told_at_the_top() {
+    let folder = plant_folder("missing");
+    std::fs::remove_file(folder.join("plant.seq")).unwrap();
+    let path = folder.join("plant.awl");
+    let client = Client::start(&folder, Value::Null);
+    let published = client.open(&path, PLANT);
+    let codes: Vec<&str> = published["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|diagnostic| diagnostic["code"].as_str())
+        .collect();
+    assert!(codes.contains(&"awl::cli::read_file"), "{published}");
+    client.finish();
+}
+
+#[test]
 fn hover_tells_the_operation_the_symbol_and_the_block() {
     let folder = plant_folder("hover");
     let path = folder.join("plant.awl");

@@ -7,13 +7,14 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use lsp_types::Uri;
-use miette::Diagnostic;
+use miette::{Diagnostic, Report};
 use serde::Deserialize;
 use thiserror::Error;
 
 use super::documents::Documents;
 use crate::frontend::{self, Frontend, Language};
 use crate::profile::{self, Profile};
+use crate::program_files::SourceError;
 use crate::scenario::Scenario;
 use crate::source::{SourceFile, SourceSet, normalize};
 
@@ -86,6 +87,9 @@ pub struct Analysis {
     pub profile: &'static Profile,
     /// Whether a scenario or a setting chose the CPU.
     cpu_chosen: bool,
+    /// The program files and assignment lists the scenario or the settings name that could
+    /// not be read.
+    pub unread: Vec<Report>,
     /// What the front end read, to ask which CPUs the program compiles on.
     programs: SourceSet,
     symbol_files: Vec<SourceFile>,
@@ -158,12 +162,26 @@ pub fn uri_of(path: &Path) -> Option<Uri> {
 
 impl Workspace {
     /// The text of `path`: the open document's, else the file's on disk.
-    fn text_of(&self, path: &Path) -> Option<String> {
+    fn text_of(&self, path: &Path) -> std::io::Result<String> {
         if let Some(text) = uri_of(path).and_then(|uri| self.documents.get(&uri)) {
-            return Some(text.to_string());
+            return Ok(text.to_string());
         }
-        let bytes = std::fs::read(path).ok()?;
-        Some(String::from_utf8_lossy(&bytes).into_owned())
+        let bytes = std::fs::read(path)?;
+        Ok(String::from_utf8_lossy(&bytes).into_owned())
+    }
+
+    /// The file at `path` for the front end, or why it cannot be read (as `awl check` says it).
+    fn file_of(&self, path: &Path, unread: &mut Vec<Report>) -> Option<SourceFile> {
+        match self.text_of(path) {
+            Ok(text) => Some(SourceFile::new(path.display().to_string(), text)),
+            Err(error) => {
+                unread.push(Report::new(SourceError::Read {
+                    path: path.to_path_buf(),
+                    reason: error.to_string(),
+                }));
+                None
+            }
+        }
     }
 
     /// The scenario in the document's folder (or the workspace folder) that names it as a
@@ -182,7 +200,7 @@ impl Workspace {
                 .collect();
             tomls.sort();
             for toml in tomls {
-                let Some(text) = self.text_of(&toml) else {
+                let Ok(text) = self.text_of(&toml) else {
                     continue;
                 };
                 let (scenario, _) = Scenario::parse(&toml, &text, None);
@@ -238,28 +256,23 @@ impl Workspace {
                 Language::default(),
             ),
         };
+        let mut unread = Vec::new();
         for other in others
             .iter()
             .filter(|other| normalize(other) != normalize(&path))
         {
-            if let Some(text) = self.text_of(other) {
-                sources.add(SourceFile::new(other.display().to_string(), text));
+            if let Some(file) = self.file_of(other, &mut unread) {
+                sources.add(file);
                 paths.push(other.clone());
             }
         }
-        let symbol_files: Vec<SourceFile> = symbols
-            .iter()
-            .filter_map(|file| {
-                let text = self.text_of(file)?;
-                Some(SourceFile::new(file.display().to_string(), text))
-            })
-            .collect();
-        paths.extend(
-            symbols
-                .iter()
-                .filter(|file| self.text_of(file).is_some())
-                .cloned(),
-        );
+        let mut symbol_files = Vec::new();
+        for list in &symbols {
+            if let Some(file) = self.file_of(list, &mut unread) {
+                symbol_files.push(file);
+                paths.push(list.clone());
+            }
+        }
         let profile = cpu.unwrap_or_else(|| frontend::default_profile(&sources, language));
         let built =
             frontend::build_with_symbols(sources.clone(), symbol_files.clone(), language, profile);
@@ -268,6 +281,7 @@ impl Workspace {
             paths,
             profile,
             cpu_chosen: cpu.is_some(),
+            unread,
             programs: sources,
             symbol_files,
             language,
