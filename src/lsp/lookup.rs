@@ -188,7 +188,7 @@ pub fn block_name_at(text: &str, offset: usize) -> Option<String> {
     })
 }
 
-/// The text a span covers in file 0 of the analysis.
+/// The text a span covers, in its file of the analysis.
 pub fn slice(analysis: &Analysis, span: Span) -> &str {
     analysis.built.sources.get(span.file).slice(span)
 }

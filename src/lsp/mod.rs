@@ -1,14 +1,17 @@
 //! `awl lsp`: a language server over stdio. Each document is read with the program its
-//! workspace makes of it ([`workspace`]); the diagnostics are `awl check`'s, published on
+//! workspace makes of it (`workspace`); the diagnostics are `awl check`'s, published on
 //! open and on every change; hover and navigation read the same front end's syntax trees.
 //!
 //! The server answers every request: one it does not know with `MethodNotFound`, bad
 //! parameters with `InvalidParams`, a handler that fails with `InternalError`, and it stops
 //! when the client has gone.
 //!
-//! Hooks for the editor features of their own modules: completion (`complete.rs`), semantic
-//! tokens (`tokens.rs`), formatting (`format.rs`) and quick fixes (`fixes.rs`) each take an
-//! [`workspace::Analysis`] and the document's text; [`Server::request`] dispatches to them.
+//! More editor features (completion, semantic tokens, formatting, quick fixes) join as
+//! modules of their own: each gets its capability in [`capabilities`] and an arm in
+//! `Server::request`, where `Server::at_position` hands a handler the document's
+//! `workspace::Analysis` (front end, file paths, CPU) and the cursor's byte offset,
+//! `Server::workspace.documents` the text, and `position::LineIndex` turns offsets into LSP
+//! positions and back.
 
 mod diagnostics;
 mod documents;
