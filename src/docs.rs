@@ -228,6 +228,62 @@ fn without_link_targets(text: &str) -> String {
     out
 }
 
+/// What the language reference says about the status bits of the operation `english` (its
+/// English word): the paragraphs that name it in code and name a status bit, and the rows of
+/// the status tables that name it, at most `MOST_NOTES`. The STEP 5 part of the reference or
+/// the STEP 7 part, as `step7` says.
+pub fn status_notes(english: &str, step7: bool) -> Vec<String> {
+    const MOST_NOTES: usize = 3;
+    const BITS: &[&str] = &[
+        "RLO", "STA", "OR", "OS", "OV", "CC 0", "CC0", "CC 1", "CC1", "BR", "/FC",
+    ];
+    let split = GRAMMAR
+        .find("\n## STEP 7 operations")
+        .unwrap_or(GRAMMAR.len());
+    let part = if step7 {
+        &GRAMMAR[split..]
+    } else {
+        &GRAMMAR[..split]
+    };
+    let names_it = |text: &str| {
+        text.split('`')
+            .skip(1)
+            .step_by(2)
+            .any(|code| code.split_whitespace().any(|word| word == english))
+    };
+    let names_a_bit = |text: &str| {
+        BITS.iter().any(|bit| {
+            text.match_indices(bit).any(|(at, _)| {
+                let before = text[..at].chars().next_back();
+                let after = text[at + bit.len()..].chars().next();
+                !before.is_some_and(char::is_alphanumeric)
+                    && !after.is_some_and(char::is_alphanumeric)
+            })
+        })
+    };
+    let mut notes = Vec::new();
+    for paragraph in part.split("\n\n").map(str::trim) {
+        if paragraph.starts_with('|') {
+            let mut lines = paragraph.lines();
+            let (Some(header), Some(rule)) = (lines.next(), lines.next()) else {
+                continue;
+            };
+            let rows: Vec<&str> = lines
+                .filter(|row| row.split('|').nth(1).is_some_and(names_it))
+                .collect();
+            if !rows.is_empty() && names_a_bit(header) {
+                notes.push(format!("{header}\n{rule}\n{}", rows.join("\n")));
+            }
+        } else if !paragraph.starts_with('#') && names_it(paragraph) && names_a_bit(paragraph) {
+            notes.push(without_link_targets(paragraph));
+        }
+        if notes.len() == MOST_NOTES {
+            break;
+        }
+    }
+    notes
+}
+
 /// The scenario format, with each CPU's watchdog as its profile sets it.
 fn scenario() -> String {
     let mut text = section(PROGRAMS, "## Scenario files")
@@ -385,6 +441,18 @@ mod tests {
             without_link_targets("[[event]]\nat = 1 [x] and [y](t.md)"),
             "[[event]]\nat = 1 [x] and y"
         );
+    }
+
+    #[test]
+    fn the_status_notes_of_an_operation_name_its_bits() {
+        let notes = status_notes("JC", false);
+        assert!(notes.iter().any(|note| note.contains("RLO")), "{notes:?}");
+        let float = status_notes("+G", false);
+        assert!(
+            float.iter().any(|note| note.starts_with("| operation |")),
+            "{float:?}"
+        );
+        assert!(status_notes("NOSUCHWORD", true).is_empty());
     }
 
     #[test]

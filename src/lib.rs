@@ -23,6 +23,8 @@ pub mod dump;
 pub mod fragment;
 pub mod frontend;
 pub mod lexer;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod lsp;
 pub mod mnemonics;
 pub mod parser;
 pub mod playground;

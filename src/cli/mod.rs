@@ -9,6 +9,7 @@ mod help;
 mod run;
 mod serve;
 mod source;
+pub(crate) use source::{cpu_cannot_help, runs_on_note};
 mod status;
 mod terminal;
 mod watch;
@@ -152,6 +153,9 @@ pub enum Command {
     /// A virtual PLC: run the program in real time, reached over S7comm and Modbus TCP by
     /// HMIs, plant simulations and test scripts
     Serve(serve::ServeArgs),
+    /// A language server over stdio for editors: diagnostics as you type, hover, go to
+    /// definition, references, symbols
+    Lsp,
     /// Run scenario files and check their [expect] and [[check]] tables
     Test(run::TestArgs),
     /// Run awlsim's test files (STEP 7 STL with `__ASSERT…`) as awlsim's harness does: PASS or
@@ -180,6 +184,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Debug(args) => debug::debug(&args, &mut console),
         Command::Test(args) => run::test(&args, &mut console),
         Command::Serve(args) => serve::serve(&args, &mut console),
+        Command::Lsp => lsp(&mut console),
         Command::Conformance(args) => conformance::conformance(&args, &mut console),
         Command::Analyze(args) => analyze::analyze(&args, &mut console),
         Command::Help(args) => help::help(&args, &mut console),
@@ -189,6 +194,17 @@ pub fn run(cli: Cli) -> ExitCode {
         }
     };
     console.finish(code)
+}
+
+/// `awl lsp`: the server speaks on stdout, so only its failure is reported (on stderr).
+fn lsp(console: &mut Console) -> u8 {
+    match crate::lsp::serve_stdio() {
+        Ok(()) => EXIT_OK,
+        Err(error) => {
+            console.report(&miette::Report::new(error));
+            EXIT_USAGE
+        }
+    }
 }
 
 /// The profile a `--cpu` value names (clap has checked it), or the default one.

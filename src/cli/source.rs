@@ -64,7 +64,7 @@ fn build(
 }
 
 /// "runs on: …" after `awl check` without `--cpu`.
-fn runs_on_note(profiles: &[&str]) -> String {
+pub(crate) fn runs_on_note(profiles: &[&str]) -> String {
     if profiles.is_empty() {
         "note: no CPU profile compiles it without errors\n".to_string()
     } else if profiles.len() == crate::profile::PROFILES.len() {
@@ -79,7 +79,7 @@ fn runs_on_note(profiles: &[&str]) -> String {
 
 /// Whether the errors are ones no choice of CPU removes: the text itself does not parse, or an
 /// assignment list is wrong. The "compiles for --cpu" note is then left out.
-fn cpu_cannot_help(built: &Frontend) -> bool {
+pub(crate) fn cpu_cannot_help(built: &Frontend) -> bool {
     built.diagnostics.iter().any(|diagnostic| {
         !diagnostic.is_warning()
             && matches!(

@@ -1,0 +1,454 @@
+//! The server on an in-memory connection: a client thread's requests and what comes back.
+
+use std::path::{Path, PathBuf};
+
+use lsp_server::{Connection, Message, Notification, Request, RequestId, Response};
+use serde_json::{Value, json};
+
+const PLANT: &str = "OB 1
+      A     -START
+      JU    FB 5
+NAME :MOTOR
+EIN  :I 0.0
+AUS  :Q 4.0
+      BE
+
+FB 5
+NAME :MOTOR
+DES  :EIN  I BI
+DES  :AUS  Q BI
+      A  =EIN
+      JC =M001
+      R  =AUS
+      BEU
+M001 :S  =AUS
+      BE
+";
+
+const LIST: &str = "I 0.0     START     start button (green)\nQ 4.0     LAMP      running lamp\n";
+
+const SCENARIO: &str = "program = [\"plant.awl\"]\nsymbols = [\"plant.seq\"]\ncpu = \"s5-115u\"\n";
+
+/// A folder with the plant program, its assignment list and its scenario.
+fn plant_folder(name: &str) -> PathBuf {
+    let folder = std::env::temp_dir().join(format!("awl-lsp-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    std::fs::write(folder.join("plant.awl"), PLANT).unwrap();
+    std::fs::write(folder.join("plant.seq"), LIST).unwrap();
+    std::fs::write(folder.join("plant.toml"), SCENARIO).unwrap();
+    folder
+}
+
+fn uri(path: &Path) -> String {
+    format!("file://{}", path.display())
+}
+
+/// A client on one end of a memory connection, the server on the other.
+struct Client {
+    connection: Connection,
+    server: Option<std::thread::JoinHandle<Result<(), String>>>,
+    next: i32,
+}
+
+impl Client {
+    fn start(root: &Path, options: Value) -> Client {
+        let (client, server) = Connection::memory();
+        let thread = std::thread::spawn(move || super::serve(&server));
+        let mut client = Client {
+            connection: client,
+            server: Some(thread),
+            next: 0,
+        };
+        let params =
+            json!({"capabilities": {}, "rootUri": uri(root), "initializationOptions": options});
+        let response = client.request("initialize", params);
+        assert!(
+            response.result.unwrap()["capabilities"]["hoverProvider"]
+                .as_bool()
+                .unwrap()
+        );
+        client.notify("initialized", json!({}));
+        client
+    }
+
+    fn notify(&self, method: &str, params: Value) {
+        let message = Notification::new(method.to_string(), params);
+        self.connection.sender.send(message.into()).unwrap();
+    }
+
+    /// Sends a request; the notifications before its answer are dropped.
+    fn request(&mut self, method: &str, params: Value) -> Response {
+        self.next += 1;
+        let id = RequestId::from(self.next);
+        let request = Request::new(id.clone(), method.to_string(), params);
+        self.connection.sender.send(request.into()).unwrap();
+        loop {
+            match self.receive() {
+                Message::Response(response) if response.id == id => return response,
+                _ => {}
+            }
+        }
+    }
+
+    fn receive(&self) -> Message {
+        self.connection
+            .receiver
+            .recv_timeout(std::time::Duration::from_secs(30))
+            .expect("the server answers")
+    }
+
+    /// The next diagnostics published for `path`.
+    fn diagnostics(&self, path: &Path) -> Value {
+        loop {
+            if let Message::Notification(notification) = self.receive()
+                && notification.method == "textDocument/publishDiagnostics"
+                && notification.params["uri"] == uri(path)
+            {
+                return notification.params;
+            }
+        }
+    }
+
+    fn open(&self, path: &Path, text: &str) -> Value {
+        self.notify(
+            "textDocument/didOpen",
+            json!({"textDocument": {"uri": uri(path), "languageId": "awl", "version": 1, "text": text}}),
+        );
+        self.diagnostics(path)
+    }
+
+    fn at(&mut self, method: &str, path: &Path, line: u32, character: u32) -> Value {
+        let params = json!({
+            "textDocument": {"uri": uri(path)},
+            "position": {"line": line, "character": character},
+            "context": {"includeDeclaration": true}
+        });
+        self.request(method, params).result.unwrap_or(Value::Null)
+    }
+
+    fn finish(mut self) {
+        let response = self.request("shutdown", Value::Null);
+        assert!(response.error.is_none());
+        self.notify("exit", Value::Null);
+        let server = self.server.take().unwrap();
+        assert_eq!(server.join().unwrap(), Ok(()));
+    }
+}
+
+#[test]
+fn errors_come_with_their_code_and_help_and_go_when_fixed() {
+    let folder = plant_folder("errors");
+    let path = folder.join("plant.awl");
+    let client = Client::start(&folder, Value::Null);
+    let broken = PLANT.replace("      R  =AUS", "      XYZ  =AUS");
+    let published = client.open(&path, &broken);
+    let diagnostics = published["diagnostics"].as_array().unwrap();
+    let error = &diagnostics[0];
+    assert_eq!(error["severity"], 1);
+    assert!(
+        error["code"].as_str().unwrap().starts_with("awl::"),
+        "{error}"
+    );
+    assert_eq!(error["range"]["start"]["line"], 14, "{error}");
+    client.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": uri(&path), "version": 2}, "contentChanges": [{"text": PLANT}]}),
+    );
+    assert_eq!(client.diagnostics(&path)["diagnostics"], json!([]));
+    client.finish();
+}
+
+#[test]
+fn an_assignment_list_s_errors_are_its_own() {
+    let folder = plant_folder("list");
+    std::fs::write(
+        folder.join("plant.seq"),
+        "I 0.0     START     start button\nQ 99999.0 LAMP\n",
+    )
+    .unwrap();
+    let path = folder.join("plant.awl");
+    let client = Client::start(&folder, Value::Null);
+    client.open(&path, PLANT);
+    let list = client.diagnostics(&folder.join("plant.seq"));
+    let error = &list["diagnostics"][0];
+    assert!(
+        error["code"]
+            .as_str()
+            .unwrap()
+            .starts_with("awl::symbols::"),
+        "{list}"
+    );
+    assert_eq!(error["range"]["start"]["line"], 1, "{list}");
+    client.finish();
+}
+
+#[test]
+fn a_missing_assignment_list_is_told_at_the_top() {
+    let folder = plant_folder("missing");
+    std::fs::remove_file(folder.join("plant.seq")).unwrap();
+    let path = folder.join("plant.awl");
+    let client = Client::start(&folder, Value::Null);
+    let published = client.open(&path, PLANT);
+    let codes: Vec<&str> = published["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|diagnostic| diagnostic["code"].as_str())
+        .collect();
+    assert!(codes.contains(&"awl::cli::read_file"), "{published}");
+    client.finish();
+}
+
+#[test]
+fn hover_tells_the_operation_the_symbol_and_the_block() {
+    let folder = plant_folder("hover");
+    let path = folder.join("plant.awl");
+    let mut client = Client::start(&folder, Value::Null);
+    client.open(&path, PLANT);
+    let operation = client.at("textDocument/hover", &path, 1, 6)["contents"]["value"].clone();
+    let operation = operation.as_str().unwrap();
+    assert!(operation.contains("`U`"), "{operation}");
+    assert!(operation.contains("s5-115u"), "{operation}");
+    let symbol = client.at("textDocument/hover", &path, 1, 13)["contents"]["value"].clone();
+    let symbol = symbol.as_str().unwrap();
+    assert!(
+        symbol.contains("I 0.0") && symbol.contains("start button"),
+        "{symbol}"
+    );
+    let block = client.at("textDocument/hover", &path, 2, 13)["contents"]["value"].clone();
+    assert!(
+        block.as_str().unwrap().contains("DES  :EIN  I BI"),
+        "{block}"
+    );
+    let jump = client.at("textDocument/hover", &path, 13, 6)["contents"]["value"].clone();
+    let jump = jump.as_str().unwrap();
+    assert!(
+        jump.contains("`SPB`") && jump.contains("RLO") && jump.contains("µs"),
+        "{jump}"
+    );
+    let label = client.at("textDocument/hover", &path, 13, 10)["contents"]["value"].clone();
+    assert!(label.as_str().unwrap().contains("line 17"), "{label}");
+    client.finish();
+}
+
+#[test]
+fn definitions_references_and_symbols() {
+    let folder = plant_folder("navigate");
+    let path = folder.join("plant.awl");
+    let mut client = Client::start(&folder, Value::Null);
+    client.open(&path, PLANT);
+    let label = client.at("textDocument/definition", &path, 13, 10);
+    assert_eq!(label["range"]["start"]["line"], 16, "{label}");
+    let block = client.at("textDocument/definition", &path, 2, 12);
+    assert_eq!(block["range"]["start"]["line"], 8, "{block}");
+    let symbol = client.at("textDocument/definition", &path, 1, 13);
+    assert!(
+        symbol["uri"].as_str().unwrap().ends_with("plant.seq"),
+        "{symbol}"
+    );
+    let uses = client.at("textDocument/references", &path, 13, 10);
+    assert_eq!(uses.as_array().unwrap().len(), 2, "{uses}");
+    let calls = client.at("textDocument/references", &path, 8, 3);
+    assert_eq!(calls.as_array().unwrap().len(), 2, "{calls}");
+    let outline = client
+        .request(
+            "textDocument/documentSymbol",
+            json!({"textDocument": {"uri": uri(&path)}}),
+        )
+        .result
+        .unwrap();
+    let names: Vec<&str> = outline
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["OB 1", "FB 5"]);
+    let found = client
+        .request("workspace/symbol", json!({"query": "fb"}))
+        .result
+        .unwrap();
+    assert_eq!(found.as_array().unwrap().len(), 1, "{found}");
+    client.finish();
+}
+
+#[test]
+fn bad_requests_are_answered_and_the_server_stays() {
+    let folder = plant_folder("bad");
+    let path = folder.join("plant.awl");
+    let mut client = Client::start(&folder, json!({"cpu": "no-such-cpu"}));
+    let Message::Notification(message) = client.receive() else {
+        panic!("a message about the setting comes first");
+    };
+    assert!(
+        message.params["message"]
+            .as_str()
+            .unwrap()
+            .contains("awl::lsp::unknown_cpu")
+    );
+    let unknown = client.request("textDocument/rename", json!({}));
+    assert_eq!(
+        unknown.error.unwrap().code,
+        lsp_server::ErrorCode::MethodNotFound as i32
+    );
+    let bad = client.request("textDocument/hover", json!({"nonsense": true}));
+    assert_eq!(
+        bad.error.unwrap().code,
+        lsp_server::ErrorCode::InvalidParams as i32
+    );
+    let not_open = client.at("textDocument/hover", &path, 0, 0);
+    assert_eq!(not_open, Value::Null);
+    client.open(&path, "\u{0}\u{1}FB \"\n((((");
+    client.open(&path, "");
+    let far = client.at("textDocument/hover", &path, 99, 99);
+    assert_eq!(far, Value::Null);
+    client.finish();
+}
+
+#[test]
+fn a_client_that_vanishes_ends_the_server() {
+    let folder = plant_folder("vanish");
+    let mut client = Client::start(&folder, Value::Null);
+    let server = client.server.take().unwrap();
+    drop(client);
+    assert_eq!(server.join().unwrap(), Ok(()));
+}
+
+const MOTOR: &str = "FUNCTION_BLOCK FB 1
+VAR_INPUT
+  start : BOOL;  // start button
+END_VAR
+BEGIN
+NETWORK
+TITLE = switch on
+      U     #start;
+      =     A 4.0;
+END_FUNCTION_BLOCK
+";
+
+#[test]
+fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
+    let folder = std::env::temp_dir().join(format!("awl-lsp-step7-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let path = folder.join("motor.awl");
+    let mut client = Client::start(&folder, Value::Null);
+    assert_eq!(client.open(&path, MOTOR)["diagnostics"], json!([]));
+    let declared = client.at("textDocument/hover", &path, 7, 14)["contents"]["value"].clone();
+    assert!(
+        declared.as_str().unwrap().contains("start : BOOL"),
+        "{declared}"
+    );
+    let operation = client.at("textDocument/hover", &path, 7, 6)["contents"]["value"].clone();
+    assert!(
+        operation
+            .as_str()
+            .unwrap()
+            .contains("English (SIMATIC) mnemonics: `A`"),
+        "{operation}"
+    );
+    let definition = client.at("textDocument/definition", &path, 7, 14);
+    assert_eq!(definition["range"]["start"]["line"], 2, "{definition}");
+    let outline = client
+        .request(
+            "textDocument/documentSymbol",
+            json!({"textDocument": {"uri": uri(&path)}}),
+        )
+        .result
+        .unwrap();
+    assert_eq!(outline[0]["name"], "FB 1", "{outline}");
+    assert_eq!(outline[0]["children"][0]["name"], "network 1", "{outline}");
+    client.finish();
+}
+
+#[test]
+fn without_a_cpu_the_errors_say_which_cpus_compile_it() {
+    let folder = std::env::temp_dir().join(format!("awl-lsp-cpus-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl"),
+    )
+    .unwrap();
+    let path = folder.join("analog.awl");
+    let client = Client::start(&folder, Value::Null);
+    let published = client.open(&path, &program);
+    let note = published["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|diagnostic| diagnostic["severity"] == 3)
+        .cloned()
+        .unwrap_or_default();
+    assert!(
+        note["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("--cpu s5-115u-941"),
+        "{published}"
+    );
+    client.finish();
+    let client = Client::start(&folder, json!({"cpu": "s5-115u-944"}));
+    assert_eq!(client.open(&path, &program)["diagnostics"], json!([]));
+    client.finish();
+}
+
+#[test]
+fn settings_sent_later_count_and_an_exit_alone_ends_the_server() {
+    let folder = std::env::temp_dir().join(format!("awl-lsp-later-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let program = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl"),
+    )
+    .unwrap();
+    let path = folder.join("analog.awl");
+    let mut client = Client::start(&folder, Value::Null);
+    assert_ne!(client.open(&path, &program)["diagnostics"], json!([]));
+    client.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"awl": {"cpu": "s5-115u-944"}}}),
+    );
+    assert_eq!(client.diagnostics(&path)["diagnostics"], json!([]));
+    client.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": null}),
+    );
+    client.notify("exit", Value::Null);
+    let server = client.server.take().unwrap();
+    assert_eq!(server.join().unwrap(), Ok(()));
+}
+
+#[test]
+fn a_german_listing_finds_its_scenario_s_assignment_list() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("programs");
+    let path = folder.join("filling_de.awl");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut client = Client::start(&folder, Value::Null);
+    assert_eq!(client.open(&path, &text)["diagnostics"], json!([]));
+    let symbol = client.at("textDocument/hover", &path, 10, 18)["contents"]["value"].clone();
+    assert!(
+        symbol.as_str().unwrap().contains("Taster Fuellen ein"),
+        "{symbol}"
+    );
+    let operation = client.at("textDocument/hover", &path, 10, 11)["contents"]["value"].clone();
+    assert!(
+        operation
+            .as_str()
+            .unwrap()
+            .contains("English (SIMATIC) mnemonics: `A`"),
+        "{operation}"
+    );
+    let call = client.at("textDocument/definition", &path, 6, 18);
+    assert_eq!(call["range"]["start"]["line"], 8, "{call}");
+    let outline = client
+        .request(
+            "textDocument/documentSymbol",
+            json!({"textDocument": {"uri": uri(&path)}}),
+        )
+        .result
+        .unwrap();
+    assert_eq!(
+        outline[1]["children"].as_array().unwrap().len(),
+        3,
+        "{outline}"
+    );
+    client.finish();
+}
