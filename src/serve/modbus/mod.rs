@@ -57,6 +57,7 @@ mod tests {
     use tokio::time::{Instant, timeout};
 
     use super::*;
+    use crate::serve::request::Request;
 
     #[tokio::test]
     async fn a_frame_that_stalls_is_closed_and_an_idle_client_is_not() {
