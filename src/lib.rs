@@ -23,6 +23,7 @@ pub mod dump;
 pub mod fragment;
 pub mod frontend;
 pub mod lexer;
+pub mod lsp;
 pub mod mnemonics;
 pub mod parser;
 pub mod playground;
