@@ -6,7 +6,7 @@
 use crate::ast::BlockBody;
 use crate::dialect::Dialect;
 use crate::lsp::text::{FileLanguage, LineIndex, TextEdit};
-use crate::mnemonics::MnemonicSet;
+use crate::mnemonics::{self, MnemonicSet};
 use crate::step7::ast::S7Body;
 
 /// The comment that turns formatting off for a file.
@@ -120,13 +120,12 @@ fn listing_address(prefix: &str) -> Option<Option<&str>> {
     (prefix.len() == 4 && prefix.chars().all(|c| c.is_ascii_hexdigit())).then_some(Some(prefix))
 }
 
-/// `E 1.0` → `E   1.0`: the area word in its column; other operands as written.
-fn aligned_operand(operand: &str) -> String {
+/// `E 1.0` → `E   1.0`: an address's area word in its column; constants, blocks and other
+/// operands as written.
+fn aligned_operand(operand: &str, set: MnemonicSet) -> String {
     let operand = operand.trim();
     match operand.split_once(char::is_whitespace) {
-        Some((word, rest))
-            if word.chars().all(|c| c.is_ascii_alphabetic()) && !rest.trim().is_empty() =>
-        {
+        Some((word, rest)) if mnemonics::area(set, word).is_some() && !rest.trim().is_empty() => {
             format!("{word:<AREA_WIDTH$}{}", rest.trim_start())
         }
         _ => operand.to_string(),
@@ -149,7 +148,7 @@ fn step5_lines(text: &str, set: MnemonicSet) -> Vec<Line> {
         for statement in &body.statements {
             let op_start = statement.op_span.start as usize;
             let first = statement.label.as_ref().map_or(op_start, |l| l.span.start as usize);
-            lines.extend(step5_statement(text, statement, first, op_start));
+            lines.extend(step5_statement(text, set, statement, first, op_start));
             for param in &statement.call_params {
                 let name_start = param.name.span.start as usize;
                 let actual = param.actual_span.start as usize;
@@ -162,6 +161,7 @@ fn step5_lines(text: &str, set: MnemonicSet) -> Vec<Line> {
 
 fn step5_statement(
     text: &str,
+    set: MnemonicSet,
     statement: &crate::ast::Statement,
     first: usize,
     op_start: usize,
@@ -184,7 +184,7 @@ fn step5_statement(
     let body = if operand.is_empty() {
         operation.to_string()
     } else {
-        format!("{operation:<OPERATION_WIDTH$}{}", aligned_operand(operand))
+        format!("{operation:<OPERATION_WIDTH$}{}", aligned_operand(operand, set))
     };
     Some(Line {
         start,
@@ -282,7 +282,7 @@ mod tests {
     fn listing_addresses_and_call_parameters_stay() {
         let text = "OB 1\n0000 :JU FB 1\n0001 NAME :X\n0002 :BE\nFB 1\nNAME :X\n0000 :BE\n";
         let formatted = step5(text);
-        assert!(formatted.contains("0000      :JU   FB  1\n"), "{formatted}");
+        assert!(formatted.contains("0000      :JU   FB 1\n"), "{formatted}");
         assert!(formatted.contains("0001 NAME :X\n"), "{formatted}");
     }
 
