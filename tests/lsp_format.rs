@@ -79,9 +79,25 @@ fn every_sample_program_formats_to_the_same_bytecode() {
 /// One STEP 5 statement line in the English set, with random blanks, label and comment.
 fn statement_line() -> impl Strategy<Value = String> {
     let statements = prop::sample::select(vec![
-        "A I 0.0", "AN F 1.7", "O Q 4.1", "= Q 4.0", "S F 20.0", "R F 20.0", "L KF +5",
-        "L KT 030.1", "T FW 10", "L FW 10", "SD T 1", "A(", "O(", ")", "+F", "!=F", "NOP 0",
-        "L KH 00FF", "JC =M002",
+        "A I 0.0",
+        "AN F 1.7",
+        "O Q 4.1",
+        "= Q 4.0",
+        "S F 20.0",
+        "R F 20.0",
+        "L KF +5",
+        "L KT 030.1",
+        "T FW 10",
+        "L FW 10",
+        "SD T 1",
+        "A(",
+        "O(",
+        ")",
+        "+F",
+        "!=F",
+        "NOP 0",
+        "L KH 00FF",
+        "JC =M002",
     ]);
     (
         statements,

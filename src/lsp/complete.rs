@@ -77,10 +77,15 @@ impl CompletionContext {
     }
 
     fn add_step5(&mut self, unit: &SourceUnit, source: &SourceFile, own: bool) {
-        let starts: Vec<usize> = unit.blocks.iter().map(|b| b.header.start as usize).collect();
+        let starts: Vec<usize> = unit
+            .blocks
+            .iter()
+            .map(|b| b.header.start as usize)
+            .collect();
         for (index, block) in unit.blocks.iter().enumerate() {
             let BlockBody::Logic(body) = &block.body else {
-                self.blocks.push(named(block.id.to_string(), "data block", None));
+                self.blocks
+                    .push(named(block.id.to_string(), "data block", None));
                 continue;
             };
             let name = body.name.as_ref().map_or("", |name| name.text.as_str());
@@ -91,8 +96,11 @@ impl CompletionContext {
             let scope = scope(&starts, index, source.text.len());
             for param in &body.params {
                 let declared = source.slice(param.span).trim();
-                self.variables
-                    .push(named(format!("={}", param.name.text), declared, scope.clone()));
+                self.variables.push(named(
+                    format!("={}", param.name.text),
+                    declared,
+                    scope.clone(),
+                ));
             }
             for label in body.statements.iter().filter_map(|s| s.label.as_ref()) {
                 let detail = format!("label in {}", block.id);
@@ -103,7 +111,11 @@ impl CompletionContext {
     }
 
     fn add_step7(&mut self, unit: &S7Unit, source: &SourceFile, own: bool) {
-        let starts: Vec<usize> = unit.blocks.iter().map(|b| b.header.start as usize).collect();
+        let starts: Vec<usize> = unit
+            .blocks
+            .iter()
+            .map(|b| b.header.start as usize)
+            .collect();
         for (index, block) in unit.blocks.iter().enumerate() {
             let written = block_written(block);
             let header = if own {
@@ -114,7 +126,11 @@ impl CompletionContext {
             self.blocks.push(named(written.clone(), &header, None));
             if let S7Body::Data { members, .. } = &block.body {
                 for member in members {
-                    let detail = if own { source.slice(member.span).trim() } else { "" };
+                    let detail = if own {
+                        source.slice(member.span).trim()
+                    } else {
+                        ""
+                    };
                     let path = format!("{written}.{}", member.name.text);
                     self.db_members.push(named(path, detail, None));
                 }
@@ -125,8 +141,11 @@ impl CompletionContext {
             let scope = scope(&starts, index, source.text.len());
             for var in block.interface.iter().flat_map(|section| &section.vars) {
                 let declared = source.slice(var.span).trim();
-                self.variables
-                    .push(named(format!("#{}", var.name.text), declared, scope.clone()));
+                self.variables.push(named(
+                    format!("#{}", var.name.text),
+                    declared,
+                    scope.clone(),
+                ));
             }
             if let S7Body::Logic(statements) = &block.body {
                 for label in statements.iter().filter_map(|s| s.label.as_ref()) {
@@ -180,11 +199,7 @@ fn symbols(frontend: &Frontend, set: MnemonicSet) -> Vec<Named> {
 }
 
 /// The completions at `position` of `text`.
-pub fn completions(
-    text: &str,
-    position: Position,
-    context: &CompletionContext,
-) -> Vec<Completion> {
+pub fn completions(text: &str, position: Position, context: &CompletionContext) -> Vec<Completion> {
     let offset = LineIndex::new(text).offset(position);
     let line_start = text[..offset].rfind('\n').map_or(0, |at| at + 1);
     let before = &text[line_start..offset];
@@ -212,7 +227,7 @@ fn in_comment(before: &str, dialect: Dialect) -> bool {
     let outside_quotes = |mark: &str| {
         before
             .find(mark)
-            .is_some_and(|at| before[..at].matches('\'').count() % 2 == 0)
+            .is_some_and(|at| before[..at].matches('\'').count().is_multiple_of(2))
     };
     outside_quotes("//") || (dialect == Dialect::Step5 && outside_quotes(";"))
 }
@@ -355,7 +370,10 @@ mod tests {
         let text = GERMAN_FB.replace("SPB =M001", "SPB |");
         let in_fb = offered(&text);
         for expected in ["M001", "=EIN", "FB 1", "OB 1"] {
-            assert!(in_fb.contains(&expected.to_string()), "{expected} in {in_fb:?}");
+            assert!(
+                in_fb.contains(&expected.to_string()),
+                "{expected} in {in_fb:?}"
+            );
         }
         let in_ob = offered(&GERMAN_FB.replace("SPA FB 1", "SPA |"));
         assert!(!in_ob.contains(&"M001".to_string()), "{in_ob:?}");
@@ -372,7 +390,10 @@ mod tests {
         let text = "DATA_BLOCK DB 1\nSTRUCT\n  level : INT;\nEND_STRUCT\nBEGIN\nEND_DATA_BLOCK\n\nFUNCTION FC 1 : VOID\nVAR_TEMP\n  speed : INT;\nEND_VAR\nBEGIN\n      L     |;\nEND_FUNCTION\n";
         let values = offered(text);
         for expected in ["#speed", "DB 1.level", "FC 1"] {
-            assert!(values.contains(&expected.to_string()), "{expected} in {values:?}");
+            assert!(
+                values.contains(&expected.to_string()),
+                "{expected} in {values:?}"
+            );
         }
         let operations = offered(&text.replace("L     |;", "|"));
         assert!(operations.contains(&"JU".to_string()), "{operations:?}");

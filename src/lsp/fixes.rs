@@ -101,8 +101,14 @@ fn unknown_operation(text: &str, diagnostic: &Diagnostic) -> Option<QuickFix> {
     let help = diagnostic.help?;
     let word = &text[diagnostic.start..diagnostic.end];
     let written = quoted(help).last()?;
-    if help.starts_with("a blank separates") && written.replace(' ', "").eq_ignore_ascii_case(word) {
-        return Some(replace(text, diagnostic, written, format!("Write `{written}`")));
+    if help.starts_with("a blank separates") && written.replace(' ', "").eq_ignore_ascii_case(word)
+    {
+        return Some(replace(
+            text,
+            diagnostic,
+            written,
+            format!("Write `{written}`"),
+        ));
     }
     if help.starts_with("a label ends with") {
         let (label, _) = written.split_once(':')?;
@@ -130,12 +136,21 @@ fn close_spelling(text: &str, diagnostic: &Diagnostic) -> Option<QuickFix> {
         return None;
     }
     let candidate = quoted(help).next()?;
-    Some(replace(text, diagnostic, candidate, format!("Change to `{candidate}`")))
+    Some(replace(
+        text,
+        diagnostic,
+        candidate,
+        format!("Change to `{candidate}`"),
+    ))
 }
 
 /// A word of the other mnemonic set → the file's word for it, looked up in the mnemonic
 /// tables; of the operation and the area reading, the one the help names.
-fn mixed_mnemonics(text: &str, diagnostic: &Diagnostic, language: FileLanguage) -> Option<QuickFix> {
+fn mixed_mnemonics(
+    text: &str,
+    diagnostic: &Diagnostic,
+    language: FileLanguage,
+) -> Option<QuickFix> {
     let help = diagnostic.help?;
     let word = &text[diagnostic.start..diagnostic.end];
     let named: Vec<&str> = quoted(help).collect();
@@ -181,7 +196,8 @@ fn formals_from_use(text: &str, diagnostic: &Diagnostic) -> Option<QuickFix> {
     let declarations: Vec<&str> = quoted(help)
         .filter(|line| {
             let upper = line.to_ascii_uppercase();
-            upper.starts_with(mnemonics::DECLARATION_EN) || upper.starts_with(mnemonics::DECLARATION_DE)
+            upper.starts_with(mnemonics::DECLARATION_EN)
+                || upper.starts_with(mnemonics::DECLARATION_DE)
         })
         .collect();
     if declarations.is_empty() {
@@ -207,8 +223,7 @@ fn first_statement_line(text: &str, offset: usize) -> Option<usize> {
         .unit
         .blocks
         .iter()
-        .filter(|block| (block.header.start as usize) <= offset)
-        .next_back()
+        .rfind(|block| (block.header.start as usize) <= offset)
         .or(parsed.unit.blocks.first())?;
     let BlockBody::Logic(body) = &block.body else {
         return None;
@@ -220,7 +235,12 @@ fn first_statement_line(text: &str, offset: usize) -> Option<usize> {
 /// `KG 1.5` → the PG's `KG +1500000+01`, as the message names it.
 fn decimal_float(text: &str, diagnostic: &Diagnostic) -> Option<QuickFix> {
     let pg_form = quoted(diagnostic.message).find(|quoted| quoted.starts_with("KG "))?;
-    Some(replace(text, diagnostic, pg_form, format!("Write `{pg_form}`")))
+    Some(replace(
+        text,
+        diagnostic,
+        pg_form,
+        format!("Write `{pg_form}`"),
+    ))
 }
 
 #[cfg(test)]
@@ -268,7 +288,10 @@ mod tests {
     fn label_without_its_colon() {
         let text = "FB 1\nNAME :X\nM001 A I 1.0\n      BE\n";
         let result = fixed(text, "awl::parse::unknown_operation");
-        assert!(result.contains("M001 : A I 1.0") || result.contains("M001: A I 1.0"), "{result}");
+        assert!(
+            result.contains("M001 : A I 1.0") || result.contains("M001: A I 1.0"),
+            "{result}"
+        );
         compiles(&result);
     }
 
@@ -305,7 +328,8 @@ mod tests {
         let frontend = build(&result);
         assert!(
             frontend.diagnostics.iter().all(|d| {
-                miette::Diagnostic::code(d).is_none_or(|c| c.to_string() != "awl::parse::formals_from_use")
+                miette::Diagnostic::code(d)
+                    .is_none_or(|c| c.to_string() != "awl::parse::formals_from_use")
             }),
             "{:?}",
             frontend.diagnostics
@@ -318,7 +342,11 @@ mod tests {
         let result = fixed(text, "awl::parse::decimal_float");
         assert!(!result.contains("1.5"), "{result}");
         let frontend = build(&result);
-        assert!(frontend.diagnostics.is_empty(), "{:?}", frontend.diagnostics);
+        assert!(
+            frontend.diagnostics.is_empty(),
+            "{:?}",
+            frontend.diagnostics
+        );
     }
 
     #[test]
@@ -332,7 +360,11 @@ mod tests {
             help: Some("`awl help mnemonics` lists the operations"),
         };
         assert!(quick_fixes("PB 1\n      BE\n", &unknown, language).is_empty());
-        let outside = Diagnostic { start: 90, end: 99, ..unknown };
+        let outside = Diagnostic {
+            start: 90,
+            end: 99,
+            ..unknown
+        };
         assert!(quick_fixes("PB 1\n", &outside, language).is_empty());
     }
 }

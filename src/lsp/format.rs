@@ -60,7 +60,11 @@ struct Line {
 fn line_around(text: &str, at: usize) -> (usize, usize) {
     let start = text[..at].rfind('\n').map_or(0, |found| found + 1);
     let end = text[at..].find('\n').map_or(text.len(), |found| at + found);
-    let end = if text[..end].ends_with('\r') { end - 1 } else { end };
+    let end = if text[..end].ends_with('\r') {
+        end - 1
+    } else {
+        end
+    };
     (start, end)
 }
 
@@ -147,7 +151,10 @@ fn step5_lines(text: &str, set: MnemonicSet) -> Vec<Line> {
         };
         for statement in &body.statements {
             let op_start = statement.op_span.start as usize;
-            let first = statement.label.as_ref().map_or(op_start, |l| l.span.start as usize);
+            let first = statement
+                .label
+                .as_ref()
+                .map_or(op_start, |l| l.span.start as usize);
             lines.extend(step5_statement(text, set, statement, first, op_start));
             for param in &statement.call_params {
                 let name_start = param.name.span.start as usize;
@@ -176,7 +183,10 @@ fn step5_statement(
         && operand_start >= statement.op_span.end as usize
         && operand_start < start + code_end;
     let (operation, operand) = if has_operand {
-        (&text[op_start..operand_start], &text[operand_start..start + code_end])
+        (
+            &text[op_start..operand_start],
+            &text[operand_start..start + code_end],
+        )
     } else {
         (&text[op_start..start + code_end], "")
     };
@@ -184,7 +194,10 @@ fn step5_statement(
     let body = if operand.is_empty() {
         operation.to_string()
     } else {
-        format!("{operation:<OPERATION_WIDTH$}{}", aligned_operand(operand, set))
+        format!(
+            "{operation:<OPERATION_WIDTH$}{}",
+            aligned_operand(operand, set)
+        )
     };
     Some(Line {
         start,
@@ -229,7 +242,10 @@ fn step7_lines(text: &str, set: MnemonicSet) -> Vec<Line> {
 /// `M1:   A     I 0.0;`: one statement alone on its line.
 fn step7_statement(text: &str, statement: &crate::step7::ast::S7Statement) -> Option<Line> {
     let op_start = statement.op_span.start as usize;
-    let first = statement.label.as_ref().map_or(op_start, |l| l.span.start as usize);
+    let first = statement
+        .label
+        .as_ref()
+        .map_or(op_start, |l| l.span.start as usize);
     let (start, end) = line_around(text, first);
     if (statement.span.end as usize) > end || !text[start..first].trim().is_empty() {
         return None;
@@ -288,7 +304,8 @@ mod tests {
 
     #[test]
     fn step7_statements_are_indented_as_an_export() {
-        let text = "FUNCTION FC 1 : VOID\nBEGIN\nA I 0.0; // x\nM1: = Q 4.0;\n   BE;\nEND_FUNCTION\n";
+        let text =
+            "FUNCTION FC 1 : VOID\nBEGIN\nA I 0.0; // x\nM1: = Q 4.0;\n   BE;\nEND_FUNCTION\n";
         let formatted = formatted(text, FileLanguage::of_text(text));
         assert_eq!(
             formatted,

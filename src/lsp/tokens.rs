@@ -232,7 +232,12 @@ fn step7_tokens(text: &str, set: MnemonicSet) -> Vec<Classified> {
 
 /// `[label:] operation operand`, or a line of a block's frame (`FUNCTION FC 1 : VOID`,
 /// `VAR_INPUT`, `speed : INT := 5`).
-fn step7_statement(text: &str, set: MnemonicSet, tokens: &[s7::Token], found: &mut Vec<Classified>) {
+fn step7_statement(
+    text: &str,
+    set: MnemonicSet,
+    tokens: &[s7::Token],
+    found: &mut Vec<Classified>,
+) {
     let mut rest = tokens;
     if rest.len() > 1 && rest[0].kind == S7Kind::Word && rest[1].kind == S7Kind::Colon {
         let operation_follows = rest.get(2).is_some_and(|next| {
