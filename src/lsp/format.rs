@@ -176,7 +176,7 @@ fn step5_statement(
     let (start, end) = line_around(text, op_start);
     let line = &text[start..end];
     let (code_end, comment) = comment_of(line, Dialect::Step5);
-    let address = listing_address(&text[start..first])?;
+    let address = listing_address(text.get(start..first)?)?;
     let label = statement.label.as_ref().map_or("", |l| l.text.as_str());
     let operand_start = statement.operand_span.start as usize;
     let has_operand = statement.operand_span.end > statement.operand_span.start
@@ -211,7 +211,7 @@ fn step5_parameter(text: &str, name: &str, name_start: usize, actual: usize) -> 
     let (start, end) = line_around(text, name_start);
     let line = &text[start..end];
     let (code_end, comment) = comment_of(line, Dialect::Step5);
-    let address = listing_address(&text[start..name_start])?;
+    let address = listing_address(text.get(start..name_start)?)?;
     let value = text.get(actual..start + code_end)?.trim();
     Some(Line {
         start,
@@ -247,7 +247,7 @@ fn step7_statement(text: &str, statement: &crate::step7::ast::S7Statement) -> Op
         .as_ref()
         .map_or(op_start, |l| l.span.start as usize);
     let (start, end) = line_around(text, first);
-    if (statement.span.end as usize) > end || !text[start..first].trim().is_empty() {
+    if (statement.span.end as usize) > end || !text.get(start..first)?.trim().is_empty() {
         return None;
     }
     let line = &text[start..end];
@@ -310,6 +310,16 @@ mod tests {
         assert_eq!(
             formatted,
             "FUNCTION FC 1 : VOID\nBEGIN\n      A     I 0.0;              // x\nM1:   =     Q 4.0;\n      BE;\nEND_FUNCTION\n"
+        );
+    }
+
+    #[test]
+    fn a_label_on_its_own_line_stays_there() {
+        let text = "FB 1\nNAME :X\nM001 :\n  A I 0.0\n      BE\n";
+        let formatted = step5(text);
+        assert!(
+            formatted.contains("M001 :\n     :A    I   0.0\n"),
+            "{formatted}"
         );
     }
 
