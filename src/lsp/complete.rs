@@ -12,6 +12,7 @@ use crate::mnemonics::{self, MnemonicSet};
 use crate::source::{FileId, SourceFile};
 use crate::step7::ast::{S7Block, S7BlockRef, S7Body, S7Unit};
 use crate::step7::mnemonics as s7_mnemonics;
+use crate::symbols::Symbols;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CompletionKind {
@@ -47,6 +48,7 @@ pub struct CompletionContext {
     pub symbols: Vec<Named>,
     /// Formal operands of FBs (`=EIN`), STEP 7 interface variables (`#speed`).
     pub variables: Vec<Named>,
+    /// Members of STEP 7 data blocks with a symbol: `"Tank".level`.
     pub db_members: Vec<Named>,
     pub blocks: Vec<Named>,
     pub labels: Vec<Named>,
@@ -71,7 +73,8 @@ impl CompletionContext {
             context.add_step5(unit, source, unit.file == file);
         }
         for unit in &frontend.s7_units {
-            context.add_step7(unit, source, unit.file == file);
+            let symbols = &frontend.compiled.program.symbols;
+            context.add_step7(unit, source, unit.file == file, symbols);
         }
         context
     }
@@ -110,7 +113,7 @@ impl CompletionContext {
         }
     }
 
-    fn add_step7(&mut self, unit: &S7Unit, source: &SourceFile, own: bool) {
+    fn add_step7(&mut self, unit: &S7Unit, source: &SourceFile, own: bool, symbols: &Symbols) {
         let starts: Vec<usize> = unit
             .blocks
             .iter()
@@ -124,14 +127,16 @@ impl CompletionContext {
                 String::new()
             };
             self.blocks.push(named(written.clone(), &header, None));
-            if let S7Body::Data { members, .. } = &block.body {
+            if let (S7Body::Data { members, .. }, Some(symbol)) =
+                (&block.body, symbol_of(block, &written, symbols))
+            {
                 for member in members {
                     let detail = if own {
                         source.slice(member.span).trim()
                     } else {
                         ""
                     };
-                    let path = format!("{written}.{}", member.name.text);
+                    let path = format!("{symbol}.{}", member.name.text);
                     self.db_members.push(named(path, detail, None));
                 }
             }
@@ -169,6 +174,15 @@ fn named(name: String, detail: &str, scope: Option<Range<usize>>) -> Named {
 /// Block `index` of a file runs from its header to the next block's.
 fn scope(starts: &[usize], index: usize, end: usize) -> Option<Range<usize>> {
     Some(starts[index]..starts.get(index + 1).copied().unwrap_or(end))
+}
+
+/// A data block as a member access writes it, `"Tank"`: members are reached by the block's
+/// symbol only (`DB 1.level` is no STL).
+fn symbol_of(block: &S7Block, written: &str, symbols: &Symbols) -> Option<String> {
+    match &block.name {
+        S7BlockRef::Symbol(_) => Some(written.to_string()),
+        S7BlockRef::Number { .. } => symbols.written_of(written),
+    }
 }
 
 /// `FC 1`, or `"Valve"` when the source names the block by its symbol.
@@ -387,9 +401,9 @@ mod tests {
 
     #[test]
     fn step7_variables_members_and_operations() {
-        let text = "DATA_BLOCK DB 1\nSTRUCT\n  level : INT;\nEND_STRUCT\nBEGIN\nEND_DATA_BLOCK\n\nFUNCTION FC 1 : VOID\nVAR_TEMP\n  speed : INT;\nEND_VAR\nBEGIN\n      L     |;\nEND_FUNCTION\n";
+        let text = "DATA_BLOCK \"Tank\"\nSTRUCT\n  level : INT;\nEND_STRUCT\nBEGIN\nEND_DATA_BLOCK\n\nFUNCTION FC 1 : VOID\nVAR_TEMP\n  speed : INT;\nEND_VAR\nBEGIN\n      L     |;\nEND_FUNCTION\n";
         let values = offered(text);
-        for expected in ["#speed", "DB 1.level", "FC 1"] {
+        for expected in ["#speed", "\"Tank\".level", "FC 1"] {
             assert!(
                 values.contains(&expected.to_string()),
                 "{expected} in {values:?}"
