@@ -125,8 +125,17 @@ fn unknown_operation(text: &str, diagnostic: &Diagnostic) -> Option<QuickFix> {
     close_spelling(text, diagnostic)
 }
 
-/// A close spelling of an operand word: `did you mean `KF`?`.
+/// A bit operand without its bit (`F1` → `F 1.0`), or a close spelling of an operand word.
 fn unknown_operand(text: &str, diagnostic: &Diagnostic) -> Option<QuickFix> {
+    let help = diagnostic.help?;
+    let word = &text[diagnostic.start..diagnostic.end];
+    if help.contains("is a bit operand") {
+        let written = quoted(help).last()?;
+        let without_bit = written.strip_suffix(".0")?.replace(' ', "");
+        return without_bit
+            .eq_ignore_ascii_case(word)
+            .then(|| replace(text, diagnostic, written, format!("Write `{written}`")));
+    }
     close_spelling(text, diagnostic)
 }
 
@@ -281,6 +290,21 @@ mod tests {
         let text = "PB 1\n      A I 0.0\n      NOP0\n      BE\n";
         let result = fixed(text, "awl::parse::unknown_operation");
         assert_eq!(result, "PB 1\n      A I 0.0\n      NOP 0\n      BE\n");
+        compiles(&result);
+    }
+
+    #[test]
+    fn transfer_without_its_blank() {
+        let text = "PB 1\n      L KF +5\n      T1\n      BE\n";
+        let result = fixed(text, "awl::parse::unknown_operation");
+        assert!(result.contains("\n      T 1\n"), "{result}");
+    }
+
+    #[test]
+    fn bit_operand_without_its_bit() {
+        let text = "PB 1\n      A F1\n      = Q 4.0\n      BE\n";
+        let result = fixed(text, "awl::parse::unknown_operand");
+        assert!(result.contains("      A F 1.0\n"), "{result}");
         compiles(&result);
     }
 
