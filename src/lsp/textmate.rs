@@ -20,7 +20,7 @@ pub fn grammar() -> String {
 
 fn grammar_value() -> Value {
     let statement = format!(
-        r"^(\s*(?:[0-9A-Fa-f]{{4}}\s+)?)(?:([A-Za-z_\x{{C0}}-\x{{FF}}][A-Za-z0-9_\x{{C0}}-\x{{FF}}]*)\s*(:)(?!=))?\s*:?\s*{}(?=[\s(;]|$)",
+        r"^(\s*(?:[0-9A-Fa-f]{{4}}\s+)?)(?:([A-Za-z_\x{{C0}}-\x{{FF}}][A-Za-z0-9_\x{{C0}}-\x{{FF}}]*)\s*(:)(?!=))?\s*:?\s*{}(?=[\s(;]|$)(?!\s*:)",
         alternation(&operation_words())
     );
     json!({
@@ -42,7 +42,11 @@ fn grammar_value() -> Value {
             "comment": {
                 "patterns": [
                     {"name": "comment.line.double-slash.stl", "match": "//.*$"},
-                    {"name": "comment.line.semicolon.stl", "match": ";.*$"}
+                    {
+                        "comment": "STEP 5: `;` starts a comment; STEP 7: it ends a statement, before a line end or `//`",
+                        "name": "comment.line.semicolon.stl",
+                        "match": ";(?!\\s*(//|$)).*$"
+                    }
                 ]
             },
             "statement": {
