@@ -281,7 +281,11 @@ fn operations(language: FileLanguage) -> Vec<Completion> {
             .map(|info| Completion {
                 label: mnemonics::op_word(set, info.op).to_string(),
                 kind: CompletionKind::Operation,
-                detail: info.summary.to_string(),
+                detail: if info.supplementary {
+                    format!("{} (function blocks only)", info.summary)
+                } else {
+                    info.summary.to_string()
+                },
             })
             .collect(),
         Dialect::Step7 => {
@@ -376,6 +380,15 @@ mod tests {
         let ju = items.iter().find(|item| item.label == "JU").unwrap();
         assert_eq!(ju.kind, CompletionKind::Operation);
         assert!(!ju.detail.is_empty());
+        let supplementary = mnemonics::OPERATIONS
+            .iter()
+            .find(|info| info.supplementary)
+            .unwrap();
+        let item = items
+            .iter()
+            .find(|item| item.label == supplementary.en)
+            .unwrap();
+        assert!(item.detail.ends_with("(function blocks only)"), "{item:?}");
         assert!(items.iter().all(|item| item.label != "SPA"));
     }
 
