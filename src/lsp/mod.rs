@@ -13,12 +13,18 @@
 //! `Server::workspace.documents` the text, and `position::LineIndex` turns offsets into LSP
 //! positions and back.
 
+pub mod complete;
 mod diagnostics;
 mod documents;
+pub mod fixes;
+pub mod format;
 mod hover;
 mod lookup;
 mod navigate;
 mod position;
+pub mod text;
+pub mod textmate;
+pub mod tokens;
 mod workspace;
 
 use std::panic::AssertUnwindSafe;
