@@ -3,8 +3,6 @@
 //! requests of [`request`], served at the cycle control point by [`station`].
 
 pub mod access;
-#[cfg(target_os = "linux")]
-mod alarm;
 pub mod identity;
 mod listen;
 pub mod modbus;

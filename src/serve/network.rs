@@ -4,38 +4,21 @@
 //! as a real CPU's communication waits for its cycle control point. So a request and its answer
 //! never cross threads, and the VM's loop never sees the network.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use tokio::runtime::Runtime;
 
 use super::request::{Received, Request};
 
-/// One step of a short wait where no alarm can be had: the connections are looked at
-/// between two.
-const NAP: Duration = Duration::from_micros(50);
-
 pub struct Network {
     runtime: Runtime,
     requests: Received,
-    /// Wakes the runtime at the end of a wait; without it, short naps.
-    #[cfg(target_os = "linux")]
-    alarm: Option<super::alarm::Alarm>,
 }
 
 impl Network {
     /// `runtime` runs the servers' tasks (spawned on it); `requests` is what they send.
     pub fn new(runtime: Runtime, requests: Received) -> Self {
-        #[cfg(target_os = "linux")]
-        let alarm = {
-            let _entered = runtime.enter();
-            super::alarm::Alarm::new().ok()
-        };
-        Network {
-            runtime,
-            requests,
-            #[cfg(target_os = "linux")]
-            alarm,
-        }
+        Network { runtime, requests }
     }
 
     /// A request that has come already, without running the network.
@@ -43,47 +26,24 @@ impl Network {
         self.requests.try_recv().ok()
     }
 
-    /// Runs the network until a request comes or `longest` has passed.
+    /// Runs the network until a request comes or `longest` has passed; the runtime's timers
+    /// count whole milliseconds, so the wait may last up to a millisecond longer.
     pub fn next_request(&mut self, longest: Duration) -> Option<Request> {
-        #[cfg(target_os = "linux")]
-        if let Some(alarm) = &self.alarm
-            && alarm.set(longest).is_ok()
-        {
-            let requests = &mut self.requests;
-            let received = self.runtime.block_on(async {
-                tokio::select! {
-                    biased;
-                    request = requests.recv() => Some(request),
-                    () = alarm.rung() => None,
-                }
-            });
-            return match received {
-                Some(Some(request)) => Some(request),
-                Some(None) => {
-                    // No server is left to send anything: only the clock is waited for.
-                    std::thread::sleep(longest);
-                    None
-                }
-                None => None,
-            };
+        if let Some(request) = self.try_request() {
+            return Some(request);
         }
-        self.next_request_soon(longest)
-    }
-
-    /// A short wait: the network polled, then a nap, until a request comes or `longest`
-    /// has passed.
-    fn next_request_soon(&mut self, longest: Duration) -> Option<Request> {
-        let until = Instant::now() + longest;
-        loop {
-            self.poll();
-            if let Some(request) = self.try_request() {
-                return Some(request);
+        let requests = &mut self.requests;
+        let received = self
+            .runtime
+            .block_on(async { tokio::time::timeout(longest, requests.recv()).await });
+        match received {
+            Ok(Some(request)) => Some(request),
+            Ok(None) => {
+                // No server is left to send anything: only the clock is waited for.
+                std::thread::sleep(longest);
+                None
             }
-            let now = Instant::now();
-            if now >= until {
-                return None;
-            }
-            std::thread::sleep((until - now).min(NAP));
+            Err(_elapsed) => None,
         }
     }
 

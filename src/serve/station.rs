@@ -20,8 +20,9 @@ const POLL_EVERY: Duration = Duration::from_micros(100);
 
 /// How far simulated time may run ahead of the clock: a cycle whose start the clock would
 /// reach sooner starts at once, so short cycles (the SPEED7's take 60 µs) do not each cost a
-/// wake-up of their own.
-const RUN_AHEAD: Duration = Duration::from_micros(200);
+/// wake-up of their own, and the CPU leaves the machine's cores to its clients. It is the
+/// network runtime's timer resolution too.
+const RUN_AHEAD: Duration = Duration::from_millis(1);
 
 /// A start a client asked for, made once the CPU gets to it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -100,7 +101,9 @@ impl<'a> Station<'a> {
             }
             let now = Instant::now();
             if now + RUN_AHEAD < deadline {
-                self.wait_for_request(cpu, (deadline - now).min(LOOK_EVERY));
+                // The network's wait may last a millisecond longer than asked: it is asked to
+                // end that much before the clock, and the cycle starts at most that early.
+                self.wait_for_request(cpu, (deadline - now - RUN_AHEAD).min(LOOK_EVERY));
             } else if self.answered || now - self.last_poll >= POLL_EVERY {
                 // The answers go out before the next cycle; what came meanwhile is served.
                 self.poll_network();

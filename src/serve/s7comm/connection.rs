@@ -59,8 +59,10 @@ pub(super) async fn serve<S: AsyncRead + AsyncWrite + Unpin>(
     requests: Requests,
     settings: Settings,
 ) {
-    let mut connection = Connection {
-        stream,
+    let mut connection: Connection<tokio::io::BufReader<S>> = Connection {
+        // A packet is read in parts (its first byte, its header, its payload): buffered, that
+        // is one receive from the socket.
+        stream: tokio::io::BufReader::new(stream),
         client,
         requests,
         settings,
