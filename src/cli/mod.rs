@@ -154,7 +154,7 @@ pub enum Command {
     /// HMIs, plant simulations and test scripts
     Serve(serve::ServeArgs),
     /// A language server over stdio for editors: diagnostics as you type, hover, go to
-    /// definition, references, symbols
+    /// definition, references, symbols, completion, quick fixes, semantic tokens, formatting
     Lsp,
     /// Run scenario files and check their [expect] and [[check]] tables
     Test(run::TestArgs),

@@ -6,16 +6,16 @@
 //! parameters with `InvalidParams`, a handler that fails with `InternalError`, and it stops
 //! when the client has gone.
 //!
-//! More editor features (completion, semantic tokens, formatting, quick fixes) join as
-//! modules of their own: each gets its capability in [`capabilities`] and an arm in
-//! `Server::request`, where `Server::at_position` hands a handler the document's
-//! `workspace::Analysis` (front end, file paths, CPU) and the cursor's byte offset,
-//! `Server::workspace.documents` the text, and `position::LineIndex` turns offsets into LSP
-//! positions and back.
+//! Completion, quick fixes, semantic tokens and formatting are modules of their own on plain
+//! types (`text`); `features` serves them. Each feature has its capability in
+//! [`capabilities`] and an arm in `Server::request`, where `Server::at_position` hands a
+//! handler the document's `workspace::Analysis` (front end, file paths, CPU) and the cursor's
+//! byte offset, and `Server::analysed` the analysis alone.
 
 pub mod complete;
 mod diagnostics;
 mod documents;
+mod features;
 pub mod fixes;
 pub mod format;
 mod hover;
@@ -33,8 +33,10 @@ use lsp_server::{Connection, ErrorCode, Message, Notification, Request, Response
 use lsp_types::notification::{self as notify, Notification as _};
 use lsp_types::request::{self as req, Request as _};
 use lsp_types::{
-    HoverProviderCapability, InitializeParams, OneOf, PublishDiagnosticsParams, ServerCapabilities,
-    ServerInfo, TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
+    CodeActionProviderCapability, CompletionOptions, HoverProviderCapability, InitializeParams,
+    OneOf, PublishDiagnosticsParams, SemanticTokensFullOptions, SemanticTokensOptions,
+    SemanticTokensServerCapabilities, ServerCapabilities, ServerInfo, TextDocumentSyncCapability,
+    TextDocumentSyncKind, Uri,
 };
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -52,6 +54,16 @@ pub fn capabilities() -> ServerCapabilities {
         references_provider: Some(OneOf::Left(true)),
         document_symbol_provider: Some(OneOf::Left(true)),
         workspace_symbol_provider: Some(OneOf::Left(true)),
+        completion_provider: Some(CompletionOptions::default()),
+        code_action_provider: Some(CodeActionProviderCapability::Simple(true)),
+        semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+            SemanticTokensOptions {
+                legend: features::legend(),
+                full: Some(SemanticTokensFullOptions::Bool(true)),
+                ..SemanticTokensOptions::default()
+            },
+        )),
+        document_formatting_provider: Some(OneOf::Left(true)),
         ..ServerCapabilities::default()
     }
 }
@@ -237,6 +249,30 @@ impl<'a> Server<'a> {
                 let params: lsp_types::WorkspaceSymbolParams = params_of(request.params)?;
                 to_json(navigate::workspace_symbols(&self.workspace, &params.query))
             }
+            req::Completion::METHOD => {
+                let params: lsp_types::CompletionParams = params_of(request.params)?;
+                let at = &params.text_document_position;
+                let found = self.analysed(&at.text_document.uri, |analysis| {
+                    features::completions(analysis, at.position)
+                });
+                to_json(found)
+            }
+            req::CodeActionRequest::METHOD => {
+                let params: lsp_types::CodeActionParams = params_of(request.params)?;
+                let uri = &params.text_document.uri;
+                let found = self.analysed(uri, |analysis| {
+                    features::code_actions(analysis, uri, params.range)
+                });
+                to_json(found)
+            }
+            req::SemanticTokensFullRequest::METHOD => {
+                let params: lsp_types::SemanticTokensParams = params_of(request.params)?;
+                to_json(self.analysed(&params.text_document.uri, features::semantic_tokens))
+            }
+            req::Formatting::METHOD => {
+                let params: lsp_types::DocumentFormattingParams = params_of(request.params)?;
+                to_json(self.analysed(&params.text_document.uri, features::formatting))
+            }
             _ => Err(Failure::NotFound),
         }
     }
@@ -252,6 +288,12 @@ impl<'a> Server<'a> {
         let analysis = self.workspace.analyse(uri, text);
         let offset = LineIndex::new(text).offset(text, position);
         Some(handler(&analysis, offset))
+    }
+
+    /// `handler` on the analysis of the open document `uri`; `None` for a document not open.
+    fn analysed<T>(&self, uri: &Uri, handler: impl FnOnce(&workspace::Analysis) -> T) -> Option<T> {
+        let text = self.workspace.documents.get(uri)?;
+        Some(handler(&self.workspace.analyse(uri, text)))
     }
 
     fn notified(&mut self, notification: Notification) {

@@ -452,3 +452,148 @@ fn a_german_listing_finds_its_scenario_s_assignment_list() {
     );
     client.finish();
 }
+
+fn complete(client: &mut Client, path: &Path, line: u32, character: u32) -> Value {
+    let params = json!({
+        "textDocument": {"uri": uri(path)},
+        "position": {"line": line, "character": character},
+        "context": {"triggerKind": 1}
+    });
+    let response = client.request("textDocument/completion", params);
+    response
+        .result
+        .unwrap_or_else(|| panic!("{:?}", response.error))
+}
+
+/// `text` with the edits of a `TextEdit[]` in JSON made.
+fn edited(text: &str, edits: &Value) -> String {
+    let edits: Vec<lsp_types::TextEdit> = serde_json::from_value(edits.clone()).unwrap();
+    let position = |at: lsp_types::Position| super::text::Position {
+        line: at.line,
+        character: at.character,
+    };
+    let edits: Vec<super::text::TextEdit> = edits
+        .into_iter()
+        .map(|edit| super::text::TextEdit {
+            range: super::text::Range {
+                start: position(edit.range.start),
+                end: position(edit.range.end),
+            },
+            new_text: edit.new_text,
+        })
+        .collect();
+    super::text::apply(text, &edits)
+}
+
+#[test]
+fn completion_offers_the_symbols_and_the_operations() {
+    let folder = plant_folder("complete");
+    let path = folder.join("plant.awl");
+    let mut client = Client::start(&folder, Value::Null);
+    client.open(&path, &PLANT.replace("-START", "-ST"));
+    let symbols = complete(&mut client, &path, 1, 15);
+    let start = symbols
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|item| item["label"] == "-START")
+        .unwrap_or_else(|| panic!("no -START in {symbols}"));
+    assert_eq!(start["kind"], 21, "a constant: {start}");
+    assert!(
+        start["detail"].as_str().unwrap().contains("I 0.0"),
+        "{start}"
+    );
+    let operations = complete(&mut client, &path, 16, 7);
+    let set = operations
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|item| item["label"] == "S")
+        .unwrap_or_else(|| panic!("no S in {operations}"));
+    assert_eq!(set["kind"], 14, "a keyword: {set}");
+    assert!(!set["detail"].as_str().unwrap().is_empty());
+    client.finish();
+}
+
+#[test]
+fn a_quick_fix_puts_the_blank_between_operation_and_operand() {
+    let folder = plant_folder("fix");
+    let path = folder.join("alone.awl");
+    let text = "PB 1\n      L KF +5\n      T1\n      BE\n";
+    let mut client = Client::start(&folder, Value::Null);
+    client.open(&path, text);
+    let params = json!({
+        "textDocument": {"uri": uri(&path)},
+        "range": {"start": {"line": 2, "character": 6}, "end": {"line": 2, "character": 6}},
+        "context": {"diagnostics": []}
+    });
+    let actions = client
+        .request("textDocument/codeAction", params)
+        .result
+        .unwrap();
+    let action = &actions[0];
+    assert_eq!(action["kind"], "quickfix", "{actions}");
+    let fixed = edited(text, &action["edit"]["changes"][uri(&path)]);
+    assert_eq!(fixed, "PB 1\n      L KF +5\n      T 1\n      BE\n");
+    let elsewhere = json!({
+        "textDocument": {"uri": uri(&path)},
+        "range": {"start": {"line": 1, "character": 0}, "end": {"line": 1, "character": 0}},
+        "context": {"diagnostics": []}
+    });
+    let none = client
+        .request("textDocument/codeAction", elsewhere)
+        .result
+        .unwrap();
+    assert_eq!(none, json!([]));
+    client.finish();
+}
+
+#[test]
+fn semantic_tokens_follow_the_legend_and_formatting_aligns_the_columns() {
+    let folder = plant_folder("tokens");
+    let path = folder.join("alone.awl");
+    let text = "PB 1\nA I 0.0 ; start\n= Q 4.0\nBE\n";
+    let (client_end, server_end) = Connection::memory();
+    let server = std::thread::spawn(move || super::serve(&server_end));
+    let mut client = Client {
+        connection: client_end,
+        server: Some(server),
+        next: 0,
+    };
+    let params = json!({"capabilities": {}, "rootUri": uri(&folder)});
+    let capabilities = client.request("initialize", params).result.unwrap()["capabilities"].clone();
+    let legend = &capabilities["semanticTokensProvider"]["legend"]["tokenTypes"];
+    assert_eq!(legend, &json!(super::tokens::LEGEND), "{capabilities}");
+    assert_eq!(capabilities["documentFormattingProvider"], true);
+    client.notify("initialized", json!({}));
+    client.open(&path, text);
+    let document = json!({"textDocument": {"uri": uri(&path)}});
+    let tokens = client
+        .request("textDocument/semanticTokens/full", document.clone())
+        .result
+        .unwrap();
+    let data = tokens["data"].as_array().unwrap();
+    let language = super::text::FileLanguage::of_text(text);
+    let expected = super::tokens::semantic_tokens(text, language);
+    assert_eq!(data.len(), expected.len() * 5);
+    let comment = super::tokens::LEGEND
+        .iter()
+        .position(|name| *name == "comment");
+    assert!(
+        data.chunks(5)
+            .any(|token| token[3] == json!(comment.unwrap())),
+        "{tokens}"
+    );
+    let params = json!({
+        "textDocument": {"uri": uri(&path)},
+        "options": {"tabSize": 4, "insertSpaces": true}
+    });
+    let edits = client
+        .request("textDocument/formatting", params)
+        .result
+        .unwrap();
+    let formatted = edited(text, &edits);
+    assert_ne!(formatted, text);
+    assert_eq!(formatted, super::format::formatted(text, language));
+    client.finish();
+}

@@ -1,5 +1,5 @@
 """`awl lsp` with a real client (pytest-lsp): diagnostics as the text changes, hover, go to
-definition. tests/lsp.rs runs it with AWL_BIN (the binary) and AWL_LSP_FOLDER (a folder
+definition, completion and a quick fix. tests/lsp.rs runs it with AWL_BIN (the binary) and AWL_LSP_FOLDER (a folder
 holding plant.awl, plant.seq and plant.toml)."""
 
 import asyncio
@@ -92,6 +92,49 @@ async def test_go_to_a_label_and_a_block(client: LanguageClient):
         types.DefinitionParams(**vars_of(at(2, 12)))
     )
     assert block.range.start.line == 8
+
+
+@pytest.mark.asyncio
+async def test_complete_a_symbol(client: LanguageClient):
+    await open_text(client, TEXT.replace("-START", "-ST"))
+    found = await client.text_document_completion_async(
+        types.CompletionParams(**vars_of(at(1, 15)))
+    )
+    items = found.items if isinstance(found, types.CompletionList) else found
+    start = next(item for item in items if item.label == "-START")
+    assert start.kind == types.CompletionItemKind.Constant
+    assert "I 0.0" in start.detail
+
+
+@pytest.mark.asyncio
+async def test_a_quick_fix_separates_operation_and_operand(client: LanguageClient):
+    broken = TEXT.replace("      R  =AUS", "      L KF +5\n      T1")
+    found = await open_text(client, broken)
+    error = next(d for d in found if d.range.start.line == 15)
+    actions = await client.text_document_code_action_async(
+        types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=URI),
+            range=error.range,
+            context=types.CodeActionContext(diagnostics=[error]),
+        )
+    )
+    fix = actions[0]
+    assert fix.kind == types.CodeActionKind.QuickFix
+    assert applied(broken, fix.edit.changes[URI]).splitlines()[15] == "      T 1"
+
+
+def applied(text, edits):
+    """`text` with edits that each stay on one line, made from the last to the first."""
+    lines = text.split("\n")
+    last_first = sorted(
+        edits, key=lambda e: (e.range.start.line, e.range.start.character), reverse=True
+    )
+    for edit in last_first:
+        start, end = edit.range.start, edit.range.end
+        assert start.line == end.line
+        line = lines[start.line]
+        lines[start.line] = line[: start.character] + edit.new_text + line[end.character :]
+    return "\n".join(lines)
 
 
 def vars_of(position):
