@@ -404,14 +404,7 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
         console.out(&report);
     }
     if let Some(format) = state {
-        let state = State::capture(&ran.cpu, ran.outcome.stop.as_ref());
-        match format {
-            StateFormat::Text => console.out_text(&crate::state::render(&state)),
-            StateFormat::Json => console.out(&format!(
-                "{}\n",
-                serde_json::to_string_pretty(&state).expect("the state is plain data")
-            )),
-        }
+        print_state(&ran, format, console);
     }
     if !console.is_quiet() {
         console.err(&crate::report::written(&ran));
@@ -424,6 +417,18 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
         EXIT_STOP
     } else {
         EXIT_OK
+    }
+}
+
+/// The CPU's state at the end (`--state`), as text or as JSON.
+pub(super) fn print_state(ran: &Ran, format: StateFormat, console: &mut Console) {
+    let state = State::capture(&ran.cpu, ran.outcome.stop.as_ref());
+    match format {
+        StateFormat::Text => console.out_text(&crate::state::render(&state)),
+        StateFormat::Json => console.out(&format!(
+            "{}\n",
+            serde_json::to_string_pretty(&state).expect("the state is plain data")
+        )),
     }
 }
 

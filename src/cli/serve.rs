@@ -8,10 +8,11 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::serve::plc::{self, Listening, ServeOptions, ServedRun};
 use crate::serve::station::Snapshot;
-use crate::state::State;
 use crate::trace::format_ms;
 
-use super::run::{Format, ProgramArgs, RunLength, StateFormat, not_run, program_options};
+use super::run::{
+    Format, ProgramArgs, RunLength, StateFormat, not_run, print_state, program_options,
+};
 use super::terminal::in_foreground;
 use super::{Console, EXIT_OK, EXIT_STOP, watch};
 
@@ -165,14 +166,7 @@ fn finish(
         .state_format
         .or(args.state.then_some(StateFormat::Text))
     {
-        let state = State::capture(&ran.cpu, ran.outcome.stop.as_ref());
-        match format {
-            StateFormat::Text => console.out_text(&crate::state::render(&state)),
-            StateFormat::Json => console.out(&format!(
-                "{}\n",
-                serde_json::to_string_pretty(&state).expect("the state is plain data")
-            )),
-        }
+        print_state(ran, format, console);
     }
     console.err(&crate::report::written(ran));
     if ran.outcome.stop.is_some() {
