@@ -456,3 +456,31 @@ pub fn build_text_with(
         .expect("one file fits");
     build(sources, language, profile)
 }
+
+/// The note "compiles without errors for --cpu …" after `awl check` without `--cpu` (and in the
+/// editor).
+pub fn runs_on_note(profiles: &[&str]) -> String {
+    if profiles.is_empty() {
+        "note: no CPU profile compiles it without errors\n".to_string()
+    } else if profiles.len() == crate::profile::PROFILES.len() {
+        "note: compiles without errors for every CPU profile (`awl cpus`)\n".to_string()
+    } else {
+        format!(
+            "note: compiles without errors for --cpu {}\n",
+            profiles.join(", ")
+        )
+    }
+}
+
+/// Whether the errors are ones no choice of CPU removes: the text itself does not parse, or an
+/// assignment list is wrong. The "compiles for --cpu" note is then left out.
+pub fn cpu_cannot_help(built: &Frontend) -> bool {
+    built.diagnostics.iter().any(|diagnostic| {
+        !diagnostic.is_warning()
+            && matches!(
+                diagnostic,
+                crate::diagnostics::SourceDiagnostic::Parse(_)
+                    | crate::diagnostics::SourceDiagnostic::Symbol(_)
+            )
+    })
+}

@@ -6,9 +6,12 @@
 
 pub mod declared;
 mod layout;
+mod memory_area;
+pub mod modbus_map;
 pub mod notation;
 pub mod operand;
 pub mod range;
 
 pub use layout::{ImageArea, Layout};
+pub use memory_area::MemoryArea;
 pub use operand::{Places, Refusal, Target};

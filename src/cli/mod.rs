@@ -9,7 +9,6 @@ mod help;
 mod run;
 mod serve;
 mod source;
-pub(crate) use source::{cpu_cannot_help, runs_on_note};
 mod status;
 mod terminal;
 mod watch;

@@ -63,32 +63,6 @@ fn build(
     Some((built, runs_on))
 }
 
-/// "runs on: …" after `awl check` without `--cpu`.
-pub(crate) fn runs_on_note(profiles: &[&str]) -> String {
-    if profiles.is_empty() {
-        "note: no CPU profile compiles it without errors\n".to_string()
-    } else if profiles.len() == crate::profile::PROFILES.len() {
-        "note: compiles without errors for every CPU profile (`awl cpus`)\n".to_string()
-    } else {
-        format!(
-            "note: compiles without errors for --cpu {}\n",
-            profiles.join(", ")
-        )
-    }
-}
-
-/// Whether the errors are ones no choice of CPU removes: the text itself does not parse, or an
-/// assignment list is wrong. The "compiles for --cpu" note is then left out.
-pub(crate) fn cpu_cannot_help(built: &Frontend) -> bool {
-    built.diagnostics.iter().any(|diagnostic| {
-        !diagnostic.is_warning()
-            && matches!(
-                diagnostic,
-                diagnostics::SourceDiagnostic::Parse(_) | diagnostics::SourceDiagnostic::Symbol(_)
-            )
-    })
-}
-
 /// The counts of the front end's diagnostics and `more_warnings` besides.
 fn totals(built: &Frontend, more_warnings: usize) -> Totals {
     Totals::of(&built.diagnostics, built.sources.files.len()).with_warnings(more_warnings)
@@ -104,9 +78,10 @@ pub fn check(args: &CheckArgs, console: &mut Console) -> u8 {
     let blocks = built.compiled.program.blocks.len() + built.compiled.program.data_blocks.len();
     if built.has_errors() {
         console.totals("check", totals(&built, 0));
-        if let Some(profiles) = runs_on.filter(|_| !cpu_cannot_help(&built) && !console.is_quiet())
+        if let Some(profiles) =
+            runs_on.filter(|_| !frontend::cpu_cannot_help(&built) && !console.is_quiet())
         {
-            console.err(&runs_on_note(&profiles));
+            console.err(&frontend::runs_on_note(&profiles));
         }
         return EXIT_SOURCE_ERRORS;
     }
@@ -121,7 +96,7 @@ pub fn check(args: &CheckArgs, console: &mut Console) -> u8 {
         totals(&built, warnings.len())
     ));
     if let Some(profiles) = runs_on {
-        console.out_text(&runs_on_note(&profiles));
+        console.out_text(&frontend::runs_on_note(&profiles));
     }
     EXIT_OK
 }

@@ -61,10 +61,10 @@ fn of_file(analysis: &Analysis, file: u16) -> Vec<Diagnostic> {
 
 /// "compiles without errors for --cpu …", as `awl check` says it, where a CPU would help.
 fn runs_on_note(analysis: &Analysis) -> Option<String> {
-    if crate::cli::cpu_cannot_help(&analysis.built) {
+    if crate::frontend::cpu_cannot_help(&analysis.built) {
         return None;
     }
-    let note = crate::cli::runs_on_note(&analysis.runs_on()?);
+    let note = crate::frontend::runs_on_note(&analysis.runs_on()?);
     Some(note.trim_end().trim_start_matches("note: ").to_string())
 }
 

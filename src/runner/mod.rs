@@ -535,11 +535,10 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
 
 impl Prepared {
     /// Where the Modbus server's tables lie: the scenario's `[modbus]`, else the defaults.
-    #[cfg(not(target_arch = "wasm32"))]
-    pub fn modbus_map(&self) -> Result<crate::serve::modbus::Map, Vec<Report>> {
+    pub fn modbus_map(&self) -> Result<crate::address::modbus_map::Map, Vec<Report>> {
         match &self.scenario {
             Some(scenario) => scenario.modbus_map(&self.cpu.program, self.mnemonics),
-            None => Ok(crate::serve::modbus::Map::default()),
+            None => Ok(crate::address::modbus_map::Map::default()),
         }
     }
 

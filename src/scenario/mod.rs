@@ -7,7 +7,6 @@
 pub mod check;
 pub mod error;
 pub mod expect;
-#[cfg(not(target_arch = "wasm32"))]
 mod modbus;
 pub mod modify;
 pub mod operand;
@@ -99,7 +98,6 @@ pub struct Scenario {
     watch: Vec<Spanned<String>>,
     checks: Vec<Spanned<SpannedTable>>,
     /// `[modbus]`, resolved by `Scenario::modbus_map` once the program is known.
-    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     modbus: raw::RawModbus,
 }
 

@@ -8,9 +8,9 @@ use super::error::ScenarioError;
 use super::operand::parse_target;
 use super::{Errors, Scenario};
 use crate::address::Places;
+use crate::address::modbus_map::{Map, Misfit, Table};
 use crate::compiler::Program;
 use crate::mnemonics::MnemonicSet;
-use crate::serve::modbus::map::{Map, Misfit, Table};
 
 /// How a table is placed by the operand it starts at.
 type Place = fn(crate::address::Target, &Places) -> Result<Table, Misfit>;
@@ -86,9 +86,9 @@ mod tests {
     use std::path::Path;
 
     use super::*;
+    use crate::address::MemoryArea as Area;
     use crate::frontend;
     use crate::profile;
-    use crate::serve::request::Area;
 
     const STEP7: &str = "DATA_BLOCK DB 1\n  STRUCT\n    a : WORD;\n    b : WORD;\n  END_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n\nORGANIZATION_BLOCK OB 1\nBEGIN\n      L     DB1.DBW 2;\n      T     MW 10;\nEND_ORGANIZATION_BLOCK\n";
     const STEP5: &str = "OB 1\n      L  FW 10\n      T  QW 4\n      BE\n";

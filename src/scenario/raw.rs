@@ -298,10 +298,8 @@ pub struct RawScenario {
     pub modbus: RawModbus,
 }
 
-/// `[modbus]`: the operand each Modbus table starts at, as written. The playground (wasm32)
-/// checks the keys but serves no Modbus, so it never reads them.
+/// `[modbus]`: the operand each Modbus table starts at, as written.
 #[derive(Debug, Default)]
-#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 pub struct RawModbus {
     pub discrete_inputs: Option<Spanned<String>>,
     pub coils: Option<Spanned<String>>,

@@ -4,7 +4,7 @@
 pub mod access;
 pub mod connection;
 pub mod frame;
-pub mod map;
+pub use crate::address::modbus_map as map;
 
 use std::time::Duration;
 

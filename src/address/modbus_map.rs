@@ -4,9 +4,9 @@
 //! scenario's `[modbus]` table moves each to another area and start. A table runs from its start
 //! to the end of its area: the CPU refuses what lies past it.
 
+use super::MemoryArea as Area;
 use crate::address::{ImageArea, Layout, Places, Target};
 use crate::dialect::Dialect;
-use crate::serve::request::Area;
 
 /// Where one table's address 0 lies: a bit table counts bits from bit 0 of byte 0 of `area`, a
 /// register table bytes. The start is an operand's, so it lies within the CPU's ranges.
