@@ -126,6 +126,21 @@ impl Client {
         self.request(method, params).result.unwrap_or(Value::Null)
     }
 
+    /// The hover's text at a position.
+    fn hover(&mut self, path: &Path, line: u32, character: u32) -> Value {
+        self.at("textDocument/hover", path, line, character)["contents"]["value"].clone()
+    }
+
+    /// The document's symbols.
+    fn outline(&mut self, path: &Path) -> Value {
+        self.request(
+            "textDocument/documentSymbol",
+            json!({"textDocument": {"uri": uri(path)}}),
+        )
+        .result
+        .unwrap()
+    }
+
     fn finish(mut self) {
         let response = self.request("shutdown", Value::Null);
         assert!(response.error.is_none());
@@ -205,28 +220,28 @@ fn hover_tells_the_operation_the_symbol_and_the_block() {
     let path = folder.join("plant.awl");
     let mut client = Client::start(&folder, Value::Null);
     client.open(&path, PLANT);
-    let operation = client.at("textDocument/hover", &path, 1, 6)["contents"]["value"].clone();
+    let operation = client.hover(&path, 1, 6);
     let operation = operation.as_str().unwrap();
     assert!(operation.contains("`U`"), "{operation}");
     assert!(operation.contains("s5-115u"), "{operation}");
-    let symbol = client.at("textDocument/hover", &path, 1, 13)["contents"]["value"].clone();
+    let symbol = client.hover(&path, 1, 13);
     let symbol = symbol.as_str().unwrap();
     assert!(
         symbol.contains("I 0.0") && symbol.contains("start button"),
         "{symbol}"
     );
-    let block = client.at("textDocument/hover", &path, 2, 13)["contents"]["value"].clone();
+    let block = client.hover(&path, 2, 13);
     assert!(
         block.as_str().unwrap().contains("DES  :EIN  I BI"),
         "{block}"
     );
-    let jump = client.at("textDocument/hover", &path, 13, 6)["contents"]["value"].clone();
+    let jump = client.hover(&path, 13, 6);
     let jump = jump.as_str().unwrap();
     assert!(
         jump.contains("`SPB`") && jump.contains("RLO") && jump.contains("µs"),
         "{jump}"
     );
-    let label = client.at("textDocument/hover", &path, 13, 10)["contents"]["value"].clone();
+    let label = client.hover(&path, 13, 10);
     assert!(label.as_str().unwrap().contains("line 17"), "{label}");
     client.finish();
 }
@@ -250,13 +265,7 @@ fn definitions_references_and_symbols() {
     assert_eq!(uses.as_array().unwrap().len(), 2, "{uses}");
     let calls = client.at("textDocument/references", &path, 8, 3);
     assert_eq!(calls.as_array().unwrap().len(), 2, "{calls}");
-    let outline = client
-        .request(
-            "textDocument/documentSymbol",
-            json!({"textDocument": {"uri": uri(&path)}}),
-        )
-        .result
-        .unwrap();
+    let outline = client.outline(&path);
     let names: Vec<&str> = outline
         .as_array()
         .unwrap()
@@ -333,12 +342,12 @@ fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
     let path = folder.join("motor.awl");
     let mut client = Client::start(&folder, Value::Null);
     assert_eq!(client.open(&path, MOTOR)["diagnostics"], json!([]));
-    let declared = client.at("textDocument/hover", &path, 7, 14)["contents"]["value"].clone();
+    let declared = client.hover(&path, 7, 14);
     assert!(
         declared.as_str().unwrap().contains("start : BOOL"),
         "{declared}"
     );
-    let operation = client.at("textDocument/hover", &path, 7, 6)["contents"]["value"].clone();
+    let operation = client.hover(&path, 7, 6);
     assert!(
         operation
             .as_str()
@@ -348,13 +357,7 @@ fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
     );
     let definition = client.at("textDocument/definition", &path, 7, 14);
     assert_eq!(definition["range"]["start"]["line"], 2, "{definition}");
-    let outline = client
-        .request(
-            "textDocument/documentSymbol",
-            json!({"textDocument": {"uri": uri(&path)}}),
-        )
-        .result
-        .unwrap();
+    let outline = client.outline(&path);
     assert_eq!(outline[0]["name"], "FB 1", "{outline}");
     assert_eq!(outline[0]["children"][0]["name"], "network 1", "{outline}");
     client.finish();
@@ -423,12 +426,12 @@ fn a_german_listing_finds_its_scenario_s_assignment_list() {
     let text = std::fs::read_to_string(&path).unwrap();
     let mut client = Client::start(&folder, Value::Null);
     assert_eq!(client.open(&path, &text)["diagnostics"], json!([]));
-    let symbol = client.at("textDocument/hover", &path, 10, 18)["contents"]["value"].clone();
+    let symbol = client.hover(&path, 10, 18);
     assert!(
         symbol.as_str().unwrap().contains("Taster Fuellen ein"),
         "{symbol}"
     );
-    let operation = client.at("textDocument/hover", &path, 10, 11)["contents"]["value"].clone();
+    let operation = client.hover(&path, 10, 11);
     assert!(
         operation
             .as_str()
@@ -438,13 +441,7 @@ fn a_german_listing_finds_its_scenario_s_assignment_list() {
     );
     let call = client.at("textDocument/definition", &path, 6, 18);
     assert_eq!(call["range"]["start"]["line"], 8, "{call}");
-    let outline = client
-        .request(
-            "textDocument/documentSymbol",
-            json!({"textDocument": {"uri": uri(&path)}}),
-        )
-        .result
-        .unwrap();
+    let outline = client.outline(&path);
     assert_eq!(
         outline[1]["children"].as_array().unwrap().len(),
         3,
