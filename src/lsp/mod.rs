@@ -3,8 +3,9 @@
 //! open and on every change; hover and navigation read the same front end's syntax trees.
 //!
 //! The server answers every request: one it does not know with `MethodNotFound`, bad
-//! parameters with `InvalidParams`, a handler that fails with `InternalError`, and it stops
-//! when the client has gone.
+//! parameters with `InvalidParams`, a handler that fails with `InternalError`, one cancelled
+//! while it waited with `RequestCanceled`, and it stops when the client has gone. Edits that
+//! arrive together are checked once, when nothing else waits.
 //!
 //! Completion, quick fixes, semantic tokens and formatting are modules of their own on plain
 //! types (`text`); `features` serves them. Each feature has its capability in
@@ -27,9 +28,10 @@ pub mod textmate;
 pub mod tokens;
 mod workspace;
 
+use std::collections::VecDeque;
 use std::panic::AssertUnwindSafe;
 
-use lsp_server::{Connection, ErrorCode, Message, Notification, Request, Response};
+use lsp_server::{Connection, ErrorCode, Message, Notification, Request, RequestId, Response};
 use lsp_types::notification::{self as notify, Notification as _};
 use lsp_types::request::{self as req, Request as _};
 use lsp_types::{
@@ -132,6 +134,8 @@ struct InitializeResult {
 struct Server<'a> {
     connection: &'a Connection,
     workspace: Workspace,
+    /// Documents changed since their diagnostics were last published.
+    changed: Vec<Uri>,
 }
 
 /// Why a request got no result.
@@ -156,13 +160,30 @@ impl<'a> Server<'a> {
                 root,
                 ..Workspace::default()
             },
+            changed: Vec::new(),
         };
         server.take_settings(params.initialization_options);
         server
     }
 
+    /// Reads what has arrived before acting on it, so a `$/cancelRequest` cancels a request
+    /// still waiting behind others, and a burst of edits is checked once: diagnostics go out
+    /// when nothing more is waiting.
     fn main_loop(&mut self) -> Result<(), String> {
-        for message in &self.connection.receiver {
+        let mut waiting = VecDeque::new();
+        loop {
+            if waiting.is_empty() {
+                self.publish_changed();
+                match self.connection.receiver.recv() {
+                    Ok(message) => waiting.push_back(message),
+                    Err(_) => return Ok(()),
+                }
+            }
+            waiting.extend(self.connection.receiver.try_iter());
+            self.cancel_waiting(&mut waiting);
+            let Some(message) = waiting.pop_front() else {
+                continue;
+            };
             match message {
                 Message::Request(request) => match self.connection.handle_shutdown(&request) {
                     Ok(true) => return Ok(()),
@@ -177,7 +198,42 @@ impl<'a> Server<'a> {
                 Message::Response(_) => {}
             }
         }
-        Ok(())
+    }
+
+    /// Answers each waiting request a waiting `$/cancelRequest` names with `RequestCanceled`,
+    /// and drops the cancellations (one for a request already answered has nothing to do).
+    fn cancel_waiting(&self, waiting: &mut VecDeque<Message>) {
+        let cancelled: Vec<RequestId> = waiting
+            .iter()
+            .filter_map(|message| match message {
+                Message::Notification(notification)
+                    if notification.method == notify::Cancel::METHOD =>
+                {
+                    serde_json::from_value::<lsp_types::CancelParams>(notification.params.clone())
+                        .ok()
+                        .map(|params| match params.id {
+                            lsp_types::NumberOrString::Number(id) => RequestId::from(id),
+                            lsp_types::NumberOrString::String(id) => RequestId::from(id),
+                        })
+                }
+                _ => None,
+            })
+            .collect();
+        if cancelled.is_empty() {
+            return;
+        }
+        waiting.retain(|message| match message {
+            Message::Notification(notification) => notification.method != notify::Cancel::METHOD,
+            Message::Request(request) if cancelled.contains(&request.id) => {
+                self.send(Message::Response(Response::new_err(
+                    request.id.clone(),
+                    ErrorCode::RequestCanceled as i32,
+                    format!("`{}` was cancelled before it was answered", request.method),
+                )));
+                false
+            }
+            _ => true,
+        });
     }
 
     fn send(&self, message: Message) {
@@ -306,7 +362,7 @@ impl<'a> Server<'a> {
                     self.workspace
                         .documents
                         .open(uri.clone(), params.text_document.text);
-                    self.publish(&uri);
+                    self.mark_changed(uri);
                 }
             }
             notify::DidChangeTextDocument::METHOD => {
@@ -317,7 +373,7 @@ impl<'a> Server<'a> {
                     self.workspace
                         .documents
                         .change(&uri, params.content_changes);
-                    self.publish(&uri);
+                    self.mark_changed(uri);
                 }
             }
             notify::DidCloseTextDocument::METHOD => {
@@ -326,6 +382,7 @@ impl<'a> Server<'a> {
                 {
                     let uri = params.text_document.uri;
                     self.workspace.documents.close(&uri);
+                    self.changed.retain(|changed| *changed != uri);
                     self.publish_list(uri, Vec::new());
                 }
             }
@@ -343,12 +400,11 @@ impl<'a> Server<'a> {
                     self.take_settings(Some(settings));
                     let open: Vec<Uri> = self.workspace.documents.uris().cloned().collect();
                     for uri in open {
-                        self.publish(&uri);
+                        self.mark_changed(uri);
                     }
                 }
             }
-            // `$/cancelRequest` and the rest: each request is answered before the next is
-            // read, so there is nothing left to cancel.
+            // `$/cancelRequest` is taken while requests wait (`cancel_waiting`).
             _ => {}
         }
     }
@@ -375,6 +431,18 @@ impl<'a> Server<'a> {
                     params,
                 )));
             }
+        }
+    }
+
+    fn mark_changed(&mut self, uri: Uri) {
+        if !self.changed.contains(&uri) {
+            self.changed.push(uri);
+        }
+    }
+
+    fn publish_changed(&mut self) {
+        for uri in std::mem::take(&mut self.changed) {
+            self.publish(&uri);
         }
     }
 

@@ -594,3 +594,96 @@ fn semantic_tokens_follow_the_legend_and_formatting_aligns_the_columns() {
     assert_eq!(formatted, super::format::formatted(text, language));
     client.finish();
 }
+
+#[test]
+fn a_waiting_request_is_cancelled_and_a_burst_of_edits_is_checked_once() {
+    let folder = plant_folder("cancel");
+    let path = folder.join("plant.awl");
+    let (client, server) = Connection::memory();
+    let send = |message: Message| client.sender.send(message).unwrap();
+    let hover = |id: i32| {
+        let params =
+            json!({"textDocument": {"uri": uri(&path)}, "position": {"line": 1, "character": 6}});
+        Request::new(
+            RequestId::from(id),
+            "textDocument/hover".to_string(),
+            params,
+        )
+        .into()
+    };
+    let notification =
+        |method: &str, params: Value| Notification::new(method.to_string(), params).into();
+    // Everything is waiting before the server reads its first message.
+    send(
+        Request::new(
+            RequestId::from(1),
+            "initialize".to_string(),
+            json!({"capabilities": {}, "rootUri": uri(&folder)}),
+        )
+        .into(),
+    );
+    send(notification("initialized", json!({})));
+    send(notification(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": uri(&path), "languageId": "awl", "version": 1, "text": PLANT}}),
+    ));
+    send(hover(2));
+    send(notification("$/cancelRequest", json!({"id": 2})));
+    send(hover(3));
+    for (version, text) in [
+        (2, "      A I 0.0\n"),
+        (3, "      A I 0.\n"),
+        (4, "      A I 0.1\n      BE\n"),
+    ] {
+        send(notification(
+            "textDocument/didChange",
+            json!({"textDocument": {"uri": uri(&path), "version": version}, "contentChanges": [{"text": text}]}),
+        ));
+    }
+    let thread = std::thread::spawn(move || super::serve(&server));
+    let mut answers = Vec::new();
+    let mut published = Vec::new();
+    let mut shut_down = false;
+    while answers.len() < 4 {
+        if answers.len() == 3 && published.len() == 1 && !shut_down {
+            shut_down = true;
+            send(Request::new(RequestId::from(4), "shutdown".to_string(), Value::Null).into());
+        }
+        match client
+            .receiver
+            .recv_timeout(std::time::Duration::from_secs(30))
+            .unwrap()
+        {
+            Message::Response(response) => answers.push(response),
+            Message::Notification(notification) if notification.params["uri"] == uri(&path) => {
+                published.push(notification.params)
+            }
+            Message::Notification(_) => {}
+            Message::Request(_) => {}
+        }
+    }
+    let ids: Vec<RequestId> = answers.iter().map(|answer| answer.id.clone()).collect();
+    assert_eq!(ids, [1, 2, 3, 4].map(RequestId::from));
+    assert_eq!(
+        answers[1].error.as_ref().unwrap().code,
+        lsp_server::ErrorCode::RequestCanceled as i32
+    );
+    assert!(
+        answers[2].result.as_ref().unwrap()["contents"]["value"]
+            .as_str()
+            .unwrap()
+            .contains("AND")
+    );
+    assert_eq!(published.len(), 1, "{published:?}");
+    let errors = published[0]["diagnostics"].as_array().unwrap().iter();
+    assert_eq!(
+        errors.filter(|found| found["severity"] == 1).count(),
+        0,
+        "the last text, without the error of the one before, is the one checked"
+    );
+    client
+        .sender
+        .send(notification("exit", Value::Null))
+        .unwrap();
+    assert_eq!(thread.join().unwrap(), Ok(()));
+}
