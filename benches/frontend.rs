@@ -9,55 +9,8 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use awl::frontend;
 use awl::profile;
 
-/// A program of realistic shape: PBs of bit logic, word arithmetic and timers, FBs with
-/// parameters and labels, calls with parameter lines, and data blocks.
-fn generate(lines: usize) -> String {
-    let mut out = String::with_capacity(lines * 20);
-    let mut count = 0;
-    let mut block = 0u32;
-    while count < lines {
-        block += 1;
-        // Each block type has its own numbers 0…255; three types keep 100k lines unique.
-        let number = block / 3 % 256;
-        match block % 3 {
-            0 => {
-                out.push_str(&format!("FB {number}\nNAME :GEN{number}\nDES  :EIN  I BI\nDES  :AUS  Q BI\nDES  :WERT D KF\n"));
-                count += 5;
-                for i in 0..30 {
-                    out.push_str(&format!(
-                        "      A  =EIN\n      JC =M{i:03}\n      L  =WERT\n      L  FW {}\n      +F\n      T  FW {}\nM{i:03} :R  =AUS\n",
-                        i * 2 % 200,
-                        (i * 2 + 2) % 200
-                    ));
-                    count += 7;
-                }
-            }
-            1 => {
-                out.push_str(&format!("PB {number}\n"));
-                count += 1;
-                for i in 0..40 {
-                    out.push_str(&format!(
-                        "      A  I {}.{}\n      AN F {}.{}\n      O  Q {}.{}\n      =  Q {}.{}\n      L  KT 050.1\n      SD T {}\n",
-                        i % 100, i % 8, (i + 3) % 200, (i + 1) % 8, i % 100, (i + 2) % 8, (i + 4) % 100, (i + 5) % 8, i % 200
-                    ));
-                    count += 6;
-                }
-            }
-            _ => {
-                out.push_str(&format!("DB {number}\n"));
-                count += 1;
-                for i in 0..60 {
-                    out.push_str(&format!("  {i}:  KF +{}\n", i * 7));
-                    count += 1;
-                }
-                continue;
-            }
-        }
-        out.push_str("      BE\n");
-        count += 1;
-    }
-    out
-}
+mod generated;
+use generated::generate;
 
 fn bench_front_end(c: &mut Criterion) {
     let cpu = profile::find("sinumerik-840c").unwrap();
