@@ -120,7 +120,7 @@ impl CompletionContext {
             .map(|b| b.header.start as usize)
             .collect();
         for (index, block) in unit.blocks.iter().enumerate() {
-            let written = block_written(block);
+            let written = block.name.written();
             let header = if own {
                 source.slice(block.header).trim().to_string()
             } else {
@@ -182,14 +182,6 @@ fn symbol_of(block: &S7Block, written: &str, symbols: &Symbols) -> Option<String
     match &block.name {
         S7BlockRef::Symbol(_) => Some(written.to_string()),
         S7BlockRef::Number { .. } => symbols.written_of(written),
-    }
-}
-
-/// `FC 1`, or `"Valve"` when the source names the block by its symbol.
-fn block_written(block: &S7Block) -> String {
-    match &block.name {
-        S7BlockRef::Number { kind, number } => format!("{} {number}", kind.name()),
-        S7BlockRef::Symbol(name) => format!("\"{}\"", name.text),
     }
 }
 

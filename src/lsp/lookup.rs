@@ -4,7 +4,7 @@
 use crate::ast::{BlockBody, Name};
 use crate::mnemonics::MnemonicSet;
 use crate::source::Span;
-use crate::step7::ast::{S7BlockRef, S7Body};
+use crate::step7::ast::S7Body;
 
 use super::workspace::Analysis;
 
@@ -108,12 +108,8 @@ pub fn outline(analysis: &Analysis, file: u16) -> (Vec<Block>, Vec<Statement<'_>
                 }
                 _ => Vec::new(),
             };
-            let name = match &block.name {
-                S7BlockRef::Number { kind, number } => format!("{} {number}", kind.name()),
-                S7BlockRef::Symbol(name) => format!("\"{}\"", name.text),
-            };
             blocks.push(Block {
-                name,
+                name: block.name.written(),
                 header: block.header,
                 whole: cover(block.header, block.end),
                 interface: block.interface.iter().map(|section| section.span).collect(),

@@ -9,7 +9,7 @@ use super::lookup::{self, Block, Statement, covers};
 use super::position::LineIndex;
 use super::workspace::{Analysis, Workspace, uri_of};
 use crate::source::Span;
-use crate::step7::ast::{S7BlockKind, S7BlockRef, S7Body};
+use crate::step7::ast::{DataType, S7BlockKind, S7BlockRef, S7Body};
 
 /// What a name at the cursor stands for.
 #[derive(Debug, Clone, PartialEq)]
@@ -48,6 +48,9 @@ pub fn target_at(analysis: &Analysis, offset: usize) -> Option<Target> {
         return Some(Target::Symbol(name.to_string()));
     }
     if let Some(declared) = declaration_of(analysis, word, offset) {
+        return Some(Target::Variable(declared));
+    }
+    if let Some(declared) = parameter_at(analysis, offset) {
         return Some(Target::Variable(declared));
     }
     let statement = statements
@@ -204,6 +207,65 @@ pub fn declaration_of(analysis: &Analysis, word: &str, offset: usize) -> Option<
         }
     }
     None
+}
+
+/// A formal parameter a call names (`start := I 0.0`): its declaration in the called block,
+/// the FB a multi-instance (`CALL #pump`) is declared of included.
+fn parameter_at(analysis: &Analysis, offset: usize) -> Option<Span> {
+    let unit = analysis.built.s7_units.iter().find(|unit| unit.file == 0)?;
+    let (caller, call, parameter) = unit.blocks.iter().find_map(|block| {
+        let S7Body::Logic(statements) = &block.body else {
+            return None;
+        };
+        statements.iter().find_map(|statement| {
+            let call = statement.call.as_ref()?;
+            let parameter = call
+                .params
+                .iter()
+                .find(|parameter| covers(parameter.name.span, offset))?;
+            Some((block, call, parameter))
+        })
+    })?;
+    let called = match &call.multi_instance {
+        Some(instance) => {
+            let declared = caller
+                .interface
+                .iter()
+                .flat_map(|section| &section.vars)
+                .find(|declared| declared.name.text.eq_ignore_ascii_case(&instance.text))?;
+            match &declared.ty {
+                DataType::Instance(kind, number) => format!("{} {number}", kind.name()),
+                DataType::Named(name) => format!("\"{}\"", name.text),
+                _ => return None,
+            }
+        }
+        None => call.block.written(),
+    };
+    let symbols = &analysis.built.compiled.program.symbols;
+    let numbered = called
+        .strip_prefix('"')
+        .and_then(|name| symbols.block_of(name.trim_end_matches('"')))
+        .map(|id| id.to_string());
+    analysis
+        .built
+        .s7_units
+        .iter()
+        .flat_map(|unit| &unit.blocks)
+        .filter(|block| {
+            let written = block.name.written();
+            written.eq_ignore_ascii_case(&called)
+                || numbered
+                    .as_ref()
+                    .is_some_and(|id| written.eq_ignore_ascii_case(id))
+        })
+        .flat_map(|block| block.interface.iter().flat_map(|section| &section.vars))
+        .find(|declared| {
+            declared
+                .name
+                .text
+                .eq_ignore_ascii_case(&parameter.name.text)
+        })
+        .map(|declared| declared.span)
 }
 
 /// The document's blocks, each with its networks or segments.

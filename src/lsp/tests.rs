@@ -687,3 +687,70 @@ fn a_waiting_request_is_cancelled_and_a_burst_of_edits_is_checked_once() {
         .unwrap();
     assert_eq!(thread.join().unwrap(), Ok(()));
 }
+
+const INSTANCES: &str = "FUNCTION_BLOCK FB 1
+VAR_INPUT
+  start : BOOL;
+END_VAR
+BEGIN
+NETWORK
+      A     #start;
+      =     Q 4.0;
+END_FUNCTION_BLOCK
+
+FUNCTION_BLOCK FB 2
+VAR
+  pump : FB 1;
+END_VAR
+BEGIN
+NETWORK
+      CALL  #pump (start := I 0.1);
+END_FUNCTION_BLOCK
+
+DATA_BLOCK DB 10
+FB 1
+BEGIN
+END_DATA_BLOCK
+
+DATA_BLOCK DB 20
+FB 2
+BEGIN
+END_DATA_BLOCK
+
+ORGANIZATION_BLOCK OB 1
+BEGIN
+NETWORK
+      CALL  FB 1, DB 10 (start := I 0.0);
+      CALL  FB 2, DB 20;
+END_ORGANIZATION_BLOCK
+";
+
+#[test]
+fn fb_instances_lead_to_their_data_block_their_declaration_and_their_fb() {
+    let folder = std::env::temp_dir().join(format!("awl-lsp-instances-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let path = folder.join("instances.awl");
+    let mut client = Client::start(&folder, json!({"cpu": "speed7"}));
+    assert_eq!(client.open(&path, INSTANCES)["diagnostics"], json!([]));
+    let line_of = |client: &mut Client, line: u32, character: u32| {
+        let found = client.at("textDocument/definition", &path, line, character);
+        found["range"]["start"]["line"].clone()
+    };
+    // `CALL FB 1, DB 10`: the FB, and the instance data block.
+    assert_eq!(line_of(&mut client, 32, 13), 0);
+    assert_eq!(line_of(&mut client, 32, 19), 19);
+    // A parameter of the call: its declaration in the FB.
+    assert_eq!(line_of(&mut client, 32, 25), 2);
+    assert_eq!(line_of(&mut client, 16, 20), 2);
+    let parameter = client.hover(&path, 32, 25);
+    assert!(
+        parameter.as_str().unwrap().contains("start : BOOL"),
+        "{parameter}"
+    );
+    // A multi-instance: `CALL #pump` leads to its declaration, `pump : FB 1` to the FB.
+    assert_eq!(line_of(&mut client, 16, 15), 12);
+    assert_eq!(line_of(&mut client, 12, 10), 0);
+    // The instance data block's own `FB 2` line leads to the FB.
+    assert_eq!(line_of(&mut client, 25, 1), 10);
+    client.finish();
+}

@@ -66,6 +66,16 @@ pub enum S7BlockRef {
     Symbol(Name),
 }
 
+impl S7BlockRef {
+    /// `FC 1`, or `"Valve"` when the source names the block by its symbol.
+    pub fn written(&self) -> String {
+        match self {
+            S7BlockRef::Number { kind, number } => format!("{} {number}", kind.name()),
+            S7BlockRef::Symbol(name) => format!("\"{}\"", name.text),
+        }
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct S7Block {
     /// `ORGANIZATION_BLOCK` → Ob, `FUNCTION` → Fc, `FUNCTION_BLOCK` → Fb, `DATA_BLOCK` → Db,
