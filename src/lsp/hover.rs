@@ -9,6 +9,7 @@ use super::navigate::{self, Target};
 use super::position::LineIndex;
 use super::workspace::Analysis;
 use crate::mnemonics::{self, MnemonicSet};
+use crate::rules::effects;
 use crate::source::Span;
 
 /// The hover text at byte `offset` of the document, as Markdown.
@@ -75,6 +76,9 @@ fn operation(analysis: &Analysis, statement: &Statement) -> Option<String> {
         "\n\nIn {} mnemonics: `{other}`.",
         set.other().name()
     ));
+    if let Some(table) = status_table(analysis, statement, english, step7) {
+        text.push_str(&format!("\n\nStatus word:\n\n{table}"));
+    }
     for note in crate::docs::status_notes(english, step7) {
         text.push_str(&format!("\n\n{note}"));
     }
@@ -86,6 +90,27 @@ fn operation(analysis: &Analysis, statement: &Statement) -> Option<String> {
         ));
     }
     Some(text)
+}
+
+/// Which status bits the operation reads and writes, on the bits the dialect's CPUs have.
+/// A STEP 5 `JU`/`JC` with a block is a call, not the jump the table describes.
+fn status_table(
+    analysis: &Analysis,
+    statement: &Statement,
+    english: &str,
+    step7: bool,
+) -> Option<String> {
+    if step7 {
+        return Some(effects::of(english)?.markdown(&effects::STEP7_BITS));
+    }
+    let operand = lookup::slice(analysis, statement.operand).trim_start();
+    let calls_a_block = ["PB", "FB", "SB", "OB", "FX"]
+        .iter()
+        .any(|block| operand.to_uppercase().starts_with(block));
+    if calls_a_block {
+        return None;
+    }
+    Some(effects::of_step5(english)?.markdown(&effects::STEP5_BITS))
 }
 
 /// The time of the ops compiled from the statement written at `whole`, on the analysis' CPU.

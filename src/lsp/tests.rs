@@ -224,6 +224,12 @@ fn hover_tells_the_operation_the_symbol_and_the_block() {
     let operation = operation.as_str().unwrap();
     assert!(operation.contains("`U`"), "{operation}");
     assert!(operation.contains("s5-115u"), "{operation}");
+    // The status bits a STEP 5 CPU has: CC 1, CC 0, OV, OR, RLO, /FC.
+    assert!(
+        operation.contains("| reads | - | - | - | x | x | x |")
+            && operation.contains("| writes | - | - | - | x | x | 1 |"),
+        "{operation}"
+    );
     let symbol = client.hover(&path, 1, 13);
     let symbol = symbol.as_str().unwrap();
     assert!(
@@ -241,6 +247,12 @@ fn hover_tells_the_operation_the_symbol_and_the_block() {
         jump.contains("`SPB`") && jump.contains("RLO") && jump.contains("µs"),
         "{jump}"
     );
+    assert!(
+        jump.contains("| writes | - | - | - | 0 | 1 | 0 |"),
+        "{jump}"
+    );
+    let call = client.hover(&path, 2, 6);
+    assert!(!call.as_str().unwrap().contains("Status word"), "{call}");
     let label = client.hover(&path, 13, 10);
     assert!(label.as_str().unwrap().contains("line 17"), "{label}");
     client.finish();
@@ -353,6 +365,12 @@ fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
             .as_str()
             .unwrap()
             .contains("English (SIMATIC) mnemonics: `A`"),
+        "{operation}"
+    );
+    assert!(
+        operation.as_str().unwrap().contains(
+            "| | BR | CC 1 | CC 0 | OV | OS | OR | STA | RLO | /FC |\n|---|---|---|---|---|---|---|---|---|---|\n| reads | - | - | - | - | - | x | - | x | x |\n| writes | - | - | - | - | - | x | x | x | 1 |"
+        ),
         "{operation}"
     );
     let definition = client.at("textDocument/definition", &path, 7, 14);

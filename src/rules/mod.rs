@@ -7,6 +7,7 @@
 
 pub mod arith;
 pub mod bcd;
+pub mod effects;
 pub mod jump;
 pub mod real;
 pub mod status;
