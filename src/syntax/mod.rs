@@ -5,6 +5,7 @@
 //! spelling an unknown operation is offered ([`close_spelling`]). Each dialect keeps only its
 //! token kinds, its error variants and its grammar.
 
+pub mod error;
 pub mod input;
 pub mod token;
 pub mod votes;
