@@ -1033,9 +1033,9 @@ mod tests {
 
     #[test]
     fn bad_addresses() {
-        assert_eq!(error_code("I 0.8"), "awl::s7::bad_address");
-        assert_eq!(error_code("I 4"), "awl::s7::bad_address");
-        assert_eq!(error_code("MW 1.0"), "awl::s7::bad_address");
+        for text in ["I 0.8", "I 4", "MW 1.0"] {
+            assert_eq!(error_code(text), "awl::s7::bad_address", "{text}");
+        }
         assert_eq!(error_code("XY 1"), "awl::s7::unknown_operand");
     }
 
