@@ -42,6 +42,11 @@ pub fn parse_constant(
             extra_words: Vec::new(),
         })
     };
+    // The two numbers of `12,34` or `050.1`.
+    let number_pair = |expected: &str| {
+        let number = |text: &str| text.parse::<u32>().map_err(|_| bad(expected));
+        Ok::<_, ParseError>((number(texts[0])?, number(texts[2])?))
+    };
     use TokenKind::{Comma, Dot, Minus, Number, Plus, Quoted, Word};
     match format {
         ConstFormat::Byte => match kinds.as_slice() {
@@ -88,12 +93,7 @@ pub fn parse_constant(
         }
         ConstFormat::TwoBytes => match kinds.as_slice() {
             [Number, Comma, Number] => {
-                let high = texts[0]
-                    .parse::<u32>()
-                    .map_err(|_| bad("two bytes, e.g. 12,34"))?;
-                let low = texts[2]
-                    .parse::<u32>()
-                    .map_err(|_| bad("two bytes, e.g. 12,34"))?;
+                let (high, low) = number_pair("two bytes, e.g. 12,34")?;
                 if high > 255 || low > 255 {
                     Err(out_of_range("0…255 for each byte"))
                 } else {
@@ -104,12 +104,7 @@ pub fn parse_constant(
         },
         ConstFormat::Time => match kinds.as_slice() {
             [Number, Dot, Number] => {
-                let value = texts[0]
-                    .parse::<u32>()
-                    .map_err(|_| bad("value.base, e.g. 050.1"))?;
-                let base = texts[2]
-                    .parse::<u32>()
-                    .map_err(|_| bad("value.base, e.g. 050.1"))?;
+                let (value, base) = number_pair("value.base, e.g. 050.1")?;
                 if value > 999 {
                     Err(out_of_range("time value 0…999"))
                 } else if base > 3 {

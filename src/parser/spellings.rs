@@ -62,9 +62,7 @@ fn operands_without_their_blank() {
 fn a_bit_area_without_its_bit_stays_an_error() {
     let parsed = parse_text("PB 1\n      A F1\n      BE\n");
     assert_eq!(parsed.errors.len(), 1);
-    let help = miette::Diagnostic::help(&parsed.errors[0])
-        .unwrap()
-        .to_string();
+    let help = crate::syntax::error::help_text(&parsed.errors[0]);
     assert!(help.contains("`F 1.0`"), "{help}");
 }
 

@@ -2,23 +2,10 @@
 //! parsers the line grammar is built from.
 
 use crate::lexer::{Token, TokenKind};
-use crate::syntax::Grammar;
-
-pub use crate::syntax::input::{fail, kind};
 
 use super::error::ParseError;
 
-impl Grammar for TokenKind {
-    type Error = ParseError;
-}
-
-/// A run of STEP 5 tokens as nom input.
-pub type Tokens<'a> = crate::syntax::Tokens<'a, TokenKind>;
-
-/// A failed line parse: where it failed and, when known, the diagnostic to report.
-pub type LineError = crate::syntax::Failure<TokenKind>;
-
-pub type LineResult<'a, T> = crate::syntax::Parsed<'a, TokenKind, T>;
+crate::syntax::input::dialect_grammar!("STEP 5", ParseError, LineError, LineResult);
 
 /// What the line parsers need besides the tokens.
 pub type Context<'a> = crate::syntax::Context<'a>;

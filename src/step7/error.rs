@@ -2,222 +2,158 @@
 //! `grammar/errors.md`; spans only, the source is attached when they are printed.
 
 use miette::Diagnostic;
-use thiserror::Error;
 
 use crate::source::Span;
 
-#[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
-pub enum S7ParseError {
-    #[error("unexpected character `{found}`")]
-    #[diagnostic(
-        code(awl::s7::unexpected_character),
-        help(
-            "STEP 7 statements hold an optional label, an operation and an operand, and end with `;`; comments start with `//`"
-        )
-    )]
-    UnexpectedCharacter {
-        found: String,
-        #[label("no token starts with this character")]
-        at: Span,
-    },
+crate::syntax::error::parse_errors! {
+    pub enum S7ParseError {
+        #[diagnostic(
+            code(awl::s7::unexpected_character),
+            help(
+                "STEP 7 statements hold an optional label, an operation and an operand, and end with `;`; comments start with `//`"
+            )
+        )]
+        UnexpectedCharacter,
+        #[diagnostic(code(awl::s7::unknown_operation))]
+        UnknownOperation,
+        #[diagnostic(code(awl::s7::mixed_mnemonics))]
+        MixedMnemonics,
+        #[diagnostic(code(awl::s7::unknown_operand))]
+        UnknownOperand,
+        #[diagnostic(code(awl::s7::missing_operand))]
+        MissingOperand,
+        #[diagnostic(code(awl::s7::unexpected_token))]
+        UnexpectedToken,
+        #[diagnostic(code(awl::s7::constant_range))]
+        ConstantRange,
 
-    #[error("unknown operation `{word}`")]
-    #[diagnostic(code(awl::s7::unknown_operation))]
-    UnknownOperation {
-        word: String,
-        #[label("not an operation of the {set} set")]
-        at: Span,
-        set: &'static str,
-        #[help]
-        help: Option<String>,
-    },
+        #[error("bad address `{text}`")]
+        #[diagnostic(code(awl::s7::bad_address))]
+        BadAddress {
+            text: String,
+            #[label("{expected}")]
+            at: Span,
+            expected: String,
+        },
 
-    #[error("`{word}` is {word_set} mnemonic, but this file uses {file_set} mnemonics")]
-    #[diagnostic(code(awl::s7::mixed_mnemonics))]
-    MixedMnemonics {
-        word: String,
-        word_set: &'static str,
-        file_set: &'static str,
-        #[label("{word_set} word")]
-        at: Span,
-        #[label("the file's set was decided by this word")]
-        decided_by: Option<Span>,
-        #[help]
-        help: Option<String>,
-    },
+        #[error("bad {format} constant")]
+        #[diagnostic(code(awl::s7::bad_constant))]
+        BadConstant {
+            format: String,
+            #[label("expected {expected}")]
+            at: Span,
+            expected: String,
+        },
 
-    #[error("unknown operand `{word}`")]
-    #[diagnostic(code(awl::s7::unknown_operand))]
-    UnknownOperand {
-        word: String,
-        #[label("not an operand of the {set} set")]
-        at: Span,
-        set: &'static str,
-        #[help]
-        help: Option<String>,
-    },
+        #[error("bad declaration")]
+        #[diagnostic(
+            code(awl::s7::bad_declaration),
+            help(
+                "declarations look like `speed : INT;` or `speed : INT := 5;`, one per line between `VAR_INPUT` (`VAR_OUTPUT`, `VAR_IN_OUT`, `VAR`, `VAR_TEMP`) and `END_VAR`"
+            )
+        )]
+        BadDeclaration {
+            #[label("{reason}")]
+            at: Span,
+            reason: String,
+        },
 
-    #[error("`{op}` needs an operand")]
-    #[diagnostic(code(awl::s7::missing_operand))]
-    MissingOperand {
-        op: String,
-        #[label("operand expected after this")]
-        at: Span,
-        #[help]
-        help: Option<String>,
-    },
+        #[error("unknown data type `{word}`")]
+        #[diagnostic(code(awl::s7::unknown_type))]
+        UnknownType {
+            word: String,
+            #[label("not a STEP 7 data type")]
+            at: Span,
+            #[help]
+            help: Option<String>,
+        },
 
-    #[error("unexpected {found}")]
-    #[diagnostic(code(awl::s7::unexpected_token))]
-    UnexpectedToken {
-        found: String,
-        #[label("expected {expected}")]
-        at: Span,
-        expected: String,
-    },
+        #[error("`{keyword}` has no `{end}`")]
+        #[diagnostic(code(awl::s7::unclosed_block))]
+        UnclosedBlock {
+            keyword: String,
+            end: String,
+            #[label("opened here")]
+            at: Span,
+            #[help]
+            help: String,
+        },
 
-    #[error("bad address `{text}`")]
-    #[diagnostic(code(awl::s7::bad_address))]
-    BadAddress {
-        text: String,
-        #[label("{expected}")]
-        at: Span,
-        expected: String,
-    },
+        #[error("`{found}` ends a block that `{opened}` did not open")]
+        #[diagnostic(code(awl::s7::mismatched_end))]
+        MismatchedEnd {
+            found: String,
+            opened: String,
+            #[label("expected `{expected}`")]
+            at: Span,
+            expected: String,
+        },
 
-    #[error("bad {format} constant")]
-    #[diagnostic(code(awl::s7::bad_constant))]
-    BadConstant {
-        format: String,
-        #[label("expected {expected}")]
-        at: Span,
-        expected: String,
-    },
+        #[error("text outside a block")]
+        #[diagnostic(
+            code(awl::s7::outside_block),
+            help(
+                "a STEP 7 source holds blocks: `ORGANIZATION_BLOCK`, `FUNCTION`, `FUNCTION_BLOCK`, `DATA_BLOCK` or `TYPE`, each up to its `END_…`"
+            )
+        )]
+        OutsideBlock {
+            #[label("this belongs to no block")]
+            at: Span,
+        },
 
-    #[error("{format} constant out of range")]
-    #[diagnostic(code(awl::s7::constant_range))]
-    ConstantRange {
-        format: String,
-        #[label("allowed: {range}")]
-        at: Span,
-        range: String,
-    },
+        #[error("block number {number} is out of range")]
+        #[diagnostic(code(awl::s7::block_number), help("block numbers run from 0 to 65535"))]
+        BlockNumber {
+            number: String,
+            #[label("0…65535 expected")]
+            at: Span,
+        },
 
-    #[error("bad declaration")]
-    #[diagnostic(
-        code(awl::s7::bad_declaration),
-        help(
-            "declarations look like `speed : INT;` or `speed : INT := 5;`, one per line between `VAR_INPUT` (`VAR_OUTPUT`, `VAR_IN_OUT`, `VAR`, `VAR_TEMP`) and `END_VAR`"
-        )
-    )]
-    BadDeclaration {
-        #[label("{reason}")]
-        at: Span,
-        reason: String,
-    },
+        #[error("label `{label}` is longer than 4 characters")]
+        #[diagnostic(
+            code(awl::s7::bad_label),
+            help(
+                "STEP 7 labels have at most 4 characters (letters, digits, `_`), the first not a digit, such as `M001` or `LOOP`"
+            )
+        )]
+        BadLabel {
+            label: String,
+            #[label("too long")]
+            at: Span,
+        },
 
-    #[error("unknown data type `{word}`")]
-    #[diagnostic(code(awl::s7::unknown_type))]
-    UnknownType {
-        word: String,
-        #[label("not a STEP 7 data type")]
-        at: Span,
-        #[help]
-        help: Option<String>,
-    },
+        #[error("{what} is STEP 5, not STEP 7")]
+        #[diagnostic(code(awl::s7::step5_spelling))]
+        Step5Spelling {
+            what: String,
+            #[label("STEP 5 spelling")]
+            at: Span,
+            #[help]
+            help: String,
+        },
 
-    #[error("`{keyword}` has no `{end}`")]
-    #[diagnostic(code(awl::s7::unclosed_block))]
-    UnclosedBlock {
-        keyword: String,
-        end: String,
-        #[label("opened here")]
-        at: Span,
-        #[help]
-        help: String,
-    },
+        #[error("read as STEP 7 STL, not STEP 5")]
+        #[diagnostic(code(awl::dialect::read_as_step7), severity(Advice))]
+        ReadAsStep7 {
+            #[label("{reason}")]
+            at: Span,
+            reason: String,
+            #[help]
+            help: String,
+        },
 
-    #[error("`{found}` ends a block that `{opened}` did not open")]
-    #[diagnostic(code(awl::s7::mismatched_end))]
-    MismatchedEnd {
-        found: String,
-        opened: String,
-        #[label("expected `{expected}`")]
-        at: Span,
-        expected: String,
-    },
-
-    #[error("text outside a block")]
-    #[diagnostic(
-        code(awl::s7::outside_block),
-        help(
-            "a STEP 7 source holds blocks: `ORGANIZATION_BLOCK`, `FUNCTION`, `FUNCTION_BLOCK`, `DATA_BLOCK` or `TYPE`, each up to its `END_…`"
-        )
-    )]
-    OutsideBlock {
-        #[label("this belongs to no block")]
-        at: Span,
-    },
-
-    #[error("block number {number} is out of range")]
-    #[diagnostic(code(awl::s7::block_number), help("block numbers run from 0 to 65535"))]
-    BlockNumber {
-        number: String,
-        #[label("0…65535 expected")]
-        at: Span,
-    },
-
-    #[error("label `{label}` is longer than 4 characters")]
-    #[diagnostic(
-        code(awl::s7::bad_label),
-        help(
-            "STEP 7 labels have at most 4 characters (letters, digits, `_`), the first not a digit, such as `M001` or `LOOP`"
-        )
-    )]
-    BadLabel {
-        label: String,
-        #[label("too long")]
-        at: Span,
-    },
-
-    #[error("{what} is STEP 5, not STEP 7")]
-    #[diagnostic(code(awl::s7::step5_spelling))]
-    Step5Spelling {
-        what: String,
-        #[label("STEP 5 spelling")]
-        at: Span,
-        #[help]
-        help: String,
-    },
-
-    #[error("read as STEP 7 STL, not STEP 5")]
-    #[diagnostic(code(awl::dialect::read_as_step7), severity(Advice))]
-    ReadAsStep7 {
-        #[label("{reason}")]
-        at: Span,
-        reason: String,
-        #[help]
-        help: String,
-    },
-
-    #[error("`{word}` is an awlsim test extension")]
-    #[diagnostic(
-        code(awl::s7::extension_not_enabled),
-        help("awlsim test extension: run it with `awl conformance` or `--extended`")
-    )]
-    ExtensionNotEnabled {
-        word: String,
-        #[label("only with the test extensions")]
-        at: Span,
-    },
+        #[error("`{word}` is an awlsim test extension")]
+        #[diagnostic(
+            code(awl::s7::extension_not_enabled),
+            help("awlsim test extension: run it with `awl conformance` or `--extended`")
+        )]
+        ExtensionNotEnabled {
+            word: String,
+            #[label("only with the test extensions")]
+            at: Span,
+        },
+    }
 }
-
-crate::source::error_span!(S7ParseError {}
-    UnexpectedCharacter, UnknownOperation, MixedMnemonics, UnknownOperand, MissingOperand,
-    UnexpectedToken, BadAddress, BadConstant, ConstantRange, BadDeclaration, UnknownType,
-    UnclosedBlock, MismatchedEnd, OutsideBlock, BlockNumber, BadLabel, Step5Spelling,
-    ReadAsStep7, ExtensionNotEnabled,
-);
 
 impl S7ParseError {
     /// The code, for tests and tools.

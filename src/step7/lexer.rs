@@ -77,26 +77,12 @@ pub enum TokenKind {
     Invalid,
 }
 
-/// One STEP 7 token: its kind and where it stands in the file.
-pub type Token = crate::syntax::Token<TokenKind>;
-
-impl crate::syntax::Kind for TokenKind {
-    const INVALID: Self = TokenKind::Invalid;
-}
-
-/// Splits a whole file into tokens. Characters that start no token become [`TokenKind::Invalid`].
-pub fn lex(source: &str) -> Vec<Token> {
-    crate::syntax::token::lex(source)
-}
+crate::syntax::token::dialect_lexer!("STEP 7");
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use TokenKind::*;
-
-    fn kinds(source: &str) -> Vec<TokenKind> {
-        lex(source).into_iter().map(|t| t.kind).collect()
-    }
 
     #[test]
     fn statements_with_addresses_and_comments() {

@@ -168,3 +168,24 @@ pub fn at_end<'a, K: Grammar>(input: Tokens<'a, K>, expected: &'static str) -> P
         Err(fail(input, expected))
     }
 }
+
+/// The names a dialect's parsers use for the toolkit over its `TokenKind`: the token input
+/// `Tokens`, the failure and the parse result (named as given), and the primitive parsers.
+macro_rules! dialect_grammar {
+    ($dialect:literal, $error:ty, $failure:ident, $result:ident) => {
+        pub use $crate::syntax::input::{fail, kind};
+
+        impl $crate::syntax::Grammar for TokenKind {
+            type Error = $error;
+        }
+
+        #[doc = concat!("A run of ", $dialect, " tokens as nom input.")]
+        pub type Tokens<'a> = $crate::syntax::Tokens<'a, TokenKind>;
+
+        /// A failed parse: where it failed and, when known, the diagnostic to report.
+        pub type $failure = $crate::syntax::Failure<TokenKind>;
+
+        pub type $result<'a, T> = $crate::syntax::Parsed<'a, TokenKind, T>;
+    };
+}
+pub(crate) use dialect_grammar;

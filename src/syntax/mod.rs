@@ -1,10 +1,12 @@
 //! The front-end toolkit both dialects' parsers are built on: the token with its span, the
 //! lexer core over a dialect's logos token kind and the split into lines ([`token`]); the
 //! token-slice input for nom, the failure a dialect's grammar reports and the primitive parsers
-//! ([`input`]); the tally that decides a file's mnemonic set ([`votes`]); and the close
-//! spelling an unknown operation is offered ([`close_spelling`]). Each dialect keeps only its
-//! token kinds, its error variants and its grammar.
+//! ([`input`]); the parse errors both dialects report alike ([`error`]); the tally that decides
+//! a file's mnemonic set ([`votes`]); and the close spelling an unknown operation is offered
+//! ([`close_spelling`]). Each dialect keeps only its token kinds, its own error variants and
+//! its grammar.
 
+pub mod error;
 pub mod input;
 pub mod token;
 pub mod votes;

@@ -99,3 +99,30 @@ where
     }
     tokens
 }
+
+/// The glue of a dialect's lexer module around its `TokenKind` (which has an `Invalid`
+/// variant): its `Token`, the kind characters no token starts with become, its `lex` and,
+/// for its tests, `kinds`.
+macro_rules! dialect_lexer {
+    ($dialect:literal) => {
+        #[doc = concat!("One ", $dialect, " token: its kind and where it stands in the file.")]
+        pub type Token = $crate::syntax::Token<TokenKind>;
+
+        impl $crate::syntax::Kind for TokenKind {
+            const INVALID: Self = TokenKind::Invalid;
+        }
+
+        /// Splits a whole file into tokens. Characters that start no token become
+        /// [`TokenKind::Invalid`].
+        pub fn lex(source: &str) -> Vec<Token> {
+            $crate::syntax::token::lex(source)
+        }
+
+        /// The kinds of the tokens of `source`.
+        #[cfg(test)]
+        fn kinds(source: &str) -> Vec<TokenKind> {
+            lex(source).into_iter().map(|token| token.kind).collect()
+        }
+    };
+}
+pub(crate) use dialect_lexer;

@@ -995,6 +995,12 @@ mod tests {
             .unwrap_or_else(|error| panic!("{text}: {error:?}"))
     }
 
+    /// The code of the error an English operand fails with.
+    fn error_code(text: &str) -> String {
+        let error = parse_in(MnemonicSet::English, text, Expect::Value).unwrap_err();
+        error.diagnostic.expect("a diagnostic").stable_code()
+    }
+
     fn addr(area: S7Area, width: AccessWidth, byte: u32, bit: u8) -> S7Operand {
         address(area, width, byte, bit)
     }
@@ -1027,26 +1033,10 @@ mod tests {
 
     #[test]
     fn bad_addresses() {
-        let error = parse_in(MnemonicSet::English, "I 0.8", Expect::Value).unwrap_err();
-        assert_eq!(
-            error.diagnostic.unwrap().stable_code(),
-            "awl::s7::bad_address"
-        );
-        let error = parse_in(MnemonicSet::English, "I 4", Expect::Value).unwrap_err();
-        assert_eq!(
-            error.diagnostic.unwrap().stable_code(),
-            "awl::s7::bad_address"
-        );
-        let error = parse_in(MnemonicSet::English, "MW 1.0", Expect::Value).unwrap_err();
-        assert_eq!(
-            error.diagnostic.unwrap().stable_code(),
-            "awl::s7::bad_address"
-        );
-        let error = parse_in(MnemonicSet::English, "XY 1", Expect::Value).unwrap_err();
-        assert_eq!(
-            error.diagnostic.unwrap().stable_code(),
-            "awl::s7::unknown_operand"
-        );
+        for text in ["I 0.8", "I 4", "MW 1.0"] {
+            assert_eq!(error_code(text), "awl::s7::bad_address", "{text}");
+        }
+        assert_eq!(error_code("XY 1"), "awl::s7::unknown_operand");
     }
 
     #[test]
@@ -1098,11 +1088,7 @@ mod tests {
             parse("MW [#ptr]"),
             S7Operand::IndirectLocal { .. }
         ));
-        let error = parse_in(MnemonicSet::English, "MW [MW 10]", Expect::Value).unwrap_err();
-        assert_eq!(
-            error.diagnostic.unwrap().stable_code(),
-            "awl::s7::bad_address"
-        );
+        assert_eq!(error_code("MW [MW 10]"), "awl::s7::bad_address");
     }
 
     #[test]

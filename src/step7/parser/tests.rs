@@ -6,6 +6,7 @@ use crate::step7::ast::{
     AccessWidth, CallSpec, Cmp, Combination, Condition, ConstKind, Extension, PathPart, S7Address,
     S7Area, S7Op, S7Operand, VarKind,
 };
+use crate::syntax::error::help_text;
 
 fn parse_with(text: &str, options: ParseOptions) -> Parsed {
     parse(0, text, options)
@@ -24,11 +25,11 @@ fn parse_ok(text: &str) -> S7Unit {
 }
 
 fn codes(text: &str) -> Vec<String> {
-    parse_with(text, ParseOptions::default())
-        .errors
-        .iter()
-        .map(S7ParseError::stable_code)
-        .collect()
+    error_codes(&parse_with(text, ParseOptions::default()).errors)
+}
+
+fn error_codes(errors: &[S7ParseError]) -> Vec<String> {
+    errors.iter().map(S7ParseError::stable_code).collect()
 }
 
 fn statements(block: &S7Block) -> &[S7Statement] {
@@ -564,11 +565,7 @@ fn every_bad_line_is_reported_and_the_rest_still_parses() {
         ParseOptions::default(),
     );
     assert_eq!(
-        parsed
-            .errors
-            .iter()
-            .map(S7ParseError::stable_code)
-            .collect::<Vec<_>>(),
+        error_codes(&parsed.errors),
         [
             "awl::s7::unknown_operation",
             "awl::s7::bad_constant",
@@ -580,9 +577,7 @@ fn every_bad_line_is_reported_and_the_rest_still_parses() {
         body.iter().map(|s| s.op).collect::<Vec<_>>(),
         [S7Op::Logic(Combination::And), S7Op::Assign]
     );
-    let help = miette::Diagnostic::help(&parsed.errors[0])
-        .unwrap()
-        .to_string();
+    let help = help_text(&parsed.errors[0]);
     assert!(help.contains("`JU`"), "{help}");
 }
 
@@ -593,11 +588,7 @@ fn bad_declarations_are_dropped_one_by_one() {
         ParseOptions::default(),
     );
     assert_eq!(
-        parsed
-            .errors
-            .iter()
-            .map(S7ParseError::stable_code)
-            .collect::<Vec<_>>(),
+        error_codes(&parsed.errors),
         [
             "awl::s7::unknown_type",
             "awl::s7::unexpected_token",
@@ -612,9 +603,7 @@ fn bad_declarations_are_dropped_one_by_one() {
             .collect::<Vec<_>>(),
         ["a", "f"]
     );
-    let help = miette::Diagnostic::help(&parsed.errors[0])
-        .unwrap()
-        .to_string();
+    let help = help_text(&parsed.errors[0]);
     assert!(help.contains("`INT`"), "{help}");
 }
 
@@ -678,9 +667,7 @@ fn step5_spellings_are_named_with_the_step7_form() {
             "awl::s7::step5_spelling",
             "{text}"
         );
-        miette::Diagnostic::help(&parsed.errors[0])
-            .unwrap()
-            .to_string()
+        help_text(&parsed.errors[0])
     };
     assert!(help("JU PB 3\n").contains("`CALL FC 3`"));
     assert!(help("SPA PB 3\nU E 0.0\n").contains("`CALL FC 3`"));

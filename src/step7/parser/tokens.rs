@@ -6,21 +6,8 @@ use std::cell::Cell;
 use crate::source::Span;
 use crate::step7::error::S7ParseError;
 use crate::step7::lexer::{Token, TokenKind};
-use crate::syntax::Grammar;
 
-pub use crate::syntax::input::{fail, kind};
-
-impl Grammar for TokenKind {
-    type Error = S7ParseError;
-}
-
-/// A run of STEP 7 tokens as nom input.
-pub type Tokens<'a> = crate::syntax::Tokens<'a, TokenKind>;
-
-/// A failed parse: where it failed and, when known, the diagnostic to report.
-pub type Fail = crate::syntax::Failure<TokenKind>;
-
-pub type PResult<'a, T> = crate::syntax::Parsed<'a, TokenKind, T>;
+crate::syntax::input::dialect_grammar!("STEP 7", S7ParseError, Fail, PResult);
 
 /// What the parsers need besides the tokens: the front end's [`crate::syntax::Context`] (its
 /// fields and methods are the `Ctx`'s) and what only STEP 7 reads.
