@@ -8,6 +8,7 @@
 
 mod bounds;
 mod checks;
+mod editor;
 mod run;
 
 pub use bounds::{
@@ -15,6 +16,7 @@ pub use bounds::{
     renders_in_full, watchdog_ns,
 };
 pub use checks::{check_diagnostics, check_report, quiet_reports};
+pub use editor::edit_session;
 pub use run::{Setup, run};
 
 use awl::frontend::Frontend;
