@@ -245,26 +245,34 @@ fn unread_changes_nothing(effect: Effect, index: usize, plain: Outcome, flipped:
             }
 }
 
+/// `count` random draws of the bits in `columns` (the others 0), each followed by itself with
+/// one of those bits flipped, for each bit.
+fn draws(rng: &mut Rng, count: usize, columns: &[usize]) -> Vec<Draw> {
+    let mask: u16 = columns.iter().map(|&index| word_bit(index)).sum();
+    let mut draws = Vec::new();
+    for _ in 0..count {
+        let draw = Draw {
+            status: rng.next() as u16 & mask,
+            accu1: rng.next() as u32,
+            accu2: rng.next() as u32,
+            bits: rng.next() as u16,
+        };
+        draws.push(draw);
+        for &index in columns {
+            draws.push(Draw {
+                status: draw.status ^ word_bit(index),
+                ..draw
+            });
+        }
+    }
+    draws
+}
+
 #[test]
 fn the_status_table_says_what_the_vm_does() {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     for (word, effect) in effects::all() {
-        let mut draws = Vec::new();
-        for _ in 0..DRAWS {
-            let draw = Draw {
-                status: rng.next() as u16 & 0x1FF,
-                accu1: rng.next() as u32,
-                accu2: rng.next() as u32,
-                bits: rng.next() as u16,
-            };
-            draws.push(draw);
-            for index in 0..BITS.len() {
-                draws.push(Draw {
-                    status: draw.status ^ word_bit(index),
-                    ..draw
-                });
-            }
-        }
+        let draws = draws(&mut rng, DRAWS, &effects::STEP7_BITS);
         let found = outcomes(word, &draws);
         let mut read_seen = [false; 9];
         for (group, chunk) in found.chunks(BITS.len() + 1).enumerate() {
@@ -431,22 +439,7 @@ fn the_step5_table_says_what_the_vm_does() {
     let mut rng = Rng(0x2545_F491_4F6C_DD1D);
     let step5_bits = effects::STEP5_BITS;
     for (word, effect) in effects::step5_all() {
-        let mut draws = Vec::new();
-        for _ in 0..STEP5_DRAWS {
-            let draw = Draw {
-                status: rng.next() as u16 & 0xFF,
-                accu1: rng.next() as u32,
-                accu2: rng.next() as u32,
-                bits: rng.next() as u16,
-            };
-            draws.push(draw);
-            for &index in &step5_bits {
-                draws.push(Draw {
-                    status: draw.status ^ word_bit(index),
-                    ..draw
-                });
-            }
-        }
+        let draws = draws(&mut rng, STEP5_DRAWS, &step5_bits);
         let found = step5_outcomes(word, &draws);
         let mask: u16 = step5_bits.iter().map(|&index| word_bit(index)).sum();
         let mut read_seen = [false; 9];
