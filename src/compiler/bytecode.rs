@@ -339,6 +339,15 @@ impl Op {
         }
     }
 
+    /// The image bit of STEP 5's bit scans and writes on I, Q and F (`A AN O ON`, `= S R`).
+    pub fn image_bit(self) -> Option<ImageBit> {
+        match self {
+            Op::And(bit) | Op::AndNot(bit) | Op::Or(bit) | Op::OrNot(bit) => Some(bit),
+            Op::Assign(bit) | Op::Set(bit) | Op::Reset(bit) => Some(bit),
+            _ => None,
+        }
+    }
+
     /// A formal operand or a `DO`: the op it runs as is known only at run time.
     pub fn resolved_at_run_time(self) -> bool {
         matches!(self, Op::Formal { .. } | Op::Indirect { .. })
