@@ -330,6 +330,56 @@ pub enum Op {
     },
 }
 
+// Groups of ops as patterns (with `Op` in scope where they are used), for the matches that
+// must name every op: each group is listed here once, and a match that names it stays exhaustive.
+
+/// STEP 5's bit scans and writes on I, Q and F (`A AN O ON = S R`), binding the bit to `$bit`.
+macro_rules! image_bit_ops {
+    ($bit:pat) => {
+        Op::And($bit)
+            | Op::AndNot($bit)
+            | Op::Or($bit)
+            | Op::OrNot($bit)
+            | Op::Assign($bit)
+            | Op::Set($bit)
+            | Op::Reset($bit)
+    };
+}
+pub(crate) use image_bit_ops;
+
+/// The loads, starts and resets of timers and counters.
+macro_rules! timer_counter_ops {
+    () => {
+        Op::LoadTimer(_)
+            | Op::LoadTimerCoded(_)
+            | Op::LoadCounter(_)
+            | Op::LoadCounterCoded(_)
+            | Op::StartTimer(..)
+            | Op::EnableTimer(_)
+            | Op::ResetTimer(_)
+            | Op::CountUp(_)
+            | Op::CountDown(_)
+            | Op::SetCounter(_)
+            | Op::ResetCounter(_)
+            | Op::EnableCounter(_)
+    };
+}
+pub(crate) use timer_counter_ops;
+
+/// The pairs of ops the VM's arena runs as one (see `compiler::fuse`).
+macro_rules! fused_pairs {
+    () => {
+        Op::LogicPair { .. }
+            | Op::S7ScanPair { .. }
+            | Op::S7ScanWrite { .. }
+            | Op::LogicWrite { .. }
+            | Op::LoadWordConstant { .. }
+            | Op::LoadWords { .. }
+            | Op::ArithmeticTransferWord { .. }
+    };
+}
+pub(crate) use fused_pairs;
+
 impl Op {
     pub fn load_image(width: Width, byte: u16) -> Op {
         match width {
@@ -342,8 +392,7 @@ impl Op {
     /// The image bit of STEP 5's bit scans and writes on I, Q and F (`A AN O ON`, `= S R`).
     pub fn image_bit(self) -> Option<ImageBit> {
         match self {
-            Op::And(bit) | Op::AndNot(bit) | Op::Or(bit) | Op::OrNot(bit) => Some(bit),
-            Op::Assign(bit) | Op::Set(bit) | Op::Reset(bit) => Some(bit),
+            image_bit_ops!(bit) => Some(bit),
             _ => None,
         }
     }
