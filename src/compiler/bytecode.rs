@@ -367,15 +367,12 @@ macro_rules! timer_counter_ops {
 pub(crate) use timer_counter_ops;
 
 /// The pairs of ops the VM's arena runs as one (see `compiler::fuse`).
+#[rustfmt::skip] // one line per kind of pair: STEP 5 bit logic, STEP 7 bit logic, words
 macro_rules! fused_pairs {
     () => {
-        Op::LogicPair { .. }
-            | Op::S7ScanPair { .. }
-            | Op::S7ScanWrite { .. }
-            | Op::LogicWrite { .. }
-            | Op::LoadWordConstant { .. }
-            | Op::LoadWords { .. }
-            | Op::ArithmeticTransferWord { .. }
+        Op::LogicPair { .. } | Op::LogicWrite { .. }
+            | Op::S7ScanPair { .. } | Op::S7ScanWrite { .. }
+            | Op::LoadWordConstant { .. } | Op::LoadWords { .. } | Op::ArithmeticTransferWord { .. }
     };
 }
 pub(crate) use fused_pairs;
