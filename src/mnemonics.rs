@@ -182,14 +182,8 @@ const fn supp(
     example_de: &'static str,
 ) -> OpInfo {
     OpInfo {
-        op,
-        en,
-        de,
         supplementary: true,
-        summary,
-        example_en,
-        example_de,
-        feature: None,
+        ..basic(op, en, de, summary, example_en, example_de)
     }
 }
 
@@ -210,14 +204,9 @@ const fn featured(
     feature: Feature,
 ) -> OpInfo {
     OpInfo {
-        op,
-        en: word,
-        de: word,
         supplementary,
-        summary,
-        example_en: "",
-        example_de: "",
         feature: Some(feature),
+        ..basic(op, word, word, summary, "", "")
     }
 }
 

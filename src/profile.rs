@@ -161,7 +161,31 @@ pub struct Timings {
     /// Delay of the digital input modules (S5-95F 7.4.5 response time).
     pub input_delay: u32,
     /// Where the figures come from.
-    pub source: &'static str,
+    pub source: TimesSource,
+}
+
+/// Where a profile's times come from.
+#[derive(Debug, Clone, Copy)]
+pub enum TimesSource {
+    /// The manual's figures, or how they were scaled from a manual's figures.
+    Stated(&'static str),
+    /// Estimated from the bit-operation and operating-system times of the named CPU class.
+    Estimated(&'static str),
+}
+
+impl Timings {
+    /// Where the figures come from, for `awl cpus`.
+    pub fn source(&self) -> String {
+        match self.source {
+            TimesSource::Stated(text) => text.to_string(),
+            TimesSource::Estimated(class) => format!(
+                "estimates of the {class} class (about {} µs per bit operation, {} ms \
+                 operating-system time)",
+                f64::from(self.bit_image) / 1e3,
+                f64::from(self.cycle_overhead) / 1e6
+            ),
+        }
+    }
 }
 
 #[derive(Debug, Clone)]
@@ -243,10 +267,12 @@ const SINUMERIK_840C_TIMES: Timings = Timings {
     data_cycle: 0,
     process_image_per_byte: 100,
     input_delay: 0,
-    source: "CPU 928B operation times (SINUMERIK 840C PLC manual): bit operations on I/Q/F \
+    source: TimesSource::Stated(
+        "CPU 928B operation times (SINUMERIK 840C PLC manual): bit operations on I/Q/F \
              0.57 µs, on D 3.4 µs; L FY 0.81, L FW 0.94, L FD 1.6 µs; fixed-point arithmetic \
              0.94–10 µs. Block call/end, timers, jumps and the 0.4 ms operating-system time are \
              estimates.",
+    ),
 };
 
 const S5_95F_TIMES: Timings = Timings {
@@ -275,9 +301,11 @@ const S5_95F_TIMES: Timings = Timings {
     data_cycle: 300_000,
     process_image_per_byte: 500,
     input_delay: 3_000_000,
-    source: "estimates of the S5-95 class (about 1.6 µs per bit operation): the S5-95F manual \
+    source: TimesSource::Stated(
+        "estimates of the S5-95 class (about 1.6 µs per bit operation): the S5-95F manual \
              excerpt gives the rules, not the times. Interrupt data cycles 0.3 ms each, input \
              module delay 3 ms (estimates).",
+    ),
 };
 
 const SPEED7_TIMES: Timings = Timings {
@@ -306,8 +334,10 @@ const SPEED7_TIMES: Timings = Timings {
     data_cycle: 0,
     process_image_per_byte: 20,
     input_delay: 0,
-    source: "SPEED7 class (0.01 µs per bit and word operation); block calls and the 50 µs \
+    source: TimesSource::Stated(
+        "SPEED7 class (0.01 µs per bit and word operation); block calls and the 50 µs \
              operating-system time are estimates.",
+    ),
 };
 
 /// The cycle-end model every profile shares, as `awl cpus` states it.

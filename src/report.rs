@@ -107,7 +107,7 @@ pub fn cpus() -> String {
             micros(t.block_end),
             micros(t.cycle_overhead)
         );
-        let _ = writeln!(out, "  times from: {}", t.source);
+        let _ = writeln!(out, "  times from: {}", t.source());
         let _ = writeln!(out, "  rules:");
         for rule in p.rules {
             let _ = writeln!(out, "    - {rule}");

@@ -330,12 +330,67 @@ pub enum Op {
     },
 }
 
+// Groups of ops as patterns (with `Op` in scope where they are used), for the matches that
+// must name every op: each group is listed here once, and a match that names it stays exhaustive.
+
+/// STEP 5's bit scans and writes on I, Q and F (`A AN O ON = S R`), binding the bit to `$bit`.
+macro_rules! image_bit_ops {
+    ($bit:pat) => {
+        Op::And($bit)
+            | Op::AndNot($bit)
+            | Op::Or($bit)
+            | Op::OrNot($bit)
+            | Op::Assign($bit)
+            | Op::Set($bit)
+            | Op::Reset($bit)
+    };
+}
+pub(crate) use image_bit_ops;
+
+/// The loads, starts and resets of timers and counters.
+macro_rules! timer_counter_ops {
+    () => {
+        Op::LoadTimer(_)
+            | Op::LoadTimerCoded(_)
+            | Op::LoadCounter(_)
+            | Op::LoadCounterCoded(_)
+            | Op::StartTimer(..)
+            | Op::EnableTimer(_)
+            | Op::ResetTimer(_)
+            | Op::CountUp(_)
+            | Op::CountDown(_)
+            | Op::SetCounter(_)
+            | Op::ResetCounter(_)
+            | Op::EnableCounter(_)
+    };
+}
+pub(crate) use timer_counter_ops;
+
+/// The pairs of ops the VM's arena runs as one (see `compiler::fuse`).
+#[rustfmt::skip] // one line per kind of pair: STEP 5 bit logic, STEP 7 bit logic, words
+macro_rules! fused_pairs {
+    () => {
+        Op::LogicPair { .. } | Op::LogicWrite { .. }
+            | Op::S7ScanPair { .. } | Op::S7ScanWrite { .. }
+            | Op::LoadWordConstant { .. } | Op::LoadWords { .. } | Op::ArithmeticTransferWord { .. }
+    };
+}
+pub(crate) use fused_pairs;
+
 impl Op {
     pub fn load_image(width: Width, byte: u16) -> Op {
         match width {
             Width::Byte => Op::LoadImageByte(byte),
             Width::Word => Op::LoadImageWord(byte),
             Width::Double => Op::LoadImageDouble(byte),
+        }
+    }
+
+    /// The image bit of STEP 5's bit scans and writes on I, Q and F (`A AN O ON`, `= S R`).
+    pub fn image_bit(self) -> Option<ImageBit> {
+        match self {
+            image_bit_ops!(bit) => Some(bit),
+            _ => None,
         }
     }
 

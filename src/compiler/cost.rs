@@ -6,17 +6,9 @@ use super::bytecode::*;
 
 pub fn cost(op: Op, t: &Timings) -> u32 {
     match op {
-        Op::And(_)
-        | Op::AndNot(_)
-        | Op::Or(_)
-        | Op::OrNot(_)
-        | Op::Assign(_)
-        | Op::Set(_)
-        | Op::Reset(_)
-        | Op::OrAlone
-        | Op::AndBracket
-        | Op::OrBracket
-        | Op::CloseBracket => t.bit_image,
+        image_bit_ops!(_) | Op::OrAlone | Op::AndBracket | Op::OrBracket | Op::CloseBracket => {
+            t.bit_image
+        }
         Op::LogicOther(_, BitSource::Data { .. }) | Op::WriteData { .. } => t.bit_data,
         Op::LogicOther(_, _) => t.bit_timer_counter,
         Op::SetUnconditional(target)
@@ -31,18 +23,7 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         Op::LoadData(..) | Op::TransferData(..) => t.load_data,
         Op::LoadPeripheral { .. } | Op::TransferPeripheral { .. } => t.load_peripheral,
         Op::LoadConstant(_) => t.load_constant,
-        Op::LoadTimer(_)
-        | Op::LoadTimerCoded(_)
-        | Op::LoadCounter(_)
-        | Op::LoadCounterCoded(_)
-        | Op::StartTimer(..)
-        | Op::EnableTimer(_)
-        | Op::ResetTimer(_)
-        | Op::CountUp(_)
-        | Op::CountDown(_)
-        | Op::SetCounter(_)
-        | Op::ResetCounter(_)
-        | Op::EnableCounter(_) => t.timer_counter,
+        timer_counter_ops!() => t.timer_counter,
         Op::Arithmetic(Arith::Add | Arith::Sub) | Op::ArithmeticStack(Arith::Add | Arith::Sub) => {
             t.add_sub
         }
@@ -85,13 +66,6 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
             t.other
         }
         // Never compiled: their ops are timed one by one.
-        Op::End
-        | Op::LogicPair { .. }
-        | Op::S7ScanPair { .. }
-        | Op::S7ScanWrite { .. }
-        | Op::LogicWrite { .. }
-        | Op::LoadWordConstant { .. }
-        | Op::LoadWords { .. }
-        | Op::ArithmeticTransferWord { .. } => 0,
+        Op::End | fused_pairs!() => 0,
     }
 }

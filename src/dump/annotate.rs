@@ -8,7 +8,7 @@ use crate::compiler::Program;
 use crate::compiler::builtin::Builtin;
 use crate::compiler::bytecode::{
     Arith, BitSource, BitTarget, Comparison, DataPart, ImageBit, IndirectSource, JumpCondition,
-    Logic, Op, TimerKind, Width, WordLogic, Write,
+    Logic, Op, TimerKind, Width, WordLogic, Write, fused_pairs,
 };
 use crate::mnemonics::{self, Area, MnemonicSet, OpCode};
 use crate::source::SourceSet;
@@ -549,15 +549,7 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
         }
         // Only in the VM's arena (fused pairs, direct calls, the end marker): never in a
         // compiled block, which is what the dump shows.
-        Op::End
-        | Op::CallAt { .. }
-        | Op::LogicPair { .. }
-        | Op::S7ScanPair { .. }
-        | Op::S7ScanWrite { .. }
-        | Op::LogicWrite { .. }
-        | Op::LoadWordConstant { .. }
-        | Op::LoadWords { .. }
-        | Op::ArithmeticTransferWord { .. } => format!("{op:?}"),
+        Op::End | Op::CallAt { .. } | fused_pairs!() => format!("{op:?}"),
     }
 }
 

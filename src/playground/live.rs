@@ -8,7 +8,6 @@ use std::rc::Rc;
 
 use serde::Serialize;
 
-use crate::compiler::Op;
 use crate::compiler::bytecode::ImageBit;
 use crate::diagnostics::render_plain;
 use crate::mnemonics::MnemonicSet;
@@ -210,16 +209,7 @@ fn io_bits(cpu: &Cpu) -> (Vec<ImageBit>, Vec<ImageBit>) {
         .blocks
         .iter()
         .flat_map(|block| block.code.iter())
-        .filter_map(|op| match *op {
-            Op::And(bit)
-            | Op::AndNot(bit)
-            | Op::Or(bit)
-            | Op::OrNot(bit)
-            | Op::Assign(bit)
-            | Op::Set(bit)
-            | Op::Reset(bit) => Some(bit),
-            _ => None,
-        })
+        .filter_map(|op| op.image_bit())
         .filter(|bit| bit.byte < layout.flag_base())
         .collect();
     bits.sort_by_key(|bit| (bit.byte, bit.bit));

@@ -49,12 +49,7 @@ const CPU_94X: Profile = Profile {
     features: BASIC_FEATURES,
     integral_fbs: INTEGRAL_FBS_115U,
     system_obs: SYSTEM_OBS_115U,
-    timings: estimated_times(
-        1600,
-        1_000_000,
-        "estimates of the CPU 941/942 class (about 1.6 µs per bit operation, 1 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(1600, 1_000_000, "CPU 941/942"),
     rules: RULES_941_943,
 };
 
@@ -73,12 +68,7 @@ pub const CPU_942: Profile = Profile {
 pub const CPU_943: Profile = Profile {
     name: "s5-115u-943",
     title: "S5-115U with CPU 943",
-    timings: estimated_times(
-        1000,
-        800_000,
-        "estimates of the CPU 943 class (about 1 µs per bit operation, 0.8 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(1000, 800_000, "CPU 943"),
     ..CPU_94X
 };
 
@@ -87,12 +77,7 @@ pub const CPU_944: Profile = Profile {
     title: "S5-115U with CPU 944",
     sizes: LARGE_SIZES,
     interrupt_obs: INTERRUPTS_115U,
-    timings: estimated_times(
-        800,
-        600_000,
-        "estimates of the CPU 944 class (about 0.8 µs per bit operation, 0.6 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(800, 600_000, "CPU 944"),
     rules: RULES_944,
     ..CPU_94X
 };
@@ -101,11 +86,6 @@ pub const CPU_945: Profile = Profile {
     name: "s5-115u-945",
     title: "S5-115U with CPU 945",
     features: ALL_FEATURES.split_at(ALL_FEATURES.len() - 1).0,
-    timings: estimated_times(
-        100,
-        300_000,
-        "estimates of the CPU 945 class (about 0.1 µs per bit operation, 0.3 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(100, 300_000, "CPU 945"),
     ..CPU_944
 };

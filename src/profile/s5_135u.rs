@@ -32,12 +32,7 @@ pub const CPU_922: Profile = Profile {
     ],
     integral_fbs: &[],
     system_obs: SYSTEM_OBS_135U,
-    timings: estimated_times(
-        2000,
-        1_000_000,
-        "estimates of the CPU 922 class (about 2 µs per bit operation, 1 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(2000, 1_000_000, "CPU 922"),
     rules: RULES,
 };
 
@@ -47,12 +42,7 @@ pub const CPU_928: Profile = Profile {
     manual: "S5-135U CPU 928 programming guide and S5-135U system manual: organization \
              blocks, interrupt processing, technical data",
     features: ALL_FEATURES,
-    timings: estimated_times(
-        800,
-        600_000,
-        "estimates of the CPU 928 class (about 0.8 µs per bit operation, 0.6 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(800, 600_000, "CPU 928"),
     rules: RULES,
     ..CPU_922
 };

@@ -11,12 +11,7 @@ pub const CPU_946_947: Profile = Profile {
     title: "S5-155U with CPU 946/947",
     manual: "S5-155U CPU 946/947 programming guide: organization blocks, interrupt \
              processing, technical data",
-    timings: estimated_times(
-        400,
-        500_000,
-        "estimates of the CPU 946/947 class (about 0.4 µs per bit operation, 0.5 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(400, 500_000, "CPU 946/947"),
     rules: RULES,
     ..super::s5_135u::CPU_928B
 };
@@ -27,11 +22,6 @@ pub const CPU_948: Profile = Profile {
     manual: "S5-155U CPU 948 programming guide: organization blocks, special function \
              OBs, interrupt processing, technical data",
     system_obs: SYSTEM_OBS_948,
-    timings: estimated_times(
-        100,
-        300_000,
-        "estimates of the CPU 948 class (about 0.1 µs per bit operation, 0.3 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(100, 300_000, "CPU 948"),
     ..CPU_946_947
 };

@@ -1,7 +1,7 @@
 //! What the S5 profiles share: operand ranges, the time table scaled from one figure, the
 //! interrupt OB lists, the integral FBs and the rules `awl cpus` prints for every S5 CPU.
 
-use super::{Feature, InterruptOb, Sizes, SystemOb, Timings};
+use super::{Feature, InterruptOb, Sizes, SystemOb, TimesSource, Timings};
 
 /// Every S5 operation group: the S5-135U and S5-155U CPUs have them all. The S5-115U CPU 945
 /// lacks the last, the register operations.
@@ -41,8 +41,8 @@ pub const LARGE_SIZES: Sizes = Sizes {
 
 /// A time table built from the time of one bit operation on I/Q/F, with the other operations
 /// in the proportions of the CPU 928B's table (SINUMERIK 840C PLC manual); every figure it
-/// gives is an estimate, and `source` says so.
-pub const fn estimated_times(bit_image: u32, cycle_overhead: u32, source: &'static str) -> Timings {
+/// gives is an estimate of the CPU class `class`, and the table's source says so.
+pub const fn estimated_times(bit_image: u32, cycle_overhead: u32, class: &'static str) -> Timings {
     Timings {
         bit_image,
         bit_data: scale(bit_image, 6000),
@@ -69,7 +69,7 @@ pub const fn estimated_times(bit_image: u32, cycle_overhead: u32, source: &'stat
         data_cycle: 0,
         process_image_per_byte: scale(bit_image, 200),
         input_delay: 0,
-        source,
+        source: TimesSource::Estimated(class),
     }
 }
 

@@ -31,12 +31,7 @@ const SMALL: Profile = Profile {
     features: &[Feature::AddConstant],
     integral_fbs: &[],
     system_obs: SYSTEM_OBS_SMALL,
-    timings: estimated_times(
-        2000,
-        1_000_000,
-        "estimates of the S5-95U class (about 2 µs per bit operation, 1 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(2000, 1_000_000, "S5-95U"),
     rules: SMALL_RULES,
 };
 
@@ -53,11 +48,6 @@ pub const S5_100U_103: Profile = Profile {
     title: "S5-100U with CPU 103",
     manual: "S5-100U programmable controller (CPU 100/102/103) system manual: technical \
              data, organization blocks, interrupt processing",
-    timings: estimated_times(
-        1600,
-        1_000_000,
-        "estimates of the CPU 103 class (about 1.6 µs per bit operation, 1 ms \
-         operating-system time)",
-    ),
+    timings: estimated_times(1600, 1_000_000, "CPU 103"),
     ..SMALL
 };

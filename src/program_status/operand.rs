@@ -78,14 +78,10 @@ pub fn value(cpu: &Cpu, op: Op) -> Option<String> {
 fn step5_value(cpu: &Cpu, op: Op) -> Option<String> {
     let timer = |n| natural(cpu, Target::TimerBit(n));
     let counter = |n| natural(cpu, Target::CounterValue(n));
+    if let Some(bit) = op.image_bit() {
+        return Some(image_bit(cpu, bit));
+    }
     Some(match op {
-        Op::And(bit)
-        | Op::AndNot(bit)
-        | Op::Or(bit)
-        | Op::OrNot(bit)
-        | Op::Assign(bit)
-        | Op::Set(bit)
-        | Op::Reset(bit) => image_bit(cpu, bit),
         Op::LogicOther(_, BitSource::Data { word, bit }) | Op::WriteData { word, bit, .. } => {
             data_bit(cpu, word, bit)
         }
@@ -126,55 +122,8 @@ fn step5_value(cpu: &Cpu, op: Op) -> Option<String> {
                 extended,
             },
         ),
-        Op::OrAlone
-        | Op::AndBracket
-        | Op::OrBracket
-        | Op::CloseBracket
-        | Op::LoadConstant(_)
-        | Op::FloatArithmetic { .. }
-        | Op::FloatCompare(_)
-        | Op::Convert(_)
-        | Op::Arithmetic(_)
-        | Op::ArithmeticStack(_)
-        | Op::Compare(_)
-        | Op::Call { .. }
-        | Op::CallAt { .. }
-        | Op::CallMissing { .. }
-        | Op::Builtin { .. }
-        | Op::OpenDb(_)
-        | Op::BlockEnd
-        | Op::BlockEndConditional
-        | Op::BlockEndUnconditional
-        | Op::Nop
-        | Op::Stop
-        | Op::End
-        | Op::LogicPair { .. }
-        | Op::S7ScanPair { .. }
-        | Op::S7ScanWrite { .. }
-        | Op::LogicWrite { .. }
-        | Op::LoadWordConstant { .. }
-        | Op::LoadWords { .. }
-        | Op::ArithmeticTransferWord { .. }
-        | Op::Jump(..)
-        | Op::WordLogic(_)
-        | Op::ShiftLeft(_)
-        | Op::ShiftRight(_)
-        | Op::OnesComplement
-        | Op::TwosComplement
-        | Op::Swap
-        | Op::Enter
-        | Op::Increment(_)
-        | Op::Decrement(_)
-        | Op::DisableInterrupts
-        | Op::EnableInterrupts
-        | Op::GenerateDb(_)
-        | Op::Indirect { .. }
-        | Op::Formal { .. }
-        | Op::AddConstant { .. }
-        | Op::NotSimulated { .. }
-        | Op::S7(_)
-        | Op::S7Scan(..)
-        | Op::S7Write(..) => return None,
+        // Constants, jumps, block calls, accumulator operations: no operand that holds a value.
+        _ => return None,
     })
 }
 

@@ -526,13 +526,7 @@ impl Cpu {
                 self.level.interrupts_enabled = true;
                 self.update_attention();
             }
-            Op::And(_)
-            | Op::AndNot(_)
-            | Op::Or(_)
-            | Op::OrNot(_)
-            | Op::Assign(_)
-            | Op::Set(_)
-            | Op::Reset(_)
+            image_bit_ops!(_)
             | Op::OrAlone
             | Op::LoadImageByte(_)
             | Op::LoadImageWord(_)
@@ -553,13 +547,7 @@ impl Cpu {
             | Op::Indirect { .. }
             | Op::Formal { .. }
             | Op::End
-            | Op::LogicPair { .. }
-            | Op::S7ScanPair { .. }
-            | Op::S7ScanWrite { .. }
-            | Op::LogicWrite { .. }
-            | Op::LoadWordConstant { .. }
-            | Op::LoadWords { .. }
-            | Op::ArithmeticTransferWord { .. } => {
+            | fused_pairs!() => {
                 unreachable!("{op:?} is executed by the loop itself")
             }
         }

@@ -700,18 +700,7 @@ impl Cpu {
                     | Op::TransferData(..)
                     | Op::LoadPeripheral { .. }
                     | Op::TransferPeripheral { .. }
-                    | Op::LoadTimer(_)
-                    | Op::LoadTimerCoded(_)
-                    | Op::LoadCounter(_)
-                    | Op::LoadCounterCoded(_)
-                    | Op::StartTimer(..)
-                    | Op::EnableTimer(_)
-                    | Op::ResetTimer(_)
-                    | Op::CountUp(_)
-                    | Op::CountDown(_)
-                    | Op::SetCounter(_)
-                    | Op::ResetCounter(_)
-                    | Op::EnableCounter(_)
+                    | timer_counter_ops!()
                     | Op::CallMissing { .. }
                     | Op::Builtin { .. }
                     | Op::OpenDb(_)

@@ -1141,14 +1141,7 @@ impl super::Compiler<'_> {
         span: Span,
         scope: &Scope<'_>,
     ) -> Result<(), CheckError> {
-        let label = super::system::label(number);
-        let Some(interface) = super::system::interface(number, self.types()) else {
-            return Err(CheckError::NotSimulated {
-                what: label,
-                why: super::system::WHICH.into(),
-                at,
-            });
-        };
+        let (label, interface) = super::system::called(number, self.types(), at)?;
         let Some(S7BlockRef::Number { number: db, .. }) = &call.instance else {
             return Err(CheckError::NotSimulated {
                 what: format!("a call of {label} without an instance DB"),
@@ -1494,14 +1487,7 @@ impl super::Compiler<'_> {
         };
         let (kind, number) = (*kind, *number);
         if kind == S7BlockKind::Sfb {
-            let label = super::system::label(number);
-            let Some(interface) = super::system::interface(number, self.types()) else {
-                return Err(CheckError::NotSimulated {
-                    what: label,
-                    why: super::system::WHICH.into(),
-                    at,
-                });
-            };
+            let (label, interface) = super::system::called(number, self.types(), at)?;
             let mut fb_call = FbCall::on(0, 0, Some(offset.0), Some(number));
             self.fb_param_copies(call, &label, &interface, scope, &mut fb_call);
             self.emit_fb_call(out, fb_call, None, span);

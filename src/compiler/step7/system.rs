@@ -120,6 +120,23 @@ pub fn interface(number: u16, types: &Types) -> Option<Interface> {
     Some(Interface::build(&borrowed, true, types))
 }
 
+/// The label and interface of a called system FB `number`, or why awl does not run it.
+pub fn called(
+    number: u16,
+    types: &Types,
+    at: Span,
+) -> Result<(String, Interface), crate::compiler::CheckError> {
+    let label = label(number);
+    match interface(number, types) {
+        Some(interface) => Ok((label, interface)),
+        None => Err(crate::compiler::CheckError::NotSimulated {
+            what: label,
+            why: WHICH.into(),
+            at,
+        }),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
