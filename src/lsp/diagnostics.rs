@@ -1,14 +1,17 @@
 //! The diagnostics `awl check` prints, as LSP diagnostics of the document: the primary
 //! label's span is the range, the other labels are related information, the help ends the
-//! message; the "compiles for …" note follows the errors when no CPU was chosen.
+//! message; the "compiles for …" note follows the errors when no CPU was chosen. A code links
+//! to its page, the one `awl help error CODE` prints, written into awl's cache folder for the
+//! editor to open.
 
 use lsp_types::{
-    Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString, Uri,
+    CodeDescription, Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, Location,
+    NumberOrString, Uri,
 };
 use miette::Report;
 
 use super::position::LineIndex;
-use super::workspace::Analysis;
+use super::workspace::{Analysis, uri_of};
 use crate::diagnostics;
 
 const SOURCE: &str = "awl";
@@ -110,9 +113,50 @@ fn convert(report: &Report, uri: Option<Uri>, text: &str, index: &LineIndex) -> 
         code: report
             .code()
             .map(|code| NumberOrString::String(code.to_string())),
+        code_description: report.code().and_then(|code| page_link(&code.to_string())),
         source: Some(SOURCE.to_string()),
         message,
         related_information: (!related.is_empty()).then_some(related),
         ..Diagnostic::default()
     }
+}
+
+thread_local! {
+    /// Each code's link, once its page is written (or could not be).
+    static PAGE_LINKS: std::cell::RefCell<std::collections::HashMap<String, Option<CodeDescription>>> =
+        Default::default();
+}
+
+fn page_link(code: &str) -> Option<CodeDescription> {
+    PAGE_LINKS.with(|links| {
+        links
+            .borrow_mut()
+            .entry(code.to_string())
+            .or_insert_with(|| page_of(code))
+            .clone()
+    })
+}
+
+/// The page of a diagnostic code as a file the editor can open: written once into the cache
+/// folder of this version of awl (`$XDG_CACHE_HOME`, `~/.cache`, or the temporary folder).
+/// `None` when the code has no page or the folder cannot be written.
+fn page_of(code: &str) -> Option<CodeDescription> {
+    let page = crate::docs::error_page(code).ok()?;
+    let cache = std::env::var_os("XDG_CACHE_HOME")
+        .map(std::path::PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|home| std::path::Path::new(&home).join(".cache")))
+        .unwrap_or_else(std::env::temp_dir);
+    let folder = cache
+        .join("awl")
+        .join(env!("CARGO_PKG_VERSION"))
+        .join("errors");
+    let name = code.trim_start_matches("awl::").replace("::", ".");
+    let path = folder.join(format!("{name}.md"));
+    if std::fs::read_to_string(&path).ok().as_deref() != Some(page.as_str()) {
+        std::fs::create_dir_all(&folder).ok()?;
+        std::fs::write(&path, &page).ok()?;
+    }
+    Some(CodeDescription {
+        href: uri_of(&path)?,
+    })
 }

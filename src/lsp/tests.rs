@@ -165,6 +165,11 @@ fn errors_come_with_their_code_and_help_and_go_when_fixed() {
         "{error}"
     );
     assert_eq!(error["range"]["start"]["line"], 14, "{error}");
+    // The code leads to its page, as `awl help error` prints it.
+    let page = error["codeDescription"]["href"].as_str().unwrap();
+    let page = super::workspace::path_of(&page.parse().unwrap()).unwrap();
+    let text = std::fs::read_to_string(page).unwrap();
+    assert!(text.contains(error["code"].as_str().unwrap()), "{text}");
     client.notify(
         "textDocument/didChange",
         json!({"textDocument": {"uri": uri(&path), "version": 2}, "contentChanges": [{"text": PLANT}]}),
