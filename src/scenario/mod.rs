@@ -19,6 +19,7 @@ use miette::{NamedSource, Report, SourceSpan};
 use toml::Spanned;
 
 use crate::compiler::Program;
+use crate::diagnostics::Finding;
 use crate::dialect::Dialect;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
@@ -156,12 +157,7 @@ fn invalid(
     label: impl Into<String>,
     help: Option<String>,
 ) -> ScenarioError {
-    ScenarioError::Invalid {
-        message: message.into(),
-        at,
-        label: label.into(),
-        help,
-    }
+    ScenarioError::Invalid(Finding::new(message, at, label, help))
 }
 
 /// Errors found while checking, kept to report them all.
