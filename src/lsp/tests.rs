@@ -29,10 +29,22 @@ const LIST: &str = "I 0.0     START     start button (green)\nQ 4.0     LAMP    
 
 const SCENARIO: &str = "program = [\"plant.awl\"]\nsymbols = [\"plant.seq\"]\ncpu = \"s5-115u\"\n";
 
-/// A folder with the plant program, its assignment list and its scenario.
-fn plant_folder(name: &str) -> PathBuf {
+/// An empty folder of this test run's own.
+fn scratch_folder(name: &str) -> PathBuf {
     let folder = std::env::temp_dir().join(format!("awl-lsp-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&folder).unwrap();
+    folder
+}
+
+/// The sample program that needs its CPU said.
+fn analog_program() -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl");
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// A folder with the plant program, its assignment list and its scenario.
+fn plant_folder(name: &str) -> PathBuf {
+    let folder = scratch_folder(name);
     std::fs::write(folder.join("plant.awl"), PLANT).unwrap();
     std::fs::write(folder.join("plant.seq"), LIST).unwrap();
     std::fs::write(folder.join("plant.toml"), SCENARIO).unwrap();
@@ -127,8 +139,10 @@ impl Client {
     }
 
     /// The hover's text at a position.
-    fn hover(&mut self, path: &Path, line: u32, character: u32) -> Value {
-        self.at("textDocument/hover", path, line, character)["contents"]["value"].clone()
+    fn hover(&mut self, path: &Path, line: u32, character: u32) -> String {
+        let hover = self.at("textDocument/hover", path, line, character);
+        let text = hover["contents"]["value"].as_str();
+        text.expect("a hover").to_owned()
     }
 
     /// The document's symbols.
@@ -221,28 +235,22 @@ fn hover_tells_the_operation_the_symbol_and_the_block() {
     let mut client = Client::start(&folder, Value::Null);
     client.open(&path, PLANT);
     let operation = client.hover(&path, 1, 6);
-    let operation = operation.as_str().unwrap();
     assert!(operation.contains("`U`"), "{operation}");
     assert!(operation.contains("s5-115u"), "{operation}");
     let symbol = client.hover(&path, 1, 13);
-    let symbol = symbol.as_str().unwrap();
     assert!(
         symbol.contains("I 0.0") && symbol.contains("start button"),
         "{symbol}"
     );
     let block = client.hover(&path, 2, 13);
-    assert!(
-        block.as_str().unwrap().contains("DES  :EIN  I BI"),
-        "{block}"
-    );
+    assert!(block.contains("DES  :EIN  I BI"), "{block}");
     let jump = client.hover(&path, 13, 6);
-    let jump = jump.as_str().unwrap();
     assert!(
         jump.contains("`SPB`") && jump.contains("RLO") && jump.contains("µs"),
         "{jump}"
     );
     let label = client.hover(&path, 13, 10);
-    assert!(label.as_str().unwrap().contains("line 17"), "{label}");
+    assert!(label.contains("line 17"), "{label}");
     client.finish();
 }
 
@@ -337,22 +345,15 @@ END_FUNCTION_BLOCK
 
 #[test]
 fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
-    let folder = std::env::temp_dir().join(format!("awl-lsp-step7-{}", std::process::id()));
-    std::fs::create_dir_all(&folder).unwrap();
+    let folder = scratch_folder("step7");
     let path = folder.join("motor.awl");
     let mut client = Client::start(&folder, Value::Null);
     assert_eq!(client.open(&path, MOTOR)["diagnostics"], json!([]));
     let declared = client.hover(&path, 7, 14);
-    assert!(
-        declared.as_str().unwrap().contains("start : BOOL"),
-        "{declared}"
-    );
+    assert!(declared.contains("start : BOOL"), "{declared}");
     let operation = client.hover(&path, 7, 6);
     assert!(
-        operation
-            .as_str()
-            .unwrap()
-            .contains("English (SIMATIC) mnemonics: `A`"),
+        operation.contains("English (SIMATIC) mnemonics: `A`"),
         "{operation}"
     );
     let definition = client.at("textDocument/definition", &path, 7, 14);
@@ -365,12 +366,8 @@ fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
 
 #[test]
 fn without_a_cpu_the_errors_say_which_cpus_compile_it() {
-    let folder = std::env::temp_dir().join(format!("awl-lsp-cpus-{}", std::process::id()));
-    std::fs::create_dir_all(&folder).unwrap();
-    let program = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl"),
-    )
-    .unwrap();
+    let folder = scratch_folder("cpus");
+    let program = analog_program();
     let path = folder.join("analog.awl");
     let client = Client::start(&folder, Value::Null);
     let published = client.open(&path, &program);
@@ -396,12 +393,8 @@ fn without_a_cpu_the_errors_say_which_cpus_compile_it() {
 
 #[test]
 fn settings_sent_later_count_and_an_exit_alone_ends_the_server() {
-    let folder = std::env::temp_dir().join(format!("awl-lsp-later-{}", std::process::id()));
-    std::fs::create_dir_all(&folder).unwrap();
-    let program = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl"),
-    )
-    .unwrap();
+    let folder = scratch_folder("later");
+    let program = analog_program();
     let path = folder.join("analog.awl");
     let mut client = Client::start(&folder, Value::Null);
     assert_ne!(client.open(&path, &program)["diagnostics"], json!([]));
@@ -427,16 +420,10 @@ fn a_german_listing_finds_its_scenario_s_assignment_list() {
     let mut client = Client::start(&folder, Value::Null);
     assert_eq!(client.open(&path, &text)["diagnostics"], json!([]));
     let symbol = client.hover(&path, 10, 18);
-    assert!(
-        symbol.as_str().unwrap().contains("Taster Fuellen ein"),
-        "{symbol}"
-    );
+    assert!(symbol.contains("Taster Fuellen ein"), "{symbol}");
     let operation = client.hover(&path, 10, 11);
     assert!(
-        operation
-            .as_str()
-            .unwrap()
-            .contains("English (SIMATIC) mnemonics: `A`"),
+        operation.contains("English (SIMATIC) mnemonics: `A`"),
         "{operation}"
     );
     let call = client.at("textDocument/definition", &path, 6, 18);
