@@ -355,11 +355,7 @@ fn address(specification: &[u8]) -> Result<Address, u8> {
             if !matching {
                 return Err(return_code::TYPE_NOT_SUPPORTED);
             }
-            let range = Range {
-                area,
-                start: pointer,
-                length: count,
-            };
+            let range = Range::new(area, pointer, count);
             return Ok(Address {
                 target: Target::Bytes(range),
                 kind: DataKind::Octets,
@@ -379,11 +375,7 @@ fn address(specification: &[u8]) -> Result<Address, u8> {
     if pointer & 7 != 0 {
         return Err(return_code::INVALID_ADDRESS);
     }
-    let range = Range {
-        area,
-        start: pointer >> 3,
-        length: count * width,
-    };
+    let range = Range::new(area, pointer >> 3, count * width);
     Ok(Address {
         target: Target::Bytes(range),
         kind,
@@ -507,11 +499,7 @@ mod tests {
     }
 
     fn range(area: Area, start: u32, length: u32) -> Target {
-        Target::Bytes(Range {
-            area,
-            start,
-            length,
-        })
+        Target::Bytes(Range::new(area, start, length))
     }
 
     #[test]
