@@ -138,11 +138,11 @@ impl Client {
         self.request(method, params).result.unwrap_or(Value::Null)
     }
 
-    /// The hover's text at a position.
-    fn hover(&mut self, path: &Path, line: u32, character: u32) -> String {
+    /// Asserts that the hover at a position says each of `texts`.
+    fn assert_hover(&mut self, path: &Path, line: u32, character: u32, texts: &[&str]) {
         let hover = self.at("textDocument/hover", path, line, character);
-        let text = hover["contents"]["value"].as_str();
-        text.expect("a hover").to_owned()
+        let hover = hover["contents"]["value"].as_str().expect("a hover");
+        assert!(texts.iter().all(|text| hover.contains(text)), "{hover}");
     }
 
     /// The document's symbols.
@@ -234,23 +234,11 @@ fn hover_tells_the_operation_the_symbol_and_the_block() {
     let path = folder.join("plant.awl");
     let mut client = Client::start(&folder, Value::Null);
     client.open(&path, PLANT);
-    let operation = client.hover(&path, 1, 6);
-    assert!(operation.contains("`U`"), "{operation}");
-    assert!(operation.contains("s5-115u"), "{operation}");
-    let symbol = client.hover(&path, 1, 13);
-    assert!(
-        symbol.contains("I 0.0") && symbol.contains("start button"),
-        "{symbol}"
-    );
-    let block = client.hover(&path, 2, 13);
-    assert!(block.contains("DES  :EIN  I BI"), "{block}");
-    let jump = client.hover(&path, 13, 6);
-    assert!(
-        jump.contains("`SPB`") && jump.contains("RLO") && jump.contains("µs"),
-        "{jump}"
-    );
-    let label = client.hover(&path, 13, 10);
-    assert!(label.contains("line 17"), "{label}");
+    client.assert_hover(&path, 1, 6, &["`U`", "s5-115u"]);
+    client.assert_hover(&path, 1, 13, &["I 0.0", "start button"]);
+    client.assert_hover(&path, 2, 13, &["DES  :EIN  I BI"]);
+    client.assert_hover(&path, 13, 6, &["`SPB`", "RLO", "µs"]);
+    client.assert_hover(&path, 13, 10, &["line 17"]);
     client.finish();
 }
 
@@ -349,13 +337,8 @@ fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
     let path = folder.join("motor.awl");
     let mut client = Client::start(&folder, Value::Null);
     assert_eq!(client.open(&path, MOTOR)["diagnostics"], json!([]));
-    let declared = client.hover(&path, 7, 14);
-    assert!(declared.contains("start : BOOL"), "{declared}");
-    let operation = client.hover(&path, 7, 6);
-    assert!(
-        operation.contains("English (SIMATIC) mnemonics: `A`"),
-        "{operation}"
-    );
+    client.assert_hover(&path, 7, 14, &["start : BOOL"]);
+    client.assert_hover(&path, 7, 6, &["English (SIMATIC) mnemonics: `A`"]);
     let definition = client.at("textDocument/definition", &path, 7, 14);
     assert_eq!(definition["range"]["start"]["line"], 2, "{definition}");
     let outline = client.outline(&path);
@@ -419,13 +402,8 @@ fn a_german_listing_finds_its_scenario_s_assignment_list() {
     let text = std::fs::read_to_string(&path).unwrap();
     let mut client = Client::start(&folder, Value::Null);
     assert_eq!(client.open(&path, &text)["diagnostics"], json!([]));
-    let symbol = client.hover(&path, 10, 18);
-    assert!(symbol.contains("Taster Fuellen ein"), "{symbol}");
-    let operation = client.hover(&path, 10, 11);
-    assert!(
-        operation.contains("English (SIMATIC) mnemonics: `A`"),
-        "{operation}"
-    );
+    client.assert_hover(&path, 10, 18, &["Taster Fuellen ein"]);
+    client.assert_hover(&path, 10, 11, &["English (SIMATIC) mnemonics: `A`"]);
     let call = client.at("textDocument/definition", &path, 6, 18);
     assert_eq!(call["range"]["start"]["line"], 8, "{call}");
     let outline = client.outline(&path);
