@@ -51,6 +51,15 @@ fn plant_folder(name: &str) -> PathBuf {
     folder
 }
 
+/// A client of a server on a plant folder of its own, and the plant program's path.
+fn plant_client(name: &str) -> (Client, PathBuf) {
+    let folder = plant_folder(name);
+    (
+        Client::start(&folder, Value::Null),
+        folder.join("plant.awl"),
+    )
+}
+
 fn uri(path: &Path) -> String {
     format!("file://{}", path.display())
 }
@@ -166,9 +175,7 @@ impl Client {
 
 #[test]
 fn errors_come_with_their_code_and_help_and_go_when_fixed() {
-    let folder = plant_folder("errors");
-    let path = folder.join("plant.awl");
-    let client = Client::start(&folder, Value::Null);
+    let (client, path) = plant_client("errors");
     let broken = PLANT.replace("      R  =AUS", "      XYZ  =AUS");
     let published = client.open(&path, &broken);
     let diagnostics = published["diagnostics"].as_array().unwrap();
@@ -230,9 +237,7 @@ fn a_missing_assignment_list_is_told_at_the_top() {
 
 #[test]
 fn hover_tells_the_operation_the_symbol_and_the_block() {
-    let folder = plant_folder("hover");
-    let path = folder.join("plant.awl");
-    let mut client = Client::start(&folder, Value::Null);
+    let (mut client, path) = plant_client("hover");
     client.open(&path, PLANT);
     client.assert_hover(&path, 1, 6, &["`U`", "s5-115u"]);
     client.assert_hover(&path, 1, 13, &["I 0.0", "start button"]);
@@ -244,9 +249,7 @@ fn hover_tells_the_operation_the_symbol_and_the_block() {
 
 #[test]
 fn definitions_references_and_symbols() {
-    let folder = plant_folder("navigate");
-    let path = folder.join("plant.awl");
-    let mut client = Client::start(&folder, Value::Null);
+    let (mut client, path) = plant_client("navigate");
     client.open(&path, PLANT);
     let label = client.at("textDocument/definition", &path, 13, 10);
     assert_eq!(label["range"]["start"]["line"], 16, "{label}");
@@ -449,9 +452,7 @@ fn edited(text: &str, edits: &Value) -> String {
 
 #[test]
 fn completion_offers_the_symbols_and_the_operations() {
-    let folder = plant_folder("complete");
-    let path = folder.join("plant.awl");
-    let mut client = Client::start(&folder, Value::Null);
+    let (mut client, path) = plant_client("complete");
     client.open(&path, &PLANT.replace("-START", "-ST"));
     let symbols = complete(&mut client, &path, 1, 15);
     let start = symbols
