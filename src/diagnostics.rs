@@ -1,6 +1,6 @@
 //! Rendering: diagnostics carry spans only; the source is attached here, when they are printed.
 
-use miette::{Diagnostic, GraphicalReportHandler, GraphicalTheme, Report};
+use miette::{Diagnostic, GraphicalReportHandler, GraphicalTheme, Report, SourceSpan};
 use thiserror::Error;
 
 use crate::compiler::CheckError;
@@ -47,6 +47,37 @@ impl SourceDiagnostic {
     /// A note (miette's advice): says how the text was read.
     pub fn is_note(&self) -> bool {
         self.severity() == Some(miette::Severity::Advice)
+    }
+}
+
+/// What is wrong at one place of a file, for the errors that say it in their own words (a
+/// project's, a test's `.conf`, a scenario's): the message, the place with its label, the help
+/// where a fix is known. The error's variant gives the code (`forward(0)` for the rest).
+#[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
+#[error("{message}")]
+pub struct Finding {
+    pub message: String,
+    #[label("{label}")]
+    pub at: SourceSpan,
+    pub label: String,
+    #[help]
+    pub help: Option<String>,
+}
+
+impl Finding {
+    pub fn new(
+        message: impl Into<String>,
+        at: SourceSpan,
+        label: impl Into<String>,
+        help: Option<String>,
+    ) -> Self {
+        let (message, label) = (message.into(), label.into());
+        Finding {
+            message,
+            at,
+            label,
+            help,
+        }
     }
 }
 

@@ -9,6 +9,8 @@ use std::sync::Arc;
 use miette::{Diagnostic, NamedSource, Report, SourceSpan};
 use thiserror::Error;
 
+use crate::diagnostics::Finding;
+
 /// The longest cycle awlsim's harness allows unless the `.conf` says otherwise: 60 s.
 pub const DEFAULT_CYCLE_LIMIT_NS: u64 = 60_000_000_000;
 
@@ -58,16 +60,9 @@ const MAX_SECONDS: f64 = 1e9;
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum ConfError {
-    #[error("{message}")]
-    #[diagnostic(code(awl::conformance::bad_conf))]
-    Line {
-        message: String,
-        #[label("{label}")]
-        at: SourceSpan,
-        label: String,
-        #[help]
-        help: Option<String>,
-    },
+    #[error(transparent)]
+    #[diagnostic(code(awl::conformance::bad_conf), forward(0))]
+    Line(Finding),
 
     #[error("cannot read `{path}`: {reason}")]
     #[diagnostic(
@@ -176,12 +171,7 @@ fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
 }
 
 fn bad(message: impl Into<String>, at: SourceSpan, label: &str, help: Option<String>) -> ConfError {
-    ConfError::Line {
-        message: message.into(),
-        at,
-        label: label.into(),
-        help,
-    }
+    ConfError::Line(Finding::new(message, at, label, help))
 }
 
 fn unknown_key(key: &str, at: SourceSpan) -> ConfError {
@@ -267,9 +257,9 @@ mod tests {
         errors
             .into_iter()
             .map(|error| {
-                let ConfError::Line {
+                let ConfError::Line(Finding {
                     message, at, help, ..
-                } = error
+                }) = error
                 else {
                     panic!("a line error");
                 };

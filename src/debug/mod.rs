@@ -138,6 +138,15 @@ impl Session {
         }
     }
 
+    /// The number of the first breakpoint that `hits`, counted from 1 as the user counts them.
+    fn breakpoint(&self, hits: impl Fn(&Breakpoint) -> bool) -> Option<usize> {
+        let index = self
+            .breakpoints
+            .iter()
+            .position(|b| b.is_some_and(|b| hits(&b)));
+        index.map(|index| index + 1)
+    }
+
     /// Why the CPU pauses before the operation it is at, if it does.
     fn pause_reason(&mut self, cpu: &Cpu) -> Option<String> {
         if (self.interrupted)() {
@@ -147,12 +156,8 @@ impl Session {
             return Some(std::mem::take(&mut self.events).join("; "));
         }
         let here = (cpu.level.block, cpu.level.pc);
-        let hit = self
-            .breakpoints
-            .iter()
-            .position(|b| b.is_some_and(|b| b.place == Some(here)));
-        if let Some(n) = hit {
-            return Some(format!("breakpoint {}", n + 1));
+        if let Some(n) = self.breakpoint(|b| b.place == Some(here)) {
+            return Some(format!("breakpoint {n}"));
         }
         let (levels, frames) = (cpu.levels.len(), cpu.frames.len());
         let pause = match self.resume {
@@ -452,14 +457,9 @@ impl Probe for Debugger {
 
     fn requested(&mut self, cpu: &Cpu, ob: u8, at_ns: u64) {
         let mut session = self.0.borrow_mut();
-        let hit = session
-            .breakpoints
-            .iter()
-            .position(|b| b.is_some_and(|b| b.at == BreakAt::Request(ob)));
-        if let Some(n) = hit {
+        if let Some(n) = session.breakpoint(|b| b.at == BreakAt::Request(ob)) {
             session.events.push(format!(
-                "breakpoint {}: request for OB {ob}, made at {}, taken in at {}",
-                n + 1,
+                "breakpoint {n}: request for OB {ob}, made at {}, taken in at {}",
                 format_ms(at_ns),
                 format_ms(cpu.clock)
             ));
@@ -468,14 +468,9 @@ impl Probe for Debugger {
 
     fn serviced(&mut self, cpu: &Cpu, ob: u8) {
         let mut session = self.0.borrow_mut();
-        let hit = session
-            .breakpoints
-            .iter()
-            .position(|b| b.is_some_and(|b| b.at == BreakAt::Service(ob)));
-        if let Some(n) = hit {
+        if let Some(n) = session.breakpoint(|b| b.at == BreakAt::Service(ob)) {
             session.events.push(format!(
-                "breakpoint {}: OB {ob} serviced at {}",
-                n + 1,
+                "breakpoint {n}: OB {ob} serviced at {}",
                 format_ms(cpu.clock)
             ));
         }

@@ -9,7 +9,7 @@ use crate::dialect::Dialect;
 use crate::frontend::Frontend;
 use crate::lsp::text::{FileLanguage, LineIndex, Position};
 use crate::mnemonics::{self, MnemonicSet};
-use crate::source::{FileId, SourceFile};
+use crate::source::{FileId, SourceFile, Span};
 use crate::step7::ast::{S7Block, S7BlockRef, S7Body, S7Unit};
 use crate::step7::mnemonics as s7_mnemonics;
 use crate::symbols::Symbols;
@@ -80,12 +80,8 @@ impl CompletionContext {
     }
 
     fn add_step5(&mut self, unit: &SourceUnit, source: &SourceFile, own: bool) {
-        let starts: Vec<usize> = unit
-            .blocks
-            .iter()
-            .map(|b| b.header.start as usize)
-            .collect();
-        for (index, block) in unit.blocks.iter().enumerate() {
+        let scopes = scopes(unit.blocks.iter().map(|b| b.header), source.text.len());
+        for (block, scope) in unit.blocks.iter().zip(scopes) {
             let BlockBody::Logic(body) = &block.body else {
                 self.blocks
                     .push(named(block.id.to_string(), "data block", None));
@@ -96,7 +92,6 @@ impl CompletionContext {
             if !own {
                 continue;
             }
-            let scope = scope(&starts, index, source.text.len());
             for param in &body.params {
                 let declared = source.slice(param.span).trim();
                 self.variables.push(named(
@@ -114,12 +109,8 @@ impl CompletionContext {
     }
 
     fn add_step7(&mut self, unit: &S7Unit, source: &SourceFile, own: bool, symbols: &Symbols) {
-        let starts: Vec<usize> = unit
-            .blocks
-            .iter()
-            .map(|b| b.header.start as usize)
-            .collect();
-        for (index, block) in unit.blocks.iter().enumerate() {
+        let scopes = scopes(unit.blocks.iter().map(|b| b.header), source.text.len());
+        for (block, scope) in unit.blocks.iter().zip(scopes) {
             let written = block.name.written();
             let header = if own {
                 source.slice(block.header).trim().to_string()
@@ -143,7 +134,6 @@ impl CompletionContext {
             if !own {
                 continue;
             }
-            let scope = scope(&starts, index, source.text.len());
             for var in block.interface.iter().flat_map(|section| &section.vars) {
                 let declared = source.slice(var.span).trim();
                 self.variables.push(named(
@@ -171,9 +161,15 @@ fn named(name: String, detail: &str, scope: Option<Range<usize>>) -> Named {
     }
 }
 
-/// Block `index` of a file runs from its header to the next block's.
-fn scope(starts: &[usize], index: usize, end: usize) -> Option<Range<usize>> {
-    Some(starts[index]..starts.get(index + 1).copied().unwrap_or(end))
+/// Each block's scope: from its header to the next block's, the last one's to `end`.
+fn scopes(headers: impl Iterator<Item = Span>, end: usize) -> Vec<Option<Range<usize>>> {
+    let starts: Vec<usize> = headers.map(|header| header.start as usize).collect();
+    let ends = starts.iter().skip(1).copied().chain([end]);
+    starts
+        .iter()
+        .zip(ends)
+        .map(|(&start, end)| Some(start..end))
+        .collect()
 }
 
 /// A data block as a member access writes it, `"Tank"`: members are reached by the block's

@@ -34,7 +34,7 @@ fn of_file(analysis: &Analysis, file: u16) -> Vec<Diagnostic> {
         .filter(|diagnostic| diagnostic.span().file == file)
         .map(|diagnostic| {
             let report = diagnostics::report(&analysis.built.sources, diagnostic);
-            convert(&report, analysis.uri(file), text, &index)
+            convert(&report, analysis.uri(file), &index)
         })
         .collect();
     if file == 0 {
@@ -43,7 +43,7 @@ fn of_file(analysis: &Analysis, file: u16) -> Vec<Diagnostic> {
             analysis
                 .unread
                 .iter()
-                .map(|report| convert(report, None, text, &index)),
+                .map(|report| convert(report, None, &index)),
         );
     }
     if let Some(note) = runs_on_note(analysis).filter(|_| file == 0) {
@@ -79,13 +79,12 @@ fn severity(report: &Report) -> DiagnosticSeverity {
     }
 }
 
-/// One report as an LSP diagnostic of the file `uri` whose text is `text`.
-fn convert(report: &Report, uri: Option<Uri>, text: &str, index: &LineIndex) -> Diagnostic {
+/// One report as an LSP diagnostic of the file `uri` whose lines `index` holds.
+fn convert(report: &Report, uri: Option<Uri>, index: &LineIndex) -> Diagnostic {
     let labels: Vec<miette::LabeledSpan> = report.labels().into_iter().flatten().collect();
     let primary = labels.iter().position(|label| label.primary()).unwrap_or(0);
-    let range_of = |label: &miette::LabeledSpan| {
-        index.range(text, label.offset()..label.offset() + label.len())
-    };
+    let range_of =
+        |label: &miette::LabeledSpan| index.range(label.offset()..label.offset() + label.len());
     let range = labels.get(primary).map(range_of).unwrap_or_default();
     let mut message = report.to_string();
     if let Some(text) = labels.get(primary).and_then(|label| label.label()) {

@@ -10,6 +10,7 @@ use lsp_types::{
 
 use super::complete::{self, CompletionContext, CompletionKind};
 use super::fixes;
+use super::position::{plain, protocol};
 use super::text::{self, FileLanguage};
 use super::workspace::Analysis;
 use super::{format, tokens};
@@ -19,7 +20,7 @@ const DOCUMENT: crate::source::FileId = 0;
 
 pub fn completions(analysis: &Analysis, position: lsp_types::Position) -> Vec<CompletionItem> {
     let context = CompletionContext::from_frontend(&analysis.built, DOCUMENT);
-    complete::completions(analysis.text(DOCUMENT), plain_position(position), &context)
+    complete::completions(analysis.text(DOCUMENT), plain(position), &context)
         .into_iter()
         .map(|completion| CompletionItem {
             label: completion.label,
@@ -50,8 +51,8 @@ pub fn code_actions(
     let text = analysis.text(DOCUMENT);
     let index = text::LineIndex::new(text);
     let (start, end) = (
-        index.offset(plain_position(range.start)),
-        index.offset(plain_position(range.end)),
+        index.offset(plain(range.start)),
+        index.offset(plain(range.end)),
     );
     let language = FileLanguage::of(&analysis.built, DOCUMENT);
     analysis
@@ -115,23 +116,9 @@ pub fn legend() -> lsp_types::SemanticTokensLegend {
     }
 }
 
-fn plain_position(position: lsp_types::Position) -> text::Position {
-    text::Position {
-        line: position.line,
-        character: position.character,
-    }
-}
-
-fn protocol_position(position: text::Position) -> lsp_types::Position {
-    lsp_types::Position::new(position.line, position.character)
-}
-
 fn edit(edit: text::TextEdit) -> lsp_types::TextEdit {
     lsp_types::TextEdit {
-        range: lsp_types::Range::new(
-            protocol_position(edit.range.start),
-            protocol_position(edit.range.end),
-        ),
+        range: lsp_types::Range::new(protocol(edit.range.start), protocol(edit.range.end)),
         new_text: edit.new_text,
     }
 }

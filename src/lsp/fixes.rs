@@ -280,6 +280,13 @@ mod tests {
         apply(text, &fixes[0].edits)
     }
 
+    /// `text` with its `code` fixed holds `wanted` and compiles.
+    fn assert_fixed_to(text: &str, code: &str, wanted: &str) {
+        let result = fixed(text, code);
+        assert!(result.contains(wanted), "{result}");
+        compiles(&result);
+    }
+
     fn compiles(text: &str) {
         let frontend = build(text);
         assert!(!frontend.has_errors(), "{:?}", frontend.diagnostics);
@@ -303,9 +310,7 @@ mod tests {
     #[test]
     fn bit_operand_without_its_bit() {
         let text = "PB 1\n      A F1\n      = Q 4.0\n      BE\n";
-        let result = fixed(text, "awl::parse::unknown_operand");
-        assert!(result.contains("      A F 1.0\n"), "{result}");
-        compiles(&result);
+        assert_fixed_to(text, "awl::parse::unknown_operand", "      A F 1.0\n");
     }
 
     #[test]
@@ -322,25 +327,19 @@ mod tests {
     #[test]
     fn close_spelling_of_an_operation() {
         let text = "PB 1\n      A I 0.0\n      JUU PB 2\n      BE\nPB 2\n      BE\n";
-        let result = fixed(text, "awl::parse::unknown_operation");
-        assert!(result.contains("      JU PB 2"), "{result}");
-        compiles(&result);
+        assert_fixed_to(text, "awl::parse::unknown_operation", "      JU PB 2");
     }
 
     #[test]
     fn german_word_in_an_english_file() {
         let text = "PB 1\n      A I 0.0\n      JC PB 2\n      SPA PB 2\n      BE\nPB 2\n      BE\n";
-        let result = fixed(text, "awl::parse::mixed_mnemonics");
-        assert!(result.contains("      JU PB 2"), "{result}");
-        compiles(&result);
+        assert_fixed_to(text, "awl::parse::mixed_mnemonics", "      JU PB 2");
     }
 
     #[test]
     fn german_word_in_an_english_step7_file() {
         let text = "FUNCTION FC 1 : VOID\nBEGIN\n      A I 0.0;\n      AN I 0.1;\n      U I 0.2;\n      = Q 4.0;\nEND_FUNCTION\n";
-        let result = fixed(text, "awl::s7::mixed_mnemonics");
-        assert!(result.contains("      A I 0.2;"), "{result}");
-        compiles(&result);
+        assert_fixed_to(text, "awl::s7::mixed_mnemonics", "      A I 0.2;");
     }
 
     #[test]

@@ -6,7 +6,7 @@ use lsp_types::{Hover, HoverContents, MarkupContent, MarkupKind};
 
 use super::lookup::{self, Statement, covers};
 use super::navigate::{self, Target};
-use super::position::LineIndex;
+use super::text::LineIndex;
 use super::workspace::Analysis;
 use crate::mnemonics::{self, MnemonicSet};
 use crate::rules::effects;
@@ -128,10 +128,7 @@ fn execution_time(analysis: &Analysis, whole: Span) -> Option<u64> {
 
 fn line_of(analysis: &Analysis, span: Span) -> u32 {
     let text = analysis.text(span.file);
-    LineIndex::new(text)
-        .position(text, span.start as usize)
-        .line
-        + 1
+    LineIndex::new(text).position(span.start as usize).line + 1
 }
 
 fn label(analysis: &Analysis, target: &Target, name: &str) -> Option<String> {

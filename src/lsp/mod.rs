@@ -342,7 +342,7 @@ impl<'a> Server<'a> {
     ) -> Option<T> {
         let text = self.workspace.documents.get(uri)?;
         let analysis = self.workspace.analyse(uri, text);
-        let offset = LineIndex::new(text).offset(text, position);
+        let offset = LineIndex::new(text).offset(position);
         Some(handler(&analysis, offset))
     }
 

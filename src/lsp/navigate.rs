@@ -88,7 +88,7 @@ fn blocks_named<'a>(analysis: &'a Analysis, name: &'a str) -> impl Iterator<Item
 /// The location of a span of any file of the analysis.
 pub fn location(analysis: &Analysis, span: Span) -> Option<Location> {
     let text = analysis.text(span.file);
-    let range = LineIndex::new(text).range(text, span.start as usize..span.end as usize);
+    let range = LineIndex::new(text).range(span.start as usize..span.end as usize);
     Some(Location::new(analysis.uri(span.file)?, range))
 }
 
@@ -273,7 +273,7 @@ fn parameter_at(analysis: &Analysis, offset: usize) -> Option<Span> {
 pub fn document_symbols(analysis: &Analysis) -> Vec<DocumentSymbol> {
     let text = analysis.text(0);
     let index = LineIndex::new(text);
-    let range = |span: Span| index.range(text, span.start as usize..span.end as usize);
+    let range = |span: Span| index.range(span.start as usize..span.end as usize);
     let (blocks, _) = lookup::outline(analysis, 0);
     blocks
         .iter()
@@ -342,10 +342,7 @@ pub fn workspace_symbols(workspace: &Workspace, query: &str) -> Vec<SymbolInform
             if !block.name.to_uppercase().contains(&query) {
                 continue;
             }
-            let range: Range = index.range(
-                &text,
-                block.header.start as usize..block.header.end as usize,
-            );
+            let range: Range = index.range(block.header.start as usize..block.header.end as usize);
             found.push(SymbolInformation {
                 name: block.name,
                 kind: SymbolKind::FUNCTION,

@@ -29,14 +29,35 @@ const LIST: &str = "I 0.0     START     start button (green)\nQ 4.0     LAMP    
 
 const SCENARIO: &str = "program = [\"plant.awl\"]\nsymbols = [\"plant.seq\"]\ncpu = \"s5-115u\"\n";
 
-/// A folder with the plant program, its assignment list and its scenario.
-fn plant_folder(name: &str) -> PathBuf {
+/// An empty folder of this test run's own.
+fn scratch_folder(name: &str) -> PathBuf {
     let folder = std::env::temp_dir().join(format!("awl-lsp-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&folder).unwrap();
+    folder
+}
+
+/// The sample program that needs its CPU said.
+fn analog_program() -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl");
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// A folder with the plant program, its assignment list and its scenario.
+fn plant_folder(name: &str) -> PathBuf {
+    let folder = scratch_folder(name);
     std::fs::write(folder.join("plant.awl"), PLANT).unwrap();
     std::fs::write(folder.join("plant.seq"), LIST).unwrap();
     std::fs::write(folder.join("plant.toml"), SCENARIO).unwrap();
     folder
+}
+
+/// A client of a server on a plant folder of its own, and the plant program's path.
+fn plant_client(name: &str) -> (Client, PathBuf) {
+    let folder = plant_folder(name);
+    (
+        Client::start(&folder, Value::Null),
+        folder.join("plant.awl"),
+    )
 }
 
 fn uri(path: &Path) -> String {
@@ -126,9 +147,19 @@ impl Client {
         self.request(method, params).result.unwrap_or(Value::Null)
     }
 
-    /// The hover's text at a position.
-    fn hover(&mut self, path: &Path, line: u32, character: u32) -> Value {
-        self.at("textDocument/hover", path, line, character)["contents"]["value"].clone()
+    /// The hover's text at a position (empty where there is none).
+    fn hover(&mut self, path: &Path, line: u32, character: u32) -> String {
+        let hover = self.at("textDocument/hover", path, line, character);
+        hover["contents"]["value"]
+            .as_str()
+            .unwrap_or("")
+            .to_string()
+    }
+
+    /// Asserts that the hover at a position says each of `texts`.
+    fn assert_hover(&mut self, path: &Path, line: u32, character: u32, texts: &[&str]) {
+        let hover = self.hover(path, line, character);
+        assert!(texts.iter().all(|text| hover.contains(text)), "{hover}");
     }
 
     /// The document's symbols.
@@ -152,9 +183,7 @@ impl Client {
 
 #[test]
 fn errors_come_with_their_code_and_help_and_go_when_fixed() {
-    let folder = plant_folder("errors");
-    let path = folder.join("plant.awl");
-    let client = Client::start(&folder, Value::Null);
+    let (client, path) = plant_client("errors");
     let broken = PLANT.replace("      R  =AUS", "      XYZ  =AUS");
     let published = client.open(&path, &broken);
     let diagnostics = published["diagnostics"].as_array().unwrap();
@@ -221,53 +250,37 @@ fn a_missing_assignment_list_is_told_at_the_top() {
 
 #[test]
 fn hover_tells_the_operation_the_symbol_and_the_block() {
-    let folder = plant_folder("hover");
-    let path = folder.join("plant.awl");
-    let mut client = Client::start(&folder, Value::Null);
+    let (mut client, path) = plant_client("hover");
     client.open(&path, PLANT);
-    let operation = client.hover(&path, 1, 6);
-    let operation = operation.as_str().unwrap();
-    assert!(operation.contains("`U`"), "{operation}");
-    assert!(operation.contains("s5-115u"), "{operation}");
-    // The status bits a STEP 5 CPU has: CC 1, CC 0, OV, OR, RLO, /FC.
-    assert!(
-        operation.contains("| reads | - | - | - | x | x | x |")
-            && operation.contains("| writes | - | - | - | x | x | 1 |"),
-        "{operation}"
+    client.assert_hover(
+        &path,
+        1,
+        6,
+        // The status bits a STEP 5 CPU has: CC 1, CC 0, OV, OR, RLO, /FC.
+        &[
+            "`U`",
+            "s5-115u",
+            "| reads | - | - | - | x | x | x |",
+            "| writes | - | - | - | x | x | 1 |",
+        ],
     );
-    let symbol = client.hover(&path, 1, 13);
-    let symbol = symbol.as_str().unwrap();
-    assert!(
-        symbol.contains("I 0.0") && symbol.contains("start button"),
-        "{symbol}"
-    );
-    let block = client.hover(&path, 2, 13);
-    assert!(
-        block.as_str().unwrap().contains("DES  :EIN  I BI"),
-        "{block}"
-    );
-    let jump = client.hover(&path, 13, 6);
-    let jump = jump.as_str().unwrap();
-    assert!(
-        jump.contains("`SPB`") && jump.contains("RLO") && jump.contains("µs"),
-        "{jump}"
-    );
-    assert!(
-        jump.contains("| writes | - | - | - | 0 | 1 | 0 |"),
-        "{jump}"
+    client.assert_hover(&path, 1, 13, &["I 0.0", "start button"]);
+    client.assert_hover(&path, 2, 13, &["DES  :EIN  I BI"]);
+    client.assert_hover(
+        &path,
+        13,
+        6,
+        &["`SPB`", "RLO", "µs", "| writes | - | - | - | 0 | 1 | 0 |"],
     );
     let call = client.hover(&path, 2, 6);
-    assert!(!call.as_str().unwrap().contains("Status word"), "{call}");
-    let label = client.hover(&path, 13, 10);
-    assert!(label.as_str().unwrap().contains("line 17"), "{label}");
+    assert!(!call.contains("Status word"), "{call}");
+    client.assert_hover(&path, 13, 10, &["line 17"]);
     client.finish();
 }
 
 #[test]
 fn definitions_references_and_symbols() {
-    let folder = plant_folder("navigate");
-    let path = folder.join("plant.awl");
-    let mut client = Client::start(&folder, Value::Null);
+    let (mut client, path) = plant_client("navigate");
     client.open(&path, PLANT);
     let label = client.at("textDocument/definition", &path, 13, 10);
     assert_eq!(label["range"]["start"]["line"], 16, "{label}");
@@ -354,29 +367,19 @@ END_FUNCTION_BLOCK
 
 #[test]
 fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
-    let folder = std::env::temp_dir().join(format!("awl-lsp-step7-{}", std::process::id()));
-    std::fs::create_dir_all(&folder).unwrap();
+    let folder = scratch_folder("step7");
     let path = folder.join("motor.awl");
     let mut client = Client::start(&folder, Value::Null);
     assert_eq!(client.open(&path, MOTOR)["diagnostics"], json!([]));
-    let declared = client.hover(&path, 7, 14);
-    assert!(
-        declared.as_str().unwrap().contains("start : BOOL"),
-        "{declared}"
-    );
-    let operation = client.hover(&path, 7, 6);
-    assert!(
-        operation
-            .as_str()
-            .unwrap()
-            .contains("English (SIMATIC) mnemonics: `A`"),
-        "{operation}"
-    );
-    assert!(
-        operation.as_str().unwrap().contains(
-            "| | BR | CC 1 | CC 0 | OV | OS | OR | STA | RLO | /FC |\n|---|---|---|---|---|---|---|---|---|---|\n| reads | - | - | - | - | - | x | - | x | x |\n| writes | - | - | - | - | - | x | x | x | 1 |"
-        ),
-        "{operation}"
+    client.assert_hover(&path, 7, 14, &["start : BOOL"]);
+    client.assert_hover(
+        &path,
+        7,
+        6,
+        &[
+            "English (SIMATIC) mnemonics: `A`",
+            "| | BR | CC 1 | CC 0 | OV | OS | OR | STA | RLO | /FC |\n|---|---|---|---|---|---|---|---|---|---|\n| reads | - | - | - | - | - | x | - | x | x |\n| writes | - | - | - | - | - | x | x | x | 1 |",
+        ],
     );
     let definition = client.at("textDocument/definition", &path, 7, 14);
     assert_eq!(definition["range"]["start"]["line"], 2, "{definition}");
@@ -388,12 +391,8 @@ fn a_step7_variable_shows_its_declaration_and_leads_to_it() {
 
 #[test]
 fn without_a_cpu_the_errors_say_which_cpus_compile_it() {
-    let folder = std::env::temp_dir().join(format!("awl-lsp-cpus-{}", std::process::id()));
-    std::fs::create_dir_all(&folder).unwrap();
-    let program = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl"),
-    )
-    .unwrap();
+    let folder = scratch_folder("cpus");
+    let program = analog_program();
     let path = folder.join("analog.awl");
     let client = Client::start(&folder, Value::Null);
     let published = client.open(&path, &program);
@@ -419,12 +418,8 @@ fn without_a_cpu_the_errors_say_which_cpus_compile_it() {
 
 #[test]
 fn settings_sent_later_count_and_an_exit_alone_ends_the_server() {
-    let folder = std::env::temp_dir().join(format!("awl-lsp-later-{}", std::process::id()));
-    std::fs::create_dir_all(&folder).unwrap();
-    let program = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("programs/analog_115u.awl"),
-    )
-    .unwrap();
+    let folder = scratch_folder("later");
+    let program = analog_program();
     let path = folder.join("analog.awl");
     let mut client = Client::start(&folder, Value::Null);
     assert_ne!(client.open(&path, &program)["diagnostics"], json!([]));
@@ -449,19 +444,8 @@ fn a_german_listing_finds_its_scenario_s_assignment_list() {
     let text = std::fs::read_to_string(&path).unwrap();
     let mut client = Client::start(&folder, Value::Null);
     assert_eq!(client.open(&path, &text)["diagnostics"], json!([]));
-    let symbol = client.hover(&path, 10, 18);
-    assert!(
-        symbol.as_str().unwrap().contains("Taster Fuellen ein"),
-        "{symbol}"
-    );
-    let operation = client.hover(&path, 10, 11);
-    assert!(
-        operation
-            .as_str()
-            .unwrap()
-            .contains("English (SIMATIC) mnemonics: `A`"),
-        "{operation}"
-    );
+    client.assert_hover(&path, 10, 18, &["Taster Fuellen ein"]);
+    client.assert_hover(&path, 10, 11, &["English (SIMATIC) mnemonics: `A`"]);
     let call = client.at("textDocument/definition", &path, 6, 18);
     assert_eq!(call["range"]["start"]["line"], 8, "{call}");
     let outline = client.outline(&path);
@@ -507,9 +491,7 @@ fn edited(text: &str, edits: &Value) -> String {
 
 #[test]
 fn completion_offers_the_symbols_and_the_operations() {
-    let folder = plant_folder("complete");
-    let path = folder.join("plant.awl");
-    let mut client = Client::start(&folder, Value::Null);
+    let (mut client, path) = plant_client("complete");
     client.open(&path, &PLANT.replace("-START", "-ST"));
     let symbols = complete(&mut client, &path, 1, 15);
     let start = symbols
@@ -750,8 +732,7 @@ END_ORGANIZATION_BLOCK
 
 #[test]
 fn fb_instances_lead_to_their_data_block_their_declaration_and_their_fb() {
-    let folder = std::env::temp_dir().join(format!("awl-lsp-instances-{}", std::process::id()));
-    std::fs::create_dir_all(&folder).unwrap();
+    let folder = scratch_folder("instances");
     let path = folder.join("instances.awl");
     let mut client = Client::start(&folder, json!({"cpu": "speed7"}));
     assert_eq!(client.open(&path, INSTANCES)["diagnostics"], json!([]));
@@ -765,11 +746,7 @@ fn fb_instances_lead_to_their_data_block_their_declaration_and_their_fb() {
     // A parameter of the call: its declaration in the FB.
     assert_eq!(line_of(&mut client, 32, 25), 2);
     assert_eq!(line_of(&mut client, 16, 20), 2);
-    let parameter = client.hover(&path, 32, 25);
-    assert!(
-        parameter.as_str().unwrap().contains("start : BOOL"),
-        "{parameter}"
-    );
+    client.assert_hover(&path, 32, 25, &["start : BOOL"]);
     // A multi-instance: `CALL #pump` leads to its declaration, `pump : FB 1` to the FB.
     assert_eq!(line_of(&mut client, 16, 15), 12);
     assert_eq!(line_of(&mut client, 12, 10), 0);

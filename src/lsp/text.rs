@@ -181,6 +181,11 @@ mod tests {
             }),
             text.len()
         );
+        let past_the_end = Position {
+            line: 0,
+            character: 99,
+        };
+        assert_eq!(index.offset(past_the_end), 7);
     }
 
     #[test]

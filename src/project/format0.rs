@@ -376,9 +376,8 @@ fn sections<'a>(text: &'a str, reader: &mut Reader<'_>) -> Option<Vec<Section<'a
 
 #[cfg(test)]
 mod tests {
-    use std::path::Path;
-
-    use super::super::{Project, ProjectError, parse_project};
+    use super::super::Project;
+    use super::super::tests::{messages, parse};
     use super::*;
     use crate::mnemonics::MnemonicSet;
 
@@ -399,25 +398,6 @@ mod tests {
             }
         }
         out
-    }
-
-    fn parse(text: &str) -> Result<Project, Vec<ProjectError>> {
-        parse_project(text, Path::new("dir/p.awlpro"), &mut |file| match file {
-            "main.awl" => Ok(b"ORGANIZATION_BLOCK OB 1\nBEGIN\nEND_ORGANIZATION_BLOCK\n".to_vec()),
-            "plant.sym" => Ok(b"\"Start\" I 0.0 BOOL\n".to_vec()),
-            _ => Err(std::io::Error::new(
-                std::io::ErrorKind::NotFound,
-                "no such file",
-            )),
-        })
-    }
-
-    fn messages(text: &str) -> Vec<String> {
-        parse(text)
-            .expect_err("errors")
-            .iter()
-            .map(ToString::to_string)
-            .collect()
     }
 
     #[test]

@@ -219,28 +219,8 @@ fn tag_span(node: roxmltree::Node<'_, '_>) -> miette::SourceSpan {
 
 #[cfg(test)]
 mod tests {
-    use std::path::Path;
-
-    use super::super::{Project, ProjectError, parse_project};
+    use super::super::tests::{messages, parse};
     use crate::mnemonics::MnemonicSet;
-
-    fn parse(text: &str) -> Result<Project, Vec<ProjectError>> {
-        parse_project(text, Path::new("dir/p.awlpro"), &mut |file| match file {
-            "a.awl" => Ok(b"ORGANIZATION_BLOCK OB 1\nBEGIN\nEND_ORGANIZATION_BLOCK\n".to_vec()),
-            _ => Err(std::io::Error::new(
-                std::io::ErrorKind::NotFound,
-                "no such file",
-            )),
-        })
-    }
-
-    fn messages(text: &str) -> Vec<String> {
-        parse(text)
-            .expect_err("errors")
-            .iter()
-            .map(ToString::to_string)
-            .collect()
-    }
 
     #[test]
     fn without_settings_the_project_has_awlsim_s_defaults() {

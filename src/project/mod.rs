@@ -22,6 +22,7 @@ use std::sync::Arc;
 use miette::{Diagnostic, NamedSource, Report, SourceSpan};
 use thiserror::Error;
 
+use crate::diagnostics::Finding;
 use crate::dialect::Dialect;
 use crate::frontend::Language;
 use crate::mnemonics::MnemonicSet;
@@ -131,27 +132,13 @@ pub enum ProjectError {
     )]
     Read { path: String, reason: String },
 
-    #[error("{message}")]
-    #[diagnostic(code(awl::project::invalid))]
-    Invalid {
-        message: String,
-        #[label("{label}")]
-        at: SourceSpan,
-        label: String,
-        #[help]
-        help: Option<String>,
-    },
+    #[error(transparent)]
+    #[diagnostic(code(awl::project::invalid), forward(0))]
+    Invalid(Finding),
 
-    #[error("{message}")]
-    #[diagnostic(code(awl::project::not_run))]
-    NotRun {
-        message: String,
-        #[label("{label}")]
-        at: SourceSpan,
-        label: String,
-        #[help]
-        help: Option<String>,
-    },
+    #[error(transparent)]
+    #[diagnostic(code(awl::project::not_run), forward(0))]
+    NotRun(Finding),
 }
 
 /// Whether `bytes`, the file `path`, is an awlsim project: named `.awlpro`, or beginning as
@@ -511,12 +498,7 @@ fn invalid(
     label: &str,
     help: Option<String>,
 ) -> ProjectError {
-    ProjectError::Invalid {
-        message: message.into(),
-        at,
-        label: label.into(),
-        help,
-    }
+    ProjectError::Invalid(Finding::new(message, at, label, help))
 }
 
 fn not_run(
@@ -525,17 +507,36 @@ fn not_run(
     label: &str,
     help: Option<String>,
 ) -> ProjectError {
-    ProjectError::NotRun {
-        message: message.into(),
-        at,
-        label: label.into(),
-        help,
-    }
+    ProjectError::NotRun(Finding::new(message, at, label, help))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `text` read as `dir/p.awlpro`, beside the formats' tests' sources and symbol table; any
+    /// other file is missing.
+    pub(super) fn parse(text: &str) -> Result<Project, Vec<ProjectError>> {
+        parse_project(text, Path::new("dir/p.awlpro"), &mut |file| match file {
+            "main.awl" | "a.awl" => {
+                Ok(b"ORGANIZATION_BLOCK OB 1\nBEGIN\nEND_ORGANIZATION_BLOCK\n".to_vec())
+            }
+            "plant.sym" => Ok(b"\"Start\" I 0.0 BOOL\n".to_vec()),
+            _ => Err(std::io::Error::new(
+                std::io::ErrorKind::NotFound,
+                "no such file",
+            )),
+        })
+    }
+
+    /// The errors reading `text`, as printed.
+    pub(super) fn messages(text: &str) -> Vec<String> {
+        parse(text)
+            .expect_err("errors")
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    }
 
     #[test]
     fn projects_are_known_by_name_or_by_their_beginning() {

@@ -3,6 +3,8 @@
 use miette::{Diagnostic, SourceSpan};
 use thiserror::Error;
 
+use crate::diagnostics::Finding;
+
 #[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
 pub enum ScenarioError {
     #[error("cannot read scenario `{path}`: {reason}")]
@@ -128,16 +130,9 @@ pub enum ScenarioError {
         help: &'static str,
     },
 
-    #[error("{message}")]
-    #[diagnostic(code(awl::scenario::invalid))]
-    Invalid {
-        message: String,
-        #[label("{label}")]
-        at: SourceSpan,
-        label: String,
-        #[help]
-        help: Option<String>,
-    },
+    #[error(transparent)]
+    #[diagnostic(code(awl::scenario::invalid), forward(0))]
+    Invalid(Finding),
 }
 
 impl ScenarioError {
@@ -173,7 +168,7 @@ impl ScenarioError {
             | ScenarioError::BadDuration { at, .. }
             | ScenarioError::EventAfterEnd { at, .. }
             | ScenarioError::ModbusTable { at, .. }
-            | ScenarioError::Invalid { at, .. } => at.offset(),
+            | ScenarioError::Invalid(Finding { at, .. }) => at.offset(),
         }
     }
 }

@@ -19,6 +19,7 @@ use miette::{NamedSource, Report, SourceSpan};
 use toml::Spanned;
 
 use crate::compiler::Program;
+use crate::diagnostics::Finding;
 use crate::dialect::Dialect;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
@@ -156,12 +157,7 @@ fn invalid(
     label: impl Into<String>,
     help: Option<String>,
 ) -> ScenarioError {
-    ScenarioError::Invalid {
-        message: message.into(),
-        at,
-        label: label.into(),
-        help,
-    }
+    ScenarioError::Invalid(Finding::new(message, at, label, help))
 }
 
 /// Errors found while checking, kept to report them all.
@@ -176,6 +172,16 @@ impl Errors {
     /// The value of a check, or `None` with its error kept.
     fn keep<T>(&mut self, result: Result<T, ScenarioError>) -> Option<T> {
         result.map_err(|error| self.push(error)).ok()
+    }
+
+    /// An optional key's value as `check` reads it; `None` when it is absent or wrong (the
+    /// error kept).
+    fn check<T, U>(
+        &mut self,
+        key: &Option<T>,
+        check: impl FnOnce(&T) -> Result<U, ScenarioError>,
+    ) -> Option<U> {
+        key.as_ref().and_then(|value| self.keep(check(value)))
     }
 }
 
@@ -196,6 +202,15 @@ impl Scenario {
         let closed = written.len() >= 2 && written.ends_with(quote);
         let end = if closed { range.end - 1 } else { range.end };
         (range.start + 1, end - range.start - 1).into()
+    }
+
+    /// `value`, or the reports of the errors found reading it.
+    fn unless_errors<T>(&self, value: T, errors: Errors) -> Result<T, Vec<Report>> {
+        if errors.0.is_empty() {
+            Ok(value)
+        } else {
+            Err(self.reports(errors.0))
+        }
     }
 
     fn reports(&self, errors: Vec<ScenarioError>) -> Vec<Report> {
@@ -263,53 +278,32 @@ impl Scenario {
         };
         let programs = paths(&raw.program);
         let symbols = paths(&raw.symbols);
-        let cpu = raw.cpu.as_ref().and_then(|name| {
-            errors.keep(profile::find(name.get_ref()).ok_or_else(|| {
+        let cpu = errors.check(&raw.cpu, |name| {
+            profile::find(name.get_ref()).ok_or_else(|| {
                 invalid(
                     format!("unknown CPU `{}`", name.get_ref()),
                     span(name),
                     "no such profile",
                     Some(format!("the profiles are: {}", profile::names().join(", "))),
                 )
-            }))
+            })
         });
         let profile = cpu_override
             .or(cpu)
             .unwrap_or_else(|| default_profile(&programs));
-        let dialect = raw
-            .dialect
-            .as_ref()
-            .and_then(|dialect| errors.keep(check_dialect(dialect)));
-        let special_mode = raw
-            .mode
-            .as_ref()
-            .and_then(|mode| errors.keep(check_mode(mode, profile)));
-        let points = raw
-            .interrupt_points
-            .as_ref()
-            .and_then(|points| errors.keep(check_points(points)));
-        let limit = raw.run.as_ref().and_then(|run| errors.keep(check_run(run)));
-        let watchdog_ns = raw
-            .watchdog
-            .as_ref()
-            .and_then(|watchdog| errors.keep(check_watchdog(watchdog)));
-        let ob13 = raw
-            .ob13
-            .as_ref()
-            .and_then(|ob13| errors.keep(check_ob13(ob13, profile)));
-        let ob35_interval_ns = raw
-            .ob35
-            .as_ref()
-            .and_then(|ob35| errors.keep(check_ob35(ob35, profile)));
+        let dialect = errors.check(&raw.dialect, check_dialect);
+        let special_mode = errors.check(&raw.mode, |mode| check_mode(mode, profile));
+        let points = errors.check(&raw.interrupt_points, check_points);
+        let limit = errors.check(&raw.run, check_run);
+        let watchdog_ns = errors.check(&raw.watchdog, check_watchdog);
+        let ob13 = errors.check(&raw.ob13, |ob13| check_ob13(ob13, profile));
+        let ob35_interval_ns = errors.check(&raw.ob35, |ob35| check_ob35(ob35, profile));
         let (hw_modules, hw_addresses) = check_modules(&raw.hw_module, profile, errors);
-        let clock_memory = raw
-            .clock_memory
-            .as_ref()
-            .and_then(|byte| errors.keep(check_clock_memory(byte, profile)));
-        let min_cycle_ns = raw
-            .min_cycle
-            .as_ref()
-            .and_then(|min_cycle| errors.keep(check_min_cycle(min_cycle, watchdog_ns, profile)));
+        let clock_memory =
+            errors.check(&raw.clock_memory, |byte| check_clock_memory(byte, profile));
+        let min_cycle_ns = errors.check(&raw.min_cycle, |min_cycle| {
+            check_min_cycle(min_cycle, watchdog_ns, profile)
+        });
         Scenario {
             path: path.to_path_buf(),
             text,
@@ -467,11 +461,7 @@ impl Scenario {
                 }
             }
         }
-        if errors.0.is_empty() {
-            Ok(plan)
-        } else {
-            Err(self.reports(errors.0))
-        }
+        self.unless_errors(plan, errors)
     }
 
     /// What a `set` table does: the input changes (a happening; kept even when empty, as a
@@ -798,11 +788,7 @@ impl Scenario {
                 });
             }
         }
-        if errors.0.is_empty() {
-            Ok(expectations)
-        } else {
-            Err(self.reports(errors.0))
-        }
+        self.unless_errors(expectations, errors)
     }
 }
 
@@ -939,11 +925,7 @@ impl Scenario {
                 });
             }
         }
-        if errors.0.is_empty() {
-            Ok(checks)
-        } else {
-            Err(self.reports(errors.0))
-        }
+        self.unless_errors(checks, errors)
     }
 
     /// The operands of `watch = [...]`, checked like those of `[expect]`.
@@ -963,11 +945,7 @@ impl Scenario {
                     .map(|target| (operand.get_ref().clone(), target))
             })
             .collect();
-        if errors.0.is_empty() {
-            Ok(targets)
-        } else {
-            Err(self.reports(errors.0))
-        }
+        self.unless_errors(targets, errors)
     }
 }
 

@@ -53,11 +53,7 @@ impl Scenario {
                 *table = placed;
             }
         }
-        if errors.0.is_empty() {
-            Ok(map)
-        } else {
-            Err(self.reports(errors.0))
-        }
+        self.unless_errors(map, errors)
     }
 
     fn place(

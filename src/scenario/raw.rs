@@ -521,12 +521,12 @@ impl Entries<'_, '_> {
             .any(|written| super::did_you_mean(written.get_ref(), std::iter::once(key)).is_some());
         if !self.entries.contains_key(key) && !misspelt {
             let known = self.table.key(key);
-            errors.push(ScenarioError::Invalid {
-                message: format!("{} has no `{key}`", self.table.name),
-                at: span_of(self.span.clone()),
-                label: format!("needs `{key}`: {}", known.takes),
-                help: Some(format!("e.g. {}", known.example)),
-            });
+            errors.push(super::invalid(
+                format!("{} has no `{key}`", self.table.name),
+                span_of(self.span.clone()),
+                format!("needs `{key}`: {}", known.takes),
+                Some(format!("e.g. {}", known.example)),
+            ));
             return None;
         }
         self.get(key, errors)

@@ -67,11 +67,7 @@ fn serve_item(cpu: &mut Cpu, client: Client, item: &Item, read_only: bool) -> It
 }
 
 fn byte_range(area: Area, byte: u32) -> Range {
-    Range {
-        area,
-        start: byte,
-        length: 1,
-    }
+    Range::new(area, byte, 1)
 }
 
 /// The byte indexes `range` covers in a memory of `size` bytes.
@@ -305,11 +301,7 @@ mod tests {
             "DATA_BLOCK DB 1\nSTRUCT\n a : INT := 5;\n b : INT;\nEND_STRUCT;\nBEGIN\nEND_DATA_BLOCK\n\nORGANIZATION_BLOCK OB 1\nBEGIN\n NOP 0;\nEND_ORGANIZATION_BLOCK\n",
             true,
         );
-        let range = Range {
-            area: Area::DataBlock(1),
-            start: 0,
-            length: 4,
-        };
+        let range = Range::new(Area::DataBlock(1), 0, 4);
         assert_eq!(read(&mut cpu, range), Ok(vec![0, 5, 0, 0]));
         let write = Item::Write {
             range,
@@ -332,11 +324,7 @@ mod tests {
     #[test]
     fn a_step5_data_block_is_reached_at_twice_the_data_word_number() {
         let mut cpu = cpu("DB 10\n KH = 1234;\n KH = 5678;\nOB 1\n BE\n", false);
-        let word1 = Range {
-            area: Area::DataBlock(10),
-            start: 2,
-            length: 2,
-        };
+        let word1 = Range::new(Area::DataBlock(10), 2, 2);
         assert_eq!(read(&mut cpu, word1), Ok(vec![0x56, 0x78]));
         write(
             &mut cpu,
@@ -378,11 +366,7 @@ mod tests {
     #[test]
     fn read_only_refuses_writes_and_serves_reads() {
         let mut cpu = cpu("OB 1\n BE\n", false);
-        let flags = Range {
-            area: Area::Flags,
-            start: 0,
-            length: 2,
-        };
+        let flags = Range::new(Area::Flags, 0, 2);
         let items = [
             Item::Write {
                 range: flags,
@@ -399,11 +383,7 @@ mod tests {
     #[test]
     fn timers_and_counters_are_words_in_bcd() {
         let mut cpu = cpu("OB 1\n BE\n", false);
-        let counters = Range {
-            area: Area::Counters,
-            start: 2,
-            length: 1,
-        };
+        let counters = Range::new(Area::Counters, 2, 1);
         write(&mut cpu, counters, &[0x01, 0x23]).unwrap();
         assert_eq!(cpu.counters[2].value, 123);
         assert_eq!(read(&mut cpu, counters), Ok(vec![0x01, 0x23]));

@@ -56,42 +56,40 @@ fn step5_data(number: u16, start: u32, length: u32) -> String {
 mod tests {
     use super::*;
 
-    fn range(area: Area, start: u32, length: u32) -> Range {
-        Range {
-            area,
-            start,
-            length,
-        }
-    }
-
     #[test]
     fn operands_are_named_as_each_dialect_writes_them() {
-        assert_eq!(operand(true, range(Area::Flags, 10, 2), None), "MW 10");
-        assert_eq!(operand(false, range(Area::Flags, 10, 1), None), "FY 10");
-        assert_eq!(operand(true, range(Area::Inputs, 1, 1), Some(3)), "I 1.3");
+        assert_eq!(operand(true, Range::new(Area::Flags, 10, 2), None), "MW 10");
         assert_eq!(
-            operand(true, range(Area::DataBlock(1), 0, 1), Some(1)),
+            operand(false, Range::new(Area::Flags, 10, 1), None),
+            "FY 10"
+        );
+        assert_eq!(
+            operand(true, Range::new(Area::Inputs, 1, 1), Some(3)),
+            "I 1.3"
+        );
+        assert_eq!(
+            operand(true, Range::new(Area::DataBlock(1), 0, 1), Some(1)),
             "DB1.DBX 0.1"
         );
         assert_eq!(
-            operand(true, range(Area::DataBlock(1), 4, 4), None),
+            operand(true, Range::new(Area::DataBlock(1), 4, 4), None),
             "DB1.DBD 4"
         );
         assert_eq!(
-            operand(false, range(Area::DataBlock(10), 6, 2), None),
+            operand(false, Range::new(Area::DataBlock(10), 6, 2), None),
             "DB 10 DW 3"
         );
         assert_eq!(
-            operand(false, range(Area::DataBlock(10), 7, 1), None),
+            operand(false, Range::new(Area::DataBlock(10), 7, 1), None),
             "DB 10 DR 3"
         );
         assert_eq!(
-            operand(true, range(Area::Outputs, 0, 16), None),
+            operand(true, Range::new(Area::Outputs, 0, 16), None),
             "QB 0, 16 bytes"
         );
-        assert_eq!(operand(true, range(Area::Timers, 4, 1), None), "T 4");
+        assert_eq!(operand(true, Range::new(Area::Timers, 4, 1), None), "T 4");
         assert_eq!(
-            operand(true, range(Area::Counters, 1, 3), None),
+            operand(true, Range::new(Area::Counters, 1, 3), None),
             "C 1 to C 3"
         );
     }

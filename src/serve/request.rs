@@ -18,6 +18,16 @@ pub struct Range {
     pub length: u32,
 }
 
+impl Range {
+    pub fn new(area: Area, start: u32, length: u32) -> Range {
+        Range {
+            area,
+            start,
+            length,
+        }
+    }
+}
+
 /// One item of a read or write request.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Item {

@@ -16,9 +16,7 @@ use serde::Serialize;
 use crate::address::Layout;
 use crate::address::declared::{self, ValueView};
 use crate::rules::status::Status;
-use crate::vm::counters::Counter;
 use crate::vm::stop::Stop;
-use crate::vm::timers::Timer;
 use crate::vm::{Cpu, IDLE, LevelState, Mode};
 
 pub use registers::Registers;
@@ -197,35 +195,32 @@ fn images(cpu: &Cpu) -> BTreeMap<&'static str, BTreeMap<String, u8>> {
 }
 
 fn timers(cpu: &Cpu) -> Vec<TimerState> {
-    let untouched = Timer::default();
-    cpu.timers
-        .iter()
-        .enumerate()
-        .filter(|(_, timer)| **timer != untouched)
-        .map(|(number, timer)| {
-            let mut timer = *timer;
-            TimerState {
-                number: number as u16,
-                bit: timer.bit(cpu.clock),
-                value: timer.value(cpu.clock),
-                base: timer.base(),
-                running: timer.running,
-            }
-        })
-        .collect()
+    touched(&cpu.timers, |number, mut timer| TimerState {
+        number,
+        bit: timer.bit(cpu.clock),
+        value: timer.value(cpu.clock),
+        base: timer.base(),
+        running: timer.running,
+    })
 }
 
 fn counters(cpu: &Cpu) -> Vec<CounterState> {
-    let untouched = Counter::default();
-    cpu.counters
+    touched(&cpu.counters, |number, counter| CounterState {
+        number,
+        value: counter.value,
+        bit: counter.bit(),
+    })
+}
+
+/// The state of each timer (counter) the run changed from its start, by number.
+fn touched<T: Copy + Default + PartialEq, S>(all: &[T], state: impl Fn(u16, T) -> S) -> Vec<S> {
+    let untouched = T::default();
+    let changed = all
         .iter()
         .enumerate()
-        .filter(|(_, counter)| **counter != untouched)
-        .map(|(number, counter)| CounterState {
-            number: number as u16,
-            value: counter.value,
-            bit: counter.bit(),
-        })
+        .filter(|(_, item)| **item != untouched);
+    changed
+        .map(|(number, item)| state(number as u16, *item))
         .collect()
 }
 

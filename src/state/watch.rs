@@ -30,56 +30,40 @@ pub struct WatchTable {
 }
 
 /// A value as the PG shows it: bits 0/1, timers `KT value.base`, counters `KZ`, bytes `KH`,
-/// words `KF`, double words `KH`; in a STEP 7 program as STEP 7 shows it ([`natural_s7`]).
+/// words `KF`, double words `KH`; in a STEP 7 program as STEP 7 shows it: timers `S5T#…`,
+/// counters `C#…`, bytes `B#16#…`, words the INT, double words `L#…` or the REAL they hold.
 pub fn natural(cpu: &Cpu, target: Target) -> String {
-    if cpu.program.s7.step7 {
-        return natural_s7(cpu, target);
-    }
+    let step7 = cpu.program.s7.step7;
     match target {
         Target::TimerBit(n) => {
             let mut timer = cpu.timers[usize::from(n)];
             let bit = timer.bit(cpu.clock);
-            format!(
-                "KT {:03}.{} ({})",
-                timer.value(cpu.clock),
-                timer.base(),
-                u8::from(bit)
-            )
-        }
-        Target::CounterValue(n) => {
-            let counter = cpu.counters[usize::from(n)];
-            format!("KZ {:03} ({})", counter.value, u8::from(counter.bit()))
-        }
-        _ => match (actual(cpu, target), target.bytes()) {
-            (None, _) => "-".to_string(),
-            (Some(raw), 0) => raw.to_string(),
-            (Some(raw), 1) => format!("KH {raw:02X}"),
-            (Some(raw), 2) => format!("KF {:+}", raw as u16 as i16),
-            (Some(raw), _) => format!("KH {raw:08X}"),
-        },
-    }
-}
-
-/// A value in STEP 7 notation: bits 0/1, timers `S5T#…`, counters `C#…`, bytes `B#16#…`,
-/// words the INT, double words `L#…` or the REAL they hold.
-fn natural_s7(cpu: &Cpu, target: Target) -> String {
-    match target {
-        Target::TimerBit(n) => {
-            let mut timer = cpu.timers[usize::from(n)];
-            let bit = timer.bit(cpu.clock);
-            let time = s7::s5time(timer.value(cpu.clock), timer.base());
+            let (value, base) = (timer.value(cpu.clock), timer.base());
+            let time = if step7 {
+                s7::s5time(value, base)
+            } else {
+                format!("KT {value:03}.{base}")
+            };
             format!("{time} ({})", u8::from(bit))
         }
         Target::CounterValue(n) => {
             let counter = cpu.counters[usize::from(n)];
-            format!("C#{} ({})", counter.value, u8::from(counter.bit()))
+            let value = if step7 {
+                format!("C#{}", counter.value)
+            } else {
+                format!("KZ {:03}", counter.value)
+            };
+            format!("{value} ({})", u8::from(counter.bit()))
         }
         _ => match (actual(cpu, target), target.bytes()) {
             (None, _) => "-".to_string(),
             (Some(raw), 0) => raw.to_string(),
-            (Some(raw), 1) => s7::byte(raw as u8),
-            (Some(raw), 2) => (raw as u16 as i16).to_string(),
-            (Some(raw), _) => s7::double_value(raw),
+            (Some(raw), 1) if step7 => s7::byte(raw as u8),
+            (Some(raw), 1) => format!("KH {raw:02X}"),
+            (Some(raw), 2) if step7 => (raw as u16 as i16).to_string(),
+            (Some(raw), 2) => format!("KF {:+}", raw as u16 as i16),
+            (Some(raw), _) if step7 => s7::double_value(raw),
+            (Some(raw), _) => format!("KH {raw:08X}"),
         },
     }
 }

@@ -358,12 +358,7 @@ fn cross(svg: &mut String, scene: &Scene, mark: Mark, item: &Item, y: f64, colou
 /// The operating system's strip (data cycles, its time at the cycle end, an S7 CPU's wait for
 /// the minimum cycle time) and their shading across the lanes.
 fn draw_system(svg: &mut String, scene: &Scene, top: f64, bottom: f64) {
-    let _ = write!(
-        svg,
-        r##"<text class="lane-name" x="{:.1}" y="{:.1}" text-anchor="end" font-size="11" fill="#555">system</text>"##,
-        LEFT - 8.0,
-        top + ROW - 4.0
-    );
+    strip_name(svg, "system", top);
     for (mark, fill) in [
         (Mark::DataCycle, "#8c9db5"),
         (Mark::OsTime, "#c4c4c4"),
@@ -382,13 +377,18 @@ fn draw_system(svg: &mut String, scene: &Scene, top: f64, bottom: f64) {
     }
 }
 
-fn draw_io(svg: &mut String, scene: &Scene, top: f64) {
+/// The name of the strip at `top`, left of the plot.
+fn strip_name(svg: &mut String, name: &str, top: f64) {
     let _ = write!(
         svg,
-        r##"<text class="lane-name" x="{:.1}" y="{:.1}" text-anchor="end" font-size="11" fill="#555">I/O</text>"##,
+        r##"<text class="lane-name" x="{:.1}" y="{:.1}" text-anchor="end" font-size="11" fill="#555">{name}</text>"##,
         LEFT - 8.0,
         top + ROW - 4.0
     );
+}
+
+fn draw_io(svg: &mut String, scene: &Scene, top: f64) {
+    strip_name(svg, "I/O", top);
     let y = top + STRIP / 2.0;
     for (mark, fill) in [
         (Mark::Input, "#2ca02c"),

@@ -213,26 +213,12 @@ impl Chrome {
     fn marks(&mut self, t_ns: u64, event: &Event, running: u32) -> std::io::Result<()> {
         match event {
             Event::IrqRequest { id, ob, .. } => {
-                let tid = self.thread(u32::from(*ob))?;
-                let args = serde_json::to_value(event).map_err(std::io::Error::other)?;
-                self.write(&TraceEvent::instant(
-                    format!("OB {ob} requested"),
-                    t_ns,
-                    tid,
-                    args,
-                ))?;
+                self.on_level(*ob, "requested", t_ns, event)?;
                 self.flows.insert(*id, (t_ns, running));
                 Ok(())
             }
             Event::IrqService { id, ob, .. } => {
-                let tid = self.thread(u32::from(*ob))?;
-                let args = serde_json::to_value(event).map_err(std::io::Error::other)?;
-                self.write(&TraceEvent::instant(
-                    format!("OB {ob} serviced"),
-                    t_ns,
-                    tid,
-                    args,
-                ))?;
+                self.on_level(*ob, "serviced", t_ns, event)?;
                 // The flow from the request, which a lost or ignored request never gets.
                 let Some((requested_at, from)) = self.flows.remove(id) else {
                     return Ok(());
@@ -247,7 +233,7 @@ impl Chrome {
                     cat: Some("interrupt"),
                     id: Some(*id),
                     bp: Some("e"),
-                    ..TraceEvent::new("f", format!("OB {ob} request"), t_ns, tid)
+                    ..TraceEvent::new("f", format!("OB {ob} request"), t_ns, u32::from(*ob))
                 })
             }
             Event::IrqLost { id, ob, .. } => {
@@ -295,12 +281,8 @@ impl Chrome {
     fn on_level(&mut self, ob: u8, what: &str, t_ns: u64, event: &Event) -> std::io::Result<()> {
         let tid = self.thread(u32::from(ob))?;
         let args = serde_json::to_value(event).map_err(std::io::Error::other)?;
-        self.write(&TraceEvent::instant(
-            format!("OB {ob} {what}"),
-            t_ns,
-            tid,
-            args,
-        ))
+        let name = format!("OB {ob} {what}");
+        self.write(&TraceEvent::instant(name, t_ns, tid, args))
     }
 
     /// An instant over every thread (a mode change, a STOP).

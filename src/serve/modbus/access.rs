@@ -57,11 +57,7 @@ fn span(address: u16, count: usize) -> Result<(u32, u32), ExceptionCode> {
 /// The bytes bits `first` to `first + count - 1` of `table` lie in.
 fn bit_bytes(table: Table, first: u32, count: u32) -> Range {
     let (from, to) = (table.start + first, table.start + first + count - 1);
-    Range {
-        area: table.area,
-        start: from / 8,
-        length: to / 8 - from / 8 + 1,
-    }
+    Range::new(table.area, from / 8, to / 8 - from / 8 + 1)
 }
 
 fn read_bits(table: Table, address: u16, quantity: u16) -> Result<Item, ExceptionCode> {
@@ -71,21 +67,17 @@ fn read_bits(table: Table, address: u16, quantity: u16) -> Result<Item, Exceptio
 
 fn read_registers(table: Table, address: u16, quantity: u16) -> Result<Item, ExceptionCode> {
     let (first, count) = span(address, usize::from(quantity))?;
-    Ok(Item::Read(Range {
-        area: table.area,
-        start: table.start + 2 * first,
-        length: 2 * count,
-    }))
+    Ok(Item::Read(Range::new(
+        table.area,
+        table.start + 2 * first,
+        2 * count,
+    )))
 }
 
 fn write_registers(table: Table, address: u16, words: &[u16]) -> Result<Item, ExceptionCode> {
     let (first, count) = span(address, words.len())?;
     Ok(Item::Write {
-        range: Range {
-            area: table.area,
-            start: table.start + 2 * first,
-            length: 2 * count,
-        },
+        range: Range::new(table.area, table.start + 2 * first, 2 * count),
         bytes: words.iter().flat_map(|word| word.to_be_bytes()).collect(),
     })
 }
@@ -117,11 +109,7 @@ fn write_bits(table: Table, address: u16, bits: &[bool]) -> Result<Vec<Item>, Ex
         })
         .collect();
     items.push(Item::Write {
-        range: Range {
-            area: table.area,
-            start: whole_from,
-            length: whole_to - whole_from,
-        },
+        range: Range::new(table.area, whole_from, whole_to - whole_from),
         bytes,
     });
     items.extend((whole_to * 8..end).map(|at| bit_item(at, value(at))));
@@ -226,11 +214,7 @@ mod tests {
     fn a_bit_read_reads_the_bytes_the_bits_lie_in() {
         let map = coils_at(Area::Inputs, 3);
         let request = Request::ReadCoils(10, 4);
-        let range = Range {
-            area: Area::Inputs,
-            start: 1,
-            length: 2,
-        };
+        let range = Range::new(Area::Inputs, 1, 2);
         assert_eq!(items(&request, &map), Ok(vec![Item::Read(range)]));
         // Bits 13 to 16 of the area: byte 1 bits 5 to 7, byte 2 bit 0.
         assert_eq!(
@@ -243,11 +227,7 @@ mod tests {
     fn registers_are_big_endian_words_two_bytes_apart() {
         let map = Map::default();
         let request = Request::ReadHoldingRegisters(5, 2);
-        let range = Range {
-            area: Area::Flags,
-            start: 10,
-            length: 4,
-        };
+        let range = Range::new(Area::Flags, 10, 4);
         assert_eq!(items(&request, &map), Ok(vec![Item::Read(range)]));
         assert_eq!(
             response(&request, &map, vec![Ok(vec![0x12, 0x34, 0xAB, 0xCD])]),
@@ -257,11 +237,7 @@ mod tests {
         assert_eq!(
             items(&write, &map),
             Ok(vec![Item::Write {
-                range: Range {
-                    area: Area::Flags,
-                    start: 2,
-                    length: 2
-                },
+                range: Range::new(Area::Flags, 2, 2),
                 bytes: vec![0xBE, 0xEF]
             }])
         );
@@ -289,11 +265,7 @@ mod tests {
                 bit(0, 6, false),
                 bit(0, 7, false),
                 Item::Write {
-                    range: Range {
-                        area: Area::Outputs,
-                        start: 1,
-                        length: 2
-                    },
+                    range: Range::new(Area::Outputs, 1, 2),
                     bytes: vec![0b0000_1000, 0]
                 },
                 bit(3, 0, true),

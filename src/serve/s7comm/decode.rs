@@ -355,11 +355,7 @@ fn address(specification: &[u8]) -> Result<Address, u8> {
             if !matching {
                 return Err(return_code::TYPE_NOT_SUPPORTED);
             }
-            let range = Range {
-                area,
-                start: pointer,
-                length: count,
-            };
+            let range = Range::new(area, pointer, count);
             return Ok(Address {
                 target: Target::Bytes(range),
                 kind: DataKind::Octets,
@@ -379,11 +375,7 @@ fn address(specification: &[u8]) -> Result<Address, u8> {
     if pointer & 7 != 0 {
         return Err(return_code::INVALID_ADDRESS);
     }
-    let range = Range {
-        area,
-        start: pointer >> 3,
-        length: count * width,
-    };
+    let range = Range::new(area, pointer >> 3, count * width);
     Ok(Address {
         target: Target::Bytes(range),
         kind,
@@ -498,20 +490,24 @@ mod tests {
         item
     }
 
-    fn read_job(items: &[Vec<u8>]) -> Vec<u8> {
+    /// The items of a read job asking for `items`, as decoded.
+    fn read_items(items: &[Vec<u8>]) -> Vec<Result<Address, u8>> {
         let mut parameters = vec![READ_VAR, items.len() as u8];
         for item in items {
             parameters.extend_from_slice(item);
         }
-        job(7, &parameters, &[])
+        let Ok(Pdu {
+            reference: 7,
+            message: Message::Read(items),
+        }) = decode(&job(7, &parameters, &[]))
+        else {
+            panic!("no read job");
+        };
+        items
     }
 
     fn range(area: Area, start: u32, length: u32) -> Target {
-        Target::Bytes(Range {
-            area,
-            start,
-            length,
-        })
+        Target::Bytes(Range::new(area, start, length))
     }
 
     #[test]
@@ -532,7 +528,7 @@ mod tests {
 
     #[test]
     fn read_items_address_bytes_bits_timers_and_counters() {
-        let pdu = read_job(&[
+        let items = read_items(&[
             item(transport::BYTE, 10, 1, area_code::DATA_BLOCK, 4 * 8),
             item(transport::BIT, 1, 0, area_code::INPUTS, 3 * 8 + 5),
             item(transport::REAL, 2, 0, area_code::FLAGS, 8 * 8),
@@ -541,13 +537,6 @@ mod tests {
             item(transport::INT, 1, 0, area_code::OUTPUTS, 2 * 8),
             item(transport::CHAR, 4, 0, area_code::OUTPUTS, 0),
         ]);
-        let Ok(Pdu {
-            reference: 7,
-            message: Message::Read(items),
-        }) = decode(&pdu)
-        else {
-            panic!("no read job");
-        };
         let targets: Vec<_> = items
             .iter()
             .map(|item| item.map(|address| (address.target, address.kind)))
@@ -576,7 +565,7 @@ mod tests {
 
     #[test]
     fn items_a_cpu_refuses_get_their_return_codes() {
-        let pdu = read_job(&[
+        let items = read_items(&[
             item(transport::BYTE, 1, 0, 0x87, 0),
             item(transport::BYTE, 1, 0, area_code::FLAGS, 3),
             item(transport::BIT, 2, 0, area_code::FLAGS, 0),
@@ -586,13 +575,6 @@ mod tests {
             item(0x13, 1, 0, area_code::FLAGS, 0),
             vec![0x12, 0x02, 0xB0, 0x01],
         ]);
-        let Ok(Pdu {
-            message: Message::Read(items),
-            ..
-        }) = decode(&pdu)
-        else {
-            panic!("no read job");
-        };
         let codes: Vec<_> = items.iter().map(|item| item.unwrap_err()).collect();
         assert_eq!(codes, [0x0A, 0x05, 0x05, 0x05, 0x06, 0x06, 0x06, 0x06]);
     }
