@@ -1,0 +1,144 @@
+#!/usr/bin/env python3
+"""Host (machine) instructions per STL operation of the benchmark scenarios, counted by callgrind.
+
+Each bench runs twice under `valgrind --tool=callgrind`, for N1 and for N2 cycles; the start-up
+(loading, compiling, the first cycle's set-up) is the same in both and cancels out of
+
+    (instructions of run 2 - instructions of run 1) / (STL operations of run 2 - of run 1)
+
+so the figure is what the VM's loop costs per operation. Callgrind counts are deterministic:
+a machine busy with other work gives the same figures. Needs valgrind and a release build
+(`cargo build --release`). Usage: benches/callgrind.py [--quick] [--jobs N] [BENCH ...]
+"""
+
+import argparse
+import concurrent.futures
+import pathlib
+import re
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+AWL = ROOT / "target" / "release" / "awl"
+
+
+class Bench:
+    """A scenario of programs/bench/ run with the given interrupt points, for N1 and N2 cycles
+    (and fewer with --quick)."""
+
+    def __init__(self, name, scenario, points, cycles, quick_cycles):
+        self.name = name
+        self.scenario = scenario
+        self.points = points
+        self.cycles = cycles
+        self.quick_cycles = quick_cycles
+
+
+BENCHES = [
+    # STEP 5 on the SINUMERIK 840C: block interrupt points, the scenario's default.
+    Bench("logic_loop", "logic_loop", None, (50, 250), (5, 25)),
+    Bench("logic_loop_operation", "logic_loop", "operation", (50, 250), (5, 25)),
+    # STEP 7 on the SPEED7: operation interrupt points, its default.
+    Bench("s7_logic_loop", "s7_logic_loop", None, (50, 250), (5, 25)),
+    Bench("calls", "calls", None, (1000, 5000), (100, 500)),
+    Bench("fb_params", "fb_params", None, (50, 250), (5, 25)),
+    Bench("s7_calls", "s7_calls", None, (1000, 5000), (100, 500)),
+]
+
+COLLECTED = re.compile(r"Collected\s*:\s*(\d+)")
+OPERATIONS = re.compile(r"^instructions:\s*(\d+)", re.MULTILINE)
+
+
+def measure(bench, cycles):
+    """(host instructions, STL operations) of one run of `cycles` cycles."""
+    command = [
+        "valgrind",
+        "--tool=callgrind",
+        "--callgrind-out-file=/dev/null",
+        str(AWL),
+        "run",
+        "--scenario",
+        str(ROOT / "programs" / "bench" / f"{bench.scenario}.toml"),
+        "--cycles",
+        str(cycles),
+    ]
+    if bench.points:
+        command += ["--interrupt-points", bench.points]
+    # awl's exit status tells whether the scenario's expectations were met, which hold only
+    # for the scenario's own number of cycles: the run is judged by its summary alone.
+    done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
+    host = COLLECTED.search(done.stderr)
+    operations = OPERATIONS.search(done.stdout + done.stderr)
+    if not host or not operations:
+        sys.exit(
+            f"{bench.name}, {cycles} cycles: no callgrind total or operation count in the "
+            f"output (exit status {done.returncode}):\n{done.stdout}\n{done.stderr}"
+        )
+    return int(host.group(1)), int(operations.group(1))
+
+
+def per_operation(bench, quick):
+    """The bench's figure and the counts it comes from."""
+    first, second = bench.quick_cycles if quick else bench.cycles
+    host1, ops1 = measure(bench, first)
+    host2, ops2 = measure(bench, second)
+    return {
+        "cycles": f"{first}/{second}",
+        "operations": ops2 - ops1,
+        "host": host2 - host1,
+        "per_operation": (host2 - host1) / (ops2 - ops1),
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--quick", action="store_true", help="a tenth of the cycles"
+    )
+    parser.add_argument(
+        "--jobs", type=int, default=2, help="benches measured at once (default 2)"
+    )
+    parser.add_argument(
+        "benches",
+        nargs="*",
+        metavar="BENCH",
+        help="the benches to measure (default all): "
+        + ", ".join(bench.name for bench in BENCHES),
+    )
+    options = parser.parse_args()
+    known = {bench.name: bench for bench in BENCHES}
+    unknown = [name for name in options.benches if name not in known]
+    if unknown:
+        parser.error(f"unknown bench {', '.join(unknown)}; known: {', '.join(known)}")
+    chosen = [known[name] for name in options.benches] or BENCHES
+    if not AWL.exists():
+        sys.exit(f"{AWL} is missing: build it first with `cargo build --release`")
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, options.jobs)) as pool:
+        results = list(
+            pool.map(lambda bench: per_operation(bench, options.quick), chosen)
+        )
+
+    header = ("bench", "cycles N1/N2", "STL ops (N2-N1)", "host instr (N2-N1)", "per op")
+    rows = [
+        (
+            bench.name,
+            result["cycles"],
+            f"{result['operations']:,}",
+            f"{result['host']:,}",
+            f"{result['per_operation']:.2f}",
+        )
+        for bench, result in zip(chosen, results)
+    ]
+    widths = [max(len(row[column]) for row in [header, *rows]) for column in range(5)]
+    for row in [header, *rows]:
+        print(
+            "  ".join(
+                cell.ljust(width) if column == 0 else cell.rjust(width)
+                for column, (cell, width) in enumerate(zip(row, widths))
+            )
+        )
+
+
+if __name__ == "__main__":
+    main()
