@@ -11,7 +11,8 @@
 //! comparisons, forward jumps of every condition, counted loops (backward jumps; now and then
 //! one that never ends and meets the watchdog), block calls (STEP 5 `JU`/`JC` of PBs and of FBs
 //! with formal operands; STEP 7 `UC`/`CC`/`CALL` of FCs, with and without parameters), and
-//! timers. Blocks only call blocks after them, so calls nest without recursion.
+//! timers. Blocks call blocks after them, so calls nest without recursion, but for a rare block
+//! that calls itself until the nesting limit stops the CPU.
 
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -102,7 +103,8 @@ enum Step {
     Compare(u8),
     /// Starts (or resets) a timer: kind by index, timer number, time in tens of ms.
     Timer(u8, u8, u8),
-    /// Calls a block after this one, chosen by the number.
+    /// Calls a block after this one, chosen by the number; one number in 64 has a block call
+    /// itself, nesting calls to the limit (a STOP).
     Call(u8, bool),
     /// A forward jump over the steps, its condition by index.
     Skip(u8, Vec<Step>),
@@ -137,7 +139,8 @@ fn word() -> impl Strategy<Value = Word> {
         4 => (0u8..16).prop_map(Word::Flag),
         1 => (0u8..2).prop_map(Word::Input),
         1 => (0u8..2).prop_map(Word::Output),
-        1 => (0u8..8).prop_map(Word::Data),
+        // Now and then a data word past the block's end: a STOP.
+        1 => prop_oneof![31 => 0u8..8, 1 => Just(8u8)].prop_map(Word::Data),
         3 => prop_oneof![-3i16..=3, any::<i16>()].prop_map(Word::Constant),
         1 => Just(Word::Formal),
     ]
@@ -165,7 +168,7 @@ fn step() -> impl Strategy<Value = Step> {
         prop_oneof![
             (0u8..8, prop::collection::vec(inner.clone(), 1..6))
                 .prop_map(|(jump, body)| Step::Skip(jump, body)),
-            (1u8..5, prop::collection::vec(inner, 1..8))
+            (1u8..4, prop::collection::vec(inner, 1..8))
                 .prop_map(|(passes, body)| Step::Loop(passes, body)),
         ]
     })
@@ -175,7 +178,7 @@ fn step() -> impl Strategy<Value = Step> {
 fn block() -> impl Strategy<Value = Vec<Step>> {
     (
         prop::collection::vec(step(), 1..16),
-        prop::bool::weighted(0.03),
+        prop::bool::weighted(0.05),
     )
         .prop_map(|(mut steps, forever)| {
             if forever {
@@ -305,7 +308,9 @@ impl Writer<'_> {
             }
             Step::Call(to, conditional) => {
                 let first = self.index.map_or(0, |index| index + 1);
-                if first < self.called {
+                if let Some(index) = self.index.filter(|_| to % 64 == 63) {
+                    self.text += &d.call(index, *conditional);
+                } else if first < self.called {
                     let callee = first + usize::from(*to) % (self.called - first);
                     self.text += &d.call(callee, *conditional);
                 }
@@ -662,10 +667,10 @@ struct Setup {
 
 impl Setup {
     fn new(cpu: &'static Profile, happenings: &[(u16, u8)]) -> Self {
-        // A SPEED7 cycle is some 50 µs, an S5 operation about a µs: the runs are some hundred
-        // cycles of the one and some dozen of the other.
+        // An S5 operation takes about a µs, a SPEED7 one 10 ns: the SPEED7 cycles are drawn out
+        // to a minimum cycle time, so both runs are some dozen cycles, long enough for timers.
         let (duration_ns, watchdog_ns) = match cpu.family {
-            Family::Speed7 => (15_000_000, 4_000_000),
+            Family::Speed7 => (10_000_000, 1_000_000),
             _ => (40_000_000, 10_000_000),
         };
         let requested: Vec<u8> = cpu
@@ -716,15 +721,16 @@ impl Setup {
             hw_modules: vec![(1, 40), (2, 41)],
             ob35_interval_ns: 1_000_000,
             watchdog_ns: self.watchdog_ns,
+            min_cycle_ns: if self.cpu.runs_step7() { 250_000 } else { 0 },
             ..EngineConfig::default()
         }
     }
 }
 
-/// What a run left: its trace (when traced) and its state at the end.
+/// What a run left: its trace (when traced), one jsonl event a line, and its state at the end.
 #[derive(Debug, PartialEq)]
 struct Observed {
-    trace: Vec<Value>,
+    trace: Vec<String>,
     end: Value,
 }
 
@@ -746,7 +752,11 @@ fn run(
     let finished = cpu.tracer.finish(cpu.clock);
     assert!(finished.iter().all(|output| output.error.is_none()));
     Observed {
-        trace: buffer.events(),
+        trace: String::from_utf8(buffer.0.lock().unwrap().clone())
+            .expect("a jsonl trace")
+            .lines()
+            .map(str::to_string)
+            .collect(),
         end: end_state(&cpu, &outcome),
     }
 }
@@ -771,13 +781,7 @@ fn difference(reference: &Observed, other: &Observed) -> Option<String> {
     if let Some(at) = (0..reference.trace.len().max(other.trace.len()))
         .find(|&at| reference.trace.get(at) != other.trace.get(at))
     {
-        let near = |trace: &[Value]| {
-            trace[at.saturating_sub(3)..(at + 2).min(trace.len())]
-                .iter()
-                .map(Value::to_string)
-                .collect::<Vec<_>>()
-                .join("\n    ")
-        };
+        let near = |trace: &[String]| trace[at.saturating_sub(3)..(at + 2).min(trace.len())].join("\n    ");
         return Some(format!(
             "trace event {at} differs:\n  reference:\n    {}\n  this:\n    {}",
             near(&reference.trace),
