@@ -8,7 +8,13 @@ Each bench runs twice under `valgrind --tool=callgrind`, for N1 and for N2 cycle
 
 so the figure is what the VM's loop costs per operation. Callgrind counts are deterministic:
 a machine busy with other work gives the same figures. Needs valgrind and a release build
-(`cargo build --release`). Usage: benches/callgrind.py [--quick] [--jobs N] [BENCH ...]
+(`cargo build --release`).
+
+With awlsim installed where benches/awlsim/compare.sh installs it (a virtual environment in
+target/awlsim-venv), its pure-Python core is measured the same way on the STEP 7 files: the
+same operations, counted by awlsim itself, for far fewer cycles (it is some 500 times slower).
+
+Usage: benches/callgrind.py [--quick] [--jobs N] [--no-awlsim] [BENCH ...]
 """
 
 import argparse
@@ -20,18 +26,55 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 AWL = ROOT / "target" / "release" / "awl"
+AWLSIM_PYTHON = ROOT / "target" / "awlsim-venv" / "bin" / "python3"
+
+# Runs an S7 file for a number of cycles in awlsim's core and prints the operations it counted
+# (its own statement counter). No cycle time limit: under callgrind a cycle takes seconds.
+AWLSIM_DRIVER = """
+import sys
+from awlsim.common.util import Logging
+from awlsim.common.sources import AwlSource
+from awlsim.common.cpuconfig import S7CPUConfig
+from awlsim.core.main import AwlSim
+from awlsim.awlcompiler import AwlParser
+
+Logging.setLoglevel(Logging.LOG_ERROR)
+path, cycles = sys.argv[1], int(sys.argv[2])
+sim = AwlSim()
+sim.cpu.getConf().setConfiguredMnemonics(S7CPUConfig.MNEMONICS_EN)
+sim.cpu.getConf().setCycleTimeLimitUs(0x7FFFFFFF)
+parser = AwlParser()
+parser.parseSource(AwlSource.fromFile(path, path))
+sim.load(parser.getParseTree())
+sim.startup()
+for _ in range(cycles):
+    sim.runCycle()
+print("operations:", sim.cpu._S7CPU__insnCount)
+"""
 
 
 class Bench:
     """A scenario of programs/bench/ run with the given interrupt points, for N1 and N2 cycles
-    (and fewer with --quick)."""
+    (and fewer with --quick); `awlsim`: its program run in awlsim instead."""
 
-    def __init__(self, name, scenario, points, cycles, quick_cycles):
+    def __init__(self, name, scenario, points, cycles, quick_cycles, awlsim=False):
         self.name = name
         self.scenario = scenario
         self.points = points
         self.cycles = cycles
         self.quick_cycles = quick_cycles
+        self.awlsim = awlsim
+
+    def command(self, cycles):
+        """The command that runs `cycles` cycles and prints the operation count."""
+        if self.awlsim:
+            program = ROOT / "programs" / "bench" / f"{self.scenario}.awl"
+            return [str(AWLSIM_PYTHON), "-c", AWLSIM_DRIVER, str(program), str(cycles)]
+        scenario = ROOT / "programs" / "bench" / f"{self.scenario}.toml"
+        command = [str(AWL), "run", "--scenario", str(scenario), "--cycles", str(cycles)]
+        if self.points:
+            command += ["--interrupt-points", self.points]
+        return command
 
 
 BENCHES = [
@@ -45,25 +88,20 @@ BENCHES = [
     Bench("s7_calls", "s7_calls", None, (1000, 5000), (100, 500)),
 ]
 
+AWLSIM_BENCHES = [
+    Bench("awlsim s7_logic_loop", "s7_logic_loop", None, (1, 3), (1, 2), awlsim=True),
+    Bench("awlsim s7_calls", "s7_calls", None, (20, 100), (10, 30), awlsim=True),
+]
+
 COLLECTED = re.compile(r"Collected\s*:\s*(\d+)")
-OPERATIONS = re.compile(r"^instructions:\s*(\d+)", re.MULTILINE)
+# awl's summary line `instructions: N`, the awlsim driver's `operations: N`.
+OPERATIONS = re.compile(r"^(?:instructions|operations):\s*(\d+)", re.MULTILINE)
 
 
 def measure(bench, cycles):
     """(host instructions, STL operations) of one run of `cycles` cycles."""
-    command = [
-        "valgrind",
-        "--tool=callgrind",
-        "--callgrind-out-file=/dev/null",
-        str(AWL),
-        "run",
-        "--scenario",
-        str(ROOT / "programs" / "bench" / f"{bench.scenario}.toml"),
-        "--cycles",
-        str(cycles),
-    ]
-    if bench.points:
-        command += ["--interrupt-points", bench.points]
+    command = ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null"]
+    command += bench.command(cycles)
     # awl's exit status tells whether the scenario's expectations were met, which hold only
     # for the scenario's own number of cycles: the run is judged by its summary alone.
     done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
@@ -99,18 +137,28 @@ def main():
         "--jobs", type=int, default=2, help="benches measured at once (default 2)"
     )
     parser.add_argument(
+        "--no-awlsim",
+        action="store_true",
+        help="leave awlsim out even where it is installed",
+    )
+    parser.add_argument(
         "benches",
         nargs="*",
         metavar="BENCH",
         help="the benches to measure (default all): "
-        + ", ".join(bench.name for bench in BENCHES),
+        + ", ".join(bench.name for bench in BENCHES + AWLSIM_BENCHES),
     )
     options = parser.parse_args()
-    known = {bench.name: bench for bench in BENCHES}
+    known = {bench.name: bench for bench in BENCHES + AWLSIM_BENCHES}
     unknown = [name for name in options.benches if name not in known]
     if unknown:
         parser.error(f"unknown bench {', '.join(unknown)}; known: {', '.join(known)}")
-    chosen = [known[name] for name in options.benches] or BENCHES
+    with_awlsim = AWLSIM_PYTHON.exists() and not options.no_awlsim
+    chosen = [known[name] for name in options.benches] or BENCHES + (
+        AWLSIM_BENCHES if with_awlsim else []
+    )
+    if any(bench.awlsim for bench in chosen) and not AWLSIM_PYTHON.exists():
+        sys.exit(f"{AWLSIM_PYTHON} is missing: benches/awlsim/compare.sh installs awlsim there")
     if not AWL.exists():
         sys.exit(f"{AWL} is missing: build it first with `cargo build --release`")
 
