@@ -21,6 +21,7 @@ import argparse
 import concurrent.futures
 import pathlib
 import re
+import shutil
 import subprocess
 import sys
 
@@ -89,8 +90,8 @@ BENCHES = [
 ]
 
 AWLSIM_BENCHES = [
-    Bench("awlsim s7_logic_loop", "s7_logic_loop", None, (1, 3), (1, 2), awlsim=True),
-    Bench("awlsim s7_calls", "s7_calls", None, (20, 100), (10, 30), awlsim=True),
+    Bench("awlsim_s7_logic_loop", "s7_logic_loop", None, (1, 3), (1, 2), awlsim=True),
+    Bench("awlsim_s7_calls", "s7_calls", None, (20, 100), (10, 30), awlsim=True),
 ]
 
 COLLECTED = re.compile(r"Collected\s*:\s*(\d+)")
@@ -131,7 +132,7 @@ def per_operation(bench, quick):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument(
-        "--quick", action="store_true", help="a tenth of the cycles"
+        "--quick", action="store_true", help="fewer cycles (a tenth of awl's)"
     )
     parser.add_argument(
         "--jobs", type=int, default=2, help="benches measured at once (default 2)"
@@ -159,6 +160,8 @@ def main():
     )
     if any(bench.awlsim for bench in chosen) and not AWLSIM_PYTHON.exists():
         sys.exit(f"{AWLSIM_PYTHON} is missing: benches/awlsim/compare.sh installs awlsim there")
+    if not shutil.which("valgrind"):
+        sys.exit("valgrind is missing: install it (Debian, Ubuntu: apt install valgrind)")
     if not AWL.exists():
         sys.exit(f"{AWL} is missing: build it first with `cargo build --release`")
 
