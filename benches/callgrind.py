@@ -1,0 +1,195 @@
+#!/usr/bin/env python3
+"""Host (machine) instructions per STL operation of the benchmark scenarios, counted by callgrind.
+
+Each bench runs twice under `valgrind --tool=callgrind`, for N1 and for N2 cycles; the start-up
+(loading, compiling, the first cycle's set-up) is the same in both and cancels out of
+
+    (instructions of run 2 - instructions of run 1) / (STL operations of run 2 - of run 1)
+
+so the figure is what the VM's loop costs per operation. Callgrind counts are deterministic:
+a machine busy with other work gives the same figures. Needs valgrind and a release build
+(`cargo build --release`).
+
+With awlsim installed where benches/awlsim/compare.sh installs it (a virtual environment in
+target/awlsim-venv), its pure-Python core is measured the same way on the STEP 7 files: the
+same operations, counted by awlsim itself, for far fewer cycles (it is some 500 times slower).
+
+Usage: benches/callgrind.py [--quick] [--jobs N] [--no-awlsim] [BENCH ...]
+"""
+
+import argparse
+import concurrent.futures
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+AWL = ROOT / "target" / "release" / "awl"
+AWLSIM_PYTHON = ROOT / "target" / "awlsim-venv" / "bin" / "python3"
+
+# Runs an S7 file for a number of cycles in awlsim's core and prints the operations it counted
+# (its own statement counter). No cycle time limit: under callgrind a cycle takes seconds.
+AWLSIM_DRIVER = """
+import sys
+from awlsim.common.util import Logging
+from awlsim.common.sources import AwlSource
+from awlsim.common.cpuconfig import S7CPUConfig
+from awlsim.core.main import AwlSim
+from awlsim.awlcompiler import AwlParser
+
+Logging.setLoglevel(Logging.LOG_ERROR)
+path, cycles = sys.argv[1], int(sys.argv[2])
+sim = AwlSim()
+sim.cpu.getConf().setConfiguredMnemonics(S7CPUConfig.MNEMONICS_EN)
+sim.cpu.getConf().setCycleTimeLimitUs(0x7FFFFFFF)
+parser = AwlParser()
+parser.parseSource(AwlSource.fromFile(path, path))
+sim.load(parser.getParseTree())
+sim.startup()
+for _ in range(cycles):
+    sim.runCycle()
+print("operations:", sim.cpu._S7CPU__insnCount)
+"""
+
+
+class Bench:
+    """A scenario of programs/bench/ run with the given interrupt points, for N1 and N2 cycles
+    (and fewer with --quick); `awlsim`: its program run in awlsim instead."""
+
+    def __init__(self, name, scenario, points, cycles, quick_cycles, awlsim=False):
+        self.name = name
+        self.scenario = scenario
+        self.points = points
+        self.cycles = cycles
+        self.quick_cycles = quick_cycles
+        self.awlsim = awlsim
+
+    def command(self, cycles):
+        """The command that runs `cycles` cycles and prints the operation count."""
+        if self.awlsim:
+            program = ROOT / "programs" / "bench" / f"{self.scenario}.awl"
+            return [str(AWLSIM_PYTHON), "-c", AWLSIM_DRIVER, str(program), str(cycles)]
+        scenario = ROOT / "programs" / "bench" / f"{self.scenario}.toml"
+        command = [str(AWL), "run", "--scenario", str(scenario), "--cycles", str(cycles)]
+        if self.points:
+            command += ["--interrupt-points", self.points]
+        return command
+
+
+BENCHES = [
+    # STEP 5 on the SINUMERIK 840C: block interrupt points, the scenario's default.
+    Bench("logic_loop", "logic_loop", None, (50, 250), (5, 25)),
+    Bench("logic_loop_operation", "logic_loop", "operation", (50, 250), (5, 25)),
+    # STEP 7 on the SPEED7: operation interrupt points, its default.
+    Bench("s7_logic_loop", "s7_logic_loop", None, (50, 250), (5, 25)),
+    Bench("calls", "calls", None, (1000, 5000), (100, 500)),
+    Bench("fb_params", "fb_params", None, (50, 250), (5, 25)),
+    Bench("s7_calls", "s7_calls", None, (1000, 5000), (100, 500)),
+]
+
+AWLSIM_BENCHES = [
+    Bench("awlsim_s7_logic_loop", "s7_logic_loop", None, (1, 3), (1, 2), awlsim=True),
+    Bench("awlsim_s7_calls", "s7_calls", None, (20, 100), (10, 30), awlsim=True),
+]
+
+COLLECTED = re.compile(r"Collected\s*:\s*(\d+)")
+# awl's summary line `instructions: N`, the awlsim driver's `operations: N`.
+OPERATIONS = re.compile(r"^(?:instructions|operations):\s*(\d+)", re.MULTILINE)
+
+
+def measure(bench, cycles):
+    """(host instructions, STL operations) of one run of `cycles` cycles."""
+    command = ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null"]
+    command += bench.command(cycles)
+    # awl's exit status tells whether the scenario's expectations were met, which hold only
+    # for the scenario's own number of cycles: the run is judged by its summary alone.
+    done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
+    host = COLLECTED.search(done.stderr)
+    operations = OPERATIONS.search(done.stdout + done.stderr)
+    if not host or not operations:
+        sys.exit(
+            f"{bench.name}, {cycles} cycles: no callgrind total or operation count in the "
+            f"output (exit status {done.returncode}):\n{done.stdout}\n{done.stderr}"
+        )
+    return int(host.group(1)), int(operations.group(1))
+
+
+def per_operation(bench, quick):
+    """The bench's figure and the counts it comes from."""
+    first, second = bench.quick_cycles if quick else bench.cycles
+    host1, ops1 = measure(bench, first)
+    host2, ops2 = measure(bench, second)
+    return {
+        "cycles": f"{first}/{second}",
+        "operations": ops2 - ops1,
+        "host": host2 - host1,
+        "per_operation": (host2 - host1) / (ops2 - ops1),
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--quick", action="store_true", help="fewer cycles (a tenth of awl's)"
+    )
+    parser.add_argument(
+        "--jobs", type=int, default=2, help="benches measured at once (default 2)"
+    )
+    parser.add_argument(
+        "--no-awlsim",
+        action="store_true",
+        help="leave awlsim out even where it is installed",
+    )
+    parser.add_argument(
+        "benches",
+        nargs="*",
+        metavar="BENCH",
+        help="the benches to measure (default all): "
+        + ", ".join(bench.name for bench in BENCHES + AWLSIM_BENCHES),
+    )
+    options = parser.parse_args()
+    known = {bench.name: bench for bench in BENCHES + AWLSIM_BENCHES}
+    unknown = [name for name in options.benches if name not in known]
+    if unknown:
+        parser.error(f"unknown bench {', '.join(unknown)}; known: {', '.join(known)}")
+    with_awlsim = AWLSIM_PYTHON.exists() and not options.no_awlsim
+    chosen = [known[name] for name in options.benches] or BENCHES + (
+        AWLSIM_BENCHES if with_awlsim else []
+    )
+    if any(bench.awlsim for bench in chosen) and not AWLSIM_PYTHON.exists():
+        sys.exit(f"{AWLSIM_PYTHON} is missing: benches/awlsim/compare.sh installs awlsim there")
+    if not shutil.which("valgrind"):
+        sys.exit("valgrind is missing: install it (Debian, Ubuntu: apt install valgrind)")
+    if not AWL.exists():
+        sys.exit(f"{AWL} is missing: build it first with `cargo build --release`")
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, options.jobs)) as pool:
+        results = list(
+            pool.map(lambda bench: per_operation(bench, options.quick), chosen)
+        )
+
+    header = ("bench", "cycles N1/N2", "STL ops (N2-N1)", "host instr (N2-N1)", "per op")
+    rows = [
+        (
+            bench.name,
+            result["cycles"],
+            f"{result['operations']:,}",
+            f"{result['host']:,}",
+            f"{result['per_operation']:.2f}",
+        )
+        for bench, result in zip(chosen, results)
+    ]
+    widths = [max(len(row[column]) for row in [header, *rows]) for column in range(5)]
+    for row in [header, *rows]:
+        print(
+            "  ".join(
+                cell.ljust(width) if column == 0 else cell.rjust(width)
+                for column, (cell, width) in enumerate(zip(row, widths))
+            )
+        )
+
+
+if __name__ == "__main__":
+    main()
