@@ -23,14 +23,24 @@ const QUIET_FOR: Duration = Duration::from_secs(1);
 /// Cycles between two looks at the clock.
 const CYCLES_PER_LOOK: u64 = 64;
 
+/// A second signal this soon after the first is the same request: `timeout` sends its SIGTERM
+/// both to the command and to the command's process group, so awl receives it twice at once.
+const SAME_REQUEST_WITHIN: Duration = Duration::from_millis(500);
+
 pub fn install_handler() {
     static INSTALL: Once = Once::new();
     INSTALL.call_once(|| {
+        let first = std::sync::Mutex::new(None::<Instant>);
         // Without a handler (the platform refused) Ctrl-C simply ends the process.
-        let _ = ctrlc::set_handler(|| {
-            if HALT.swap(true, Ordering::SeqCst) {
+        let _ = ctrlc::set_handler(move || {
+            let mut first = first
+                .lock()
+                .unwrap_or_else(|poisoned| poisoned.into_inner());
+            let repeated = first.is_some_and(|at| at.elapsed() >= SAME_REQUEST_WITHIN);
+            if HALT.swap(true, Ordering::SeqCst) && repeated {
                 std::process::exit(i32::from(EXIT_HALTED));
             }
+            first.get_or_insert_with(Instant::now);
         });
     });
 }
