@@ -190,12 +190,7 @@ proptest! {
         let mut checked = 0;
         for cpu in profile::PROFILES {
             for points in [InterruptPoints::Block, InterruptPoints::Operation] {
-                let obs: Vec<u8> = cpu
-                    .interrupt_obs
-                    .iter()
-                    .map(|entry| entry.ob)
-                    .filter(|ob| ![13, 82, 85].contains(ob))
-                    .collect();
+                let obs = common::requestable_obs(cpu);
                 // One request a millisecond at most, at a random moment of it.
                 let requests = slots.iter().zip(&picks).map(|(slot, &(offset, which))| Scheduled {
                     at_ns: slot * 1_000_000 + offset,

@@ -679,12 +679,7 @@ impl Setup {
             Family::Speed7 => (10_000_000, 1_000_000),
             _ => (40_000_000, 10_000_000),
         };
-        let requested: Vec<u8> = cpu
-            .interrupt_obs
-            .iter()
-            .map(|entry| entry.ob)
-            .filter(|ob| ![13, 82, 85].contains(ob))
-            .collect();
+        let requested = common::requestable_obs(cpu);
         let mut schedule = Vec::new();
         for &(when, which) in happenings {
             let at_ns = duration_ns * u64::from(when) / 65_536;

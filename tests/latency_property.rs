@@ -172,12 +172,7 @@ proptest! {
 
 /// A request for every interrupt OB of the CPU, and on the S5-95F OB 13 every 5 ms.
 fn requests(cpu: &Profile, picks: &[(u64, u8)]) -> (Vec<Scheduled>, Option<Ob13Timing>) {
-    let obs: Vec<u8> = cpu
-        .interrupt_obs
-        .iter()
-        .map(|entry| entry.ob)
-        .filter(|ob| ![13, 82, 85].contains(ob))
-        .collect();
+    let obs = common::requestable_obs(cpu);
     let inputs = picks.iter().map(|&(at_ns, which)| Scheduled {
         at_ns: at_ns / 2,
         what: Happening::SetInputs(vec![InputChange {

@@ -89,6 +89,8 @@ fn written(word: &str, case: usize, label: &str) -> Written {
         "MCR(" => (String::new(), none(), ")MCR"),
         ")MCR" => (String::new(), "MCR(".to_string(), ""),
         "MCRA" => (String::new(), none(), "MCRD"),
+        // A bracket of its own, of known contents, for the `)` to close: CLR, and SAVE for BR.
+        ")" => (String::new(), "CLR;\n      SAVE;\n      A(".to_string(), ""),
         "SP" | "SE" | "SD" | "SS" | "SF" | "FR" => {
             accu1 = Some(0x0010);
             probe = format!("T {case}");
@@ -112,6 +114,10 @@ fn written(word: &str, case: usize, label: &str) -> Written {
         }
         "+" => ("5".to_string(), none(), ""),
         "INC" | "DEC" | "NOP" | "BLD" => ("1".to_string(), none(), ""),
+        // A count of 0 changes nothing (the table's note); the rows hold for the others.
+        "SSI" | "SSD" | "SLW" | "SRW" | "SLD" | "SRD" | "RLD" | "RRD" => {
+            ("5".to_string(), none(), "")
+        }
         "OPN" => ("DB 1".to_string(), none(), ""),
         _ if word.starts_with('J') || word == "LOOP" => (label.to_string(), none(), ""),
         _ => (String::new(), none(), ""),

@@ -49,12 +49,7 @@ fn program(startup: &[usize], cyclic: &[usize], loops: u16) -> String {
 /// The requests of `picks` (time, which) as `cpu` takes them: S5 interrupt requests for its
 /// interrupt OBs, SPEED7 hardware events on two modules; an input change beside each.
 fn schedule(cpu: &Profile, picks: &[(u64, u8)]) -> Vec<Scheduled> {
-    let obs: Vec<u8> = cpu
-        .interrupt_obs
-        .iter()
-        .map(|entry| entry.ob)
-        .filter(|ob| ![13, 82, 85].contains(ob))
-        .collect();
+    let obs = common::requestable_obs(cpu);
     let mut schedule = Vec::new();
     for &(at_ns, which) in picks {
         let what = match cpu.family {

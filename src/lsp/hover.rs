@@ -100,10 +100,11 @@ fn status_table(
     english: &str,
     step7: bool,
 ) -> Option<String> {
-    if step7 {
-        return Some(effects::of(english)?.markdown(&effects::STEP7_BITS));
-    }
     let operand = lookup::slice(analysis, statement.operand).trim_start();
+    if step7 {
+        let effect = effects::of_statement(english, operand)?;
+        return Some(effect.markdown(&effects::STEP7_BITS));
+    }
     let calls_a_block = ["PB", "FB", "SB", "OB", "FX"]
         .iter()
         .any(|block| operand.to_uppercase().starts_with(block));

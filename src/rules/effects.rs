@@ -18,6 +18,8 @@ pub struct Effect {
     pub writes: &'static str,
     /// What the operation keeps for later, where it keeps bits aside (empty for none).
     pub keeps: &'static str,
+    /// Where the operand changes the rows (empty for none).
+    pub note: &'static str,
 }
 
 const fn effect(reads: &'static str, writes: &'static str) -> Effect {
@@ -25,6 +27,7 @@ const fn effect(reads: &'static str, writes: &'static str) -> Effect {
         reads,
         writes,
         keeps: "",
+        note: "",
     }
 }
 
@@ -34,10 +37,20 @@ const fn keeping(writes: &'static str, keeps: &'static str) -> Effect {
         reads: "---------",
         writes,
         keeps,
+        note: "",
     }
 }
 
-/// The operations (English words) and their effect.
+/// A shift or rotate: a count of 0 changes nothing, the status bits included.
+const fn shifting(reads: &'static str, writes: &'static str) -> Effect {
+    Effect {
+        note: "a count of 0 changes nothing, the status bits included",
+        ..effect(reads, writes)
+    }
+}
+
+/// The operations (English words; with the operand where it makes the difference) and their
+/// effect.
 const TABLE: &[(&[&str], Effect)] = &[
     (&["A", "AN"], effect("-----x-xx", "-----xxx1")),
     (&["O", "ON", "X", "XN"], effect("-------xx", "-----0xx1")),
@@ -48,6 +61,7 @@ const TABLE: &[(&[&str], Effect)] = &[
             "BR, RLO, OR, /FC and the operation go on the nesting stack; `)` combines with them",
         ),
     ),
+    (&[")"], effect("-------x-", "x----x1x1")),
     (&["=", "S", "R"], effect("-------x-", "-----0x-0")),
     (&["SET"], effect("---------", "-----0110")),
     (&["CLR"], effect("---------", "-----0000")),
@@ -94,7 +108,7 @@ const TABLE: &[(&[&str], Effect)] = &[
     ),
     (
         &["SSI", "SSD", "SLW", "SRW", "SLD", "SRD", "RLD", "RRD"],
-        effect("---------", "-xx0-----"),
+        shifting("---------", "-xx0-----"),
     ),
     (&["RLDA", "RRDA"], effect("-x-------", "-x00-----")),
     (
@@ -120,6 +134,8 @@ const TABLE: &[(&[&str], Effect)] = &[
         &[")MCR"],
         keeping("-----01-0", "takes the last entry off the MCR stack"),
     ),
+    (&["L STW"], effect("xxxxxxxxx", "---------")),
+    (&["T STW"], effect("---------", "xxxxxxxxx")),
     (
         &[
             "L", "LC", "T", "LAR1", "LAR2", "TAR1", "TAR2", "CAR", "+AR1", "+AR2", "+", "ABS",
@@ -206,6 +222,12 @@ pub fn step5_all() -> impl Iterator<Item = (&'static str, Effect)> {
     own.chain(twins)
 }
 
+/// The effect of a STEP 7 statement: its operation's English word and its operand, as written.
+pub fn of_statement(english: &str, operand: &str) -> Option<Effect> {
+    let operand = operand.trim().trim_end_matches(';').trim().to_uppercase();
+    of(&format!("{english} {operand}")).or_else(|| of(english))
+}
+
 /// The effect of the STEP 7 operation written `english` (the English word, upper case).
 pub fn of(english: &str) -> Option<Effect> {
     TABLE
@@ -243,6 +265,9 @@ impl Effect {
         if !self.keeps.is_empty() {
             table.push_str(&format!("\n\nKeeps: {}.", self.keeps));
         }
+        if !self.note.is_empty() {
+            table.push_str(&format!("\n\nNote: {}.", self.note));
+        }
         table
     }
 }
@@ -259,6 +284,13 @@ mod tests {
             assert!(effect.reads.chars().all(|c| "x-".contains(c)), "{word}");
             assert!(effect.writes.chars().all(|c| "x-01s".contains(c)), "{word}");
         }
+    }
+
+    #[test]
+    fn the_status_word_as_operand_has_its_own_row() {
+        assert_eq!(of_statement("T", " STW;").unwrap().writes, "xxxxxxxxx");
+        assert_eq!(of_statement("L", "stw").unwrap().reads, "xxxxxxxxx");
+        assert_eq!(of_statement("T", "MW 2").unwrap().writes, "---------");
     }
 
     #[test]

@@ -14,6 +14,16 @@ use awl::vm::Cpu;
 use awl::vm::cycle::{RunLimit, RunOutcome};
 use awl::vm::interrupts::{Engine, EngineConfig, Scheduled};
 
+/// The interrupt OBs a test requests on `cpu`: not the S5-95F's OB 13, which its own timing
+/// drives, nor the error OBs 82 and 85, which the CPU starts itself.
+pub fn requestable_obs(cpu: &profile::Profile) -> Vec<u8> {
+    cpu.interrupt_obs
+        .iter()
+        .map(|entry| entry.ob)
+        .filter(|ob| ![13, 82, 85].contains(ob))
+        .collect()
+}
+
 /// Compiles `source` for `cpu` (it must be free of errors) and runs it.
 pub fn run_with(
     source: &str,
