@@ -22,25 +22,7 @@ fn python() -> Option<PathBuf> {
     found.then_some(python)
 }
 
-const PLANT: &str = "OB 1
-      A     -START
-      JU    FB 5
-NAME :MOTOR
-EIN  :I 0.0
-AUS  :Q 4.0
-      BE
-
-FB 5
-NAME :MOTOR
-DES  :EIN  I BI
-DES  :AUS  Q BI
-      A  =EIN
-      JC =M001
-      R  =AUS
-      BEU
-M001 :S  =AUS
-      BE
-";
+const PLANT: &str = include_str!("inputs/lsp/plant.awl");
 
 #[test]
 fn a_real_client_gets_diagnostics_hover_and_definitions() {

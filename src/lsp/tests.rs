@@ -5,25 +5,8 @@ use std::path::{Path, PathBuf};
 use lsp_server::{Connection, Message, Notification, Request, RequestId, Response};
 use serde_json::{Value, json};
 
-const PLANT: &str = "OB 1
-      A     -START
-      JU    FB 5
-NAME :MOTOR
-EIN  :I 0.0
-AUS  :Q 4.0
-      BE
-
-FB 5
-NAME :MOTOR
-DES  :EIN  I BI
-DES  :AUS  Q BI
-      A  =EIN
-      JC =M001
-      R  =AUS
-      BEU
-M001 :S  =AUS
-      BE
-";
+/// A STEP 5 plant: OB 1 calls FB 5 with parameters; the FB jumps to a label.
+const PLANT: &str = include_str!("../../tests/inputs/lsp/plant.awl");
 
 const LIST: &str = "I 0.0     START     start button (green)\nQ 4.0     LAMP      running lamp\n";
 
