@@ -2,24 +2,13 @@
 //! else `python3`) starts the binary and talks to it over stdio. Where the package is missing
 //! the test says so and passes.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 
 fn python() -> Option<PathBuf> {
-    let python =
-        std::env::var_os("AWL_PYTHON").map_or_else(|| PathBuf::from("python3"), PathBuf::from);
-    let found = Command::new(&python)
-        .args(["-c", "import pytest_lsp"])
-        .stderr(Stdio::null())
-        .status()
-        .is_ok_and(|status| status.success());
-    if !found {
-        eprintln!(
-            "skipped: pytest-lsp is not installed for {} (set AWL_PYTHON; .ci/run installs it)",
-            python.display()
-        );
-    }
-    found.then_some(python)
+    common::python::with("pytest_lsp", "pytest-lsp is")
 }
 
 const PLANT: &str = include_str!("inputs/lsp/plant.awl");

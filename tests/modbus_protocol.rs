@@ -2,6 +2,8 @@
 //! its requests from plain byte arrays, and pymodbus scripts (tests/clients/modbus_*.py) as the
 //! clients. Without pymodbus the script tests say so and pass.
 
+mod common;
+
 use std::collections::HashMap;
 use std::io::Read;
 use std::net::{SocketAddr, TcpStream};
@@ -134,15 +136,9 @@ impl Server {
 
     /// Runs a client script with the server's port; false when pymodbus is not there.
     fn client(&self, script: &str) -> bool {
-        let python = std::env::var("AWL_PYTHON").unwrap_or_else(|_| "python3".into());
-        let has_pymodbus = Command::new(&python)
-            .args(["-c", "import pymodbus"])
-            .output()
-            .is_ok_and(|output| output.status.success());
-        if !has_pymodbus {
-            eprintln!("skipped: no pymodbus for {python} (set AWL_PYTHON to a Python that has it)");
+        let Some(python) = common::python::with("pymodbus", "pymodbus is") else {
             return false;
-        }
+        };
         let clients = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/clients");
         let output = Command::new(&python)
             .arg(clients.join(script))

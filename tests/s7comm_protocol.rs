@@ -3,9 +3,11 @@
 //! at `AWL_PYTHON`, else `python3`; skipped when python-snap7 is not installed) and raw packets
 //! over a socket. All traffic stays on 127.0.0.1.
 
+mod common;
+
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
@@ -195,26 +197,18 @@ fn settings() -> Settings {
 }
 
 /// The Python with python-snap7, or `None` (and a note) when there is none.
-fn python() -> Option<String> {
-    let python = std::env::var("AWL_PYTHON").unwrap_or_else(|_| "python3".to_string());
-    let found = Command::new(&python)
-        .args(["-c", "import snap7"])
-        .output()
-        .is_ok_and(|output| output.status.success());
-    if !found {
-        eprintln!("skipped: python-snap7 is not installed for {python} (set AWL_PYTHON)");
-    }
-    found.then_some(python)
+fn python() -> Option<PathBuf> {
+    common::python::with("snap7", "python-snap7 is")
 }
 
-fn run_script(python: &str, script: &str, args: &[String]) -> Output {
+fn run_script(python: &Path, script: &str, args: &[String]) -> Output {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/clients")
         .join(script);
     Command::new(python).arg(path).args(args).output().unwrap()
 }
 
-fn assert_script(python: &str, script: &str, args: &[String]) {
+fn assert_script(python: &Path, script: &str, args: &[String]) {
     let output = run_script(python, script, args);
     assert!(
         output.status.success(),

@@ -2,6 +2,8 @@
 //! `python3`) talk to the binary on 127.0.0.1, on ports the system picks. Where the clients
 //! are missing, the tests that need them say so and pass; `.ci/run` installs them.
 
+mod common;
+
 use std::io::{BufRead, BufReader, Read};
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
@@ -17,20 +19,7 @@ fn repo(path: &str) -> PathBuf {
 
 /// The Python with both clients, or `None` (said once per test) where they are missing.
 fn python() -> Option<PathBuf> {
-    let python =
-        std::env::var_os("AWL_PYTHON").map_or_else(|| PathBuf::from("python3"), PathBuf::from);
-    let found = Command::new(&python)
-        .args(["-c", "import snap7, pymodbus"])
-        .stderr(Stdio::null())
-        .status()
-        .is_ok_and(|status| status.success());
-    if !found {
-        eprintln!(
-            "skipped: python-snap7 and pymodbus are not installed for {} (set AWL_PYTHON; .ci/run installs them)",
-            python.display()
-        );
-    }
-    found.then_some(python)
+    common::python::with("snap7, pymodbus", "python-snap7 and pymodbus are")
 }
 
 /// A running `awl serve` and the ports it printed.
