@@ -1,8 +1,8 @@
 //! Which status bits each STEP 7 operation reads and which it writes, as the reference manual
 //! lists them for each instruction ("Statement List (STL) for S7-300 and S7-400 Programming",
-//! the status word rows of each instruction): a description of the rules the VM executes, for
-//! the editor's hover and the docs. A test runs every operation of the table on the VM with
-//! many status words and checks the table against what the VM does.
+//! the status word rows of each instruction), and each STEP 5 operation on the bits its CPU
+//! has: a description of the rules the VM executes, for the editor's hover. Tests run every
+//! operation of the tables on the VM with many status words and check each cell.
 
 /// The status word's bits in the manual's order, left to right.
 pub const BITS: [&str; 9] = ["BR", "CC 1", "CC 0", "OV", "OS", "OR", "STA", "RLO", "/FC"];
@@ -146,8 +146,8 @@ const TABLE: &[(&[&str], Effect)] = &[
     ),
 ];
 
-/// STEP 5 operations the VM runs as the STEP 7 operation beside them (a test compares what
-/// the two compile to): they have that operation's effect, on the bits a STEP 5 CPU has.
+/// STEP 5 operations with the effect of the STEP 7 operation beside them, on the bits a STEP 5
+/// CPU has (the STEP 5 test runs each on the VM).
 const STEP5_TWINS: &[(&str, &str)] = &[
     ("A", "A"),
     ("AN", "AN"),
