@@ -60,6 +60,7 @@ async def test_errors_arrive_and_clear_when_fixed(client: LanguageClient):
     error = found[0]
     assert error.severity == types.DiagnosticSeverity.Error
     assert str(error.code).startswith("awl::")
+    assert error.code_description.href.startswith("file://"), "the code links to its page"
     assert error.range.start.line == 14
     client.text_document_did_change(
         types.DidChangeTextDocumentParams(
@@ -76,6 +77,7 @@ async def test_hover_on_an_operation_and_a_symbol(client: LanguageClient):
     operation = await client.text_document_hover_async(types.HoverParams(**vars_of(at(1, 6))))
     assert "`U`" in operation.contents.value
     assert "s5-115u" in operation.contents.value
+    assert "| reads | - | - | - | x | x | x |" in operation.contents.value, "the status bits"
     symbol = await client.text_document_hover_async(types.HoverParams(**vars_of(at(1, 13))))
     assert "I 0.0" in symbol.contents.value
     assert "start button" in symbol.contents.value
