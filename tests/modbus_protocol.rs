@@ -4,7 +4,6 @@
 
 mod common;
 
-use std::collections::HashMap;
 use std::io::Read;
 use std::net::{SocketAddr, TcpStream};
 use std::path::Path;
@@ -14,13 +13,8 @@ use std::thread;
 use std::time::Duration;
 
 use awl::serve::modbus::{Map, Table, serve};
-use awl::serve::request::{Area, Item, ItemError, ItemResult, Request};
-
-/// The areas of the fake CPU, filled as tests/clients/modbus_common.py expects them.
-struct Memory {
-    areas: HashMap<Area, Vec<u8>>,
-    read_only: bool,
-}
+use awl::serve::request::{Area, Request};
+use common::fake_memory::FakeMemory;
 
 fn pattern(size: usize, factor: usize, offset: usize) -> Vec<u8> {
     (0..size)
@@ -28,63 +22,21 @@ fn pattern(size: usize, factor: usize, offset: usize) -> Vec<u8> {
         .collect()
 }
 
-impl Memory {
-    fn new(read_only: bool) -> Memory {
-        let areas = HashMap::from([
-            (Area::Inputs, pattern(128, 7, 3)),
-            (Area::Outputs, pattern(128, 11, 1)),
-            (Area::Flags, pattern(256, 13, 5)),
-            (Area::DataBlock(1), pattern(20, 17, 2)),
-        ]);
-        Memory { areas, read_only }
-    }
-
-    fn bytes(&mut self, area: Area, start: u32, length: u32) -> Result<&mut [u8], ItemError> {
-        let bytes = self.areas.get_mut(&area).ok_or(match area {
-            Area::DataBlock(_) => ItemError::NoSuchBlock,
-            _ => ItemError::NotSupported,
-        })?;
-        let (start, end) = (start as usize, (start + length) as usize);
-        bytes.get_mut(start..end).ok_or(ItemError::OutOfRange)
-    }
-
-    fn writable(&self) -> Result<(), ItemError> {
-        if self.read_only {
-            Err(ItemError::ReadOnly)
-        } else {
-            Ok(())
-        }
-    }
-
-    fn serve(&mut self, item: Item) -> ItemResult {
-        match item {
-            Item::Read(range) => Ok(self.bytes(range.area, range.start, range.length)?.to_vec()),
-            Item::Write { range, bytes } => {
-                self.writable()?;
-                self.bytes(range.area, range.start, range.length)?
-                    .copy_from_slice(&bytes);
-                Ok(Vec::new())
-            }
-            Item::ReadBit { area, byte, bit } => Ok(vec![self.bytes(area, byte, 1)?[0] >> bit & 1]),
-            Item::WriteBit {
-                area,
-                byte,
-                bit,
-                value,
-            } => {
-                self.writable()?;
-                let byte = &mut self.bytes(area, byte, 1)?[0];
-                *byte = *byte & !(1 << bit) | u8::from(value) << bit;
-                Ok(Vec::new())
-            }
-        }
-    }
+/// The areas of the fake CPU, filled as tests/clients/modbus_common.py expects them.
+fn memory(read_only: bool) -> FakeMemory {
+    let areas = [
+        (Area::Inputs, pattern(128, 7, 3)),
+        (Area::Outputs, pattern(128, 11, 1)),
+        (Area::Flags, pattern(256, 13, 5)),
+        (Area::DataBlock(1), pattern(20, 17, 2)),
+    ];
+    FakeMemory::new(areas, read_only)
 }
 
 /// A server on a free port of 127.0.0.1, its fake CPU, and what the CPU saw.
 struct Server {
     address: SocketAddr,
-    memory: Arc<Mutex<Memory>>,
+    memory: Arc<Mutex<FakeMemory>>,
     /// The connections opened and closed: (client number, open).
     connections: Arc<Mutex<Vec<(u32, bool)>>>,
     /// Kept for the server's life: dropping it ends the server.
@@ -103,7 +55,7 @@ impl Server {
             .expect("a free port");
         let address = listener.local_addr().expect("its address");
         let (requests, mut served) = awl::serve::request::channel();
-        let memory = Arc::new(Mutex::new(Memory::new(read_only)));
+        let memory = Arc::new(Mutex::new(memory(read_only)));
         let connections = Arc::new(Mutex::new(Vec::new()));
         let (cpu_memory, cpu_connections) = (memory.clone(), connections.clone());
         thread::spawn(move || {
@@ -131,7 +83,7 @@ impl Server {
     }
 
     fn byte(&self, area: Area, at: usize) -> u8 {
-        self.memory.lock().unwrap().areas[&area][at]
+        self.memory.lock().unwrap().area(area)[at]
     }
 
     /// Runs a client script with the server's port; false when pymodbus is not there.

@@ -12,11 +12,9 @@ use std::process::{Command, Output};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-use awl::serve::request::{
-    Area, Control, ControlError, CpuMode, CpuStatus, Item, ItemError, ItemResult, Range, Received,
-    Request,
-};
+use awl::serve::request::{Area, Control, ControlError, CpuMode, CpuStatus, Received, Request};
 use awl::serve::s7comm::{Settings, serve_with};
+use common::fake_memory::FakeMemory;
 
 /// The fake CPU's clock: 2024-05-17 13:45:30.250, in milliseconds since 1990-01-01.
 const CLOCK_MS: i64 = 12_555 * 86_400_000 + ((13 * 60 + 45) * 60 + 30) * 1000 + 250;
@@ -24,12 +22,7 @@ const CLOCK_MS: i64 = 12_555 * 86_400_000 + ((13 * 60 + 45) * 60 + 30) * 1000 + 
 /// The fake CPU: DB 1 of 100 bytes (DB 2 absent), 128 bytes of inputs, outputs and flags, 16
 /// timers and 16 counters.
 struct Memory {
-    inputs: Vec<u8>,
-    outputs: Vec<u8>,
-    flags: Vec<u8>,
-    db1: Vec<u8>,
-    timers: Vec<u8>,
-    counters: Vec<u8>,
+    areas: FakeMemory,
     mode: CpuMode,
     read_only: bool,
     controls: Vec<Control>,
@@ -39,75 +32,20 @@ struct Memory {
 
 impl Memory {
     fn new(read_only: bool) -> Memory {
+        let areas = [
+            (Area::Inputs, vec![0; 128]),
+            (Area::Outputs, vec![0; 128]),
+            (Area::Flags, vec![0; 128]),
+            (Area::DataBlock(1), vec![0; 100]),
+            (Area::Timers, vec![0; 32]),
+            (Area::Counters, vec![0; 32]),
+        ];
         Memory {
-            inputs: vec![0; 128],
-            outputs: vec![0; 128],
-            flags: vec![0; 128],
-            db1: vec![0; 100],
-            timers: vec![0; 32],
-            counters: vec![0; 32],
+            areas: FakeMemory::new(areas, read_only),
             mode: CpuMode::Run,
             read_only,
             controls: Vec::new(),
             connections: Vec::new(),
-        }
-    }
-
-    fn area(&mut self, area: Area) -> Result<&mut Vec<u8>, ItemError> {
-        match area {
-            Area::Inputs => Ok(&mut self.inputs),
-            Area::Outputs => Ok(&mut self.outputs),
-            Area::Flags => Ok(&mut self.flags),
-            Area::DataBlock(1) => Ok(&mut self.db1),
-            Area::DataBlock(_) => Err(ItemError::NoSuchBlock),
-            Area::Timers => Ok(&mut self.timers),
-            Area::Counters => Ok(&mut self.counters),
-        }
-    }
-
-    /// The byte range of `range`: two bytes a timer or counter.
-    fn bytes(&mut self, range: Range) -> Result<&mut [u8], ItemError> {
-        let scale = match range.area {
-            Area::Timers | Area::Counters => 2,
-            _ => 1,
-        };
-        let (start, length) = (range.start as usize * scale, range.length as usize * scale);
-        self.area(range.area)?
-            .get_mut(start..start + length)
-            .ok_or(ItemError::OutOfRange)
-    }
-
-    fn byte(&mut self, area: Area, byte: u32) -> Result<&mut u8, ItemError> {
-        if matches!(area, Area::Timers | Area::Counters) {
-            return Err(ItemError::NotSupported);
-        }
-        self.area(area)?
-            .get_mut(byte as usize)
-            .ok_or(ItemError::OutOfRange)
-    }
-
-    fn serve_item(&mut self, item: Item) -> ItemResult {
-        let writing = matches!(item, Item::Write { .. } | Item::WriteBit { .. });
-        if writing && self.read_only {
-            return Err(ItemError::ReadOnly);
-        }
-        match item {
-            Item::Read(range) => Ok(self.bytes(range)?.to_vec()),
-            Item::Write { range, bytes } => {
-                self.bytes(range)?.copy_from_slice(&bytes);
-                Ok(Vec::new())
-            }
-            Item::ReadBit { area, byte, bit } => Ok(vec![(*self.byte(area, byte)? >> bit) & 1]),
-            Item::WriteBit {
-                area,
-                byte,
-                bit,
-                value,
-            } => {
-                let byte = self.byte(area, byte)?;
-                *byte = (*byte & !(1 << bit)) | (u8::from(value) << bit);
-                Ok(Vec::new())
-            }
         }
     }
 
@@ -127,7 +65,7 @@ impl Memory {
     fn serve(&mut self, request: Request) {
         match request {
             Request::Access { items, reply, .. } => {
-                let results = items.into_iter().map(|item| self.serve_item(item));
+                let results = items.into_iter().map(|item| self.areas.serve(item));
                 let _ = reply.send(results.collect());
             }
             Request::Status { reply } => {
@@ -231,11 +169,14 @@ fn python_snap7_reads_and_writes_every_area_and_width_on_rack_0_slot_1_and_2() {
     assert_script(&python, "s7_areas.py", &args(&[&port, &0, &1, &480, &480]));
     assert_script(&python, "s7_areas.py", &args(&[&port, &0, &2, &2000, &960]));
     let memory = lock(&server.memory);
-    assert_eq!(&memory.db1[96..], b"AWL!");
-    assert_eq!(&memory.db1[80..83], &[0xA1, 0xA2, 0xA3]);
-    assert_eq!(&memory.flags[110..112], &[0xBE, 0xEF]);
+    assert_eq!(&memory.areas.area(Area::DataBlock(1))[96..], b"AWL!");
     assert_eq!(
-        &memory.timers[26..32],
+        &memory.areas.area(Area::DataBlock(1))[80..83],
+        &[0xA1, 0xA2, 0xA3]
+    );
+    assert_eq!(&memory.areas.area(Area::Flags)[110..112], &[0xBE, 0xEF]);
+    assert_eq!(
+        &memory.areas.area(Area::Timers)[26..32],
         &[0x01, 0x23, 0x02, 0x50, 0x09, 0x99]
     );
 }

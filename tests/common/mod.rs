@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod browser;
+pub mod fake_memory;
 pub mod python;
 pub mod step7;
 
