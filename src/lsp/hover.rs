@@ -105,10 +105,11 @@ fn status_table(
         let effect = effects::of_statement(english, operand)?;
         return Some(effect.markdown(&effects::STEP7_BITS));
     }
-    let calls_a_block = ["PB", "FB", "SB", "OB", "FX"]
-        .iter()
-        .any(|block| operand.to_uppercase().starts_with(block));
-    if calls_a_block {
+    let kind: String = operand
+        .chars()
+        .take_while(char::is_ascii_alphabetic)
+        .collect();
+    if mnemonics::BlockKind::from_word(&kind).is_some() {
         return None;
     }
     Some(effects::of_step5(english)?.markdown(&effects::STEP5_BITS))
