@@ -3,6 +3,7 @@
 //! random simulated times, run in every execution mode of [`EXECUTIONS`] and in both
 //! interrupt-point modes. Every mode must write the same trace (the jsonl events) and leave the
 //! same state: memory, registers, time, operation count, and the STOP with its cause and place.
+//! Native stretches (a loop's passes in one call) run against the same program interpreted.
 //! Each run is made twice, traced and untraced, as the VM runs a traced program in loops of
 //! their own.
 //!
@@ -43,8 +44,13 @@ struct Execution {
 /// way of running is one more entry.
 const EXECUTIONS: &[Execution] = &[
     Execution {
-        name: "optimised (specialised FB bodies, fused pairs)",
+        name: "optimised (specialised FB bodies, fused pairs, native stretches)",
         program: |program| program,
+        run: Cpu::run,
+    },
+    Execution {
+        name: "optimised, every op interpreted",
+        program: Program::interpreted,
         run: Cpu::run,
     },
     Execution {
@@ -110,7 +116,7 @@ enum Step {
     Skip(u8, Vec<Step>),
     /// The steps run this many times, counted down in a flag word of their own.
     Loop(u8, Vec<Step>),
-    /// A jump to itself: the cycle meets the watchdog.
+    /// A jump to itself (or to three NOPs before it): the cycle meets the watchdog.
     Forever,
 }
 
@@ -333,9 +339,17 @@ impl Writer<'_> {
             }
             // Where jumps are not allowed, a skip is its steps and a loop one pass of them.
             Step::Skip(_, body) | Step::Loop(_, body) => self.steps(body),
+            // A jump to itself, or to a few operations before it.
             Step::Forever if d.jumps(self.index) => {
                 let label = self.new_label();
-                self.text += &d.line(Some(&label), &format!("JU {}", d.target(&label)));
+                if self.text.len().is_multiple_of(2) {
+                    self.text += &d.line(Some(&label), &format!("JU {}", d.target(&label)));
+                } else {
+                    self.text += &d.line(Some(&label), "NOP 0");
+                    self.text += &d.line(None, "NOP 0");
+                    self.text += &d.line(None, "NOP 0");
+                    self.text += &d.line(None, &format!("JU {}", d.target(&label)));
+                }
             }
             Step::Forever => {}
         }
@@ -616,7 +630,22 @@ impl Dialect for Step7 {
     }
 
     fn counted(&self, passes: u8, counter: &str, label: &str, body: String) -> String {
-        // STEP 7's own loop: `LOOP` counts ACCU 1 down and jumps while it is not 0.
+        // STEP 7's own loop: `LOOP` counts ACCU 1 down and jumps while it is not 0; or, for an
+        // even count, the counter counted down by hand and `JP` back, as STEP 5 does.
+        if passes.is_multiple_of(2) {
+            return [
+                self.line(None, &format!("L  {passes}")),
+                self.line(None, &format!("T  {counter}")),
+                self.line(Some(label), "NOP 0"),
+                body,
+                self.line(None, &format!("L  {counter}")),
+                self.line(None, "L  1"),
+                self.line(None, "-I"),
+                self.line(None, &format!("T  {counter}")),
+                self.line(None, &format!("JP {label}")),
+            ]
+            .concat();
+        }
         [
             self.line(None, &format!("L  {passes}")),
             self.line(Some(label), &format!("T  {counter}")),

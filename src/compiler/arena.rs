@@ -22,6 +22,9 @@ pub struct Arena {
     /// Where the body an FB runs with each actual-parameter list starts: its specialised body,
     /// or its own.
     list_start: Box<[u32]>,
+    /// Whether the VM may run straight-line stretches of `ops` as native code (see
+    /// `vm::native`): an optimised arena, unless the program asks to be interpreted.
+    pub native: bool,
 }
 
 impl Arena {
@@ -87,6 +90,7 @@ impl Arena {
                 *op = arena.located(*op);
             }
         }
+        arena.native = optimised;
         arena.ops = ops.into_boxed_slice();
         arena.plain = plain.into_boxed_slice();
         arena.times = times.into_boxed_slice();

@@ -112,6 +112,30 @@ pub enum JumpCondition {
     Overflow,
 }
 
+impl JumpCondition {
+    /// Whether the jump is taken with `status`, which the jump then changes as it does.
+    #[inline(always)]
+    pub fn taken(self, status: &mut crate::rules::status::Status) -> bool {
+        use crate::rules::jump::Condition;
+        let status_before = *status;
+        let taken = match self {
+            JumpCondition::Always => true,
+            JumpCondition::Rlo => status.rlo(),
+            // The conditions on CC1, CC0 and OV, one rule for both dialects.
+            JumpCondition::Zero => Condition::Zero.holds(status_before, false),
+            // `JN` jumps on CC1 ≠ CC0 only, unlike the condition `<>0`.
+            JumpCondition::NotZero => status.cc1() != status.cc0(),
+            JumpCondition::Positive => Condition::Positive.holds(status_before, false),
+            JumpCondition::Minus => Condition::Negative.holds(status_before, false),
+            JumpCondition::Overflow => Condition::Overflow.holds(status_before, false),
+        };
+        if self == JumpCondition::Rlo {
+            status.after_jump();
+        }
+        taken
+    }
+}
+
 /// Where `DO` takes the parameter of the next operation from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum IndirectSource {
@@ -328,6 +352,9 @@ pub enum Op {
         op: OpCode,
         operand: u16,
     },
+    /// A straight-line stretch run as native code, in the VM's code only (see `vm::native`):
+    /// the stretch's index there.
+    Native(u32),
 }
 
 // Groups of ops as patterns (with `Op` in scope where they are used), for the matches that

@@ -66,6 +66,6 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
             t.other
         }
         // Never compiled: their ops are timed one by one.
-        Op::End | fused_pairs!() => 0,
+        Op::End | Op::Native(_) | fused_pairs!() => 0,
     }
 }

@@ -100,6 +100,9 @@ pub struct Program {
     pub s7: crate::step7::bytecode::S7Tables,
     /// What the STEP 5 program's checks asked of the CPU (empty for a STEP 7 program).
     pub needs: Needs,
+    /// The native code of the arena's straight-line stretches, made when a CPU is first made
+    /// for the program (see `vm::native`).
+    pub native_code: std::sync::OnceLock<Option<std::sync::Arc<crate::vm::native::NativeCode>>>,
 }
 
 /// An operand's places are the program's: the address model knows no compiled program.
@@ -149,6 +152,7 @@ impl Program {
             local_bytes,
             s7,
             needs: Needs::default(),
+            native_code: std::sync::OnceLock::new(),
         }
     }
 
@@ -161,6 +165,15 @@ impl Program {
     /// fused pairs. Tests compare the two.
     pub fn unoptimised(mut self) -> Self {
         self.arena = arena::Arena::build(&self.blocks, &self.param_lists, self.layout, false);
+        self.native_code = std::sync::OnceLock::new();
+        self
+    }
+
+    /// The program with every op interpreted: optimised, but no stretch runs as native code.
+    /// Tests compare it with the native stretches.
+    pub fn interpreted(mut self) -> Self {
+        self.arena.native = false;
+        self.native_code = std::sync::OnceLock::new();
         self
     }
 

@@ -547,9 +547,9 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
             };
             format!("{verb} ={name} (parameter {})", param + 1)
         }
-        // Only in the VM's arena (fused pairs, direct calls, the end marker): never in a
+        // Only in the VM's code (fused pairs, direct calls, native stretches, the end marker): never in a
         // compiled block, which is what the dump shows.
-        Op::End | Op::CallAt { .. } | fused_pairs!() => format!("{op:?}"),
+        Op::End | Op::CallAt { .. } | Op::Native(_) | fused_pairs!() => format!("{op:?}"),
     }
 }
 

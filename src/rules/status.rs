@@ -297,6 +297,25 @@ static STEP7_SCANNED: [[u8; 512]; 6] = {
 };
 
 impl Status {
+    /// The status as one byte, for native code that keeps it in a register.
+    pub fn bits(self) -> u8 {
+        self.bits
+    }
+
+    pub fn from_bits(bits: u8) -> Status {
+        Status { bits }
+    }
+
+    /// The table [`Status::scanned`] looks `logic` up in, by `status << 1 | signal state`.
+    pub fn scan_table(logic: Logic) -> &'static [u8; 512] {
+        &SCANNED[logic as usize]
+    }
+
+    /// The table [`Status::scanned_step7`] looks `combination` up in.
+    pub fn step7_scan_table(combination: Combination) -> &'static [u8; 512] {
+        &STEP7_SCANNED[combination as usize]
+    }
+
     /// STEP 7's `A AN O ON X XN` with a bit operand whose signal state is `value`, in one
     /// table lookup.
     #[inline(always)]

@@ -547,6 +547,7 @@ impl Cpu {
             | Op::Indirect { .. }
             | Op::Formal { .. }
             | Op::End
+            | Op::Native(_)
             | fused_pairs!() => {
                 unreachable!("{op:?} is executed by the loop itself")
             }

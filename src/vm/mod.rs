@@ -14,6 +14,8 @@ pub mod float;
 mod integral;
 pub mod interrupts;
 mod io_trace;
+#[cfg(all(feature = "jit", not(target_arch = "wasm32")))]
+pub mod native;
 pub mod place;
 pub mod probe;
 pub mod pulse;
@@ -26,6 +28,51 @@ pub mod system_ops;
 pub mod timers;
 
 pub use crate::rules::{arith, status};
+
+/// What a native stretch ran: `passes` of its loop (each the stretch and the jump back), and
+/// whether it ended on the jump not taken (see [`native`]).
+#[derive(Debug, Clone, Copy)]
+pub struct NativeRun {
+    pub passes: u32,
+    pub left_loop: bool,
+}
+
+/// Without the `jit` feature, and on wasm32, there is no native code: every op is interpreted.
+#[cfg(not(all(feature = "jit", not(target_arch = "wasm32"))))]
+pub mod native {
+    use super::status::Status;
+    use crate::compiler::{Op, Program};
+
+    #[derive(Debug)]
+    pub struct NativeCode {
+        pub code: Box<[Op]>,
+        pub stretches: Box<[Stretch]>,
+    }
+
+    #[derive(Debug, Clone, Copy)]
+    pub struct Stretch {
+        pub len: u32,
+        pub first: Op,
+        pub pass_ns: u64,
+    }
+
+    impl NativeCode {
+        pub fn run(
+            &self,
+            _: u32,
+            _: u32,
+            _: &mut Status,
+            _: &mut [u32; 4],
+            _: &mut [u8],
+        ) -> Option<super::NativeRun> {
+            None
+        }
+    }
+
+    pub fn compile(_: &Program) -> Option<NativeCode> {
+        None
+    }
+}
 
 use std::sync::Arc;
 
@@ -325,6 +372,9 @@ impl Cpu {
                 data_blocks[usize::from(block.id.number)] = Some(block.words.clone());
             }
         }
+        program
+            .native_code
+            .get_or_init(|| native::compile(&program).map(Arc::new));
         let levels_capacity = profile.interrupt_obs.len() + 2;
         Cpu {
             image: vec![0u8; IMAGE_MEMORY]

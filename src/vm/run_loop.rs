@@ -12,11 +12,12 @@ use std::sync::Arc;
 
 use crate::compiler::bytecode::*;
 use crate::compiler::fuse;
-use crate::rules::jump::Condition;
 use crate::trace::Event;
 
 use super::arith;
+use super::native::NativeCode;
 use super::probe::Flow;
+use super::status::Status;
 use super::stop::{StopCause, StopDetail};
 use super::{Cpu, Exit, Frame, LastStretch, Point, StretchKind};
 
@@ -36,19 +37,33 @@ impl Cpu {
         if self.probe.is_some() || self.tracer.enabled {
             return self.execute_watched(operation_points);
         }
-        match (self.program.s7.step7, operation_points) {
-            (true, true) => self.run_loop::<true, false, false, true>(),
-            (true, false) => self.run_loop::<false, false, false, true>(),
-            (false, true) => self.run_alone::<true, false>(),
-            (false, false) => self.run_alone::<false, false>(),
+        // A program with native stretches runs in loops of its own: the others keep the loop
+        // they had without the stretch's arm (callgrind, `programs/bench/calls`).
+        let native = self.native_code().is_some();
+        match (self.program.s7.step7, operation_points, native) {
+            (true, true, false) => self.run_step7::<true, false>(),
+            (true, true, true) => self.run_step7::<true, true>(),
+            (true, false, false) => self.run_step7::<false, false>(),
+            (true, false, true) => self.run_step7::<false, true>(),
+            (false, true, false) => self.run_alone::<true, false>(),
+            (false, true, true) => self.run_alone::<true, true>(),
+            (false, false, false) => self.run_alone::<false, false>(),
+            (false, false, true) => self.run_alone::<false, true>(),
         }
     }
 
     /// A STEP 5 program's loop, in a function of its own: sharing one with the STEP 7 loops
     /// costs a STEP 5 block call a dozen instructions more (callgrind, `programs/bench/calls`).
     #[inline(never)]
-    fn run_alone<const OPERATION_POINTS: bool, const STEP7: bool>(&mut self) -> Exit {
-        self.run_loop::<OPERATION_POINTS, false, false, STEP7>()
+    fn run_alone<const OPERATION_POINTS: bool, const NATIVE: bool>(&mut self) -> Exit {
+        self.run_loop::<OPERATION_POINTS, false, false, false, NATIVE>()
+    }
+
+    /// A STEP 7 program's loops with native stretches, out of line: inlined beside the others,
+    /// they cost a STEP 7 block call a few instructions more (callgrind, `programs/bench/s7_calls`).
+    #[inline(never)]
+    fn run_step7<const OPERATION_POINTS: bool, const NATIVE: bool>(&mut self) -> Exit {
+        self.run_loop::<OPERATION_POINTS, false, false, true, NATIVE>()
     }
 
     /// The variants that show a probe every operation or trace the block changes, kept out of
@@ -61,14 +76,14 @@ impl Cpu {
             self.probe.is_some(),
             self.program.s7.step7,
         ) {
-            (true, true, false) => self.run_loop::<true, true, true, false>(),
-            (false, true, false) => self.run_loop::<false, true, true, false>(),
-            (true, false, false) => self.run_loop::<true, false, true, false>(),
-            (false, false, false) => self.run_loop::<false, false, true, false>(),
-            (true, true, true) => self.run_loop::<true, true, true, true>(),
-            (false, true, true) => self.run_loop::<false, true, true, true>(),
-            (true, false, true) => self.run_loop::<true, false, true, true>(),
-            (false, false, true) => self.run_loop::<false, false, true, true>(),
+            (true, true, false) => self.run_loop::<true, true, true, false, false>(),
+            (false, true, false) => self.run_loop::<false, true, true, false, false>(),
+            (true, false, false) => self.run_loop::<true, false, true, false, true>(),
+            (false, false, false) => self.run_loop::<false, false, true, false, true>(),
+            (true, true, true) => self.run_loop::<true, true, true, true, false>(),
+            (false, true, true) => self.run_loop::<false, true, true, true, false>(),
+            (true, false, true) => self.run_loop::<true, false, true, true, true>(),
+            (false, false, true) => self.run_loop::<false, false, true, true, true>(),
         }
     }
 
@@ -162,6 +177,7 @@ impl Cpu {
         const STEPPING: bool,
         const TRACING: bool,
         const STEP7: bool,
+        const NATIVE: bool,
     >(
         &mut self,
     ) -> Exit {
@@ -174,7 +190,17 @@ impl Cpu {
         // The fused pairs run as one op, except in the stepping loop, which shows every op;
         // with operation points a pair runs as one only when no point falls between its ops.
         let plain = &arena.plain[..];
-        let code = if STEPPING { plain } else { &arena.ops[..] };
+        // Straight-line stretches run as native code where there is any (see `native`).
+        let native = if NATIVE {
+            program.native_code.get().and_then(Option::as_deref)
+        } else {
+            None
+        };
+        let code = match native {
+            _ if STEPPING => plain,
+            Some(native) => &native.code[..],
+            None => &arena.ops[..],
+        };
         let times = &arena.times[..];
         let mut start = arena.start(self.level.block, self.level.params);
         let mut pc = start + self.level.pc as usize;
@@ -494,21 +520,7 @@ impl Cpu {
                     }
                     Op::Compare(kind) => arith::compare(kind, accu1, accu2, &mut status),
                     Op::Jump(condition, target) => {
-                        let taken = match condition {
-                            JumpCondition::Always => true,
-                            JumpCondition::Rlo => status.rlo(),
-                            // The conditions on CC1, CC0 and OV, one rule for both dialects.
-                            JumpCondition::Zero => Condition::Zero.holds(status, false),
-                            // `JN` jumps on CC1 ≠ CC0 only, unlike the condition `<>0`.
-                            JumpCondition::NotZero => status.cc1() != status.cc0(),
-                            JumpCondition::Positive => Condition::Positive.holds(status, false),
-                            JumpCondition::Minus => Condition::Negative.holds(status, false),
-                            JumpCondition::Overflow => Condition::Overflow.holds(status, false),
-                        };
-                        if condition == JumpCondition::Rlo {
-                            status.after_jump();
-                        }
-                        if taken {
+                        if condition.taken(&mut status) {
                             let jump_pc = at!();
                             let to = start + target as usize;
                             let backward = to < pc;
@@ -644,6 +656,40 @@ impl Cpu {
                         self.write_image(Width::Word, byte, accu1);
                         pc += 1;
                     }
+                    Op::Native(index) if NATIVE => {
+                        let first = pc - 1;
+                        let registers = (status, accu1, accu2);
+                        let Some(native) = native else {
+                            detail = StopDetail::Text("a stretch without native code".into());
+                            break 'run Leave::Stop(StopCause::Bcf, at!());
+                        };
+                        match self.run_stretch(native, index, time_base, first, deadline, registers)
+                        {
+                            Stretched::Ran(ran) => {
+                                (status, accu1, accu2) = ran.registers;
+                                if ran.passes > 0 {
+                                    let passes = u64::from(ran.passes);
+                                    count_base = count_base.wrapping_add(passes * ran.pass_ops);
+                                    time_base = time_base.wrapping_add(passes * ran.pass_ns);
+                                    rebase!();
+                                    // The clock where the last jump back landed.
+                                    pass_start = time_base.wrapping_add(times[first]);
+                                }
+                                pc = ran.resume;
+                            }
+                            Stretched::OpByOp(first_op) if OPERATION_POINTS => {
+                                resolved = first_op;
+                                op = &resolved;
+                                continue 'dispatch;
+                            }
+                            // With block points a stretch always runs: its code comes with the
+                            // code that holds `Native`.
+                            Stretched::OpByOp(_) => {
+                                detail = StopDetail::Text("a stretch without native code".into());
+                                break 'run Leave::Stop(StopCause::Bcf, at!());
+                            }
+                        }
+                    }
                     Op::End => {
                         // Back onto the end, where a block without `BE` stops.
                         pc -= 1;
@@ -730,6 +776,7 @@ impl Cpu {
                     | Op::S7Write(..)
                     | Op::S7ScanPair { .. }
                     | Op::S7ScanWrite { .. }
+                    | Op::Native(_)
                     | Op::EnableInterrupts => {
                         sync!();
                         let result = self.execute_other(*op, at!());
@@ -755,6 +802,84 @@ impl Cpu {
         self.instructions = count_base.wrapping_add(pc as u64);
         exit
     }
+}
+
+/// What became of a native stretch (see `Cpu::run_stretch`).
+enum Stretched {
+    Ran(StretchRan),
+    /// A point falls due inside, or there is no native code: the stretch runs op by op, from
+    /// this op (the arena's first).
+    OpByOp(Op),
+}
+
+struct StretchRan {
+    registers: (Status, u32, u32),
+    /// Whole passes of its loop run (each the stretch and the jump back), and their ops and time.
+    passes: u32,
+    pass_ops: u64,
+    pass_ns: u64,
+    /// Where the loop goes on.
+    resume: usize,
+}
+
+impl Cpu {
+    /// The native code of the program's stretches, if it has any.
+    fn native_code(&self) -> Option<&NativeCode> {
+        self.program.native_code.get().and_then(Option::as_deref)
+    }
+
+    /// Runs the native stretch `index` starting at `first`, out of the loop's line: a loop's
+    /// whole passes while no point falls due in one or at its end, else the stretch once.
+    /// `deadline` is the attention time on the scale of `times` (`u64::MAX` with block points).
+    #[inline(always)]
+    fn run_stretch(
+        &mut self,
+        native: &NativeCode,
+        index: u32,
+        time_base: u64,
+        first: usize,
+        deadline: u64,
+        (status, accu1, accu2): (Status, u32, u32),
+    ) -> Stretched {
+        let Some(stretch) = native.stretches.get(index as usize) else {
+            return Stretched::OpByOp(self.program.arena.ops[first]);
+        };
+        let times = &self.program.arena.times;
+        let len = stretch.len as usize;
+        if times[first + len - 1] >= deadline {
+            return Stretched::OpByOp(stretch.first);
+        }
+        let most = if stretch.pass_ns == 0 {
+            0
+        } else {
+            let clock = time_base.wrapping_add(times[first]);
+            full_passes(self.attention_at, clock, stretch.pass_ns)
+        };
+        let mut status = status;
+        let mut accus = [accu1, accu2, self.level.accu3, self.level.accu4];
+        let image = &mut self.image[..];
+        let Some(ran) = native.run(index, most, &mut status, &mut accus, image) else {
+            return Stretched::OpByOp(stretch.first);
+        };
+        [_, _, self.level.accu3, self.level.accu4] = accus;
+        Stretched::Ran(StretchRan {
+            registers: (status, accus[0], accus[1]),
+            passes: ran.passes,
+            pass_ops: len as u64 + 1,
+            pass_ns: stretch.pass_ns,
+            resume: match (ran.left_loop, ran.passes) {
+                (true, _) => first + len + 1,
+                (false, 0) => first + len,
+                (false, _) => first,
+            },
+        })
+    }
+}
+
+/// How many whole passes of `pass_ns` starting at `clock` end before `attention_at`.
+fn full_passes(attention_at: u64, clock: u64, pass_ns: u64) -> u32 {
+    let before = attention_at.saturating_sub(clock).saturating_sub(1);
+    u32::try_from(before / pass_ns).unwrap_or(u32::MAX)
 }
 
 /// `attention_at` on the scale of the prefix times of a body whose clock is

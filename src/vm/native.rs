@@ -1,0 +1,404 @@
+//! Straight-line stretches as native code. A stretch is a run of ops in one body without a
+//! jump, call, block end or anything else that can fault or leave: bit logic on I, Q and F,
+//! loads and transfers of the image and of constants, 16-bit addition, subtraction and
+//! comparison. Its simulated time is already one difference of the body's prefix times, and no
+//! op in it can stop the CPU, so the loop runs it as one call into code the `awl-jit` crate
+//! compiled, whenever no interrupt point can fall due inside it (with operation points, the
+//! loop checks the stretch's end time once; with block points a stretch holds no point at all).
+//! Otherwise, and where no native code could be made, the ops run one by one as before.
+//!
+//! The stretches are marked in a copy of the arena's code: [`Op::Native`] at a stretch's first
+//! position; every other position keeps its op, so a jump into a stretch runs on from there.
+
+use std::sync::OnceLock;
+
+use awl_jit::{BitAction, Compiler, LoopBack, Registers, Step};
+
+use super::status::Status;
+use super::{IMAGE_MEMORY, NativeRun};
+use crate::compiler::Program;
+use crate::compiler::bytecode::{
+    Arith, Comparison, ImageBit, JumpCondition, Logic, Op, Width, Write,
+};
+use crate::step7::bytecode::S7Code;
+
+/// The shortest stretch that runs as native code: shorter ones run faster op by op, as the
+/// call costs about what half a dozen dispatches do (callgrind, `programs/bench/fb_params`)…
+const SHORTEST: usize = 6;
+/// …but for a loop's stretch, whose passes run in one call.
+const SHORTEST_LOOP: usize = 3;
+
+/// The native code of a program's stretches.
+#[derive(Debug)]
+pub struct NativeCode {
+    /// The arena's code with [`Op::Native`] at each stretch's start.
+    pub code: Box<[Op]>,
+    pub stretches: Box<[Stretch]>,
+    jit: awl_jit::Code,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub struct Stretch {
+    /// How many ops it runs.
+    pub len: u32,
+    /// The arena's op at its start: what runs when the stretch cannot run as a whole.
+    pub first: Op,
+    /// A loop's stretch, which a jump right after it takes back to its start: the simulated
+    /// time of one pass (the stretch and the jump); 0 for any other stretch.
+    pub pass_ns: u64,
+}
+
+impl NativeCode {
+    /// Runs stretch `index` on the registers and the image: up to `most` passes of a loop, or
+    /// the stretch once (see [`awl_jit::Code::run`]); `None` if it could not run.
+    #[inline(always)]
+    pub fn run(
+        &self,
+        index: u32,
+        most: u32,
+        status: &mut Status,
+        accus: &mut [u32; 4],
+        image: &mut [u8],
+    ) -> Option<NativeRun> {
+        let [accu1, accu2, accu3, accu4] = *accus;
+        let mut registers = Registers {
+            accu1,
+            accu2,
+            accu3,
+            accu4,
+            status: u32::from(status.bits()),
+        };
+        let passes = self.jit.run(index as usize, &mut registers, image, most)?;
+        *accus = [
+            registers.accu1,
+            registers.accu2,
+            registers.accu3,
+            registers.accu4,
+        ];
+        *status = Status::from_bits(registers.status as u8);
+        Some(NativeRun {
+            passes: passes.done,
+            left_loop: passes.left_loop,
+        })
+    }
+}
+
+/// The native code of `program`'s stretches; `None` when the program has none, runs op by op
+/// as compiled, or Cranelift cannot write code for this host.
+pub fn compile(program: &Program) -> Option<NativeCode> {
+    if !program.arena.native {
+        return None;
+    }
+    let plain = &program.arena.plain;
+    let mut compiler = Compiler::new(status_bits(), IMAGE_MEMORY).ok()?;
+    let mut code = program.arena.ops.to_vec();
+    let times = &program.arena.times;
+    let mut stretches = Vec::new();
+    for found in find(plain) {
+        let (start, len) = (found.start, found.len);
+        let steps: Vec<Step> = plain[start..start + len]
+            .iter()
+            .filter_map(|op| step(*op))
+            .collect();
+        let index = compiler.add(&steps, found.loop_back.map(loop_back)).ok()?;
+        let jump = start + len;
+        stretches.push(Stretch {
+            len: len as u32,
+            first: code[start],
+            pass_ns: if found.loop_back.is_some() {
+                times[jump + 1] - times[start]
+            } else {
+                0
+            },
+        });
+        code[start] = Op::Native(index as u32);
+    }
+    if stretches.is_empty() {
+        return None;
+    }
+    Some(NativeCode {
+        code: code.into_boxed_slice(),
+        stretches: stretches.into_boxed_slice(),
+        jit: compiler.finish().ok()?,
+    })
+}
+
+/// A stretch of the arena's code.
+#[derive(Debug, PartialEq, Eq)]
+struct Found {
+    start: usize,
+    len: usize,
+    /// The condition of the jump right after it, when that jump goes back to its start.
+    loop_back: Option<JumpCondition>,
+}
+
+/// The stretches of the arena's code: maximal runs of ops with a native step, broken where a
+/// jump lands (so a loop's body starts one), at least [`SHORTEST`] long.
+fn find(plain: &[Op]) -> Vec<Found> {
+    let mut landings = vec![false; plain.len()];
+    let mut body_starts = vec![0; plain.len()];
+    let mut body_start = 0;
+    for (at, op) in plain.iter().enumerate() {
+        body_starts[at] = body_start;
+        if let Some(target) = jump_target(*op)
+            && let Some(landing) = landings.get_mut(body_start + target)
+        {
+            *landing = true;
+        }
+        if *op == Op::End {
+            body_start = at + 1;
+        }
+    }
+    let mut found = Vec::new();
+    let mut run_start = 0;
+    let mut close = |start: usize, end: usize| {
+        let loop_back = match plain.get(end) {
+            Some(Op::Jump(condition, target)) if body_starts[end] + *target as usize == start => {
+                Some(*condition)
+            }
+            _ => None,
+        };
+        let shortest = if loop_back.is_some() {
+            SHORTEST_LOOP
+        } else {
+            SHORTEST
+        };
+        if end - start < shortest {
+            return;
+        }
+        found.push(Found {
+            start,
+            len: end - start,
+            loop_back,
+        });
+    };
+    for (at, op) in plain.iter().enumerate() {
+        // `DO` runs the op after it with its own operand: that op never starts a stretch.
+        let after_indirect = at > 0 && matches!(plain[at - 1], Op::Indirect { .. });
+        if step(*op).is_none() || after_indirect {
+            close(run_start, at);
+            run_start = at + 1;
+        } else if landings[at] {
+            close(run_start, at);
+            run_start = at;
+        }
+    }
+    close(run_start, plain.len());
+    found
+}
+
+/// Where in its body a jump op goes.
+fn jump_target(op: Op) -> Option<usize> {
+    let target = match op {
+        Op::Jump(_, target) => target,
+        Op::S7(S7Code::Jump { target, .. } | S7Code::Loop { target }) => u32::from(target),
+        Op::S7(S7Code::JumpList { target, .. }) => u32::from(target),
+        _ => return None,
+    };
+    Some(target as usize)
+}
+
+/// The native step of an op, where it has one.
+fn step(op: Op) -> Option<Step> {
+    Some(match op {
+        Op::And(bit) => scan(bit, Status::scan_table(Logic::And)),
+        Op::AndNot(bit) => scan(bit, Status::scan_table(Logic::AndNot)),
+        Op::Or(bit) => scan(bit, Status::scan_table(Logic::Or)),
+        Op::OrNot(bit) => scan(bit, Status::scan_table(Logic::OrNot)),
+        Op::S7Scan(combination, bit) => scan(bit, Status::step7_scan_table(combination)),
+        Op::Assign(bit) => write(Write::Assign, bit, string_ended()),
+        Op::Set(bit) => write(Write::Set, bit, string_ended()),
+        Op::Reset(bit) => write(Write::Reset, bit, string_ended()),
+        Op::S7Write(kind, bit) => write(kind, bit, step7_assigned()),
+        Op::OrAlone => Step::Status(or_alone()),
+        Op::LoadImageByte(byte) => load(Width::Byte, byte),
+        Op::LoadImageWord(byte) => load(Width::Word, byte),
+        Op::LoadImageDouble(byte) => load(Width::Double, byte),
+        Op::TransferImageByte(byte) => transfer(Width::Byte, byte),
+        Op::TransferImageWord(byte) => transfer(Width::Word, byte),
+        Op::TransferImageDouble(byte) => transfer(Width::Double, byte),
+        Op::LoadConstant(value) => Step::LoadConstant(value),
+        Op::Arithmetic(kind) => add_sub(kind, false)?,
+        Op::ArithmeticStack(kind) => add_sub(kind, true)?,
+        Op::Compare(kind) => Step::Compare(comparison(kind)),
+        Op::Nop => Step::Nop,
+        _ => return None,
+    })
+}
+
+fn scan(bit: ImageBit, table: &'static [u8; 512]) -> Step {
+    Step::Scan {
+        byte: bit.byte,
+        bit: bit.bit,
+        table,
+    }
+}
+
+fn write(kind: Write, bit: ImageBit, after: &'static [u8; 256]) -> Step {
+    let (rlo_0, rlo_1) = match kind {
+        Write::Assign => (BitAction::Clear, BitAction::Set),
+        Write::Set => (BitAction::Keep, BitAction::Set),
+        Write::Reset => (BitAction::Keep, BitAction::Clear),
+    };
+    Step::Write {
+        byte: bit.byte,
+        bit: bit.bit,
+        rlo_0,
+        rlo_1,
+        after,
+    }
+}
+
+fn load(width: Width, byte: u16) -> Step {
+    Step::Load {
+        width: native_width(width),
+        byte,
+    }
+}
+
+fn transfer(width: Width, byte: u16) -> Step {
+    Step::Transfer {
+        width: native_width(width),
+        byte,
+    }
+}
+
+fn native_width(width: Width) -> awl_jit::Width {
+    match width {
+        Width::Byte => awl_jit::Width::Byte,
+        Width::Word => awl_jit::Width::Word,
+        Width::Double => awl_jit::Width::Double,
+    }
+}
+
+/// `+F -F` (`+I -I`); multiplication and division stay in the loop.
+fn add_sub(kind: Arith, stack: bool) -> Option<Step> {
+    let subtract = match kind {
+        Arith::Add => false,
+        Arith::Sub => true,
+        Arith::Mul | Arith::Div => return None,
+    };
+    Some(Step::AddSub { subtract, stack })
+}
+
+fn comparison(kind: Comparison) -> awl_jit::Comparison {
+    match kind {
+        Comparison::Eq => awl_jit::Comparison::Equal,
+        Comparison::Ne => awl_jit::Comparison::NotEqual,
+        Comparison::Gt => awl_jit::Comparison::Greater,
+        Comparison::Ge => awl_jit::Comparison::GreaterOrEqual,
+        Comparison::Lt => awl_jit::Comparison::Less,
+        Comparison::Le => awl_jit::Comparison::LessOrEqual,
+    }
+}
+
+/// Where the status keeps each bit, asked of the status itself.
+fn status_bits() -> awl_jit::StatusBits {
+    let with = |set: fn(&mut Status)| {
+        let mut status = Status::default();
+        set(&mut status);
+        status.bits()
+    };
+    awl_jit::StatusBits {
+        rlo: with(|status| status.set_rlo(true)),
+        first_check: with(|status| status.set_first_check(true)),
+        or: with(|status| status.set_or_bit(true)),
+        cc1: with(|status| status.set_condition(true, false)),
+        cc0: with(|status| status.set_condition(false, true)),
+        ov: with(|status| status.set_ov(true)),
+        os: with(|status| status.set_os(true)),
+    }
+}
+
+/// A status rule as a table over every status byte, made once from the rule itself.
+fn table_of(cell: &'static OnceLock<[u8; 256]>, rule: fn(&mut Status)) -> &'static [u8; 256] {
+    cell.get_or_init(|| {
+        std::array::from_fn(|bits| {
+            let mut status = Status::from_bits(bits as u8);
+            rule(&mut status);
+            status.bits()
+        })
+    })
+}
+
+/// STEP 5's `= S R`: the string ends.
+fn string_ended() -> &'static [u8; 256] {
+    static TABLE: OnceLock<[u8; 256]> = OnceLock::new();
+    table_of(&TABLE, Status::end_string)
+}
+
+/// STEP 7's `= S R`: STA takes the RLO, the string ends.
+fn step7_assigned() -> &'static [u8; 256] {
+    static TABLE: OnceLock<[u8; 256]> = OnceLock::new();
+    table_of(&TABLE, |status| {
+        let rlo = status.rlo();
+        super::s7::bit_logic::assigned(status, rlo);
+    })
+}
+
+/// A loop's jump back as tables: whether it is taken, and the status after it.
+fn loop_back(condition: JumpCondition) -> LoopBack {
+    const CONDITIONS: usize = 7;
+    static TAKEN: [OnceLock<[u8; 256]>; CONDITIONS] = [const { OnceLock::new() }; CONDITIONS];
+    static AFTER: [OnceLock<[u8; 256]>; CONDITIONS] = [const { OnceLock::new() }; CONDITIONS];
+    let slot = condition as usize;
+    let over_statuses = |rule: &dyn Fn(Status) -> u8| -> [u8; 256] {
+        std::array::from_fn(|bits| rule(Status::from_bits(bits as u8)))
+    };
+    LoopBack {
+        taken: TAKEN[slot]
+            .get_or_init(|| over_statuses(&|mut status| u8::from(condition.taken(&mut status)))),
+        after: AFTER[slot].get_or_init(|| {
+            over_statuses(&|mut status| {
+                condition.taken(&mut status);
+                status.bits()
+            })
+        }),
+    }
+}
+
+/// `O` alone.
+fn or_alone() -> &'static [u8; 256] {
+    static TABLE: OnceLock<[u8; 256]> = OnceLock::new();
+    table_of(&TABLE, Status::or_alone)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rules::status::Combination;
+
+    #[test]
+    fn stretches_break_at_ops_without_a_step_and_where_jumps_land() {
+        let bit = ImageBit { byte: 1, bit: 0 };
+        let code = [
+            Op::And(bit),
+            Op::Or(bit),
+            Op::Assign(bit),
+            Op::LoadConstant(1),
+            // A jump lands here: a stretch starts.
+            Op::LoadConstant(2),
+            Op::Arithmetic(Arith::Add),
+            Op::TransferImageWord(4),
+            Op::Jump(crate::compiler::bytecode::JumpCondition::Rlo, 4),
+            Op::Nop,
+            Op::Nop,
+            Op::End,
+        ];
+        let found = |start, len, loop_back| Found {
+            start,
+            len,
+            loop_back,
+        };
+        let jump_back = Some(crate::compiler::bytecode::JumpCondition::Rlo);
+        assert_eq!(find(&code), [found(0, 4, None), found(4, 3, jump_back)]);
+    }
+
+    #[test]
+    fn multiplication_and_data_blocks_end_a_stretch() {
+        assert!(step(Op::Arithmetic(Arith::Mul)).is_none());
+        let data = Op::LoadData(crate::compiler::bytecode::DataPart::Word, 3);
+        assert!(step(data).is_none());
+        assert!(step(Op::S7Scan(Combination::Xor, ImageBit { byte: 0, bit: 7 })).is_some());
+    }
+}
