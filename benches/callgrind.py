@@ -10,15 +10,17 @@ so the figure is what the VM's loop costs per operation. Callgrind counts are de
 a machine busy with other work gives the same figures. Needs valgrind and a release build
 (`cargo build --release`).
 
-With awlsim installed where benches/awlsim/compare.sh installs it (a virtual environment in
-target/awlsim-venv), its pure-Python core is measured the same way on the STEP 7 files: the
-same operations, counted by awlsim itself, for far fewer cycles (it is some 500 times slower).
+With awlsim installed where benches/awlsim/install.sh installs it (virtual environments in
+target/awlsim-venv and target/awlsim-cython-venv), its pure-Python core and its Cython core are
+measured the same way on the STEP 7 files: the same operations, counted by awlsim itself, for
+far fewer cycles.
 
 Usage: benches/callgrind.py [--quick] [--jobs N] [--no-awlsim] [BENCH ...]
 """
 
 import argparse
 import concurrent.futures
+import os
 import pathlib
 import re
 import shutil
@@ -27,17 +29,19 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 AWL = ROOT / "target" / "release" / "awl"
-AWLSIM_PYTHON = ROOT / "target" / "awlsim-venv" / "bin" / "python3"
+AWLSIM_PYTHONS = {
+    "pip": ROOT / "target" / "awlsim-venv" / "bin" / "python3",
+    "cython": ROOT / "target" / "awlsim-cython-venv" / "bin" / "python3",
+}
 
 # Runs an S7 file for a number of cycles in awlsim's core and prints the operations it counted
 # (its own statement counter). No cycle time limit: under callgrind a cycle takes seconds.
 AWLSIM_DRIVER = """
 import sys
-from awlsim.common.util import Logging
-from awlsim.common.sources import AwlSource
-from awlsim.common.cpuconfig import S7CPUConfig
-from awlsim.core.main import AwlSim
-from awlsim.awlcompiler import AwlParser
+# Through awlsim's loader, which takes the Cython modules when AWLSIM_CYTHON asks for them.
+from awlsim_loader.common import *
+from awlsim_loader.core import *
+from awlsim_loader.awlcompiler import *
 
 Logging.setLoglevel(Logging.LOG_ERROR)
 path, cycles = sys.argv[1], int(sys.argv[2])
@@ -50,15 +54,17 @@ sim.load(parser.getParseTree())
 sim.startup()
 for _ in range(cycles):
     sim.runCycle()
-print("operations:", sim.cpu._S7CPU__insnCount)
+# The statement counter: name-mangled in Python, plain in the Cython core.
+count = getattr(sim.cpu, "_S7CPU__insnCount", None)
+print("operations:", getattr(sim.cpu, "__insnCount") if count is None else count)
 """
 
 
 class Bench:
     """A scenario of programs/bench/ run with the given interrupt points, for N1 and N2 cycles
-    (and fewer with --quick); `awlsim`: its program run in awlsim instead."""
+    (and fewer with --quick); `awlsim` ("pip" or "cython"): its program run in that awlsim."""
 
-    def __init__(self, name, scenario, points, cycles, quick_cycles, awlsim=False):
+    def __init__(self, name, scenario, points, cycles, quick_cycles, awlsim=None):
         self.name = name
         self.scenario = scenario
         self.points = points
@@ -70,7 +76,8 @@ class Bench:
         """The command that runs `cycles` cycles and prints the operation count."""
         if self.awlsim:
             program = ROOT / "programs" / "bench" / f"{self.scenario}.awl"
-            return [str(AWLSIM_PYTHON), "-c", AWLSIM_DRIVER, str(program), str(cycles)]
+            python = AWLSIM_PYTHONS[self.awlsim]
+            return [str(python), "-c", AWLSIM_DRIVER, str(program), str(cycles)]
         scenario = ROOT / "programs" / "bench" / f"{self.scenario}.toml"
         command = [str(AWL), "run", "--scenario", str(scenario), "--cycles", str(cycles)]
         if self.points:
@@ -90,8 +97,10 @@ BENCHES = [
 ]
 
 AWLSIM_BENCHES = [
-    Bench("awlsim_s7_logic_loop", "s7_logic_loop", None, (1, 3), (1, 2), awlsim=True),
-    Bench("awlsim_s7_calls", "s7_calls", None, (20, 100), (10, 30), awlsim=True),
+    Bench("awlsim_s7_logic_loop", "s7_logic_loop", None, (1, 3), (1, 2), awlsim="pip"),
+    Bench("awlsim_s7_calls", "s7_calls", None, (20, 100), (10, 30), awlsim="pip"),
+    Bench("cython_s7_logic_loop", "s7_logic_loop", None, (2, 10), (1, 3), awlsim="cython"),
+    Bench("cython_s7_calls", "s7_calls", None, (100, 500), (20, 100), awlsim="cython"),
 ]
 
 COLLECTED = re.compile(r"Collected\s*:\s*(\d+)")
@@ -105,7 +114,9 @@ def measure(bench, cycles):
     command += bench.command(cycles)
     # awl's exit status tells whether the scenario's expectations were met, which hold only
     # for the scenario's own number of cycles: the run is judged by its summary alone.
-    done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
+    # awlsim's loader takes its Cython modules only when asked (2: or fail).
+    environment = dict(os.environ, AWLSIM_CYTHON="2" if bench.awlsim == "cython" else "0")
+    done = subprocess.run(command, capture_output=True, text=True, cwd=ROOT, env=environment)
     host = COLLECTED.search(done.stderr)
     operations = OPERATIONS.search(done.stdout + done.stderr)
     if not host or not operations:
@@ -154,12 +165,18 @@ def main():
     unknown = [name for name in options.benches if name not in known]
     if unknown:
         parser.error(f"unknown bench {', '.join(unknown)}; known: {', '.join(known)}")
-    with_awlsim = AWLSIM_PYTHON.exists() and not options.no_awlsim
-    chosen = [known[name] for name in options.benches] or BENCHES + (
-        AWLSIM_BENCHES if with_awlsim else []
-    )
-    if any(bench.awlsim for bench in chosen) and not AWLSIM_PYTHON.exists():
-        sys.exit(f"{AWLSIM_PYTHON} is missing: benches/awlsim/compare.sh installs awlsim there")
+    installed = [
+        bench
+        for bench in AWLSIM_BENCHES
+        if AWLSIM_PYTHONS[bench.awlsim].exists() and not options.no_awlsim
+    ]
+    chosen = [known[name] for name in options.benches] or BENCHES + installed
+    missing = [bench for bench in chosen if bench.awlsim and bench not in installed]
+    if missing and not options.no_awlsim:
+        sys.exit(
+            f"{AWLSIM_PYTHONS[missing[0].awlsim]} is missing: benches/awlsim/install.sh "
+            "installs awlsim there"
+        )
     if not shutil.which("valgrind"):
         sys.exit("valgrind is missing: install it (Debian, Ubuntu: apt install valgrind)")
     if not AWL.exists():

@@ -10,10 +10,7 @@ seconds=${2:-8}
 awlsim_version=0.77.1
 venv=target/awlsim-venv
 
-if [ ! -x "$venv/bin/awlsim-test" ]; then
-    python3 -m venv "$venv"
-    "$venv/bin/pip" install --quiet "awlsim==$awlsim_version"
-fi
+benches/awlsim/install.sh pip > /dev/null
 cargo build --release --quiet
 
 awl_rate() {

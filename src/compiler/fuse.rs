@@ -103,19 +103,15 @@ fn pack_step7(combination: Combination, bit: ImageBit) -> u8 {
     (combination as u8) << 3 | bit.bit & 7
 }
 
-/// The combination and bit an [`Op::S7ScanPair`] or [`Op::S7ScanWrite`] packed with `byte`.
+/// The combination's code (`as u8`) and the bit an [`Op::S7ScanPair`] or [`Op::S7ScanWrite`]
+/// packed with `byte`, for [`crate::rules::status::Status::scanned_step7_code`].
 #[inline(always)]
-pub fn unpack_step7(packed: u8, byte: u16) -> (Combination, ImageBit) {
-    // Six combinations fill three bits' first six values; the other two are never packed.
-    const COMBINATIONS: [Combination; 8] = {
-        let [a, b, c, d, e, f] = Combination::ALL;
-        [a, b, c, d, e, f, Combination::And, Combination::And]
-    };
+pub fn unpack_step7_code(packed: u8, byte: u16) -> (u8, ImageBit) {
     let bit = ImageBit {
         byte,
         bit: packed & 7,
     };
-    (COMBINATIONS[usize::from(packed >> 3 & 7)], bit)
+    (packed >> 3 & 7, bit)
 }
 
 /// What a write does to its bit for one value of the RLO: clear it…
@@ -182,7 +178,7 @@ mod tests {
             for bit in 0..8 {
                 let image = ImageBit { byte: 300, bit };
                 let packed = pack_step7(combination, image);
-                assert_eq!(unpack_step7(packed, 300), (combination, image));
+                assert_eq!(unpack_step7_code(packed, 300), (combination as u8, image));
             }
         }
     }

@@ -279,16 +279,22 @@ const fn step7_scan(bits: u8, combination: Combination, value: bool) -> u8 {
         | if value { STA } else { 0 }
 }
 
-/// The status after each of STEP 7's scans, by [`Combination`] and `status << 1 | value`.
-static STEP7_SCANNED: [[u8; 512]; 6] = {
-    let mut tables = [[0u8; 512]; 6];
+/// The status after each of STEP 7's scans, by [`Combination`] and `status << 1 | value`; eight
+/// rows (the last two `A`'s), so a combination's code masked to three bits needs no check.
+static STEP7_SCANNED: [[u8; 512]; 8] = {
+    let mut tables = [[0u8; 512]; 8];
     let combinations = Combination::ALL;
     let mut kind = 0;
-    while kind < 6 {
+    while kind < 8 {
         let mut index = 0;
         while index < 512 {
             let bits = (index >> 1) as u8;
-            tables[kind][index] = step7_scan(bits, combinations[kind], index & 1 != 0);
+            let combination = if kind < 6 {
+                combinations[kind]
+            } else {
+                Combination::And
+            };
+            tables[kind][index] = step7_scan(bits, combination, index & 1 != 0);
             index += 1;
         }
         kind += 1;
@@ -314,6 +320,19 @@ impl Status {
     /// The table [`Status::scanned_step7`] looks `combination` up in.
     pub fn step7_scan_table(combination: Combination) -> &'static [u8; 512] {
         &STEP7_SCANNED[combination as usize]
+    }
+
+    /// [`Status::scanned_step7`] by the combination's code (`as u8`), as packed ops carry it.
+    #[inline(always)]
+    pub fn scanned_step7_code(&mut self, code: u8, value: bool) {
+        let index = usize::from(self.bits) << 1 | usize::from(value);
+        self.bits = STEP7_SCANNED[usize::from(code & 7)][index];
+    }
+
+    /// STEP 7's `=`, `S`, `R`: STA takes the RLO written, the string ends (OR and /FC cleared).
+    #[inline(always)]
+    pub fn assigned_step7(&mut self, written: bool) {
+        self.bits = self.bits & !(STA | OR_BIT | FIRST_CHECK_DONE) | if written { STA } else { 0 };
     }
 
     /// STEP 7's `A AN O ON X XN` with a bit operand whose signal state is `value`, in one

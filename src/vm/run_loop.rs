@@ -599,10 +599,10 @@ impl Cpu {
                         second_op,
                     } if STEP7 => {
                         split_if_due!('dispatch, op);
-                        let (combination, bit) = fuse::unpack_step7(first_op, first);
-                        status.scanned_step7(combination, self.image_bit(bit));
-                        let (combination, bit) = fuse::unpack_step7(second_op, second);
-                        status.scanned_step7(combination, self.image_bit(bit));
+                        let (code, bit) = fuse::unpack_step7_code(first_op, first);
+                        status.scanned_step7_code(code, self.image_bit(bit));
+                        let (code, bit) = fuse::unpack_step7_code(second_op, second);
+                        status.scanned_step7_code(code, self.image_bit(bit));
                         pc += 1;
                     }
                     Op::S7ScanWrite {
@@ -612,8 +612,8 @@ impl Cpu {
                         write_op,
                     } if STEP7 => {
                         split_if_due!('dispatch, op);
-                        let (combination, bit) = fuse::unpack_step7(scan_op, scanned);
-                        status.scanned_step7(combination, self.image_bit(bit));
+                        let (code, bit) = fuse::unpack_step7_code(scan_op, scanned);
+                        status.scanned_step7_code(code, self.image_bit(bit));
                         let rlo = status.rlo();
                         let byte = &mut self.image[usize::from(written)];
                         *byte = fuse::apply_write(write_op, rlo, *byte);

@@ -58,9 +58,7 @@ pub fn save(status: Status, br: &mut bool) {
 /// a switched-off master control relay).
 #[inline]
 pub fn assigned(status: &mut Status, written: bool) {
-    status.set_sta(written);
-    status.set_or_bit(false);
-    status.set_first_check(false);
+    status.assigned_step7(written);
 }
 
 /// `S`, `R` and the other RLO-driven operations on a timer or counter: the string ends.
