@@ -30,6 +30,11 @@ impl<T: Copy + Default> BlockStack<T> {
         self.len == 0
     }
 
+    /// Whether a push would find room.
+    pub fn has_room(&self) -> bool {
+        self.len < self.frames.len()
+    }
+
     /// Pushes a return point; `false` when the stack is full.
     #[inline(always)]
     pub fn push(&mut self, frame: T) -> bool {

@@ -46,6 +46,9 @@ pub mod native {
     #[derive(Debug)]
     pub struct NativeCode {
         pub code: Box<[Op]>,
+        pub operation_code: Box<[Op]>,
+        pub in_code: bool,
+        pub in_operation_code: bool,
         pub stretches: Box<[Stretch]>,
     }
 
@@ -54,6 +57,9 @@ pub mod native {
         pub len: u32,
         pub first: Op,
         pub pass_ns: u64,
+        pub until_last: u64,
+        pub called_ops: u64,
+        pub called_ns: u64,
     }
 
     impl NativeCode {

@@ -22,17 +22,25 @@ use crate::compiler::bytecode::{
 };
 use crate::step7::bytecode::S7Code;
 
-/// The shortest stretch that runs as native code: shorter ones run faster op by op, as the
-/// call costs about what half a dozen dispatches do (callgrind, `programs/bench/fb_params`)…
-const SHORTEST: usize = 6;
-/// …but for a loop's stretch, whose passes run in one call.
+/// The shortest stretch that runs as native code: shorter ones run as fast op by op, as the
+/// call costs about what eight dispatches do (callgrind, `programs/bench/fb_params`)…
+const SHORTEST: usize = 9;
+/// …but for a loop's stretch, whose passes run in one call, and one that calls a leaf block,
+/// whose call and end cost more than that.
 const SHORTEST_LOOP: usize = 3;
 
 /// The native code of a program's stretches.
 #[derive(Debug)]
 pub struct NativeCode {
-    /// The arena's code with [`Op::Native`] at each stretch's start.
+    /// The arena's code with [`Op::Native`] at each stretch's start: for block points and traced
+    /// runs, where a block change is a point or an event.
     pub code: Box<[Op]>,
+    /// The same where a stretch may also run a call of a leaf block (see [`leaf`]): for untraced
+    /// runs with operation points, where a block change is neither.
+    pub operation_code: Box<[Op]>,
+    /// Whether `code` and `operation_code` hold any stretch (else the plain loops run).
+    pub in_code: bool,
+    pub in_operation_code: bool,
     pub stretches: Box<[Stretch]>,
     jit: awl_jit::Code,
 }
@@ -46,6 +54,11 @@ pub struct Stretch {
     /// A loop's stretch, which a jump right after it takes back to its start: the simulated
     /// time of one pass (the stretch and the jump); 0 for any other stretch.
     pub pass_ns: u64,
+    /// The simulated time from the stretch's start to the start of its last operation.
+    pub until_last: u64,
+    /// The operations and time of the leaf blocks it calls, beyond the calls' own places.
+    pub called_ops: u64,
+    pub called_ns: u64,
 }
 
 impl NativeCode {
@@ -92,35 +105,135 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
     let plain = &program.arena.plain;
     let mut compiler = Compiler::new(status_bits(), IMAGE_MEMORY).ok()?;
     let mut code = program.arena.ops.to_vec();
-    let times = &program.arena.times;
+    let mut operation_code = code.clone();
     let mut stretches = Vec::new();
-    for found in chosen(find(plain)) {
-        let (start, len) = (found.start, found.len);
-        let steps: Vec<Step> = plain[start..start + len]
-            .iter()
-            .filter_map(|op| step(*op))
-            .collect();
-        let index = compiler.add(&steps, found.loop_back.map(loop_back)).ok()?;
-        let jump = start + len;
-        stretches.push(Stretch {
-            len: len as u32,
-            first: code[start],
-            pass_ns: if found.loop_back.is_some() {
-                times[jump + 1] - times[start]
-            } else {
-                0
-            },
-        });
-        code[start] = Op::Native(index as u32);
+    let call_free = find(plain, &|_| None);
+    let with_calls = find(plain, &|op| leaf(program, op));
+    let mut compiled = std::collections::HashMap::new();
+    for (found, calls) in chosen(call_free, with_calls) {
+        let range = found.start..found.start + found.len;
+        let calls = calls && plain[range].iter().any(|op| step(*op).is_none());
+        let key = (found.start, found.len, calls);
+        let index = match compiled.get(&key) {
+            Some(index) => *index,
+            None => {
+                let index = stretches.len();
+                let flat = flatten(program, &found, calls);
+                compiler
+                    .add(&flat.steps, found.loop_back.map(loop_back))
+                    .ok()?;
+                let times = &program.arena.times;
+                let jump = found.start + found.len;
+                let pass = |ns: u64| times[jump + 1] - times[found.start] + ns;
+                stretches.push(Stretch {
+                    len: found.len as u32,
+                    first: code[found.start],
+                    pass_ns: found.loop_back.map_or(0, |_| pass(flat.called_ns)),
+                    until_last: flat.until_last,
+                    called_ops: flat.called_ops,
+                    called_ns: flat.called_ns,
+                });
+                compiled.insert(key, index);
+                index
+            }
+        };
+        let marker = Op::Native(index as u32);
+        operation_code[found.start] = marker;
+        if !calls {
+            code[found.start] = marker;
+        }
     }
     if stretches.is_empty() {
         return None;
     }
+    let holds_stretch = |code: &[Op]| code.iter().any(|op| matches!(op, Op::Native(_)));
     Some(NativeCode {
+        in_code: holds_stretch(&code),
+        in_operation_code: holds_stretch(&operation_code),
         code: code.into_boxed_slice(),
+        operation_code: operation_code.into_boxed_slice(),
         stretches: stretches.into_boxed_slice(),
         jit: compiler.finish().ok()?,
     })
+}
+
+/// A call of a leaf block: a block whose body is native steps and its block end, without
+/// local data, called without parameters. Run inside a stretch, it is its status rules (the
+/// call's, the body's, the end's) and its time; with operation points and no trace nothing else
+/// of a block change shows.
+#[derive(Debug, Clone, Copy)]
+struct Leaf {
+    /// Where its body starts in the arena, and its ops with the block end.
+    entry: usize,
+    ops: usize,
+    end: Op,
+}
+
+fn leaf(program: &Program, op: Op) -> Option<Leaf> {
+    let Op::Call {
+        block,
+        conditional: false,
+        params: crate::compiler::bytecode::NO_PARAMS,
+    } = op
+    else {
+        return None;
+    };
+    if program.local_bytes(block) != 0 {
+        return None;
+    }
+    let entry = program
+        .arena
+        .start(block, crate::compiler::bytecode::NO_PARAMS);
+    let body = program.arena.plain.get(entry..)?;
+    let end = body.iter().position(|op| step(*op).is_none())?;
+    let ends = matches!(body[end], Op::BlockEnd | Op::BlockEndUnconditional);
+    (ends && body.get(end + 1) == Some(&Op::End)).then_some(Leaf {
+        entry,
+        ops: end + 1,
+        end: body[end],
+    })
+}
+
+/// A stretch as the steps it runs, with the leaf blocks it calls laid in.
+struct Flat {
+    steps: Vec<Step>,
+    until_last: u64,
+    called_ops: u64,
+    called_ns: u64,
+}
+
+fn flatten(program: &Program, found: &Found, calls: bool) -> Flat {
+    let plain = &program.arena.plain;
+    let times = &program.arena.times;
+    let step7 = program.s7.step7;
+    let mut flat = Flat {
+        steps: Vec::new(),
+        until_last: 0,
+        called_ops: 0,
+        called_ns: 0,
+    };
+    // Each op's time, in the order they run.
+    let mut costs = Vec::new();
+    for at in found.start..found.start + found.len {
+        costs.push(times[at + 1] - times[at]);
+        if let Some(step) = step(plain[at]) {
+            flat.steps.push(step);
+            continue;
+        }
+        let Some(leaf) = leaf(program, plain[at]).filter(|_| calls) else {
+            continue;
+        };
+        flat.steps.push(Step::Status(called(step7)));
+        for body_at in leaf.entry..leaf.entry + leaf.ops {
+            costs.push(times[body_at + 1] - times[body_at]);
+            flat.steps.extend(step(plain[body_at]));
+        }
+        flat.steps.push(Step::Status(ended(step7, leaf.end)));
+        flat.called_ops += leaf.ops as u64;
+        flat.called_ns += times[leaf.entry + leaf.ops] - times[leaf.entry];
+    }
+    flat.until_last = costs[..costs.len() - 1].iter().sum();
+    flat
 }
 
 /// How many operations of stretches outside loops are compiled at most. Cranelift takes some
@@ -129,19 +242,26 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
 /// operation, so a large program's start would cost more than its runs gain.
 const STRAIGHT_BUDGET: usize = 4_000;
 
-/// The stretches worth their compilation: every loop's, then the longest others within
-/// [`STRAIGHT_BUDGET`], in the arena's order.
-fn chosen(mut found: Vec<Found>) -> Vec<Found> {
-    found.sort_by_key(|stretch| (stretch.loop_back.is_none(), std::cmp::Reverse(stretch.len)));
+/// The stretches worth their compilation, each with whether it runs leaf calls: every loop's,
+/// then the longest others within [`STRAIGHT_BUDGET`], in the arena's order. A stretch that
+/// calls leaf blocks comes beside the call-free ones it covers (block points and traces run
+/// those).
+fn chosen(call_free: Vec<Found>, with_calls: Vec<Found>) -> Vec<(Found, bool)> {
+    let mut found: Vec<(Found, bool)> = call_free
+        .into_iter()
+        .map(|found| (found, false))
+        .chain(with_calls.into_iter().map(|found| (found, true)))
+        .collect();
+    found.sort_by_key(|(stretch, _)| (stretch.loop_back.is_none(), std::cmp::Reverse(stretch.len)));
     let mut budget = STRAIGHT_BUDGET;
-    found.retain(|stretch| {
+    found.retain(|(stretch, _)| {
         let fits = stretch.loop_back.is_some() || stretch.len <= budget;
         if fits && stretch.loop_back.is_none() {
             budget -= stretch.len;
         }
         fits
     });
-    found.sort_by_key(|stretch| stretch.start);
+    found.sort_by_key(|(stretch, calls)| (stretch.start, *calls));
     found
 }
 
@@ -156,7 +276,7 @@ struct Found {
 
 /// The stretches of the arena's code: maximal runs of ops with a native step, broken where a
 /// jump lands (so a loop's body starts one), at least [`SHORTEST`] long.
-fn find(plain: &[Op]) -> Vec<Found> {
+fn find(plain: &[Op], leaf: &dyn Fn(Op) -> Option<Leaf>) -> Vec<Found> {
     let mut landings = vec![false; plain.len()];
     let mut body_starts = vec![0; plain.len()];
     let mut body_start = 0;
@@ -173,6 +293,13 @@ fn find(plain: &[Op]) -> Vec<Found> {
     }
     let mut found = Vec::new();
     let mut run_start = 0;
+    // A leaf call weighs as the ops it runs.
+    let weight = |range: std::ops::Range<usize>| -> usize {
+        plain[range]
+            .iter()
+            .map(|op| leaf(*op).map_or(1, |leaf| 1 + leaf.ops))
+            .sum()
+    };
     let mut close = |start: usize, end: usize| {
         let loop_back = match plain.get(end) {
             Some(Op::Jump(condition, target)) if body_starts[end] + *target as usize == start => {
@@ -180,12 +307,13 @@ fn find(plain: &[Op]) -> Vec<Found> {
             }
             _ => None,
         };
-        let shortest = if loop_back.is_some() {
+        let weight = weight(start..end);
+        let shortest = if loop_back.is_some() || weight > end - start {
             SHORTEST_LOOP
         } else {
             SHORTEST
         };
-        if end - start < shortest {
+        if weight < shortest {
             return;
         }
         found.push(Found {
@@ -197,7 +325,7 @@ fn find(plain: &[Op]) -> Vec<Found> {
     for (at, op) in plain.iter().enumerate() {
         // `DO` runs the op after it with its own operand: that op never starts a stretch.
         let after_indirect = at > 0 && matches!(plain[at - 1], Op::Indirect { .. });
-        if step(*op).is_none() || after_indirect {
+        if (step(*op).is_none() && leaf(*op).is_none()) || after_indirect {
             close(run_start, at);
             run_start = at + 1;
         } else if landings[at] {
@@ -379,6 +507,40 @@ fn loop_back(condition: JumpCondition) -> LoopBack {
     }
 }
 
+/// A call's status rules: a new string with RLO 1; STEP 7 clears OS.
+fn called(step7: bool) -> &'static [u8; 256] {
+    static STEP5: OnceLock<[u8; 256]> = OnceLock::new();
+    static STEP7: OnceLock<[u8; 256]> = OnceLock::new();
+    if step7 {
+        table_of(&STEP7, |status| {
+            status.after_jump();
+            status.set_os(false);
+        })
+    } else {
+        table_of(&STEP5, Status::after_jump)
+    }
+}
+
+/// A block end's status rules (`BE` ends the string, `BEU` as a jump); STEP 7 clears OS.
+fn ended(step7: bool, end: Op) -> &'static [u8; 256] {
+    static TABLES: [OnceLock<[u8; 256]>; 4] = [const { OnceLock::new() }; 4];
+    let unconditional = end == Op::BlockEndUnconditional;
+    let cell = &TABLES[usize::from(step7) << 1 | usize::from(unconditional)];
+    let rule: fn(&mut Status) = match (step7, unconditional) {
+        (false, false) => Status::end_string,
+        (false, true) => Status::after_jump,
+        (true, false) => |status| {
+            status.end_string();
+            status.set_os(false);
+        },
+        (true, true) => |status| {
+            status.after_jump();
+            status.set_os(false);
+        },
+    };
+    table_of(cell, rule)
+}
+
 /// `O` alone.
 fn or_alone() -> &'static [u8; 256] {
     static TABLE: OnceLock<[u8; 256]> = OnceLock::new();
@@ -400,11 +562,14 @@ mod tests {
             Op::LoadConstant(1),
             Op::Nop,
             Op::Nop,
+            Op::Nop,
+            Op::Nop,
+            Op::Nop,
             // A jump lands here: a stretch starts, a loop's.
             Op::LoadConstant(2),
             Op::Arithmetic(Arith::Add),
             Op::TransferImageWord(4),
-            Op::Jump(crate::compiler::bytecode::JumpCondition::Rlo, 6),
+            Op::Jump(crate::compiler::bytecode::JumpCondition::Rlo, 9),
             // Too short for a stretch outside a loop.
             Op::Nop,
             Op::Nop,
@@ -416,7 +581,10 @@ mod tests {
             loop_back,
         };
         let jump_back = Some(crate::compiler::bytecode::JumpCondition::Rlo);
-        assert_eq!(find(&code), [found(0, 6, None), found(6, 3, jump_back)]);
+        assert_eq!(
+            find(&code, &|_| None),
+            [found(0, 9, None), found(9, 3, jump_back)]
+        );
     }
 
     #[test]
@@ -434,7 +602,10 @@ mod tests {
             stretch(30_000, STRAIGHT_BUDGET / 2, None),
             stretch(40_000, 2 * STRAIGHT_BUDGET, jump_back),
         ];
-        let starts: Vec<usize> = chosen(found).iter().map(|found| found.start).collect();
+        let starts: Vec<usize> = chosen(found, Vec::new())
+            .iter()
+            .map(|(found, _)| found.start)
+            .collect();
         assert_eq!(starts, [10_000, 20_000, 40_000]);
     }
 

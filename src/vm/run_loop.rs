@@ -39,7 +39,14 @@ impl Cpu {
         }
         // A program with native stretches runs in loops of its own: the others keep the loop
         // they had without the stretch's arm (callgrind, `programs/bench/calls`).
-        let native = self.native_code().is_some();
+        // A loop with native code only where its code holds stretches for these points.
+        let native = self.native_code().is_some_and(|native| {
+            if operation_points {
+                native.in_operation_code
+            } else {
+                native.in_code
+            }
+        });
         match (self.program.s7.step7, operation_points, native) {
             (true, true, false) => self.run_step7::<true, false>(),
             (true, true, true) => self.run_step7::<true, true>(),
@@ -198,6 +205,8 @@ impl Cpu {
         };
         let code = match native {
             _ if STEPPING => plain,
+            // Leaf calls run inside stretches only where a block change is no point or event.
+            Some(native) if OPERATION_POINTS && !TRACING => &native.operation_code[..],
             Some(native) => &native.code[..],
             None => &arena.ops[..],
         };
@@ -667,13 +676,13 @@ impl Cpu {
                         {
                             Stretched::Ran(ran) => {
                                 (status, accu1, accu2) = ran.registers;
-                                if ran.passes > 0 {
-                                    let passes = u64::from(ran.passes);
-                                    count_base = count_base.wrapping_add(passes * ran.pass_ops);
-                                    time_base = time_base.wrapping_add(passes * ran.pass_ns);
+                                if let Some(landed) = ran.landed {
+                                    pass_start = landed;
+                                }
+                                if ran.shift_ns > 0 || ran.shift_ops > 0 {
+                                    count_base = count_base.wrapping_add(ran.shift_ops);
+                                    time_base = time_base.wrapping_add(ran.shift_ns);
                                     rebase!();
-                                    // The clock where the last jump back landed.
-                                    pass_start = time_base.wrapping_add(times[first]);
                                 }
                                 pc = ran.resume;
                             }
@@ -814,10 +823,12 @@ enum Stretched {
 
 struct StretchRan {
     registers: (Status, u32, u32),
-    /// Whole passes of its loop run (each the stretch and the jump back), and their ops and time.
-    passes: u32,
-    pass_ops: u64,
-    pass_ns: u64,
+    /// What the count and the clock gained beyond the positions: whole passes of a loop, and the
+    /// leaf blocks called.
+    shift_ops: u64,
+    shift_ns: u64,
+    /// After whole passes of a loop, the clock where the last jump back landed.
+    landed: Option<u64>,
     /// Where the loop goes on.
     resume: usize,
 }
@@ -846,7 +857,13 @@ impl Cpu {
         };
         let times = &self.program.arena.times;
         let len = stretch.len as usize;
-        if times[first + len - 1] >= deadline {
+        if times[first].saturating_add(stretch.until_last) >= deadline {
+            return Stretched::OpByOp(stretch.first);
+        }
+        // A leaf call that would find no room on the block stack stops the CPU, op by op.
+        if stretch.called_ops > 0
+            && (self.frames.len() >= self.level.frame_limit || !self.frames.has_room())
+        {
             return Stretched::OpByOp(stretch.first);
         }
         let most = if stretch.pass_ns == 0 {
@@ -862,11 +879,31 @@ impl Cpu {
             return Stretched::OpByOp(stretch.first);
         };
         [_, _, self.level.accu3, self.level.accu4] = accus;
+        let registers = (status, accus[0], accus[1]);
+        if ran.passes == 0 && !ran.left_loop {
+            return Stretched::Ran(StretchRan {
+                registers,
+                shift_ops: stretch.called_ops,
+                shift_ns: stretch.called_ns,
+                landed: None,
+                resume: first + len,
+            });
+        }
+        let passes = u64::from(ran.passes);
+        let pass_ops = len as u64 + 1 + stretch.called_ops;
+        let passes_ns = passes * stretch.pass_ns;
+        // The stretch ran once more after its passes unless they ended at its start.
+        let once_more = ran.left_loop || ran.passes == 0;
+        let (once_ops, once_ns) = if once_more {
+            (stretch.called_ops, stretch.called_ns)
+        } else {
+            (0, 0)
+        };
         Stretched::Ran(StretchRan {
-            registers: (status, accus[0], accus[1]),
-            passes: ran.passes,
-            pass_ops: len as u64 + 1,
-            pass_ns: stretch.pass_ns,
+            registers,
+            shift_ops: passes * pass_ops + once_ops,
+            shift_ns: passes_ns + once_ns,
+            landed: (passes > 0).then(|| time_base.wrapping_add(passes_ns + times[first])),
             resume: match (ran.left_loop, ran.passes) {
                 (true, _) => first + len + 1,
                 (false, 0) => first + len,
