@@ -34,30 +34,8 @@ AWLSIM_PYTHONS = {
     "cython": ROOT / "target" / "awlsim-cython-venv" / "bin" / "python3",
 }
 
-# Runs an S7 file for a number of cycles in awlsim's core and prints the operations it counted
-# (its own statement counter). No cycle time limit: under callgrind a cycle takes seconds.
-AWLSIM_DRIVER = """
-import sys
-# Through awlsim's loader, which takes the Cython modules when AWLSIM_CYTHON asks for them.
-from awlsim_loader.common import *
-from awlsim_loader.core import *
-from awlsim_loader.awlcompiler import *
-
-Logging.setLoglevel(Logging.LOG_ERROR)
-path, cycles = sys.argv[1], int(sys.argv[2])
-sim = AwlSim()
-sim.cpu.getConf().setConfiguredMnemonics(S7CPUConfig.MNEMONICS_EN)
-sim.cpu.getConf().setCycleTimeLimitUs(0x7FFFFFFF)
-parser = AwlParser()
-parser.parseSource(AwlSource.fromFile(path, path))
-sim.load(parser.getParseTree())
-sim.startup()
-for _ in range(cycles):
-    sim.runCycle()
-# The statement counter: name-mangled in Python, plain in the Cython core.
-count = getattr(sim.cpu, "_S7CPU__insnCount", None)
-print("operations:", getattr(sim.cpu, "__insnCount") if count is None else count)
-"""
+# Runs a STEP 7 file in awlsim (see benches/awlsim/driver.py).
+AWLSIM_DRIVER = ROOT / "benches" / "awlsim" / "driver.py"
 
 
 class Bench:
@@ -77,7 +55,7 @@ class Bench:
         if self.awlsim:
             program = ROOT / "programs" / "bench" / f"{self.scenario}.awl"
             python = AWLSIM_PYTHONS[self.awlsim]
-            return [str(python), "-c", AWLSIM_DRIVER, str(program), str(cycles)]
+            return [str(python), str(AWLSIM_DRIVER), str(program), "--cycles", str(cycles)]
         scenario = ROOT / "programs" / "bench" / f"{self.scenario}.toml"
         command = [str(AWL), "run", "--scenario", str(scenario), "--cycles", str(cycles)]
         if self.points:

@@ -24,36 +24,8 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent.parent
 AWL = ROOT / "target" / "release" / "awl"
 CYTHON_PYTHON = ROOT / "target" / "awlsim-cython-venv" / "bin" / "python3"
 
-# Runs an S7 file in awlsim's core for a number of seconds and prints its statement rate.
-AWLSIM_DRIVER = """
-import sys, time
-# Through awlsim's loader, which takes the Cython modules when AWLSIM_CYTHON asks for them.
-from awlsim_loader.common import *
-from awlsim_loader.core import *
-from awlsim_loader.awlcompiler import *
-
-Logging.setLoglevel(Logging.LOG_ERROR)
-path, seconds = sys.argv[1], float(sys.argv[2])
-sim = AwlSim()
-sim.cpu.getConf().setConfiguredMnemonics(S7CPUConfig.MNEMONICS_EN)
-sim.cpu.getConf().setCycleTimeLimitUs(0x7FFFFFFF)
-parser = AwlParser()
-parser.parseSource(AwlSource.fromFile(path, path))
-sim.load(parser.getParseTree())
-sim.startup()
-sim.runCycle()
-def operations():
-    # The statement counter: name-mangled in Python, plain in the Cython core.
-    count = getattr(sim.cpu, "_S7CPU__insnCount", None)
-    return getattr(sim.cpu, "__insnCount") if count is None else count
-
-before = operations()
-start = time.perf_counter()
-while time.perf_counter() - start < seconds:
-    sim.runCycle()
-elapsed = time.perf_counter() - start
-print("rate:", (operations() - before) / elapsed / 1e6)
-"""
+# Runs a STEP 7 file in awlsim (see benches/awlsim/driver.py).
+AWLSIM_DRIVER = ROOT / "benches" / "awlsim" / "driver.py"
 
 RATE = re.compile(r"rate:\s*([0-9.]+)")
 
@@ -70,7 +42,7 @@ def awlsim_rate(name, seconds):
     program = ROOT / "programs" / "bench" / f"{name}.awl"
     environment = dict(os.environ, AWLSIM_CYTHON="2")
     done = subprocess.run(
-        [str(CYTHON_PYTHON), "-c", AWLSIM_DRIVER, str(program), str(seconds)],
+        [str(CYTHON_PYTHON), str(AWLSIM_DRIVER), str(program), "--seconds", str(seconds)],
         capture_output=True,
         text=True,
         env=environment,

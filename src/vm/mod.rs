@@ -37,32 +37,47 @@ pub struct NativeRun {
     pub left_loop: bool,
 }
 
+/// A native stretch as the loop runs it (see [`native`]).
+#[derive(Debug, Clone, Copy)]
+pub struct NativeStretch {
+    /// How many ops it runs.
+    pub len: u32,
+    /// The arena's op at its start: what runs when the stretch cannot run as a whole.
+    pub first: crate::compiler::Op,
+    /// A loop's stretch, which a jump right after it takes back to its start: the simulated
+    /// time of one pass (the stretch and the jump); 0 for any other stretch.
+    pub pass_ns: u64,
+    /// The simulated time from the stretch's start to the start of its last operation.
+    pub until_last: u64,
+    /// The operations and time of the leaf blocks it calls, beyond the calls' own places.
+    pub called_ops: u64,
+    pub called_ns: u64,
+}
+
 /// Without the `jit` feature, and on wasm32, there is no native code: every op is interpreted.
 #[cfg(not(all(feature = "jit", not(target_arch = "wasm32"))))]
 pub mod native {
     use super::status::Status;
+    use super::{NativeRun, NativeStretch};
     use crate::compiler::{Op, Program};
 
+    /// Never made.
     #[derive(Debug)]
-    pub struct NativeCode {
-        pub code: Box<[Op]>,
-        pub operation_code: Box<[Op]>,
-        pub in_code: bool,
-        pub in_operation_code: bool,
-        pub stretches: Box<[Stretch]>,
-    }
-
-    #[derive(Debug, Clone, Copy)]
-    pub struct Stretch {
-        pub len: u32,
-        pub first: Op,
-        pub pass_ns: u64,
-        pub until_last: u64,
-        pub called_ops: u64,
-        pub called_ns: u64,
-    }
+    pub enum NativeCode {}
 
     impl NativeCode {
+        pub fn holds_stretches(&self, _: bool) -> bool {
+            match *self {}
+        }
+
+        pub fn code(&self, _: bool) -> &[Op] {
+            match *self {}
+        }
+
+        pub fn stretch(&self, _: u32) -> Option<&NativeStretch> {
+            match *self {}
+        }
+
         pub fn run(
             &self,
             _: u32,
@@ -70,8 +85,8 @@ pub mod native {
             _: &mut Status,
             _: &mut [u32; 4],
             _: &mut [u8],
-        ) -> Option<super::NativeRun> {
-            None
+        ) -> Option<NativeRun> {
+            match *self {}
         }
     }
 

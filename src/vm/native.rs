@@ -15,7 +15,7 @@ use std::sync::OnceLock;
 use awl_jit::{BitAction, Compiler, LoopBack, Registers, Step};
 
 use super::status::Status;
-use super::{IMAGE_MEMORY, NativeRun};
+use super::{IMAGE_MEMORY, NativeRun, NativeStretch};
 use crate::compiler::Program;
 use crate::compiler::bytecode::{
     Arith, Comparison, ImageBit, JumpCondition, Logic, Op, Width, Write,
@@ -34,34 +34,40 @@ const SHORTEST_LOOP: usize = 3;
 pub struct NativeCode {
     /// The arena's code with [`Op::Native`] at each stretch's start: for block points and traced
     /// runs, where a block change is a point or an event.
-    pub code: Box<[Op]>,
+    code: Box<[Op]>,
     /// The same where a stretch may also run a call of a leaf block (see [`leaf`]): for untraced
     /// runs with operation points, where a block change is neither.
-    pub operation_code: Box<[Op]>,
+    operation_code: Box<[Op]>,
     /// Whether `code` and `operation_code` hold any stretch (else the plain loops run).
-    pub in_code: bool,
-    pub in_operation_code: bool,
-    pub stretches: Box<[Stretch]>,
+    in_code: bool,
+    in_operation_code: bool,
+    stretches: Box<[NativeStretch]>,
     jit: awl_jit::Code,
 }
 
-#[derive(Debug, Clone, Copy)]
-pub struct Stretch {
-    /// How many ops it runs.
-    pub len: u32,
-    /// The arena's op at its start: what runs when the stretch cannot run as a whole.
-    pub first: Op,
-    /// A loop's stretch, which a jump right after it takes back to its start: the simulated
-    /// time of one pass (the stretch and the jump); 0 for any other stretch.
-    pub pass_ns: u64,
-    /// The simulated time from the stretch's start to the start of its last operation.
-    pub until_last: u64,
-    /// The operations and time of the leaf blocks it calls, beyond the calls' own places.
-    pub called_ops: u64,
-    pub called_ns: u64,
-}
-
 impl NativeCode {
+    /// Whether the code for these points (`operation_points`) holds any stretch.
+    pub fn holds_stretches(&self, operation_points: bool) -> bool {
+        if operation_points {
+            self.in_operation_code
+        } else {
+            self.in_code
+        }
+    }
+
+    /// The code with the stretches marked; `leaf_calls`: those that run leaf calls too.
+    pub fn code(&self, leaf_calls: bool) -> &[Op] {
+        if leaf_calls {
+            &self.operation_code
+        } else {
+            &self.code
+        }
+    }
+
+    pub fn stretch(&self, index: u32) -> Option<&NativeStretch> {
+        self.stretches.get(index as usize)
+    }
+
     /// Runs stretch `index` on the registers and the image: up to `most` passes of a loop, or
     /// the stretch once (see [`awl_jit::Code::run`]); `None` if it could not run.
     #[inline(always)]
@@ -125,7 +131,7 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
                 let times = &program.arena.times;
                 let jump = found.start + found.len;
                 let pass = |ns: u64| times[jump + 1] - times[found.start] + ns;
-                stretches.push(Stretch {
+                stretches.push(NativeStretch {
                     len: found.len as u32,
                     first: code[found.start],
                     pass_ns: found.loop_back.map_or(0, |_| pass(flat.called_ns)),

@@ -40,13 +40,9 @@ impl Cpu {
         // A program with native stretches runs in loops of its own: the others keep the loop
         // they had without the stretch's arm (callgrind, `programs/bench/calls`).
         // A loop with native code only where its code holds stretches for these points.
-        let native = self.native_code().is_some_and(|native| {
-            if operation_points {
-                native.in_operation_code
-            } else {
-                native.in_code
-            }
-        });
+        let native = self
+            .native_code()
+            .is_some_and(|native| native.holds_stretches(operation_points));
         match (self.program.s7.step7, operation_points, native) {
             (true, true, false) => self.run_step7::<true, false>(),
             (true, true, true) => self.run_step7::<true, true>(),
@@ -206,8 +202,7 @@ impl Cpu {
         let code = match native {
             _ if STEPPING => plain,
             // Leaf calls run inside stretches only where a block change is no point or event.
-            Some(native) if OPERATION_POINTS && !TRACING => &native.operation_code[..],
-            Some(native) => &native.code[..],
+            Some(native) => native.code(OPERATION_POINTS && !TRACING),
             None => &arena.ops[..],
         };
         let times = &arena.times[..];
@@ -852,7 +847,7 @@ impl Cpu {
         deadline: u64,
         (status, accu1, accu2): (Status, u32, u32),
     ) -> Stretched {
-        let Some(stretch) = native.stretches.get(index as usize) else {
+        let Some(stretch) = native.stretch(index) else {
             return Stretched::OpByOp(self.program.arena.ops[first]);
         };
         let times = &self.program.arena.times;

@@ -185,19 +185,11 @@ impl Compiler {
         }
         let pointer = self.module.target_config().pointer_type();
         let mut signature = self.module.make_signature();
+        // (registers, image, most passes) -> passes: see `Entry`.
         let int = cranelift_codegen::ir::types::I32;
-        signature
-            .params
-            .push(cranelift_codegen::ir::AbiParam::new(pointer));
-        signature
-            .params
-            .push(cranelift_codegen::ir::AbiParam::new(pointer));
-        signature
-            .params
-            .push(cranelift_codegen::ir::AbiParam::new(int));
-        signature
-            .returns
-            .push(cranelift_codegen::ir::AbiParam::new(int));
+        let param = cranelift_codegen::ir::AbiParam::new;
+        signature.params = vec![param(pointer), param(pointer), param(int)];
+        signature.returns = vec![param(int)];
         let name = format!("stretch{}", self.functions.len());
         let id = self
             .module
