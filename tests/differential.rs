@@ -1,9 +1,10 @@
 //! Differential test of the VM's ways of running a program: random STL programs, STEP 5 on
-//! several CPUs and STEP 7 on the SPEED7, with interrupts requested and inputs changed at
+//! every STEP 5 CPU and STEP 7 on the SPEED7, with interrupts requested and inputs changed at
 //! random simulated times, run in every execution mode of [`EXECUTIONS`] and in both
 //! interrupt-point modes. Every mode must write the same trace (the jsonl events) and leave the
 //! same state: memory, registers, time, operation count, and the STOP with its cause and place.
-//! Native stretches (a loop's passes in one call) run against the same program interpreted.
+//! Native stretches (a loop's passes in one call, leaf blocks called inside them) run against
+//! the same program interpreted.
 //! Each run is made twice, traced and untraced, as the VM runs a traced program in loops of
 //! their own.
 //!

@@ -10,8 +10,11 @@ use serde_json::Value;
 
 fn sample(name: &str) -> (Ran, Vec<Value>) {
     std::fs::create_dir_all("target/test-scenarios").unwrap();
+    // A file per test thread: tests running at once read the same sample's trace.
+    let thread = format!("{:?}", std::thread::current().id());
+    let thread: String = thread.chars().filter(char::is_ascii_digit).collect();
     let trace = std::path::PathBuf::from("target/test-scenarios")
-        .join(format!("s7-{name}-speed7_samples.jsonl"));
+        .join(format!("s7-{name}-speed7_samples-{thread}.jsonl"));
     let (ran, events) = traced_scenario(
         &std::path::PathBuf::from(format!("programs/s7/{name}.toml")),
         &trace,
