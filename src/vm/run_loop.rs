@@ -37,9 +37,8 @@ impl Cpu {
         if self.probe.is_some() || self.tracer.enabled {
             return self.execute_watched(operation_points);
         }
-        // A program with native stretches runs in loops of its own: the others keep the loop
-        // they had without the stretch's arm (callgrind, `programs/bench/calls`).
-        // A loop with native code only where its code holds stretches for these points.
+        // Code with native stretches for these points runs in loops of its own: the others keep
+        // the loop they had without the stretch's arm (callgrind, `programs/bench/calls`).
         let native = self
             .native_code()
             .is_some_and(|native| native.holds_stretches(operation_points));
@@ -62,8 +61,8 @@ impl Cpu {
         self.run_loop::<OPERATION_POINTS, false, false, false, NATIVE>()
     }
 
-    /// A STEP 7 program's loops with native stretches, out of line: inlined beside the others,
-    /// they cost a STEP 7 block call a few instructions more (callgrind, `programs/bench/s7_calls`).
+    /// A STEP 7 program's loops, out of line: inlined into `execute` beside the others, they
+    /// cost a STEP 7 block call a few instructions more (callgrind, `programs/bench/s7_calls`).
     #[inline(never)]
     fn run_step7<const OPERATION_POINTS: bool, const NATIVE: bool>(&mut self) -> Exit {
         self.run_loop::<OPERATION_POINTS, false, false, true, NATIVE>()
@@ -834,8 +833,8 @@ impl Cpu {
         self.program.native_code.get().and_then(Option::as_deref)
     }
 
-    /// Runs the native stretch `index` starting at `first`, out of the loop's line: a loop's
-    /// whole passes while no point falls due in one or at its end, else the stretch once.
+    /// Runs the native stretch `index` starting at `first`, for the loop's arm: a loop's whole
+    /// passes while no point falls due in one or at its end, else the stretch once.
     /// `deadline` is the attention time on the scale of `times` (`u64::MAX` with block points).
     #[inline(always)]
     fn run_stretch(
@@ -884,26 +883,22 @@ impl Cpu {
                 resume: first + len,
             });
         }
+        // Whole passes of a loop, and then, where its jump was not taken, the stretch once more
+        // and the jump; else the passes ended at its start.
         let passes = u64::from(ran.passes);
         let pass_ops = len as u64 + 1 + stretch.called_ops;
         let passes_ns = passes * stretch.pass_ns;
-        // The stretch ran once more after its passes unless they ended at its start.
-        let once_more = ran.left_loop || ran.passes == 0;
-        let (once_ops, once_ns) = if once_more {
-            (stretch.called_ops, stretch.called_ns)
+        let (once_ops, once_ns, resume) = if ran.left_loop {
+            (stretch.called_ops, stretch.called_ns, first + len + 1)
         } else {
-            (0, 0)
+            (0, 0, first)
         };
         Stretched::Ran(StretchRan {
             registers,
             shift_ops: passes * pass_ops + once_ops,
             shift_ns: passes_ns + once_ns,
             landed: (passes > 0).then(|| time_base.wrapping_add(passes_ns + times[first])),
-            resume: match (ran.left_loop, ran.passes) {
-                (true, _) => first + len + 1,
-                (false, 0) => first + len,
-                (false, _) => first,
-            },
+            resume,
         })
     }
 }
@@ -927,7 +922,17 @@ fn deadline_on(attention_at: u64, time_base: u64) -> u64 {
 
 #[cfg(test)]
 mod tests {
-    use super::deadline_on;
+    use super::{deadline_on, full_passes};
+
+    #[test]
+    fn whole_passes_are_those_that_end_before_the_attention_time() {
+        // Passes of 10 ns from 100: the fourth ends at 140, not before an attention at 140.
+        assert_eq!(full_passes(140, 100, 10), 3);
+        assert_eq!(full_passes(141, 100, 10), 4);
+        assert_eq!(full_passes(100, 100, 10), 0);
+        assert_eq!(full_passes(50, 100, 10), 0);
+        assert_eq!(full_passes(u64::MAX, 0, 1), u32::MAX);
+    }
 
     #[test]
     fn the_deadline_is_the_attention_time_on_the_scale_of_the_body() {
