@@ -242,14 +242,14 @@ fn flatten(program: &Program, found: &Found, calls: bool) -> Flat {
     flat
 }
 
-/// How many operations of stretches outside loops are compiled at most. Cranelift takes some
+/// How many operations (a leaf call's counted) of stretches outside loops are compiled at most. Cranelift takes some
 /// 100,000 host instructions per operation (callgrind, a 97,000-operation program: 9.6 G in
 /// `awl run`, 2 s), and a stretch that runs once a cycle gains a few instructions per
 /// operation, so a large program's start would cost more than its runs gain.
 const STRAIGHT_BUDGET: usize = 4_000;
 
 /// The stretches worth their compilation, each with whether it runs leaf calls: every loop's,
-/// then the longest others within [`STRAIGHT_BUDGET`], in the arena's order. A stretch that
+/// then the others that run the most ops within [`STRAIGHT_BUDGET`], in the arena's order. A stretch that
 /// calls leaf blocks comes beside the call-free ones it covers (block points and traces run
 /// those).
 fn chosen(call_free: Vec<Found>, with_calls: Vec<Found>) -> Vec<(Found, bool)> {
@@ -258,12 +258,17 @@ fn chosen(call_free: Vec<Found>, with_calls: Vec<Found>) -> Vec<(Found, bool)> {
         .map(|found| (found, false))
         .chain(with_calls.into_iter().map(|found| (found, true)))
         .collect();
-    found.sort_by_key(|(stretch, _)| (stretch.loop_back.is_none(), std::cmp::Reverse(stretch.len)));
+    found.sort_by_key(|(stretch, _)| {
+        (
+            stretch.loop_back.is_none(),
+            std::cmp::Reverse(stretch.weight),
+        )
+    });
     let mut budget = STRAIGHT_BUDGET;
     found.retain(|(stretch, _)| {
-        let fits = stretch.loop_back.is_some() || stretch.len <= budget;
+        let fits = stretch.loop_back.is_some() || stretch.weight <= budget;
         if fits && stretch.loop_back.is_none() {
-            budget -= stretch.len;
+            budget -= stretch.weight;
         }
         fits
     });
@@ -276,6 +281,8 @@ fn chosen(call_free: Vec<Found>, with_calls: Vec<Found>) -> Vec<(Found, bool)> {
 struct Found {
     start: usize,
     len: usize,
+    /// The ops it runs: `len`, and the ops of the leaf blocks it calls.
+    weight: usize,
     /// The condition of the jump right after it, when that jump goes back to its start.
     loop_back: Option<JumpCondition>,
 }
@@ -325,6 +332,7 @@ fn find(plain: &[Op], leaf: &dyn Fn(Op) -> Option<Leaf>) -> Vec<Found> {
         found.push(Found {
             start,
             len: end - start,
+            weight,
             loop_back,
         });
     };
@@ -584,6 +592,7 @@ mod tests {
         let found = |start, len, loop_back| Found {
             start,
             len,
+            weight: len,
             loop_back,
         };
         let jump_back = Some(crate::compiler::bytecode::JumpCondition::Rlo);
@@ -598,6 +607,7 @@ mod tests {
         let stretch = |start, len, loop_back| Found {
             start,
             len,
+            weight: len,
             loop_back,
         };
         let jump_back = Some(crate::compiler::bytecode::JumpCondition::Always);
