@@ -117,17 +117,16 @@ impl JumpCondition {
     #[inline(always)]
     pub fn taken(self, status: &mut crate::rules::status::Status) -> bool {
         use crate::rules::jump::Condition;
-        let status_before = *status;
         let taken = match self {
             JumpCondition::Always => true,
             JumpCondition::Rlo => status.rlo(),
             // The conditions on CC1, CC0 and OV, one rule for both dialects.
-            JumpCondition::Zero => Condition::Zero.holds(status_before, false),
+            JumpCondition::Zero => Condition::Zero.holds(*status, false),
             // `JN` jumps on CC1 ≠ CC0 only, unlike the condition `<>0`.
             JumpCondition::NotZero => status.cc1() != status.cc0(),
-            JumpCondition::Positive => Condition::Positive.holds(status_before, false),
-            JumpCondition::Minus => Condition::Negative.holds(status_before, false),
-            JumpCondition::Overflow => Condition::Overflow.holds(status_before, false),
+            JumpCondition::Positive => Condition::Positive.holds(*status, false),
+            JumpCondition::Minus => Condition::Negative.holds(*status, false),
+            JumpCondition::Overflow => Condition::Overflow.holds(*status, false),
         };
         if self == JumpCondition::Rlo {
             status.after_jump();

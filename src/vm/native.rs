@@ -566,6 +566,16 @@ mod tests {
     use super::*;
     use crate::rules::status::Combination;
 
+    /// A stretch without leaf calls.
+    fn found(start: usize, len: usize, loop_back: Option<JumpCondition>) -> Found {
+        Found {
+            start,
+            len,
+            weight: len,
+            loop_back,
+        }
+    }
+
     #[test]
     fn stretches_break_at_ops_without_a_step_and_where_jumps_land() {
         let bit = ImageBit { byte: 1, bit: 0 };
@@ -589,12 +599,6 @@ mod tests {
             Op::Nop,
             Op::End,
         ];
-        let found = |start, len, loop_back| Found {
-            start,
-            len,
-            weight: len,
-            loop_back,
-        };
         let jump_back = Some(crate::compiler::bytecode::JumpCondition::Rlo);
         assert_eq!(
             find(&code, &|_| None),
@@ -604,19 +608,13 @@ mod tests {
 
     #[test]
     fn loops_are_always_chosen_and_other_stretches_longest_first_within_the_budget() {
-        let stretch = |start, len, loop_back| Found {
-            start,
-            len,
-            weight: len,
-            loop_back,
-        };
         let jump_back = Some(crate::compiler::bytecode::JumpCondition::Always);
         let found = vec![
-            stretch(0, STRAIGHT_BUDGET / 2, None),
-            stretch(10_000, 3, jump_back),
-            stretch(20_000, STRAIGHT_BUDGET / 2 + 1, None),
-            stretch(30_000, STRAIGHT_BUDGET / 2, None),
-            stretch(40_000, 2 * STRAIGHT_BUDGET, jump_back),
+            found(0, STRAIGHT_BUDGET / 2, None),
+            found(10_000, 3, jump_back),
+            found(20_000, STRAIGHT_BUDGET / 2 + 1, None),
+            found(30_000, STRAIGHT_BUDGET / 2, None),
+            found(40_000, 2 * STRAIGHT_BUDGET, jump_back),
         ];
         let starts: Vec<usize> = chosen(found, Vec::new())
             .iter()

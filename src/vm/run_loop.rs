@@ -662,10 +662,6 @@ impl Cpu {
                     Op::Native(index) if NATIVE => {
                         let first = pc - 1;
                         let registers = (status, accu1, accu2);
-                        let Some(native) = native else {
-                            detail = StopDetail::Text("a stretch without native code".into());
-                            break 'run Leave::Stop(StopCause::Bcf, at!());
-                        };
                         match self.run_stretch(native, index, time_base, first, deadline, registers)
                         {
                             Stretched::Ran(ran) => {
@@ -839,14 +835,15 @@ impl Cpu {
     #[inline(always)]
     fn run_stretch(
         &mut self,
-        native: &NativeCode,
+        native: Option<&NativeCode>,
         index: u32,
         time_base: u64,
         first: usize,
         deadline: u64,
         (status, accu1, accu2): (Status, u32, u32),
     ) -> Stretched {
-        let Some(stretch) = native.stretch(index) else {
+        let Some((native, stretch)) = native.and_then(|code| Some((code, code.stretch(index)?)))
+        else {
             return Stretched::OpByOp(self.program.arena.ops[first]);
         };
         let times = &self.program.arena.times;
