@@ -268,8 +268,10 @@ pub enum Op {
         negate: bool,
         target: BitTarget,
     },
-    DisableInterrupts,
-    EnableInterrupts,
+    /// `RA` (`enabled`) and `IA`: interrupt servicing enabled or disabled.
+    Interrupts {
+        enabled: bool,
+    },
     GenerateDb(u8),
     /// The end of a block's code in the VM's arena: reached only by running past the last op
     /// of a block without `BE`. The compiler never emits it.

@@ -62,9 +62,7 @@ pub fn cost(op: Op, t: &Timings) -> u32 {
         Op::NotSimulated { .. } => t.other,
         Op::S7(code) => crate::step7::bytecode::cost(code, t),
         Op::S7Scan(..) | Op::S7Write(..) => t.bit_image,
-        Op::Nop | Op::Stop | Op::DisableInterrupts | Op::EnableInterrupts | Op::Formal { .. } => {
-            t.other
-        }
+        Op::Nop | Op::Stop | Op::Interrupts { .. } | Op::Formal { .. } => t.other,
         // Never compiled: their ops are timed one by one.
         Op::End | Op::Native(_) | fused_pairs!() => 0,
     }

@@ -345,8 +345,8 @@ pub fn lower(op: OpCode, operand: Resolved, layout: Layout, params: u16) -> Opti
             negate: true,
             target: bit_target(layout, address)?,
         },
-        (DisableInterrupts, R::None) => Op::DisableInterrupts,
-        (EnableInterrupts, R::None) => Op::EnableInterrupts,
+        (DisableInterrupts, R::None) => Op::Interrupts { enabled: false },
+        (EnableInterrupts, R::None) => Op::Interrupts { enabled: true },
         (TransferBytes, R::Number(operand)) if (1..=255).contains(&operand) => {
             Op::NotSimulated { op, operand }
         }

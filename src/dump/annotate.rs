@@ -501,7 +501,6 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
             };
             format!("{} {}", verb(op), context.bit_target(target))
         }
-        Op::DisableInterrupts => verb(OpCode::DisableInterrupts).to_string(),
         Op::AddConstant { value, double } => {
             let shown = if double {
                 format!("DH {value:08X}")
@@ -526,7 +525,14 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
                 format!("{} {operand}: STOP when run", verb(op))
             }
         }
-        Op::EnableInterrupts => verb(OpCode::EnableInterrupts).to_string(),
+        Op::Interrupts { enabled } => {
+            let op = if enabled {
+                OpCode::EnableInterrupts
+            } else {
+                OpCode::DisableInterrupts
+            };
+            verb(op).to_string()
+        }
         Op::Indirect { source, .. } => {
             let operand = match source {
                 IndirectSource::FlagWord(byte) => context.sized(Width::Word, byte),

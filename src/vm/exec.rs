@@ -501,7 +501,6 @@ impl Cpu {
                 let value = self.bit_target(target)?;
                 self.level.status.load(value != negate);
             }
-            Op::DisableInterrupts => self.level.interrupts_enabled = false,
             Op::AddConstant { value, double } => {
                 system_ops::add_constant(&mut self.level.accu1, value, double)
             }
@@ -522,9 +521,11 @@ impl Cpu {
                 }
                 super::s7::bit_logic::assigned(&mut self.level.status, rlo);
             }
-            Op::EnableInterrupts => {
-                self.level.interrupts_enabled = true;
-                self.update_attention();
+            Op::Interrupts { enabled } => {
+                self.level.interrupts_enabled = enabled;
+                if enabled {
+                    self.update_attention();
+                }
             }
             image_bit_ops!(_)
             | Op::OrAlone

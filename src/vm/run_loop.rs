@@ -767,7 +767,6 @@ impl Cpu {
                     | Op::SetUnconditional(_)
                     | Op::ResetUnconditional(_)
                     | Op::TestBit { .. }
-                    | Op::DisableInterrupts
                     | Op::AddConstant { .. }
                     | Op::NotSimulated { .. }
                     | Op::S7(_)
@@ -776,7 +775,7 @@ impl Cpu {
                     | Op::S7ScanPair { .. }
                     | Op::S7ScanWrite { .. }
                     | Op::Native(_)
-                    | Op::EnableInterrupts => {
+                    | Op::Interrupts { .. } => {
                         sync!();
                         let result = self.execute_other(*op, at!());
                         reload!();
