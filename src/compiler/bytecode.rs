@@ -155,6 +155,9 @@ pub const CALL_FROM_CONDITIONAL: u16 = 2;
 /// No actual-parameter list.
 pub const NO_PARAMS: u16 = u16::MAX;
 
+/// One op of the VM. How LLVM lays out the run loop's call and block-end paths depends on the
+/// number of variants (one more cost `programs/bench/calls` a host instruction per block call):
+/// run `benches/callgrind.py` after adding one.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Op {
     And(ImageBit),

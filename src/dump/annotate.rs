@@ -525,14 +525,8 @@ pub fn op_text(op: Op, pc: usize, context: Context<'_>) -> String {
                 format!("{} {operand}: STOP when run", verb(op))
             }
         }
-        Op::Interrupts { enabled } => {
-            let op = if enabled {
-                OpCode::EnableInterrupts
-            } else {
-                OpCode::DisableInterrupts
-            };
-            verb(op).to_string()
-        }
+        Op::Interrupts { enabled: true } => verb(OpCode::EnableInterrupts).to_string(),
+        Op::Interrupts { enabled: false } => verb(OpCode::DisableInterrupts).to_string(),
         Op::Indirect { source, .. } => {
             let operand = match source {
                 IndirectSource::FlagWord(byte) => context.sized(Width::Word, byte),
