@@ -18,7 +18,7 @@ use super::status::Status;
 use super::{IMAGE_MEMORY, NativeRun, NativeStretch};
 use crate::compiler::Program;
 use crate::compiler::bytecode::{
-    Arith, Comparison, ImageBit, JumpCondition, Logic, Op, Width, Write,
+    Arith, Comparison, ImageBit, JumpCondition, Logic, NO_PARAMS, Op, Width, Write,
 };
 use crate::step7::bytecode::S7Code;
 
@@ -181,7 +181,7 @@ fn leaf(program: &Program, op: Op) -> Option<Leaf> {
     let Op::Call {
         block,
         conditional: false,
-        params: crate::compiler::bytecode::NO_PARAMS,
+        params: NO_PARAMS,
     } = op
     else {
         return None;
@@ -189,9 +189,7 @@ fn leaf(program: &Program, op: Op) -> Option<Leaf> {
     if program.local_bytes(block) != 0 {
         return None;
     }
-    let entry = program
-        .arena
-        .start(block, crate::compiler::bytecode::NO_PARAMS);
+    let entry = program.arena.start(block, NO_PARAMS);
     let body = program.arena.plain.get(entry..)?;
     let end = body.iter().position(|op| step(*op).is_none())?;
     let ends = matches!(body[end], Op::BlockEnd | Op::BlockEndUnconditional);
@@ -244,16 +242,17 @@ fn flatten(program: &Program, found: &Found, calls: bool) -> Flat {
     flat
 }
 
-/// How many operations (a leaf call's counted) of stretches outside loops are compiled at most. Cranelift takes some
-/// 100,000 host instructions per operation (callgrind, a 97,000-operation program: 9.6 G in
-/// `awl run`, 2 s), and a stretch that runs once a cycle gains a few instructions per
-/// operation, so a large program's start would cost more than its runs gain.
+/// How many operations (a leaf call's counted) of stretches outside loops are compiled at
+/// most. Cranelift takes some 100,000 host instructions per operation (callgrind, a
+/// 97,000-operation program: 9.6 G in `awl run`, 1.4 s of CPU), and a stretch that runs once a
+/// cycle gains a few instructions per operation, so a large program's start would cost more
+/// than its runs gain.
 const STRAIGHT_BUDGET: usize = 4_000;
 
 /// The stretches worth their compilation, each with whether it runs leaf calls: every loop's,
-/// then the others that run the most ops within [`STRAIGHT_BUDGET`], in the arena's order. A stretch that
-/// calls leaf blocks comes beside the call-free ones it covers (block points and traces run
-/// those).
+/// then the others that run the most ops within [`STRAIGHT_BUDGET`], in the arena's order. A
+/// stretch that calls leaf blocks comes beside the call-free ones it covers (block points and
+/// traces run those).
 fn chosen(call_free: Vec<Found>, with_calls: Vec<Found>) -> Vec<(Found, bool)> {
     let mut found: Vec<(Found, bool)> = call_free
         .into_iter()

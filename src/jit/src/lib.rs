@@ -221,7 +221,8 @@ impl Compiler {
             .map(|&id| {
                 let address = self.module.get_finalized_function(id);
                 // SAFETY: `codegen::build` gave every function this signature: two pointers and
-                // a 32-bit count in, a 32-bit result, the target's default calling convention (`extern "C"`).
+                // a 32-bit count in, a 32-bit result, the target's default calling convention
+                // (`extern "C"`).
                 unsafe { std::mem::transmute::<*const u8, Entry>(address) }
             })
             .collect();
