@@ -20,6 +20,7 @@ const ERRORS: &str = include_str!("../grammar/errors.md");
 const MNEMONICS: &str = include_str!("../grammar/mnemonics.md");
 const STL_EBNF: &str = include_str!("../grammar/stl.ebnf");
 const STL7_EBNF: &str = include_str!("../grammar/stl7.ebnf");
+const EDITORS: &str = include_str!("../editors/README.md");
 
 /// Where a topic's text comes from.
 enum Body {
@@ -74,6 +75,11 @@ pub const TOPICS: &[Topic] = &[
         name: "serve",
         summary: "`awl serve`: the virtual PLC on the network (S7comm, Modbus TCP), its areas and maps",
         body: Body::Section(PROGRAMS, "## The virtual PLC (`awl serve`)"),
+    },
+    Topic {
+        name: "lsp",
+        summary: "`awl lsp` in an editor: what the language server offers, its settings, the setup of VS Code, Neovim and Helix",
+        body: Body::File(EDITORS),
     },
     Topic {
         name: "exit-codes",

@@ -43,6 +43,7 @@ fn each_topic_prints_the_repository_s_text_of_it() {
         ("library", "grammar/README.md", Some("Library blocks")),
         ("errors", "grammar/errors.md", None),
         ("language", "grammar/README.md", None),
+        ("lsp", "editors/README.md", None),
         ("mnemonics", "grammar/mnemonics.md", None),
     ] {
         let (ok, out, err) = awl(&["help", topic]);

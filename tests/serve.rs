@@ -292,8 +292,8 @@ fn readme_snippet(name: &str) -> String {
 #[test]
 fn the_readme_s_snippets_run_as_printed() {
     let Some(python) = python() else { return };
-    let served = serve(&["programs/s7/tank_hmi.awl"]);
-    for (name, printed) in [("s7", "300\n1\nTrue\n"), ("modbus", "[300]\nTrue\n")] {
+    let served = serve(&["--scenario", "programs/s7/tank_hmi_serve.toml"]);
+    for (name, printed) in [("s7", "300\n1\n0\n1\nTrue\n"), ("modbus", "[300]\nFalse\n")] {
         // The README serves on ports 1102 and 1502; here the system picked them.
         let snippet = readme_snippet(name)
             .replace("1102", &served.s7.to_string())

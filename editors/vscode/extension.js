@@ -11,10 +11,20 @@ function activate(context) {
     "awl",
     "awl",
     { run: server, debug: server },
-    { documentSelector: [{ scheme: "file", language: "stl" }] },
+    {
+      documentSelector: [{ scheme: "file", language: "stl" }],
+      // The server takes `cpu` and `symbols` at the start and again whenever they change.
+      initializationOptions: serverSettings(),
+      synchronize: { configurationSection: "awl" },
+    },
   );
   context.subscriptions.push(client);
   return client.start();
+}
+
+function serverSettings() {
+  const settings = vscode.workspace.getConfiguration("awl");
+  return { cpu: settings.get("cpu"), symbols: settings.get("symbols", []) };
 }
 
 function deactivate() {

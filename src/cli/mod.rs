@@ -154,6 +154,10 @@ pub enum Command {
     Serve(serve::ServeArgs),
     /// A language server over stdio for editors: diagnostics as you type, hover, go to
     /// definition, references, symbols, completion, quick fixes, semantic tokens, formatting
+    #[command(
+        after_long_help = "The editor starts it. `awl help lsp` gives the setup of VS Code, \
+Neovim and Helix, the settings (`cpu`, `symbols`) and what the server offers."
+    )]
     Lsp,
     /// Run scenario files and check their [expect] and [[check]] tables
     Test(run::TestArgs),

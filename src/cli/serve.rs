@@ -25,7 +25,11 @@ const MODBUS_DEFAULT: &str = "127.0.0.1:502";
 #[command(
     after_long_help = "Without --s7 and --modbus both servers start, on 127.0.0.1:102 \
 and 127.0.0.1:502; with one of them, only that one. `awl help serve` describes the area maps, \
-what a client's write does, and how HMIs, Node-RED and plant simulations connect."
+what a client's write does, and how HMIs, Node-RED and plant simulations connect.",
+    mut_arg("cycles", |arg| arg.help("Serve this many cycles (at least 1), then end \
+[default: the scenario's run, else until stopped]")),
+    mut_arg("duration", |arg| arg.help("Serve for this much simulated time, e.g. 10s (ends at \
+the next cycle end) [default: the scenario's run, else until stopped]"))
 )]
 pub struct ServeArgs {
     #[command(flatten)]
@@ -33,7 +37,7 @@ pub struct ServeArgs {
     #[command(flatten)]
     pub length: RunLength,
     /// Simulated time per wall-clock time: 1 is real time, 0.1 slow motion, 10 ten times
-    /// faster [default: 1]
+    /// faster
     #[arg(long, value_parser = parse_speed, default_value = "1")]
     pub speed: f64,
     /// Serve S7comm (ISO-on-TCP) on HOST:PORT; port 0 picks a free one [default: 127.0.0.1:102]
@@ -45,7 +49,7 @@ pub struct ServeArgs {
     /// Refuse every write and every STOP or start request [default: off]
     #[arg(long)]
     pub read_only: bool,
-    /// Connections served at once, per server; one more is closed at once [default: 32]
+    /// Connections served at once, per server; one more is closed at once
     #[arg(long, default_value = "32", value_parser = clap::value_parser!(u16).range(1..))]
     pub max_connections: u16,
     /// Write a trace of what was served to FILE (`-` for stdout) [default: no trace]
