@@ -111,7 +111,8 @@ pub struct ProgramArgs {
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// CPU profile (see `awl cpus`); overrides the scenario's [default: the scenario's, else
-    /// speed7 for STEP 7 files, else sinumerik-840c]
+    /// the program's dialect's: speed7 for STEP 7 (an awlsim project is STEP 7),
+    /// sinumerik-840c for STEP 5]
     #[arg(long, value_parser = profile::names())]
     pub cpu: Option<String>,
     /// Where interrupts are serviced [default: the scenario's, else the CPU's: block on the
@@ -249,7 +250,7 @@ pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
     RunOptions {
         files: args.files.clone(),
         scenario: args.scenario.clone(),
-        cpu: args.cpu.as_deref().map(|name| selected_profile(Some(name))),
+        cpu: args.cpu.as_deref().map(selected_profile),
         points: args.interrupt_points.map(|points| match points {
             Points::Block => InterruptPoints::Block,
             Points::Operation => InterruptPoints::Operation,

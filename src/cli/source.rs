@@ -39,7 +39,7 @@ fn build(
         language = project.language(language);
     }
     let profile = match options.cpu.as_deref() {
-        Some(name) => selected_profile(Some(name)),
+        Some(name) => selected_profile(name),
         None => {
             let profile = frontend::default_profile(&sources, language);
             project

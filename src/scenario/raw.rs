@@ -277,25 +277,31 @@ pub struct RawScenario {
     pub dialect: Option<Spanned<String>>,
     /// awlsim's test operations are accepted.
     pub extended: Option<bool>,
-    pub mode: Option<Spanned<String>>,
     pub interrupt_points: Option<Spanned<String>>,
     pub run: Option<Spanned<RawRun>>,
     pub watchdog: Option<Spanned<String>>,
-    pub ob13: Option<Spanned<RawOb13>>,
-    pub ob35: Option<Spanned<RawOb35>>,
-    pub hw_module: Vec<Spanned<RawHwModule>>,
+    pub cpu_keys: CpuKeys,
     /// `[[interrupt_input]]`: input bits whose edges raise interrupts.
     pub interrupt_input: Vec<Spanned<RawInterruptInput>>,
-    /// S7: the minimum cycle time.
-    pub min_cycle: Option<Spanned<String>>,
-    /// The S7 CPU's clock memory byte (`MB n`).
-    pub clock_memory: Option<Spanned<i64>>,
     pub event: Vec<Spanned<RawEvent>>,
     pub expect: SpannedTable,
     pub watch: Vec<Spanned<String>>,
     /// `[[check]]` tables: `at` and operands.
     pub check: Vec<Spanned<SpannedTable>>,
     pub modbus: RawModbus,
+}
+
+/// The keys that belong to some CPUs only, as written: checked once the run's CPU is known.
+#[derive(Debug, Default)]
+pub struct CpuKeys {
+    pub mode: Option<Spanned<String>>,
+    pub ob13: Option<Spanned<RawOb13>>,
+    pub ob35: Option<Spanned<RawOb35>>,
+    pub hw_module: Vec<Spanned<RawHwModule>>,
+    /// S7: the minimum cycle time.
+    pub min_cycle: Option<Spanned<String>>,
+    /// The S7 CPU's clock memory byte (`MB n`).
+    pub clock_memory: Option<Spanned<i64>>,
 }
 
 /// `[modbus]`: the operand each Modbus table starts at, as written.
@@ -704,17 +710,21 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "cpu" => raw.cpu = SCENARIO.read(name, value, errors),
             "dialect" => raw.dialect = SCENARIO.read(name, value, errors),
             "extended" => raw.extended = SCENARIO.read(name, value, errors),
-            "mode" => raw.mode = SCENARIO.read(name, value, errors),
+            "mode" => raw.cpu_keys.mode = SCENARIO.read(name, value, errors),
             "interrupt_points" => raw.interrupt_points = SCENARIO.read(name, value, errors),
             "watchdog" => raw.watchdog = SCENARIO.read(name, value, errors),
-            "min_cycle" => raw.min_cycle = SCENARIO.read(name, value, errors),
-            "clock_memory" => raw.clock_memory = SCENARIO.read(name, value, errors),
+            "min_cycle" => raw.cpu_keys.min_cycle = SCENARIO.read(name, value, errors),
+            "clock_memory" => raw.cpu_keys.clock_memory = SCENARIO.read(name, value, errors),
             "expect" => raw.expect = SCENARIO.read(name, value, errors).unwrap_or_default(),
             "watch" => raw.watch = SCENARIO.read(name, value, errors).unwrap_or_default(),
             "run" => raw.run = run(value, errors).map(|run| Spanned::new(value.span(), run)),
-            "ob13" => raw.ob13 = ob13(value, errors).map(|ob13| Spanned::new(value.span(), ob13)),
-            "ob35" => raw.ob35 = ob35(value, errors).map(|ob35| Spanned::new(value.span(), ob35)),
-            "hw_module" => raw.hw_module = read_each(name, value, errors, hw_module),
+            "ob13" => {
+                raw.cpu_keys.ob13 = ob13(value, errors).map(|ob13| Spanned::new(value.span(), ob13))
+            }
+            "ob35" => {
+                raw.cpu_keys.ob35 = ob35(value, errors).map(|ob35| Spanned::new(value.span(), ob35))
+            }
+            "hw_module" => raw.cpu_keys.hw_module = read_each(name, value, errors, hw_module),
             "interrupt_input" => {
                 raw.interrupt_input = read_each(name, value, errors, interrupt_input)
             }
@@ -997,7 +1007,7 @@ mod tests {
         let (raw, errors) = parse(text);
         assert!(errors.is_empty(), "{errors:?}");
         assert_eq!(raw.event.len(), 2);
-        assert_eq!(raw.hw_module.len(), 1);
+        assert_eq!(raw.cpu_keys.hw_module.len(), 1);
         assert_eq!(raw.check.len(), 1);
         assert!(raw.run.is_some() && raw.watchdog.is_some());
     }
