@@ -75,7 +75,7 @@ pub fn check(args: &CheckArgs, console: &mut Console) -> u8 {
     let Some((built, runs_on)) = build(&args.source, console, true) else {
         return EXIT_SOURCE_ERRORS;
     };
-    let blocks = built.compiled.program.blocks.len() + built.compiled.program.data_blocks.len();
+    let blocks = built.compiled.program.block_count();
     if built.has_errors() {
         console.totals("check", totals(&built, 0));
         if let Some(profiles) =

@@ -122,6 +122,12 @@ impl<'a> crate::address::operand::Places<'a> {
 }
 
 impl Program {
+    /// The blocks the program loads into the CPU: its code blocks and the data blocks of
+    /// either dialect (a STEP 7 `TYPE` is no block of the CPU, only of the program's source).
+    pub fn block_count(&self) -> usize {
+        self.blocks.len() + self.data_blocks.len() + self.s7.data_blocks.len()
+    }
+
     /// The program of compiled blocks: their names made once and the arena built.
     pub fn assemble(
         profile: &'static Profile,
