@@ -6,7 +6,7 @@ use crate::ast::{Address, Operand, ParamDecl, ParamFormat, Statement};
 use crate::mnemonics::{self, Area, BlockKind, MnemonicSet, OpCode, ParamKind};
 
 use super::bytecode::{self, Op};
-use super::error::CheckError;
+use super::error::{CheckError, one_edit_from};
 use super::lower::{self, Resolved};
 use super::{BlockContext, Compiler};
 use crate::address::Layout;
@@ -157,20 +157,9 @@ impl Compiler<'_> {
                 .iter()
                 .any(|decl| decl.name.text.eq_ignore_ascii_case(&param.name.text))
             {
-                let help = decls
-                    .iter()
-                    .map(|decl| {
-                        (
-                            strsim::damerau_levenshtein(
-                                &decl.name.text.to_ascii_uppercase(),
-                                &param.name.text.to_ascii_uppercase(),
-                            ),
-                            decl,
-                        )
-                    })
-                    .filter(|(distance, _)| *distance <= 1)
-                    .min_by_key(|(distance, _)| *distance)
-                    .map(|(_, decl)| format!("did you mean `{}`?", decl.name.text))
+                let declared = decls.iter().map(|decl| decl.name.text.as_str());
+                let help = one_edit_from(&param.name.text, declared)
+                    .map(|close| format!("did you mean `{close}`?"))
                     .or_else(|| Some(format!("{fb} declares: {}", names(&decls))));
                 self.diagnostics.push(CheckError::UnknownParam {
                     name: param.name.text.clone(),

@@ -732,19 +732,8 @@ impl<'a> Compiler<'a> {
             .iter()
             .map(|param| param.name.text.as_str())
             .chain(context.labels.keys().map(String::as_str));
-        let help = candidates
-            .map(|candidate| {
-                (
-                    strsim::damerau_levenshtein(
-                        &name.to_ascii_uppercase(),
-                        &candidate.to_ascii_uppercase(),
-                    ),
-                    candidate,
-                )
-            })
-            .filter(|(distance, _)| *distance <= 1)
-            .min_by_key(|(distance, _)| *distance)
-            .map(|(_, candidate)| format!("did you mean `={candidate}`?"));
+        let help =
+            error::one_edit_from(name, candidates).map(|close| format!("did you mean `={close}`?"));
         self.fail(CheckError::UndefinedSymbol {
             name: name.to_string(),
             block: context.id.to_string(),
