@@ -6,10 +6,11 @@ use crate::ast::{Address, Operand, ParamDecl, ParamFormat, Statement};
 use crate::mnemonics::{self, Area, BlockKind, MnemonicSet, OpCode, ParamKind};
 
 use super::bytecode::{self, Op};
-use super::error::{CheckError, one_edit_from};
+use super::error::CheckError;
 use super::lower::{self, Resolved};
 use super::{BlockContext, Compiler};
 use crate::address::Layout;
+use crate::suggest::one_edit_from;
 
 /// `I BI`, `D KF`, `T` — a declaration's kind and format as written in the file's set.
 pub fn describe_decl(decl: &ParamDecl, set: MnemonicSet) -> String {

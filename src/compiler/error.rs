@@ -6,26 +6,6 @@ use thiserror::Error;
 
 use crate::source::Span;
 
-/// The name of `names` one edit from `written`, case aside: what a typo of a jump label, a
-/// parameter or a variable most likely meant, for the help of both dialects' errors.
-pub fn one_edit_from<'a>(
-    written: &str,
-    names: impl IntoIterator<Item = &'a str>,
-) -> Option<&'a str> {
-    let written = written.to_ascii_uppercase();
-    names
-        .into_iter()
-        .map(|name| {
-            (
-                strsim::damerau_levenshtein(&written, &name.to_ascii_uppercase()),
-                name,
-            )
-        })
-        .filter(|(distance, _)| *distance <= 1)
-        .min_by_key(|(distance, _)| *distance)
-        .map(|(_, name)| name)
-}
-
 #[derive(Debug, Clone, Error, Diagnostic, PartialEq)]
 pub enum CheckError {
     /// A STEP 7 symbol the S7 compiler looked up: unknown, or of the wrong kind.

@@ -732,8 +732,8 @@ impl<'a> Compiler<'a> {
             .iter()
             .map(|param| param.name.text.as_str())
             .chain(context.labels.keys().map(String::as_str));
-        let help =
-            error::one_edit_from(name, candidates).map(|close| format!("did you mean `={close}`?"));
+        let help = crate::suggest::one_edit_from(name, candidates)
+            .map(|close| format!("did you mean `={close}`?"));
         self.fail(CheckError::UndefinedSymbol {
             name: name.to_string(),
             block: context.id.to_string(),

@@ -358,7 +358,7 @@ pub fn parse(line: &str) -> Option<Result<Command, CommandError>> {
         Some("quit") => Ok(Command::Quit),
         _ => Err(CommandError::Unknown {
             command: first.to_string(),
-            help: match crate::scenario::did_you_mean(
+            help: match crate::suggest::did_you_mean(
                 &word,
                 COMMANDS.iter().map(|(name, _, _)| *name),
             ) {

@@ -24,6 +24,7 @@ use crate::diagnostics::Finding;
 use crate::dialect::Dialect;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
+use crate::suggest::did_you_mean;
 use crate::vm::cycle::RunLimit;
 use crate::vm::interrupts::inputs::{Edge, InterruptInput, Raises};
 use crate::vm::interrupts::{Happening, InputChange, InputTarget, Ob13Timing, Scheduled};
@@ -123,15 +124,6 @@ pub fn parse_duration(text: &str) -> Option<u64> {
     };
     let ns = value * scale;
     (value.is_finite() && (0.0..1e19).contains(&ns)).then_some(ns.round() as u64)
-}
-
-/// The closest of `candidates` to `word`, when it is close enough to be a typo.
-pub fn did_you_mean<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> Option<&'a str> {
-    candidates
-        .map(|candidate| (strsim::damerau_levenshtein(word, candidate), candidate))
-        .filter(|(distance, candidate)| *distance <= 2 && *distance < candidate.len())
-        .min_by_key(|(distance, _)| *distance)
-        .map(|(_, candidate)| candidate)
 }
 
 fn duration(spanned: &Spanned<String>) -> Result<u64, ScenarioError> {

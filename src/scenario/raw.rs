@@ -511,7 +511,7 @@ impl Table {
     /// The key `written` stands for: the closest in spelling, else the one whose meaning it
     /// names (`runtime` → `run`).
     fn meant(&self, written: &str) -> Option<&'static str> {
-        super::did_you_mean(written, self.keys.iter().map(|key| key.name)).or_else(|| {
+        crate::suggest::did_you_mean(written, self.keys.iter().map(|key| key.name)).or_else(|| {
             let word = written.trim().to_ascii_lowercase().replace(['-', ' '], "_");
             self.keys
                 .iter()

@@ -8,7 +8,6 @@ use crate::compiler::bytecode::{
     Arith, CALL_FROM_CONDITIONAL, CALL_FROM_FB, ImageBit, IndirectSource, JumpCondition, NO_PARAMS,
     Op, TimerKind, Width, Write,
 };
-use crate::compiler::error::one_edit_from;
 use crate::compiler::{CheckError, CompiledBlock, Resolved, cost};
 use crate::mnemonics::{BlockKind, MnemonicSet};
 use crate::rules::jump::Jump;
@@ -23,6 +22,7 @@ use crate::step7::bytecode::{
     FbCall, FcCall, McrCode, MemOp, ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK,
     Target, WAIT,
 };
+use crate::suggest::one_edit_from;
 
 use super::layout::{Home, START_INFO_BYTES};
 use super::operand::{Scope, constant_value, not_an_operand};

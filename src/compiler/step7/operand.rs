@@ -2,13 +2,13 @@
 //! addresses, constants and awlsim's test operands.
 
 use crate::compiler::CheckError;
-use crate::compiler::error::one_edit_from;
 use crate::source::Span;
 use crate::step7::ast::{
     AccessWidth, ConstKind, DataType, IndirectPointer, S7Address, S7Area, S7Constant, S7Operand,
     VarKind,
 };
 use crate::step7::bytecode::{Place, Target};
+use crate::suggest::one_edit_from;
 use crate::symbols::SymbolError;
 
 use super::layout::{self, Home, Interface};
