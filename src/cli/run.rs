@@ -197,8 +197,9 @@ pub struct RunArgs {
     /// to stderr); implies --state [default: text]
     #[arg(long, value_enum)]
     pub state_format: Option<StateFormat>,
-    /// Watch operands (STATUS VAR), e.g. "Q 4.0, FW 10, T 1, C 2, DB 10 DW 3": a row each time
-    /// one changed at a cycle end [default: the scenario's `watch`, else none]
+    /// Watch operands (STATUS VAR), e.g. "Q 4.0, FW 10, T 1, C 2, DB 10 DW 3", or
+    /// "MW 10, DB5.DBW 4, DB5.level": every name --state shows; a row each time one changed
+    /// at a cycle end [default: the scenario's `watch`, else none]
     #[arg(long, value_name = "OPERANDS")]
     pub watch: Option<String>,
     /// A watch row every DURATION of simulated time (at the next cycle end) instead of on change
@@ -273,10 +274,7 @@ fn run_options(args: &RunArgs) -> RunOptions {
         watch: args
             .watch
             .iter()
-            .flat_map(|list| list.split(','))
-            .map(str::trim)
-            .filter(|operand| !operand.is_empty())
-            .map(str::to_string)
+            .flat_map(|list| crate::address::operand::list(list))
             .collect(),
         watch_every_ns: args.watch_every,
         limit: args.length.limit(),

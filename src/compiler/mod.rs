@@ -117,6 +117,7 @@ impl<'a> crate::address::operand::Places<'a> {
             profile: program.profile,
             layout: program.layout,
             data_blocks: &program.s7.data_blocks,
+            declared: &program.s7.declared_dbs,
         }
     }
 }

@@ -649,9 +649,9 @@ fn watched(
                 operand: operand.clone(),
                 reason: error.reason(),
                 help: if program.s7.step7 {
-                    "write operands as in a scenario's [expect]: `Q 4.0`, `MW 10`, `T 1`, `C 2`, `DB1.DBW 2`"
+                    "write operands as `--state` names them, as in a scenario's [expect]: `Q 4.0`, `MW 10`, `T 1`, `C 2`, `DB1.DBW 2`, `DB1.level`"
                 } else {
-                    "write operands as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
+                    "write operands as `--state` names them, as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
                 },
             }))
         })?;
