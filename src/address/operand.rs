@@ -640,17 +640,19 @@ END_ORGANIZATION_BLOCK
         }
     }
 
+    /// A bit (`bytes` 0), byte, word or double word of DB 5 of [`PROGRAM`].
+    fn data(byte: u32, bit: u8, bytes: u8) -> Result<Target, (String, Option<String>)> {
+        Ok(Target::S7Data {
+            db: 5,
+            byte,
+            bit,
+            bytes,
+        })
+    }
+
     #[test]
     fn data_block_operands() {
         let program = program();
-        let data = |byte, bit, bytes| {
-            Ok(Target::S7Data {
-                db: 5,
-                byte,
-                bit,
-                bytes,
-            })
-        };
         assert_eq!(parsed(&program, "DB5.DBX 0.1"), data(0, 1, 0));
         assert_eq!(parsed(&program, "DB5.DBB 2"), data(2, 0, 1));
         assert_eq!(parsed(&program, "DB5.DBW 4"), data(4, 0, 2));
@@ -666,14 +668,6 @@ END_ORGANIZATION_BLOCK
     #[test]
     fn declared_values_by_the_names_the_state_shows() {
         let program = program();
-        let data = |byte, bit, bytes| {
-            Ok(Target::S7Data {
-                db: 5,
-                byte,
-                bit,
-                bytes,
-            })
-        };
         assert_eq!(parsed(&program, "DB5.flags"), data(0, 0, 2));
         assert_eq!(parsed(&program, "DB5.batches"), data(2, 0, 1));
         assert_eq!(parsed(&program, "DB5.level"), data(4, 0, 2));
