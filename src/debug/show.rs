@@ -183,6 +183,16 @@ pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Resu
                 .ok_or_else(|| format!("DB {db} has no DW {word}"))?;
             *slot = raw()? as u16;
         }
+        Target::DataDouble { db, word } => {
+            let raw = raw()?;
+            let at = usize::from(word);
+            let slots = cpu.data_blocks[usize::from(db)]
+                .as_mut()
+                .ok_or_else(|| format!("DB {db} is not loaded"))?
+                .get_mut(at..at + 2)
+                .ok_or_else(|| format!("DB {db} has no DD {word}"))?;
+            slots.copy_from_slice(&[(raw >> 16) as u16, raw as u16]);
+        }
         Target::S7Data { .. } => write_s7_data(cpu, target, raw()?)?,
     }
     Ok(format!("{operand} = {}\n", natural(cpu, target)))
