@@ -1,7 +1,8 @@
 //! `awl serve`'s S7comm server against a fake CPU (plain byte arrays answering the requests on
-//! a thread of its own): python-snap7 clients (the scripts in tests/clients/, run by the Python
-//! at `AWL_PYTHON`, else `python3`; skipped when python-snap7 is not installed) and raw packets
-//! over a socket. All traffic stays on 127.0.0.1.
+//! a thread of its own): python-snap7 clients (the scripts in tests/clients/, run in the
+//! environment tests/common/python.rs makes under target/, or by the Python at `AWL_PYTHON`;
+//! a test fails where it cannot have them) and raw packets over a socket. All traffic stays on
+//! 127.0.0.1.
 
 mod common;
 
@@ -134,9 +135,9 @@ fn settings() -> Settings {
     }
 }
 
-/// The Python with python-snap7, or `None` (and a note) when there is none.
-fn python() -> Option<PathBuf> {
-    common::python::with("snap7", "python-snap7 is")
+/// The Python with python-snap7 3.x.
+fn python() -> PathBuf {
+    common::python::with("snap7")
 }
 
 fn run_script(python: &Path, script: &str, args: &[String]) -> Output {
@@ -162,7 +163,7 @@ fn args(values: &[&dyn ToString]) -> Vec<String> {
 
 #[test]
 fn python_snap7_reads_and_writes_every_area_and_width_on_rack_0_slot_1_and_2() {
-    let Some(python) = python() else { return };
+    let python = python();
     let server = start(settings(), false);
     let port = server.address.port();
     // Slot 1 with the default PDU request (480), slot 2 asking for more than awl's 960.
@@ -183,7 +184,7 @@ fn python_snap7_reads_and_writes_every_area_and_width_on_rack_0_slot_1_and_2() {
 
 #[test]
 fn python_snap7_reads_the_cpu_state_order_code_info_and_clock_and_stops_and_starts_it() {
-    let Some(python) = python() else { return };
+    let python = python();
     let server = start(settings(), false);
     let version = env!("CARGO_PKG_VERSION");
     let port = server.address.port();
@@ -198,7 +199,7 @@ fn python_snap7_reads_the_cpu_state_order_code_info_and_clock_and_stops_and_star
 
 #[test]
 fn a_read_only_cpu_refuses_writes_and_control_as_a_protected_cpu_does() {
-    let Some(python) = python() else { return };
+    let python = python();
     let server = start(settings(), true);
     assert_script(&python, "s7_read_only.py", &args(&[&server.address.port()]));
     assert_eq!(lock(&server.memory).mode, CpuMode::Run);
@@ -206,7 +207,7 @@ fn a_read_only_cpu_refuses_writes_and_control_as_a_protected_cpu_does() {
 
 #[test]
 fn eight_clients_are_served_at_once_and_a_ninth_is_turned_away() {
-    let Some(python) = python() else { return };
+    let python = python();
     let server = start(settings(), false);
     let port = server.address.port();
     assert_script(&python, "s7_concurrent.py", &args(&[&port, &2.0]));
@@ -516,7 +517,7 @@ fn random_packets_are_answered_or_closed_and_a_python_client_is_served_after() {
     }
     let mut raw = Raw::ready(&server);
     still_serving(&mut raw);
-    let Some(python) = python() else { return };
+    let python = python();
     let port = server.address.port();
     assert_script(&python, "s7_areas.py", &args(&[&port, &0, &1, &480, &480]));
 }
