@@ -76,6 +76,7 @@ impl Memory {
                     order_code: "6ES7 315-2AG10-0AB0".to_string(),
                     clock_ms: CLOCK_MS,
                     cycles: 0,
+                    read_only: self.read_only,
                 });
             }
             Request::Control { command, reply, .. } => {
@@ -140,6 +141,11 @@ fn python() -> PathBuf {
     common::python::with("snap7")
 }
 
+/// The Python with python-snap7 1.x, whose wheel bundles Snap7's C library.
+fn python_snap7_1() -> PathBuf {
+    common::python::SNAP7_1.python("snap7")
+}
+
 fn run_script(python: &Path, script: &str, args: &[String]) -> Output {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/clients")
@@ -195,6 +201,39 @@ fn python_snap7_reads_the_cpu_state_order_code_info_and_clock_and_stops_and_star
         memory.controls,
         [HotStart, Stop, HotStart, Stop, ColdStart, ColdStart]
     );
+}
+
+#[test]
+fn snap7_s_c_library_gets_every_answer_an_s7_300_gives() {
+    let python = python_snap7_1();
+    let server = start(settings(), false);
+    let version = env!("CARGO_PKG_VERSION");
+    let port = server.address.port();
+    let connections = settings().max_connections;
+    assert_script(
+        &python,
+        "s7_snap7_1.py",
+        &args(&[&port, &version, &connections]),
+    );
+    let memory = lock(&server.memory);
+    assert_eq!(
+        &memory.areas.area(Area::DataBlock(1))[10..12],
+        &[0x12, 0x34]
+    );
+    assert_eq!(&memory.areas.area(Area::DataBlock(1))[40..45], b"snap7");
+    assert_eq!(&memory.areas.area(Area::Flags)[20..22], &[0xAB, 0xCD]);
+    use Control::*;
+    assert_eq!(memory.controls, [Stop, HotStart, HotStart]);
+    assert_eq!(memory.mode, CpuMode::Run);
+}
+
+#[test]
+fn snap7_s_c_library_sees_a_read_only_cpu_write_protected() {
+    let python = python_snap7_1();
+    let server = start(settings(), true);
+    let port = server.address.port();
+    assert_script(&python, "s7_snap7_1.py", &args(&[&port, &"read-only"]));
+    assert_eq!(lock(&server.memory).mode, CpuMode::Run);
 }
 
 #[test]

@@ -41,7 +41,7 @@ def run(argv):
     expected = datetime(1990, 1, 1) + timedelta(milliseconds=clock_ms)
     assert client.get_plc_datetime() == expected, client.get_plc_datetime()
     refused(lambda: client.set_plc_datetime(datetime(2025, 1, 1)), "0x8104")
-    refused(lambda: client.read_szl(0x0132, 4), "information function unavailable")
+    refused(lambda: client.read_szl(0x0132, 1), "information function unavailable")
     # python-snap7's get_cpu_state sends a read job without items: wrong frames.
     refused(client.get_cpu_state, "class=0x85")
     assert state(client) == "S7CpuStatusRun"

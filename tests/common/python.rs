@@ -26,6 +26,9 @@ pub struct Clients {
 /// python-snap7 3.x, pymodbus and pytest-lsp.
 pub static MAIN: Clients = Clients::new("requirements.txt", "clients", Some("AWL_PYTHON"));
 
+/// python-snap7 1.x, whose wheel bundles Snap7's C library.
+pub static SNAP7_1: Clients = Clients::new("requirements-snap7-1.txt", "clients-snap7-1", None);
+
 /// The Python of the main clients, which must import `modules` (`"snap7, pymodbus"`).
 pub fn with(modules: &str) -> PathBuf {
     MAIN.python(modules)
