@@ -69,9 +69,13 @@ impl Clients {
             .output();
         let imported = import.as_ref().is_ok_and(|output| output.status.success());
         if !imported {
+            // The exception's line, not the traceback above it.
             let why = import.map_or_else(
                 |error| error.to_string(),
-                |output| String::from_utf8_lossy(&output.stderr).trim().to_string(),
+                |output| {
+                    let stderr = String::from_utf8_lossy(&output.stderr);
+                    stderr.trim().lines().last().unwrap_or_default().to_string()
+                },
             );
             let remedy = match (self.variable, chosen) {
                 (Some(variable), Some(_)) => format!(
@@ -87,7 +91,7 @@ impl Clients {
                 ),
             };
             panic!(
-                "{} cannot import {modules} ({why}): {remedy}",
+                "{} cannot import {modules}: {why}\n{remedy}",
                 python.display()
             );
         }
@@ -160,7 +164,7 @@ fn run(command: &mut Command) -> Result<(), String> {
         .current_dir(repo())
         .stdin(Stdio::null())
         .output()
-        .map_err(|error| error.to_string())?;
+        .map_err(|error| format!("cannot run {}: {error}", command.get_program().display()))?;
     if output.status.success() {
         return Ok(());
     }
