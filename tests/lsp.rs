@@ -6,7 +6,6 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn python() -> PathBuf {
     common::python::with("pytest_lsp")
@@ -31,13 +30,12 @@ fn a_real_client_gets_diagnostics_hover_and_definitions() {
     )
     .unwrap();
     let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/lsp_client/test_lsp.py");
-    let output = Command::new(python)
+    let output = common::python::command(&python)
         .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
         .args(["-o", "asyncio_default_fixture_loop_scope=function"])
         .arg(tests)
         .env("AWL_BIN", env!("CARGO_BIN_EXE_awl"))
         .env("AWL_LSP_FOLDER", &folder)
-        .env("PYTHONDONTWRITEBYTECODE", "1")
         .output()
         .expect("python runs");
     let _ = std::fs::remove_dir_all(&folder);

@@ -8,7 +8,6 @@ mod common;
 use std::io::Read;
 use std::net::{SocketAddr, TcpStream};
 use std::path::Path;
-use std::process::Command;
 use std::sync::{Arc, Mutex};
 use std::thread;
 use std::time::Duration;
@@ -91,12 +90,10 @@ impl Server {
     fn client(&self, script: &str) {
         let python = common::python::with("pymodbus");
         let clients = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/clients");
-        let output = Command::new(&python)
+        let output = common::python::command(&python)
             .arg(clients.join(script))
             .arg(self.address.port().to_string())
             .current_dir(&clients)
-            // No __pycache__ beside the scripts.
-            .env("PYTHONDONTWRITEBYTECODE", "1")
             .output()
             .expect("the client runs");
         assert!(

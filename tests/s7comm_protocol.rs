@@ -9,7 +9,7 @@ mod common;
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
@@ -150,7 +150,11 @@ fn run_script(python: &Path, script: &str, args: &[String]) -> Output {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/clients")
         .join(script);
-    Command::new(python).arg(path).args(args).output().unwrap()
+    common::python::command(python)
+        .arg(path)
+        .args(args)
+        .output()
+        .unwrap()
 }
 
 fn assert_script(python: &Path, script: &str, args: &[String]) {

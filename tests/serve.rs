@@ -93,7 +93,7 @@ fn lines(stdout: ChildStdout) -> mpsc::Receiver<String> {
 impl Served {
     /// Runs a client script of tests/clients with the two ports; it must succeed.
     fn client(&self, python: &Path, script: &str) {
-        let output = Command::new(python)
+        let output = common::python::command(python)
             .arg(repo("tests/clients").join(script))
             .args([self.s7.to_string(), self.modbus.to_string()])
             .output()
@@ -299,7 +299,7 @@ fn the_readme_s_snippets_run_as_printed() {
         let snippet = readme_snippet(name)
             .replace("1102", &served.s7.to_string())
             .replace("1502", &served.modbus.to_string());
-        let output = Command::new(&python)
+        let output = common::python::command(&python)
             .args(["-c", &snippet])
             .output()
             .expect("python runs");

@@ -7,11 +7,9 @@ import ctypes
 import sys
 
 import snap7
+from fake_cpu import ORDER_CODE, check_identity
 from snap7.types import Areas, S7SZLList
 
-# The order code the fake CPU of tests/s7comm_protocol.rs reports, in its field of 20
-# characters filled with spaces.
-ORDER_CODE = b"6ES7 315-2AG10-0AB0 "
 # The ids of the lists awl answers (src/serve/s7comm/szl.rs).
 LISTS = [0x0000, 0x0011, 0x001C, 0x0111, 0x0131, 0x0132, 0x0232, 0x0424]
 # An S7-300 CPU 315-2 PN/DP's MPI and communication bus data rates, in bit/s.
@@ -69,16 +67,7 @@ def connect(port):
 def writable(client, version, connections):
     assert client.get_cpu_state() == "S7CpuStatusRun"
 
-    order_code = client.get_order_code()
-    assert order_code.OrderCode == ORDER_CODE, order_code.OrderCode
-    assert f"{order_code.V1}.{order_code.V2}.{order_code.V3}" == version
-
-    info = client.get_cpu_info()
-    assert info.ASName == b"awl", info.ASName
-    assert info.ModuleName == b"awl speed7", info.ModuleName
-    assert info.ModuleTypeName == b"awl speed7", info.ModuleTypeName
-    assert info.Copyright == b"awl, MIT licence", info.Copyright
-    assert info.SerialNumber == b"AWL 0000001", info.SerialNumber
+    check_identity(client, version)
 
     # The longest PDU awl negotiates, the connections it serves at once, an S7-300's rates.
     assert cp_info(client) == (960, connections, MPI_RATE, BUS_RATE), cp_info(client)
@@ -92,7 +81,7 @@ def writable(client, version, connections):
     # One module identification record by its index: the order code's.
     one = client.read_szl(0x0111, 1)
     assert (one.Header.LengthDR, one.Header.NDR) == (28, 1)
-    assert bytes(one.Data[2:22]) == ORDER_CODE
+    assert bytes(one.Data[2:22]) == ORDER_CODE.ljust(20)
     # The protection of the CPU's communication section, as SZL 0x0232 gives it.
     section = client.read_szl(0x0132, 4)
     assert (section.Header.LengthDR, section.Header.NDR) == (40, 1)

@@ -34,6 +34,13 @@ pub fn with(modules: &str) -> PathBuf {
     MAIN.python(modules)
 }
 
+/// A command that runs `python`, writing no `__pycache__` beside the scripts it imports.
+pub fn command(python: &Path) -> Command {
+    let mut command = Command::new(python);
+    command.env("PYTHONDONTWRITEBYTECODE", "1");
+    command
+}
+
 fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
