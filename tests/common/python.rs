@@ -62,28 +62,15 @@ impl Clients {
     /// The Python to run the clients with, which imports `modules`; panics, saying how to
     /// install them, where there is none.
     pub fn python(&self, modules: &str) -> PathBuf {
-        let chosen = self.variable.and_then(std::env::var_os);
+        let chosen = self.variable.and_then(std::env::var_os).map(PathBuf::from);
         let python = match &chosen {
-            Some(python) => PathBuf::from(python),
+            Some(python) => python.clone(),
             None => match self.made.get_or_init(|| self.make()) {
                 Ok(python) => python.clone(),
                 Err(why) => panic!("{why}"),
             },
         };
-        let import = Command::new(&python)
-            .args(["-c", &format!("import {modules}")])
-            .stdout(Stdio::null())
-            .output();
-        let imported = import.as_ref().is_ok_and(|output| output.status.success());
-        if !imported {
-            // The exception's line, not the traceback above it.
-            let why = import.map_or_else(
-                |error| error.to_string(),
-                |output| {
-                    let stderr = String::from_utf8_lossy(&output.stderr);
-                    stderr.trim().lines().last().unwrap_or_default().to_string()
-                },
-            );
+        if let Err(why) = imports(&python, modules) {
             let remedy = match (self.variable, chosen) {
                 (Some(variable), Some(_)) => format!(
                     "install them with `{} -m pip install -r tests/clients/{}`, or unset \
@@ -116,53 +103,73 @@ impl Clients {
 
     /// Makes the environment unless it holds this requirements file's packages; its Python.
     fn make(&self) -> Result<PathBuf, String> {
-        let failed = |what: &str, why: String| {
-            format!(
-                "the tests could not make the clients' environment in target/{}: {what}: \
-                 {why}\nMake it with {} (this needs python3 with its venv module, on Debian \
-                 `apt-get install python3-venv`, and the network for pip)",
-                self.folder,
-                self.command()
-            )
-        };
         let target = repo().join("target");
-        fs::create_dir_all(&target).map_err(|error| failed("target/", error.to_string()))?;
-        let lock_path = target.join(format!("{}.lock", self.folder));
-        let lock = File::create(&lock_path)
+        fs::create_dir_all(&target).map_err(|error| self.failed("target/", error))?;
+        // Held until the environment is made: other test processes wait for it.
+        let lock = File::create(target.join(format!("{}.lock", self.folder)))
             .and_then(|lock| lock.lock().map(|()| lock))
-            .map_err(|error| failed("its lock file", error.to_string()))?;
-        let requirements = fs::read_to_string(repo().join("tests/clients").join(self.requirements))
-            .map_err(|error| failed(self.requirements, error.to_string()))?;
+            .map_err(|error| self.failed("its lock file", error))?;
+        let requirements = fs::read_to_string(self.requirements_path())
+            .map_err(|error| self.failed(self.requirements, error))?;
         let folder = target.join(self.folder);
-        // The copy of the requirements the environment was made from, written last.
-        let made_from = folder.join(self.requirements);
         let python = folder.join(if cfg!(windows) {
             "Scripts/python.exe"
         } else {
             "bin/python"
         });
+        // The copy of the requirements the environment was made from, written last.
+        let made_from = folder.join(self.requirements);
         if fs::read_to_string(&made_from).ok().as_ref() != Some(&requirements) {
             let _ = fs::remove_dir_all(&folder);
             run(Command::new("python3").args(["-m", "venv"]).arg(&folder))
-                .map_err(|why| failed("python3 -m venv", why))?;
-            let install = [
-                "-m",
-                "pip",
-                "install",
-                "--quiet",
-                "--disable-pip-version-check",
-            ];
+                .map_err(|why| self.failed("python3 -m venv", why))?;
             run(Command::new(&python)
-                .args(install)
+                .args([
+                    "-m",
+                    "pip",
+                    "install",
+                    "--quiet",
+                    "--disable-pip-version-check",
+                ])
                 .arg("-r")
-                .arg(repo().join("tests/clients").join(self.requirements)))
-            .map_err(|why| failed("pip install", why))?;
+                .arg(self.requirements_path()))
+            .map_err(|why| self.failed("pip install", why))?;
             fs::write(&made_from, &requirements)
-                .map_err(|error| failed("writing its stamp", error.to_string()))?;
+                .map_err(|error| self.failed("writing its stamp", error))?;
         }
         drop(lock);
         Ok(python)
     }
+
+    fn requirements_path(&self) -> PathBuf {
+        repo().join("tests/clients").join(self.requirements)
+    }
+
+    /// Why the environment could not be made, and how to make it by hand.
+    fn failed(&self, what: &str, why: impl std::fmt::Display) -> String {
+        format!(
+            "the tests could not make the clients' environment in target/{}: {what}: {why}\n\
+             Make it with {} (this needs python3 with its venv module, on Debian \
+             `apt-get install python3-venv`, and the network for pip)",
+            self.folder,
+            self.command()
+        )
+    }
+}
+
+/// Whether `python` imports `modules`; the exception's line (not the traceback above it) where
+/// it does not.
+fn imports(python: &Path, modules: &str) -> Result<(), String> {
+    let output = Command::new(python)
+        .args(["-c", &format!("import {modules}")])
+        .stdout(Stdio::null())
+        .output()
+        .map_err(|error| error.to_string())?;
+    if output.status.success() {
+        return Ok(());
+    }
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    Err(stderr.trim().lines().last().unwrap_or_default().to_string())
 }
 
 /// Runs a command to its end; what it said when it failed.
