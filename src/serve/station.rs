@@ -176,7 +176,7 @@ impl<'a> Station<'a> {
                 let _ = reply.send(results);
             }
             Request::Status { reply } => {
-                let _ = reply.send(status(cpu));
+                let _ = reply.send(status(cpu, self.read_only));
             }
             Request::Control { command, reply, .. } => {
                 let _ = reply.send(self.control(cpu, command));
@@ -236,7 +236,7 @@ impl<'a> Station<'a> {
 }
 
 /// What the CPU reports of itself.
-pub fn status(cpu: &Cpu) -> CpuStatus {
+fn status(cpu: &Cpu, read_only: bool) -> CpuStatus {
     CpuStatus {
         mode: match cpu.mode {
             Mode::Run => CpuMode::Run,
@@ -247,5 +247,6 @@ pub fn status(cpu: &Cpu) -> CpuStatus {
         order_code: super::identity::order_code(cpu.profile),
         clock_ms: cpu.clock_ms() as i64,
         cycles: cpu.cycle,
+        read_only,
     }
 }
