@@ -665,20 +665,29 @@ fn watched(
         None => Vec::new(),
     };
     for operand in &options.watch {
-        let target = parse_target(operand, (0, 0).into(), set, program).map_err(|error| {
-            NotRun::Usage(Report::new(RunError::WatchOperand {
-                operand: operand.clone(),
-                reason: error.reason(),
-                help: if program.s7.step7 {
-                    "write operands as in a scenario's [expect]: `Q 4.0`, `MW 10`, `T 1`, `C 2`, `DB1.DBW 2`"
-                } else {
-                    "write operands as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
-                },
-            }))
-        })?;
+        let target = watch_target(operand, set, program)
+            .map_err(|error| NotRun::Usage(Report::new(error)))?;
         targets.push((operand.clone(), target));
     }
     Ok(targets)
+}
+
+/// An operand as `--watch` takes it, and the online page: the one way the command line's
+/// operands are resolved.
+pub fn watch_target(
+    operand: &str,
+    set: MnemonicSet,
+    program: &Program,
+) -> Result<Target, RunError> {
+    parse_target(operand, (0, 0).into(), set, program).map_err(|error| RunError::WatchOperand {
+        operand: operand.to_string(),
+        reason: error.reason(),
+        help: if program.s7.step7 {
+            "write operands as in a scenario's [expect]: `Q 4.0`, `MW 10`, `T 1`, `C 2`, `DB1.DBW 2`"
+        } else {
+            "write operands as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
+        },
+    })
 }
 
 #[cfg(test)]

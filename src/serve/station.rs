@@ -8,8 +8,9 @@ use crate::vm::{Cpu, Mode};
 
 use super::access::serve_items;
 use super::network::Network;
+use super::online::Online;
 use super::pacing::Pacer;
-use super::request::{Control, ControlError, CpuMode, CpuStatus, Request};
+use super::request::{Client, Control, ControlError, CpuMode, CpuStatus, Protocol, Request};
 
 /// How often the status is reported and a halt looked for while the CPU waits.
 const LOOK_EVERY: Duration = Duration::from_millis(100);
@@ -57,6 +58,8 @@ pub struct Station<'a> {
     answered: bool,
     read_only: bool,
     pub pacer: Pacer,
+    /// What the online page sees: the diagnostic buffer, the last STOP.
+    pub online: Online,
     open_clients: usize,
     pub served: Served,
     wanted: Option<Start>,
@@ -71,6 +74,7 @@ impl<'a> Station<'a> {
         network: Network,
         read_only: bool,
         pacer: Pacer,
+        online: Online,
         halted: &'a dyn Fn() -> bool,
         report: &'a mut dyn FnMut(&Snapshot),
     ) -> Self {
@@ -80,6 +84,7 @@ impl<'a> Station<'a> {
             answered: false,
             read_only,
             pacer,
+            online,
             open_clients: 0,
             served: Served::default(),
             wanted: None,
@@ -178,8 +183,15 @@ impl<'a> Station<'a> {
             Request::Status { reply } => {
                 let _ = reply.send(status(cpu));
             }
-            Request::Control { command, reply, .. } => {
-                let _ = reply.send(self.control(cpu, command));
+            Request::Control {
+                client,
+                command,
+                reply,
+            } => {
+                let _ = reply.send(self.control(cpu, client, command));
+            }
+            Request::Online { client, ask } => {
+                self.online.serve(cpu, client, ask, self.open_clients);
             }
             Request::Connection { open, .. } => {
                 if open {
@@ -194,14 +206,29 @@ impl<'a> Station<'a> {
 
     /// A mode change a client asks for: the STOP at once (requests are served between two
     /// cycles), a start once the CPU gets back to its STOP loop.
-    fn control(&mut self, cpu: &mut Cpu, command: Control) -> Result<(), ControlError> {
+    fn control(
+        &mut self,
+        cpu: &mut Cpu,
+        client: Client,
+        command: Control,
+    ) -> Result<(), ControlError> {
         if self.read_only {
             return Err(ControlError::ReadOnly);
         }
         let stopped = cpu.mode == Mode::Stop;
         match command {
             Control::Stop => {
-                cpu.stop_from_outside("client");
+                // The trace names the online page's STOP apart from an HMI's.
+                let cause = match client.protocol {
+                    Protocol::Http => "online",
+                    Protocol::S7 | Protocol::Modbus => "client",
+                };
+                if !stopped {
+                    let by = format!("{} #{}", client.protocol.name(), client.number);
+                    self.online
+                        .mode_changed(cpu, format!("STOP, asked for by {by}"));
+                }
+                cpu.stop_from_outside(cause);
                 self.wanted = None;
                 Ok(())
             }
@@ -221,6 +248,7 @@ impl<'a> Station<'a> {
         if elapsed < Duration::from_millis(250) {
             return;
         }
+        self.online.look_now_and_then(cpu);
         let requests = self.served.requests - self.requests_at_last_report;
         (self.report)(&Snapshot {
             mode: cpu.mode,

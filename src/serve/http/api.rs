@@ -1,0 +1,322 @@
+//! The online page's requests decoded into plain values, without a socket: the method, the
+//! path, the query and the body in, a [`Call`] — or the refusal — out. The fuzz target
+//! `http_decode` feeds it arbitrary requests.
+
+use serde::Deserialize;
+
+use crate::serve::online::error::OnlineError;
+use crate::serve::request::{Control, Format};
+
+/// What a request asks for.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Call {
+    /// The page itself.
+    Page,
+    Cpu,
+    Mode(Control),
+    /// Operands, each with its format (`None`: the program's own notation).
+    Values(Vec<(String, Option<Format>)>),
+    Modify {
+        operand: String,
+        value: toml::Value,
+    },
+    Diagnostics,
+}
+
+impl Call {
+    /// Whether it changes the CPU: refused when the server is read-only.
+    pub fn changes(&self) -> bool {
+        matches!(self, Call::Mode(_) | Call::Modify { .. })
+    }
+}
+
+/// The paths, the methods each takes, and an example of its body or query for the help.
+struct Route {
+    path: &'static str,
+    method: &'static str,
+    example: &'static str,
+}
+
+const ROUTES: [Route; 6] = [
+    Route {
+        path: "/",
+        method: "GET",
+        example: "",
+    },
+    Route {
+        path: "/api/cpu",
+        method: "GET",
+        example: "",
+    },
+    Route {
+        path: "/api/mode",
+        method: "POST",
+        example: r#"{"mode": "stop"}"#,
+    },
+    Route {
+        path: "/api/values",
+        method: "GET",
+        example: "/api/values?operands=MW%2010,Q%204.0&formats=HEX,",
+    },
+    Route {
+        path: "/api/modify",
+        method: "POST",
+        example: r#"{"operand": "MW 10", "value": 42}"#,
+    },
+    Route {
+        path: "/api/diagnostics",
+        method: "GET",
+        example: "",
+    },
+];
+
+/// Decodes one request; `query` is the part after `?`, undecoded.
+pub fn decode(
+    method: &str,
+    path: &str,
+    query: Option<&str>,
+    body: &[u8],
+) -> Result<Call, OnlineError> {
+    let Some(route) = ROUTES.iter().find(|route| route.path == path) else {
+        return Err(OnlineError::NoSuchPath {
+            path: path.to_string(),
+        });
+    };
+    if route.method != method {
+        return Err(OnlineError::Method {
+            method: method.to_string(),
+            path: route.path,
+            allowed: route.method,
+        });
+    }
+    let query = Query::parse(query.unwrap_or(""));
+    match route.path {
+        "/" => Ok(Call::Page),
+        "/api/cpu" => Ok(Call::Cpu),
+        "/api/mode" => mode(route, body),
+        "/api/values" => values(route, &query),
+        "/api/modify" => {
+            let Change { operand, value } = json(route, body)?;
+            Ok(Call::Modify {
+                operand,
+                value: value.into_toml()?,
+            })
+        }
+        _ => Ok(Call::Diagnostics),
+    }
+}
+
+/// A query's parameters, percent-decoded.
+struct Query(Vec<(String, String)>);
+
+impl Query {
+    fn parse(query: &str) -> Query {
+        Query(
+            form_urlencoded::parse(query.as_bytes())
+                .into_owned()
+                .collect(),
+        )
+    }
+
+    fn get(&self, name: &str) -> Option<&str> {
+        self.0
+            .iter()
+            .find(|(key, _)| key == name)
+            .map(|(_, value)| value.as_str())
+    }
+}
+
+/// A body as the route's JSON.
+fn json<'a, T: Deserialize<'a>>(route: &Route, body: &'a [u8]) -> Result<T, OnlineError> {
+    serde_json::from_slice(body).map_err(|error| OnlineError::BadJson {
+        path: route.path,
+        reason: error.to_string(),
+        example: route.example,
+    })
+}
+
+#[derive(Deserialize)]
+struct ModeBody {
+    mode: String,
+}
+
+fn mode(route: &Route, body: &[u8]) -> Result<Call, OnlineError> {
+    let ModeBody { mode } = json(route, body)?;
+    let command = match mode.trim().to_ascii_lowercase().as_str() {
+        "stop" => Control::Stop,
+        "warm" => Control::HotStart,
+        "cold" => Control::ColdStart,
+        _ => return Err(OnlineError::UnknownMode { mode }),
+    };
+    Ok(Call::Mode(command))
+}
+
+/// `operands=MW 10,Q 4.0&formats=HEX,`: the formats a parallel list, empty ones the default.
+fn values(route: &Route, query: &Query) -> Result<Call, OnlineError> {
+    let operands = query.get("operands").ok_or(OnlineError::Missing {
+        path: route.path,
+        name: "operands",
+        example: route.example,
+    })?;
+    let mut formats = query.get("formats").unwrap_or("").split(',');
+    operands
+        .split(',')
+        .map(str::trim)
+        .filter(|operand| !operand.is_empty())
+        .map(|operand| {
+            let format = match formats.next().map(str::trim) {
+                None | Some("") => None,
+                Some(name) => {
+                    Some(
+                        Format::parse(name).ok_or_else(|| OnlineError::UnknownFormat {
+                            format: name.to_string(),
+                        })?,
+                    )
+                }
+            };
+            Ok((operand.to_string(), format))
+        })
+        .collect::<Result<_, _>>()
+        .map(Call::Values)
+}
+
+/// A modify's or force's body.
+#[derive(Deserialize)]
+struct Change {
+    operand: String,
+    value: Written,
+}
+
+/// A value as JSON gives it: a number, true or false, or text as a scenario's `set` takes it.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum Written {
+    Integer(i64),
+    Real(f64),
+    Bool(bool),
+    Text(String),
+}
+
+impl Written {
+    fn into_toml(self) -> Result<toml::Value, OnlineError> {
+        match self {
+            Written::Integer(number) => Ok(toml::Value::Integer(number)),
+            Written::Real(real) => Ok(toml::Value::Float(real)),
+            Written::Bool(flag) => Ok(toml::Value::Boolean(flag)),
+            Written::Text(text) => scenario_value(&text).ok_or(OnlineError::Value { text }),
+        }
+    }
+}
+
+/// `text` read as the value of a scenario's key: `42`, `-5`, `0x2A`, `true`, `1.5`.
+fn scenario_value(text: &str) -> Option<toml::Value> {
+    let mut table: toml::Table = format!("value = {text}").parse().ok()?;
+    let value = table.remove("value")?;
+    table.is_empty().then_some(value)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn refusal(method: &str, path: &str, query: Option<&str>, body: &str) -> String {
+        match decode(method, path, query, body.as_bytes()) {
+            Ok(call) => panic!("decoded {call:?}"),
+            Err(error) => error.to_string(),
+        }
+    }
+
+    #[test]
+    fn values_take_operands_and_a_parallel_list_of_formats() {
+        let call = decode(
+            "GET",
+            "/api/values",
+            Some("operands=MW%2010,Q+4.0,%22Motor%22&formats=hex,"),
+            b"",
+        );
+        assert_eq!(
+            call.unwrap(),
+            Call::Values(vec![
+                ("MW 10".into(), Some(Format::Hex)),
+                ("Q 4.0".into(), None),
+                ("\"Motor\"".into(), None),
+            ])
+        );
+    }
+
+    #[test]
+    fn values_are_numbers_booleans_or_a_scenario_s_text() {
+        let modify = |body: &str| decode("POST", "/api/modify", None, body.as_bytes());
+        let value = |body: &str| match modify(body) {
+            Ok(Call::Modify { value, .. }) => value,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(
+            value(r#"{"operand": "MW 10", "value": 42}"#),
+            toml::Value::Integer(42)
+        );
+        assert_eq!(
+            value(r#"{"operand": "MW 10", "value": "0x2A"}"#),
+            toml::Value::Integer(42)
+        );
+        assert_eq!(
+            value(r#"{"operand": "Q 4.0", "value": true}"#),
+            toml::Value::Boolean(true)
+        );
+        assert_eq!(
+            value(r#"{"operand": "MD 4", "value": 1.5}"#),
+            toml::Value::Float(1.5)
+        );
+        assert!(matches!(
+            modify(r#"{"operand": "MW 10", "value": "1\nother = 2"}"#),
+            Err(OnlineError::Value { .. })
+        ));
+    }
+
+    #[test]
+    fn malformed_requests_are_refused_with_what_was_wrong() {
+        assert_eq!(
+            refusal("GET", "/api/nothing", None, ""),
+            "`/api/nothing` is no page of the online view"
+        );
+        assert_eq!(
+            refusal("GET", "/api/mode", None, ""),
+            "/api/mode does not take GET"
+        );
+        assert!(
+            refusal("POST", "/api/mode", None, "{mode: stop")
+                .starts_with("the request is not the JSON /api/mode takes: key must be a string")
+        );
+        assert_eq!(
+            refusal("POST", "/api/mode", None, r#"{"mode": "run"}"#),
+            "`run` is no mode to change to"
+        );
+        assert_eq!(
+            refusal("GET", "/api/values", None, ""),
+            "/api/values needs `operands`"
+        );
+        assert_eq!(
+            refusal(
+                "GET",
+                "/api/values",
+                Some("operands=MW%2010&formats=OCT"),
+                ""
+            ),
+            "`OCT` is no display format"
+        );
+        assert!(
+            refusal("POST", "/api/modify", None, r#"{"operand": "MW 10"}"#)
+                .contains("missing field `value`")
+        );
+        assert!(refusal("POST", "/api/modify", None, "\u{0}\u{ff}").contains("/api/modify"));
+        assert_eq!(
+            refusal(
+                "POST",
+                "/api/modify",
+                None,
+                r#"{"operand": "MW 10", "value": "ten"}"#
+            ),
+            "`ten` is no value"
+        );
+    }
+}

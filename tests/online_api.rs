@@ -1,0 +1,431 @@
+//! The online page's JSON API (`awl serve --http`) with a plain HTTP client written by others
+//! (ureq), in both dialects, and its security cases, on 127.0.0.1 with a port the system picks.
+//! Requests that no well-behaved client sends (a foreign `Host`, a request of a single line) go
+//! over a plain TCP socket.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+
+const AWL: &str = env!("CARGO_BIN_EXE_awl");
+
+/// A running `awl serve … --http 127.0.0.1:0` and the port it printed.
+struct Online {
+    child: Child,
+    port: u16,
+    agent: ureq::Agent,
+}
+
+impl Online {
+    fn start(args: &[&str]) -> Online {
+        let mut child = Command::new(AWL)
+            .arg("serve")
+            .args(args)
+            .args(["--http", "127.0.0.1:0"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("awl starts");
+        let stdout = child.stdout.take().expect("piped");
+        let (send, lines) = mpsc::channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+                let _ = send.send(line);
+            }
+        });
+        let deadline = Instant::now() + Duration::from_secs(60);
+        let port = loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            let Ok(line) = lines.recv_timeout(left) else {
+                let _ = child.kill();
+                let mut stderr = String::new();
+                let _ = child
+                    .stderr
+                    .take()
+                    .map(|mut err| err.read_to_string(&mut stderr));
+                panic!("awl serve printed no online line: {stderr}");
+            };
+            if let Some(rest) = line.strip_prefix("Online page at http://127.0.0.1:") {
+                break rest.trim_end_matches('/').parse().expect("a port");
+            }
+        };
+        let agent = ureq::Agent::config_builder()
+            .http_status_as_error(false)
+            .build()
+            .into();
+        Online { child, port, agent }
+    }
+
+    fn url(&self, path: &str) -> String {
+        format!("http://127.0.0.1:{}{path}", self.port)
+    }
+
+    fn answer(response: Result<ureq::http::Response<ureq::Body>, ureq::Error>) -> (u16, Value) {
+        let mut response = response.expect("the server answers");
+        let status = response.status().as_u16();
+        let text = response.body_mut().read_to_string().expect("a body");
+        let value = serde_json::from_str(&text).unwrap_or(Value::String(text));
+        (status, value)
+    }
+
+    fn get(&self, path: &str) -> (u16, Value) {
+        Online::answer(self.agent.get(&self.url(path)).call())
+    }
+
+    fn post(&self, path: &str, body: &Value) -> (u16, Value) {
+        let request = self
+            .agent
+            .post(&self.url(path))
+            .header("Content-Type", "application/json");
+        Online::answer(request.send(body.to_string()))
+    }
+
+    /// The values of `operands` (`MW 10,Q 4.0`) in `formats`.
+    fn values(&self, operands: &str, formats: &str) -> Vec<Value> {
+        let query = format!(
+            "/api/values?operands={}&formats={formats}",
+            operands.replace(' ', "%20")
+        );
+        let (status, answer) = self.get(&query);
+        assert_eq!(status, 200, "{answer}");
+        answer["values"].as_array().expect("values").clone()
+    }
+
+    /// Waits until `operand` shows `value` (the CPU takes a write at its next control point).
+    fn wait_for(&self, operand: &str, value: &str) -> Value {
+        let deadline = Instant::now() + Duration::from_secs(10);
+        loop {
+            let row = self.values(operand, "").remove(0);
+            if row["value"] == value || Instant::now() > deadline {
+                assert_eq!(row["value"], value, "{operand}");
+                return row;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    /// A request as it is written, over a socket of its own; the status and the body.
+    fn raw(&self, request: &str) -> (u16, String) {
+        let mut stream = TcpStream::connect(("127.0.0.1", self.port)).expect("connects");
+        stream.write_all(request.as_bytes()).expect("sends");
+        let mut answer = String::new();
+        let _ = stream.read_to_string(&mut answer);
+        let status = answer
+            .split_whitespace()
+            .nth(1)
+            .and_then(|code| code.parse().ok())
+            .unwrap_or(0);
+        let body = answer.split("\r\n\r\n").nth(1).unwrap_or("").to_string();
+        (status, body)
+    }
+}
+
+impl Drop for Online {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+#[test]
+fn a_step7_program_on_speed7_is_watched_modified_stopped_and_restarted() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl", "--cpu", "speed7"]);
+    let (status, cpu) = online.get("/api/cpu");
+    assert_eq!(status, 200);
+    assert_eq!(cpu["mode"], "RUN", "{cpu}");
+    assert_eq!(cpu["profile"], "speed7");
+    assert_eq!(cpu["dialect"], "s7");
+    assert_eq!(cpu["mnemonics"], "en");
+    assert_eq!(cpu["read_only"], false);
+    assert_eq!(cpu["stop"], Value::Null);
+    assert!(
+        cpu["cycle_time_ms"]["mean"].as_f64().unwrap() > 0.0,
+        "{cpu}"
+    );
+
+    let rows = online.values("DB1.DBW 0,Q 0.0,MW 20,DB1.DBW 0", "HEX,,,BIN");
+    assert_eq!(
+        rows[0],
+        json!({"operand": "DB1.DBW 0", "format": "HEX", "value": "W#16#01F4", "raw": 500})
+    );
+    assert_eq!(
+        rows[1],
+        json!({"operand": "Q 0.0", "format": "BOOL", "value": "0", "raw": false})
+    );
+    assert_eq!(rows[2]["format"], "DEC");
+    assert_eq!(rows[3]["value"], "2#0000_0001_1111_0100");
+
+    let (status, modified) = online.post(
+        "/api/modify",
+        &json!({"operand": "DB1.DBW 0", "value": "600"}),
+    );
+    assert_eq!(status, 200, "{modified}");
+    assert_eq!(
+        modified,
+        json!({"operand": "DB1.DBW 0", "value": "600", "raw": 600})
+    );
+    online.wait_for("DB1.DBW 0", "600");
+
+    let (status, mode) = online.post("/api/mode", &json!({"mode": "stop"}));
+    assert_eq!((status, mode), (200, json!({"mode": "STOP"})));
+    assert_eq!(online.get("/api/cpu").1["mode"], "STOP");
+    let (status, mode) = online.post("/api/mode", &json!({"mode": "warm"}));
+    assert_eq!((status, mode), (200, json!({"mode": "RUN"})));
+    let (status, refused) = online.post("/api/mode", &json!({"mode": "cold"}));
+    assert_eq!(status, 409, "{refused}");
+    assert_eq!(refused["code"], "awl::online::running");
+    // A warm restart keeps the data block; OB 100 counts the restart in MW 20.
+    online.wait_for("DB1.DBW 0", "600");
+    online.wait_for("MW 20", "2");
+
+    let (status, buffer) = online.get("/api/diagnostics");
+    assert_eq!(status, 200);
+    let kinds: Vec<&str> = buffer["entries"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|entry| entry["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["mode", "mode", "modify"], "{buffer}");
+    let texts = &buffer["entries"];
+    assert_eq!(texts[0]["text"], "STARTUP: warm restart");
+    assert!(
+        texts[1]["text"]
+            .as_str()
+            .unwrap()
+            .starts_with("STOP, asked for by http #")
+    );
+    assert!(
+        texts[2]["text"]
+            .as_str()
+            .unwrap()
+            .starts_with("DB1.DBW 0 := 600 (http #")
+    );
+}
+
+#[test]
+fn a_step5_program_on_an_s5_115u_is_watched_and_modified_in_its_own_notation() {
+    let online = Online::start(&["programs/tank_hmi_115u.awl", "--cpu", "s5-115u-944"]);
+    let (_, cpu) = online.get("/api/cpu");
+    assert_eq!(cpu["dialect"], "s5", "{cpu}");
+    assert_eq!(cpu["profile"], "s5-115u-944");
+    let rows = online.values("DB 1 DW 0,DB 1 DW 0,FW 20,Q 0.0", ",HEX,,");
+    assert_eq!(rows[0]["value"], "KF +500");
+    assert_eq!(rows[0]["format"], "DEC");
+    assert_eq!(rows[1]["value"], "KH 01F4");
+    assert_eq!(rows[2]["raw"], 1, "one restart: {rows:?}");
+    assert_eq!(rows[3]["raw"], false);
+
+    let (status, modified) = online.post(
+        "/api/modify",
+        &json!({"operand": "DB 1 DW 0", "value": 700}),
+    );
+    assert_eq!(status, 200, "{modified}");
+    assert_eq!(modified["value"], "KF +700");
+    // The level sensor, written as a scenario's `set` writes an input: the program copies it.
+    let (status, _) = online.post("/api/modify", &json!({"operand": "IW 0", "value": 321}));
+    assert_eq!(status, 200);
+    online.wait_for("FW 10", "KF +321");
+}
+
+#[test]
+fn a_bad_operand_value_or_format_gets_the_words_the_command_line_uses() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    let (status, refused) = online.get("/api/values?operands=XYZ%2099");
+    assert_eq!(status, 400);
+    assert!(
+        refused["error"]
+            .as_str()
+            .unwrap()
+            .starts_with("cannot watch `XYZ 99`: not a STEP 7 operand"),
+        "{refused}"
+    );
+    assert_eq!(refused["code"], "awl::cli::watch_operand");
+    assert!(refused["help"].as_str().unwrap().contains("`MW 10`"));
+
+    let (status, refused) = online.post("/api/modify", &json!({"operand": "MB 10", "value": 1000}));
+    assert_eq!(status, 400);
+    assert_eq!(refused["error"], "`1000` does not fit `MB 10`");
+    assert_eq!(refused["code"], "awl::scenario::bad_value");
+    assert_eq!(refused["help"], "allowed: -128…255");
+
+    let (status, refused) = online.get("/api/values?operands=MW%2010&formats=REAL");
+    assert_eq!(status, 400);
+    assert_eq!(refused["code"], "awl::online::format_misfit");
+    let (status, refused) = online.get("/api/values?operands=MW%2010&formats=OCT");
+    assert_eq!(
+        (status, &refused["code"]),
+        (400, &json!("awl::online::format"))
+    );
+    let (status, refused) = online.get("/api/values");
+    assert_eq!(
+        (status, &refused["code"]),
+        (400, &json!("awl::online::missing"))
+    );
+}
+
+#[test]
+fn the_page_is_served_from_the_binary() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    let mut response = online.agent.get(&online.url("/")).call().unwrap();
+    assert_eq!(response.status().as_u16(), 200);
+    let kind = response.headers()["content-type"]
+        .to_str()
+        .unwrap()
+        .to_string();
+    assert!(kind.starts_with("text/html"), "{kind}");
+    let page = response.body_mut().read_to_string().unwrap();
+    assert!(page.contains("id=\"mode\""), "{page}");
+    assert!(
+        !page.contains("https://"),
+        "the page fetches nothing from the network"
+    );
+}
+
+#[test]
+fn foreign_hosts_and_origins_are_refused() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    let port = online.port;
+    let get = |host: &str| {
+        online.raw(&format!(
+            "GET /api/cpu HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n"
+        ))
+    };
+    for host in [
+        format!("localhost:{port}"),
+        format!("127.0.0.1:{port}"),
+        format!("[::1]:{port}"),
+    ] {
+        assert_eq!(get(&host).0, 200, "{host}");
+    }
+    let (status, body) = get(&format!("attacker.example:{port}"));
+    assert_eq!(status, 403);
+    assert!(body.contains("awl::online::host"), "{body}");
+    assert_eq!(get(&format!("localhost:{}", port.wrapping_add(1))).0, 403);
+    let (status, _) = online.raw("GET /api/cpu HTTP/1.0\r\n\r\n");
+    assert_eq!(status, 403, "a request without a Host");
+
+    let post = |origin: &str| {
+        let body = r#"{"operand": "MW 10", "value": 1}"#;
+        online.raw(&format!(
+            "POST /api/modify HTTP/1.1\r\nHost: localhost:{port}\r\nOrigin: {origin}\r\n\
+             Content-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
+            body.len()
+        ))
+    };
+    assert_eq!(post(&format!("http://localhost:{port}")).0, 200);
+    let (status, body) = post("http://attacker.example");
+    assert_eq!(status, 403);
+    assert!(body.contains("awl::online::origin"), "{body}");
+    assert_eq!(post("null").0, 403);
+    // A read needs no origin check: the browser keeps the answer from a foreign page.
+    let (status, _) = online.raw(&format!(
+        "GET /api/cpu HTTP/1.1\r\nHost: localhost:{port}\r\nOrigin: http://attacker.example\r\n\
+         Connection: close\r\n\r\n"
+    ));
+    assert_eq!(status, 200);
+}
+
+#[test]
+fn read_only_refuses_changes_and_serves_reads() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl", "--read-only"]);
+    assert_eq!(online.get("/api/cpu").1["read_only"], true);
+    for (path, body) in [
+        ("/api/modify", json!({"operand": "MW 10", "value": 1})),
+        ("/api/mode", json!({"mode": "stop"})),
+    ] {
+        let (status, refused) = online.post(path, &body);
+        assert_eq!(status, 403, "{path}");
+        assert_eq!(refused["code"], "awl::online::read_only");
+    }
+    assert_eq!(online.get("/api/cpu").1["mode"], "RUN");
+    assert_eq!(online.values("MW 10", "")[0]["raw"], 0);
+}
+
+#[test]
+fn malformed_and_oversized_requests_get_a_4xx() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    let (status, refused) = online.post("/api/mode", &Value::String("{mode".into()));
+    assert_eq!(status, 400);
+    assert_eq!(refused["code"], "awl::online::bad_json");
+    let bad_json = online
+        .agent
+        .post(&online.url("/api/modify"))
+        .send("{\"operand\": \"MW 10\", \"value\": ");
+    assert_eq!(Online::answer(bad_json).0, 400);
+    let huge = "x".repeat(70 * 1024);
+    let (status, refused) =
+        Online::answer(online.agent.post(&online.url("/api/modify")).send(&huge));
+    assert_eq!(status, 413);
+    assert_eq!(refused["code"], "awl::online::too_large");
+    let (status, refused) = online.get("/api/nothing");
+    assert_eq!(
+        (status, &refused["code"]),
+        (404, &json!("awl::online::not_found"))
+    );
+    let (status, refused) = online.post("/api/cpu", &json!({}));
+    assert_eq!(
+        (status, &refused["code"]),
+        (405, &json!("awl::online::method"))
+    );
+    let (status, _) = online.raw("GARBAGE\r\n\r\n");
+    assert_eq!(status, 400, "hyper refuses a request line it cannot read");
+    assert_eq!(online.get("/api/cpu").0, 200, "and the server goes on");
+}
+
+#[test]
+fn connections_past_the_limit_are_closed_at_once() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl", "--max-connections", "2"]);
+    let held: Vec<TcpStream> = (0..2)
+        .map(|_| TcpStream::connect(("127.0.0.1", online.port)).unwrap())
+        .collect();
+    std::thread::sleep(Duration::from_millis(300));
+    let mut third = TcpStream::connect(("127.0.0.1", online.port)).unwrap();
+    third
+        .set_read_timeout(Some(Duration::from_secs(5)))
+        .unwrap();
+    let _ = third.write_all(b"GET /api/cpu HTTP/1.1\r\nHost: localhost\r\n\r\n");
+    let mut answer = Vec::new();
+    let read = third.read_to_end(&mut answer);
+    assert!(
+        read.is_err() || answer.is_empty(),
+        "the third connection was served: {}",
+        String::from_utf8_lossy(&answer)
+    );
+    drop(held);
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(
+        online.get("/api/cpu").0,
+        200,
+        "served again once they closed"
+    );
+}
+
+#[test]
+fn only_the_named_servers_start() {
+    let output = Command::new(AWL)
+        .args([
+            "serve",
+            "programs/s7/tank_hmi.awl",
+            "--http",
+            "127.0.0.1:0",
+            "--cycles",
+            "3",
+        ])
+        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("Online page at http://127.0.0.1:"),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("S7 server"), "{stdout}");
+    assert!(!stdout.contains("Modbus"), "{stdout}");
+}
