@@ -126,6 +126,31 @@ impl Online {
     }
 }
 
+impl Online {
+    fn delete(&self, path: &str) -> (u16, Value) {
+        Online::answer(self.agent.delete(&self.url(path)).call())
+    }
+
+    /// Ends the serve as a service manager does (SIGTERM), so it writes its trace; its stdout.
+    fn terminate(mut self) -> String {
+        let pid = self.child.id().to_string();
+        let sent = Command::new("kill").args(["-TERM", &pid]).status();
+        assert!(sent.is_ok_and(|status| status.success()), "kill -TERM");
+        let deadline = Instant::now() + Duration::from_secs(30);
+        while self.child.try_wait().expect("waits").is_none() {
+            assert!(Instant::now() < deadline, "awl serve did not end");
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        let mut stderr = String::new();
+        let _ = self
+            .child
+            .stderr
+            .take()
+            .map(|mut err| err.read_to_string(&mut stderr));
+        stderr
+    }
+}
+
 impl Drop for Online {
     fn drop(&mut self) {
         let _ = self.child.kill();
@@ -136,8 +161,15 @@ impl Drop for Online {
 #[test]
 fn a_step7_program_on_speed7_is_watched_modified_stopped_and_restarted() {
     let online = Online::start(&["programs/s7/tank_hmi.awl", "--cpu", "speed7"]);
-    let (status, cpu) = online.get("/api/cpu");
-    assert_eq!(status, 200);
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let cpu = loop {
+        let (status, cpu) = online.get("/api/cpu");
+        assert_eq!(status, 200);
+        if cpu["cycle"].as_u64() > Some(2) || Instant::now() > deadline {
+            break cpu;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
     assert_eq!(cpu["mode"], "RUN", "{cpu}");
     assert_eq!(cpu["profile"], "speed7");
     assert_eq!(cpu["dialect"], "s7");
@@ -428,4 +460,131 @@ fn only_the_named_servers_start() {
     );
     assert!(!stdout.contains("S7 server"), "{stdout}");
     assert!(!stdout.contains("Modbus"), "{stdout}");
+}
+
+#[test]
+fn a_forced_input_holds_against_writes_until_it_is_unforced() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    let (status, forced) = online.post("/api/force", &json!({"operand": "IW 0", "value": 100}));
+    assert_eq!(status, 200, "{forced}");
+    assert_eq!(
+        forced,
+        json!({"operand": "IW 0", "value": "100", "raw": 100})
+    );
+    // A modify writes the modules and the PII once; the force puts the PII back at once, and
+    // the program copies the level sensor IW 0 into DB1.DBW 2.
+    let (status, _) = online.post("/api/modify", &json!({"operand": "IW 0", "value": 700}));
+    assert_eq!(status, 200);
+    online.wait_for("DB1.DBW 2", "100");
+    std::thread::sleep(Duration::from_millis(100));
+    online.wait_for("DB1.DBW 2", "100");
+    assert_eq!(online.get("/api/cpu").1["forces"], 1);
+    assert_eq!(
+        online.get("/api/forces").1,
+        json!({"forces": [{"operand": "IW 0", "value": "100", "raw": 100}]})
+    );
+
+    let (status, refused) = online.delete("/api/force?operand=Q%200.0");
+    assert_eq!(status, 404);
+    assert_eq!(refused["code"], "awl::online::not_forced");
+    assert_eq!(refused["help"], "forced are: IW 0");
+    let (status, unforced) = online.delete("/api/force?operand=IW%200");
+    assert_eq!((status, unforced), (200, json!({"operand": "IW 0"})));
+    online.wait_for("DB1.DBW 2", "700");
+
+    online.post("/api/force", &json!({"operand": "Q 0.0", "value": true}));
+    // The program writes the pump Q 0.0 = 0 in every cycle (no run): the force holds it at 1
+    // in the PIQ and at the output module.
+    std::thread::sleep(Duration::from_millis(100));
+    assert_eq!(online.values("Q 0.0,PQB 0", "")[0]["raw"], true);
+    assert_eq!(online.values("PQB 0", "BIN")[0]["value"], "2#0000_0001");
+    let (status, all) = online.delete("/api/force");
+    assert_eq!((status, all), (200, json!({"operands": ["Q 0.0"]})));
+    online.wait_for("Q 0.0", "0");
+
+    let kinds: Vec<Value> = online.get("/api/diagnostics").1["entries"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|entry| entry["kind"].clone())
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            "force_cleared",
+            "force_set",
+            "force_cleared",
+            "modify",
+            "force_set"
+        ],
+    );
+}
+
+#[test]
+fn only_inputs_and_outputs_are_forced_and_read_only_forces_nothing() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    for operand in ["MW 10", "ID 0", "PIW 0", "T 1", "DB1.DBW 0"] {
+        let (status, refused) = online.post("/api/force", &json!({"operand": operand, "value": 1}));
+        assert_eq!(status, 400, "{operand}");
+        assert_eq!(refused["code"], "awl::online::not_forceable", "{operand}");
+    }
+    let (status, refused) = online.post("/api/force", &json!({"operand": "QB 0", "value": 256}));
+    assert_eq!(
+        (status, &refused["help"]),
+        (400, &json!("allowed: -128…255"))
+    );
+    drop(online);
+
+    let online = Online::start(&["programs/s7/tank_hmi.awl", "--read-only"]);
+    let (status, refused) = online.post("/api/force", &json!({"operand": "I 0.0", "value": 1}));
+    assert_eq!(
+        (status, &refused["code"]),
+        (403, &json!("awl::online::read_only"))
+    );
+    assert_eq!(online.delete("/api/force").0, 403);
+}
+
+#[test]
+fn a_trace_records_the_page_s_modifies_forces_and_mode_changes() {
+    let trace = std::env::temp_dir().join(format!("awl-online-{}.jsonl", std::process::id()));
+    let trace_arg = trace.display().to_string();
+    let online = Online::start(&["programs/s7/tank_hmi.awl", "--trace", &trace_arg]);
+    online.post("/api/modify", &json!({"operand": "MW 10", "value": 5}));
+    online.post("/api/force", &json!({"operand": "I 0.1", "value": 1}));
+    online.delete("/api/force?operand=I%200.1");
+    online.post("/api/mode", &json!({"mode": "stop"}));
+    let stderr = online.terminate();
+    let text = std::fs::read_to_string(&trace).unwrap_or_else(|_| panic!("a trace: {stderr}"));
+    let _ = std::fs::remove_file(&trace);
+    let events: Vec<Value> = text
+        .lines()
+        .map(|line| serde_json::from_str(line).unwrap())
+        .filter(|event: &Value| {
+            ["modify", "force", "unforce", "mode"].contains(&event["ev"].as_str().unwrap())
+        })
+        .collect();
+    let modify = events.iter().find(|event| event["ev"] == "modify").unwrap();
+    let client = modify["client"].as_str().unwrap().to_string();
+    assert!(client.starts_with("http #"), "{events:?}");
+    let kinds: Vec<(&str, &str)> = events
+        .iter()
+        .map(|event| {
+            let what = event["operand"]
+                .as_str()
+                .or(event["cause"].as_str())
+                .unwrap_or("");
+            (event["ev"].as_str().unwrap(), what)
+        })
+        .collect();
+    assert_eq!(
+        kinds[kinds.len() - 4..],
+        [
+            ("modify", "MW 10"),
+            ("force", "I 0.1"),
+            ("unforce", "I 0.1"),
+            ("mode", "online")
+        ],
+        "{events:?}"
+    );
+    assert_eq!(events[events.len() - 4]["value"], "5");
 }

@@ -17,4 +17,4 @@ pub mod request;
 pub mod s7comm;
 pub mod station;
 #[cfg(test)]
-mod testing;
+pub(crate) mod testing;

@@ -125,6 +125,13 @@ pub struct Client {
     pub number: u32,
 }
 
+impl Client {
+    /// `s7 #3`, `http #1`: the client as the trace and the diagnostic buffer name it.
+    pub fn name(self) -> String {
+        format!("{} #{}", self.protocol.name(), self.number)
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Protocol {
     S7,
@@ -188,6 +195,19 @@ pub enum Ask {
         value: toml::Value,
         reply: Answer<Value>,
     },
+    /// Holds an input or output at a value until it is unforced.
+    Force {
+        operand: String,
+        value: toml::Value,
+        reply: Answer<Value>,
+    },
+    /// Ends the force of one operand, or (`None`) of all; answers the operands unforced.
+    Unforce {
+        operand: Option<String>,
+        reply: Answer<Vec<String>>,
+    },
+    /// The forces in effect.
+    Forces { reply: oneshot::Sender<Vec<Value>> },
     /// The diagnostic buffer, newest first.
     Diagnostics {
         reply: oneshot::Sender<Vec<DiagnosticEntry>>,

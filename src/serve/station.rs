@@ -172,6 +172,11 @@ impl<'a> Station<'a> {
                 reply,
             } => {
                 let results = serve_items(cpu, client, &items, self.read_only);
+                // A client's output write does not beat a force (its input writes reach only
+                // the modules, which the PII transfer then overrides).
+                if !cpu.forces.is_empty() {
+                    cpu.hold_forces();
+                }
                 self.served.writes += items
                     .iter()
                     .zip(&results)
@@ -224,9 +229,8 @@ impl<'a> Station<'a> {
                     Protocol::S7 | Protocol::Modbus => "client",
                 };
                 if !stopped {
-                    let by = format!("{} #{}", client.protocol.name(), client.number);
-                    self.online
-                        .mode_changed(cpu, format!("STOP, asked for by {by}"));
+                    let text = format!("STOP, asked for by {}", client.name());
+                    self.online.mode_changed(cpu, text);
                 }
                 cpu.stop_from_outside(cause);
                 self.wanted = None;

@@ -20,52 +20,72 @@ pub enum Call {
         operand: String,
         value: toml::Value,
     },
+    Force {
+        operand: String,
+        value: toml::Value,
+    },
+    /// The force of one operand ends, or (`None`) every force.
+    Unforce(Option<String>),
+    Forces,
     Diagnostics,
 }
 
 impl Call {
     /// Whether it changes the CPU: refused when the server is read-only.
     pub fn changes(&self) -> bool {
-        matches!(self, Call::Mode(_) | Call::Modify { .. })
+        matches!(
+            self,
+            Call::Mode(_) | Call::Modify { .. } | Call::Force { .. } | Call::Unforce(_)
+        )
     }
 }
 
-/// The paths, the methods each takes, and an example of its body or query for the help.
+/// A path, the methods it takes, and an example of its body or query for the help.
 struct Route {
     path: &'static str,
-    method: &'static str,
+    methods: &'static str,
     example: &'static str,
 }
 
-const ROUTES: [Route; 6] = [
+const ROUTES: [Route; 8] = [
     Route {
         path: "/",
-        method: "GET",
+        methods: "GET",
         example: "",
     },
     Route {
         path: "/api/cpu",
-        method: "GET",
+        methods: "GET",
         example: "",
     },
     Route {
         path: "/api/mode",
-        method: "POST",
+        methods: "POST",
         example: r#"{"mode": "stop"}"#,
     },
     Route {
         path: "/api/values",
-        method: "GET",
+        methods: "GET",
         example: "/api/values?operands=MW%2010,Q%204.0&formats=HEX,",
     },
     Route {
         path: "/api/modify",
-        method: "POST",
+        methods: "POST",
         example: r#"{"operand": "MW 10", "value": 42}"#,
     },
     Route {
+        path: "/api/force",
+        methods: "POST or DELETE",
+        example: r#"{"operand": "I 0.0", "value": 1}; DELETE /api/force?operand=I%200.0"#,
+    },
+    Route {
+        path: "/api/forces",
+        methods: "GET",
+        example: "",
+    },
+    Route {
         path: "/api/diagnostics",
-        method: "GET",
+        methods: "GET",
         example: "",
     },
 ];
@@ -82,27 +102,42 @@ pub fn decode(
             path: path.to_string(),
         });
     };
-    if route.method != method {
-        return Err(OnlineError::Method {
+    let query = Query::parse(query.unwrap_or(""));
+    match (route.path, method) {
+        ("/", "GET") => Ok(Call::Page),
+        ("/api/cpu", "GET") => Ok(Call::Cpu),
+        ("/api/mode", "POST") => mode(route, body),
+        ("/api/values", "GET") => values(route, &query),
+        ("/api/modify", "POST") => {
+            let Change { operand, value } = json(route, body)?;
+            let value = value.into_toml()?;
+            Ok(Call::Modify { operand, value })
+        }
+        ("/api/force", "POST") => {
+            let Change { operand, value } = json(route, body)?;
+            let value = value.into_toml()?;
+            Ok(Call::Force { operand, value })
+        }
+        ("/api/force", "DELETE") => match query.get("operand").map(str::trim) {
+            None => Ok(Call::Unforce(None)),
+            Some("") => Err(missing(route, "operand")),
+            Some(operand) => Ok(Call::Unforce(Some(operand.to_string()))),
+        },
+        ("/api/forces", "GET") => Ok(Call::Forces),
+        ("/api/diagnostics", "GET") => Ok(Call::Diagnostics),
+        _ => Err(OnlineError::Method {
             method: method.to_string(),
             path: route.path,
-            allowed: route.method,
-        });
+            allowed: route.methods,
+        }),
     }
-    let query = Query::parse(query.unwrap_or(""));
-    match route.path {
-        "/" => Ok(Call::Page),
-        "/api/cpu" => Ok(Call::Cpu),
-        "/api/mode" => mode(route, body),
-        "/api/values" => values(route, &query),
-        "/api/modify" => {
-            let Change { operand, value } = json(route, body)?;
-            Ok(Call::Modify {
-                operand,
-                value: value.into_toml()?,
-            })
-        }
-        _ => Ok(Call::Diagnostics),
+}
+
+fn missing(route: &Route, name: &'static str) -> OnlineError {
+    OnlineError::Missing {
+        path: route.path,
+        name,
+        example: route.example,
     }
 }
 
@@ -153,11 +188,9 @@ fn mode(route: &Route, body: &[u8]) -> Result<Call, OnlineError> {
 
 /// `operands=MW 10,Q 4.0&formats=HEX,`: the formats a parallel list, empty ones the default.
 fn values(route: &Route, query: &Query) -> Result<Call, OnlineError> {
-    let operands = query.get("operands").ok_or(OnlineError::Missing {
-        path: route.path,
-        name: "operands",
-        example: route.example,
-    })?;
+    let operands = query
+        .get("operands")
+        .ok_or_else(|| missing(route, "operands"))?;
     let mut formats = query.get("formats").unwrap_or("").split(',');
     operands
         .split(',')
@@ -271,6 +304,22 @@ mod tests {
             modify(r#"{"operand": "MW 10", "value": "1\nother = 2"}"#),
             Err(OnlineError::Value { .. })
         ));
+    }
+
+    #[test]
+    fn a_force_ends_for_one_operand_or_for_all() {
+        let delete = |query| decode("DELETE", "/api/force", query, b"");
+        assert_eq!(
+            delete(Some("operand=I%200.0")).unwrap(),
+            Call::Unforce(Some("I 0.0".into()))
+        );
+        assert_eq!(delete(None).unwrap(), Call::Unforce(None));
+        assert!(
+            delete(Some("operand=")).is_err(),
+            "an empty operand is no \"all\""
+        );
+        assert!(delete(None).unwrap().changes());
+        assert!(!decode("GET", "/api/forces", None, b"").unwrap().changes());
     }
 
     #[test]

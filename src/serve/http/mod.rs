@@ -146,6 +146,27 @@ async fn answer(
             };
             ok(&ask_for(shared, client, make).await??)
         }
+        Call::Force { operand, value } => {
+            let make = |reply| Ask::Force {
+                operand,
+                value,
+                reply,
+            };
+            ok(&ask_for(shared, client, make).await??)
+        }
+        Call::Unforce(operand) => {
+            let one = operand.clone();
+            let make = |reply| Ask::Unforce { operand, reply };
+            let operands = ask_for(shared, client, make).await??;
+            match one {
+                Some(operand) => ok(&Unforced { operand }),
+                None => ok(&AllUnforced { operands }),
+            }
+        }
+        Call::Forces => {
+            let forces = ask_for(shared, client, |reply| Ask::Forces { reply }).await?;
+            ok(&ForcesView { forces })
+        }
         Call::Diagnostics => {
             let entries = ask_for(shared, client, |reply| Ask::Diagnostics { reply }).await?;
             ok(&Entries { entries })
@@ -156,6 +177,21 @@ async fn answer(
 #[derive(Serialize)]
 struct Values {
     values: Vec<super::request::Value>,
+}
+
+#[derive(Serialize)]
+struct Unforced {
+    operand: String,
+}
+
+#[derive(Serialize)]
+struct AllUnforced {
+    operands: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct ForcesView {
+    forces: Vec<super::request::Value>,
 }
 
 #[derive(Serialize)]

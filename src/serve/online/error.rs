@@ -116,6 +116,19 @@ pub enum OnlineError {
     )]
     Value { text: String },
 
+    #[error("`{operand}` cannot be forced: only inputs and outputs are, as bits, bytes or words")]
+    #[diagnostic(
+        code(awl::online::not_forceable),
+        help(
+            "force the process image, e.g. `I 0.0`, `QB 4`, `IW 2`; modify flags, timers, counters and data blocks once instead (POST /api/modify)"
+        )
+    )]
+    NotForceable { operand: String },
+
+    #[error("`{operand}` is not forced")]
+    #[diagnostic(code(awl::online::not_forced), help("{forced}"))]
+    NotForced { operand: String, forced: String },
+
     #[error("cannot modify `{operand}`: {reason}")]
     #[diagnostic(code(awl::online::modify))]
     Modify { operand: String, reason: String },
@@ -136,7 +149,7 @@ impl OnlineError {
     /// How the request is answered.
     pub fn kind(&self) -> Refused {
         match self {
-            OnlineError::NoSuchPath { .. } => Refused::NotFound,
+            OnlineError::NoSuchPath { .. } | OnlineError::NotForced { .. } => Refused::NotFound,
             OnlineError::Method { .. } => Refused::MethodNotAllowed,
             OnlineError::Running => Refused::Conflict,
             OnlineError::ReadOnly
@@ -150,6 +163,7 @@ impl OnlineError {
             | OnlineError::FormatMisfit { .. }
             | OnlineError::UnknownMode { .. }
             | OnlineError::Value { .. }
+            | OnlineError::NotForceable { .. }
             | OnlineError::Modify { .. } => Refused::BadRequest,
         }
     }

@@ -5,6 +5,7 @@
 
 pub mod diagnostics;
 pub mod error;
+pub mod forces;
 
 use crate::mnemonics::MnemonicSet;
 use crate::runner;
@@ -15,8 +16,10 @@ use crate::vm::stop::Stop;
 use crate::{debug, scenario};
 
 use super::request::{Ask, Client, CpuView, CycleTimesView, Refusal, Refused, StopView, Value};
+use crate::trace::Event;
 use diagnostics::Diagnostics;
 use error::OnlineError;
+use forces::{ForceTable, Held};
 
 /// What the online page sees of the CPU besides its memory.
 pub struct Online {
@@ -26,6 +29,7 @@ pub struct Online {
     pub diagnostics: Diagnostics,
     /// The program's STOP, while the CPU stays in STOP.
     stop: Option<StopView>,
+    forces: ForceTable,
 }
 
 fn ms(ns: u64) -> f64 {
@@ -39,6 +43,7 @@ impl Online {
             read_only,
             diagnostics: Diagnostics::default(),
             stop: None,
+            forces: ForceTable::default(),
         }
     }
 
@@ -58,6 +63,24 @@ impl Online {
                 reply,
             } => {
                 let _ = reply.send(self.modify(cpu, client, &operand, &value));
+            }
+            Ask::Force {
+                operand,
+                value,
+                reply,
+            } => {
+                let _ = reply.send(self.force(cpu, client, &operand, &value));
+            }
+            Ask::Unforce { operand, reply } => {
+                let _ = reply.send(self.unforce(cpu, client, operand.as_deref()));
+            }
+            Ask::Forces { reply } => {
+                let forced = self.forces.held().iter();
+                let _ = reply.send(
+                    forced
+                        .map(|held| answer(cpu, &held.operand, held.target))
+                        .collect(),
+                );
             }
             Ask::Diagnostics { reply } => {
                 let _ = reply.send(self.diagnostics.entries());
@@ -84,7 +107,7 @@ impl Online {
                 MnemonicSet::German => "de",
             },
             clients,
-            forces: 0,
+            forces: self.forces.held().len(),
             read_only: self.read_only,
             stop: self.stop.clone(),
         }
@@ -141,13 +164,100 @@ impl Online {
             }
             .refusal()
         })?;
-        let by = format!("{} #{}", client.protocol.name(), client.number);
+        // A modify of a forced input or output does not end its force.
+        if !cpu.forces.is_empty() {
+            cpu.hold_forces();
+        }
+        let by = client.name();
+        emit(cpu, || Event::Modify {
+            client: by.clone(),
+            operand: operand.to_string(),
+            value: written.clone(),
+        });
         self.diagnostics
             .record(cpu, "modify", format!("{operand} := {written} ({by})"));
-        Ok(Value {
-            format: None,
-            ..value_of(cpu, operand, target)
-        })
+        Ok(answer(cpu, operand, target))
+    }
+
+    /// Holds an input or output at a value from now until it is unforced.
+    fn force(
+        &mut self,
+        cpu: &mut Cpu,
+        client: Client,
+        operand: &str,
+        value: &toml::Value,
+    ) -> Result<Value, Refusal> {
+        if self.read_only {
+            return Err(OnlineError::ReadOnly.refusal());
+        }
+        let target = self.target(cpu, operand)?;
+        let not_forceable = || OnlineError::NotForceable {
+            operand: operand.to_string(),
+        };
+        forces::forced_bytes(target, 0, cpu.program.layout).ok_or_else(not_forceable)?;
+        let (written, wanted) =
+            scenario::set_value(target, value, operand, &cpu.program, (0, 0).into())
+                .map_err(|error| Refusal::of(Refused::BadRequest, &error))?;
+        let held = Held {
+            operand: operand.to_string(),
+            target,
+            raw: wanted.raw(),
+        };
+        self.forces.set(cpu, held);
+        let by = client.name();
+        emit(cpu, || Event::Force {
+            client: by.clone(),
+            operand: operand.to_string(),
+            value: written.clone(),
+        });
+        let text = format!("{operand} forced to {written} ({by})");
+        self.diagnostics.record(cpu, "force_set", text);
+        Ok(answer(cpu, operand, target))
+    }
+
+    /// Ends the force of `operand`, or of every operand; the operands unforced.
+    fn unforce(
+        &mut self,
+        cpu: &mut Cpu,
+        client: Client,
+        operand: Option<&str>,
+    ) -> Result<Vec<String>, Refusal> {
+        if self.read_only {
+            return Err(OnlineError::ReadOnly.refusal());
+        }
+        let ended = match operand {
+            None => self.forces.clear(cpu),
+            Some(operand) => {
+                let target = self.target(cpu, operand)?;
+                let held = self.forces.remove(cpu, target).ok_or_else(|| {
+                    let forced: Vec<&str> = self
+                        .forces
+                        .held()
+                        .iter()
+                        .map(|held| held.operand.as_str())
+                        .collect();
+                    OnlineError::NotForced {
+                        operand: operand.to_string(),
+                        forced: match forced.is_empty() {
+                            true => "nothing is forced".to_string(),
+                            false => format!("forced are: {}", forced.join(", ")),
+                        },
+                    }
+                    .refusal()
+                })?;
+                vec![held]
+            }
+        };
+        let by = client.name();
+        for held in &ended {
+            emit(cpu, || Event::Unforce {
+                client: by.clone(),
+                operand: held.operand.clone(),
+            });
+            let text = format!("{} unforced ({by})", held.operand);
+            self.diagnostics.record(cpu, "force_cleared", text);
+        }
+        Ok(ended.into_iter().map(|held| held.operand).collect())
     }
 
     /// The program went to STOP: the page shows the report until the CPU runs again.
@@ -197,4 +307,20 @@ fn value(cpu: &Cpu, operand: &str, target: Target, format: Option<Format>) -> Va
 /// `operand`'s value in the dialect's own notation.
 fn value_of(cpu: &Cpu, operand: &str, target: Target) -> Value {
     value(cpu, operand, target, None)
+}
+
+/// The answer to a modify or a force: the operand's value now, without a format.
+fn answer(cpu: &Cpu, operand: &str, target: Target) -> Value {
+    Value {
+        format: None,
+        ..value_of(cpu, operand, target)
+    }
+}
+
+/// Traces the event `make` builds, when a trace is written.
+fn emit(cpu: &mut Cpu, make: impl FnOnce() -> Event) {
+    if cpu.tracer.enabled {
+        let event = make();
+        cpu.tracer.emit(cpu.clock, event);
+    }
 }
