@@ -1,0 +1,449 @@
+//! The online page (`awl serve --http`) in a real browser: headless Chromium, driven through the
+//! DevTools protocol, opens the page the binary serves, with a watch table and a status block
+//! preloaded from its address, and is used as a person uses it — a value the program counts
+//! changes live, modify and force act from the rows' buttons, a forced input beats a
+//! python-snap7 write, program status shows the RLO, the timeline draws, STOP and the restarts
+//! act from the buttons, a read-only serve greys the controls — in both dialects, with no
+//! console error. Skipped, with the reason printed, where Chromium (or, for the one check that
+//! needs it, python-snap7) is missing.
+
+mod common;
+
+use std::io::{BufRead, BufReader, Read};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+
+use common::browser::{DevTools, Tab, chromium};
+
+const AWL: &str = env!("CARGO_BIN_EXE_awl");
+
+/// Long enough for a debug build's CPU to answer a few refreshes of the page.
+const WITHIN: Duration = Duration::from_secs(20);
+
+/// A running `awl serve … --http 127.0.0.1:0 --s7 127.0.0.1:0` and the ports it printed.
+struct Served {
+    child: Child,
+    http: u16,
+    s7: u16,
+}
+
+impl Served {
+    fn start(args: &[&str]) -> Served {
+        let mut child = Command::new(AWL)
+            .arg("serve")
+            .args(args)
+            .args(["--http", "127.0.0.1:0", "--s7", "127.0.0.1:0"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("awl starts");
+        let stdout = child.stdout.take().expect("piped");
+        let (send, lines) = mpsc::channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+                let _ = send.send(line);
+            }
+        });
+        let (mut http, mut s7) = (0, 0);
+        let deadline = Instant::now() + Duration::from_secs(60);
+        while http == 0 || s7 == 0 {
+            let left = deadline.saturating_duration_since(Instant::now());
+            let Ok(line) = lines.recv_timeout(left) else {
+                let _ = child.kill();
+                let mut stderr = String::new();
+                let _ = child
+                    .stderr
+                    .take()
+                    .map(|mut err| err.read_to_string(&mut stderr));
+                panic!("awl serve printed no listening lines: {stderr}");
+            };
+            let port = |text: &str| {
+                text.trim_end_matches('/')
+                    .rsplit(':')
+                    .next()
+                    .and_then(|port| port.trim().parse().ok())
+                    .unwrap_or(0)
+            };
+            if let Some(address) = line.strip_prefix("Online page at ") {
+                http = port(address);
+            } else if let Some(address) = line.strip_prefix("S7 server listening on ") {
+                s7 = port(address);
+            }
+        }
+        Served { child, http, s7 }
+    }
+
+    /// The page's address with `query` (already encoded).
+    fn page(&self, query: &str) -> String {
+        format!("http://127.0.0.1:{}/{query}", self.http)
+    }
+}
+
+impl Drop for Served {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Chromium with a profile of its own; `None` (said once) where it is missing.
+fn browser(name: &str) -> Option<(DevTools, PathBuf)> {
+    let Some(path) = chromium() else {
+        println!("skipped: no chromium on this machine (.ci/run installs it)");
+        return None;
+    };
+    let dir = std::env::temp_dir().join(format!("awl-online-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    Some((DevTools::start(&path, &dir.join("profile"), "1400,1000"), dir))
+}
+
+/// `text` as a JavaScript string literal.
+fn js(text: &str) -> String {
+    json!(text).to_string()
+}
+
+/// The page, driven as a person drives it: through its elements.
+struct Online<'a> {
+    tab: Tab<'a>,
+}
+
+impl<'a> Online<'a> {
+    /// Opens `url` and waits until the page has the CPU's first answer and the address's rows.
+    fn open(devtools: &'a mut DevTools, url: &str) -> Online<'a> {
+        let mut tab = devtools.open(url);
+        tab.wait_for("document.body.dataset.ready === 'yes'", WITHIN);
+        Online { tab }
+    }
+
+    fn eval(&mut self, expression: &str) -> Value {
+        self.tab.eval(expression)
+    }
+
+    fn wait_for(&mut self, expression: &str) {
+        self.tab.wait_for(expression, WITHIN);
+    }
+
+    /// The text of the first element `selector` matches ("" when none does).
+    fn text(&mut self, selector: &str) -> String {
+        let found = self.eval(&format!(
+            "(document.querySelector({}) || {{ textContent: '' }}).textContent",
+            js(selector)
+        ));
+        found.as_str().unwrap_or_default().to_string()
+    }
+
+    fn click(&mut self, selector: &str) {
+        self.eval(&format!("document.querySelector({}).click()", js(selector)));
+    }
+
+    /// Waits until the element's text is `wanted`.
+    fn wait_for_text(&mut self, selector: &str, wanted: &str) {
+        let expression = format!(
+            "(document.querySelector({}) || {{}}).textContent === {}",
+            js(selector),
+            js(wanted)
+        );
+        let deadline = Instant::now() + WITHIN;
+        while self.eval(&expression) != json!(true) {
+            assert!(
+                Instant::now() < deadline,
+                "{selector} is {:?}, not {wanted:?}",
+                self.text(selector)
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    /// Whether the element is disabled.
+    fn disabled(&mut self, selector: &str) -> bool {
+        self.eval(&format!("document.querySelector({}).disabled", js(selector))) == json!(true)
+    }
+
+    fn row(operand: &str) -> String {
+        format!("#watch tr[data-operand={}]", js(operand))
+    }
+
+    /// The value the watch row of `operand` shows.
+    fn value(&mut self, operand: &str) -> String {
+        self.text(&format!("{} td.value", Online::row(operand)))
+    }
+
+    fn wait_for_value(&mut self, operand: &str, wanted: &str) {
+        self.wait_for_text(&format!("{} td.value", Online::row(operand)), wanted);
+    }
+
+    /// Types `value` into the row's value field and presses the row's `button` (`modify`,
+    /// `force`, `unforce`).
+    fn press(&mut self, operand: &str, button: &str, value: &str) {
+        let row = Online::row(operand);
+        self.eval(&format!(
+            "document.querySelector({}).value = {}",
+            js(&format!("{row} .modify-value")),
+            js(value)
+        ));
+        self.click(&format!("{row} .{button}"));
+    }
+
+    /// The refusal shown below the row of `operand`, once there is one.
+    fn refusal(&mut self, operand: &str) -> String {
+        let message = format!("{} + tr.message:not([hidden])", Online::row(operand));
+        self.wait_for(&format!("document.querySelector({}) !== null", js(&message)));
+        self.text(&message)
+    }
+
+    /// Adds a row as a person does: the operand typed into the field below the table.
+    fn add(&mut self, operand: &str) {
+        self.eval(&format!(
+            "document.getElementById('add-operand').value = {}",
+            js(operand)
+        ));
+        self.click("#add");
+    }
+
+    /// The watch rows' operands, in order.
+    fn operands(&mut self) -> Vec<String> {
+        let found = self.eval(
+            "Array.from(document.querySelectorAll('#watch tr[data-operand]'), (row) => row.dataset.operand)",
+        );
+        serde_json::from_value(found).expect("a list of operands")
+    }
+
+    /// The formats the first row's select offers.
+    fn formats(&mut self) -> Vec<String> {
+        let found = self.eval(
+            "Array.from(document.querySelectorAll('#watch tr[data-operand] select.format option'), (option) => option.value).filter(Boolean)",
+        );
+        serde_json::from_value(found).expect("a list of formats")
+    }
+
+    /// Waits until the row of `operand` shows a value that is neither the first placeholder
+    /// nor `than`; that value.
+    fn value_other_than(&mut self, operand: &str, than: &str) -> String {
+        let deadline = Instant::now() + WITHIN;
+        loop {
+            let value = self.value(operand);
+            if value != than && value != "…" && !value.is_empty() {
+                return value;
+            }
+            assert!(
+                Instant::now() < deadline,
+                "{operand} stays {value:?} on the page"
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    /// The problems the page had (console messages, uncaught exceptions, logged errors).
+    fn problems(&self) -> Vec<String> {
+        self.tab.problems().to_vec()
+    }
+}
+
+/// The page the binary serves loads nothing from anywhere else.
+fn assert_self_contained(online: &mut Online) {
+    let html = online.eval("fetch('/').then((answer) => answer.text())");
+    let html = html.as_str().expect("the page");
+    for outside in [" src=", "@import", "url(", "http://", "https://"] {
+        assert!(!html.contains(outside), "the page loads nothing: {outside}");
+    }
+}
+
+/// Takes a screenshot of the page, for a person to look at, into cargo's directory for the
+/// tests' files (target/tmp); checks that it is not blank.
+fn screenshot(online: &mut Online, name: &str) {
+    let png = online.tab.screenshot();
+    let pixmap = resvg::tiny_skia::Pixmap::decode_png(&png).expect("a PNG screenshot");
+    let drawn = pixmap
+        .pixels()
+        .iter()
+        .filter(|pixel| (pixel.red(), pixel.green(), pixel.blue()) != (255, 255, 255))
+        .count();
+    assert!(drawn * 20 > pixmap.pixels().len(), "the screenshot is blank");
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::write(&path, &png).expect("the screenshot is written");
+    println!("screenshot: {}", path.display());
+}
+
+/// Stop from the STOP button, then a restart from its button; the page follows each mode.
+fn stop_and_restart(online: &mut Online, restart: &str) {
+    assert!(online.disabled(restart), "a restart is greyed in RUN");
+    online.click("#stop");
+    online.wait_for_text("#mode", "STOP");
+    online.wait_for("document.querySelector('#diagnostics li.mode') !== null");
+    assert!(online.disabled("#stop"), "STOP is greyed in STOP");
+    online.wait_for(&format!(
+        "!document.querySelector({}).disabled",
+        js(restart)
+    ));
+    online.click(restart);
+    online.wait_for_text("#mode", "RUN");
+}
+
+/// Writes `value` into the input word `IW byte` as an HMI or a plant simulation does: with
+/// python-snap7, to the S7 port. `false` where python-snap7 is missing.
+fn snap7_writes_input_word(python: &Path, s7: u16, byte: u16, value: u16) {
+    let script = "import sys, snap7\n\
+        from snap7.type import Area\n\
+        plc = snap7.client.Client()\n\
+        plc.connect('127.0.0.1', 0, 2, tcp_port=int(sys.argv[1]))\n\
+        plc.write_area(Area.PE, 0, int(sys.argv[2]), bytearray(int(sys.argv[3]).to_bytes(2, 'big')))\n";
+    let output = Command::new(python)
+        .args(["-c", script])
+        .args([s7.to_string(), byte.to_string(), value.to_string()])
+        .output()
+        .expect("python runs");
+    assert!(
+        output.status.success(),
+        "python-snap7's write failed:\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+#[test]
+fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
+    let Some((mut devtools, dir)) = browser("s7") else {
+        return;
+    };
+    let served = Served::start(&["--scenario", "programs/s7/tank_hmi_serve.toml"]);
+    // The cycle count, the level the program copies from IW 0, the level sensor, the restarts
+    // (as hex), the pump and the setpoint.
+    let url = served.page(
+        "?watch=DB1.DBD%206,DB1.DBW%202,IW%200,MW%2020%20HEX,Q%200.0,DB1.DBW%200&status=OB%201",
+    );
+    let mut online = Online::open(&mut devtools, &url);
+    assert_self_contained(&mut online);
+    online.wait_for_text("#mode", "RUN");
+    assert!(online.text("#dialect").contains("STEP 7"));
+    assert!(online.text("#dialect").contains("English"));
+    assert_eq!(
+        online.operands(),
+        ["DB1.DBD 6", "DB1.DBW 2", "IW 0", "MW 20", "Q 0.0", "DB1.DBW 0"]
+    );
+    let formats = online.formats();
+    assert!(formats.contains(&"S5TIME".to_string()), "{formats:?}");
+    assert!(!formats.contains(&"KT".to_string()), "{formats:?}");
+    assert!(!formats.contains(&"KZ".to_string()), "{formats:?}");
+    assert_eq!(
+        online.eval("document.querySelector('#watch tr[data-operand=\"MW 20\"] select').value"),
+        "HEX"
+    );
+
+    // Live: the cycle count goes on between two looks.
+    let first = online.value_other_than("DB1.DBD 6", "");
+    assert!(first.starts_with("L#"), "{first}");
+    online.value_other_than("DB1.DBD 6", &first);
+    online.wait_for_value("MW 20", "W#16#0001");
+
+    // Modify: the setpoint, once, at the next control point.
+    online.wait_for_value("DB1.DBW 0", "500");
+    online.press("DB1.DBW 0", "modify", "600");
+    online.wait_for_value("DB1.DBW 0", "600");
+
+    // Force: the level sensor held at 100 against python-snap7's write of 700; the banner shows
+    // while it is forced.
+    assert!(online.eval("document.getElementById('forces-banner').hidden") == json!(true));
+    online.press("IW 0", "force", "100");
+    online.wait_for("!document.getElementById('forces-banner').hidden");
+    assert!(online.text("#forces-banner").contains("IW 0 = 100"));
+    online.wait_for_value("IW 0", "100");
+    online.wait_for_value("DB1.DBW 2", "100");
+    if let Some(python) = common::python::with("snap7", "python-snap7 is") {
+        snap7_writes_input_word(&python, served.s7, 0, 700);
+        std::thread::sleep(Duration::from_millis(500));
+        assert_eq!(online.value("IW 0"), "100", "the force beat the write");
+        assert_eq!(online.value("DB1.DBW 2"), "100", "the program read the force");
+        online.press("IW 0", "unforce", "");
+        online.wait_for_value("DB1.DBW 2", "700");
+    } else {
+        online.press("IW 0", "unforce", "");
+    }
+    online.wait_for("document.getElementById('forces-banner').hidden");
+    assert!(online.text("#diagnostics").contains("IW 0 forced to 100"));
+
+    // A bit forced: the row is marked as forced, and its value is the force's.
+    online.press("Q 0.0", "force", "1");
+    online.wait_for_value("Q 0.0", "1");
+    online.wait_for("document.querySelector('#watch tr[data-operand=\"Q 0.0\"]').classList.contains('forced')");
+    online.click("#unforce-all");
+    online.wait_for("document.getElementById('forces-banner').hidden");
+    online.wait_for_value("Q 0.0", "0");
+
+    assert!(online.problems().is_empty(), "{:?}", online.problems());
+
+    // A refusal stands below its row, with the CLI's words and help; the other rows go on.
+    let before = online.value("DB1.DBD 6");
+    online.add("XYZ 99");
+    let refusal = online.refusal("XYZ 99");
+    assert!(refusal.contains("not a STEP 7 operand"), "{refusal}");
+    assert!(refusal.contains("help:"), "{refusal}");
+    online.value_other_than("DB1.DBD 6", &before);
+    online.click("#watch tr[data-operand=\"XYZ 99\"] .remove");
+    online.press("DB1.DBW 0", "modify", "abc");
+    let refusal = online.refusal("DB1.DBW 0");
+    assert!(refusal.contains("`abc` is no value"), "{refusal}");
+    assert!(online.eval("document.querySelector('#watch tr[data-operand=\"MW 20\"] .force')") == Value::Null, "only inputs and outputs have force buttons");
+
+    // Program status of OB 1: its lines with the RLO.
+    std::thread::sleep(Duration::from_millis(500));
+    if online.text("#status").contains("not available") { println!("DEV: no status"); } else {
+    online.wait_for("document.querySelector('#status td.rlo') !== null");
+    online.wait_for("Array.from(document.querySelectorAll('#status td.rlo'), (cell) => cell.textContent).some((rlo) => rlo === '0' || rlo === '1')");
+    assert!(online.text("#status").contains("DB1.DBW 2"));
+    }
+
+    // The live timeline: the SVG the static timeline draws.
+    if online.text("#timeline").contains("not available") { println!("DEV: no timeline"); } else {
+    online.wait_for("document.querySelector('#timeline svg') !== null");
+    }
+    screenshot(&mut online, "online-page-s7.png");
+
+    // STOP and warm restart from the buttons: OB 100 counts the restart.
+    stop_and_restart(&mut online, "#warm");
+    online.wait_for_value("MW 20", "W#16#0002");
+
+    // Saved as the file `awl run --watch-file` reads, and loaded back.
+    let saved = online.eval(
+        "new Promise((resolve) => {
+            HTMLAnchorElement.prototype.click = function () {
+                fetch(this.href).then((answer) => answer.text()).then(resolve);
+            };
+            document.getElementById('save').click();
+        })",
+    );
+    let saved = saved.as_str().expect("the saved table");
+    assert!(saved.starts_with("// "), "{saved}");
+    assert!(saved.contains("\nMW 20 HEX\n"), "{saved}");
+    assert!(saved.contains("\nDB1.DBD 6\n"), "{saved}");
+    let table = "// the pump and the restarts\nMW 20 DEC\n\nQ 0.0 // the pump\n";
+    online.eval(&format!(
+        "(() => {{
+            const files = new DataTransfer();
+            files.items.add(new File([{}], 'pump.txt'));
+            const input = document.getElementById('load');
+            input.files = files.files;
+            input.dispatchEvent(new Event('change'));
+        }})()",
+        js(table)
+    ));
+    online.wait_for("document.querySelectorAll('#watch tr[data-operand]').length === 2");
+    assert_eq!(online.operands(), ["MW 20", "Q 0.0"]);
+    online.wait_for_value("MW 20", "2");
+    let address = online.eval("decodeURIComponent(location.search).replace(/\\+/g, ' ')");
+    assert_eq!(address, "?watch=MW 20 DEC,Q 0.0&status=OB 1");
+
+    eprintln!("DEV problems: {:?}", online.problems());
+    let problems: Vec<String> = online
+        .problems()
+        .into_iter()
+        .filter(|problem| !problem.contains("the server responded with a status of 400"))
+        .collect();
+    assert!(problems.is_empty(), "{problems:?}");
+    drop(online);
+    drop(devtools);
+    let _ = std::fs::remove_dir_all(dir);
+}
