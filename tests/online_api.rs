@@ -588,3 +588,50 @@ fn a_trace_records_the_page_s_modifies_forces_and_mode_changes() {
     );
     assert_eq!(events[events.len() - 4]["value"], "5");
 }
+
+#[test]
+fn program_status_shows_the_latest_invocation_in_each_dialect() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    let (status, view) = online.get("/api/status?block=OB%201&level=OB%201");
+    assert_eq!(status, 200, "{view}");
+    assert_eq!(
+        (&view["block"], &view["level"]),
+        (&json!("OB 1"), &json!("OB 1"))
+    );
+    assert!(view["cycle"].as_u64().unwrap() >= 1);
+    let rows = view["rows"].as_array().unwrap();
+    let load = rows
+        .iter()
+        .find(|row| row["statement"] == "L     DB1.DBW 0")
+        .unwrap_or_else(|| panic!("{view}"));
+    assert_eq!(load["executed"], true);
+    assert_eq!(load["accu1"], "W#16#01F4");
+    assert_eq!(load["operand"], "500");
+    assert_eq!(load["passes"], 1);
+    assert!(
+        rows.iter()
+            .all(|row| row["rlo"] == 0 || row["rlo"] == 1 || row["rlo"].is_null())
+    );
+    let (status, refused) = online.get("/api/status?block=FC%2099");
+    assert_eq!(
+        (status, &refused["code"]),
+        (404, &json!("awl::status::unknown_block"))
+    );
+    let (status, refused) = online.get("/api/status?block=OB%2040");
+    assert_eq!(
+        (status, &refused["code"]),
+        (404, &json!("awl::online::did_not_run"))
+    );
+    drop(online);
+
+    let online = Online::start(&["programs/tank_hmi_115u.awl", "--cpu", "s5-115u-944"]);
+    let (status, view) = online.get("/api/status?block=FB%201");
+    assert_eq!(status, 200, "{view}");
+    let rows = view["rows"].as_array().unwrap();
+    let first = &rows[0];
+    assert_eq!(first["statement"], ":C    DB 1");
+    assert!(
+        first["accu1"].as_str().unwrap().starts_with("KH "),
+        "{first}"
+    );
+}

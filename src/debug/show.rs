@@ -139,9 +139,20 @@ fn force_image(
     }
 }
 
+/// A timer cannot be written: it runs as the program starts it.
+fn not_a_timer(target: Target) -> Result<(), String> {
+    match target {
+        Target::TimerBit(_) => {
+            Err("a timer runs as the program starts it; force its start condition".into())
+        }
+        _ => Ok(()),
+    }
+}
+
 /// `set OPERAND VALUE`: what it wrote, or why it cannot.
 pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Result<String, String> {
     let target = target(cpu, operand, set).map_err(|reason| format!("`{operand}`: {reason}"))?;
+    not_a_timer(target)?;
     let raw = raw_value(target, value)
         .map_err(|allowed| format!("`{operand}` takes {allowed}, not {value}"))?;
     write(cpu, target, raw, operand)?;
@@ -169,9 +180,7 @@ pub fn write(cpu: &mut Cpu, target: Target, raw: u32, operand: &str) -> Result<(
             Some(change) => write_modules(cpu, change, operand),
             None => Ok(()),
         },
-        Target::TimerBit(_) => {
-            Err("a timer runs as the program starts it; force its start condition".into())
-        }
+        Target::TimerBit(_) => not_a_timer(target),
         Target::CounterValue(n) => {
             if raw > 999 {
                 return Err(format!("a counter holds 0…999, not {raw}"));

@@ -208,6 +208,12 @@ pub enum Ask {
     },
     /// The forces in effect.
     Forces { reply: oneshot::Sender<Vec<Value>> },
+    /// Program status of a block's latest invocation (on the level of OB `level`).
+    ProgramStatus {
+        block: String,
+        level: Option<String>,
+        reply: Answer<StatusView>,
+    },
     /// The diagnostic buffer, newest first.
     Diagnostics {
         reply: oneshot::Sender<Vec<DiagnosticEntry>>,

@@ -99,6 +99,7 @@ impl<'a> Station<'a> {
     /// the CPU's simulated time, serving what comes meanwhile. `false` leaves the run: a
     /// client's STOP or a halt (Ctrl-C).
     pub fn at_control_point(&mut self, cpu: &mut Cpu) -> bool {
+        self.online.at_control_point(cpu);
         let deadline = self.pacer.deadline(cpu.clock);
         loop {
             if !self.serve_waiting(cpu) {
@@ -131,6 +132,7 @@ impl<'a> Station<'a> {
             if let Some(start) = self.wanted.take() {
                 return Some(start.cold);
             }
+            self.online.at_control_point(cpu);
             self.wait_for_request(cpu, LOOK_EVERY);
             self.report_now_and_then(cpu);
         }

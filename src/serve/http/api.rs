@@ -27,6 +27,11 @@ pub enum Call {
     /// The force of one operand ends, or (`None`) every force.
     Unforce(Option<String>),
     Forces,
+    /// Program status of a block (on the level of an OB).
+    Status {
+        block: String,
+        level: Option<String>,
+    },
     Diagnostics,
 }
 
@@ -47,7 +52,7 @@ struct Route {
     example: &'static str,
 }
 
-const ROUTES: [Route; 8] = [
+const ROUTES: [Route; 9] = [
     Route {
         path: "/",
         methods: "GET",
@@ -82,6 +87,11 @@ const ROUTES: [Route; 8] = [
         path: "/api/forces",
         methods: "GET",
         example: "",
+    },
+    Route {
+        path: "/api/status",
+        methods: "GET",
+        example: "/api/status?block=OB%201 (or &level=OB%2035: its invocation on that level)",
     },
     Route {
         path: "/api/diagnostics",
@@ -124,6 +134,20 @@ pub fn decode(
             Some(operand) => Ok(Call::Unforce(Some(operand.to_string()))),
         },
         ("/api/forces", "GET") => Ok(Call::Forces),
+        ("/api/status", "GET") => {
+            let block = query.get("block").map(str::trim).unwrap_or("");
+            if block.is_empty() {
+                return Err(missing(route, "block"));
+            }
+            let level = query
+                .get("level")
+                .map(str::trim)
+                .filter(|level| !level.is_empty());
+            Ok(Call::Status {
+                block: block.to_string(),
+                level: level.map(str::to_string),
+            })
+        }
         ("/api/diagnostics", "GET") => Ok(Call::Diagnostics),
         _ => Err(OnlineError::Method {
             method: method.to_string(),

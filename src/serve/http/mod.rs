@@ -167,6 +167,14 @@ async fn answer(
             let forces = ask_for(shared, client, |reply| Ask::Forces { reply }).await?;
             ok(&ForcesView { forces })
         }
+        Call::Status { block, level } => {
+            let make = |reply| Ask::ProgramStatus {
+                block,
+                level,
+                reply,
+            };
+            ok(&ask_for(shared, client, make).await??)
+        }
         Call::Diagnostics => {
             let entries = ask_for(shared, client, |reply| Ask::Diagnostics { reply }).await?;
             ok(&Entries { entries })

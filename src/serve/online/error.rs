@@ -129,6 +129,33 @@ pub enum OnlineError {
     #[diagnostic(code(awl::online::not_forced), help("{forced}"))]
     NotForced { operand: String, forced: String },
 
+    #[error("`{text}` names no block: {reason}")]
+    #[diagnostic(
+        code(awl::online::block),
+        help("name a logic block as the program writes it: `OB 1`, `PB 3`, `FC 1`, or its symbol")
+    )]
+    Block { text: String, reason: String },
+
+    #[error("`{text}` is no processing level")]
+    #[diagnostic(
+        code(awl::online::level),
+        help("name the OB whose level calls the block, e.g. `OB 1` or `OB 35`")
+    )]
+    Level { text: String },
+
+    #[error("{block} did not run{on_level} (the CPU is in {mode})")]
+    #[diagnostic(
+        code(awl::online::did_not_run),
+        help(
+            "program status shows a block's latest invocation; check that the program calls it (on that level), and that the CPU runs"
+        )
+    )]
+    DidNotRun {
+        block: String,
+        on_level: String,
+        mode: &'static str,
+    },
+
     #[error("cannot modify `{operand}`: {reason}")]
     #[diagnostic(code(awl::online::modify))]
     Modify { operand: String, reason: String },
@@ -149,7 +176,9 @@ impl OnlineError {
     /// How the request is answered.
     pub fn kind(&self) -> Refused {
         match self {
-            OnlineError::NoSuchPath { .. } | OnlineError::NotForced { .. } => Refused::NotFound,
+            OnlineError::NoSuchPath { .. }
+            | OnlineError::NotForced { .. }
+            | OnlineError::DidNotRun { .. } => Refused::NotFound,
             OnlineError::Method { .. } => Refused::MethodNotAllowed,
             OnlineError::Running => Refused::Conflict,
             OnlineError::ReadOnly
@@ -164,6 +193,8 @@ impl OnlineError {
             | OnlineError::UnknownMode { .. }
             | OnlineError::Value { .. }
             | OnlineError::NotForceable { .. }
+            | OnlineError::Block { .. }
+            | OnlineError::Level { .. }
             | OnlineError::Modify { .. } => Refused::BadRequest,
         }
     }

@@ -6,6 +6,7 @@
 pub mod diagnostics;
 pub mod error;
 pub mod forces;
+pub mod status;
 
 use crate::mnemonics::MnemonicSet;
 use crate::runner;
@@ -20,6 +21,7 @@ use crate::trace::Event;
 use diagnostics::Diagnostics;
 use error::OnlineError;
 use forces::{ForceTable, Held};
+use status::StatusWatch;
 
 /// What the online page sees of the CPU besides its memory.
 pub struct Online {
@@ -30,6 +32,8 @@ pub struct Online {
     /// The program's STOP, while the CPU stays in STOP.
     stop: Option<StopView>,
     forces: ForceTable,
+    /// Program status of the block the page watches.
+    status: Option<StatusWatch>,
 }
 
 fn ms(ns: u64) -> f64 {
@@ -44,6 +48,7 @@ impl Online {
             diagnostics: Diagnostics::default(),
             stop: None,
             forces: ForceTable::default(),
+            status: None,
         }
     }
 
@@ -82,6 +87,11 @@ impl Online {
                         .collect(),
                 );
             }
+            Ask::ProgramStatus {
+                block,
+                level,
+                reply,
+            } => StatusWatch::ask(&mut self.status, cpu, (block, level), reply),
             Ask::Diagnostics { reply } => {
                 let _ = reply.send(self.diagnostics.entries());
             }
@@ -285,6 +295,14 @@ impl Online {
     pub fn mode_changed(&mut self, cpu: &Cpu, text: String) {
         self.stop = None;
         self.diagnostics.record(cpu, "mode", text);
+    }
+
+    /// At every control point, and now and then in STOP: program status looks whether its
+    /// recording is done. One comparison when nobody watches.
+    pub fn at_control_point(&mut self, cpu: &mut Cpu) {
+        if let Some(status) = &mut self.status {
+            status.look(cpu);
+        }
     }
 
     /// Now and then (a few times a second): what the engine counted since the last look.
