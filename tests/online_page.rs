@@ -99,7 +99,10 @@ fn browser(name: &str) -> Option<(DevTools, PathBuf)> {
     };
     let dir = std::env::temp_dir().join(format!("awl-online-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a temporary directory");
-    Some((DevTools::start(&path, &dir.join("profile"), "1400,1000"), dir))
+    Some((
+        DevTools::start(&path, &dir.join("profile"), "1400,1000"),
+        dir,
+    ))
 }
 
 /// `text` as a JavaScript string literal.
@@ -161,7 +164,10 @@ impl<'a> Online<'a> {
 
     /// Whether the element is disabled.
     fn disabled(&mut self, selector: &str) -> bool {
-        self.eval(&format!("document.querySelector({}).disabled", js(selector))) == json!(true)
+        self.eval(&format!(
+            "document.querySelector({}).disabled",
+            js(selector)
+        )) == json!(true)
     }
 
     fn row(operand: &str) -> String {
@@ -192,7 +198,10 @@ impl<'a> Online<'a> {
     /// The refusal shown below the row of `operand`, once there is one.
     fn refusal(&mut self, operand: &str) -> String {
         let message = format!("{} + tr.message:not([hidden])", Online::row(operand));
-        self.wait_for(&format!("document.querySelector({}) !== null", js(&message)));
+        self.wait_for(&format!(
+            "document.querySelector({}) !== null",
+            js(&message)
+        ));
         self.text(&message)
     }
 
@@ -263,10 +272,44 @@ fn screenshot(online: &mut Online, name: &str) {
         .iter()
         .filter(|pixel| (pixel.red(), pixel.green(), pixel.blue()) != (255, 255, 255))
         .count();
-    assert!(drawn * 20 > pixmap.pixels().len(), "the screenshot is blank");
+    assert!(
+        drawn * 20 > pixmap.pixels().len(),
+        "the screenshot is blank"
+    );
     let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     std::fs::write(&path, &png).expect("the screenshot is written");
     println!("screenshot: {}", path.display());
+}
+
+/// Program status shows the block's lines with the RLO, one of them `statement`.
+fn assert_status_shows_the_rlo(online: &mut Online, statement: &str) {
+    online.wait_for(
+        "Array.from(document.querySelectorAll('#status td.rlo'), (cell) => cell.textContent)
+            .some((rlo) => rlo === '0' || rlo === '1')",
+    );
+    let lines = online.text("#status");
+    assert!(lines.contains(statement), "{lines}");
+}
+
+/// The live timeline is the SVG the static timeline draws, OB 1's lane in it.
+fn assert_timeline_draws(online: &mut Online) {
+    online.wait_for("document.querySelector('#timeline svg') !== null");
+    assert!(online.text("#timeline").contains("OB 1"));
+}
+
+/// No console message, uncaught exception or logged error, but for the answers of status
+/// `refused` (a request refused on purpose: Chromium logs each such answer).
+fn assert_no_problems(online: &Online, refused: Option<u16>) {
+    let problems: Vec<String> = online
+        .problems()
+        .into_iter()
+        .filter(|problem| {
+            refused.is_none_or(|status| {
+                !problem.contains(&format!("the server responded with a status of {status}"))
+            })
+        })
+        .collect();
+    assert!(problems.is_empty(), "{problems:?}");
 }
 
 /// Stop from the STOP button, then a restart from its button; the page follows each mode.
@@ -285,7 +328,7 @@ fn stop_and_restart(online: &mut Online, restart: &str) {
 }
 
 /// Writes `value` into the input word `IW byte` as an HMI or a plant simulation does: with
-/// python-snap7, to the S7 port. `false` where python-snap7 is missing.
+/// python-snap7, to the S7 port.
 fn snap7_writes_input_word(python: &Path, s7: u16, byte: u16, value: u16) {
     let script = "import sys, snap7\n\
         from snap7.type import Area\n\
@@ -318,20 +361,31 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
     let mut online = Online::open(&mut devtools, &url);
     assert_self_contained(&mut online);
     online.wait_for_text("#mode", "RUN");
-    assert!(online.text("#dialect").contains("STEP 7"));
-    assert!(online.text("#dialect").contains("English"));
+    let notation = online.text("#dialect");
+    assert!(
+        notation.contains("STEP 7") && notation.contains("English"),
+        "{notation}"
+    );
     assert_eq!(
         online.operands(),
-        ["DB1.DBD 6", "DB1.DBW 2", "IW 0", "MW 20", "Q 0.0", "DB1.DBW 0"]
+        [
+            "DB1.DBD 6",
+            "DB1.DBW 2",
+            "IW 0",
+            "MW 20",
+            "Q 0.0",
+            "DB1.DBW 0"
+        ]
     );
     let formats = online.formats();
     assert!(formats.contains(&"S5TIME".to_string()), "{formats:?}");
     assert!(!formats.contains(&"KT".to_string()), "{formats:?}");
     assert!(!formats.contains(&"KZ".to_string()), "{formats:?}");
-    assert_eq!(
-        online.eval("document.querySelector('#watch tr[data-operand=\"MW 20\"] select').value"),
-        "HEX"
-    );
+    let chosen = online.eval(&format!(
+        "document.querySelector({}).value",
+        js(&format!("{} select", Online::row("MW 20")))
+    ));
+    assert_eq!(chosen, "HEX");
 
     // Live: the cycle count goes on between two looks.
     let first = online.value_other_than("DB1.DBD 6", "");
@@ -346,7 +400,10 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
 
     // Force: the level sensor held at 100 against python-snap7's write of 700; the banner shows
     // while it is forced.
-    assert!(online.eval("document.getElementById('forces-banner').hidden") == json!(true));
+    assert_eq!(
+        online.eval("document.getElementById('forces-banner').hidden"),
+        true
+    );
     online.press("IW 0", "force", "100");
     online.wait_for("!document.getElementById('forces-banner').hidden");
     assert!(online.text("#forces-banner").contains("IW 0 = 100"));
@@ -354,9 +411,14 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
     online.wait_for_value("DB1.DBW 2", "100");
     if let Some(python) = common::python::with("snap7", "python-snap7 is") {
         snap7_writes_input_word(&python, served.s7, 0, 700);
-        std::thread::sleep(Duration::from_millis(500));
+        // Many cycles and two refreshes of the page.
+        std::thread::sleep(Duration::from_millis(600));
         assert_eq!(online.value("IW 0"), "100", "the force beat the write");
-        assert_eq!(online.value("DB1.DBW 2"), "100", "the program read the force");
+        assert_eq!(
+            online.value("DB1.DBW 2"),
+            "100",
+            "the program read the force"
+        );
         online.press("IW 0", "unforce", "");
         online.wait_for_value("DB1.DBW 2", "700");
     } else {
@@ -365,42 +427,43 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
     online.wait_for("document.getElementById('forces-banner').hidden");
     assert!(online.text("#diagnostics").contains("IW 0 forced to 100"));
 
-    // A bit forced: the row is marked as forced, and its value is the force's.
+    // A bit forced: the row is marked, its value is the force's, until all are unforced.
     online.press("Q 0.0", "force", "1");
     online.wait_for_value("Q 0.0", "1");
-    online.wait_for("document.querySelector('#watch tr[data-operand=\"Q 0.0\"]').classList.contains('forced')");
+    online.wait_for(&format!(
+        "document.querySelector({}).classList.contains('forced')",
+        js(&Online::row("Q 0.0"))
+    ));
     online.click("#unforce-all");
     online.wait_for("document.getElementById('forces-banner').hidden");
     online.wait_for_value("Q 0.0", "0");
+    let only_io = format!(
+        "document.querySelector({}) === null",
+        js(&format!("{} .force", Online::row("MW 20")))
+    );
+    assert_eq!(
+        online.eval(&only_io),
+        true,
+        "only inputs and outputs are forced"
+    );
 
-    assert!(online.problems().is_empty(), "{:?}", online.problems());
+    assert_status_shows_the_rlo(&mut online, "DB1.DBW 2");
+    assert_timeline_draws(&mut online);
+    assert_no_problems(&online, None);
+    screenshot(&mut online, "online-page-s7.png");
 
-    // A refusal stands below its row, with the CLI's words and help; the other rows go on.
+    // A refusal stands below its row, in the command line's words with its help; the other
+    // rows go on.
     let before = online.value("DB1.DBD 6");
     online.add("XYZ 99");
     let refusal = online.refusal("XYZ 99");
     assert!(refusal.contains("not a STEP 7 operand"), "{refusal}");
     assert!(refusal.contains("help:"), "{refusal}");
     online.value_other_than("DB1.DBD 6", &before);
-    online.click("#watch tr[data-operand=\"XYZ 99\"] .remove");
+    online.click(&format!("{} .remove", Online::row("XYZ 99")));
     online.press("DB1.DBW 0", "modify", "abc");
     let refusal = online.refusal("DB1.DBW 0");
     assert!(refusal.contains("`abc` is no value"), "{refusal}");
-    assert!(online.eval("document.querySelector('#watch tr[data-operand=\"MW 20\"] .force')") == Value::Null, "only inputs and outputs have force buttons");
-
-    // Program status of OB 1: its lines with the RLO.
-    std::thread::sleep(Duration::from_millis(500));
-    if online.text("#status").contains("not available") { println!("DEV: no status"); } else {
-    online.wait_for("document.querySelector('#status td.rlo') !== null");
-    online.wait_for("Array.from(document.querySelectorAll('#status td.rlo'), (cell) => cell.textContent).some((rlo) => rlo === '0' || rlo === '1')");
-    assert!(online.text("#status").contains("DB1.DBW 2"));
-    }
-
-    // The live timeline: the SVG the static timeline draws.
-    if online.text("#timeline").contains("not available") { println!("DEV: no timeline"); } else {
-    online.wait_for("document.querySelector('#timeline svg') !== null");
-    }
-    screenshot(&mut online, "online-page-s7.png");
 
     // STOP and warm restart from the buttons: OB 100 counts the restart.
     stop_and_restart(&mut online, "#warm");
@@ -419,30 +482,122 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
     assert!(saved.starts_with("// "), "{saved}");
     assert!(saved.contains("\nMW 20 HEX\n"), "{saved}");
     assert!(saved.contains("\nDB1.DBD 6\n"), "{saved}");
-    let table = "// the pump and the restarts\nMW 20 DEC\n\nQ 0.0 // the pump\n";
+    load(
+        &mut online,
+        "// the pump and the restarts\nMW 20 DEC\n\nQ 0.0 // the pump\n",
+    );
+    assert_eq!(online.operands(), ["MW 20", "Q 0.0"]);
+    online.wait_for_value("MW 20", "2");
+    let address = online.eval("decodeURIComponent(location.search).replace(/\\+/g, ' ')");
+    assert_eq!(address, "?watch=MW 20 DEC,Q 0.0&status=OB 1");
+
+    assert_no_problems(&online, Some(400));
+    drop(online);
+    drop(devtools);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Loads `table` as a person does, through the file field.
+fn load(online: &mut Online, table: &str) {
     online.eval(&format!(
         "(() => {{
             const files = new DataTransfer();
-            files.items.add(new File([{}], 'pump.txt'));
+            files.items.add(new File([{}], 'table.txt'));
             const input = document.getElementById('load');
             input.files = files.files;
             input.dispatchEvent(new Event('change'));
         }})()",
         js(table)
     ));
-    online.wait_for("document.querySelectorAll('#watch tr[data-operand]').length === 2");
-    assert_eq!(online.operands(), ["MW 20", "Q 0.0"]);
-    online.wait_for_value("MW 20", "2");
-    let address = online.eval("decodeURIComponent(location.search).replace(/\\+/g, ' ')");
-    assert_eq!(address, "?watch=MW 20 DEC,Q 0.0&status=OB 1");
+    let rows = table
+        .lines()
+        .filter_map(|line| line.split("//").next())
+        .filter(|line| !line.trim().is_empty())
+        .count();
+    online.wait_for(&format!(
+        "document.querySelectorAll('#watch tr[data-operand]').length === {rows}"
+    ));
+}
 
-    eprintln!("DEV problems: {:?}", online.problems());
-    let problems: Vec<String> = online
-        .problems()
-        .into_iter()
-        .filter(|problem| !problem.contains("the server responded with a status of 400"))
-        .collect();
-    assert!(problems.is_empty(), "{problems:?}");
+#[test]
+fn a_step5_tank_on_an_s5_115u_is_shown_in_step_5_s_notation() {
+    let Some((mut devtools, dir)) = browser("s5") else {
+        return;
+    };
+    let served = Served::start(&["programs/tank_hmi_115u.awl", "--cpu", "s5-115u-944"]);
+    // The cycle count, the restarts as a count, the pump and the setpoint.
+    let url =
+        served.page("?watch=DB%201%20DW%203,FW%2020%20KZ,Q%200.0,DB%201%20DW%200&status=FB%201");
+    let mut online = Online::open(&mut devtools, &url);
+    online.wait_for_text("#mode", "RUN");
+    let notation = online.text("#dialect");
+    assert!(
+        notation.contains("STEP 5") && notation.contains("English"),
+        "{notation}"
+    );
+    let formats = online.formats();
+    assert!(formats.contains(&"KT".to_string()), "{formats:?}");
+    assert!(formats.contains(&"KZ".to_string()), "{formats:?}");
+    assert!(!formats.contains(&"S5TIME".to_string()), "{formats:?}");
+
+    let first = online.value_other_than("DB 1 DW 3", "");
+    assert!(first.starts_with("KF +"), "{first}");
+    online.value_other_than("DB 1 DW 3", &first);
+    online.wait_for_value("FW 20", "KZ 001");
+    online.press("DB 1 DW 0", "modify", "200");
+    online.wait_for_value("DB 1 DW 0", "KF +200");
+    online.press("Q 0.0", "force", "1");
+    online.wait_for("!document.getElementById('forces-banner').hidden");
+    online.wait_for_value("Q 0.0", "1");
+    online.click("#unforce-all");
+    online.wait_for("document.getElementById('forces-banner').hidden");
+
+    assert_status_shows_the_rlo(&mut online, ":L    IW 0");
+    assert_timeline_draws(&mut online);
+    // A cold restart from the buttons loads the data blocks anew: the setpoint is the
+    // program's again.
+    stop_and_restart(&mut online, "#cold");
+    online.wait_for_value("DB 1 DW 0", "KF +500");
+    assert!(online.text("#diagnostics").contains("cold restart"));
+    screenshot(&mut online, "online-page-s5.png");
+    assert_no_problems(&online, None);
+    drop(online);
+    drop(devtools);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_read_only_serve_greys_every_control_that_changes_the_cpu() {
+    let Some((mut devtools, dir)) = browser("read-only") else {
+        return;
+    };
+    let served = Served::start(&["programs/s7/tank_hmi.awl", "--read-only"]);
+    let mut online = Online::open(&mut devtools, &served.page("?watch=DB1.DBD%206,IW%200"));
+    online.wait_for("!document.getElementById('read-only-note').hidden");
+    let first = online.value_other_than("DB1.DBD 6", "");
+    online.value_other_than("DB1.DBD 6", &first);
+    for control in ["#stop", "#warm", "#cold", "#unforce-all"] {
+        assert!(online.disabled(control), "{control} is greyed");
+    }
+    let enabled = online.eval(
+        "Array.from(document.querySelectorAll('#watch .modify-value, #watch .modify, #watch .force, #watch .unforce'))
+            .filter((control) => !control.disabled).length",
+    );
+    assert_eq!(enabled, 0, "modify and force are greyed");
+    let changes = online.eval("document.querySelectorAll('#watch .changes').length");
+    assert_eq!(
+        changes,
+        2 * 2 + 2,
+        "two modify fields and buttons, one force and unforce"
+    );
+    // Rows added later are greyed too; reading goes on.
+    online.add("MW 20");
+    online.wait_for_value("MW 20", "1");
+    assert!(online.disabled(&format!("{} .modify", Online::row("MW 20"))));
+    online.click("#stop");
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(online.text("#mode"), "RUN");
+    assert_no_problems(&online, None);
     drop(online);
     drop(devtools);
     let _ = std::fs::remove_dir_all(dir);
