@@ -635,3 +635,137 @@ fn program_status_shows_the_latest_invocation_in_each_dialect() {
         "{first}"
     );
 }
+
+/// A live connection to `online`, with `origin` sent if given.
+fn live(
+    online: &Online,
+    origin: Option<&str>,
+) -> Result<
+    tungstenite::WebSocket<tungstenite::stream::MaybeTlsStream<TcpStream>>,
+    tungstenite::Error,
+> {
+    use tungstenite::client::IntoClientRequest;
+    let mut request = format!("ws://127.0.0.1:{}/api/live", online.port)
+        .into_client_request()
+        .unwrap();
+    if let Some(origin) = origin {
+        request
+            .headers_mut()
+            .insert("Origin", origin.parse().unwrap());
+    }
+    tungstenite::connect(request).map(|(socket, _)| socket)
+}
+
+/// The next message of `socket` as JSON.
+fn next(
+    socket: &mut tungstenite::WebSocket<tungstenite::stream::MaybeTlsStream<TcpStream>>,
+) -> Value {
+    loop {
+        match socket.read().expect("a message") {
+            tungstenite::Message::Text(text) => return serde_json::from_str(&text).unwrap(),
+            _ => continue,
+        }
+    }
+}
+
+#[test]
+fn the_live_view_pushes_what_was_subscribed_and_refuses_a_bad_subscription() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    let mut socket = live(&online, Some(&format!("http://127.0.0.1:{}", online.port))).unwrap();
+    let subscribe = json!({"subscribe": {
+        "cpu": true,
+        "values": [{"operand": "MW 20", "format": "HEX"}, {"operand": "Q 0.0"}],
+        "status": {"block": "OB 1", "level": null},
+        "timeline": true,
+        "diagnostics": true,
+    }});
+    socket.send(subscribe.to_string().into()).unwrap();
+    let mut seen = std::collections::BTreeMap::new();
+    let deadline = Instant::now() + Duration::from_secs(20);
+    while seen.len() < 5 && Instant::now() < deadline {
+        let message = next(&mut socket);
+        let kind = message["type"].as_str().unwrap().to_string();
+        seen.entry(kind).or_insert(message);
+    }
+    assert_eq!(seen["cpu"]["mode"], "RUN", "{seen:?}");
+    assert_eq!(seen["values"]["values"][0]["value"], "W#16#0001");
+    assert_eq!(seen["values"]["values"][1]["raw"], false);
+    assert_eq!(seen["status"]["block"], "OB 1");
+    assert!(seen["status"]["rows"].as_array().unwrap().len() > 5);
+    let svg = seen["timeline"]["svg"].as_str().unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("OB 1"), "{svg}");
+    assert!(seen["diagnostics"]["entries"].is_array());
+
+    // A second subscription replaces the first; an operand it cannot watch is an error.
+    let bad = json!({"subscribe": {"values": [{"operand": "XYZ 99"}]}});
+    socket.send(bad.to_string().into()).unwrap();
+    let error = loop {
+        let message = next(&mut socket);
+        if message["type"] == "error" {
+            break message;
+        }
+    };
+    assert_eq!(error["code"], "awl::cli::watch_operand", "{error}");
+    assert!(
+        error["error"]
+            .as_str()
+            .unwrap()
+            .starts_with("cannot watch `XYZ 99`")
+    );
+    socket.send("{not json".into()).unwrap();
+    let error = loop {
+        let message = next(&mut socket);
+        if message["type"] == "error" {
+            break message;
+        }
+    };
+    assert_eq!(error["code"], "awl::online::bad_json");
+    socket.close(None).unwrap();
+}
+
+#[test]
+fn a_live_connection_from_a_foreign_page_or_without_an_upgrade_is_refused() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    match live(&online, Some("http://attacker.example")) {
+        Err(tungstenite::Error::Http(response)) => assert_eq!(response.status().as_u16(), 403),
+        other => panic!("a foreign page's live connection was opened: {other:?}"),
+    }
+    assert!(
+        live(&online, None).is_ok(),
+        "a program (no Origin) may open one"
+    );
+    let (status, refused) = online.get("/api/live");
+    assert_eq!(
+        (status, &refused["code"]),
+        (400, &json!("awl::online::websocket"))
+    );
+}
+
+#[test]
+fn the_timeline_draws_the_last_seconds_of_the_levels() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl"]);
+    let (status, answer) = online.get("/api/timeline?seconds=1");
+    assert_eq!(status, 200);
+    let svg = answer["svg"].as_str().unwrap();
+    assert!(svg.starts_with("<svg"), "{svg}");
+    assert!(svg.contains("class=\"run\""), "OB 1's level runs: {svg}");
+    assert!(svg.contains("the last 1 s"), "{svg}");
+    let (status, refused) = online.get("/api/timeline?seconds=often");
+    assert_eq!(
+        (status, &refused["code"]),
+        (400, &json!("awl::online::seconds"))
+    );
+}
+
+#[test]
+fn live_connections_count_against_the_connection_limit() {
+    let online = Online::start(&["programs/s7/tank_hmi.awl", "--max-connections", "1"]);
+    let first = live(&online, None).expect("the first live connection opens");
+    std::thread::sleep(Duration::from_millis(200));
+    match live(&online, None) {
+        Err(tungstenite::Error::Http(response)) => assert_eq!(response.status().as_u16(), 503),
+        Err(tungstenite::Error::Io(_) | tungstenite::Error::Protocol(_)) => {}
+        other => panic!("a second live connection was opened: {other:?}"),
+    }
+    drop(first);
+}

@@ -218,6 +218,11 @@ pub enum Ask {
     Diagnostics {
         reply: oneshot::Sender<Vec<DiagnosticEntry>>,
     },
+    /// The last `seconds` of simulated time as the timeline draws them (an SVG).
+    Timeline {
+        seconds: f64,
+        reply: oneshot::Sender<String>,
+    },
 }
 
 /// Where the answer to an [`Ask`] goes: what was asked for, or why it cannot be had.

@@ -249,7 +249,7 @@ impl<'a> Station<'a> {
         }
     }
 
-    fn report_now_and_then(&mut self, cpu: &Cpu) {
+    fn report_now_and_then(&mut self, cpu: &mut Cpu) {
         let elapsed = self.last_report.elapsed();
         if elapsed < Duration::from_millis(250) {
             return;

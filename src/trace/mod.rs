@@ -290,6 +290,16 @@ impl Tracer {
         self.enabled = true;
     }
 
+    /// Removes the outputs named `name` (the online page's live timeline, when nobody watches
+    /// it any more); with no output left, nothing is traced and the loop runs untraced again.
+    pub fn remove(&mut self, name: &str) {
+        self.outputs.retain(|output| output.name != name);
+        self.enabled = self.outputs.iter().any(|output| output.error.is_none());
+        if !self.enabled {
+            self.held.clear();
+        }
+    }
+
     /// Records an event at simulated time `t_ns`. It is handed on by the next
     /// [`Tracer::settle`] that reaches its time.
     pub fn emit(&mut self, t_ns: u64, event: Event) {

@@ -5,6 +5,7 @@
 use serde::Deserialize;
 
 use crate::serve::online::error::OnlineError;
+use crate::serve::online::timeline::MOST_SECONDS;
 use crate::serve::request::{Control, Format};
 
 /// What a request asks for.
@@ -33,6 +34,10 @@ pub enum Call {
         level: Option<String>,
     },
     Diagnostics,
+    /// The last seconds of the timeline.
+    Timeline(f64),
+    /// The WebSocket of the live view.
+    Live,
 }
 
 impl Call {
@@ -52,7 +57,7 @@ struct Route {
     example: &'static str,
 }
 
-const ROUTES: [Route; 9] = [
+const ROUTES: [Route; 11] = [
     Route {
         path: "/",
         methods: "GET",
@@ -98,7 +103,20 @@ const ROUTES: [Route; 9] = [
         methods: "GET",
         example: "",
     },
+    Route {
+        path: "/api/timeline",
+        methods: "GET",
+        example: "/api/timeline?seconds=5",
+    },
+    Route {
+        path: "/api/live",
+        methods: "GET (a WebSocket)",
+        example: r#"{"subscribe": {"cpu": true, "values": [{"operand": "MW 10", "format": "HEX"}]}}"#,
+    },
 ];
+
+/// How many seconds the timeline shows without `seconds`.
+const TIMELINE_SECONDS: f64 = 5.0;
 
 /// Decodes one request; `query` is the part after `?`, undecoded.
 pub fn decode(
@@ -149,6 +167,18 @@ pub fn decode(
             })
         }
         ("/api/diagnostics", "GET") => Ok(Call::Diagnostics),
+        ("/api/timeline", "GET") => match query.get("seconds").map(str::trim) {
+            None | Some("") => Ok(Call::Timeline(TIMELINE_SECONDS)),
+            Some(text) => match text.parse::<f64>() {
+                Ok(seconds) if seconds > 0.0 && seconds <= MOST_SECONDS => {
+                    Ok(Call::Timeline(seconds))
+                }
+                _ => Err(OnlineError::Seconds {
+                    text: text.to_string(),
+                }),
+            },
+        },
+        ("/api/live", "GET") => Ok(Call::Live),
         _ => Err(OnlineError::Method {
             method: method.to_string(),
             path: route.path,
@@ -220,19 +250,7 @@ fn values(route: &Route, query: &Query) -> Result<Call, OnlineError> {
         .split(',')
         .map(str::trim)
         .filter(|operand| !operand.is_empty())
-        .map(|operand| {
-            let format = match formats.next().map(str::trim) {
-                None | Some("") => None,
-                Some(name) => {
-                    Some(
-                        Format::parse(name).ok_or_else(|| OnlineError::UnknownFormat {
-                            format: name.to_string(),
-                        })?,
-                    )
-                }
-            };
-            Ok((operand.to_string(), format))
-        })
+        .map(|operand| Ok((operand.to_string(), format(formats.next().unwrap_or(""))?)))
         .collect::<Result<_, _>>()
         .map(Call::Values)
 }
@@ -270,6 +288,79 @@ fn scenario_value(text: &str) -> Option<toml::Value> {
     let mut table: toml::Table = format!("value = {text}").parse().ok()?;
     let value = table.remove("value")?;
     table.is_empty().then_some(value)
+}
+
+/// What a live connection pushes (`/api/live`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Subscription {
+    pub cpu: bool,
+    pub values: Vec<(String, Option<Format>)>,
+    /// The block and the level of program status.
+    pub status: Option<(String, Option<String>)>,
+    pub timeline: bool,
+    pub diagnostics: bool,
+}
+
+#[derive(Deserialize)]
+struct Subscribe {
+    subscribe: SubscribeBody,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(default)]
+struct SubscribeBody {
+    cpu: bool,
+    values: Vec<WatchRow>,
+    status: Option<StatusOf>,
+    timeline: bool,
+    diagnostics: bool,
+}
+
+#[derive(Deserialize)]
+struct WatchRow {
+    operand: String,
+    #[serde(default)]
+    format: Option<String>,
+}
+
+#[derive(Deserialize)]
+struct StatusOf {
+    block: String,
+    #[serde(default)]
+    level: Option<String>,
+}
+
+/// A live connection's message: `{"subscribe": {…}}`, every part optional.
+pub fn subscription(text: &str) -> Result<Subscription, OnlineError> {
+    let route = ROUTES
+        .iter()
+        .find(|route| route.path == "/api/live")
+        .expect("the live route is listed");
+    let Subscribe { subscribe } = json(route, text.as_bytes())?;
+    let values = subscribe
+        .values
+        .into_iter()
+        .map(|row| Ok((row.operand, format(row.format.as_deref().unwrap_or(""))?)))
+        .collect::<Result<_, OnlineError>>()?;
+    Ok(Subscription {
+        cpu: subscribe.cpu,
+        values,
+        status: subscribe.status.map(|status| (status.block, status.level)),
+        timeline: subscribe.timeline,
+        diagnostics: subscribe.diagnostics,
+    })
+}
+
+/// A format by its name; an empty one is the program's own notation.
+fn format(name: &str) -> Result<Option<Format>, OnlineError> {
+    match name.trim() {
+        "" => Ok(None),
+        name => Format::parse(name)
+            .map(Some)
+            .ok_or_else(|| OnlineError::UnknownFormat {
+                format: name.to_string(),
+            }),
+    }
 }
 
 #[cfg(test)]
@@ -347,6 +438,35 @@ mod tests {
     }
 
     #[test]
+    fn a_subscription_names_what_to_push_and_leaves_out_the_rest() {
+        let text = r#"{"subscribe": {"cpu": true, "values": [{"operand": "MW 10", "format": "HEX"},
+            {"operand": "Q 4.0"}], "status": {"block": "OB 1", "level": null}}}"#;
+        assert_eq!(
+            subscription(text).unwrap(),
+            Subscription {
+                cpu: true,
+                values: vec![("MW 10".into(), Some(Format::Hex)), ("Q 4.0".into(), None)],
+                status: Some(("OB 1".into(), None)),
+                timeline: false,
+                diagnostics: false,
+            }
+        );
+        assert_eq!(
+            subscription(r#"{"subscribe": {}}"#).unwrap(),
+            Subscription::default()
+        );
+        for bad in [
+            "",
+            "{}",
+            r#"{"subscribe": {"values": [{"format": "HEX"}]}}"#,
+            r#"{"subscribe": {"values": [{"operand": "MW 10", "format": "OCT"}]}}"#,
+            r#"{"subscribe": {"cpu": "yes"}}"#,
+        ] {
+            assert!(subscription(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
     fn malformed_requests_are_refused_with_what_was_wrong() {
         assert_eq!(
             refusal("GET", "/api/nothing", None, ""),
@@ -390,6 +510,14 @@ mod tests {
                 r#"{"operand": "MW 10", "value": "ten"}"#
             ),
             "`ten` is no value"
+        );
+        assert_eq!(
+            refusal("GET", "/api/timeline", Some("seconds=-1"), ""),
+            "`-1` is no number of seconds the timeline shows"
+        );
+        assert_eq!(
+            decode("GET", "/api/timeline", None, b"").unwrap(),
+            Call::Timeline(5.0)
         );
     }
 }

@@ -6,13 +6,17 @@
 
 pub mod api;
 pub mod guard;
+mod live;
 
 use std::convert::Infallible;
 use std::net::SocketAddr;
 use std::sync::Arc;
+use std::sync::atomic::AtomicUsize;
 use std::time::{Duration, Instant};
 
 use axum::body::Body;
+use axum::extract::FromRequestParts;
+use axum::extract::ws::WebSocketUpgrade;
 use axum::http::header::{CONTENT_LENGTH, CONTENT_TYPE, HOST, ORIGIN};
 use axum::http::{HeaderMap, HeaderValue, Method, Response, StatusCode};
 use hyper::body::Incoming;
@@ -25,6 +29,9 @@ use super::listen::accept_each;
 use super::online::error::OnlineError;
 use super::request::{Ask, Client, Control, ControlError, Protocol, Refusal, Request, Requests};
 use api::Call;
+
+/// The live view's path.
+const LIVE: &str = "/api/live";
 
 /// The page: one file, nothing fetched from the network.
 const PAGE: &str = include_str!("../../../web/online/index.html");
@@ -52,6 +59,9 @@ struct Shared {
     requests: Requests,
     listening: SocketAddr,
     read_only: bool,
+    /// The live connections open (each also counted as a connection until its upgrade).
+    live: Arc<AtomicUsize>,
+    max_connections: usize,
 }
 
 /// Serves the page and the API on `listener` forever, at most `max_connections` at once.
@@ -63,6 +73,8 @@ pub async fn serve(listener: TcpListener, requests: Requests, settings: Settings
         requests: requests.clone(),
         listening,
         read_only: settings.read_only,
+        live: Arc::new(AtomicUsize::new(0)),
+        max_connections: settings.max_connections,
     });
     accept_each(
         listener,
@@ -92,7 +104,7 @@ pub async fn serve(listener: TcpListener, requests: Requests, settings: Settings
 async fn respond(
     request: hyper::Request<Incoming>,
     client: Client,
-    shared: &Shared,
+    shared: &Arc<Shared>,
 ) -> Response<Body> {
     answer(request, client, shared)
         .await
@@ -106,9 +118,9 @@ async fn respond(
 async fn answer(
     request: hyper::Request<Incoming>,
     client: Client,
-    shared: &Shared,
+    shared: &Arc<Shared>,
 ) -> Result<Response<Body>, Refusal> {
-    let (parts, body) = request.into_parts();
+    let (mut parts, body) = request.into_parts();
     let header = |name| {
         parts
             .headers
@@ -117,7 +129,8 @@ async fn answer(
     };
     let host = header(HOST);
     guard::check_host(host, shared.listening)?;
-    if parts.method != Method::GET && parts.method != Method::HEAD {
+    let changes = parts.method != Method::GET && parts.method != Method::HEAD;
+    if changes || parts.uri.path() == LIVE {
         guard::check_origin(header(ORIGIN), host.unwrap_or(""))?;
     }
     let body = read_body(&parts.headers, body).await?;
@@ -131,6 +144,7 @@ async fn answer(
         return Err(OnlineError::ReadOnly.into());
     }
     Ok(match call {
+        Call::Live => return live(&mut parts, client, shared).await,
         Call::Page => page(),
         Call::Cpu => ok(&ask_for(shared, client, |reply| Ask::Cpu { reply }).await?),
         Call::Mode(command) => ok(&mode(shared, client, command).await?),
@@ -179,6 +193,10 @@ async fn answer(
             let entries = ask_for(shared, client, |reply| Ask::Diagnostics { reply }).await?;
             ok(&Entries { entries })
         }
+        Call::Timeline(seconds) => {
+            let svg = ask_for(shared, client, |reply| Ask::Timeline { seconds, reply }).await?;
+            ok(&Timeline { svg })
+        }
     })
 }
 
@@ -205,6 +223,11 @@ struct ForcesView {
 #[derive(Serialize)]
 struct Entries {
     entries: Vec<super::request::DiagnosticEntry>,
+}
+
+#[derive(Serialize)]
+struct Timeline {
+    svg: String,
 }
 
 #[derive(Serialize)]
@@ -268,6 +291,26 @@ async fn mode(shared: &Shared, client: Client, command: Control) -> Result<ModeV
         }
         tokio::time::sleep(Duration::from_millis(10)).await;
     }
+}
+
+/// Opens a live connection, if the server takes one more.
+async fn live(
+    parts: &mut axum::http::request::Parts,
+    client: Client,
+    shared: &Arc<Shared>,
+) -> Result<Response<Body>, Refusal> {
+    let upgrade = WebSocketUpgrade::from_request_parts(parts, &())
+        .await
+        .map_err(|_| Refusal::from(OnlineError::NotWebSocket))?;
+    let slot =
+        live::LiveSlot::take(&shared.live, shared.max_connections).ok_or(OnlineError::Busy {
+            live: shared.max_connections,
+        })?;
+    let shared = Arc::clone(shared);
+    Ok(upgrade
+        .max_message_size(BODY_LIMIT)
+        .max_frame_size(BODY_LIMIT)
+        .on_upgrade(move |socket| live::serve(socket, client, shared, slot)))
 }
 
 fn page() -> Response<Body> {

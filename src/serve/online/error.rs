@@ -156,6 +156,22 @@ pub enum OnlineError {
         mode: &'static str,
     },
 
+    #[error("`{text}` is no number of seconds the timeline shows")]
+    #[diagnostic(
+        code(awl::online::seconds),
+        help("give a number above 0 and up to 60, e.g. `seconds=5` (the default)")
+    )]
+    Seconds { text: String },
+
+    #[error("/api/live is a WebSocket: the request did not ask to open one")]
+    #[diagnostic(
+        code(awl::online::websocket),
+        help(
+            "open it with a WebSocket client, e.g. `new WebSocket(\"ws://\" + location.host + \"/api/live\")`"
+        )
+    )]
+    NotWebSocket,
+
     #[error("cannot modify `{operand}`: {reason}")]
     #[diagnostic(code(awl::online::modify))]
     Modify { operand: String, reason: String },
@@ -195,6 +211,8 @@ impl OnlineError {
             | OnlineError::NotForceable { .. }
             | OnlineError::Block { .. }
             | OnlineError::Level { .. }
+            | OnlineError::Seconds { .. }
+            | OnlineError::NotWebSocket
             | OnlineError::Modify { .. } => Refused::BadRequest,
         }
     }

@@ -7,6 +7,7 @@ pub mod diagnostics;
 pub mod error;
 pub mod forces;
 pub mod status;
+pub mod timeline;
 
 use crate::mnemonics::MnemonicSet;
 use crate::runner;
@@ -22,6 +23,7 @@ use diagnostics::Diagnostics;
 use error::OnlineError;
 use forces::{ForceTable, Held};
 use status::StatusWatch;
+use timeline::LiveTimeline;
 
 /// What the online page sees of the CPU besides its memory.
 pub struct Online {
@@ -34,6 +36,8 @@ pub struct Online {
     forces: ForceTable,
     /// Program status of the block the page watches.
     status: Option<StatusWatch>,
+    /// The live timeline's recording, while the page watches it.
+    timeline: Option<LiveTimeline>,
 }
 
 fn ms(ns: u64) -> f64 {
@@ -49,6 +53,7 @@ impl Online {
             stop: None,
             forces: ForceTable::default(),
             status: None,
+            timeline: None,
         }
     }
 
@@ -94,6 +99,9 @@ impl Online {
             } => StatusWatch::ask(&mut self.status, cpu, (block, level), reply),
             Ask::Diagnostics { reply } => {
                 let _ = reply.send(self.diagnostics.entries());
+            }
+            Ask::Timeline { seconds, reply } => {
+                LiveTimeline::ask(&mut self.timeline, cpu, seconds, reply);
             }
         }
     }
@@ -303,11 +311,15 @@ impl Online {
         if let Some(status) = &mut self.status {
             status.look(cpu);
         }
+        if let Some(timeline) = &mut self.timeline {
+            timeline.look(cpu);
+        }
     }
 
     /// Now and then (a few times a second): what the engine counted since the last look.
-    pub fn look_now_and_then(&mut self, cpu: &Cpu) {
+    pub fn look_now_and_then(&mut self, cpu: &mut Cpu) {
         self.diagnostics.look_at_interrupts(cpu);
+        LiveTimeline::look_now_and_then(&mut self.timeline, cpu);
     }
 }
 
