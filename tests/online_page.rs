@@ -162,6 +162,14 @@ impl<'a> Online<'a> {
         }
     }
 
+    /// Waits until the diagnostic buffer has an entry that says `text`.
+    fn wait_for_diagnostic(&mut self, text: &str) {
+        self.wait_for(&format!(
+            "document.getElementById('diagnostics').textContent.includes({})",
+            js(text)
+        ));
+    }
+
     /// Whether the element is disabled.
     fn disabled(&mut self, selector: &str) -> bool {
         self.eval(&format!(
@@ -297,6 +305,20 @@ fn assert_timeline_draws(online: &mut Online) {
     assert!(online.text("#timeline").contains("OB 1"));
 }
 
+/// Under the mouse the timeline holds still, to be read; it goes on once the mouse leaves.
+fn timeline_holds_still_under_the_mouse(online: &mut Online) {
+    let mouse = |event: &str| {
+        format!("document.getElementById('timeline').dispatchEvent(new MouseEvent('{event}'))")
+    };
+    let drawn = "document.getElementById('timeline').innerHTML";
+    online.eval(&mouse("mouseenter"));
+    let held = online.eval(drawn);
+    std::thread::sleep(Duration::from_secs(1));
+    assert_eq!(online.eval(drawn), held, "the timeline held still");
+    online.eval(&mouse("mouseleave"));
+    online.wait_for(&format!("{drawn} !== {held}"));
+}
+
 /// No console message, uncaught exception or logged error, but for the answers of status
 /// `refused` (a request refused on purpose: Chromium logs each such answer).
 fn assert_no_problems(online: &Online, refused: Option<u16>) {
@@ -425,7 +447,7 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
         online.press("IW 0", "unforce", "");
     }
     online.wait_for("document.getElementById('forces-banner').hidden");
-    assert!(online.text("#diagnostics").contains("IW 0 forced to 100"));
+    online.wait_for_diagnostic("IW 0 forced to 100");
 
     // A bit forced: the row is marked, its value is the force's, until all are unforced.
     online.press("Q 0.0", "force", "1");
@@ -448,7 +470,9 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
     );
 
     assert_status_shows_the_rlo(&mut online, "DB1.DBW 2");
+    assert!(online.text("#status thead").contains("RLO"));
     assert_timeline_draws(&mut online);
+    timeline_holds_still_under_the_mouse(&mut online);
     assert_no_problems(&online, None);
     screenshot(&mut online, "online-page-s7.png");
 
@@ -558,7 +582,7 @@ fn a_step5_tank_on_an_s5_115u_is_shown_in_step_5_s_notation() {
     // program's again.
     stop_and_restart(&mut online, "#cold");
     online.wait_for_value("DB 1 DW 0", "KF +500");
-    assert!(online.text("#diagnostics").contains("cold restart"));
+    online.wait_for_diagnostic("cold restart");
     screenshot(&mut online, "online-page-s5.png");
     assert_no_problems(&online, None);
     drop(online);
