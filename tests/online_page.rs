@@ -9,85 +9,40 @@
 
 mod common;
 
-use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
+use std::process::Command;
 use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
 
 use common::browser::{DevTools, Tab, chromium};
-
-const AWL: &str = env!("CARGO_BIN_EXE_awl");
+use common::serve::Serving;
 
 /// Long enough for a debug build's CPU to answer a few refreshes of the page.
 const WITHIN: Duration = Duration::from_secs(20);
 
 /// A running `awl serve … --http 127.0.0.1:0 --s7 127.0.0.1:0` and the ports it printed.
 struct Served {
-    child: Child,
+    _serving: Serving,
     http: u16,
     s7: u16,
 }
 
 impl Served {
     fn start(args: &[&str]) -> Served {
-        let mut child = Command::new(AWL)
-            .arg("serve")
-            .args(args)
-            .args(["--http", "127.0.0.1:0", "--s7", "127.0.0.1:0"])
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("awl starts");
-        let stdout = child.stdout.take().expect("piped");
-        let (send, lines) = mpsc::channel();
-        std::thread::spawn(move || {
-            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
-                let _ = send.send(line);
-            }
-        });
-        let (mut http, mut s7) = (0, 0);
-        let deadline = Instant::now() + Duration::from_secs(60);
-        while http == 0 || s7 == 0 {
-            let left = deadline.saturating_duration_since(Instant::now());
-            let Ok(line) = lines.recv_timeout(left) else {
-                let _ = child.kill();
-                let mut stderr = String::new();
-                let _ = child
-                    .stderr
-                    .take()
-                    .map(|mut err| err.read_to_string(&mut stderr));
-                panic!("awl serve printed no listening lines: {stderr}");
-            };
-            let port = |text: &str| {
-                text.trim_end_matches('/')
-                    .rsplit(':')
-                    .next()
-                    .and_then(|port| port.trim().parse().ok())
-                    .unwrap_or(0)
-            };
-            if let Some(address) = line.strip_prefix("Online page at ") {
-                http = port(address);
-            } else if let Some(address) = line.strip_prefix("S7 server listening on ") {
-                s7 = port(address);
-            }
+        let args = [args, &["--http", "127.0.0.1:0", "--s7", "127.0.0.1:0"]].concat();
+        let (serving, ports) =
+            Serving::start(&args, &["Online page at ", "S7 server listening on "]);
+        Served {
+            _serving: serving,
+            http: ports[0],
+            s7: ports[1],
         }
-        Served { child, http, s7 }
     }
 
     /// The page's address with `query` (already encoded).
     fn page(&self, query: &str) -> String {
         format!("http://127.0.0.1:{}/{query}", self.http)
-    }
-}
-
-impl Drop for Served {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
     }
 }
 
