@@ -3,8 +3,8 @@
 //! preloaded from its address, and is used as a person uses it — a value the program counts
 //! changes live, modify and force act from the rows' buttons, a forced input beats a
 //! python-snap7 write, program status shows the RLO, the timeline draws, STOP and the restarts
-//! act from the buttons, a read-only serve greys the controls — in both dialects, with no
-//! console error. Skipped, with the reason printed, where Chromium (or, for the one check that
+//! act from the buttons, a program's STOP shows its cause and report, a read-only serve greys
+//! the controls — in both dialects, with no console error. Skipped, with the reason printed, where Chromium (or, for the one check that
 //! needs it, python-snap7) is missing.
 
 mod common;
@@ -576,6 +576,47 @@ fn a_read_only_serve_greys_every_control_that_changes_the_cpu() {
     online.click("#stop");
     std::thread::sleep(Duration::from_millis(300));
     assert_eq!(online.text("#mode"), "RUN");
+    assert_no_problems(&online, None);
+    drop(online);
+    drop(devtools);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Counts its cycles in MW 0 and calls a block that is not loaded in the 50th: STOP.
+const STOPS: &str = "ORGANIZATION_BLOCK OB 1
+VAR_TEMP
+  info : ARRAY [0..19] OF BYTE;
+END_VAR
+BEGIN
+      L     MW 0;
+      +     1;
+      T     MW 0;
+      L     MW 0;
+      L     50;
+      <I;
+      BEC;
+      CALL  FC 99;
+END_ORGANIZATION_BLOCK
+";
+
+#[test]
+fn a_program_s_stop_shows_its_cause_its_report_and_its_diagnostic_entry() {
+    let Some((mut devtools, dir)) = browser("stop") else {
+        return;
+    };
+    let program = dir.join("stops.awl");
+    std::fs::write(&program, STOPS).expect("the program is written");
+    let served = Served::start(&[program.to_str().expect("a UTF-8 path")]);
+    let mut online = Online::open(&mut devtools, &served.page("?watch=MW%200"));
+    online.wait_for_text("#mode", "STOP");
+    online.wait_for("!document.getElementById('stop-box').hidden");
+    assert_eq!(online.text("#stop-cause"), "STOP: LZF in OB 1, line 13");
+    let report = online.text("#stop-report");
+    assert!(report.contains("FC 99 is not loaded"), "{report}");
+    online.wait_for("document.querySelector('#diagnostics li.stop') !== null");
+    online.wait_for_value("MW 0", "50");
+    assert!(online.disabled("#stop"));
+    assert!(!online.disabled("#warm"));
     assert_no_problems(&online, None);
     drop(online);
     drop(devtools);
