@@ -399,7 +399,7 @@ fn code_help(code: &str, pages: &[ErrorPage]) -> String {
         .filter(|known| known.ends_with(&format!("::{code}")))
         .collect();
     if close.is_empty() {
-        close.extend(crate::scenario::did_you_mean(
+        close.extend(crate::suggest::did_you_mean(
             &full,
             pages.iter().map(|page| page.code),
         ));

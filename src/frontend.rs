@@ -177,14 +177,10 @@ fn build_step5(
     Frontend::new(sources, compiled, diagnostics, mnemonics, units, Vec::new())
 }
 
-/// The CPU profile a program runs on when none is chosen: the S7 CPU for a STEP 7 program,
-/// else the default STEP 5 one.
+/// The CPU profile a program runs on when none is chosen: its dialect's
+/// ([`crate::profile::default_for`]).
 pub fn default_profile(sources: &SourceSet, language: Language) -> &'static Profile {
-    let name = match decide(sources, language).dialect {
-        Dialect::Step7 => crate::profile::DEFAULT_STEP7_PROFILE,
-        Dialect::Step5 => crate::profile::DEFAULT_PROFILE,
-    };
-    crate::profile::find(name).expect("the default profiles exist")
+    crate::profile::default_for(decide(sources, language).dialect)
 }
 
 /// The dialect a program is read in, and the note that says why when the text decided it
@@ -248,12 +244,12 @@ fn decide(sources: &SourceSet, language: Language) -> Decision {
 /// The note for a program that compiles as STEP 7 and not as STEP 5 (each on its dialect's
 /// default CPU, without symbol tables); `None` otherwise.
 fn step7_only_compiles(sources: &SourceSet, language: Language) -> Option<S7ParseError> {
-    let default = |name| crate::profile::find(name).expect("the default profiles exist");
+    let default = crate::profile::default_for;
     let as_step5 = build_step5(
         sources.clone(),
         Vec::new(),
         language,
-        default(crate::profile::DEFAULT_PROFILE),
+        default(Dialect::Step5),
     );
     let mut step5_errors = as_step5.diagnostics.iter().filter(|d| !d.is_warning());
     let first_error = step5_errors.next()?;
@@ -261,7 +257,7 @@ fn step7_only_compiles(sources: &SourceSet, language: Language) -> Option<S7Pars
         sources.clone(),
         Vec::new(),
         language,
-        default(crate::profile::DEFAULT_STEP7_PROFILE),
+        default(Dialect::Step7),
         None,
     );
     if as_step7.has_errors() {

@@ -42,6 +42,7 @@ pub mod serve;
 pub mod source;
 pub mod state;
 pub mod step7;
+pub mod suggest;
 pub mod symbols;
 pub mod syntax;
 pub mod timeline;

@@ -9,6 +9,8 @@ mod s5_small;
 
 use std::sync::{Mutex, OnceLock, PoisonError};
 
+use crate::dialect::Dialect;
+
 /// The CPUs whose interrupt rules differ; each has its rules in `vm::interrupts`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Family {
@@ -556,9 +558,16 @@ pub const ALIASES: &[(&str, &str)] = &[
     ("s5-155u", "s5-155u-948"),
 ];
 
-pub const DEFAULT_PROFILE: &str = "sinumerik-840c";
-/// The profile a STEP 7 program runs on when none is chosen.
-pub const DEFAULT_STEP7_PROFILE: &str = "speed7";
+/// The CPU a program runs on when neither the command line nor the scenario names one: the
+/// VIPA SPEED7 for a STEP 7 program (an awlsim project is one: awlsim simulates S7 CPUs), the
+/// SINUMERIK 840C for a STEP 5 program. Every command and the scenario choose by this rule.
+pub fn default_for(dialect: Dialect) -> &'static Profile {
+    let name = match dialect {
+        Dialect::Step7 => "speed7",
+        Dialect::Step5 => "sinumerik-840c",
+    };
+    find(name).expect("the default profiles exist")
+}
 
 /// The S7 CPUs set to four accumulators: the S7-400 has ACCU 1 to 4, the S7-300 (and the
 /// SPEED7 CPUs, which follow it) two ("Statement List (STL) for S7-300 and S7-400
@@ -631,7 +640,7 @@ pub fn widest() -> &'static Profile {
                 }
             }
         }
-        let base = find(DEFAULT_PROFILE).expect("the default profile exists");
+        let base = default_for(Dialect::Step5);
         Profile {
             name: "every-profile",
             sizes: Sizes {

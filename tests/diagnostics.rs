@@ -328,6 +328,18 @@ fn cli_read_error_renders() {
     insta::assert_snapshot!("awl__cli__read_file", rendered);
 }
 
+/// A jump to a label one edit from one the block has: the help names that label, in STEP 7 as
+/// in STEP 5 (the case of `awl::check::undefined_symbol`).
+#[test]
+fn a_step7_jump_to_a_misspelt_label_is_told_the_close_one() {
+    let source = "ORGANIZATION_BLOCK OB 1\nBEGIN\n      A  I 0.0;\n      JC M001;\n      NOP 0;\nM002: NOP 0;\nEND_ORGANIZATION_BLOCK\n";
+    let built = frontend::build_text("example.awl", source, profile::find("speed7").unwrap());
+    assert_eq!(built.diagnostics.len(), 1);
+    let rendered = render_plain(&report(&built.sources, &built.diagnostics[0]));
+    assert!(rendered.contains("did you mean `M002`?"), "{rendered}");
+    insta::assert_snapshot!("awl__check__undefined_label_close", rendered, source);
+}
+
 /// Every documented code of the front end has a case above.
 #[test]
 fn cases_cover_the_front_end_codes() {

@@ -344,19 +344,15 @@ fn the_exit_codes_cover_every_command() {
 #[test]
 fn a_scenario_s_key_errors_point_to_the_help_not_the_repository() {
     for text in ["[[evnt]]\nat = \"1ms\"\n", "progrm = \"a.awl\"\n"] {
-        let (_, reports) =
-            awl::scenario::Scenario::parse(std::path::Path::new("s.toml"), text, None);
+        let (_, reports) = awl::scenario::Scenario::parse(std::path::Path::new("s.toml"), text);
         assert!(!reports.is_empty(), "{text}");
         for report in reports {
             let rendered = awl::diagnostics::render_plain(&report);
             assert!(!rendered.contains("README"), "{rendered}");
         }
     }
-    let (_, reports) = awl::scenario::Scenario::parse(
-        std::path::Path::new("s.toml"),
-        "progrm = \"a.awl\"\n",
-        None,
-    );
+    let (_, reports) =
+        awl::scenario::Scenario::parse(std::path::Path::new("s.toml"), "progrm = \"a.awl\"\n");
     assert!(awl::diagnostics::render_plain(&reports[0]).contains("awl help scenario"));
 }
 

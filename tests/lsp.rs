@@ -1,21 +1,21 @@
-//! `awl lsp` with a real client: the Python package pytest-lsp (the Python at `AWL_PYTHON`,
-//! else `python3`) starts the binary and talks to it over stdio. Where the package is missing
-//! the test says so and passes.
+//! `awl lsp` with a real client: the Python package pytest-lsp (in the environment
+//! tests/common/python.rs makes under target/, or the Python at `AWL_PYTHON`) starts the binary
+//! and talks to it over stdio. Where the package cannot be had the test fails, naming the command
+//! that installs it.
 
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn python() -> Option<PathBuf> {
-    common::python::with("pytest_lsp", "pytest-lsp is")
+fn python() -> PathBuf {
+    common::python::with("pytest_lsp")
 }
 
 const PLANT: &str = include_str!("inputs/lsp/plant.awl");
 
 #[test]
 fn a_real_client_gets_diagnostics_hover_and_definitions() {
-    let Some(python) = python() else { return };
+    let python = python();
     let folder = std::env::temp_dir().join(format!("awl-lsp-client-{}", std::process::id()));
     std::fs::create_dir_all(&folder).unwrap();
     std::fs::write(folder.join("plant.awl"), PLANT).unwrap();
@@ -30,13 +30,12 @@ fn a_real_client_gets_diagnostics_hover_and_definitions() {
     )
     .unwrap();
     let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/lsp_client/test_lsp.py");
-    let output = Command::new(python)
+    let output = common::python::command(&python)
         .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
         .args(["-o", "asyncio_default_fixture_loop_scope=function"])
         .arg(tests)
         .env("AWL_BIN", env!("CARGO_BIN_EXE_awl"))
         .env("AWL_LSP_FOLDER", &folder)
-        .env("PYTHONDONTWRITEBYTECODE", "1")
         .output()
         .expect("python runs");
     let _ = std::fs::remove_dir_all(&folder);

@@ -1,13 +1,13 @@
 //! The Modbus TCP server against real clients: `serve` on 127.0.0.1 with a fake CPU answering
 //! its requests from plain byte arrays, and pymodbus scripts (tests/clients/modbus_*.py) as the
-//! clients. Without pymodbus the script tests say so and pass.
+//! clients, run in the environment tests/common/python.rs makes under target/ (or by the Python
+//! at `AWL_PYTHON`); without pymodbus the script tests fail, naming the command that installs it.
 
 mod common;
 
 use std::io::Read;
 use std::net::{SocketAddr, TcpStream};
 use std::path::Path;
-use std::process::Command;
 use std::sync::{Arc, Mutex};
 use std::thread;
 use std::time::Duration;
@@ -86,18 +86,14 @@ impl Server {
         self.memory.lock().unwrap().area(area)[at]
     }
 
-    /// Runs a client script with the server's port; false when pymodbus is not there.
-    fn client(&self, script: &str) -> bool {
-        let Some(python) = common::python::with("pymodbus", "pymodbus is") else {
-            return false;
-        };
+    /// Runs a client script with the server's port.
+    fn client(&self, script: &str) {
+        let python = common::python::with("pymodbus");
         let clients = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/clients");
-        let output = Command::new(&python)
+        let output = common::python::command(&python)
             .arg(clients.join(script))
             .arg(self.address.port().to_string())
             .current_dir(&clients)
-            // No __pycache__ beside the scripts.
-            .env("PYTHONDONTWRITEBYTECODE", "1")
             .output()
             .expect("the client runs");
         assert!(
@@ -106,7 +102,6 @@ impl Server {
             String::from_utf8_lossy(&output.stdout),
             String::from_utf8_lossy(&output.stderr)
         );
-        true
     }
 
     /// Waits until the CPU has seen `count` connection messages.
@@ -125,9 +120,7 @@ impl Server {
 #[test]
 fn every_function_on_the_default_map() {
     let server = Server::start(Map::default(), 16, false);
-    if !server.client("modbus_functions.py") {
-        return;
-    }
+    server.client("modbus_functions.py");
     // Coil 100 on, 101 off: Q 12.4 and Q 12.5.
     assert_eq!(server.byte(Area::Outputs, 12) >> 4 & 0b11, 0b01);
     // Coils 203–223 (every third on): Q 25.3 to Q 27.7.
@@ -164,9 +157,7 @@ fn a_moved_map_reaches_the_areas_it_names() {
         },
     };
     let server = Server::start(map, 16, false);
-    if !server.client("modbus_moved_map.py") {
-        return;
-    }
+    server.client("modbus_moved_map.py");
     assert_eq!(
         server.byte(Area::Inputs, 1),
         0xFF,
@@ -179,9 +170,7 @@ fn a_moved_map_reaches_the_areas_it_names() {
 #[test]
 fn eight_clients_at_once_each_numbered_and_announced() {
     let server = Server::start(Map::default(), 16, false);
-    if !server.client("modbus_clients.py") {
-        return;
-    }
+    server.client("modbus_clients.py");
     let seen = server.await_connections(16);
     let mut opened: Vec<u32> = seen
         .iter()

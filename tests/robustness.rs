@@ -4,6 +4,7 @@
 mod common;
 
 use awl::diagnostics::{render_plain, report};
+use awl::dialect::Dialect;
 use awl::frontend;
 use awl::profile;
 use awl::source::{SourceFile, SourceSet};
@@ -155,9 +156,11 @@ proptest! {
         let mutated = String::from_utf8_lossy(&apply(text.clone().into_bytes(), &mutations)).into_owned();
         // Every error is a rendered diagnostic with a scenario code.
         let is_scenario_diagnostic = |rendered: &str| rendered.contains("awl::scenario::");
-        let (scenario, mut reports) = awl::scenario::Scenario::parse(path, &mutated, None);
+        let (mut scenario, mut reports) = awl::scenario::Scenario::parse(path, &mutated);
+        let profile = scenario.cpu.unwrap_or(profile::default_for(Dialect::Step5));
+        reports.extend(scenario.settle_cpu(profile));
         let program_text = std::fs::read_to_string("programs/fig5_2_interrupt.awl").unwrap();
-        let built = frontend::build_text("p.awl", &program_text, scenario.profile);
+        let built = frontend::build_text("p.awl", &program_text, profile);
         let set = awl::mnemonics::MnemonicSet::English;
         reports.extend(scenario.schedule(&built.compiled.program, set).err().into_iter().flatten());
         reports.extend(scenario.expectations(&built.compiled.program, set).err().into_iter().flatten());
@@ -346,9 +349,11 @@ proptest! {
 fn an_operand_cut_off_by_the_end_of_the_file_is_labelled_on_whole_characters() {
     let bytes = std::fs::read("tests/inputs/fuzz_cut_off_string.toml").unwrap();
     let text = String::from_utf8_lossy(&bytes).into_owned();
-    let (scenario, mut reports) =
-        awl::scenario::Scenario::parse(std::path::Path::new("cut.toml"), &text, None);
-    let built = frontend::build_text("p.awl", "OB 1\n      BE\n", scenario.profile);
+    let (mut scenario, mut reports) =
+        awl::scenario::Scenario::parse(std::path::Path::new("cut.toml"), &text);
+    let profile = scenario.cpu.unwrap_or(profile::default_for(Dialect::Step5));
+    reports.extend(scenario.settle_cpu(profile));
+    let built = frontend::build_text("p.awl", "OB 1\n      BE\n", profile);
     let set = awl::mnemonics::MnemonicSet::English;
     let program = &built.compiled.program;
     reports.extend(scenario.schedule(program, set).err().into_iter().flatten());

@@ -1,14 +1,15 @@
 //! `awl serve`'s S7comm server against a fake CPU (plain byte arrays answering the requests on
-//! a thread of its own): python-snap7 clients (the scripts in tests/clients/, run by the Python
-//! at `AWL_PYTHON`, else `python3`; skipped when python-snap7 is not installed) and raw packets
-//! over a socket. All traffic stays on 127.0.0.1.
+//! a thread of its own): python-snap7 clients (the scripts in tests/clients/, run in the
+//! environment tests/common/python.rs makes under target/, or by the Python at `AWL_PYTHON`;
+//! a test fails where it cannot have them) and raw packets over a socket. All traffic stays on
+//! 127.0.0.1.
 
 mod common;
 
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
@@ -75,6 +76,7 @@ impl Memory {
                     order_code: "6ES7 315-2AG10-0AB0".to_string(),
                     clock_ms: CLOCK_MS,
                     cycles: 0,
+                    read_only: self.read_only,
                 });
             }
             Request::Control { command, reply, .. } => {
@@ -137,16 +139,25 @@ fn settings() -> Settings {
     }
 }
 
-/// The Python with python-snap7, or `None` (and a note) when there is none.
-fn python() -> Option<PathBuf> {
-    common::python::with("snap7", "python-snap7 is")
+/// The Python with python-snap7 3.x.
+fn python() -> PathBuf {
+    common::python::with("snap7")
+}
+
+/// The Python with python-snap7 1.x, whose wheel bundles Snap7's C library.
+fn python_snap7_1() -> PathBuf {
+    common::python::SNAP7_1.python("snap7")
 }
 
 fn run_script(python: &Path, script: &str, args: &[String]) -> Output {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/clients")
         .join(script);
-    Command::new(python).arg(path).args(args).output().unwrap()
+    common::python::command(python)
+        .arg(path)
+        .args(args)
+        .output()
+        .unwrap()
 }
 
 fn assert_script(python: &Path, script: &str, args: &[String]) {
@@ -165,7 +176,7 @@ fn args(values: &[&dyn ToString]) -> Vec<String> {
 
 #[test]
 fn python_snap7_reads_and_writes_every_area_and_width_on_rack_0_slot_1_and_2() {
-    let Some(python) = python() else { return };
+    let python = python();
     let server = start(settings(), false);
     let port = server.address.port();
     // Slot 1 with the default PDU request (480), slot 2 asking for more than awl's 960.
@@ -186,7 +197,7 @@ fn python_snap7_reads_and_writes_every_area_and_width_on_rack_0_slot_1_and_2() {
 
 #[test]
 fn python_snap7_reads_the_cpu_state_order_code_info_and_clock_and_stops_and_starts_it() {
-    let Some(python) = python() else { return };
+    let python = python();
     let server = start(settings(), false);
     let version = env!("CARGO_PKG_VERSION");
     let port = server.address.port();
@@ -200,8 +211,41 @@ fn python_snap7_reads_the_cpu_state_order_code_info_and_clock_and_stops_and_star
 }
 
 #[test]
+fn snap7_s_c_library_gets_every_answer_an_s7_300_gives() {
+    let python = python_snap7_1();
+    let server = start(settings(), false);
+    let version = env!("CARGO_PKG_VERSION");
+    let port = server.address.port();
+    let connections = settings().max_connections;
+    assert_script(
+        &python,
+        "s7_snap7_1.py",
+        &args(&[&port, &version, &connections]),
+    );
+    let memory = lock(&server.memory);
+    assert_eq!(
+        &memory.areas.area(Area::DataBlock(1))[10..12],
+        &[0x12, 0x34]
+    );
+    assert_eq!(&memory.areas.area(Area::DataBlock(1))[40..45], b"snap7");
+    assert_eq!(&memory.areas.area(Area::Flags)[20..22], &[0xAB, 0xCD]);
+    use Control::*;
+    assert_eq!(memory.controls, [Stop, HotStart, HotStart]);
+    assert_eq!(memory.mode, CpuMode::Run);
+}
+
+#[test]
+fn snap7_s_c_library_sees_a_read_only_cpu_write_protected() {
+    let python = python_snap7_1();
+    let server = start(settings(), true);
+    let port = server.address.port();
+    assert_script(&python, "s7_snap7_1.py", &args(&[&port, &"read-only"]));
+    assert_eq!(lock(&server.memory).mode, CpuMode::Run);
+}
+
+#[test]
 fn a_read_only_cpu_refuses_writes_and_control_as_a_protected_cpu_does() {
-    let Some(python) = python() else { return };
+    let python = python();
     let server = start(settings(), true);
     assert_script(&python, "s7_read_only.py", &args(&[&server.address.port()]));
     assert_eq!(lock(&server.memory).mode, CpuMode::Run);
@@ -209,7 +253,7 @@ fn a_read_only_cpu_refuses_writes_and_control_as_a_protected_cpu_does() {
 
 #[test]
 fn eight_clients_are_served_at_once_and_a_ninth_is_turned_away() {
-    let Some(python) = python() else { return };
+    let python = python();
     let server = start(settings(), false);
     let port = server.address.port();
     assert_script(&python, "s7_concurrent.py", &args(&[&port, &2.0]));
@@ -519,7 +563,7 @@ fn random_packets_are_answered_or_closed_and_a_python_client_is_served_after() {
     }
     let mut raw = Raw::ready(&server);
     still_serving(&mut raw);
-    let Some(python) = python() else { return };
+    let python = python();
     let port = server.address.port();
     assert_script(&python, "s7_areas.py", &args(&[&port, &0, &1, &480, &480]));
 }

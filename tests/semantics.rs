@@ -569,6 +569,6 @@ fn floating_point_is_an_error_on_a_cpu_without_it() {
     let having = awl::profile::having(awl::profile::Feature::FloatingPoint).join(", ");
     assert!(having.starts_with("sinumerik-840c, "), "{having}");
     assert_eq!(messages, [format!("`+G` needs floating point: {having}")]);
-    let default = awl::profile::find(awl::profile::DEFAULT_PROFILE).unwrap();
+    let default = awl::profile::default_for(awl::dialect::Dialect::Step5);
     assert!(!awl::frontend::build_text("fp.awl", program, default).has_errors());
 }

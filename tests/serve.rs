@@ -1,6 +1,7 @@
-//! `awl serve` with real clients: python-snap7 and pymodbus (the Python at `AWL_PYTHON`, else
-//! `python3`) talk to the binary on 127.0.0.1, on ports the system picks. Where the clients
-//! are missing, the tests that need them say so and pass; `.ci/run` installs them.
+//! `awl serve` with real clients: python-snap7 and pymodbus (in the environment
+//! tests/common/python.rs makes under target/, or the Python at `AWL_PYTHON`) talk to the binary
+//! on 127.0.0.1, on ports the system picks. Where the clients cannot be had, the tests that need
+//! them fail, naming the command that installs them.
 
 mod common;
 
@@ -17,9 +18,9 @@ fn repo(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
 }
 
-/// The Python with both clients, or `None` (said once per test) where they are missing.
-fn python() -> Option<PathBuf> {
-    common::python::with("snap7, pymodbus", "python-snap7 and pymodbus are")
+/// The Python with both clients.
+fn python() -> PathBuf {
+    common::python::with("snap7, pymodbus")
 }
 
 /// A running `awl serve` and the ports it printed.
@@ -97,7 +98,7 @@ impl Served {
 
     /// [`Served::client`] with more arguments after the ports.
     fn client_with(&self, python: &Path, script: &str, more: &[String]) {
-        let output = Command::new(python)
+        let output = common::python::command(python)
             .arg(repo("tests/clients").join(script))
             .args([self.s7.to_string(), self.modbus.to_string()])
             .args(more)
@@ -146,7 +147,7 @@ impl Served {
 
 #[test]
 fn an_s7_program_on_speed7_is_read_written_stopped_and_restarted() {
-    let Some(python) = python() else { return };
+    let python = python();
     let served = serve(&["programs/s7/tank_hmi.awl", "--cpu", "speed7"]);
     served.client(&python, "serve_speed7.py");
     let (code, stdout, stderr) = served.terminate();
@@ -157,7 +158,7 @@ fn an_s7_program_on_speed7_is_read_written_stopped_and_restarted() {
 
 #[test]
 fn an_s5_program_on_an_s5_115u_is_read_written_stopped_and_restarted() {
-    let Some(python) = python() else { return };
+    let python = python();
     let served = serve(&["programs/tank_hmi_115u.awl", "--cpu", "s5-115u-944"]);
     served.client(&python, "serve_s5.py");
     let (code, _, stderr) = served.terminate();
@@ -166,7 +167,7 @@ fn an_s5_program_on_an_s5_115u_is_read_written_stopped_and_restarted() {
 
 #[test]
 fn a_forced_input_beats_a_client_s_write_and_a_forced_output_is_what_it_reads() {
-    let Some(python) = python() else { return };
+    let python = python();
     let served = serve(&["programs/s7/tank_hmi.awl", "--http", "127.0.0.1:0"]);
     let deadline = Instant::now() + Duration::from_secs(60);
     let http = loop {
@@ -183,7 +184,7 @@ fn a_forced_input_beats_a_client_s_write_and_a_forced_output_is_what_it_reads() 
 
 #[test]
 fn eight_clients_at_once_get_every_value_right() {
-    let Some(python) = python() else { return };
+    let python = python();
     let served = serve(&["programs/s7/tank_hmi.awl"]);
     served.client(&python, "serve_eight_clients.py");
     let (code, stdout, stderr) = served.terminate();
@@ -193,7 +194,7 @@ fn eight_clients_at_once_get_every_value_right() {
 
 #[test]
 fn malformed_packets_are_refused_and_working_clients_served_after_them() {
-    let Some(python) = python() else { return };
+    let python = python();
     let served = serve(&["programs/s7/tank_hmi.awl"]);
     served.client(&python, "serve_malformed.py");
     let (code, stdout, stderr) = served.terminate();
@@ -203,7 +204,7 @@ fn malformed_packets_are_refused_and_working_clients_served_after_them() {
 
 #[test]
 fn read_only_serves_reads_and_refuses_writes_and_control() {
-    let Some(python) = python() else { return };
+    let python = python();
     let served = serve(&["programs/s7/tank_hmi.awl", "--read-only"]);
     served.client(&python, "serve_read_only.py");
     let (code, _, stderr) = served.terminate();
@@ -212,7 +213,7 @@ fn read_only_serves_reads_and_refuses_writes_and_control() {
 
 #[test]
 fn a_client_s_input_write_raises_ob_40_and_the_trace_shows_both() {
-    let Some(python) = python() else { return };
+    let python = python();
     let trace = std::env::temp_dir().join(format!("awl-serve-{}.jsonl", std::process::id()));
     let trace_arg = trace.display().to_string();
     let timeline = trace.with_extension("svg");
@@ -314,14 +315,14 @@ fn readme_snippet(name: &str) -> String {
 
 #[test]
 fn the_readme_s_snippets_run_as_printed() {
-    let Some(python) = python() else { return };
+    let python = python();
     let served = serve(&["--scenario", "programs/s7/tank_hmi_serve.toml"]);
     for (name, printed) in [("s7", "300\n1\n0\n1\nTrue\n"), ("modbus", "[300]\nFalse\n")] {
         // The README serves on ports 1102 and 1502; here the system picked them.
         let snippet = readme_snippet(name)
             .replace("1102", &served.s7.to_string())
             .replace("1502", &served.modbus.to_string());
-        let output = Command::new(&python)
+        let output = common::python::command(&python)
             .args(["-c", &snippet])
             .output()
             .expect("python runs");

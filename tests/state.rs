@@ -353,3 +353,56 @@ fn a_step5_state_has_no_declared_view() {
     let state: Value = serde_json::from_str(&stdout).expect("JSON");
     assert!(state.get("declared_data_blocks").is_none());
 }
+
+/// The names `--state` shows for the program's memory: what stands before ` = ` on each line
+/// but the registers'.
+fn state_names(program: &str) -> Vec<String> {
+    let (stdout, stderr) = awl(&["run", program, "--cycles", "2", "--state"]);
+    assert!(stderr.is_empty(), "{stderr}");
+    let registers = ["ACCU", "AR1", "AR2"];
+    stdout
+        .lines()
+        .skip_while(|line| !line.starts_with("state at the end"))
+        .skip(1)
+        .filter_map(|line| line.split_once(" = "))
+        .map(|(name, _)| name.trim().to_string())
+        .filter(|name| !registers.iter().any(|register| name.starts_with(register)))
+        .collect()
+}
+
+/// Every name `--state` shows is an operand `--watch` takes, and shows in its header: images,
+/// timers, counters, data words and double words, a STEP 7 data block's values by name (members
+/// of structures and UDTs, array elements, an instance DB's interface, a multi-instance's
+/// members); a STRING is no operand, and says so.
+#[test]
+fn every_name_the_state_shows_is_watched_by_that_name() {
+    for program in [
+        "tests/inputs/state_widths.awl",
+        "tests/inputs/s7/state_names.awl",
+    ] {
+        let names = state_names(program);
+        assert!(names.len() > 10, "{names:?}");
+        let (strings, watched): (Vec<String>, Vec<String>) =
+            names.into_iter().partition(|name| name == "DB5.label");
+        let list = watched.join(", ");
+        let (stdout, stderr) = awl(&["run", program, "--cycles", "1", "--watch", &list]);
+        assert!(stderr.is_empty(), "{program}: {stderr}");
+        let header = stdout.lines().next().unwrap_or_default();
+        for name in &watched {
+            assert!(header.contains(name.as_str()), "{name} in {header}");
+        }
+        for string in strings {
+            let (_, stderr) = awl(&["run", program, "--cycles", "1", "--watch", &string]);
+            let said: Vec<&str> = stderr
+                .split_whitespace()
+                .filter(|word| *word != "│")
+                .collect();
+            assert!(
+                said.join(" ").contains(
+                    "cannot watch `DB5.label`: a STRING[8]: an operand is a BOOL or a value of 1, 2 or 4 bytes"
+                ),
+                "{stderr}"
+            );
+        }
+    }
+}

@@ -8,8 +8,9 @@
 use std::path::Path;
 use std::sync::LazyLock;
 
+use awl::dialect::Dialect;
 use awl::frontend;
-use awl::profile::InterruptPoints;
+use awl::profile::{InterruptPoints, default_for};
 use awl::scenario::Scenario;
 use awl::vm::interrupts::{EngineConfig, OB35_DEFAULT_NS};
 use libfuzzer_sys::fuzz_target;
@@ -32,11 +33,12 @@ fuzz_target!(
         let bytes = awl_fuzz::bounded(bytes);
         let render = awl_fuzz::renders_in_full(bytes);
         let text = String::from_utf8_lossy(bytes);
-        let (scenario, errors) = Scenario::parse(Path::new("fuzz.toml"), &text, None);
+        let (mut scenario, mut errors) = Scenario::parse(Path::new("fuzz.toml"), &text);
+        let profile = scenario.cpu.unwrap_or(default_for(Dialect::Step5));
+        errors.extend(scenario.settle_cpu(profile));
         for error in &errors {
             awl_fuzz::check_report(error, &text, render);
         }
-        let profile = scenario.profile;
         let built = frontend::build_text("program.awl", &PROGRAM, profile);
         let set = awl_fuzz::mnemonics(&built);
         let program = &built.compiled.program;

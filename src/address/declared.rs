@@ -20,7 +20,7 @@ pub use crate::step7::bytecode::{DeclaredValue, Format};
 
 impl Format {
     /// The type's name as STEP 7 writes it.
-    fn type_name(self) -> String {
+    pub(crate) fn type_name(self) -> String {
         match self {
             Format::Bool => "BOOL".into(),
             Format::Byte => "BYTE".into(),
@@ -36,6 +36,16 @@ impl Format {
             Format::TimeOfDay => "TIME_OF_DAY".into(),
             Format::String(length) => format!("STRING[{length}]"),
             Format::Bytes(count) => format!("{count} bytes"),
+        }
+    }
+
+    /// The bytes an operand reads a value of this type in: none for a BOOL (a bit), 1, 2 or
+    /// 4; `None` for a STRING or a value of more bytes, which no single operand reads.
+    pub(crate) fn operand_bytes(self) -> Option<u8> {
+        match self {
+            Format::Bool => Some(0),
+            Format::String(_) | Format::Bytes(_) => None,
+            other => u8::try_from(other.bytes()).ok(),
         }
     }
 
@@ -215,8 +225,18 @@ pub fn view(values: &[DeclaredValue], bytes: &[u8]) -> Vec<ValueView> {
         .collect()
 }
 
-/// The value of `declared` in STEP 7 notation.
-fn text(declared: &DeclaredValue, bytes: &[u8]) -> String {
+/// The declared value an operand reads whole: the one at `byte`.`bit` of `bytes` bytes (0 for
+/// a BOOL), when `values` (in address order) has one.
+pub fn at(values: &[DeclaredValue], byte: u32, bit: u8, bytes: u8) -> Option<&DeclaredValue> {
+    let first = values.partition_point(|value| value.byte < byte);
+    values[first..]
+        .iter()
+        .take_while(|value| value.byte == byte)
+        .find(|value| value.bit == bit && value.format.operand_bytes() == Some(bytes))
+}
+
+/// The value of `declared` in STEP 7 notation, from its data block's `bytes`.
+pub fn text(declared: &DeclaredValue, bytes: &[u8]) -> String {
     let start = declared.byte as usize;
     let Some(raw) = bytes.get(start..start + declared.format.bytes()) else {
         return "(past the data block's end)".into();

@@ -1,8 +1,10 @@
-//! Operands as a scenario or the debugger names them, checked against the CPU's ranges and
-//! the program's data blocks: a STEP 5 program's in its mnemonic set or English (`I 0.0`,
-//! `FW 10`, `T 1`, `DB 10 DW 3`), a STEP 7 program's in STEP 7 spelling of either set, whose
-//! area letters do not collide (`E`/`A`/`Z` are German only, `I`/`Q`/`C` English only):
-//! `I 0.0`, `MW 12`, `PIW 256`, `T 5`, `C 3`, `DB5.DBW 4`.
+//! Operands as a scenario, a watch or the debugger names them, checked against the CPU's
+//! ranges and the program's data blocks: every name `--state` shows. A STEP 5 program's in its
+//! mnemonic set or English (`I 0.0`, `FW 10`, `T 1`, `DB 10 DW 3`, `DB 10 DD 4`), a STEP 7
+//! program's in STEP 7 spelling of either set, whose area letters do not collide (`E`/`A`/`Z`
+//! are German only, `I`/`Q`/`C` English only): `I 0.0`, `MW 12`, `PIW 256`, `T 5`, `C 3`,
+//! `DB5.DBW 4`, and a declared data block's values by name (`DB5.level`, `DB5.motor.speed`,
+//! `DB5.table[2]`, an instance DB's `DB6.start`).
 
 use crate::ast::Address;
 use crate::dialect::Dialect;
@@ -12,6 +14,7 @@ use crate::step7::ast::{AccessWidth, S7Area};
 use crate::step7::mnemonics::AREAS;
 
 use super::Layout;
+use super::declared::DeclaredValue;
 use super::range::address_in_range;
 
 /// What an operand of a scenario reads or writes.
@@ -40,6 +43,11 @@ pub enum Target {
         db: u8,
         word: u16,
     },
+    /// `DB 10 DD 4`: data words 4 and 5 of a STEP 5 data block.
+    DataDouble {
+        db: u8,
+        word: u16,
+    },
     /// A STEP 7 data block's bit (`bytes` 0), byte, word or double word: `DB5.DBW 4`.
     S7Data {
         db: u16,
@@ -57,6 +65,7 @@ impl Target {
             | Target::Periphery { bytes, .. }
             | Target::S7Data { bytes, .. } => bytes,
             Target::CounterValue(_) | Target::DataWord { .. } => 2,
+            Target::DataDouble { .. } => 4,
         }
     }
 }
@@ -95,6 +104,31 @@ fn words(text: &str) -> Vec<String> {
         .collect()
 }
 
+/// The operands of a list as a user writes it, `Q 4.0, MW 10, DB5.grid[1,2]`: separated by
+/// commas, but for those of an array's indices.
+pub fn list(text: &str) -> Vec<String> {
+    let mut operands = Vec::new();
+    let (mut depth, mut start) = (0usize, 0);
+    for (at, c) in text.char_indices() {
+        match c {
+            '[' => depth += 1,
+            ']' => depth = depth.saturating_sub(1),
+            ',' if depth == 0 => {
+                operands.push(&text[start..at]);
+                start = at + 1;
+            }
+            _ => {}
+        }
+    }
+    operands.push(&text[start..]);
+    operands
+        .into_iter()
+        .map(str::trim)
+        .filter(|operand| !operand.is_empty())
+        .map(str::to_string)
+        .collect()
+}
+
 /// What an operand is checked against and placed by: the program's dialect, the CPU's ranges,
 /// where the image areas lie, and a STEP 7 program's data blocks.
 pub struct Places<'a> {
@@ -102,6 +136,8 @@ pub struct Places<'a> {
     pub profile: &'static Profile,
     pub layout: Layout,
     pub data_blocks: &'a [(u16, Vec<u8>)],
+    /// A STEP 7 program's data blocks with declarations: their values by name.
+    pub declared: &'a [(u16, Vec<DeclaredValue>)],
 }
 
 /// Why an operand was refused, and the help that goes with it.
@@ -117,11 +153,7 @@ pub fn parse(text: &str, set: MnemonicSet, places: &Places) -> Result<Target, Re
     match places.dialect {
         Dialect::Step5 => step5_target(text, set, places),
         Dialect::Step7 => {
-            let compact: String = text
-                .chars()
-                .filter(|c| !c.is_whitespace())
-                .collect::<String>()
-                .to_ascii_uppercase();
+            let compact: String = text.chars().filter(|c| !c.is_whitespace()).collect();
             step7_target(&compact, places)
         }
     }
@@ -141,20 +173,27 @@ fn step5_target(text: &str, set: MnemonicSet, places: &Places) -> Result<Target,
     };
     if first.eq_ignore_ascii_case("DB") {
         let db = number(parts.get(1)).filter(|db| *db <= 255);
-        let is_dw = parts.get(2).is_some_and(|p| p.eq_ignore_ascii_case("DW"));
+        let width = parts.get(2).map(|p| p.to_ascii_uppercase());
         let word = number(parts.get(3));
-        return match (db, is_dw, word, parts.len()) {
-            (Some(db), true, Some(word), 4) if word < profile.sizes.data_words => {
+        let words = profile.sizes.data_words;
+        return match (db, width.as_deref(), word, parts.len()) {
+            (Some(db), Some("DW"), Some(word), 4) if word < words => {
                 Ok(Target::DataWord { db: db as u8, word })
             }
-            _ => Err(unknown("write a data word as `DB 10 DW 3`", None)),
+            (Some(db), Some("DD"), Some(word), 4) if word < words.saturating_sub(1) => {
+                Ok(Target::DataDouble { db: db as u8, word })
+            }
+            _ => Err(unknown(
+                "write a data word as `DB 10 DW 3`, a double word as `DB 10 DD 4`",
+                None,
+            )),
         };
     }
     let area = mnemonics::area(set, first).or_else(|| mnemonics::area(MnemonicSet::English, first));
     let Some(area) = area else {
         return Err(unknown(
             "not an operand area",
-            Some("use I, Q, F bits (`I 0.0`), IB IW QB QW FY FW FD, PY PW, T n, C n, or `DB 10 DW 3`".into()),
+            Some("use I, Q, F bits (`I 0.0`), IB IW QB QW FY FW FD, PY PW, T n, C n, or `DB 10 DW 3`, `DB 10 DD 4`".into()),
         ));
     };
     let (index, bit) = match (area.is_bit(), parts.as_slice()) {
@@ -216,7 +255,7 @@ fn step5_target(text: &str, set: MnemonicSet, places: &Places) -> Result<Target,
 }
 
 /// The S7 operand forms, for the help of an operand that is none.
-pub const FORMS: &str = "use I, Q, M bits (`I 0.0`, German `E 0.0`, `A 4.0`), IB IW ID, QB QW QD (German EB EW ED, AB AW AD), MB MW MD, PIB PIW PID, PQB PQW PQD (German PEB PEW PED, PAB PAW PAD), T 5, C 3 (German Z 3), or data block operands `DB5.DBX 0.1`, `DB5.DBB 2`, `DB5.DBW 4`, `DB5.DBD 6`";
+pub const FORMS: &str = "use I, Q, M bits (`I 0.0`, German `E 0.0`, `A 4.0`), IB IW ID, QB QW QD (German EB EW ED, AB AW AD), MB MW MD, PIB PIW PID, PQB PQW PQD (German PEB PEW PED, PAB PAW PAD), T 5, C 3 (German Z 3), data block operands `DB5.DBX 0.1`, `DB5.DBB 2`, `DB5.DBW 4`, `DB5.DBD 6`, or a data block's values by name as `--state` shows them (`DB5.level`)";
 
 /// An area word of either set that a scenario may name: the area and the access width. Local
 /// data and the DB registers' data blocks change while the program runs.
@@ -286,16 +325,20 @@ fn address(text: &str, width: AccessWidth) -> Result<(u32, u8), Refusal> {
     }
 }
 
+/// A STEP 7 operand, `text` without blanks; a data block's value names keep their case for
+/// the messages.
 fn step7_target(text: &str, places: &Places) -> Result<Target, Refusal> {
     if text.is_empty() {
         return Err(refuse("empty operand", None));
     }
-    if let Some(rest) = text.strip_prefix("DB")
+    if let Some(rest) = text.get(2..)
+        && text[..2].eq_ignore_ascii_case("DB")
         && rest.starts_with(|c: char| c.is_ascii_digit())
     {
         return data_target(rest, places);
     }
-    let (letters, rest) = split_letters(text);
+    let text = text.to_ascii_uppercase();
+    let (letters, rest) = split_letters(&text);
     let Some((area, width)) = s7_area(letters) else {
         return Err(not_an_area(letters));
     };
@@ -382,7 +425,8 @@ fn not_an_area(letters: &str) -> Refusal {
     }
 }
 
-/// `5.DBW4` (after `DB`): a byte, word, double word or bit of a data block of the program.
+/// `5.DBW4` or `5.level` (after `DB`): a bit, byte, word or double word of a data block of the
+/// program, or one of its declared values by name.
 fn data_target(text: &str, places: &Places) -> Result<Target, Refusal> {
     let form = || {
         refuse(
@@ -392,9 +436,6 @@ fn data_target(text: &str, places: &Places) -> Result<Target, Refusal> {
     };
     let (number, inner) = text.split_once('.').ok_or_else(form)?;
     let db: u16 = number.parse().map_err(|_| form())?;
-    let (letters, rest) = split_letters(inner);
-    let width = data_width(letters).ok_or_else(form)?;
-    let (byte, bit) = address(rest, width)?;
     let blocks = places.data_blocks;
     let Some((_, bytes)) = blocks.iter().find(|(number, _)| *number == db) else {
         let known: Vec<String> = blocks.iter().map(|(n, _)| format!("DB {n}")).collect();
@@ -408,6 +449,29 @@ fn data_target(text: &str, places: &Places) -> Result<Target, Refusal> {
             help: Some(help),
         });
     };
+    let declared = places
+        .declared
+        .iter()
+        .find(|(number, _)| *number == db)
+        .map(|(_, values)| values.as_slice());
+    if let Some(value) = declared
+        .into_iter()
+        .flatten()
+        .find(|value| value.name.eq_ignore_ascii_case(inner))
+    {
+        return declared_target(db, value);
+    }
+    let upper = inner.to_ascii_uppercase();
+    let (letters, rest) = split_letters(&upper);
+    let Some(width) = data_width(letters) else {
+        // `DW2`, `DBW` without its DB: an address in another form; else a name.
+        let an_address = letters.len() <= 3 && rest.starts_with(|c: char| c.is_ascii_digit());
+        return Err(match declared {
+            Some(values) if !an_address => no_such_value(db, inner, values),
+            _ => form(),
+        });
+    };
+    let (byte, bit) = address(rest, width)?;
     let count = byte_count(width);
     if byte + u32::from(count.max(1)) > bytes.len() as u32 {
         let range = match bytes.len() {
@@ -422,6 +486,57 @@ fn data_target(text: &str, places: &Places) -> Result<Target, Refusal> {
         bit,
         bytes: count,
     })
+}
+
+/// A declared value of data block `db` as the operand that reads it whole.
+fn declared_target(db: u16, value: &DeclaredValue) -> Result<Target, Refusal> {
+    let Some(bytes) = value.format.operand_bytes() else {
+        return Err(refuse(
+            format!(
+                "a {}: an operand is a BOOL or a value of 1, 2 or 4 bytes",
+                value.format.type_name()
+            ),
+            Some(&format!(
+                "name its bytes from `DB{db}.DBB {}` on",
+                value.byte
+            )),
+        ));
+    };
+    Ok(Target::S7Data {
+        db,
+        byte: value.byte,
+        bit: value.bit,
+        bytes,
+    })
+}
+
+/// The most names of a data block's values a help lists.
+const NAMES_LISTED: usize = 8;
+
+/// A name that is none of data block `db`'s values: the close one, else those it has.
+fn no_such_value(db: u16, written: &str, values: &[DeclaredValue]) -> Refusal {
+    let names = values.iter().map(|value| value.name.as_str());
+    let help = match crate::suggest::one_edit_from(written, names.clone()) {
+        Some(close) => format!("did you mean `DB{db}.{close}`?"),
+        None => {
+            let listed: Vec<String> = names
+                .take(NAMES_LISTED)
+                .map(|name| format!("DB{db}.{name}"))
+                .collect();
+            let more = match values.len() {
+                count if count > NAMES_LISTED => format!(", … ({count} in all)"),
+                _ => String::new(),
+            };
+            format!(
+                "its values by name, as `--state` shows them: {}{more}; or its bytes: `DB{db}.DBW 4`",
+                listed.join(", ")
+            )
+        }
+    };
+    Refusal {
+        reason: format!("DB {db} declares no `{written}`"),
+        help: Some(help),
+    }
 }
 
 #[cfg(test)]
@@ -525,17 +640,19 @@ END_ORGANIZATION_BLOCK
         }
     }
 
+    /// A bit (`bytes` 0), byte, word or double word of DB 5 of [`PROGRAM`].
+    fn data(byte: u32, bit: u8, bytes: u8) -> Result<Target, (String, Option<String>)> {
+        Ok(Target::S7Data {
+            db: 5,
+            byte,
+            bit,
+            bytes,
+        })
+    }
+
     #[test]
     fn data_block_operands() {
         let program = program();
-        let data = |byte, bit, bytes| {
-            Ok(Target::S7Data {
-                db: 5,
-                byte,
-                bit,
-                bytes,
-            })
-        };
         assert_eq!(parsed(&program, "DB5.DBX 0.1"), data(0, 1, 0));
         assert_eq!(parsed(&program, "DB5.DBB 2"), data(2, 0, 1));
         assert_eq!(parsed(&program, "DB5.DBW 4"), data(4, 0, 2));
@@ -546,6 +663,55 @@ END_ORGANIZATION_BLOCK
             "blanks anywhere"
         );
         assert_eq!(parsed(&program, "db5.dbx0.1"), data(0, 1, 0), "any case");
+    }
+
+    #[test]
+    fn declared_values_by_the_names_the_state_shows() {
+        let program = program();
+        assert_eq!(parsed(&program, "DB5.flags"), data(0, 0, 2));
+        assert_eq!(parsed(&program, "DB5.batches"), data(2, 0, 1));
+        assert_eq!(parsed(&program, "DB5.level"), data(4, 0, 2));
+        assert_eq!(parsed(&program, "db5 . VOLUME"), data(6, 0, 4), "any case");
+        let refused = parsed(&program, "DB5.levle").unwrap_err();
+        assert_eq!(refused.0, "DB 5 declares no `levle`");
+        assert_eq!(refused.1.as_deref(), Some("did you mean `DB5.level`?"));
+        let listed = parsed(&program, "DB5.pressure").unwrap_err().1.unwrap();
+        assert!(
+            listed.contains("DB5.flags, DB5.batches, DB5.spare, DB5.level, DB5.volume"),
+            "{listed}"
+        );
+        let form = parsed(&program, "DB5.DW 2").unwrap_err().0;
+        assert!(form.contains("`DB5.DBW 4`"), "{form}");
+    }
+
+    #[test]
+    fn step5_data_words_and_double_words() {
+        let profile = profile::find("sinumerik-840c").expect("the default S5 profile");
+        let built = frontend::build_text("db.awl", "DB 10\n 0: KF +1\n 1: KF +2\n", profile);
+        let places = Places::of(&built.compiled.program);
+        let parsed = |text| parse(text, MnemonicSet::English, &places).map_err(|r| r.reason);
+        assert_eq!(
+            parsed("DB 10 DW 3"),
+            Ok(Target::DataWord { db: 10, word: 3 })
+        );
+        assert_eq!(
+            parsed("DB 10 DD 4"),
+            Ok(Target::DataDouble { db: 10, word: 4 })
+        );
+        assert_eq!(Target::DataDouble { db: 10, word: 4 }.bytes(), 4);
+        assert!(
+            parsed("DB 10 DD 2047").is_err(),
+            "its second word is past the end"
+        );
+    }
+
+    #[test]
+    fn operand_lists_split_at_commas_outside_indices() {
+        assert_eq!(
+            list("Q 4.0, DB5.grid[1,2] ,MW 10,"),
+            ["Q 4.0", "DB5.grid[1,2]", "MW 10"]
+        );
+        assert!(list(" , ").is_empty());
     }
 
     #[test]

@@ -104,7 +104,8 @@ pub struct SourceOptions {
     /// STL source files (.awl) or an awlsim project (.awlpro)
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
-    /// CPU profile (see `awl cpus`) [default: speed7 for STEP 7 files, else sinumerik-840c]
+    /// CPU profile (see `awl cpus`) [default: the program's dialect's: speed7 for STEP 7 (an
+    /// awlsim project is STEP 7), sinumerik-840c for STEP 5]
     #[arg(long, value_parser = profile::names())]
     pub cpu: Option<String>,
     #[command(flatten)]
@@ -210,10 +211,9 @@ fn lsp(console: &mut Console) -> u8 {
     }
 }
 
-/// The profile a `--cpu` value names (clap has checked it), or the default one.
-fn selected_profile(name: Option<&str>) -> &'static Profile {
-    name.and_then(profile::find)
-        .unwrap_or_else(|| profile::find(profile::DEFAULT_PROFILE).expect("default profile exists"))
+/// The profile a `--cpu` value names (clap has checked it).
+fn selected_profile(name: &str) -> &'static Profile {
+    profile::find(name).expect("clap checked the profile's name")
 }
 
 pub use crate::diagnostics::plural;

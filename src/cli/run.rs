@@ -111,7 +111,8 @@ pub struct ProgramArgs {
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// CPU profile (see `awl cpus`); overrides the scenario's [default: the scenario's, else
-    /// speed7 for STEP 7 files, else sinumerik-840c]
+    /// the program's dialect's: speed7 for STEP 7 (an awlsim project is STEP 7),
+    /// sinumerik-840c for STEP 5]
     #[arg(long, value_parser = profile::names())]
     pub cpu: Option<String>,
     /// Where interrupts are serviced [default: the scenario's, else the CPU's: block on the
@@ -196,8 +197,9 @@ pub struct RunArgs {
     /// to stderr); implies --state [default: text]
     #[arg(long, value_enum)]
     pub state_format: Option<StateFormat>,
-    /// Watch operands (STATUS VAR), e.g. "Q 4.0, FW 10, T 1, C 2, DB 10 DW 3": a row each time
-    /// one changed at a cycle end [default: the scenario's `watch`, else none]
+    /// Watch operands (STATUS VAR), e.g. "Q 4.0, FW 10, T 1, C 2, DB 10 DW 3", or
+    /// "MW 10, DB5.DBW 4, DB5.level": every name --state shows; a row each time one changed
+    /// at a cycle end [default: the scenario's `watch`, else none]
     #[arg(long, value_name = "OPERANDS")]
     pub watch: Option<String>,
     /// A watch row every DURATION of simulated time (at the next cycle end) instead of on change
@@ -249,7 +251,7 @@ pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
     RunOptions {
         files: args.files.clone(),
         scenario: args.scenario.clone(),
-        cpu: args.cpu.as_deref().map(|name| selected_profile(Some(name))),
+        cpu: args.cpu.as_deref().map(selected_profile),
         points: args.interrupt_points.map(|points| match points {
             Points::Block => InterruptPoints::Block,
             Points::Operation => InterruptPoints::Operation,
@@ -272,10 +274,7 @@ fn run_options(args: &RunArgs) -> RunOptions {
         watch: args
             .watch
             .iter()
-            .flat_map(|list| list.split(','))
-            .map(str::trim)
-            .filter(|operand| !operand.is_empty())
-            .map(str::to_string)
+            .flat_map(|list| crate::address::operand::list(list))
             .collect(),
         watch_every_ns: args.watch_every,
         limit: args.length.limit(),

@@ -39,7 +39,7 @@ fn build(
         language = project.language(language);
     }
     let profile = match options.cpu.as_deref() {
-        Some(name) => selected_profile(Some(name)),
+        Some(name) => selected_profile(name),
         None => {
             let profile = frontend::default_profile(&sources, language);
             project
@@ -75,7 +75,7 @@ pub fn check(args: &CheckArgs, console: &mut Console) -> u8 {
     let Some((built, runs_on)) = build(&args.source, console, true) else {
         return EXIT_SOURCE_ERRORS;
     };
-    let blocks = built.compiled.program.blocks.len() + built.compiled.program.data_blocks.len();
+    let blocks = built.compiled.program.block_count();
     if built.has_errors() {
         console.totals("check", totals(&built, 0));
         if let Some(profiles) =

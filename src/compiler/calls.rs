@@ -10,6 +10,7 @@ use super::error::CheckError;
 use super::lower::{self, Resolved};
 use super::{BlockContext, Compiler};
 use crate::address::Layout;
+use crate::suggest::one_edit_from;
 
 /// `I BI`, `D KF`, `T` — a declaration's kind and format as written in the file's set.
 pub fn describe_decl(decl: &ParamDecl, set: MnemonicSet) -> String {
@@ -157,20 +158,9 @@ impl Compiler<'_> {
                 .iter()
                 .any(|decl| decl.name.text.eq_ignore_ascii_case(&param.name.text))
             {
-                let help = decls
-                    .iter()
-                    .map(|decl| {
-                        (
-                            strsim::damerau_levenshtein(
-                                &decl.name.text.to_ascii_uppercase(),
-                                &param.name.text.to_ascii_uppercase(),
-                            ),
-                            decl,
-                        )
-                    })
-                    .filter(|(distance, _)| *distance <= 1)
-                    .min_by_key(|(distance, _)| *distance)
-                    .map(|(_, decl)| format!("did you mean `{}`?", decl.name.text))
+                let declared = decls.iter().map(|decl| decl.name.text.as_str());
+                let help = one_edit_from(&param.name.text, declared)
+                    .map(|close| format!("did you mean `{close}`?"))
                     .or_else(|| Some(format!("{fb} declares: {}", names(&decls))));
                 self.diagnostics.push(CheckError::UnknownParam {
                     name: param.name.text.clone(),

@@ -348,15 +348,14 @@ pub enum CheckError {
     },
 
     #[error("jump to `{name}`, a label {block} does not have")]
-    #[diagnostic(
-        code(awl::check::undefined_label),
-        help("labels are written `NAME:` before a statement of the same block")
-    )]
+    #[diagnostic(code(awl::check::undefined_label), help("{help}"))]
     UndefinedLabel {
         name: String,
         block: String,
         #[label("no such label")]
         at: Span,
+        /// The label one edit away, or how labels are written.
+        help: String,
     },
 
     #[error("{what} is not simulated")]

@@ -117,11 +117,18 @@ impl<'a> crate::address::operand::Places<'a> {
             profile: program.profile,
             layout: program.layout,
             data_blocks: &program.s7.data_blocks,
+            declared: &program.s7.declared_dbs,
         }
     }
 }
 
 impl Program {
+    /// The blocks the program loads into the CPU: its code blocks and the data blocks of
+    /// either dialect (a STEP 7 `TYPE` is no block of the CPU, only of the program's source).
+    pub fn block_count(&self) -> usize {
+        self.blocks.len() + self.data_blocks.len() + self.s7.data_blocks.len()
+    }
+
     /// The program of compiled blocks: their names made once and the arena built.
     pub fn assemble(
         profile: &'static Profile,
@@ -726,19 +733,8 @@ impl<'a> Compiler<'a> {
             .iter()
             .map(|param| param.name.text.as_str())
             .chain(context.labels.keys().map(String::as_str));
-        let help = candidates
-            .map(|candidate| {
-                (
-                    strsim::damerau_levenshtein(
-                        &name.to_ascii_uppercase(),
-                        &candidate.to_ascii_uppercase(),
-                    ),
-                    candidate,
-                )
-            })
-            .filter(|(distance, _)| *distance <= 1)
-            .min_by_key(|(distance, _)| *distance)
-            .map(|(_, candidate)| format!("did you mean `={candidate}`?"));
+        let help = crate::suggest::one_edit_from(name, candidates)
+            .map(|close| format!("did you mean `={close}`?"));
         self.fail(CheckError::UndefinedSymbol {
             name: name.to_string(),
             block: context.id.to_string(),

@@ -176,7 +176,7 @@ fn bad(message: impl Into<String>, at: SourceSpan, label: &str, help: Option<Str
 
 fn unknown_key(key: &str, at: SourceSpan) -> ConfError {
     let known = KEYS.iter().chain(IGNORED_KEYS).copied();
-    let help = match crate::scenario::did_you_mean(key, known) {
+    let help = match crate::suggest::did_you_mean(key, known) {
         Some(near) => format!("did you mean `{near}`?"),
         None => format!(
             "the keys: {}; awlsim's {} are accepted and ignored",

@@ -19,9 +19,6 @@ use super::conf::Conf;
 use super::project::Project;
 use super::{Ending, Simulated, Tested};
 
-/// The CPU the tests run on: the S7 CPU of the profiles.
-pub const PROFILE: &str = "speed7";
-
 /// How long a test without `max_runtime` may run, in simulated time, before it counts as one
 /// that never stops (awlsim would run it forever).
 pub const UNBOUNDED_RUN_NS: u64 = 60_000_000_000;
@@ -51,7 +48,8 @@ pub fn options(
         files: vec![path.to_path_buf()],
         symbols: symbols.to_vec(),
         // `accus=4` sets the S7 CPU to four accumulators (its S7-400 variant).
-        cpu: profile::find(PROFILE)
+        // awlsim's tests are STEP 7: they run on its default CPU.
+        cpu: Some(profile::default_for(Dialect::Step7))
             .and_then(|cpu| match accus {
                 Some(count) => profile::with_accumulators(cpu, count),
                 None => Some(cpu),

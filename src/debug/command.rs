@@ -147,7 +147,7 @@ pub const COMMANDS: &[(&str, &str, &str)] = &[
     (
         "print",
         "p",
-        "print OPERAND[, OPERAND…]  (e.g. print Q 4.0, FW 10, T 1, DB 10 DW 3; STEP 7: MW 10, DB5.DBW 4)",
+        "print OPERAND[, OPERAND…]  (e.g. print Q 4.0, FW 10, T 1, DB 10 DW 3; STEP 7: MW 10, DB5.DBW 4, DB5.level)",
     ),
     ("accu", "a", "accu  (the accumulators)"),
     ("status", "st", "status  (the status word)"),
@@ -276,22 +276,21 @@ fn parse_set(words: &[&str]) -> Result<Command, CommandError> {
     })
 }
 
-/// `Q 4.0, FW 10` or `Q 4.0 FW 10`: operands are an area and an address, or `DB n DW m`.
+/// `Q 4.0, FW 10` or `Q 4.0 FW 10`: operands are an area and an address, `DB n DW m`, or a
+/// STEP 7 data block's value by name (`DB5.level`).
 fn operands(words: &[&str]) -> Vec<String> {
-    let text = words.join(" ");
-    if text.contains(',') {
-        return text
-            .split(',')
-            .map(str::trim)
-            .filter(|part| !part.is_empty())
-            .map(str::to_string)
-            .collect();
-    }
+    let listed = crate::address::operand::list(&words.join(" "));
+    let [one] = listed.as_slice() else {
+        return listed;
+    };
+    let words: Vec<&str> = one.split_whitespace().collect();
     let mut out = Vec::new();
-    let mut rest = words;
+    let mut rest = words.as_slice();
     while !rest.is_empty() {
         let take = if rest[0].eq_ignore_ascii_case("DB") {
             4
+        } else if is_value_name(rest[0]) {
+            1
         } else {
             2
         };
@@ -300,6 +299,18 @@ fn operands(words: &[&str]) -> Vec<String> {
         rest = tail;
     }
     out
+}
+
+/// `DB5.level`, `DB5.table[2]`: a data block's value by name, one word (where `DB5.DBW` needs
+/// its address after it).
+fn is_value_name(word: &str) -> bool {
+    let Some((block, name)) = word.split_once('.') else {
+        return false;
+    };
+    let is_area = ["DBX", "DBB", "DBW", "DBD"]
+        .iter()
+        .any(|area| name.eq_ignore_ascii_case(area));
+    block.len() > 2 && block[..2].eq_ignore_ascii_case("DB") && !is_area
 }
 
 fn no_arguments(
@@ -358,7 +369,7 @@ pub fn parse(line: &str) -> Option<Result<Command, CommandError>> {
         Some("quit") => Ok(Command::Quit),
         _ => Err(CommandError::Unknown {
             command: first.to_string(),
-            help: match crate::scenario::did_you_mean(
+            help: match crate::suggest::did_you_mean(
                 &word,
                 COMMANDS.iter().map(|(name, _, _)| *name),
             ) {
@@ -423,6 +434,15 @@ mod tests {
         assert_eq!(
             ok("print Q 4.0 FW 10 DB 10 DW 3"),
             Command::Print(vec!["Q 4.0".into(), "FW 10".into(), "DB 10 DW 3".into()])
+        );
+        assert_eq!(
+            ok("print DB5.level MW 10 DB5.DBW 4 DB5.grid[1,2]"),
+            Command::Print(vec![
+                "DB5.level".into(),
+                "MW 10".into(),
+                "DB5.DBW 4".into(),
+                "DB5.grid[1,2]".into()
+            ])
         );
         assert_eq!(
             ok("p Q 4.0, T 1"),

@@ -197,6 +197,16 @@ pub fn write(cpu: &mut Cpu, target: Target, raw: u32, operand: &str) -> Result<(
             *slot = raw as u16;
             Ok(())
         }
+        Target::DataDouble { db, word } => {
+            let at = usize::from(word);
+            let slots = cpu.data_blocks[usize::from(db)]
+                .as_mut()
+                .ok_or_else(|| format!("DB {db} is not loaded"))?
+                .get_mut(at..at + 2)
+                .ok_or_else(|| format!("DB {db} has no DD {word}"))?;
+            slots.copy_from_slice(&[(raw >> 16) as u16, raw as u16]);
+            Ok(())
+        }
         Target::S7Data { .. } => write_s7_data(cpu, target, raw),
     }
 }

@@ -203,7 +203,7 @@ impl Workspace {
                 let Ok(text) = self.text_of(&toml) else {
                     continue;
                 };
-                let (scenario, _) = Scenario::parse(&toml, &text, None);
+                let (scenario, _) = Scenario::parse(&toml, &text);
                 if scenario
                     .programs
                     .iter()

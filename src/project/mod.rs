@@ -571,7 +571,7 @@ mod tests {
         let speed7 = profile::find("speed7").unwrap();
         let cpu = project.cpu(speed7);
         assert_eq!((cpu.accumulators, cpu.sizes.image_bytes), (4, 1024));
-        let step5 = profile::find(profile::DEFAULT_PROFILE).unwrap();
+        let step5 = profile::default_for(Dialect::Step5);
         assert_eq!(project.cpu(step5).name, step5.name);
     }
 }

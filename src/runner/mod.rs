@@ -17,9 +17,9 @@ use crate::compiler::Program;
 use crate::diagnostics;
 use crate::frontend::{self, Frontend, Language};
 use crate::mnemonics::MnemonicSet;
-use crate::profile::{self, Family, InterruptPoints, Profile};
+use crate::profile::{Family, InterruptPoints, Profile};
 use crate::program_files::{ProgramFiles, read_program};
-use crate::project::{self, Project};
+use crate::project::Project;
 use crate::scenario::check::{CheckOutcome, Checker};
 use crate::scenario::expect::{self, Mismatch};
 use crate::scenario::modify::Modifier;
@@ -308,40 +308,14 @@ pub struct Prepared {
 pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     // A scenario's errors are reported together with those found once the program is
     // compiled (its operands), so a file shows all of them at once.
-    let (scenario, mut scenario_errors) = match &options.scenario {
+    let (mut scenario, mut scenario_errors) = match &options.scenario {
         Some(path) => {
-            let load = |cpu| {
-                Scenario::load_in(&options.store, path, cpu)
-                    .map_err(|error| NotRun::Failed(vec![error]))
-            };
-            let (mut scenario, mut errors) = load(options.cpu)?;
-            // A scenario without `cpu` runs a project named on the command line on the STEP 7
-            // CPU, as it would had it named the project itself; its keys are checked for that.
-            if scenario.cpu.is_none()
-                && options.cpu.is_none()
-                && options
-                    .files
-                    .iter()
-                    .any(|file| project::has_project_name(file))
-            {
-                (scenario, errors) = load(profile::find(profile::DEFAULT_STEP7_PROFILE))?;
-            }
+            let (scenario, errors) = Scenario::load_in(&options.store, path)
+                .map_err(|error| NotRun::Failed(vec![error]))?;
             (Some(scenario), errors)
         }
         None => (None, Vec::new()),
     };
-    let chosen = match &scenario {
-        Some(scenario) => Some(scenario.profile),
-        None => options.cpu,
-    };
-    if let Some(profile) = chosen
-        && options.special_mode.is_some()
-        && profile.family != Family::Sinumerik840c
-    {
-        return Err(NotRun::Usage(Report::new(RunError::ModeNotForCpu {
-            cpu: profile.name,
-        })));
-    }
     let files = if options.files.is_empty() {
         scenario
             .as_ref()
@@ -382,17 +356,22 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         project,
     } = read;
     let language = language(options.language, scenario.as_ref(), project.as_ref());
-    let profile = chosen.unwrap_or_else(|| frontend::default_profile(&sources, language));
-    // A CPU the command line or the scenario names is taken as it is; else the project's.
-    let cpu_named = options.cpu.is_some() || scenario.as_ref().is_some_and(|s| s.cpu.is_some());
-    let profile = match &project {
-        Some(project) if !cpu_named => project.cpu(profile),
-        _ => profile,
-    };
+    // A CPU the command line or the scenario names is taken as it is; else the program's
+    // dialect's, set as the project asks.
+    let named = options.cpu.or(scenario.as_ref().and_then(|s| s.cpu));
+    let profile = named.unwrap_or_else(|| {
+        let default = frontend::default_profile(&sources, language);
+        project
+            .as_ref()
+            .map_or(default, |project| project.cpu(default))
+    });
     if options.special_mode.is_some() && profile.family != Family::Sinumerik840c {
         return Err(NotRun::Usage(Report::new(RunError::ModeNotForCpu {
             cpu: profile.name,
         })));
+    }
+    if let Some(scenario) = &mut scenario {
+        scenario_errors.extend(scenario.settle_cpu(profile));
     }
     let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
     let mut warnings: Vec<Report> = built
@@ -683,9 +662,9 @@ pub fn watch_target(
         operand: operand.to_string(),
         reason: error.reason(),
         help: if program.s7.step7 {
-            "write operands as in a scenario's [expect]: `Q 4.0`, `MW 10`, `T 1`, `C 2`, `DB1.DBW 2`"
+            "write operands as `--state` names them, as in a scenario's [expect]: `Q 4.0`, `MW 10`, `T 1`, `C 2`, `DB1.DBW 2`, `DB1.level`"
         } else {
-            "write operands as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
+            "write operands as `--state` names them, as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
         },
     })
 }
@@ -698,7 +677,7 @@ mod tests {
     use crate::dialect::Dialect;
 
     fn scenario(text: &str) -> Scenario {
-        let (scenario, errors) = Scenario::parse(Path::new("s.toml"), text, None);
+        let (scenario, errors) = Scenario::parse(Path::new("s.toml"), text);
         assert!(errors.is_empty());
         scenario
     }

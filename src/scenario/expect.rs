@@ -62,6 +62,12 @@ pub fn actual(cpu: &Cpu, target: Target) -> Option<u32> {
                 .as_ref()?
                 .get(usize::from(word))?,
         ),
+        Target::DataDouble { db, word } => {
+            let words = cpu.data_blocks[usize::from(db)].as_ref()?;
+            let at = usize::from(word);
+            let (high, low) = (*words.get(at)?, *words.get(at + 1)?);
+            u32::from(high) << 16 | u32::from(low)
+        }
         Target::S7Data {
             db,
             byte,

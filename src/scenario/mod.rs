@@ -1,8 +1,9 @@
 //! Scenario files: the program, CPU, run length, timed events and expected results
-//! (`programs/README.md` documents every key). Loading checks the keys, durations and OBs
-//! against the CPU the run will use (the command line's `--cpu` included); operands are
-//! resolved once the program is compiled, in its mnemonic set or English. Every error of a
-//! file is reported, not only the first.
+//! (`programs/README.md` documents every key). Loading checks the keys and durations; the keys
+//! that belong to some CPUs only are checked once the run's CPU is known, which without `cpu`
+//! is the program's dialect's ([`Scenario::settle_cpu`]); OBs and operands are resolved once the
+//! program is compiled, in its mnemonic set or English. Every error of a file is reported, not
+//! only the first.
 
 pub mod check;
 pub mod error;
@@ -23,7 +24,7 @@ use crate::diagnostics::Finding;
 use crate::dialect::Dialect;
 use crate::mnemonics::MnemonicSet;
 use crate::profile::{self, Family, InterruptPoints, Profile};
-use crate::project;
+use crate::suggest::did_you_mean;
 use crate::vm::cycle::RunLimit;
 use crate::vm::interrupts::inputs::{Edge, InterruptInput, Raises};
 use crate::vm::interrupts::{Happening, InputChange, InputTarget, Ob13Timing, Scheduled};
@@ -77,12 +78,13 @@ pub struct Scenario {
     pub dialect: Option<Dialect>,
     /// awlsim's test operations are accepted (`extended = true`).
     pub extended: bool,
-    /// The CPU the run uses: the command line's, the file's, or the default.
-    pub profile: &'static Profile,
-    pub special_mode: Option<bool>,
     pub points: Option<InterruptPoints>,
     pub limit: Option<RunLimit>,
     pub watchdog_ns: Option<u64>,
+    /// The keys that belong to some CPUs only, as written; [`Scenario::settle_cpu`] checks
+    /// them and fills in the settings below.
+    cpu_keys: raw::CpuKeys,
+    pub special_mode: Option<bool>,
     pub ob13: Option<Ob13Timing>,
     /// The OB 35 interval `[ob35]` gives.
     pub ob35_interval_ns: Option<u64>,
@@ -100,17 +102,6 @@ pub struct Scenario {
     checks: Vec<Spanned<SpannedTable>>,
     /// `[modbus]`, resolved by `Scenario::modbus_map` once the program is known.
     modbus: raw::RawModbus,
-}
-
-/// The CPU of a scenario that names none: the STEP 7 one for an awlsim project (awlsim
-/// simulates S7 CPUs), else the default.
-fn default_profile(programs: &[PathBuf]) -> &'static Profile {
-    let name = if programs.iter().any(|path| project::has_project_name(path)) {
-        profile::DEFAULT_STEP7_PROFILE
-    } else {
-        profile::DEFAULT_PROFILE
-    };
-    profile::find(name).expect("the default profiles exist")
 }
 
 fn span<T>(spanned: &Spanned<T>) -> SourceSpan {
@@ -133,15 +124,6 @@ pub fn parse_duration(text: &str) -> Option<u64> {
     };
     let ns = value * scale;
     (value.is_finite() && (0.0..1e19).contains(&ns)).then_some(ns.round() as u64)
-}
-
-/// The closest of `candidates` to `word`, when it is close enough to be a typo.
-pub fn did_you_mean<'a>(word: &str, candidates: impl Iterator<Item = &'a str>) -> Option<&'a str> {
-    candidates
-        .map(|candidate| (strsim::damerau_levenshtein(word, candidate), candidate))
-        .filter(|(distance, candidate)| *distance <= 2 && *distance < candidate.len())
-        .min_by_key(|(distance, _)| *distance)
-        .map(|(_, candidate)| candidate)
 }
 
 fn duration(spanned: &Spanned<String>) -> Result<u64, ScenarioError> {
@@ -220,21 +202,17 @@ impl Scenario {
             .collect()
     }
 
-    /// Reads and checks a scenario file for the CPU `cpu` (the command line's), or the one
-    /// it names. `Err` when the file cannot be read; otherwise the scenario as far as it could
-    /// be read, and every error found in it.
-    pub fn load(
-        path: &Path,
-        cpu: Option<&'static Profile>,
-    ) -> Result<(Scenario, Vec<Report>), Report> {
-        Scenario::load_in(&crate::source::Files::Disk, path, cpu)
+    /// Reads and checks a scenario file, but for the keys that depend on the CPU
+    /// ([`Scenario::settle_cpu`]). `Err` when the file cannot be read; otherwise the scenario
+    /// as far as it could be read, and every error found in it.
+    pub fn load(path: &Path) -> Result<(Scenario, Vec<Report>), Report> {
+        Scenario::load_in(&crate::source::Files::Disk, path)
     }
 
     /// [`Scenario::load`] from `store`.
     pub fn load_in(
         store: &crate::source::Files,
         path: &Path,
-        cpu: Option<&'static Profile>,
     ) -> Result<(Scenario, Vec<Report>), Report> {
         let read = |error: std::io::Error| {
             Report::new(ScenarioError::Read {
@@ -245,30 +223,39 @@ impl Scenario {
         let bytes = store.read(path).map_err(read)?;
         let text = String::from_utf8(bytes)
             .map_err(|error| read(std::io::Error::new(std::io::ErrorKind::InvalidData, error)))?;
-        Ok(Scenario::parse(path, &text, cpu))
+        Ok(Scenario::parse(path, &text))
     }
 
-    /// Checks scenario text: the scenario as far as it could be read, and every error.
-    pub fn parse(
-        path: &Path,
-        text: &str,
-        cpu: Option<&'static Profile>,
-    ) -> (Scenario, Vec<Report>) {
+    /// Checks scenario text, but for the keys that depend on the CPU: the scenario as far as
+    /// it could be read, and every error.
+    pub fn parse(path: &Path, text: &str) -> (Scenario, Vec<Report>) {
         let text: Arc<str> = Arc::from(text);
         let (raw, errors) = raw::parse(&text);
         let mut errors = Errors(errors);
-        let scenario = Scenario::from_raw(path, text.clone(), raw, cpu, &mut errors);
+        let scenario = Scenario::from_raw(path, text.clone(), raw, &mut errors);
         let reports = scenario.reports(errors.0);
         (scenario, reports)
     }
 
-    fn from_raw(
-        path: &Path,
-        text: Arc<str>,
-        raw: RawScenario,
-        cpu_override: Option<&'static Profile>,
-        errors: &mut Errors,
-    ) -> Scenario {
+    /// Checks the keys that belong to some CPUs only (`mode`, `[ob13]`, `[ob35]`,
+    /// `[[hw_module]]`, `clock_memory`, `min_cycle`) against `profile`, the CPU the run uses,
+    /// and takes their values: the errors found.
+    pub fn settle_cpu(&mut self, profile: &'static Profile) -> Vec<Report> {
+        let mut errors = Errors::default();
+        let keys = &self.cpu_keys;
+        self.special_mode = errors.check(&keys.mode, |mode| check_mode(mode, profile));
+        self.ob13 = errors.check(&keys.ob13, |ob13| check_ob13(ob13, profile));
+        self.ob35_interval_ns = errors.check(&keys.ob35, |ob35| check_ob35(ob35, profile));
+        (self.hw_modules, self.hw_addresses) = check_modules(&keys.hw_module, profile, &mut errors);
+        self.clock_memory =
+            errors.check(&keys.clock_memory, |byte| check_clock_memory(byte, profile));
+        self.min_cycle_ns = errors.check(&keys.min_cycle, |min_cycle| {
+            check_min_cycle(min_cycle, self.watchdog_ns, profile)
+        });
+        self.reports(errors.0)
+    }
+
+    fn from_raw(path: &Path, text: Arc<str>, raw: RawScenario, errors: &mut Errors) -> Scenario {
         let base = path.parent().unwrap_or(Path::new("."));
         let paths = |list: &Option<Spanned<ProgramList>>| match list.as_ref().map(Spanned::get_ref)
         {
@@ -288,41 +275,25 @@ impl Scenario {
                 )
             })
         });
-        let profile = cpu_override
-            .or(cpu)
-            .unwrap_or_else(|| default_profile(&programs));
-        let dialect = errors.check(&raw.dialect, check_dialect);
-        let special_mode = errors.check(&raw.mode, |mode| check_mode(mode, profile));
-        let points = errors.check(&raw.interrupt_points, check_points);
-        let limit = errors.check(&raw.run, check_run);
-        let watchdog_ns = errors.check(&raw.watchdog, check_watchdog);
-        let ob13 = errors.check(&raw.ob13, |ob13| check_ob13(ob13, profile));
-        let ob35_interval_ns = errors.check(&raw.ob35, |ob35| check_ob35(ob35, profile));
-        let (hw_modules, hw_addresses) = check_modules(&raw.hw_module, profile, errors);
-        let clock_memory =
-            errors.check(&raw.clock_memory, |byte| check_clock_memory(byte, profile));
-        let min_cycle_ns = errors.check(&raw.min_cycle, |min_cycle| {
-            check_min_cycle(min_cycle, watchdog_ns, profile)
-        });
         Scenario {
             path: path.to_path_buf(),
             text,
             programs,
             symbols,
             cpu,
-            dialect,
+            dialect: errors.check(&raw.dialect, check_dialect),
             extended: raw.extended.unwrap_or(false),
-            profile,
-            special_mode,
-            points,
-            limit,
-            watchdog_ns,
-            ob13,
-            ob35_interval_ns,
-            hw_modules,
-            hw_addresses,
-            clock_memory,
-            min_cycle_ns,
+            points: errors.check(&raw.interrupt_points, check_points),
+            limit: errors.check(&raw.run, check_run),
+            watchdog_ns: errors.check(&raw.watchdog, check_watchdog),
+            cpu_keys: raw.cpu_keys,
+            special_mode: None,
+            ob13: None,
+            ob35_interval_ns: None,
+            hw_modules: Vec::new(),
+            hw_addresses: Vec::new(),
+            clock_memory: None,
+            min_cycle_ns: None,
             interrupt_inputs: raw.interrupt_input,
             events: raw.event,
             expect: raw.expect,
@@ -437,12 +408,16 @@ impl Scenario {
                 self.set_changes(changes, program, set, &mut errors)
             } else if let Some(interrupt) = &event.interrupt {
                 errors
-                    .keep(self.interrupt_ob(interrupt))
+                    .keep(Self::interrupt_ob(interrupt, program.profile))
                     .map(|ob| happening(Happening::Interrupt { ob }))
             } else if let Some(hardware) = &event.hw_interrupt {
-                errors.keep(self.hardware(hardware)).map(happening)
+                errors
+                    .keep(self.hardware(hardware, program.profile))
+                    .map(happening)
             } else if let Some(station) = &event.station {
-                errors.keep(self.station(station)).map(happening)
+                errors
+                    .keep(station_failure(station, program.profile))
+                    .map(happening)
             } else {
                 None
             };
@@ -515,29 +490,17 @@ impl Scenario {
         Some((happening.map(Happening::SetInputs), writes))
     }
 
-    fn hardware(&self, hardware: &Spanned<raw::RawHardware>) -> Result<Happening, ScenarioError> {
+    fn hardware(
+        &self,
+        hardware: &Spanned<raw::RawHardware>,
+        profile: &Profile,
+    ) -> Result<Happening, ScenarioError> {
         let inner = hardware.get_ref();
-        self.hardware_module("`hw_interrupt`", inner.module, span(hardware))?;
+        self.hardware_module("`hw_interrupt`", inner.module, span(hardware), profile)?;
         Ok(Happening::Hardware {
             module: inner.module,
             channel: inner.channel,
             active_for_ns: duration(&inner.active_for)?,
-        })
-    }
-
-    fn station(&self, station: &Spanned<raw::RawStation>) -> Result<Happening, ScenarioError> {
-        if self.profile.family != Family::Speed7 {
-            return Err(invalid(
-                "`station` belongs to the speed7 profile",
-                span(station),
-                format!("{} has no DP stations", self.profile.name),
-                None,
-            ));
-        }
-        let inner = station.get_ref();
-        Ok(Happening::Station {
-            station: inner.number,
-            failed: inner.failed,
         })
     }
 
@@ -548,12 +511,13 @@ impl Scenario {
         what: &str,
         module: u16,
         at: SourceSpan,
+        profile: &Profile,
     ) -> Result<(), ScenarioError> {
-        if self.profile.family != Family::Speed7 {
+        if profile.family != Family::Speed7 {
             return Err(invalid(
                 format!("{what} belongs to the speed7 profile"),
                 at,
-                format!("{} has no hardware interrupts", self.profile.name),
+                format!("{} has no hardware interrupts", profile.name),
                 None,
             ));
         }
@@ -568,7 +532,7 @@ impl Scenario {
         Ok(())
     }
 
-    fn interrupt_ob(&self, text: &Spanned<String>) -> Result<u8, ScenarioError> {
+    fn interrupt_ob(text: &Spanned<String>, profile: &Profile) -> Result<u8, ScenarioError> {
         let name = text.get_ref();
         let digits = name
             .trim()
@@ -577,19 +541,18 @@ impl Scenario {
             .map(str::trim);
         let speed7 = "SPEED7 interrupts come from modules: use `hw_interrupt = { module, channel, active_for }`";
         let ob = digits.and_then(|digits| digits.parse::<u8>().ok());
-        self.requested_ob(ob, name, span(text), speed7)
+        Self::requested_ob(ob, name, span(text), speed7, profile)
     }
 
     /// An OB an `interrupt` event or an `[[interrupt_input]]` requests (`written` as the file
     /// has it): an interrupt OB of the S5 CPU. `speed7` tells what the SPEED7 takes instead.
     fn requested_ob(
-        &self,
         ob: Option<u8>,
         written: &str,
         at: SourceSpan,
         speed7: &str,
+        profile: &Profile,
     ) -> Result<u8, ScenarioError> {
-        let profile = self.profile;
         let allowed: Vec<u8> = profile
             .interrupt_obs
             .iter()
@@ -640,7 +603,7 @@ impl Scenario {
             None => Some(Edge::Rising),
             Some(edge) => errors.keep(check_edge(edge)),
         };
-        let raises = errors.keep(self.raises(raw, span(input)));
+        let raises = errors.keep(self.raises(raw, span(input), program.profile));
         let ((byte, bit), edge, raises) = (bit?, edge?, raises?);
         Some(InterruptInput {
             byte,
@@ -682,19 +645,31 @@ impl Scenario {
 
     /// What an `[[interrupt_input]]` raises: `ob` on the S5 CPUs, `module` and `channel` on the
     /// SPEED7.
-    fn raises(&self, raw: &RawInterruptInput, at: SourceSpan) -> Result<Raises, ScenarioError> {
+    fn raises(
+        &self,
+        raw: &RawInterruptInput,
+        at: SourceSpan,
+        profile: &Profile,
+    ) -> Result<Raises, ScenarioError> {
         match (&raw.ob, &raw.module, &raw.channel) {
             (Some(ob), None, None) => {
                 let speed7 = "SPEED7 interrupts come from modules: give `module` and `channel` of a [[hw_module]]";
                 let number = *ob.get_ref();
-                self.requested_ob(Some(number), &format!("OB {number}"), span(ob), speed7)
-                    .map(Raises::Ob)
+                Self::requested_ob(
+                    Some(number),
+                    &format!("OB {number}"),
+                    span(ob),
+                    speed7,
+                    profile,
+                )
+                .map(Raises::Ob)
             }
             (None, Some(module), Some(channel)) => {
                 self.hardware_module(
                     "`module` in [[interrupt_input]]",
                     *module.get_ref(),
                     span(module),
+                    profile,
                 )?;
                 Ok(Raises::Hardware {
                     module: *module.get_ref(),
@@ -1101,6 +1076,26 @@ fn occurrences(event: &RawEvent, at_ns: u64, max_events: usize) -> Result<Vec<u6
     Ok((0..times).map(|n| at_ns + n * every_ns).collect())
 }
 
+/// A DP station's failure or return (`station`): the SPEED7's.
+fn station_failure(
+    station: &Spanned<raw::RawStation>,
+    profile: &Profile,
+) -> Result<Happening, ScenarioError> {
+    if profile.family != Family::Speed7 {
+        return Err(invalid(
+            "`station` belongs to the speed7 profile",
+            span(station),
+            format!("{} has no DP stations", profile.name),
+            None,
+        ));
+    }
+    let inner = station.get_ref();
+    Ok(Happening::Station {
+        station: inner.number,
+        failed: inner.failed,
+    })
+}
+
 fn check_mode(mode: &Spanned<String>, profile: &Profile) -> Result<bool, ScenarioError> {
     if profile.family != Family::Sinumerik840c {
         return Err(invalid(
@@ -1409,9 +1404,28 @@ mod tests {
     }
 
     fn parsed(text: &str) -> (Scenario, Vec<String>) {
-        let (scenario, reports) = Scenario::parse(Path::new("s.toml"), text, None);
+        let (scenario, reports) = Scenario::parse(Path::new("s.toml"), text);
         let rendered = reports.iter().map(crate::diagnostics::render_plain);
         (scenario, rendered.collect())
+    }
+
+    #[test]
+    fn the_keys_of_some_cpus_wait_for_the_run_s_cpu() {
+        let (mut scenario, errors) = parsed("clock_memory = 100\n");
+        assert!(errors.is_empty(), "{errors:?}");
+        assert_eq!(scenario.clock_memory, None);
+        let on_step5 = scenario.settle_cpu(profile::default_for(Dialect::Step5));
+        let rendered = crate::diagnostics::render_plain(&on_step5[0]);
+        assert!(
+            rendered.contains("the sinumerik-840c CPU has no clock memory byte"),
+            "{rendered}"
+        );
+        assert!(
+            scenario
+                .settle_cpu(profile::default_for(Dialect::Step7))
+                .is_empty()
+        );
+        assert_eq!(scenario.clock_memory, Some(100));
     }
 
     #[test]

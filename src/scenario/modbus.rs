@@ -97,7 +97,7 @@ mod tests {
 
     /// The map of a scenario for a program, or its errors rendered.
     fn map(scenario: &str, program: &Program, set: MnemonicSet) -> Result<Map, Vec<String>> {
-        let (scenario, errors) = Scenario::parse(Path::new("plant.toml"), scenario, None);
+        let (scenario, errors) = Scenario::parse(Path::new("plant.toml"), scenario);
         assert!(errors.is_empty(), "{errors:?}");
         scenario.modbus_map(program, set).map_err(|reports| {
             reports

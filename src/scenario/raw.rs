@@ -1,7 +1,8 @@
 //! The scenario file as TOML, with spans kept for diagnostics. Every key of the file and of each
 //! of its tables (`run`, `[ob13]`, `[[event]]`, …) is read on its own against that table's keys,
 //! so one bad key does not hide the errors of the others, and each error is told in the format's
-//! words: what the key takes, with an example, or the table's closest key.
+//! words: what the key takes, with an example, or the key a wrong one stands for: the closest in
+//! spelling, else the one it means in other words (`runtime` → `run`, `profile` → `cpu`).
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -16,12 +17,13 @@ use super::error::ScenarioError;
 /// A table whose keys keep their spans (`set = { "I 0.0" = 1 }`, `[expect]`).
 pub type SpannedTable = BTreeMap<Spanned<String>, Spanned<toml::Value>>;
 
-/// A key of a scenario table: what its value is, in the words `awl help scenario` uses, and a
-/// line that gives one.
+/// A key of a scenario table: what its value is, in the words `awl help scenario` uses, a line
+/// that gives one, and the words a user may write for it instead (lower case).
 pub struct Key {
     pub name: &'static str,
     pub takes: &'static str,
     pub example: &'static str,
+    pub meant_by: &'static [&'static str],
 }
 
 /// A table of the scenario format, as the user writes it, and its keys.
@@ -36,6 +38,17 @@ const fn key(name: &'static str, takes: &'static str, example: &'static str) -> 
         name,
         takes,
         example,
+        meant_by: &[],
+    }
+}
+
+impl Key {
+    /// The key, taken for each of `words` written in its place.
+    const fn meant_by(self, words: &'static [&'static str]) -> Key {
+        Key {
+            meant_by: words,
+            ..self
+        }
     }
 }
 
@@ -62,33 +75,78 @@ pub const SCENARIO: Table = Table {
             "program",
             "a program file in quotes, or a list of them",
             "`program = [\"conveyor.awl\"]`",
-        ),
+        )
+        .meant_by(&[
+            "source", "sources", "file", "files", "awl", "project", "code",
+        ]),
         key(
             "symbols",
             "an assignment list or symbol table in quotes, or a list of them",
             "`symbols = [\"symbols.seq\"]`",
-        ),
+        )
+        .meant_by(&[
+            "symbol_table",
+            "assignments",
+            "assignment_list",
+            "seq",
+            "tags",
+        ]),
         key(
             "cpu",
             "a CPU profile in quotes (`awl cpus`)",
             "`cpu = \"s5-115u\"`",
-        ),
-        key("dialect", "\"s5\" or \"s7\"", "`dialect = \"s7\"`"),
-        key("extended", "true or false", "`extended = true`"),
-        key("mode", "\"normal\" or \"special\"", "`mode = \"special\"`"),
+        )
+        .meant_by(&[
+            "profile",
+            "plc",
+            "processor",
+            "cpu_type",
+            "model",
+            "target",
+            "device",
+        ]),
+        key("dialect", "\"s5\" or \"s7\"", "`dialect = \"s7\"`")
+            .meant_by(&["language", "step", "stl"]),
+        key("extended", "true or false", "`extended = true`").meant_by(&[
+            "extensions",
+            "awlsim",
+            "test_operations",
+        ]),
+        key("mode", "\"normal\" or \"special\"", "`mode = \"special\"`")
+            .meant_by(&["operating_mode", "special"]),
         key(
             "interrupt_points",
             "\"block\" or \"operation\"",
             "`interrupt_points = \"operation\"`",
-        ),
+        )
+        .meant_by(&["points", "preemption"]),
         key(
             "run",
             "a table with `for` (a duration) or `cycles` (a count)",
             "`run = { for = \"100ms\" }` or `run = { cycles = 20 }`",
-        ),
-        key("watchdog", DURATION, "`watchdog = \"300ms\"`"),
-        key("min_cycle", DURATION, "`min_cycle = \"10ms\"`"),
-        key("clock_memory", "a flag byte number", "`clock_memory = 100`"),
+        )
+        .meant_by(&[
+            "runtime", "run_time", "time", "duration", "length", "limit", "for", "cycles",
+        ]),
+        key("watchdog", DURATION, "`watchdog = \"300ms\"`").meant_by(&[
+            "cycle_time",
+            "scan_time",
+            "max_cycle",
+            "max_cycle_time",
+            "cycle_limit",
+            "timeout",
+        ]),
+        key("min_cycle", DURATION, "`min_cycle = \"10ms\"`").meant_by(&[
+            "min_cycle_time",
+            "minimum_cycle",
+            "minimum_cycle_time",
+        ]),
+        key("clock_memory", "a flag byte number", "`clock_memory = 100`").meant_by(&[
+            "clock",
+            "clock_byte",
+            "clock_flags",
+            "taktmerker",
+        ]),
         key(
             "ob13",
             "a table `[ob13]` with `interval`",
@@ -98,54 +156,82 @@ pub const SCENARIO: Table = Table {
             "ob35",
             "a table `[ob35]` with `interval`",
             "`[ob35]` with `interval = \"100ms\"`",
-        ),
+        )
+        .meant_by(&["cyclic_interrupt"]),
         key(
             "hw_module",
             "`[[hw_module]]` tables with `module` and `ob`",
             "`[[hw_module]]` with `module = 4` and `ob = 40`",
-        ),
+        )
+        .meant_by(&["module", "modules", "hardware"]),
         key(
             "interrupt_input",
             "`[[interrupt_input]]` tables with `input` and `ob`, or `module` and `channel`",
             "`[[interrupt_input]]` with `input = \"I 8.0\"` and `ob = 2`",
-        ),
+        )
+        .meant_by(&["edge", "edges"]),
         key(
             "event",
             "`[[event]]` tables with `at` and what happens",
             "`[[event]]` with `at = \"25us\"` and `interrupt = \"OB 3\"`",
-        ),
+        )
+        .meant_by(&[
+            "at",
+            "set",
+            "interrupt",
+            "interrupts",
+            "inputs",
+            "stimuli",
+            "schedule",
+            "actions",
+            "steps",
+        ]),
         key(
             "expect",
             "a table `[expect]` of operands and their values",
             "`[expect]` with `\"Q 4.0\" = 1`",
-        ),
+        )
+        .meant_by(&[
+            "expectations",
+            "assert",
+            "asserts",
+            "result",
+            "results",
+            "outputs",
+            "verify",
+        ]),
         key(
             "watch",
             "a list of operands in quotes",
             "`watch = [\"Q 4.0\", \"FW 10\"]`",
-        ),
+        )
+        .meant_by(&["monitor", "observe", "show", "variables"]),
         key(
             "check",
             "`[[check]]` tables with `at` and operands",
             "`[[check]]` with `at = \"250ms\"` and `\"Q 4.0\" = 1`",
-        ),
+        )
+        .meant_by(&["checkpoint", "checkpoints"]),
         key(
             "modbus",
             "a table `[modbus]` of where the Modbus tables start",
             "`[modbus]` with `coils = \"I 0.0\"`",
-        ),
+        )
+        .meant_by(&["modbus_map", "registers"]),
     ],
 };
 
 const RUN: Table = Table {
     name: "`run`",
     keys: &[
-        key("for", DURATION, "`run = { for = \"100ms\" }`"),
+        key("for", DURATION, "`run = { for = \"100ms\" }`")
+            .meant_by(&["duration", "time", "length", "runtime"]),
         key(
             "cycles",
             "a whole number of cycles",
             "`run = { cycles = 20 }`",
-        ),
+        )
+        .meant_by(&["count", "scans", "loops"]),
     ],
 };
 
@@ -219,30 +305,34 @@ const INTERRUPT_INPUT: Table = Table {
 const EVENT: Table = Table {
     name: "[[event]]",
     keys: &[
-        key("at", DURATION, "`at = \"100ms\"`"),
-        key("every", DURATION, "`every = \"10ms\"`"),
-        key("count", "a whole number of times", "`count = 5`"),
-        key("until", DURATION, "`until = \"1s\"`"),
+        key("at", DURATION, "`at = \"100ms\"`").meant_by(&["time", "when", "t"]),
+        key("every", DURATION, "`every = \"10ms\"`").meant_by(&["repeat", "period", "interval"]),
+        key("count", "a whole number of times", "`count = 5`").meant_by(&["times"]),
+        key("until", DURATION, "`until = \"1s\"`").meant_by(&["end", "till", "to"]),
         key(
             "set",
             "a table of operands in quotes and their values",
             "`set = { \"I 0.0\" = 1 }`",
-        ),
+        )
+        .meant_by(&["inputs", "values", "write", "force"]),
         key(
             "interrupt",
             "an interrupt OB in quotes",
             "`interrupt = \"OB 3\"`",
-        ),
+        )
+        .meant_by(&["ob", "request"]),
         key(
             "hw_interrupt",
             "a table with `module`, `channel` and `active_for`",
             "`hw_interrupt = { module = 4, channel = 1, active_for = \"200us\" }`",
-        ),
+        )
+        .meant_by(&["hardware_interrupt", "hardware", "alarm"]),
         key(
             "station",
             "a table with `number` and `failed`",
             "`station = { number = 3, failed = true }`",
-        ),
+        )
+        .meant_by(&["dp_station", "slave"]),
     ],
 };
 
@@ -277,25 +367,31 @@ pub struct RawScenario {
     pub dialect: Option<Spanned<String>>,
     /// awlsim's test operations are accepted.
     pub extended: Option<bool>,
-    pub mode: Option<Spanned<String>>,
     pub interrupt_points: Option<Spanned<String>>,
     pub run: Option<Spanned<RawRun>>,
     pub watchdog: Option<Spanned<String>>,
-    pub ob13: Option<Spanned<RawOb13>>,
-    pub ob35: Option<Spanned<RawOb35>>,
-    pub hw_module: Vec<Spanned<RawHwModule>>,
+    pub cpu_keys: CpuKeys,
     /// `[[interrupt_input]]`: input bits whose edges raise interrupts.
     pub interrupt_input: Vec<Spanned<RawInterruptInput>>,
-    /// S7: the minimum cycle time.
-    pub min_cycle: Option<Spanned<String>>,
-    /// The S7 CPU's clock memory byte (`MB n`).
-    pub clock_memory: Option<Spanned<i64>>,
     pub event: Vec<Spanned<RawEvent>>,
     pub expect: SpannedTable,
     pub watch: Vec<Spanned<String>>,
     /// `[[check]]` tables: `at` and operands.
     pub check: Vec<Spanned<SpannedTable>>,
     pub modbus: RawModbus,
+}
+
+/// The keys that belong to some CPUs only, as written: checked once the run's CPU is known.
+#[derive(Debug, Default)]
+pub struct CpuKeys {
+    pub mode: Option<Spanned<String>>,
+    pub ob13: Option<Spanned<RawOb13>>,
+    pub ob35: Option<Spanned<RawOb35>>,
+    pub hw_module: Vec<Spanned<RawHwModule>>,
+    /// S7: the minimum cycle time.
+    pub min_cycle: Option<Spanned<String>>,
+    /// The S7 CPU's clock memory byte (`MB n`).
+    pub clock_memory: Option<Spanned<i64>>,
 }
 
 /// `[modbus]`: the operand each Modbus table starts at, as written.
@@ -412,9 +508,22 @@ impl Table {
         names.join(", ")
     }
 
+    /// The key `written` stands for: the closest in spelling, else the one whose meaning it
+    /// names (`runtime` → `run`).
+    fn meant(&self, written: &str) -> Option<&'static str> {
+        crate::suggest::did_you_mean(written, self.keys.iter().map(|key| key.name)).or_else(|| {
+            let word = written.trim().to_ascii_lowercase().replace(['-', ' '], "_");
+            self.keys
+                .iter()
+                .find(|key| key.meant_by.contains(&word.as_str()))
+                .map(|key| key.name)
+        })
+    }
+
     fn unknown_key(&self, key: &Spanned<DeString<'_>>) -> ScenarioError {
         let written = key.get_ref().as_ref();
-        let close = super::did_you_mean(written, self.keys.iter().map(|key| key.name))
+        let close = self
+            .meant(written)
             .map(|known| format!("did you mean `{known}`? "))
             .unwrap_or_default();
         let (label, help) = if self.name.is_empty() {
@@ -518,7 +627,7 @@ impl Entries<'_, '_> {
         let misspelt = self
             .entries
             .keys()
-            .any(|written| super::did_you_mean(written.get_ref(), std::iter::once(key)).is_some());
+            .any(|written| self.table.meant(written.get_ref()) == Some(key));
         if !self.entries.contains_key(key) && !misspelt {
             let known = self.table.key(key);
             errors.push(super::invalid(
@@ -704,17 +813,21 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             "cpu" => raw.cpu = SCENARIO.read(name, value, errors),
             "dialect" => raw.dialect = SCENARIO.read(name, value, errors),
             "extended" => raw.extended = SCENARIO.read(name, value, errors),
-            "mode" => raw.mode = SCENARIO.read(name, value, errors),
+            "mode" => raw.cpu_keys.mode = SCENARIO.read(name, value, errors),
             "interrupt_points" => raw.interrupt_points = SCENARIO.read(name, value, errors),
             "watchdog" => raw.watchdog = SCENARIO.read(name, value, errors),
-            "min_cycle" => raw.min_cycle = SCENARIO.read(name, value, errors),
-            "clock_memory" => raw.clock_memory = SCENARIO.read(name, value, errors),
+            "min_cycle" => raw.cpu_keys.min_cycle = SCENARIO.read(name, value, errors),
+            "clock_memory" => raw.cpu_keys.clock_memory = SCENARIO.read(name, value, errors),
             "expect" => raw.expect = SCENARIO.read(name, value, errors).unwrap_or_default(),
             "watch" => raw.watch = SCENARIO.read(name, value, errors).unwrap_or_default(),
             "run" => raw.run = run(value, errors).map(|run| Spanned::new(value.span(), run)),
-            "ob13" => raw.ob13 = ob13(value, errors).map(|ob13| Spanned::new(value.span(), ob13)),
-            "ob35" => raw.ob35 = ob35(value, errors).map(|ob35| Spanned::new(value.span(), ob35)),
-            "hw_module" => raw.hw_module = read_each(name, value, errors, hw_module),
+            "ob13" => {
+                raw.cpu_keys.ob13 = ob13(value, errors).map(|ob13| Spanned::new(value.span(), ob13))
+            }
+            "ob35" => {
+                raw.cpu_keys.ob35 = ob35(value, errors).map(|ob35| Spanned::new(value.span(), ob35))
+            }
+            "hw_module" => raw.cpu_keys.hw_module = read_each(name, value, errors, hw_module),
             "interrupt_input" => {
                 raw.interrupt_input = read_each(name, value, errors, interrupt_input)
             }
@@ -923,6 +1036,53 @@ mod tests {
     }
 
     #[test]
+    fn a_key_written_in_other_words_is_told_the_one_it_means() {
+        for (text, written, meant) in [
+            ("runtime = \"1s\"\n", "runtime", "run"),
+            ("duration = \"1s\"\n", "duration", "run"),
+            ("length = \"1s\"\n", "length", "run"),
+            ("time = \"1s\"\n", "time", "run"),
+            ("profile = \"speed7\"\n", "profile", "cpu"),
+            ("plc = \"speed7\"\n", "plc", "cpu"),
+            ("processor = \"speed7\"\n", "processor", "cpu"),
+            ("source = \"a.awl\"\n", "source", "program"),
+            ("files = [\"a.awl\"]\n", "files", "program"),
+            ("language = \"s7\"\n", "language", "dialect"),
+            ("cycle_time = \"100ms\"\n", "cycle_time", "watchdog"),
+            ("Scan-Time = \"100ms\"\n", "Scan-Time", "watchdog"),
+            ("[results]\n\"Q 4.0\" = 1\n", "results", "expect"),
+            ("monitor = [\"Q 4.0\"]\n", "monitor", "watch"),
+        ] {
+            let error = one_error(text);
+            assert!(
+                error.starts_with(&format!(
+                    "unknown key `{written}` | not a scenario key | did you mean `{meant}`? `awl help scenario` describes the keys"
+                )),
+                "{error}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_key_of_a_table_written_in_other_words_counts_as_given() {
+        let error = one_error("[[event]]\ntime = \"1ms\"\ninterrupt = \"OB 3\"\n");
+        assert!(
+            error.starts_with("unknown key `time` | not a key of [[event]] | did you mean `at`?"),
+            "{error}"
+        );
+        let error = one_error("run = { duration = \"1s\" }\n");
+        assert!(error.contains("did you mean `for`?"), "{error}");
+    }
+
+    #[test]
+    fn spelling_comes_before_meaning() {
+        let error = one_error("runn = { for = \"1s\" }\n");
+        assert!(error.contains("did you mean `run`?"), "{error}");
+        let error = one_error("events = []\n");
+        assert!(error.contains("did you mean `event`?"), "{error}");
+    }
+
+    #[test]
     fn a_top_level_typo_lists_the_keys_when_none_is_close() {
         let error = one_error("colour = \"red\"\n");
         assert!(
@@ -997,7 +1157,7 @@ mod tests {
         let (raw, errors) = parse(text);
         assert!(errors.is_empty(), "{errors:?}");
         assert_eq!(raw.event.len(), 2);
-        assert_eq!(raw.hw_module.len(), 1);
+        assert_eq!(raw.cpu_keys.hw_module.len(), 1);
         assert_eq!(raw.check.len(), 1);
         assert!(raw.run.is_some() && raw.watchdog.is_some());
     }

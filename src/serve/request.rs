@@ -98,6 +98,9 @@ pub struct CpuStatus {
     pub clock_ms: i64,
     /// The completed cycles.
     pub cycles: u64,
+    /// The server refuses writes and mode changes (`--read-only`): the CPU reports itself
+    /// protected.
+    pub read_only: bool,
 }
 
 /// A command to the CPU's operating mode.

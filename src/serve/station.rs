@@ -188,7 +188,7 @@ impl<'a> Station<'a> {
                 let _ = reply.send(results);
             }
             Request::Status { reply } => {
-                let _ = reply.send(status(cpu));
+                let _ = reply.send(status(cpu, self.read_only));
             }
             Request::Control {
                 client,
@@ -270,7 +270,7 @@ impl<'a> Station<'a> {
 }
 
 /// What the CPU reports of itself.
-pub fn status(cpu: &Cpu) -> CpuStatus {
+fn status(cpu: &Cpu, read_only: bool) -> CpuStatus {
     CpuStatus {
         mode: match cpu.mode {
             Mode::Run => CpuMode::Run,
@@ -281,5 +281,6 @@ pub fn status(cpu: &Cpu) -> CpuStatus {
         order_code: super::identity::order_code(cpu.profile),
         clock_ms: cpu.clock_ms() as i64,
         cycles: cpu.cycle,
+        read_only,
     }
 }

@@ -2,18 +2,18 @@
 
 use std::sync::Arc;
 
+use crate::dialect::Dialect;
 use crate::frontend;
-use crate::profile::{self, DEFAULT_PROFILE, DEFAULT_STEP7_PROFILE};
+use crate::profile;
 use crate::vm::Cpu;
 
-/// A STEP 7 program on the speed7, else a STEP 5 one on the default S5 CPU.
+/// A STEP 7 program, else a STEP 5 one, on its dialect's default CPU.
 pub fn cpu(source: &str, step7: bool) -> Cpu {
-    let name = if step7 {
-        DEFAULT_STEP7_PROFILE
+    let profile = profile::default_for(if step7 {
+        Dialect::Step7
     } else {
-        DEFAULT_PROFILE
-    };
-    let profile = profile::find(name).expect("the default profiles exist");
+        Dialect::Step5
+    });
     let built = frontend::build_text("test.awl", source, profile);
     assert!(!built.has_errors(), "{:?}", built.diagnostics);
     let program = Arc::new(built.compiled.program.clone());

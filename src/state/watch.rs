@@ -9,6 +9,7 @@ use crate::scenario::operand::Target;
 use crate::trace::Event;
 use crate::vm::Cpu;
 
+use crate::address::declared;
 use crate::address::notation as s7;
 use crate::dialect::Dialect;
 use crate::vm::counters::decode_count;
@@ -33,8 +34,12 @@ pub struct WatchTable {
 
 /// A value as the PG shows it: bits 0/1, timers `KT value.base`, counters `KZ`, bytes `KH`,
 /// words `KF`, double words `KH`; in a STEP 7 program as STEP 7 shows it: timers `S5T#…`,
-/// counters `C#…`, bytes `B#16#…`, words the INT, double words `L#…` or the REAL they hold.
+/// counters `C#…`, bytes `B#16#…`, words the INT, double words `L#…` or the REAL they hold,
+/// and a data block's declared value in its type, as `--state` shows it.
 pub fn natural(cpu: &Cpu, target: Target) -> String {
+    if let Some(text) = declared_value(cpu, target) {
+        return text;
+    }
     let step7 = cpu.program.s7.step7;
     match target {
         Target::TimerBit(n) => {
@@ -232,6 +237,24 @@ pub fn formatted(cpu: &Cpu, target: Target, format: Option<Format>) -> String {
         (Format::Kz, Some((raw, _))) => s7::count(dialect, decode_count(raw)),
         (Format::Char, Some((raw, bits))) => s7::characters(dialect, raw, bits),
     }
+}
+
+/// The value a STEP 7 data block operand reads, in the type its declaration gives it
+/// (`W#16#0200`, `T#1S500MS`, `TRUE`); `None` for an operand no declared value is.
+fn declared_value(cpu: &Cpu, target: Target) -> Option<String> {
+    let Target::S7Data {
+        db,
+        byte,
+        bit,
+        bytes,
+    } = target
+    else {
+        return None;
+    };
+    let tables = &cpu.program.s7.declared_dbs;
+    let (_, values) = tables.iter().find(|(number, _)| *number == db)?;
+    let value = declared::at(values, byte, bit, bytes)?;
+    Some(declared::text(value, cpu.s7_db(db)?))
 }
 
 /// A value as a number, for a counter track: timers and counters their value, words signed.

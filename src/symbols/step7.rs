@@ -509,7 +509,7 @@ mod tests {
     use super::*;
 
     fn read_text(text: &str) -> (Vec<Entry>, Vec<SymbolError>) {
-        let profile = crate::profile::find(crate::profile::DEFAULT_STEP7_PROFILE).unwrap();
+        let profile = crate::profile::default_for(crate::dialect::Dialect::Step7);
         let read = read(0, text, Format::detect(text), profile);
         (read.entries, read.errors)
     }

@@ -1,5 +1,5 @@
-//! Headless Chromium for the tests of pages: `.ci/run` installs Debian's `chromium`; where it
-//! is missing the tests say so and skip. A page that has done its work at load is read once
+//! Headless Chromium for the tests of pages: where it is missing they fail, saying how to install
+//! it (`.ci/run` installs Debian's `chromium`). A page that has done its work at load is read once
 //! (`--dump-dom`, `--screenshot`); one that works on in the background (the playground's worker)
 //! is driven through the DevTools protocol, in real time.
 
@@ -26,8 +26,8 @@ const QUIET: [&str; 9] = [
     "--enable-logging=stderr",
 ];
 
-/// The Chromium on this machine, if any.
-pub fn chromium() -> Option<PathBuf> {
+/// The Chromium on this machine; panics, saying how to install it, where there is none.
+pub fn chromium() -> PathBuf {
     ["chromium", "chromium-browser", "google-chrome"]
         .into_iter()
         .find_map(|name| {
@@ -35,6 +35,11 @@ pub fn chromium() -> Option<PathBuf> {
             let path = String::from_utf8_lossy(&found.stdout).trim().to_string();
             (found.status.success() && !path.is_empty()).then(|| PathBuf::from(path))
         })
+        .expect(
+            "no Chromium on this machine (the pages are tested in headless Chromium): install \
+             Chromium: `apt-get install chromium` (Debian, Ubuntu), or put `chromium`, \
+             `chromium-browser` or `google-chrome` on PATH",
+        )
 }
 
 /// Runs Chromium headless with its own profile directory; its stdout and log.

@@ -22,6 +22,7 @@ use crate::step7::bytecode::{
     FbCall, FcCall, McrCode, MemOp, ParamCopy, Place, READ_CLK, S7Code, SET_CLK, SfcCall, TIME_TCK,
     Target, WAIT,
 };
+use crate::suggest::one_edit_from;
 
 use super::layout::{Home, START_INFO_BYTES};
 use super::operand::{Scope, constant_value, not_an_operand};
@@ -277,10 +278,17 @@ impl super::Compiler<'_> {
         out.emit(Op::BlockEnd, end, &self.profile.timings);
         for (at, label, span) in std::mem::take(&mut out.fixups) {
             let Some(&target) = out.labels.get(&label.to_ascii_uppercase()) else {
+                let labels = statements.iter().filter_map(|s| s.label.as_ref());
+                let help = match one_edit_from(&label, labels.map(|l| l.text.as_str())) {
+                    Some(close) => format!("did you mean `{close}`?"),
+                    None => "labels are written `NAME:` before a statement of the same block"
+                        .to_string(),
+                };
                 self.errors.push(CheckError::UndefinedLabel {
                     name: label,
                     block: id.to_string(),
                     at: span,
+                    help,
                 });
                 continue;
             };
@@ -1446,9 +1454,7 @@ impl super::Compiler<'_> {
                             .map(|v| v.declaration.name.text.as_str())
                             .collect();
                         instances.sort_unstable();
-                        let close = instances
-                            .iter()
-                            .find(|known| super::operand::strsim_close(known, &name))
+                        let close = one_edit_from(&name, instances.iter().copied())
                             .map(|known| format!("did you mean `#{known}`?"))
                             .or_else(|| {
                                 (!instances.is_empty()).then(|| {

@@ -8,6 +8,7 @@ use crate::step7::ast::{
     VarKind,
 };
 use crate::step7::bytecode::{Place, Target};
+use crate::suggest::one_edit_from;
 use crate::symbols::SymbolError;
 
 use super::layout::{self, Home, Interface};
@@ -363,9 +364,7 @@ impl super::Compiler<'_> {
                 .values()
                 .map(|v| v.declaration.name.text.as_str())
                 .collect();
-            let close = known
-                .iter()
-                .find(|name| strsim_close(name, &first.text))
+            let close = one_edit_from(&first.text, known.iter().copied())
                 .map(|name| format!("did you mean `#{name}`?"));
             return Err(CheckError::UndeclaredLocal {
                 name: first.text.clone(),
@@ -378,16 +377,6 @@ impl super::Compiler<'_> {
             .map_err(|problem| not_an_operand(at, &problem))?;
         Ok((variable.clone(), ty, offset))
     }
-}
-
-/// Two names that differ in case or by one character.
-pub(super) fn strsim_close(a: &str, b: &str) -> bool {
-    let (a, b) = (a.to_ascii_uppercase(), b.to_ascii_uppercase());
-    if a.len().abs_diff(b.len()) > 1 {
-        return false;
-    }
-    let differences = a.chars().zip(b.chars()).filter(|(x, y)| x != y).count();
-    differences + a.len().abs_diff(b.len()) <= 1
 }
 
 pub fn not_an_operand(at: Span, what: &str) -> CheckError {

@@ -397,7 +397,7 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
                         let status = self.status().await?;
                         let id = u16::from_be_bytes([id_high, id_low]);
                         let index = u16::from_be_bytes([index_high, index_low]);
-                        szl::partial_list(id, index, &status)
+                        szl::partial_list(id, index, &status, self.communication())
                     }
                     _ => None,
                 };
@@ -416,6 +416,15 @@ impl<S: AsyncRead + AsyncWrite + Unpin> Connection<S> {
             }
             // Setting the clock among them: the CPU's clock is the simulation's.
             _ => Ok(encode::userdata(&answer)),
+        }
+    }
+
+    /// What SZL 0x0131 reports of the server: the longest PDU a client may negotiate and the
+    /// connections served at once.
+    fn communication(&self) -> szl::Communication {
+        szl::Communication {
+            largest_pdu: LARGEST_PDU,
+            max_connections: u16::try_from(self.settings.max_connections).unwrap_or(u16::MAX),
         }
     }
 
