@@ -1,7 +1,7 @@
 //! `awl serve` for the tests that talk to it: started in the repository on ports the system
 //! picks, its standard output read line by line as it comes, ended when dropped.
 
-use std::io::{BufRead, BufReader, Read};
+use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc::{Receiver, channel};
 use std::time::{Duration, Instant};
@@ -35,16 +35,15 @@ impl Serving {
                 }
             }
         });
-        let mut serving = Serving {
-            child,
-            stdout: lines,
-        };
         let mut ports = vec![0; announcements.len()];
         let deadline = Instant::now() + Duration::from_secs(60);
         while ports.contains(&0) {
             let left = deadline.saturating_duration_since(Instant::now());
-            let Ok(line) = serving.stdout.recv_timeout(left) else {
-                panic!("awl serve printed no listening lines: {}", serving.stderr());
+            let Ok(line) = lines.recv_timeout(left) else {
+                let _ = child.kill();
+                let ended = child.wait_with_output().expect("awl ends");
+                let stderr = String::from_utf8_lossy(&ended.stderr);
+                panic!("awl serve printed no listening lines: {stderr}");
             };
             for (port, announcement) in ports.iter_mut().zip(announcements) {
                 if let Some(address) = line.strip_prefix(announcement) {
@@ -52,19 +51,11 @@ impl Serving {
                 }
             }
         }
+        let serving = Serving {
+            child,
+            stdout: lines,
+        };
         (serving, ports)
-    }
-
-    /// Ends the serve at once; what it wrote to standard error.
-    fn stderr(&mut self) -> String {
-        let _ = self.child.kill();
-        let mut stderr = String::new();
-        let _ = self
-            .child
-            .stderr
-            .take()
-            .map(|mut err| err.read_to_string(&mut stderr));
-        stderr
     }
 }
 
