@@ -413,6 +413,11 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
 
     assert_status_shows_the_rlo(&mut online, "DB1.DBW 2");
     assert!(online.text("#status thead").contains("RLO"));
+    // The pump does not start, so the count of its starts is skipped: those lines are marked.
+    online.wait_for(
+        "Array.from(document.querySelectorAll('#status tr.not-executed'))
+            .some((row) => row.textContent.includes('DB1.DBW 4'))",
+    );
     assert_timeline_draws(&mut online);
     timeline_holds_still_under_the_mouse(&mut online);
     assert_no_problems(&online, None);
