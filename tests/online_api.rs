@@ -297,7 +297,8 @@ fn a_bad_operand_value_or_format_gets_the_words_the_command_line_uses() {
 
     let (status, refused) = online.get("/api/values?operands=MW%2010&formats=REAL");
     assert_eq!(status, 400);
-    assert_eq!(refused["code"], "awl::online::format_misfit");
+    assert_eq!(refused["error"], "`MW 10` cannot be shown as REAL");
+    assert_eq!(refused["code"], "awl::cli::watch_format");
     let (status, refused) = online.get("/api/values?operands=MW%2010&formats=OCT");
     assert_eq!(
         (status, &refused["code"]),

@@ -26,6 +26,7 @@ pub struct WatchRow {
 pub struct WatchTable {
     names: Vec<String>,
     targets: Vec<Target>,
+    formats: Vec<Option<Format>>,
     every_ns: Option<u64>,
     next_sample_ns: u64,
     last: Option<Vec<String>>,
@@ -271,14 +272,19 @@ fn number(cpu: &Cpu, target: Target) -> i64 {
 }
 
 impl WatchTable {
-    pub fn new(watched: Vec<(String, Target)>, every_ns: Option<u64>) -> Self {
-        let (names, targets) = watched.into_iter().unzip();
-        WatchTable {
-            names,
-            targets,
+    /// The table of `watched` operands by their column names, each with its display format
+    /// (`None`: the dialect's own notation).
+    pub fn new(watched: Vec<(String, Target, Option<Format>)>, every_ns: Option<u64>) -> Self {
+        let mut table = WatchTable {
             every_ns,
             ..WatchTable::default()
+        };
+        for (name, target, format) in watched {
+            table.names.push(name);
+            table.targets.push(target);
+            table.formats.push(format);
         }
+        table
     }
 
     pub fn is_empty(&self) -> bool {
@@ -291,7 +297,12 @@ impl WatchTable {
         if self.is_empty() {
             return;
         }
-        let values: Vec<String> = self.targets.iter().map(|t| natural(cpu, *t)).collect();
+        let values: Vec<String> = self
+            .targets
+            .iter()
+            .zip(&self.formats)
+            .map(|(target, format)| formatted(cpu, *target, *format))
+            .collect();
         let due = match self.every_ns {
             Some(every) => {
                 let due = cpu.clock >= self.next_sample_ns;
@@ -358,5 +369,45 @@ impl WatchTable {
     }
 }
 
+/// The rows of a watch table file (the online page's Save and Load, `awl run --watch-file`):
+/// one row a line, `OPERAND [FORMAT]` (`MW 10 HEX`, `DB 5 DW 3`, `"Motor"`), `//` starting a
+/// comment, blank lines ignored. A last word that names a format is the row's format.
+pub fn table_rows(text: &str) -> Vec<(String, Option<Format>)> {
+    text.lines()
+        .map(|line| line.split("//").next().unwrap_or("").trim())
+        .filter(|line| !line.is_empty())
+        .map(|line| {
+            let format = line
+                .rsplit_once(char::is_whitespace)
+                .and_then(|(operand, last)| Some((operand.trim_end(), Format::parse(last)?)));
+            match format {
+                Some((operand, format)) => (operand.to_string(), Some(format)),
+                None => (line.to_string(), None),
+            }
+        })
+        .collect()
+}
+
 /// The values of a watch event, by operand.
 pub type WatchValues = BTreeMap<String, String>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_watch_table_file_has_an_operand_and_a_format_a_line() {
+        let text = "// the tank\nMW 10 HEX\n\n  DB 5 DW 3  // a data word\nQ 4.0 bool\n\"Motor\"\nT 1 KT\n";
+        assert_eq!(
+            table_rows(text),
+            [
+                ("MW 10".to_string(), Some(Format::Hex)),
+                ("DB 5 DW 3".to_string(), None),
+                ("Q 4.0".to_string(), Some(Format::Bool)),
+                ("\"Motor\"".to_string(), None),
+                ("T 1".to_string(), Some(Format::S5Time)),
+            ]
+        );
+        assert!(table_rows("\n// nothing\n").is_empty());
+    }
+}

@@ -50,14 +50,6 @@ pub enum OnlineError {
     )]
     UnknownFormat { format: String },
 
-    #[error("`{operand}` cannot be shown as {format}")]
-    #[diagnostic(code(awl::online::format_misfit), help("{why}"))]
-    FormatMisfit {
-        operand: String,
-        format: &'static str,
-        why: &'static str,
-    },
-
     #[error("`{mode}` is no mode to change to")]
     #[diagnostic(
         code(awl::online::mode),
@@ -205,7 +197,6 @@ impl OnlineError {
             OnlineError::BadJson { .. }
             | OnlineError::Missing { .. }
             | OnlineError::UnknownFormat { .. }
-            | OnlineError::FormatMisfit { .. }
             | OnlineError::UnknownMode { .. }
             | OnlineError::Value { .. }
             | OnlineError::NotForceable { .. }

@@ -133,7 +133,12 @@ impl Online {
 
     /// An operand as the command line takes it.
     fn target(&self, cpu: &Cpu, operand: &str) -> Result<Target, Refusal> {
-        runner::watch_target(operand, self.mnemonics, &cpu.program)
+        self.row(cpu, operand, None)
+    }
+
+    /// A watch row's operand, which fits its format, as `--watch-file` takes it.
+    fn row(&self, cpu: &Cpu, operand: &str, format: Option<Format>) -> Result<Target, Refusal> {
+        runner::watch_row(operand, format, self.mnemonics, &cpu.program)
             .map_err(|error| Refusal::of(Refused::BadRequest, &error))
     }
 
@@ -145,16 +150,7 @@ impl Online {
         watched
             .iter()
             .map(|(operand, format)| {
-                let target = self.target(cpu, operand)?;
-                if let Some(why) = format.and_then(|format| format.misfit(target)) {
-                    let format = format.map_or("", |format| format.name(cpu.program.s7.step7));
-                    return Err(OnlineError::FormatMisfit {
-                        operand: operand.clone(),
-                        format,
-                        why,
-                    }
-                    .refusal());
-                }
+                let target = self.row(cpu, operand, *format)?;
                 Ok(value(cpu, operand, target, *format))
             })
             .collect()
