@@ -453,6 +453,7 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
     assert!(saved.starts_with("// "), "{saved}");
     assert!(saved.contains("\nMW 20 HEX\n"), "{saved}");
     assert!(saved.contains("\nDB1.DBD 6\n"), "{saved}");
+    the_command_line_reads(saved, &dir);
     load(
         &mut online,
         "// the pump and the restarts\nMW 20 DEC\n\nQ 0.0 // the pump\n",
@@ -466,6 +467,33 @@ fn a_step7_tank_is_watched_modified_forced_and_restarted_from_the_page() {
     drop(online);
     drop(devtools);
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// `awl run --watch-file` reads a table the page saved: a column for each row, in its format.
+fn the_command_line_reads(saved: &str, dir: &Path) {
+    let file = dir.join("saved.watch");
+    std::fs::write(&file, saved).expect("the table is written");
+    let ran = std::process::Command::new(env!("CARGO_BIN_EXE_awl"))
+        .args([
+            "run",
+            "programs/s7/tank_hmi.awl",
+            "--cycles",
+            "2",
+            "--watch-file",
+        ])
+        .arg(&file)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("awl runs");
+    let stdout = String::from_utf8_lossy(&ran.stdout);
+    assert!(
+        ran.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&ran.stderr)
+    );
+    let header = stdout.lines().next().unwrap_or_default();
+    assert!(header.contains("MW 20 HEX"), "{stdout}");
+    assert!(header.contains("DB1.DBD 6"), "{stdout}");
 }
 
 /// Loads `table` as a person does, through the file field.
