@@ -5,8 +5,10 @@
 use std::process::Command;
 
 /// The crates (name and version) of awl's default build on this host, as of the last
-/// measurement in the README ("How long a build takes").
-const BUDGET: usize = 156;
+/// measurement in the README ("How long a build takes"), and the 37 of the online page's server
+/// (`awl serve --http`: axum with HTTP/1 and WebSocket only, hyper, and the WebSocket's
+/// handshake hashing and masking).
+const BUDGET: usize = 193;
 
 /// `cargo tree`'s list of the crates the default build compiles for this host: the normal and
 /// build dependencies, no dev-dependencies.

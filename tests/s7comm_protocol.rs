@@ -83,6 +83,9 @@ impl Memory {
                 let _ = reply.send(self.control(command));
             }
             Request::Connection { client, open } => self.connections.push((client.number, open)),
+            Request::Online { ask, .. } => {
+                panic!("the S7 server asked what the page asks: {ask:?}")
+            }
         }
     }
 }

@@ -93,9 +93,15 @@ fn lines(stdout: ChildStdout) -> mpsc::Receiver<String> {
 impl Served {
     /// Runs a client script of tests/clients with the two ports; it must succeed.
     fn client(&self, python: &Path, script: &str) {
+        self.client_with(python, script, &[]);
+    }
+
+    /// [`Served::client`] with more arguments after the ports.
+    fn client_with(&self, python: &Path, script: &str, more: &[String]) {
         let output = common::python::command(python)
             .arg(repo("tests/clients").join(script))
             .args([self.s7.to_string(), self.modbus.to_string()])
+            .args(more)
             .output()
             .expect("python runs");
         assert!(
@@ -155,6 +161,23 @@ fn an_s5_program_on_an_s5_115u_is_read_written_stopped_and_restarted() {
     let python = python();
     let served = serve(&["programs/tank_hmi_115u.awl", "--cpu", "s5-115u-944"]);
     served.client(&python, "serve_s5.py");
+    let (code, _, stderr) = served.terminate();
+    assert_eq!(code, Some(0), "{stderr}");
+}
+
+#[test]
+fn a_forced_input_beats_a_client_s_write_and_a_forced_output_is_what_it_reads() {
+    let python = python();
+    let served = serve(&["programs/s7/tank_hmi.awl", "--http", "127.0.0.1:0"]);
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let http = loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        let line = served.stdout.recv_timeout(left).expect("the online line");
+        if let Some(address) = line.strip_prefix("Online page at http://127.0.0.1:") {
+            break address.trim_end_matches('/').to_string();
+        }
+    };
+    served.client_with(&python, "online_force.py", &[http]);
     let (code, _, stderr) = served.terminate();
     assert_eq!(code, Some(0), "{stderr}");
 }

@@ -105,9 +105,125 @@ pub fn status_word(stw: u16) -> String {
     format!("W#16#{stw:04X}  {}", bits.join("  "))
 }
 
+/// A watch row's value in BIN: the `bits` lowest bits of `value` in groups of four, STEP 7's
+/// `2#0000_0000_0010_1010`, STEP 5's `KM 0000 0000 0010 1010`; a bit alone `2#1`, `1`.
+pub fn binary(dialect: Dialect, value: u32, bits: u32) -> String {
+    let digits = format!("{value:0width$b}", width = bits as usize);
+    let groups: Vec<&str> = digits
+        .as_bytes()
+        .rchunks(4)
+        .rev()
+        .map(|group| std::str::from_utf8(group).unwrap_or_default())
+        .collect();
+    match dialect {
+        Dialect::Step7 => format!("2#{}", groups.join("_")),
+        Dialect::Step5 if bits == 1 => digits,
+        Dialect::Step5 => format!("KM {}", groups.join(" ")),
+    }
+}
+
+/// A byte, word or double word in HEX: `B#16#2A`, `W#16#002A`, `DW#16#0000002A`; STEP 5's
+/// `KH 2A`, `KH 002A`, `DH 0000002A`.
+pub fn hex(dialect: Dialect, value: u32, bits: u32) -> String {
+    match (dialect, bits) {
+        (Dialect::Step7, ..=8) => byte(value as u8),
+        (Dialect::Step7, ..=16) => format!("W#16#{value:04X}"),
+        (Dialect::Step7, _) => format!("DW#16#{value:08X}"),
+        (Dialect::Step5, ..=8) => format!("KH {value:02X}"),
+        (Dialect::Step5, ..=16) => format!("KH {value:04X}"),
+        (Dialect::Step5, _) => format!("DH {value:08X}"),
+    }
+}
+
+/// A byte, word or double word in DEC: a byte unsigned, a word an INT, a double word a DINT
+/// (`42`, `-1`, `L#70000`); STEP 5's `KF +42`, and a double word `+70000`.
+pub fn decimal(dialect: Dialect, value: u32, bits: u32) -> String {
+    match (dialect, bits) {
+        (Dialect::Step7, ..=8) => value.to_string(),
+        (Dialect::Step7, ..=16) => (value as u16 as i16).to_string(),
+        (Dialect::Step7, _) => format!("L#{}", value as i32),
+        (Dialect::Step5, ..=8) => format!("KF {value:+}"),
+        (Dialect::Step5, ..=16) => format!("KF {:+}", value as u16 as i16),
+        (Dialect::Step5, _) => format!("{:+}", value as i32),
+    }
+}
+
+/// A double word as a REAL: STEP 7's IEEE 754 `1.5`, STEP 5's own floating-point format as
+/// the PG writes a `KG` constant, `KG +1500000+01`.
+pub fn real(dialect: Dialect, value: u32) -> String {
+    match dialect {
+        Dialect::Step7 => format!("{:?}", f32::from_bits(value)),
+        Dialect::Step5 => {
+            let number = crate::s5_float::decode(value);
+            let decimal = number.abs().to_string();
+            let (integer, fraction) = decimal.split_once('.').unwrap_or((&decimal, ""));
+            let form = crate::parser::pg_float_form(number < 0.0, integer, fraction);
+            format!("KG {form}")
+        }
+    }
+}
+
+/// A time word (a timer's, or a word holding a time value and base): `S5T#2S500MS`,
+/// STEP 5's `KT 250.1`.
+pub fn time_word(dialect: Dialect, word: u32) -> String {
+    let (value, base) = crate::vm::timers::decode_time(word);
+    match dialect {
+        Dialect::Step7 => s5time(value, base),
+        Dialect::Step5 => format!("KT {value:03}.{base}"),
+    }
+}
+
+/// A count: `C#42`, STEP 5's `KZ 042`.
+pub fn count(dialect: Dialect, count: u16) -> String {
+    match dialect {
+        Dialect::Step7 => format!("C#{count}"),
+        Dialect::Step5 => format!("KZ {count:03}"),
+    }
+}
+
+/// The bytes of a value as characters, high byte first: `'AB'`, STEP 5's `KC AB`; a byte that
+/// is no printable ASCII character is written `$hh`, as STEP 7 escapes it in a string.
+pub fn characters(dialect: Dialect, value: u32, bits: u32) -> String {
+    let bytes = (bits / 8).max(1) as usize;
+    let text: String = value.to_be_bytes()[4 - bytes..]
+        .iter()
+        .map(|&byte| match byte {
+            b' '..=b'~' if byte != b'$' && byte != b'\'' => char::from(byte).to_string(),
+            _ => format!("${byte:02X}"),
+        })
+        .collect();
+    match dialect {
+        Dialect::Step7 => format!("'{text}'"),
+        Dialect::Step5 => format!("KC {text}"),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn watch_formats_write_each_dialect_s_notation() {
+        let (s5, s7) = (Dialect::Step5, Dialect::Step7);
+        assert_eq!(binary(s7, 42, 16), "2#0000_0000_0010_1010");
+        assert_eq!(binary(s5, 42, 8), "KM 0010 1010");
+        assert_eq!(binary(s5, 1, 1), "1");
+        assert_eq!(hex(s7, 42, 16), "W#16#002A");
+        assert_eq!(hex(s5, 42, 32), "DH 0000002A");
+        assert_eq!(decimal(s7, 0xFFFF, 16), "-1");
+        assert_eq!(decimal(s7, 70000, 32), "L#70000");
+        assert_eq!(decimal(s5, 42, 16), "KF +42");
+        assert_eq!(real(s7, 1.5f32.to_bits()), "1.5");
+        assert_eq!(
+            real(s5, crate::s5_float::encode_nearest(15.0).0),
+            "KG +1500000+02"
+        );
+        assert_eq!(time_word(s7, 0x1250), "S5T#25S");
+        assert_eq!(time_word(s5, 0x1250), "KT 250.1");
+        assert_eq!(count(s5, 42), "KZ 042");
+        assert_eq!(characters(s7, 0x4142, 16), "'AB'");
+        assert_eq!(characters(s5, 0x4100, 16), "KC A$00");
+    }
 
     #[test]
     fn reals_are_shown_where_they_are_plausible() {

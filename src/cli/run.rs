@@ -202,6 +202,10 @@ pub struct RunArgs {
     /// at a cycle end [default: the scenario's `watch`, else none]
     #[arg(long, value_name = "OPERANDS")]
     pub watch: Option<String>,
+    /// Watch the operands of a watch table file (the online page's Save): one a line, a
+    /// display format after it if wanted (`MW 10 HEX`), `//` comments [default: none]
+    #[arg(long, value_name = "FILE")]
+    pub watch_file: Option<PathBuf>,
     /// A watch row every DURATION of simulated time (at the next cycle end) instead of on change
     /// [default: a row on each change]
     #[arg(long, value_name = "DURATION", value_parser = parse_duration_arg)]
@@ -276,6 +280,7 @@ fn run_options(args: &RunArgs) -> RunOptions {
             .iter()
             .flat_map(|list| crate::address::operand::list(list))
             .collect(),
+        watch_file: args.watch_file.clone(),
         watch_every_ns: args.watch_every,
         limit: args.length.limit(),
         ..program_options(&args.program)

@@ -20,12 +20,16 @@ use super::{Console, EXIT_OK, EXIT_STOP, watch};
 const S7_DEFAULT: &str = "127.0.0.1:102";
 /// Where the Modbus TCP server listens without an address.
 const MODBUS_DEFAULT: &str = "127.0.0.1:502";
+/// Where the online page is served without an address: the loopback, on a port no other
+/// common service claims.
+const HTTP_DEFAULT: &str = "127.0.0.1:8102";
 
 #[derive(Debug, clap::Args)]
 #[command(
-    after_long_help = "Without --s7 and --modbus both servers start, on 127.0.0.1:102 \
-and 127.0.0.1:502; with one of them, only that one. `awl help serve` describes the area maps, \
-what a client's write does, and how HMIs, Node-RED and plant simulations connect.",
+    after_long_help = "Without --s7, --modbus and --http the S7 and Modbus servers start, on \
+127.0.0.1:102 and 127.0.0.1:502; with any of them, only those named. `awl help serve` \
+describes the area maps, what a client's write does, and how HMIs, Node-RED and plant \
+simulations connect; `awl help online` the online page and its JSON API.",
     mut_arg("cycles", |arg| arg.help("Serve this many cycles (at least 1), then end \
 [default: the scenario's run, else until stopped]")),
     mut_arg("duration", |arg| arg.help("Serve for this much simulated time, e.g. 10s (ends at \
@@ -46,6 +50,10 @@ pub struct ServeArgs {
     /// Serve Modbus TCP on HOST:PORT; port 0 picks a free one [default: 127.0.0.1:502]
     #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = MODBUS_DEFAULT, value_parser = parse_address)]
     pub modbus: Option<SocketAddr>,
+    /// Serve the online page (watch, modify, force, program status, the live timeline) and its
+    /// JSON API on HOST:PORT; port 0 picks a free one [default: 127.0.0.1:8102]
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = HTTP_DEFAULT, value_parser = parse_address)]
+    pub http: Option<SocketAddr>,
     /// Refuse every write and every STOP or start request [default: off]
     #[arg(long)]
     pub read_only: bool,
@@ -96,7 +104,7 @@ fn parse_address(text: &str) -> Result<SocketAddr, String> {
 }
 
 fn options(args: &ServeArgs) -> ServeOptions {
-    let both = args.s7.is_none() && args.modbus.is_none();
+    let both = args.s7.is_none() && args.modbus.is_none() && args.http.is_none();
     let default = |text: &str| text.parse().ok();
     let mut run = program_options(&args.program);
     run.limit = args.length.limit();
@@ -110,6 +118,7 @@ fn options(args: &ServeArgs) -> ServeOptions {
         modbus: args
             .modbus
             .or(if both { default(MODBUS_DEFAULT) } else { None }),
+        http: args.http,
         read_only: args.read_only,
         max_connections: usize::from(args.max_connections),
     }
@@ -143,6 +152,9 @@ fn announce(listening: &Listening, out: &mut dyn std::io::Write) {
     }
     if let Some(address) = listening.modbus {
         let _ = writeln!(out, "Modbus TCP server listening on {address}");
+    }
+    if let Some(address) = listening.http {
+        let _ = writeln!(out, "Online page at http://{address}/");
     }
     let _ = out.flush();
 }

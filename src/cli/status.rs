@@ -2,10 +2,8 @@
 
 use miette::Report;
 
-use crate::ast::BlockId;
-use crate::mnemonics::BlockKind;
-use crate::program_status::{self, Recorder, StatusError, Window};
-use crate::runner::{self, Prepared, Ran, RunOptions};
+use crate::program_status::{self, BlockRef, Recorder, StatusError, Window};
+use crate::runner::{self, Ran, RunOptions};
 use crate::vm::cycle::RunLimit;
 
 use super::run::{ProgramArgs, RunLength, not_run, program_options, watched};
@@ -22,7 +20,7 @@ pub struct StatusArgs {
     #[command(flatten)]
     pub length: RunLength,
     /// The block to show, e.g. "PB 3", or its symbol, e.g. -FILL or '"Valve"' (STEP 7)
-    #[arg(long, value_parser = parse_block, allow_hyphen_values = true)]
+    #[arg(long, value_parser = BlockRef::parse, allow_hyphen_values = true)]
     pub block: BlockRef,
     /// Its first invocation in this cycle [default: its first in the run]
     #[arg(long, conflicts_with = "at", value_parser = clap::value_parser!(u64).range(1..))]
@@ -33,76 +31,9 @@ pub struct StatusArgs {
     pub at: Option<u64>,
 }
 
-/// A block as `--block` names it: absolute, or by its symbol as a program writes it
-/// (`-FILL`, `"Valve"`).
-#[derive(Debug, Clone)]
-pub enum BlockRef {
-    Id(BlockId),
-    Symbol(String),
-}
-
-fn parse_block(text: &str) -> Result<BlockRef, String> {
-    let text = text.trim();
-    if crate::symbols::symbol_written(text).is_some() {
-        return Ok(BlockRef::Symbol(text.to_string()));
-    }
-    BlockId::parse(text).map(BlockRef::Id).ok_or_else(|| {
-        format!("`{text}` is not a block; write e.g. \"PB 3\", -FILL or '\"Valve\"'")
-    })
-}
-
-/// The block a `--block` names; a symbol that names no block is reported as unknown, with
-/// the block names close to it.
-fn block_id(prepared: &Prepared, block: &BlockRef) -> Result<BlockId, StatusError> {
-    let written = match block {
-        BlockRef::Id(id) => return Ok(*id),
-        BlockRef::Symbol(written) => written,
-    };
-    let program = &prepared.cpu.program;
-    program
-        .symbols
-        .block_of(written)
-        .ok_or_else(|| StatusError::UnknownBlock {
-            block: written.clone(),
-            hint: program
-                .symbols
-                .suggest_block(written)
-                .map(|hint| format!("{hint} "))
-                .unwrap_or_default(),
-            known: program
-                .blocks
-                .iter()
-                .map(|block| program.symbols.decorate(&block.id.to_string()))
-                .collect::<Vec<_>>()
-                .join(", "),
-        })
-}
-
 fn parse_time(text: &str) -> Result<u64, String> {
     crate::scenario::parse_duration(text)
         .ok_or_else(|| format!("`{text}` is not a time; write e.g. 250ms, 2s, 500us"))
-}
-
-/// The block's index, or why it cannot be shown.
-fn logic_block(prepared: &Prepared, id: BlockId) -> Result<u16, StatusError> {
-    if matches!(id.kind, BlockKind::Db | BlockKind::Dx) {
-        return Err(StatusError::DataBlock {
-            block: id.to_string(),
-        });
-    }
-    let program = &prepared.cpu.program;
-    program
-        .block_index(id)
-        .ok_or_else(|| StatusError::UnknownBlock {
-            block: id.to_string(),
-            hint: String::new(),
-            known: program
-                .blocks
-                .iter()
-                .map(|block| block.id.to_string())
-                .collect::<Vec<_>>()
-                .join(", "),
-        })
 }
 
 /// Why the block was not shown: the window lies past the run's end, or the block was not
@@ -123,10 +54,7 @@ fn did_not_run(args: &StatusArgs, window: Window, ran: &Ran, halted: bool) -> St
         };
     }
     StatusError::DidNotRun {
-        block: match &args.block {
-            BlockRef::Id(id) => id.to_string(),
-            BlockRef::Symbol(written) => written.clone(),
-        },
+        block: args.block.written(),
         window: window.describe(),
         ended: format!("{ended} after {}", super::plural(cycles, "cycle")),
     }
@@ -141,8 +69,7 @@ pub fn status(args: &StatusArgs, console: &mut Console) -> u8 {
         Ok(prepared) => prepared,
         Err(reason) => return not_run("status", reason, console),
     };
-    let id = block_id(&prepared, &args.block);
-    let index = match id.and_then(|id| logic_block(&prepared, id)) {
+    let index = match program_status::block::find(&prepared.cpu.program, &args.block) {
         Ok(index) => index,
         Err(error) => {
             console.report(&Report::new(error));

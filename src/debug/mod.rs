@@ -7,7 +7,7 @@ pub mod command;
 pub mod input;
 mod show;
 
-pub use show::force;
+pub use show::{force, write};
 
 use std::cell::RefCell;
 use std::io::Write;

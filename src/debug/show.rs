@@ -139,13 +139,29 @@ fn force_image(
     }
 }
 
+/// A timer cannot be written: it runs as the program starts it.
+fn not_a_timer(target: Target) -> Result<(), String> {
+    match target {
+        Target::TimerBit(_) => {
+            Err("a timer runs as the program starts it; force its start condition".into())
+        }
+        _ => Ok(()),
+    }
+}
+
 /// `set OPERAND VALUE`: what it wrote, or why it cannot.
 pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Result<String, String> {
     let target = target(cpu, operand, set).map_err(|reason| format!("`{operand}`: {reason}"))?;
-    let raw = || {
-        raw_value(target, value)
-            .map_err(|allowed| format!("`{operand}` takes {allowed}, not {value}"))
-    };
+    not_a_timer(target)?;
+    let raw = raw_value(target, value)
+        .map_err(|allowed| format!("`{operand}` takes {allowed}, not {value}"))?;
+    write(cpu, target, raw, operand)?;
+    Ok(format!("{operand} = {}\n", natural(cpu, target)))
+}
+
+/// Writes `raw` into `target` (named `operand`) once, as a PG's "modify variable": an input into
+/// the PII and its modules, so it holds at the next PII read; or why it cannot.
+pub fn write(cpu: &mut Cpu, target: Target, raw: u32, operand: &str) -> Result<(), String> {
     let image = |byte, bit, bytes, value| InputChange {
         target: InputTarget::Process,
         byte,
@@ -155,25 +171,22 @@ pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Resu
     };
     match target {
         Target::ImageBit { byte, bit } => {
-            force_image(cpu, target, image(byte, bit, 0, raw()?), operand)?;
+            force_image(cpu, target, image(byte, bit, 0, raw), operand)
         }
         Target::Image { byte, bytes } => {
-            force_image(cpu, target, image(byte, 0, bytes, raw()?), operand)?;
+            force_image(cpu, target, image(byte, 0, bytes, raw), operand)
         }
-        Target::Periphery { .. } => {
-            if let Some(change) = input_change(target, &cpu.program, raw()?) {
-                write_modules(cpu, change, operand)?;
-            }
-        }
-        Target::TimerBit(_) => {
-            return Err("a timer runs as the program starts it; force its start condition".into());
-        }
+        Target::Periphery { .. } => match input_change(target, &cpu.program, raw) {
+            Some(change) => write_modules(cpu, change, operand),
+            None => Ok(()),
+        },
+        Target::TimerBit(_) => not_a_timer(target),
         Target::CounterValue(n) => {
-            let raw = raw()?;
             if raw > 999 {
                 return Err(format!("a counter holds 0…999, not {raw}"));
             }
             cpu.counters[usize::from(n)].value = raw as u16;
+            Ok(())
         }
         Target::DataWord { db, word } => {
             let slot = cpu.data_blocks[usize::from(db)]
@@ -181,10 +194,10 @@ pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Resu
                 .ok_or_else(|| format!("DB {db} is not loaded"))?
                 .get_mut(usize::from(word))
                 .ok_or_else(|| format!("DB {db} has no DW {word}"))?;
-            *slot = raw()? as u16;
+            *slot = raw as u16;
+            Ok(())
         }
         Target::DataDouble { db, word } => {
-            let raw = raw()?;
             let at = usize::from(word);
             let slots = cpu.data_blocks[usize::from(db)]
                 .as_mut()
@@ -192,8 +205,8 @@ pub fn force(cpu: &mut Cpu, operand: &str, value: i64, set: MnemonicSet) -> Resu
                 .get_mut(at..at + 2)
                 .ok_or_else(|| format!("DB {db} has no DD {word}"))?;
             slots.copy_from_slice(&[(raw >> 16) as u16, raw as u16]);
+            Ok(())
         }
-        Target::S7Data { .. } => write_s7_data(cpu, target, raw()?)?,
+        Target::S7Data { .. } => write_s7_data(cpu, target, raw),
     }
-    Ok(format!("{operand} = {}\n", natural(cpu, target)))
 }

@@ -10,6 +10,7 @@ mod spellings;
 mod step7_word;
 pub mod tokens;
 
+pub use constant::pg_float_form;
 pub use error::ParseError;
 pub use step7_word::explain_step7_word;
 

@@ -2,6 +2,7 @@
 //! operation — RLO, STA, ACCU 1, ACCU 2 and the operand after each — by a [`Probe`] on the
 //! stepping loop. A loop body keeps its last pass and a count.
 
+pub mod block;
 mod operand;
 mod text;
 
@@ -12,7 +13,8 @@ use crate::compiler::Op;
 use crate::vm::Cpu;
 use crate::vm::probe::{Flow, Probe};
 
-pub use text::render;
+pub use block::BlockRef;
+pub use text::{accu, render, statements};
 
 /// Which invocation to record.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -80,10 +82,15 @@ pub struct Recording {
     pub step7: bool,
 }
 
-/// The probe that records one invocation of `block`, then halts the run.
+/// The probe that records one invocation of `block`, then halts the run (or, going on, leaves
+/// the CPU).
 pub struct Recorder {
     block: u16,
     window: Window,
+    /// Only an invocation on the level of this OB (its block index).
+    level: Option<u16>,
+    /// The run goes on after the invocation; the probe leaves.
+    going_on: bool,
     recording: Rc<RefCell<Recording>>,
     /// The last op of the block ran was a jump back to its first op (no new invocation).
     jumped_to_start: bool,
@@ -102,12 +109,32 @@ impl Recorder {
         let recorder = Recorder {
             block,
             window,
+            level: None,
+            going_on: false,
             recording: Rc::clone(&recording),
             jumped_to_start: false,
             conditional_end: None,
             last_pc: None,
         };
         (recorder, recording)
+    }
+
+    /// Records only an invocation on the level of OB block `level` (the online page's
+    /// "calling level").
+    pub fn on_level(self, level: u16) -> Recorder {
+        Recorder {
+            level: Some(level),
+            ..self
+        }
+    }
+
+    /// Lets the run go on after the invocation, without the probe (the online page's program
+    /// status, on a running CPU).
+    pub fn going_on(self) -> Recorder {
+        Recorder {
+            going_on: true,
+            ..self
+        }
     }
 
     fn inside(&self, cpu: &Cpu, block: u16) -> bool {
@@ -132,7 +159,7 @@ impl Recorder {
 
     fn finish(&mut self) -> Flow {
         self.recording.borrow_mut().complete = true;
-        Flow::Halt
+        if self.going_on { Flow::Go } else { Flow::Halt }
     }
 }
 
@@ -152,7 +179,8 @@ impl Probe for Recorder {
             return Flow::Halt;
         }
         let entry = cpu.level.block == self.block && cpu.level.pc == 0 && !self.jumped_to_start;
-        if entry && self.window.is_open(cpu) {
+        let on_level = self.level.is_none_or(|level| cpu.level_block() == level);
+        if entry && on_level && self.window.is_open(cpu) {
             self.begin(cpu);
         }
         Flow::Go
@@ -187,6 +215,10 @@ impl Probe for Recorder {
             }
             _ => Flow::Go,
         }
+    }
+
+    fn done(&self) -> bool {
+        self.going_on && self.recording.borrow().complete
     }
 
     fn serviced(&mut self, cpu: &Cpu, ob: u8) {

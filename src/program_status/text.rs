@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::fmt::Write;
 
 use crate::compiler::CompiledBlock;
-use crate::source::SourceSet;
+use crate::source::{SourceFile, SourceSet};
 
 use super::{OpStatus, Recording};
 
@@ -15,7 +15,7 @@ const ACCU_WIDTH_S7: usize = 14;
 
 /// An accumulator as the PG shows a 16-bit one, with the high word only when it is used:
 /// `KH 0005`, `KH 0001 0000`; STEP 7's `W#16#0005`, `DW#16#00010000`.
-fn accu(value: u32, step7: bool) -> String {
+pub fn accu(value: u32, step7: bool) -> String {
     match (step7, value >> 16 == 0) {
         (false, true) => format!("KH {value:04X}"),
         (false, false) => format!("KH {:04X} {:04X}", value >> 16, value & 0xFFFF),
@@ -40,6 +40,41 @@ fn columns(status: &OpStatus, step7: bool) -> String {
     out.trim_end().to_string()
 }
 
+/// Each line of `block` that holds an op, with what its last op left behind (`None`: it did
+/// not run).
+fn by_line<'a>(
+    block: &CompiledBlock,
+    file: &SourceFile,
+    recording: &'a Recording,
+) -> BTreeMap<u32, Option<&'a OpStatus>> {
+    block
+        .spans
+        .iter()
+        .zip(&recording.ops)
+        .map(|(span, status)| (file.line_of(span.start), status.as_ref()))
+        .collect()
+}
+
+/// The statement on `line`, without its comment.
+fn statement_on(file: &SourceFile, line: u32) -> String {
+    let text = file.line(line).replace('\t', "    ");
+    text.split(';').next().unwrap_or("").trim_end().to_string()
+}
+
+/// The block's statements in line order: each line, its statement (without indentation and
+/// comment) and what it left behind (`None`: it did not run). The online page shows these.
+pub fn statements<'a>(
+    block: &CompiledBlock,
+    sources: &SourceSet,
+    recording: &'a Recording,
+) -> Vec<(u32, String, Option<&'a OpStatus>)> {
+    let file = sources.get(block.header.file);
+    by_line(block, file, recording)
+        .into_iter()
+        .map(|(line, status)| (line, statement_on(file, line).trim().to_string(), status))
+        .collect()
+}
+
 /// The recording of `block` beside its source.
 pub fn render(block: &CompiledBlock, sources: &SourceSet, recording: &Recording) -> String {
     let file = sources.get(block.header.file);
@@ -58,21 +93,13 @@ pub fn render(block: &CompiledBlock, sources: &SourceSet, recording: &Recording)
         ),
         None => format!("program status of {}: it did not run\n", block.id),
     };
-    let by_line: BTreeMap<u32, Option<&OpStatus>> = block
-        .spans
-        .iter()
-        .zip(&recording.ops)
-        .map(|(span, status)| (file.line_of(span.start), status.as_ref()))
-        .collect();
+    let by_line = by_line(block, file, recording);
     let first = file.line_of(block.header.start);
     let last = by_line.keys().next_back().copied().unwrap_or(first);
     // Beside a statement its comment would push the columns away; comment lines stay whole.
-    let statement = |line: u32| {
-        let text = file.line(line).replace('\t', "    ");
-        match by_line.contains_key(&line) {
-            true => text.split(';').next().unwrap_or("").trim_end().to_string(),
-            false => text.trim_end().to_string(),
-        }
+    let statement = |line: u32| match by_line.contains_key(&line) {
+        true => statement_on(file, line),
+        false => file.line(line).replace('\t', "    ").trim_end().to_string(),
     };
     let width = by_line
         .keys()

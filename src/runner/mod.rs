@@ -26,7 +26,7 @@ use crate::scenario::modify::Modifier;
 use crate::scenario::operand::{Target, parse_target};
 use crate::scenario::{Plan, Scenario};
 use crate::source::Files;
-use crate::state::watch::WatchTable;
+use crate::state::watch::{Format, WatchTable};
 use crate::timeline;
 use crate::trace::{self, Kind, TraceFilter, TraceFormat};
 use crate::vm::Cpu;
@@ -68,6 +68,8 @@ pub struct RunOptions {
     pub watchdog_ns: Option<u64>,
     /// Operands to watch (`--watch "Q 4.0, FW 10"`), added to the scenario's `watch`.
     pub watch: Vec<String>,
+    /// A watch table file (`--watch-file`): its rows follow `watch`'s.
+    pub watch_file: Option<PathBuf>,
     /// A watch row every this much simulated time instead of one per change.
     pub watch_every_ns: Option<u64>,
 }
@@ -111,6 +113,21 @@ pub enum RunError {
         #[help]
         help: &'static str,
     },
+    #[error("`{operand}` cannot be shown as {format}")]
+    #[diagnostic(code(awl::cli::watch_format), help("{why}"))]
+    WatchFormat {
+        operand: String,
+        format: &'static str,
+        why: &'static str,
+    },
+    #[error("cannot read the watch table `{path}`: {reason}")]
+    #[diagnostic(
+        code(awl::cli::watch_file),
+        help(
+            "a watch table is text: one operand a line, a display format after it if wanted (`MW 10 HEX`), `//` comments"
+        )
+    )]
+    WatchFile { path: String, reason: String },
     #[error("the window from {from} to {to} holds no time")]
     #[diagnostic(
         code(awl::cli::empty_window),
@@ -630,34 +647,88 @@ fn language(
     project.map_or(given, |project| project.language(given))
 }
 
-/// The watched operands: the scenario's `watch`, then the command line's.
+/// The watched operands: the scenario's `watch`, then the command line's, then the watch table
+/// file's, each with its display format.
 fn watched(
     options: &RunOptions,
     scenario: Option<&Scenario>,
     program: &Program,
     set: MnemonicSet,
-) -> Result<Vec<(String, Target)>, NotRun> {
-    let mut targets = match scenario {
+) -> Result<Vec<Watched>, NotRun> {
+    let mut rows: Vec<Watched> = match scenario {
         Some(scenario) => scenario
             .watch_targets(program, set)
-            .map_err(NotRun::Failed)?,
+            .map_err(NotRun::Failed)?
+            .into_iter()
+            .map(|(operand, target)| (operand, target, None))
+            .collect(),
         None => Vec::new(),
     };
-    for operand in &options.watch {
-        let target = parse_target(operand, (0, 0).into(), set, program).map_err(|error| {
-            NotRun::Usage(Report::new(RunError::WatchOperand {
-                operand: operand.clone(),
-                reason: error.reason(),
-                help: if program.s7.step7 {
-                    "write operands as `--state` names them, as in a scenario's [expect]: `Q 4.0`, `MW 10`, `T 1`, `C 2`, `DB1.DBW 2`, `DB1.level`"
-                } else {
-                    "write operands as `--state` names them, as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
-                },
-            }))
+    let usage = |error| NotRun::Usage(Report::new(error));
+    let mut asked: Vec<(String, Option<Format>)> = options
+        .watch
+        .iter()
+        .map(|operand| (operand.clone(), None))
+        .collect();
+    if let Some(path) = &options.watch_file {
+        let text = std::fs::read_to_string(path).map_err(|error| {
+            usage(RunError::WatchFile {
+                path: path.display().to_string(),
+                reason: error.to_string(),
+            })
         })?;
-        targets.push((operand.clone(), target));
+        asked.extend(crate::state::watch::table_rows(&text));
     }
-    Ok(targets)
+    for (operand, format) in asked {
+        let target = watch_row(&operand, format, set, program).map_err(usage)?;
+        // A column with a format says so (`MW 10 HEX`).
+        let name = match format {
+            Some(format) => format!("{operand} {}", format.name(program.s7.step7)),
+            None => operand,
+        };
+        rows.push((name, target, format));
+    }
+    Ok(rows)
+}
+
+/// A watch table's column: its name, target and display format (`None`: the dialect's own).
+pub type Watched = (String, Target, Option<Format>);
+
+/// A watch row's operand, checked against its display format: the rows of `--watch`, of a
+/// watch table file and of the online page.
+pub fn watch_row(
+    operand: &str,
+    format: Option<Format>,
+    set: MnemonicSet,
+    program: &Program,
+) -> Result<Target, RunError> {
+    let target = watch_target(operand, set, program)?;
+    match format.and_then(|format| Some((format, format.misfit(target)?))) {
+        Some((format, why)) => Err(RunError::WatchFormat {
+            operand: operand.to_string(),
+            format: format.name(program.s7.step7),
+            why,
+        }),
+        None => Ok(target),
+    }
+}
+
+/// An operand as `--watch` takes it, and the online page: the one way the command line's
+/// operands are resolved.
+pub fn watch_target(
+    operand: &str,
+    set: MnemonicSet,
+    program: &Program,
+) -> Result<Target, RunError> {
+    parse_target(operand, (0, 0).into(), set, program).map_err(|error| RunError::WatchOperand {
+        operand: operand.to_string(),
+        reason: error.reason(),
+        help: if program.s7.step7 {
+            "write operands as `--state` names them, as in a scenario's [expect]: `Q 4.0`, `MW 10`, `T 1`, `C 2`, `DB1.DBW 2`, `DB1.level`"
+        } else {
+            "write operands as `--state` names them, as in a scenario's [expect]: `Q 4.0`, `FW 10`, `T 1`, `C 2`, `DB 10 DW 3`"
+        },
+    })
 }
 
 #[cfg(test)]

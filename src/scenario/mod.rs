@@ -312,26 +312,40 @@ impl Scenario {
         operand: &str,
         program: &Program,
     ) -> Result<(String, Wanted), ScenarioError> {
-        let bad = |shown: String, range: String| ScenarioError::BadValue {
-            operand: operand.into(),
-            value: shown,
-            at: span(value),
-            range,
-        };
-        let number = match value.get_ref() {
-            toml::Value::Integer(number) => *number,
-            toml::Value::Boolean(flag) => i64::from(*flag),
-            toml::Value::Float(real) if program.s7.step7 => {
-                let bits =
-                    real_value(target, *real).map_err(|range| bad(real.to_string(), range))?;
-                return Ok((real.to_string(), Wanted::Real(bits)));
-            }
-            other => return Err(bad(other.to_string(), "an integer".into())),
-        };
-        let raw = raw_value(target, number).map_err(|range| bad(number.to_string(), range))?;
-        Ok((number.to_string(), Wanted::Raw(raw)))
+        set_value(target, value.get_ref(), operand, program, span(value))
     }
+}
 
+/// The value a `set` or `[expect]` entry gives (at `at` in its file), as written, and what it
+/// stands for in the operand: an integer (booleans count as 0 and 1), or in a STEP 7 program's
+/// double word also a REAL. The online page's modify and force take values so too.
+pub fn set_value(
+    target: Target,
+    value: &toml::Value,
+    operand: &str,
+    program: &Program,
+    at: SourceSpan,
+) -> Result<(String, Wanted), ScenarioError> {
+    let bad = |shown: String, range: String| ScenarioError::BadValue {
+        operand: operand.into(),
+        value: shown,
+        at,
+        range,
+    };
+    let number = match value {
+        toml::Value::Integer(number) => *number,
+        toml::Value::Boolean(flag) => i64::from(*flag),
+        toml::Value::Float(real) if program.s7.step7 => {
+            let bits = real_value(target, *real).map_err(|range| bad(real.to_string(), range))?;
+            return Ok((real.to_string(), Wanted::Real(bits)));
+        }
+        other => return Err(bad(other.to_string(), "an integer".into())),
+    };
+    let raw = raw_value(target, number).map_err(|range| bad(number.to_string(), range))?;
+    Ok((number.to_string(), Wanted::Raw(raw)))
+}
+
+impl Scenario {
     /// The timed events, with operands resolved against the compiled program.
     pub fn schedule(
         &self,

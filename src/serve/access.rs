@@ -274,7 +274,7 @@ fn trace_write(cpu: &mut Cpu, client: Client, range: Range, bit: Option<u8>, byt
             .join(" "),
     };
     let event = Event::ClientWrite {
-        client: format!("{} #{}", client.protocol.name(), client.number),
+        client: client.name(),
         operand,
         value,
     };

@@ -12,6 +12,7 @@ use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
 
 use super::network::Network;
+use super::online::Online;
 use super::pacing::{Lateness, Pacer};
 use super::request::Requests;
 use super::station::{Served, Snapshot, Station};
@@ -24,6 +25,8 @@ pub struct ServeOptions {
     pub speed: f64,
     pub s7: Option<SocketAddr>,
     pub modbus: Option<SocketAddr>,
+    /// The online page and its API.
+    pub http: Option<SocketAddr>,
     /// Every write and control request is refused.
     pub read_only: bool,
     pub max_connections: usize,
@@ -34,6 +37,7 @@ pub struct ServeOptions {
 pub struct Listening {
     pub s7: Option<SocketAddr>,
     pub modbus: Option<SocketAddr>,
+    pub http: Option<SocketAddr>,
 }
 
 /// A finished serve: the run as `awl run` reports it, and what was served.
@@ -86,16 +90,19 @@ fn bind(server: &'static str, address: SocketAddr) -> Result<TcpListener, NotRun
 /// A free alternative to give, and where the client takes the port.
 fn free_port_help(server: &str, address: SocketAddr) -> String {
     let host = address.ip();
-    if server == "S7" {
-        format!(
+    match server {
+        "S7" => format!(
             "serve on another port, e.g. `--s7 {host}:1102`, and give the client that port \
              (python-snap7: `client.connect(\"{host}\", 0, 1, tcp_port=1102)`)"
-        )
-    } else {
-        format!(
+        ),
+        "HTTP" => format!(
+            "serve on another port, e.g. `--http {}`, and open the page there",
+            SocketAddr::new(host, 8103)
+        ),
+        _ => format!(
             "serve on another port, e.g. `--modbus {host}:1502`, and give the client that port \
              (pymodbus: `ModbusTcpClient(\"{host}\", port=1502)`)"
-        )
+        ),
     }
 }
 
@@ -115,11 +122,19 @@ pub fn serve(
         .modbus
         .map(|address| bind("Modbus TCP", address))
         .transpose()?;
-    let bound = Listening {
-        s7: s7.as_ref().and_then(|listener| listener.local_addr().ok()),
-        modbus: modbus
+    let http = options
+        .http
+        .map(|address| bind("HTTP", address))
+        .transpose()?;
+    let address = |listener: &Option<TcpListener>| {
+        listener
             .as_ref()
-            .and_then(|listener| listener.local_addr().ok()),
+            .and_then(|listener| listener.local_addr().ok())
+    };
+    let bound = Listening {
+        s7: address(&s7),
+        modbus: address(&modbus),
+        http: address(&http),
     };
     let (requests, received) = super::request::channel();
     // The servers run on the CPU's own thread, at its control point (see [`Network`]).
@@ -130,9 +145,11 @@ pub fn serve(
     let servers = Servers {
         s7,
         modbus,
+        http,
         modbus_map,
         requests,
         max_connections: options.max_connections,
+        read_only: options.read_only,
     };
     servers
         .start(&runtime)
@@ -146,7 +163,8 @@ pub fn serve(
     prepared.limit = limit;
     let pacer = Pacer::new(options.speed, prepared.cpu.clock);
     let network = Network::new(runtime, received);
-    let mut station = Station::new(network, options.read_only, pacer, halted, report);
+    let online = Online::new(prepared.mnemonics, options.read_only);
+    let mut station = Station::new(network, options.read_only, pacer, online, halted, report);
     let ran =
         prepared.run_driven(&mut |cpu, limit, observe| drive(cpu, limit, observe, &mut station));
     let served = station.served;
@@ -184,10 +202,17 @@ fn drive(
         if !stopped {
             return outcome;
         }
+        if let Some(stop) = &outcome.stop {
+            station.online.stopped(cpu, stop);
+        }
         match station.while_stopped(cpu) {
             Some(cold) => {
                 cpu.prepare_restart(cold);
                 station.pacer.rebase(cpu.clock);
+                let restart = if cold { "cold" } else { "warm" };
+                station
+                    .online
+                    .mode_changed(cpu, format!("STARTUP: {restart} restart"));
             }
             None => {
                 outcome.halted = true;
@@ -202,9 +227,11 @@ fn drive(
 struct Servers {
     s7: Option<TcpListener>,
     modbus: Option<TcpListener>,
+    http: Option<TcpListener>,
     modbus_map: super::modbus::Map,
     requests: Requests,
     max_connections: usize,
+    read_only: bool,
 }
 
 impl Servers {
@@ -225,6 +252,18 @@ impl Servers {
                 self.requests.clone(),
                 self.modbus_map,
                 self.max_connections,
+            ));
+        }
+        if let Some(listener) = self.http {
+            let listener = tokio::net::TcpListener::from_std(listener)?;
+            let settings = super::http::Settings {
+                max_connections: self.max_connections,
+                read_only: self.read_only,
+            };
+            runtime.spawn(super::http::serve(
+                listener,
+                self.requests.clone(),
+                settings,
             ));
         }
         Ok(())

@@ -1,12 +1,14 @@
 //! What a network client asks of the CPU, and what it gets back: the one interface between the
-//! protocol servers (S7comm, Modbus TCP) and the CPU. A protocol turns its packets into a
+//! protocol servers (S7comm, Modbus TCP, the online page's HTTP API) and the CPU. A protocol turns its packets into a
 //! [`Request`] and sends it down the [`Requests`] channel; the CPU serves it at its cycle control
 //! point (between two cycles, or at once while in STOP) and answers on the request's own
 //! one-shot channel. The protocols never touch the CPU, so the VM's loop stays free of locks.
 
+use serde::Serialize;
 use tokio::sync::oneshot;
 
 pub use crate::address::MemoryArea as Area;
+pub use crate::state::watch::{Format, Raw};
 
 /// A run of bytes (or timers, counters) of one area.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -126,10 +128,19 @@ pub struct Client {
     pub number: u32,
 }
 
+impl Client {
+    /// `s7 #3`, `http #1`: the client as the trace and the diagnostic buffer name it.
+    pub fn name(self) -> String {
+        format!("{} #{}", self.protocol.name(), self.number)
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Protocol {
     S7,
     Modbus,
+    /// The online page and its JSON API (`--http`).
+    Http,
 }
 
 impl Protocol {
@@ -137,6 +148,7 @@ impl Protocol {
         match self {
             Protocol::S7 => "s7",
             Protocol::Modbus => "modbus",
+            Protocol::Http => "http",
         }
     }
 }
@@ -162,6 +174,213 @@ pub enum Request {
         client: Client,
         open: bool,
     },
+    /// What the online page asks (`--http`).
+    Online {
+        client: Client,
+        ask: Ask,
+    },
+}
+
+/// What the online page asks of the CPU: operands as the command line takes them, resolved and
+/// written by the CPU's owner at its control point.
+#[derive(Debug)]
+pub enum Ask {
+    /// The CPU's mode, cycle, times, clients, forces and last STOP.
+    Cpu { reply: oneshot::Sender<CpuView> },
+    /// The values of operands, each in its format (`None`: the dialect's own notation).
+    Values {
+        watched: Vec<(String, Option<Format>)>,
+        reply: Answer<Vec<Value>>,
+    },
+    /// Writes a value once, as a PG's "modify variable".
+    Modify {
+        operand: String,
+        value: toml::Value,
+        reply: Answer<Value>,
+    },
+    /// Holds an input or output at a value until it is unforced.
+    Force {
+        operand: String,
+        value: toml::Value,
+        reply: Answer<Value>,
+    },
+    /// Ends the force of one operand, or (`None`) of all; answers the operands unforced.
+    Unforce {
+        operand: Option<String>,
+        reply: Answer<Vec<String>>,
+    },
+    /// The forces in effect.
+    Forces { reply: oneshot::Sender<Vec<Value>> },
+    /// Program status of a block's latest invocation (on the level of OB `level`).
+    ProgramStatus {
+        block: String,
+        level: Option<String>,
+        reply: Answer<StatusView>,
+    },
+    /// The diagnostic buffer, newest first.
+    Diagnostics {
+        reply: oneshot::Sender<Vec<DiagnosticEntry>>,
+    },
+    /// The last `seconds` of simulated time as the timeline draws them (an SVG).
+    Timeline {
+        seconds: f64,
+        reply: oneshot::Sender<String>,
+    },
+}
+
+/// Where the answer to an [`Ask`] goes: what was asked for, or why it cannot be had.
+pub type Answer<T> = oneshot::Sender<Result<T, Refusal>>;
+
+/// Why an online request is refused: the diagnostic the command line would print, and the
+/// kind of refusal (the HTTP status).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Refusal {
+    #[serde(skip)]
+    pub kind: Refused,
+    pub error: String,
+    pub code: Option<String>,
+    pub help: Option<String>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Refused {
+    /// The request is malformed or names what cannot be (400).
+    BadRequest,
+    /// `--read-only`, a foreign host or origin (403).
+    Forbidden,
+    /// What it names is not there, or did not run (404).
+    NotFound,
+    /// The path does not take the method (405).
+    MethodNotAllowed,
+    /// It cannot be done in the CPU's mode (409).
+    Conflict,
+    /// Too large (413).
+    TooLarge,
+    /// No more live connections are taken (503).
+    Busy,
+}
+
+impl Refused {
+    /// The HTTP status code.
+    pub fn status(self) -> u16 {
+        match self {
+            Refused::BadRequest => 400,
+            Refused::Forbidden => 403,
+            Refused::NotFound => 404,
+            Refused::MethodNotAllowed => 405,
+            Refused::Conflict => 409,
+            Refused::TooLarge => 413,
+            Refused::Busy => 503,
+        }
+    }
+}
+
+impl Refusal {
+    /// The refusal of `diagnostic`: its message, code and help (or, without help, what its
+    /// label says: a scenario value's allowed range).
+    pub fn of(kind: Refused, diagnostic: &dyn miette::Diagnostic) -> Refusal {
+        let label = || {
+            diagnostic
+                .labels()
+                .and_then(|mut labels| labels.find_map(|label| label.label().map(str::to_string)))
+        };
+        Refusal {
+            kind,
+            error: diagnostic.to_string(),
+            code: diagnostic.code().map(|code| code.to_string()),
+            help: diagnostic
+                .help()
+                .map(|help| help.to_string())
+                .or_else(label),
+        }
+    }
+}
+
+/// An operand's value as the online page shows it.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Value {
+    pub operand: String,
+    /// The format's name; `None` in the answers to modify and force.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub format: Option<&'static str>,
+    /// In the program's notation.
+    pub value: String,
+    /// The unsigned bit pattern, a bit's state; `null` when the operand is not there.
+    pub raw: Option<Raw>,
+}
+
+/// The CPU as `GET /api/cpu` shows it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CpuView {
+    pub mode: &'static str,
+    pub cycle: u64,
+    pub simulated_ms: f64,
+    pub cycle_time_ms: CycleTimesView,
+    pub profile: &'static str,
+    /// `s5` or `s7`.
+    pub dialect: &'static str,
+    /// `en` or `de`.
+    pub mnemonics: &'static str,
+    pub clients: usize,
+    pub forces: usize,
+    pub read_only: bool,
+    /// The program's last STOP, while the CPU is in STOP.
+    pub stop: Option<StopView>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CycleTimesView {
+    pub last: f64,
+    pub min: f64,
+    pub max: f64,
+    pub mean: f64,
+}
+
+/// A STOP: its cause as the PG names it, where, and the report `awl run` prints.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct StopView {
+    pub cause: &'static str,
+    /// `OB 1`; `null` between cycles.
+    pub block: Option<String>,
+    pub line: Option<u32>,
+    pub report: String,
+}
+
+/// Program status of one invocation, as `awl status` shows it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StatusView {
+    pub block: String,
+    /// The OB whose level ran it.
+    pub level: String,
+    pub cycle: u64,
+    pub time_ms: f64,
+    pub rows: Vec<StatusRow>,
+}
+
+/// A statement's line and what it left behind (all `null` when it did not run).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct StatusRow {
+    pub line: u32,
+    pub statement: String,
+    pub executed: bool,
+    pub rlo: Option<u8>,
+    pub sta: Option<u8>,
+    pub accu1: Option<String>,
+    pub accu2: Option<String>,
+    pub operand: Option<String>,
+    /// How often the line ran (a loop).
+    pub passes: Option<u64>,
+}
+
+/// An entry of the diagnostic buffer.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DiagnosticEntry {
+    pub time_ms: f64,
+    pub cycle: u64,
+    /// `stop`, `mode`, `interrupt_lost`, `interrupt_late`, `force_set`, `force_cleared`,
+    /// `modify`.
+    pub kind: &'static str,
+    pub text: String,
 }
 
 /// The sending end the protocol servers hold; the CPU holds the receiving end, [`Received`].

@@ -8,8 +8,9 @@ use crate::vm::{Cpu, Mode};
 
 use super::access::serve_items;
 use super::network::Network;
+use super::online::Online;
 use super::pacing::Pacer;
-use super::request::{Control, ControlError, CpuMode, CpuStatus, Request};
+use super::request::{Client, Control, ControlError, CpuMode, CpuStatus, Protocol, Request};
 
 /// How often the status is reported and a halt looked for while the CPU waits.
 const LOOK_EVERY: Duration = Duration::from_millis(100);
@@ -57,6 +58,8 @@ pub struct Station<'a> {
     answered: bool,
     read_only: bool,
     pub pacer: Pacer,
+    /// What the online page sees: the diagnostic buffer, the last STOP.
+    pub online: Online,
     open_clients: usize,
     pub served: Served,
     wanted: Option<Start>,
@@ -71,6 +74,7 @@ impl<'a> Station<'a> {
         network: Network,
         read_only: bool,
         pacer: Pacer,
+        online: Online,
         halted: &'a dyn Fn() -> bool,
         report: &'a mut dyn FnMut(&Snapshot),
     ) -> Self {
@@ -80,6 +84,7 @@ impl<'a> Station<'a> {
             answered: false,
             read_only,
             pacer,
+            online,
             open_clients: 0,
             served: Served::default(),
             wanted: None,
@@ -94,6 +99,7 @@ impl<'a> Station<'a> {
     /// the CPU's simulated time, serving what comes meanwhile. `false` leaves the run: a
     /// client's STOP or a halt (Ctrl-C).
     pub fn at_control_point(&mut self, cpu: &mut Cpu) -> bool {
+        self.online.at_control_point(cpu);
         let deadline = self.pacer.deadline(cpu.clock);
         loop {
             if !self.serve_waiting(cpu) {
@@ -126,6 +132,7 @@ impl<'a> Station<'a> {
             if let Some(start) = self.wanted.take() {
                 return Some(start.cold);
             }
+            self.online.at_control_point(cpu);
             self.wait_for_request(cpu, LOOK_EVERY);
             self.report_now_and_then(cpu);
         }
@@ -167,6 +174,11 @@ impl<'a> Station<'a> {
                 reply,
             } => {
                 let results = serve_items(cpu, client, &items, self.read_only);
+                // A client's output write does not beat a force (its input writes reach only
+                // the modules, which the PII transfer then overrides).
+                if !cpu.forces.is_empty() {
+                    cpu.hold_forces();
+                }
                 self.served.writes += items
                     .iter()
                     .zip(&results)
@@ -178,8 +190,15 @@ impl<'a> Station<'a> {
             Request::Status { reply } => {
                 let _ = reply.send(status(cpu, self.read_only));
             }
-            Request::Control { command, reply, .. } => {
-                let _ = reply.send(self.control(cpu, command));
+            Request::Control {
+                client,
+                command,
+                reply,
+            } => {
+                let _ = reply.send(self.control(cpu, client, command));
+            }
+            Request::Online { client, ask } => {
+                self.online.serve(cpu, client, ask, self.open_clients);
             }
             Request::Connection { open, .. } => {
                 if open {
@@ -194,14 +213,28 @@ impl<'a> Station<'a> {
 
     /// A mode change a client asks for: the STOP at once (requests are served between two
     /// cycles), a start once the CPU gets back to its STOP loop.
-    fn control(&mut self, cpu: &mut Cpu, command: Control) -> Result<(), ControlError> {
+    fn control(
+        &mut self,
+        cpu: &mut Cpu,
+        client: Client,
+        command: Control,
+    ) -> Result<(), ControlError> {
         if self.read_only {
             return Err(ControlError::ReadOnly);
         }
         let stopped = cpu.mode == Mode::Stop;
         match command {
             Control::Stop => {
-                cpu.stop_from_outside("client");
+                // The trace names the online page's STOP apart from an HMI's.
+                let cause = match client.protocol {
+                    Protocol::Http => "online",
+                    Protocol::S7 | Protocol::Modbus => "client",
+                };
+                if !stopped {
+                    let text = format!("STOP, asked for by {}", client.name());
+                    self.online.mode_changed(cpu, text);
+                }
+                cpu.stop_from_outside(cause);
                 self.wanted = None;
                 Ok(())
             }
@@ -216,11 +249,12 @@ impl<'a> Station<'a> {
         }
     }
 
-    fn report_now_and_then(&mut self, cpu: &Cpu) {
+    fn report_now_and_then(&mut self, cpu: &mut Cpu) {
         let elapsed = self.last_report.elapsed();
         if elapsed < Duration::from_millis(250) {
             return;
         }
+        self.online.look_now_and_then(cpu);
         let requests = self.served.requests - self.requests_at_last_report;
         (self.report)(&Snapshot {
             mode: cpu.mode,

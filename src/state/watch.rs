@@ -11,6 +11,8 @@ use crate::vm::Cpu;
 
 use crate::address::declared;
 use crate::address::notation as s7;
+use crate::dialect::Dialect;
+use crate::vm::counters::decode_count;
 
 /// One row: when, and every watched value in its natural notation.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -24,6 +26,7 @@ pub struct WatchRow {
 pub struct WatchTable {
     names: Vec<String>,
     targets: Vec<Target>,
+    formats: Vec<Option<Format>>,
     every_ns: Option<u64>,
     next_sample_ns: u64,
     last: Option<Vec<String>>,
@@ -73,6 +76,170 @@ pub fn natural(cpu: &Cpu, target: Target) -> String {
     }
 }
 
+/// A display format of a watch row, as STEP 7's variable table offers them (STATUS VAR's
+/// `KM`, `KH`, `KF`, `KG`, `KT`, `KZ`, `KC` on a STEP 5 PG). Each is written in the program's
+/// own notation; `S5TIME` and `KT` are one format, as the dialects name it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Bool,
+    Bin,
+    Hex,
+    Dec,
+    Real,
+    S5Time,
+    Kz,
+    Char,
+}
+
+impl Format {
+    /// The names a watch row takes, and the format each stands for.
+    pub const NAMES: [(&'static str, Format); 9] = [
+        ("BOOL", Format::Bool),
+        ("BIN", Format::Bin),
+        ("HEX", Format::Hex),
+        ("DEC", Format::Dec),
+        ("REAL", Format::Real),
+        ("S5TIME", Format::S5Time),
+        ("KT", Format::S5Time),
+        ("KZ", Format::Kz),
+        ("CHAR", Format::Char),
+    ];
+
+    /// `HEX`, `hex`; `None` for a name that is no format.
+    pub fn parse(name: &str) -> Option<Format> {
+        let name = name.trim();
+        Format::NAMES
+            .iter()
+            .find(|(known, _)| known.eq_ignore_ascii_case(name))
+            .map(|(_, format)| *format)
+    }
+
+    /// The format's name in a program of `step7`'s dialect: `S5TIME` or `KT`.
+    pub fn name(self, step7: bool) -> &'static str {
+        match self {
+            Format::S5Time if !step7 => "KT",
+            _ => {
+                let (name, _) = Format::NAMES
+                    .iter()
+                    .find(|(_, format)| *format == self)
+                    .expect("every format has a name");
+                name
+            }
+        }
+    }
+
+    /// The format [`natural`] writes `target` in, by the name a watch row shows: a bit's
+    /// BOOL, a timer's time, a counter's count, a word's (and a STEP 7 double word's) DEC, a
+    /// byte's (and a STEP 5 double word's) HEX.
+    pub fn natural(target: Target, step7: bool) -> Format {
+        match target {
+            Target::TimerBit(_) => Format::S5Time,
+            Target::CounterValue(_) => Format::Kz,
+            _ => match (target.bytes(), step7) {
+                (0, _) => Format::Bool,
+                (2, _) | (4, true) => Format::Dec,
+                _ => Format::Hex,
+            },
+        }
+    }
+
+    /// Why `target` cannot be shown in this format, if it cannot: a bit shows as BOOL or BIN,
+    /// a REAL needs a double word, a time or a count a word.
+    pub fn misfit(self, target: Target) -> Option<&'static str> {
+        let bytes = target.bytes();
+        let (timer, counter) = (
+            matches!(target, Target::TimerBit(_)),
+            matches!(target, Target::CounterValue(_)),
+        );
+        let fits = match self {
+            Format::Bool => bytes == 0 || timer || counter,
+            Format::Bin => true,
+            Format::Hex | Format::Dec | Format::Char => bytes > 0 || timer,
+            Format::Real => bytes == 4,
+            Format::S5Time => bytes == 2 && !counter || timer,
+            Format::Kz => bytes == 2,
+        };
+        (!fits).then_some(match self {
+            Format::Bool => "BOOL shows a bit (or a timer's or counter's bit)",
+            Format::Real => "REAL shows a double word (MD, ID, QD, DBD)",
+            Format::S5Time => "a time (S5TIME, KT) is a word or a timer",
+            Format::Kz => "a count (KZ) is a word or a counter",
+            _ => "a bit shows as BOOL or BIN",
+        })
+    }
+}
+
+/// The bits a watch row shows of `target`, and how many: a timer's coded time word (as `LC T`
+/// loads it), a counter's count.
+fn shown_bits(cpu: &Cpu, target: Target) -> Option<(u32, u32)> {
+    match target {
+        Target::TimerBit(n) => {
+            let mut timer = cpu.timers[usize::from(n)];
+            Some((timer.coded(cpu.clock), 16))
+        }
+        Target::CounterValue(n) => Some((u32::from(cpu.counters[usize::from(n)].value), 16)),
+        _ => actual(cpu, target).map(|raw| (raw, (u32::from(target.bytes()) * 8).max(1))),
+    }
+}
+
+/// The bit a BOOL row shows: a timer's or counter's own bit, else the operand's lowest bit.
+fn shown_bit(cpu: &Cpu, target: Target) -> bool {
+    match target {
+        Target::TimerBit(n) => {
+            let mut timer = cpu.timers[usize::from(n)];
+            timer.bit(cpu.clock)
+        }
+        Target::CounterValue(n) => cpu.counters[usize::from(n)].bit(),
+        _ => actual(cpu, target).is_some_and(|raw| raw & 1 != 0),
+    }
+}
+
+/// A watch row's value as a number: a bit's state, else the unsigned bit pattern (a timer's
+/// coded time word, a counter's count).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(untagged)]
+pub enum Raw {
+    Bit(bool),
+    Bits(u32),
+}
+
+/// The raw value of `target`; `None` when it is not there (a data block not loaded).
+pub fn raw(cpu: &Cpu, target: Target) -> Option<Raw> {
+    match target {
+        Target::ImageBit { .. } | Target::S7Data { bytes: 0, .. } => {
+            actual(cpu, target).map(|bit| Raw::Bit(bit != 0))
+        }
+        _ => shown_bits(cpu, target).map(|(bits, _)| Raw::Bits(bits)),
+    }
+}
+
+/// `target`'s value in `format` (`None`: the dialect's own notation, as [`natural`]); the
+/// format fits the target ([`Format::misfit`]).
+pub fn formatted(cpu: &Cpu, target: Target, format: Option<Format>) -> String {
+    let dialect = if cpu.program.s7.step7 {
+        Dialect::Step7
+    } else {
+        Dialect::Step5
+    };
+    let Some(format) = format else {
+        return natural(cpu, target);
+    };
+    match (format, shown_bits(cpu, target)) {
+        (Format::Bool, _) => u8::from(shown_bit(cpu, target)).to_string(),
+        (_, None) => "-".to_string(),
+        (Format::Bin, Some((raw, bits))) => s7::binary(dialect, raw, bits),
+        (Format::Hex, Some((raw, bits))) => s7::hex(dialect, raw, bits),
+        (Format::Dec, Some((raw, bits))) => s7::decimal(dialect, raw, bits),
+        (Format::Real, Some((raw, _))) => s7::real(dialect, raw),
+        (Format::S5Time, Some((raw, _))) => s7::time_word(dialect, raw),
+        (Format::Kz, Some((raw, _))) if matches!(target, Target::CounterValue(_)) => {
+            s7::count(dialect, raw as u16)
+        }
+        (Format::Kz, Some((raw, _))) => s7::count(dialect, decode_count(raw)),
+        (Format::Char, Some((raw, bits))) => s7::characters(dialect, raw, bits),
+    }
+}
+
 /// The value a STEP 7 data block operand reads, in the type its declaration gives it
 /// (`W#16#0200`, `T#1S500MS`, `TRUE`); `None` for an operand no declared value is.
 fn declared_value(cpu: &Cpu, target: Target) -> Option<String> {
@@ -105,14 +272,19 @@ fn number(cpu: &Cpu, target: Target) -> i64 {
 }
 
 impl WatchTable {
-    pub fn new(watched: Vec<(String, Target)>, every_ns: Option<u64>) -> Self {
-        let (names, targets) = watched.into_iter().unzip();
-        WatchTable {
-            names,
-            targets,
+    /// The table of `watched` operands by their column names, each with its display format
+    /// (`None`: the dialect's own notation).
+    pub fn new(watched: Vec<(String, Target, Option<Format>)>, every_ns: Option<u64>) -> Self {
+        let mut table = WatchTable {
             every_ns,
             ..WatchTable::default()
+        };
+        for (name, target, format) in watched {
+            table.names.push(name);
+            table.targets.push(target);
+            table.formats.push(format);
         }
+        table
     }
 
     pub fn is_empty(&self) -> bool {
@@ -125,7 +297,12 @@ impl WatchTable {
         if self.is_empty() {
             return;
         }
-        let values: Vec<String> = self.targets.iter().map(|t| natural(cpu, *t)).collect();
+        let values: Vec<String> = self
+            .targets
+            .iter()
+            .zip(&self.formats)
+            .map(|(target, format)| formatted(cpu, *target, *format))
+            .collect();
         let due = match self.every_ns {
             Some(every) => {
                 let due = cpu.clock >= self.next_sample_ns;
@@ -192,5 +369,45 @@ impl WatchTable {
     }
 }
 
+/// The rows of a watch table file (the online page's Save and Load, `awl run --watch-file`):
+/// one row a line, `OPERAND [FORMAT]` (`MW 10 HEX`, `DB 5 DW 3`, `"Motor"`), `//` starting a
+/// comment, blank lines ignored. A last word that names a format is the row's format.
+pub fn table_rows(text: &str) -> Vec<(String, Option<Format>)> {
+    text.lines()
+        .map(|line| line.split("//").next().unwrap_or("").trim())
+        .filter(|line| !line.is_empty())
+        .map(|line| {
+            let format = line
+                .rsplit_once(char::is_whitespace)
+                .and_then(|(operand, last)| Some((operand.trim_end(), Format::parse(last)?)));
+            match format {
+                Some((operand, format)) => (operand.to_string(), Some(format)),
+                None => (line.to_string(), None),
+            }
+        })
+        .collect()
+}
+
 /// The values of a watch event, by operand.
 pub type WatchValues = BTreeMap<String, String>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_watch_table_file_has_an_operand_and_a_format_a_line() {
+        let text = "// the tank\nMW 10 HEX\n\n  DB 5 DW 3  // a data word\nQ 4.0 bool\n\"Motor\"\nT 1 KT\n";
+        assert_eq!(
+            table_rows(text),
+            [
+                ("MW 10".to_string(), Some(Format::Hex)),
+                ("DB 5 DW 3".to_string(), None),
+                ("Q 4.0".to_string(), Some(Format::Bool)),
+                ("\"Motor\"".to_string(), None),
+                ("T 1".to_string(), Some(Format::S5Time)),
+            ]
+        );
+        assert!(table_rows("\n// nothing\n").is_empty());
+    }
+}

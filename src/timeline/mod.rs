@@ -159,7 +159,10 @@ impl Recorder {
             Event::Stop { cause, .. } => ((Mark::Stop, 0, 0), format!("STOP {cause}")),
             Event::Input { .. } => point(Mark::Input, 0),
             Event::Output { .. } => point(Mark::Output, 0),
-            Event::ClientWrite { client, .. } => ((Mark::ClientWrite, 0, 0), client.clone()),
+            Event::ClientWrite { client, .. }
+            | Event::Modify { client, .. }
+            | Event::Force { client, .. }
+            | Event::Unforce { client, .. } => ((Mark::ClientWrite, 0, 0), client.clone()),
             Event::Mode { .. }
             | Event::CycleEnd { .. }
             | Event::DataCycle { .. }

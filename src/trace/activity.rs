@@ -139,7 +139,10 @@ impl Activity {
             | Event::Watch { .. }
             | Event::Input { .. }
             | Event::Output { .. }
-            | Event::ClientWrite { .. } => {}
+            | Event::ClientWrite { .. }
+            | Event::Modify { .. }
+            | Event::Force { .. }
+            | Event::Unforce { .. } => {}
         }
     }
 

@@ -266,6 +266,15 @@ impl Chrome {
             Event::ClientWrite {
                 client, operand, ..
             } => self.global(format!("{client} wrote {operand}"), t_ns, event),
+            Event::Modify {
+                client, operand, ..
+            } => self.global(format!("{client} modified {operand}"), t_ns, event),
+            Event::Force {
+                client, operand, ..
+            } => self.global(format!("{client} forced {operand}"), t_ns, event),
+            Event::Unforce { client, operand } => {
+                self.global(format!("{client} unforced {operand}"), t_ns, event)
+            }
             Event::CycleStart { .. }
             | Event::CycleEnd { .. }
             | Event::BlockCall { .. }

@@ -51,7 +51,10 @@ pub fn kind(event: &Event) -> Option<Kind> {
         Event::Watch { .. }
         | Event::Input { .. }
         | Event::Output { .. }
-        | Event::ClientWrite { .. } => Some(Kind::Io),
+        | Event::ClientWrite { .. }
+        | Event::Modify { .. }
+        | Event::Force { .. }
+        | Event::Unforce { .. } => Some(Kind::Io),
     }
 }
 

@@ -195,6 +195,26 @@ pub enum Event {
         /// The value: a bit's 0 or 1, up to four bytes as `16#…`, else the bytes in hex.
         value: String,
     },
+    /// The online page wrote a value once (modify), at the cycle control point.
+    Modify {
+        /// `http #3`: the page's connection.
+        client: String,
+        /// As the page wrote it (`MW 10`, `DB5.DBW 4`, `-START`).
+        operand: String,
+        /// As written (`42`, `true`, `1.5`).
+        value: String,
+    },
+    /// The online page forced an input or output: held at `value` until unforced.
+    Force {
+        client: String,
+        operand: String,
+        value: String,
+    },
+    /// The online page ended a force.
+    Unforce {
+        client: String,
+        operand: String,
+    },
 }
 
 /// Where the events go: a trace file, the timeline picture. Every output sees every event in
@@ -268,6 +288,16 @@ impl Tracer {
             error: None,
         });
         self.enabled = true;
+    }
+
+    /// Removes the outputs named `name` (the online page's live timeline, when nobody watches
+    /// it any more); with no output left, nothing is traced and the loop runs untraced again.
+    pub fn remove(&mut self, name: &str) {
+        self.outputs.retain(|output| output.name != name);
+        self.enabled = self.outputs.iter().any(|output| output.error.is_none());
+        if !self.enabled {
+            self.held.clear();
+        }
     }
 
     /// Records an event at simulated time `t_ns`. It is handed on by the next

@@ -53,7 +53,10 @@ impl Text {
             } => *block = name(block),
             Event::Input { operand, .. }
             | Event::Output { operand, .. }
-            | Event::ClientWrite { operand, .. } => *operand = name(operand),
+            | Event::ClientWrite { operand, .. }
+            | Event::Modify { operand, .. }
+            | Event::Force { operand, .. }
+            | Event::Unforce { operand, .. } => *operand = name(operand),
             _ => {}
         }
         Cow::Owned(event)
@@ -236,6 +239,17 @@ pub fn line(event: &Event) -> String {
             operand,
             value,
         } => format!("{client} wrote {operand} = {value}"),
+        Event::Modify {
+            client,
+            operand,
+            value,
+        } => format!("{client} modified {operand} = {value}"),
+        Event::Force {
+            client,
+            operand,
+            value,
+        } => format!("{client} forced {operand} = {value}"),
+        Event::Unforce { client, operand } => format!("{client} unforced {operand}"),
         Event::Watch { values, .. } => {
             let values: Vec<String> = values
                 .iter()

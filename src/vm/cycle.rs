@@ -212,9 +212,16 @@ impl Cpu {
     fn process_image_cycle(&mut self, read: bool) {
         let bytes = usize::from(self.program.layout.image_bytes);
         let piq = usize::from(self.program.layout.output_base());
+        // Forcing works at the transfers (see [`super::force`]), once per cycle.
         if read {
             self.image[..bytes].copy_from_slice(&self.inputs[..bytes]);
+            if !self.forces.is_empty() {
+                self.force_pii();
+            }
         } else {
+            if !self.forces.is_empty() {
+                self.force_piq();
+            }
             let before = self.modules_before(Modules::Outputs, false, 0, bytes);
             self.outputs[..bytes].copy_from_slice(&self.image[piq..piq + bytes]);
             if let Some(before) = before {

@@ -11,6 +11,7 @@ pub mod counters;
 pub mod cycle;
 pub mod exec;
 pub mod float;
+pub mod force;
 mod integral;
 pub mod interrupts;
 mod io_trace;
@@ -380,6 +381,8 @@ pub struct Cpu {
     pub probe: Option<Box<dyn probe::Probe>>,
     /// A listener told how far a long run has come; see [`pulse`].
     pub pulse: Option<pulse::Pulse>,
+    /// The inputs and outputs held at values (the online page's force); see [`force`].
+    pub forces: force::Forces,
 }
 
 impl Cpu {
@@ -473,6 +476,7 @@ impl Cpu {
             cycle_times: cycle::CycleTimes::default(),
             probe: None,
             pulse: None,
+            forces: force::Forces::default(),
             profile,
             program,
             sources,

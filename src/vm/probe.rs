@@ -30,6 +30,12 @@ pub trait Probe {
 
     /// The engine starts servicing `ob`: its first op comes next.
     fn serviced(&mut self, _cpu: &Cpu, _ob: u8) {}
+
+    /// The probe has seen what it looked for and leaves the CPU: the next stretch of the run
+    /// takes the plain loop again (the online page's program status).
+    fn done(&self) -> bool {
+        false
+    }
 }
 
 impl Cpu {
@@ -42,7 +48,9 @@ impl Cpu {
         match self.probe.take() {
             Some(mut probe) => {
                 let result = look(probe.as_mut(), self);
-                self.probe = Some(probe);
+                if !probe.done() {
+                    self.probe = Some(probe);
+                }
                 result
             }
             None => idle,

@@ -32,5 +32,7 @@ impl Cpu {
             self.data_blocks = fresh.data_blocks;
             self.s7_data = fresh.s7_data;
         }
+        // Forces outlast a STOP and a restart, as on a CPU, until they are deleted.
+        self.hold_forces();
     }
 }

@@ -4,6 +4,7 @@
 pub mod browser;
 pub mod fake_memory;
 pub mod python;
+pub mod serve;
 pub mod step7;
 
 use std::path::{Path, PathBuf};
