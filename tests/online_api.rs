@@ -3,11 +3,12 @@
 //! Requests that no well-behaved client sends (a foreign `Host`, a request of a single line) go
 //! over a plain TCP socket.
 
-use std::io::{BufRead, BufReader, Read, Write};
+mod common;
+
+use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
@@ -32,13 +33,7 @@ impl Online {
             .stderr(Stdio::piped())
             .spawn()
             .expect("awl starts");
-        let stdout = child.stdout.take().expect("piped");
-        let (send, lines) = mpsc::channel();
-        std::thread::spawn(move || {
-            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
-                let _ = send.send(line);
-            }
-        });
+        let lines = common::lines(child.stdout.take().expect("piped"));
         let deadline = Instant::now() + Duration::from_secs(60);
         let port = loop {
             let left = deadline.saturating_duration_since(Instant::now());
@@ -775,6 +770,9 @@ fn the_timeline_draws_the_last_seconds_of_the_levels() {
         (status, &refused["code"]),
         (400, &json!("awl::online::seconds"))
     );
+    // The recording leaves the CPU with the serve: the summary names no trace written.
+    let stderr = online.terminate();
+    assert!(!stderr.contains("online timeline"), "{stderr}");
 }
 
 #[test]

@@ -6,8 +6,10 @@ pub mod fake_memory;
 pub mod python;
 pub mod step7;
 
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::process::ChildStdout;
+use std::sync::{Arc, mpsc};
 
 use awl::frontend;
 use awl::profile;
@@ -222,4 +224,17 @@ pub fn cli_summary(scenario: &str) -> String {
         .map(|line| line.split("   wall:").next().unwrap())
         .map(|line| format!("{line}\n"))
         .collect()
+}
+
+/// A child's standard output, line by line as it comes (a server's listening lines).
+pub fn lines(stdout: ChildStdout) -> mpsc::Receiver<String> {
+    let (send, receive) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+            if send.send(line).is_err() {
+                return;
+            }
+        }
+    });
+    receive
 }
