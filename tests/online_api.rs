@@ -36,16 +36,7 @@ impl Online {
         let lines = common::lines(child.stdout.take().expect("piped"));
         let deadline = Instant::now() + Duration::from_secs(60);
         let port = loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            let Ok(line) = lines.recv_timeout(left) else {
-                let _ = child.kill();
-                let mut stderr = String::new();
-                let _ = child
-                    .stderr
-                    .take()
-                    .map(|mut err| err.read_to_string(&mut stderr));
-                panic!("awl serve printed no online line: {stderr}");
-            };
+            let line = common::next_line(&mut child, &lines, deadline, "online line");
             if let Some(rest) = line.strip_prefix("Online page at http://127.0.0.1:") {
                 break rest.trim_end_matches('/').parse().expect("a port");
             }

@@ -47,16 +47,7 @@ fn serve(args: &[&str]) -> Served {
     let (mut s7, mut modbus) = (0, 0);
     let deadline = Instant::now() + Duration::from_secs(60);
     while s7 == 0 || modbus == 0 {
-        let left = deadline.saturating_duration_since(Instant::now());
-        let Ok(line) = stdout.recv_timeout(left) else {
-            let _ = child.kill();
-            let mut stderr = String::new();
-            let _ = child
-                .stderr
-                .take()
-                .map(|mut err| err.read_to_string(&mut stderr));
-            panic!("awl serve printed no listening lines: {stderr}");
-        };
+        let line = common::next_line(&mut child, &stdout, deadline, "listening lines");
         let port = || {
             line.rsplit(':')
                 .next()

@@ -6,10 +6,12 @@ pub mod fake_memory;
 pub mod python;
 pub mod step7;
 
+use std::io::Read;
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::ChildStdout;
+use std::process::{Child, ChildStdout};
 use std::sync::{Arc, mpsc};
+use std::time::Instant;
 
 use awl::frontend;
 use awl::profile;
@@ -237,4 +239,24 @@ pub fn lines(stdout: ChildStdout) -> mpsc::Receiver<String> {
         }
     });
     receive
+}
+
+/// The next line of `lines` before `deadline`; without one the child is killed and the test
+/// fails with its stderr, saying `what` it waited for.
+pub fn next_line(
+    child: &mut Child,
+    lines: &mpsc::Receiver<String>,
+    deadline: Instant,
+    what: &str,
+) -> String {
+    let left = deadline.saturating_duration_since(Instant::now());
+    lines.recv_timeout(left).unwrap_or_else(|_| {
+        let _ = child.kill();
+        let mut stderr = String::new();
+        let _ = child
+            .stderr
+            .take()
+            .map(|mut err| err.read_to_string(&mut stderr));
+        panic!("awl serve printed no {what}: {stderr}");
+    })
 }
