@@ -10,6 +10,12 @@ so the figure is what the VM's loop costs per operation. Callgrind counts are de
 a machine busy with other work gives the same figures. Needs valgrind and a release build
 (`cargo build --release`).
 
+The serve benches run a bench scenario under `awl serve` (S7 server on a free port, at speed
+1000, so the CPU never waits for the clock), without and with the online page (`--http`,
+nothing watched): the page's server must leave the loop's cost unchanged (within 1 %). They
+run only when named, and are less exact than the others: the network is looked at by the wall
+clock, which callgrind slows.
+
 With awlsim installed where benches/awlsim/install.sh installs it (virtual environments in
 target/awlsim-venv and target/awlsim-cython-venv), its pure-Python core and its Cython core are
 measured the same way on the STEP 7 files: the same operations, counted by awlsim itself, for
@@ -42,13 +48,15 @@ class Bench:
     """A scenario of programs/bench/ run with the given interrupt points, for N1 and N2 cycles
     (and fewer with --quick); `awlsim` ("pip" or "cython"): its program run in that awlsim."""
 
-    def __init__(self, name, scenario, points, cycles, quick_cycles, awlsim=None):
+    def __init__(self, name, scenario, points, cycles, quick_cycles, awlsim=None, serve=None):
         self.name = name
         self.scenario = scenario
         self.points = points
         self.cycles = cycles
         self.quick_cycles = quick_cycles
         self.awlsim = awlsim
+        # `awl serve` with these servers' options instead of `awl run`.
+        self.serve = serve
 
     def command(self, cycles):
         """The command that runs `cycles` cycles and prints the operation count."""
@@ -58,6 +66,9 @@ class Bench:
             return [str(python), str(AWLSIM_DRIVER), str(program), "--cycles", str(cycles)]
         scenario = ROOT / "programs" / "bench" / f"{self.scenario}.toml"
         command = [str(AWL), "run", "--scenario", str(scenario), "--cycles", str(cycles)]
+        if self.serve is not None:
+            command[1] = "serve"
+            command += ["--speed", "1000", *self.serve]
         if self.points:
             command += ["--interrupt-points", self.points]
         return command
@@ -72,6 +83,29 @@ BENCHES = [
     Bench("calls", "calls", None, (1000, 5000), (100, 500)),
     Bench("fb_params", "fb_params", None, (50, 250), (5, 25)),
     Bench("s7_calls", "s7_calls", None, (1000, 5000), (100, 500)),
+]
+
+# `awl serve` without and with the online page, nothing watched (the S7 server in both).
+SERVE = ["--s7", "127.0.0.1:0"]
+SERVE_BENCHES = [
+    Bench("serve_s7_logic_loop", "s7_logic_loop", None, (50, 250), (5, 25), serve=SERVE),
+    Bench(
+        "serve_s7_logic_loop_http",
+        "s7_logic_loop",
+        None,
+        (50, 250),
+        (5, 25),
+        serve=[*SERVE, "--http", "127.0.0.1:0"],
+    ),
+    Bench("serve_calls", "calls", None, (1000, 5000), (100, 500), serve=SERVE),
+    Bench(
+        "serve_calls_http",
+        "calls",
+        None,
+        (1000, 5000),
+        (100, 500),
+        serve=[*SERVE, "--http", "127.0.0.1:0"],
+    ),
 ]
 
 AWLSIM_BENCHES = [
@@ -136,10 +170,10 @@ def main():
         nargs="*",
         metavar="BENCH",
         help="the benches to measure (default all): "
-        + ", ".join(bench.name for bench in BENCHES + AWLSIM_BENCHES),
+        + ", ".join(bench.name for bench in BENCHES + SERVE_BENCHES + AWLSIM_BENCHES),
     )
     options = parser.parse_args()
-    known = {bench.name: bench for bench in BENCHES + AWLSIM_BENCHES}
+    known = {bench.name: bench for bench in BENCHES + SERVE_BENCHES + AWLSIM_BENCHES}
     unknown = [name for name in options.benches if name not in known]
     if unknown:
         parser.error(f"unknown bench {', '.join(unknown)}; known: {', '.join(known)}")

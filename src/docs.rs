@@ -77,6 +77,11 @@ pub const TOPICS: &[Topic] = &[
         body: Body::Section(PROGRAMS, "## The virtual PLC (`awl serve`)"),
     },
     Topic {
+        name: "online",
+        summary: "`awl serve --http`: the online page and its JSON API (watch, modify, force, program status, the live timeline)",
+        body: Body::Section(PROGRAMS, "## The online page (`awl serve --http`)"),
+    },
+    Topic {
         name: "lsp",
         summary: "`awl lsp` in an editor: what the language server offers, its settings, the setup of VS Code, Neovim and Helix",
         body: Body::File(EDITORS),

@@ -3,11 +3,12 @@
 //! Requests that no well-behaved client sends (a foreign `Host`, a request of a single line) go
 //! over a plain TCP socket.
 
-use std::io::{BufRead, BufReader, Read, Write};
+mod common;
+
+use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
@@ -32,25 +33,10 @@ impl Online {
             .stderr(Stdio::piped())
             .spawn()
             .expect("awl starts");
-        let stdout = child.stdout.take().expect("piped");
-        let (send, lines) = mpsc::channel();
-        std::thread::spawn(move || {
-            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
-                let _ = send.send(line);
-            }
-        });
+        let lines = common::lines(child.stdout.take().expect("piped"));
         let deadline = Instant::now() + Duration::from_secs(60);
         let port = loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            let Ok(line) = lines.recv_timeout(left) else {
-                let _ = child.kill();
-                let mut stderr = String::new();
-                let _ = child
-                    .stderr
-                    .take()
-                    .map(|mut err| err.read_to_string(&mut stderr));
-                panic!("awl serve printed no online line: {stderr}");
-            };
+            let line = common::next_line(&mut child, &lines, deadline, "online line");
             if let Some(rest) = line.strip_prefix("Online page at http://127.0.0.1:") {
                 break rest.trim_end_matches('/').parse().expect("a port");
             }
@@ -775,6 +761,9 @@ fn the_timeline_draws_the_last_seconds_of_the_levels() {
         (status, &refused["code"]),
         (400, &json!("awl::online::seconds"))
     );
+    // The recording leaves the CPU with the serve: the summary names no trace written.
+    let stderr = online.terminate();
+    assert!(!stderr.contains("online timeline"), "{stderr}");
 }
 
 #[test]

@@ -5,10 +5,10 @@
 
 mod common;
 
-use std::io::{BufRead, BufReader, Read};
+use std::io::Read;
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
-use std::process::{Child, ChildStdout, Command, Output, Stdio};
+use std::process::{Child, Command, Output, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
@@ -43,20 +43,11 @@ fn serve(args: &[&str]) -> Served {
         .stderr(Stdio::piped())
         .spawn()
         .expect("awl starts");
-    let stdout = lines(child.stdout.take().expect("piped"));
+    let stdout = common::lines(child.stdout.take().expect("piped"));
     let (mut s7, mut modbus) = (0, 0);
     let deadline = Instant::now() + Duration::from_secs(60);
     while s7 == 0 || modbus == 0 {
-        let left = deadline.saturating_duration_since(Instant::now());
-        let Ok(line) = stdout.recv_timeout(left) else {
-            let _ = child.kill();
-            let mut stderr = String::new();
-            let _ = child
-                .stderr
-                .take()
-                .map(|mut err| err.read_to_string(&mut stderr));
-            panic!("awl serve printed no listening lines: {stderr}");
-        };
+        let line = common::next_line(&mut child, &stdout, deadline, "listening lines");
         let port = || {
             line.rsplit(':')
                 .next()
@@ -75,19 +66,6 @@ fn serve(args: &[&str]) -> Served {
         modbus,
         stdout,
     }
-}
-
-/// Standard output's lines as they come.
-fn lines(stdout: ChildStdout) -> mpsc::Receiver<String> {
-    let (send, receive) = mpsc::channel();
-    std::thread::spawn(move || {
-        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
-            if send.send(line).is_err() {
-                return;
-            }
-        }
-    });
-    receive
 }
 
 impl Served {

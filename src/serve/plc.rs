@@ -165,8 +165,12 @@ pub fn serve(
     let network = Network::new(runtime, received);
     let online = Online::new(prepared.mnemonics, options.read_only);
     let mut station = Station::new(network, options.read_only, pacer, online, halted, report);
-    let ran =
-        prepared.run_driven(&mut |cpu, limit, observe| drive(cpu, limit, observe, &mut station));
+    let ran = prepared.run_driven(&mut |cpu, limit, observe| {
+        let outcome = drive(cpu, limit, observe, &mut station);
+        // What the page watched leaves the CPU before the run's outputs are finished.
+        station.online.leave(cpu);
+        outcome
+    });
     let served = station.served;
     let lateness = station.pacer.lateness();
     // The servers' tasks end with their runtime, in the station.

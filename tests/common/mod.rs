@@ -7,8 +7,12 @@ pub mod python;
 pub mod serve;
 pub mod step7;
 
+use std::io::Read;
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::process::{Child, ChildStdout};
+use std::sync::{Arc, mpsc};
+use std::time::Instant;
 
 use awl::frontend;
 use awl::profile;
@@ -223,4 +227,37 @@ pub fn cli_summary(scenario: &str) -> String {
         .map(|line| line.split("   wall:").next().unwrap())
         .map(|line| format!("{line}\n"))
         .collect()
+}
+
+/// A child's standard output, line by line as it comes (a server's listening lines).
+pub fn lines(stdout: ChildStdout) -> mpsc::Receiver<String> {
+    let (send, receive) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+            if send.send(line).is_err() {
+                return;
+            }
+        }
+    });
+    receive
+}
+
+/// The next line of `lines` before `deadline`; without one the child is killed and the test
+/// fails with its stderr, saying `what` it waited for.
+pub fn next_line(
+    child: &mut Child,
+    lines: &mpsc::Receiver<String>,
+    deadline: Instant,
+    what: &str,
+) -> String {
+    let left = deadline.saturating_duration_since(Instant::now());
+    lines.recv_timeout(left).unwrap_or_else(|_| {
+        let _ = child.kill();
+        let mut stderr = String::new();
+        let _ = child
+            .stderr
+            .take()
+            .map(|mut err| err.read_to_string(&mut stderr));
+        panic!("awl serve printed no {what}: {stderr}");
+    })
 }

@@ -520,4 +520,26 @@ mod tests {
             Call::Timeline(5.0)
         );
     }
+
+    proptest::proptest! {
+        /// Any request decodes into a call or is refused with a code and a 4xx status; a live
+        /// connection's message is taken or refused the same way. (The fuzz target `http_decode`
+        /// tries far more.)
+        #[test]
+        fn any_request_is_decoded_or_refused_with_a_code(
+            method in "GET|POST|DELETE|PUT",
+            path in "/(api/(cpu|mode|values|modify|force|forces|status|diagnostics|timeline|live|x))?",
+            query in "[a-z=&%0-9A-F ,+.]{0,40}",
+            body in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..80),
+        ) {
+            if let Err(error) = decode(&method, &path, Some(&query), &body) {
+                let refusal = error.refusal();
+                proptest::prop_assert!((400..500).contains(&refusal.kind.status()));
+                proptest::prop_assert!(refusal.code.is_some_and(|code| code.starts_with("awl::online::")));
+            }
+            if let Err(error) = subscription(&String::from_utf8_lossy(&body)) {
+                proptest::prop_assert!(error.refusal().code.is_some());
+            }
+        }
+    }
 }

@@ -156,6 +156,24 @@ impl Online {
             .collect()
     }
 
+    /// A modify's or force's operand and value, as a scenario's `set` takes them: the target,
+    /// the value as written and its bits; refused on a read-only server.
+    fn change(
+        &self,
+        cpu: &Cpu,
+        operand: &str,
+        value: &toml::Value,
+    ) -> Result<(Target, String, u32), Refusal> {
+        if self.read_only {
+            return Err(OnlineError::ReadOnly.refusal());
+        }
+        let target = self.target(cpu, operand)?;
+        let (written, wanted) =
+            scenario::set_value(target, value, operand, &cpu.program, (0, 0).into())
+                .map_err(|error| Refusal::of(Refused::BadRequest, &error))?;
+        Ok((target, written, wanted.raw()))
+    }
+
     /// Writes a value once, at this control point.
     fn modify(
         &mut self,
@@ -164,14 +182,8 @@ impl Online {
         operand: &str,
         value: &toml::Value,
     ) -> Result<Value, Refusal> {
-        if self.read_only {
-            return Err(OnlineError::ReadOnly.refusal());
-        }
-        let target = self.target(cpu, operand)?;
-        let (written, wanted) =
-            scenario::set_value(target, value, operand, &cpu.program, (0, 0).into())
-                .map_err(|error| Refusal::of(Refused::BadRequest, &error))?;
-        debug::write(cpu, target, wanted.raw(), operand).map_err(|reason| {
+        let (target, written, raw) = self.change(cpu, operand, value)?;
+        debug::write(cpu, target, raw, operand).map_err(|reason| {
             OnlineError::Modify {
                 operand: operand.to_string(),
                 reason,
@@ -201,21 +213,17 @@ impl Online {
         operand: &str,
         value: &toml::Value,
     ) -> Result<Value, Refusal> {
-        if self.read_only {
-            return Err(OnlineError::ReadOnly.refusal());
+        let (target, written, raw) = self.change(cpu, operand, value)?;
+        if forces::forced_bytes(target, raw, cpu.program.layout).is_none() {
+            return Err(OnlineError::NotForceable {
+                operand: operand.to_string(),
+            }
+            .refusal());
         }
-        let target = self.target(cpu, operand)?;
-        let not_forceable = || OnlineError::NotForceable {
-            operand: operand.to_string(),
-        };
-        forces::forced_bytes(target, 0, cpu.program.layout).ok_or_else(not_forceable)?;
-        let (written, wanted) =
-            scenario::set_value(target, value, operand, &cpu.program, (0, 0).into())
-                .map_err(|error| Refusal::of(Refused::BadRequest, &error))?;
         let held = Held {
             operand: operand.to_string(),
             target,
-            raw: wanted.raw(),
+            raw,
         };
         self.forces.set(cpu, held);
         let by = client.name();
@@ -309,6 +317,17 @@ impl Online {
         }
         if let Some(timeline) = &mut self.timeline {
             timeline.look(cpu);
+        }
+    }
+
+    /// The serve ends: the live timeline's tracer output and a program status recorder leave
+    /// the CPU, so the run's summary and trace are those of the run alone.
+    pub fn leave(&mut self, cpu: &mut Cpu) {
+        if self.timeline.take().is_some() {
+            timeline::stop_recording(cpu);
+        }
+        if self.status.take().is_some() {
+            cpu.probe = None;
         }
     }
 

@@ -56,6 +56,12 @@ impl Sink for Keep {
     }
 }
 
+/// Removes the tracer output that keeps the events: the loop runs untraced again (unless a
+/// trace file is written).
+pub fn stop_recording(cpu: &mut Cpu) {
+    cpu.tracer.remove(OUTPUT);
+}
+
 /// The recording, while the page watches the timeline.
 pub struct LiveTimeline {
     events: Events,
@@ -110,7 +116,7 @@ impl LiveTimeline {
         if live.as_ref().is_some_and(|timeline| {
             timeline.waiting.is_empty() && timeline.last_asked.elapsed() > IDLE
         }) {
-            cpu.tracer.remove(OUTPUT);
+            stop_recording(cpu);
             *live = None;
         }
     }
