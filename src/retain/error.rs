@@ -29,7 +29,7 @@ pub enum RetainError {
     #[diagnostic(
         code(awl::retain::foreign),
         help(
-            "name a file awl wrote with `--retain` (retentive memory) or as a snapshot (`--from`)"
+            "name a file awl wrote with `--retain` (retentive memory) or as a snapshot (`--from`); for `--retain`, `--cold` starts from the source's values and writes the file anew"
         )
     )]
     Foreign {
