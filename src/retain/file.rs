@@ -133,3 +133,72 @@ fn beside(path: &Path) -> PathBuf {
     name.push(".new");
     path.with_file_name(name)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const KIND: Kind = Kind {
+        format: "awl-test",
+        name: "a test file",
+    };
+
+    #[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+    struct Body {
+        count: u32,
+        bytes: String,
+    }
+
+    fn good() -> String {
+        encode(
+            KIND,
+            &Body {
+                count: 42,
+                bytes: "00ff".into(),
+            },
+        )
+    }
+
+    #[test]
+    fn a_file_reads_back_as_written() {
+        let body: Body = decode(KIND, Path::new("f"), &good()).unwrap();
+        assert_eq!(body.count, 42);
+    }
+
+    #[test]
+    fn a_crash_leaves_the_old_file_or_the_new_one() {
+        let folder = std::env::temp_dir().join(format!("awl-retain-{}", std::process::id()));
+        std::fs::create_dir_all(&folder).unwrap();
+        let path = folder.join("memory.json");
+        write_durably(&path, "old").unwrap();
+        // A crash after the new file was written and before the rename.
+        std::fs::write(beside(&path), "half").unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+        write_durably(&path, "new").unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+        assert!(!beside(&path).exists());
+        std::fs::remove_dir_all(folder).unwrap();
+    }
+
+    proptest::proptest! {
+        /// Any text is read or refused with an error, never a panic.
+        #[test]
+        fn any_text_is_read_or_refused(text in ".{0,200}") {
+            let _ = decode::<Body>(KIND, Path::new("f"), &text);
+        }
+
+        /// A file with one character changed is refused, or reads as the original when the
+        /// change is only in its layout.
+        #[test]
+        fn a_changed_character_is_found(at in 0usize..400, with in proptest::char::range(' ', '~')) {
+            let text = good();
+            let at = at % text.len();
+            let mut changed: Vec<char> = text.chars().collect();
+            changed[at] = with;
+            let changed: String = changed.into_iter().collect();
+            if let Ok(body) = decode::<Body>(KIND, Path::new("f"), &changed) {
+                proptest::prop_assert_eq!(body, decode::<Body>(KIND, Path::new("f"), &text).unwrap());
+            }
+        }
+    }
+}

@@ -3,6 +3,7 @@
 
 pub mod browser;
 pub mod fake_memory;
+pub mod online;
 pub mod python;
 pub mod serve;
 pub mod step7;
