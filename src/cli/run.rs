@@ -229,14 +229,15 @@ pub struct RunArgs {
 /// What `--from` names: where the trace starts, or the snapshot the run continues from.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum From {
-    Time(u64),
+    /// The time, and as it was written.
+    Time(u64, String),
     Snapshot(PathBuf),
 }
 
 /// A time, else an existing file (a snapshot).
 fn parse_from_arg(text: &str) -> Result<From, String> {
     if let Ok(ns) = parse_time_arg(text) {
-        return Ok(From::Time(ns));
+        return Ok(From::Time(ns, text.to_string()));
     }
     let path = PathBuf::from(text);
     if path.is_file() {
@@ -301,11 +302,11 @@ pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
 }
 
 fn run_options(args: &RunArgs) -> Result<RunOptions, NotRun> {
-    let mut window_from = None;
+    let mut window_from: Option<(u64, &str)> = None;
     let mut from_snapshot = None;
     for from in &args.from {
         let twice = match from {
-            From::Time(ns) => window_from.replace(*ns).is_some(),
+            From::Time(ns, text) => window_from.replace((*ns, text)).is_some(),
             From::Snapshot(path) => from_snapshot.replace(path.clone()).is_some(),
         };
         if twice {
@@ -313,12 +314,12 @@ fn run_options(args: &RunArgs) -> Result<RunOptions, NotRun> {
             return Err(NotRun::Usage(miette::Report::new(error)));
         }
     }
-    if let Some(ns) = window_from
+    if let Some((_, text)) = window_from
         && args.trace.is_none()
         && args.timeline.is_none()
     {
         let error = runner::RunError::WindowNeedsOutput {
-            from: crate::trace::format_ms(ns),
+            from: text.to_string(),
         };
         return Err(NotRun::Usage(miette::Report::new(error)));
     }
@@ -326,7 +327,7 @@ fn run_options(args: &RunArgs) -> Result<RunOptions, NotRun> {
         trace: args.trace.clone(),
         trace_format: args.trace_format.map(Format::trace_format),
         trace_filter: trace_kinds(&args.trace_filter),
-        from_ns: window_from,
+        from_ns: window_from.map(|(ns, _)| ns),
         from_snapshot,
         retain: args.memory.retain_options(),
         what_fits: args.memory.retain_what_fits,

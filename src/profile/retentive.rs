@@ -33,6 +33,16 @@ const S5_SOURCE: &str = "S5-115U/135U/155U manuals, cold restart (Neustart) and 
      parameters: the first half of the flags, timers and counters is retentive with battery \
      backup; data blocks are kept in the battery-backed user memory";
 
+/// The 840C's PLC CPU is the S5-135U's CPU 928B.
+const SINUMERIK_SOURCE: &str = "the SINUMERIK 840C PLC's CPU 928B is an S5-135U CPU: the \
+     S5-135U manual's presets (cold restart and DX 0: the first half of the flags, timers and \
+     counters retentive; data blocks in the battery-backed user memory)";
+
+/// The S5-95F's manual says what the battery keeps, not how it is split.
+const S5_95F_SOURCE: &str = "S5-95F manual, 2.5.5 Function of the Backup Battery (the internal \
+     RAM is retained through a power failure); the split into a retentive first half of the \
+     flags, timers and counters is the larger S5 CPUs' preset";
+
 impl Profile {
     /// The retentive ranges the CPU has unless the scenario sets others.
     pub fn retentive(&self) -> Preset {
@@ -46,15 +56,25 @@ impl Profile {
                 },
                 source: S7_SOURCE,
             },
-            Family::Sinumerik840c | Family::S5_95f | Family::S5 => Preset {
-                ranges: Retentive {
-                    flag_bytes: self.sizes.flag_bytes / 2,
-                    timers: self.sizes.timers / 2,
-                    counters: self.sizes.counters / 2,
-                    data_blocks: true,
-                },
-                source: S5_SOURCE,
+            Family::Sinumerik840c => self.first_half_retentive(SINUMERIK_SOURCE),
+            Family::S5_95f => self.first_half_retentive(S5_95F_SOURCE),
+            Family::S5 => self.first_half_retentive(S5_SOURCE),
+        }
+    }
+}
+
+impl Profile {
+    /// The S5 CPUs' preset: the first half of the flags, timers and counters, and the data
+    /// blocks.
+    fn first_half_retentive(&self, source: &'static str) -> Preset {
+        Preset {
+            ranges: Retentive {
+                flag_bytes: self.sizes.flag_bytes / 2,
+                timers: self.sizes.timers / 2,
+                counters: self.sizes.counters / 2,
+                data_blocks: true,
             },
+            source,
         }
     }
 }
