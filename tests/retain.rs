@@ -365,3 +365,47 @@ fn from_takes_a_time_and_a_snapshot_once_each() {
     assert!(output.status.success(), "{printed}");
     assert!(printed.contains("cycles: 9"), "{printed}");
 }
+
+/// The README's example is what the binary prints.
+#[test]
+fn the_readme_example_is_what_awl_prints() {
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let example = readme
+        .split("```\n")
+        .find(|block| block.starts_with("$ awl run tests/inputs/retain/counter.awl"))
+        .expect("the README's retentive memory example");
+    let folder = folder("readme");
+    let mut printed = String::new();
+    for line in example
+        .lines()
+        .filter(|line| line.starts_with("$ awl run "))
+    {
+        let args: Vec<&str> = line
+            .trim_start_matches("$ awl run ")
+            .split('"')
+            .enumerate()
+            .flat_map(|(at, part)| match at % 2 {
+                0 => part.split_whitespace().collect::<Vec<_>>(),
+                _ => vec![part],
+            })
+            .map(|arg| if arg == "memory.json" { "" } else { arg })
+            .collect();
+        let memory = folder.join("memory.json");
+        let args: Vec<&str> = args
+            .iter()
+            .map(|arg| {
+                if arg.is_empty() {
+                    memory.to_str().unwrap()
+                } else {
+                    arg
+                }
+            })
+            .collect();
+        let output = awl(&args);
+        printed.push_str(line);
+        printed.push('\n');
+        printed.push_str(&String::from_utf8_lossy(&output.stdout));
+    }
+    assert_eq!(printed, example);
+}
