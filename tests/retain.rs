@@ -5,30 +5,17 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-const AWL: &str = env!("CARGO_BIN_EXE_awl");
 const COUNTER: &str = "tests/inputs/retain/counter.awl";
 const DELAY: &str = "tests/inputs/retain/delay.awl";
 
-/// A fresh folder of this test's under target/.
 fn folder(name: &str) -> PathBuf {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("target/test-retain")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&folder);
-    std::fs::create_dir_all(&folder).unwrap();
-    folder
+    common::scratch("retain", name)
 }
 
-/// `awl run ARGS`.
 fn awl(args: &[&str]) -> Output {
-    Command::new(AWL)
-        .arg("run")
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("awl runs")
+    common::awl_run(args)
 }
 
 fn text(output: &Output) -> String {

@@ -7,7 +7,7 @@ mod common;
 
 use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use common::online::Online;
@@ -17,33 +17,12 @@ const AWL: &str = env!("CARGO_BIN_EXE_awl");
 const COUNTER: &str = "tests/inputs/retain/counter.awl";
 
 fn folder(name: &str) -> PathBuf {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("target/test-retain-serve")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&folder);
-    std::fs::create_dir_all(&folder).unwrap();
-    folder
-}
-
-fn awl_run(args: &[&str]) -> Output {
-    Command::new(AWL)
-        .arg("run")
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("awl runs")
+    common::scratch("retain-serve", name)
 }
 
 /// Sends `signal` to the serve and waits for it to end.
 fn end(serving: &mut Serving, signal: &str) {
-    let pid = serving.child.id().to_string();
-    let sent = Command::new("kill").args([signal, &pid]).status();
-    assert!(sent.is_ok_and(|status| status.success()), "kill {signal}");
-    let deadline = Instant::now() + Duration::from_secs(30);
-    while serving.child.try_wait().expect("waits").is_none() {
-        assert!(Instant::now() < deadline, "awl serve did not end");
-        std::thread::sleep(Duration::from_millis(10));
-    }
+    common::end_with(&mut serving.child, signal);
 }
 
 /// The S7 client's answer: DB 1's setpoint after `action`.
@@ -110,7 +89,7 @@ fn a_data_block_an_s7_client_wrote_survives_restarts_and_a_cold_restart_clears_i
 /// DB1.count of the file, as the next run starts from it (one cycle later); the run fails on a
 /// torn or damaged file.
 fn count_in(retain: &Path) -> i64 {
-    let output = awl_run(&[
+    let output = common::awl_run(&[
         COUNTER,
         "--cycles",
         "1",
@@ -213,7 +192,7 @@ fn a_snapshot_of_the_online_api_or_the_terminal_continues_in_awl_run() {
     let file = folder.join("online.json");
     std::fs::write(&file, serde_json::to_string(&snapshot).unwrap()).unwrap();
     let more = (cycle + 5).to_string();
-    let output = awl_run(&[
+    let output = common::awl_run(&[
         COUNTER,
         "--from",
         file.to_str().unwrap(),
@@ -256,7 +235,7 @@ fn a_snapshot_of_the_online_api_or_the_terminal_continues_in_awl_run() {
     assert_eq!(written, folder.join("counter.snapshot-1.json"));
     let _ = child.kill();
     let _ = child.wait();
-    let output = awl_run(&[
+    let output = common::awl_run(&[
         COUNTER,
         "--from",
         written.to_str().unwrap(),

@@ -115,14 +115,7 @@ impl Online {
 
     /// Ends the serve as a service manager does (SIGTERM), so it writes its trace; its stdout.
     pub fn terminate(mut self) -> String {
-        let pid = self.child.id().to_string();
-        let sent = Command::new("kill").args(["-TERM", &pid]).status();
-        assert!(sent.is_ok_and(|status| status.success()), "kill -TERM");
-        let deadline = Instant::now() + Duration::from_secs(30);
-        while self.child.try_wait().expect("waits").is_none() {
-            assert!(Instant::now() < deadline, "awl serve did not end");
-            std::thread::sleep(Duration::from_millis(20));
-        }
+        super::end_with(&mut self.child, "-TERM");
         let mut stderr = String::new();
         let _ = self
             .child
