@@ -83,6 +83,9 @@ BENCHES = [
     Bench("calls", "calls", None, (1000, 5000), (100, 500)),
     Bench("fb_params", "fb_params", None, (50, 250), (5, 25)),
     Bench("s7_calls", "s7_calls", None, (1000, 5000), (100, 500)),
+    # STEP 7 calls with parameters: an FB on instance DBs, an FC.
+    Bench("s7_fb_instances", "s7_fb_instances", None, (50, 250), (5, 25)),
+    Bench("s7_fc_params", "s7_fc_params", None, (50, 250), (5, 25)),
 ]
 
 # `awl serve` without and with the online page, nothing watched (the S7 server in both).
@@ -113,6 +116,12 @@ AWLSIM_BENCHES = [
     Bench("awlsim_s7_calls", "s7_calls", None, (20, 100), (10, 30), awlsim="pip"),
     Bench("cython_s7_logic_loop", "s7_logic_loop", None, (2, 10), (1, 3), awlsim="cython"),
     Bench("cython_s7_calls", "s7_calls", None, (100, 500), (20, 100), awlsim="cython"),
+    Bench("awlsim_s7_fb_instances", "s7_fb_instances", None, (1, 3), (1, 2), awlsim="pip"),
+    Bench("awlsim_s7_fc_params", "s7_fc_params", None, (1, 3), (1, 2), awlsim="pip"),
+    Bench(
+        "cython_s7_fb_instances", "s7_fb_instances", None, (5, 25), (2, 6), awlsim="cython"
+    ),
+    Bench("cython_s7_fc_params", "s7_fc_params", None, (5, 25), (2, 6), awlsim="cython"),
 ]
 
 COLLECTED = re.compile(r"Collected\s*:\s*(\d+)")
