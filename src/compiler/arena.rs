@@ -28,12 +28,12 @@ pub struct Arena {
 }
 
 impl Arena {
-    /// Lays out `blocks`; `optimised`: with the specialised FB bodies and the fused pairs (else
-    /// the ops run as compiled, which tests compare with).
+    /// Lays out `blocks`, whose STEP 7 ops name `places`; `optimised`: with the specialised FB
+    /// and FC bodies and the fused pairs (else the ops run as compiled, which tests compare with).
     pub fn build(
         blocks: &[CompiledBlock],
         param_lists: &[Vec<Resolved>],
-        layout: Layout,
+        (layout, places): (Layout, &[crate::step7::bytecode::Place]),
         optimised: bool,
     ) -> Self {
         let specialised = optimised;
@@ -77,7 +77,7 @@ impl Arena {
                 };
                 let fb = &blocks[block];
                 match specialised
-                    .then(|| specialise::body(&fb.code, list, layout))
+                    .then(|| specialise::body(&fb.code, list, layout, places))
                     .flatten()
                 {
                     Some(body) => place(&body, &fb.elapsed),

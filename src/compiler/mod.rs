@@ -100,9 +100,6 @@ pub struct Program {
     pub s7: crate::step7::bytecode::S7Tables,
     /// What the STEP 5 program's checks asked of the CPU (empty for a STEP 7 program).
     pub needs: Needs,
-    /// The native code of the arena's straight-line stretches, made when a CPU is first made
-    /// for the program (see `vm::native`).
-    pub native_code: std::sync::OnceLock<Option<std::sync::Arc<crate::vm::native::NativeCode>>>,
 }
 
 /// An operand's places are the program's: the address model knows no compiled program.
@@ -139,7 +136,7 @@ impl Program {
         s7: crate::step7::bytecode::S7Tables,
     ) -> Program {
         let layout = Layout::new(&profile.sizes);
-        let arena = arena::Arena::build(&blocks, &param_lists, layout, true);
+        let arena = arena::Arena::build(&blocks, &param_lists, (layout, &s7.places), true);
         let names = blocks
             .iter()
             .map(|block| std::sync::Arc::from(block.id.to_string()))
@@ -159,7 +156,6 @@ impl Program {
             local_bytes,
             s7,
             needs: Needs::default(),
-            native_code: std::sync::OnceLock::new(),
         }
     }
 
@@ -171,8 +167,8 @@ impl Program {
     /// resolved at run time, the path a parameter passed on from a calling FB takes) and no
     /// fused pairs. Tests compare the two.
     pub fn unoptimised(mut self) -> Self {
-        self.arena = arena::Arena::build(&self.blocks, &self.param_lists, self.layout, false);
-        self.native_code = std::sync::OnceLock::new();
+        let places = (self.layout, &self.s7.places[..]);
+        self.arena = arena::Arena::build(&self.blocks, &self.param_lists, places, false);
         self
     }
 
@@ -180,7 +176,6 @@ impl Program {
     /// Tests compare it with the native stretches.
     pub fn interpreted(mut self) -> Self {
         self.arena.native = false;
-        self.native_code = std::sync::OnceLock::new();
         self
     }
 

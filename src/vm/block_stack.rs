@@ -30,9 +30,9 @@ impl<T: Copy + Default> BlockStack<T> {
         self.len == 0
     }
 
-    /// Whether a push would find room.
-    pub fn has_room(&self) -> bool {
-        self.len < self.frames.len()
+    /// Whether `pushes` pushes would find room.
+    pub fn has_room_for(&self, pushes: usize) -> bool {
+        self.len + pushes <= self.frames.len()
     }
 
     /// Pushes a return point; `false` when the stack is full.

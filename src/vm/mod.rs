@@ -54,6 +54,37 @@ pub struct NativeStretch {
     /// The operations and time of the leaf blocks it calls, beyond the calls' own places.
     pub called_ops: u64,
     pub called_ns: u64,
+    /// How deep its leaf calls nest: the frames they need on the block stack (0: no call).
+    pub depth: u32,
+    /// The simulated time of the whole stretch, with the leaf blocks it calls.
+    pub span_ns: u64,
+    /// Its block changes, where it has any: the interrupt points it crosses with block points.
+    pub changes: Option<BlockChanges>,
+}
+
+/// The block changes inside a stretch that calls leaf blocks, which are interrupt points with
+/// block points: what marking each in turn leaves behind (see `Cpu::mark_point`), made when
+/// the stretch is compiled. Times are from the stretch's start.
+#[derive(Debug, Clone, Copy)]
+pub struct BlockChanges {
+    /// The first change, which ends the stretch that began at the last point before.
+    pub first_ns: u64,
+    pub first: Change,
+    /// The longest stretch between two of its changes (the first of equal ones).
+    pub longest_ns: u64,
+    pub longest: Change,
+    /// The last change, and the one before it (where the last stretch began).
+    pub before_last_ns: u64,
+    pub last_ns: u64,
+    pub last: Change,
+}
+
+/// A block change inside a stretch: the point after op `pc` of `block`, or, where `block` is
+/// `None`, after op `pc` of the stretch (its first is 0) in the block that runs it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Change {
+    pub block: Option<u16>,
+    pub pc: u32,
 }
 
 /// Without the `jit` feature, and on wasm32, there is no native code: every op is interpreted.
@@ -72,7 +103,7 @@ pub mod native {
             match *self {}
         }
 
-        pub fn code(&self, _: bool) -> &[Op] {
+        pub fn code(&self, _: bool, _: bool) -> &[Op] {
             match *self {}
         }
 
@@ -385,10 +416,23 @@ pub struct Cpu {
     pub pulse: Option<pulse::Pulse>,
     /// The inputs and outputs held at values (the online page's force); see [`force`].
     pub forces: force::Forces,
+    /// The native code of the program's straight-line stretches (see [`native`]): made with
+    /// the CPU, kept by its restarts.
+    native: Option<Arc<native::NativeCode>>,
 }
 
 impl Cpu {
     pub fn new(program: Arc<Program>, sources: Arc<SourceSet>) -> Self {
+        let native = native::compile(&program).map(Arc::new);
+        Self::with_native(program, sources, native)
+    }
+
+    /// A CPU for `program` whose stretches run as `native` (made for this program).
+    fn with_native(
+        program: Arc<Program>,
+        sources: Arc<SourceSet>,
+        native: Option<Arc<native::NativeCode>>,
+    ) -> Self {
         let profile = program.profile;
         let sizes = profile.sizes;
         let periphery = usize::from(sizes.peripheral_bytes);
@@ -398,9 +442,6 @@ impl Cpu {
                 data_blocks[usize::from(block.id.number)] = Some(block.words.clone());
             }
         }
-        program
-            .native_code
-            .get_or_init(|| native::compile(&program).map(Arc::new));
         let levels_capacity = profile.interrupt_obs.len() + 2;
         Cpu {
             image: vec![0u8; IMAGE_MEMORY]
@@ -479,6 +520,7 @@ impl Cpu {
             probe: None,
             pulse: None,
             forces: force::Forces::default(),
+            native,
             profile,
             program,
             sources,

@@ -7,7 +7,13 @@
 //! loop checks the stretch's end time once; with block points a stretch holds no point at all).
 //! Otherwise, and where no native code could be made, the ops run one by one as before.
 //!
-//! The stretches are marked in a copy of the arena's code: [`Op::Native`] at a stretch's first
+//! A stretch may also call leaf blocks (blocks whose bodies are such stretches, calling leaf
+//! blocks in turn, and their block end): without a trace, a block change shows only as an
+//! interrupt point with block points, and the stretch runs only when no request is pending and
+//! nothing falls due before it ends, so no point inside it is taken; it marks the points it
+//! crossed as the loop would have (see [`BlockChanges`]).
+//!
+//! The stretches are marked in copies of the arena's code: [`Op::Native`] at a stretch's first
 //! position; every other position keeps its op, so a jump into a stretch runs on from there.
 
 use std::sync::OnceLock;
@@ -15,10 +21,10 @@ use std::sync::OnceLock;
 use awl_jit::{BitAction, Compiler, LoopBack, Registers, Step};
 
 use super::status::Status;
-use super::{IMAGE_MEMORY, NativeRun, NativeStretch};
+use super::{BlockChanges, Change, IMAGE_MEMORY, NativeRun, NativeStretch};
 use crate::compiler::Program;
 use crate::compiler::bytecode::{
-    Arith, Comparison, ImageBit, JumpCondition, Logic, NO_PARAMS, Op, Width, Write,
+    Arith, Comparison, ImageBit, JumpCondition, Logic, Op, Width, Write,
 };
 use crate::step7::bytecode::S7Code;
 
@@ -31,38 +37,45 @@ const SHORTEST: usize = 8;
 /// whose call and end cost more than that.
 const SHORTEST_LOOP: usize = 3;
 
+/// How deep leaf calls nest inside a stretch at most.
+const DEEPEST: u32 = 4;
+
 /// The native code of a program's stretches.
 #[derive(Debug)]
 pub struct NativeCode {
-    /// The arena's code with [`Op::Native`] at each stretch's start: for block points and traced
-    /// runs, where a block change is a point or an event.
-    code: Box<[Op]>,
-    /// The same where a stretch may also run a call of a leaf block (see [`leaf`]): for untraced
-    /// runs with operation points, where a block change is neither.
+    /// The arena's code with [`Op::Native`] at each stretch's start: for traced runs, where a
+    /// block change is an event.
+    traced_code: Box<[Op]>,
+    /// The same where a stretch may also run calls of leaf blocks (see [`leaf`]): for untraced
+    /// runs with operation points, where a block change is no point…
     operation_code: Box<[Op]>,
-    /// Whether `code` and `operation_code` hold any stretch (else the plain loops run).
-    in_code: bool,
+    /// …and with block points, where the stretch marks the points it crosses; a loop's stretch
+    /// that calls runs op by op there (each pass would cross points of its own).
+    block_code: Box<[Op]>,
+    /// Whether `operation_code` and `block_code` hold any stretch (else the plain loops run).
     in_operation_code: bool,
+    in_block_code: bool,
     stretches: Box<[NativeStretch]>,
     jit: awl_jit::Code,
 }
 
 impl NativeCode {
     /// Whether the code for these points (`operation_points`) holds any stretch.
+    /// Whether the untraced code for these points holds any stretch.
     pub fn holds_stretches(&self, operation_points: bool) -> bool {
         if operation_points {
             self.in_operation_code
         } else {
-            self.in_code
+            self.in_block_code
         }
     }
 
-    /// The code with the stretches marked; `leaf_calls`: those that run leaf calls too.
-    pub fn code(&self, leaf_calls: bool) -> &[Op] {
-        if leaf_calls {
-            &self.operation_code
-        } else {
-            &self.code
+    /// The code with the stretches marked for these points, traced or not.
+    pub fn code(&self, operation_points: bool, traced: bool) -> &[Op] {
+        match (traced, operation_points) {
+            (true, _) => &self.traced_code,
+            (false, true) => &self.operation_code,
+            (false, false) => &self.block_code,
         }
     }
 
@@ -112,11 +125,13 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
     }
     let plain = &program.arena.plain;
     let mut compiler = Compiler::new(status_bits(), IMAGE_MEMORY).ok()?;
-    let mut code = program.arena.ops.to_vec();
-    let mut operation_code = code.clone();
+    let mut traced_code = program.arena.ops.to_vec();
+    let mut operation_code = traced_code.clone();
+    let mut block_code = traced_code.clone();
     let mut stretches = Vec::new();
     let call_free = find(plain, &|_| None);
-    let with_calls = find(plain, &|op| leaf(program, op));
+    let leaves = Leaves::new(program);
+    let with_calls = find(plain, &|op| leaves.leaf(op));
     let mut compiled = std::collections::HashMap::new();
     for (found, calls) in chosen(call_free, with_calls) {
         let range = found.start..found.start + found.len;
@@ -126,7 +141,7 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
             Some(index) => *index,
             None => {
                 let index = stretches.len();
-                let flat = flatten(program, &found, calls);
+                let flat = flatten(program, &leaves, &found, calls);
                 compiler
                     .add(&flat.steps, found.loop_back.map(loop_back))
                     .ok()?;
@@ -135,11 +150,14 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
                 let pass = |ns: u64| times[jump + 1] - times[found.start] + ns;
                 stretches.push(NativeStretch {
                     len: found.len as u32,
-                    first: code[found.start],
+                    first: traced_code[found.start],
                     pass_ns: found.loop_back.map_or(0, |_| pass(flat.called_ns)),
                     until_last: flat.until_last,
                     called_ops: flat.called_ops,
                     called_ns: flat.called_ns,
+                    depth: flat.depth,
+                    span_ns: flat.span_ns,
+                    changes: block_changes(&flat.changes),
                 });
                 compiled.insert(key, index);
                 index
@@ -148,7 +166,10 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
         let marker = Op::Native(index as u32);
         operation_code[found.start] = marker;
         if !calls {
-            code[found.start] = marker;
+            traced_code[found.start] = marker;
+        }
+        if !calls || found.loop_back.is_none() {
+            block_code[found.start] = marker;
         }
     }
     if stretches.is_empty() {
@@ -156,90 +177,220 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
     }
     let holds_stretch = |code: &[Op]| code.iter().any(|op| matches!(op, Op::Native(_)));
     Some(NativeCode {
-        in_code: holds_stretch(&code),
         in_operation_code: holds_stretch(&operation_code),
-        code: code.into_boxed_slice(),
+        in_block_code: holds_stretch(&block_code),
+        traced_code: traced_code.into_boxed_slice(),
         operation_code: operation_code.into_boxed_slice(),
+        block_code: block_code.into_boxed_slice(),
         stretches: stretches.into_boxed_slice(),
         jit: compiler.finish().ok()?,
     })
 }
 
-/// A call of a leaf block: a block whose body is native steps and its block end, without
-/// local data, called without parameters. Run inside a stretch, it is its status rules (the
-/// call's, the body's, the end's) and its time; with operation points and no trace nothing else
-/// of a block change shows.
+/// A call of a leaf block: a block without local data whose body is native steps and calls
+/// of leaf blocks (nested at most [`DEEPEST`] deep), then its block end. Run inside a stretch,
+/// it is its status rules (the call's, the body's, the end's), its time and its block changes;
+/// without a trace nothing else of a block change shows.
 #[derive(Debug, Clone, Copy)]
 struct Leaf {
+    block: u16,
     /// Where its body starts in the arena, and its ops with the block end.
     entry: usize,
     ops: usize,
     end: Op,
+    /// The ops it runs with those of the leaf blocks it calls, and the frames they need.
+    runs: usize,
+    depth: u32,
 }
 
-fn leaf(program: &Program, op: Op) -> Option<Leaf> {
-    let Op::Call {
-        block,
-        conditional: false,
-        params: NO_PARAMS,
-    } = op
-    else {
-        return None;
-    };
-    if program.local_bytes(block) != 0 {
-        return None;
+/// The leaf blocks of a program, each found once.
+struct Leaves<'a> {
+    program: &'a Program,
+    /// By (block, actual-parameter list, nesting left).
+    found: std::cell::RefCell<std::collections::HashMap<(u16, u16, u32), Option<Leaf>>>,
+}
+
+impl<'a> Leaves<'a> {
+    fn new(program: &'a Program) -> Self {
+        Leaves {
+            program,
+            found: Default::default(),
+        }
     }
-    let entry = program.arena.start(block, NO_PARAMS);
-    let body = program.arena.plain.get(entry..)?;
-    let end = body.iter().position(|op| step(*op).is_none())?;
-    let ends = matches!(body[end], Op::BlockEnd | Op::BlockEndUnconditional);
-    (ends && body.get(end + 1) == Some(&Op::End)).then_some(Leaf {
-        entry,
-        ops: end + 1,
-        end: body[end],
-    })
+
+    /// The leaf block `op` calls, if it calls one.
+    fn leaf(&self, op: Op) -> Option<Leaf> {
+        self.within(op, DEEPEST)
+    }
+
+    fn within(&self, op: Op, depth_left: u32) -> Option<Leaf> {
+        let Op::Call {
+            block,
+            conditional: false,
+            params,
+        } = op
+        else {
+            return None;
+        };
+        if depth_left == 0 || self.program.local_bytes(block) != 0 {
+            return None;
+        }
+        let key = (block, params, depth_left);
+        if let Some(known) = self.found.borrow().get(&key) {
+            return *known;
+        }
+        let leaf = self.body(block, params, depth_left);
+        self.found.borrow_mut().insert(key, leaf);
+        leaf
+    }
+
+    fn body(&self, block: u16, params: u16, depth_left: u32) -> Option<Leaf> {
+        let entry = self.program.arena.start(block, params);
+        let body = self.program.arena.plain.get(entry..)?;
+        let (mut runs, mut depth) = (0, 1);
+        for (at, op) in body.iter().enumerate() {
+            runs += 1;
+            if step(*op).is_some() {
+                continue;
+            }
+            if let Some(inner) = self.within(*op, depth_left - 1) {
+                runs += inner.runs;
+                depth = depth.max(inner.depth + 1);
+                continue;
+            }
+            let ends = matches!(op, Op::BlockEnd | Op::BlockEndUnconditional);
+            return (ends && body.get(at + 1) == Some(&Op::End)).then_some(Leaf {
+                block,
+                entry,
+                ops: at + 1,
+                end: *op,
+                runs,
+                depth,
+            });
+        }
+        None
+    }
 }
 
 /// A stretch as the steps it runs, with the leaf blocks it calls laid in.
 struct Flat {
     steps: Vec<Step>,
+    /// The time of the op it runs last.
+    last_ns: u64,
     until_last: u64,
     called_ops: u64,
     called_ns: u64,
+    depth: u32,
+    span_ns: u64,
+    /// Its block changes: the time from its start, and where.
+    changes: Vec<(u64, Change)>,
 }
 
-fn flatten(program: &Program, found: &Found, calls: bool) -> Flat {
+fn flatten(program: &Program, leaves: &Leaves, found: &Found, calls: bool) -> Flat {
     let plain = &program.arena.plain;
     let times = &program.arena.times;
-    let step7 = program.s7.step7;
     let mut flat = Flat {
         steps: Vec::new(),
+        last_ns: 0,
         until_last: 0,
         called_ops: 0,
         called_ns: 0,
+        depth: 0,
+        span_ns: 0,
+        changes: Vec::new(),
     };
-    // Each op's time, in the order they run.
-    let mut costs = Vec::new();
     for at in found.start..found.start + found.len {
-        costs.push(times[at + 1] - times[at]);
-        if let Some(step) = step(plain[at]) {
-            flat.steps.push(step);
-            continue;
-        }
-        let Some(leaf) = leaf(program, plain[at]).filter(|_| calls) else {
-            continue;
-        };
-        flat.steps.push(Step::Status(called(step7)));
-        for body_at in leaf.entry..leaf.entry + leaf.ops {
-            costs.push(times[body_at + 1] - times[body_at]);
-            flat.steps.extend(step(plain[body_at]));
-        }
-        flat.steps.push(Step::Status(ended(step7, leaf.end)));
-        flat.called_ops += leaf.ops as u64;
-        flat.called_ns += times[leaf.entry + leaf.ops] - times[leaf.entry];
+        let pc = (at - found.start) as u32;
+        flat.op(
+            program,
+            leaves,
+            plain[at],
+            times[at + 1] - times[at],
+            calls,
+            None,
+            pc,
+        );
     }
-    flat.until_last = costs[..costs.len() - 1].iter().sum();
+    flat.until_last = flat.span_ns - flat.last_ns;
     flat
+}
+
+impl Flat {
+    /// The next op it runs takes `cost`.
+    fn spend(&mut self, cost: u64) {
+        self.last_ns = cost;
+        self.span_ns += cost;
+    }
+
+    /// Lays in op `pc` of `block` (`None`: of the stretch), which takes `cost`: its step, or the
+    /// leaf block it calls.
+    #[allow(clippy::too_many_arguments)]
+    fn op(
+        &mut self,
+        program: &Program,
+        leaves: &Leaves,
+        op: Op,
+        cost: u64,
+        calls: bool,
+        block: Option<u16>,
+        pc: u32,
+    ) {
+        self.spend(cost);
+        if let Some(step) = step(op) {
+            self.steps.push(step);
+            return;
+        }
+        let Some(leaf) = leaves.leaf(op).filter(|_| calls) else {
+            return;
+        };
+        self.depth = self.depth.max(leaf.depth);
+        self.changes.push((self.span_ns, Change { block, pc }));
+        let step7 = program.s7.step7;
+        let times = &program.arena.times;
+        self.steps.push(Step::Status(called(step7)));
+        for body_at in leaf.entry..leaf.entry + leaf.ops {
+            let cost = times[body_at + 1] - times[body_at];
+            let body_pc = (body_at - leaf.entry) as u32;
+            let op = program.arena.plain[body_at];
+            if body_at + 1 == leaf.entry + leaf.ops {
+                self.spend(cost);
+                self.steps.push(Step::Status(ended(step7, leaf.end)));
+                let end = Change {
+                    block: Some(leaf.block),
+                    pc: body_pc,
+                };
+                self.changes.push((self.span_ns, end));
+            } else {
+                self.op(program, leaves, op, cost, true, Some(leaf.block), body_pc);
+            }
+        }
+        self.called_ops += leaf.ops as u64;
+        self.called_ns += times[leaf.entry + leaf.ops] - times[leaf.entry];
+    }
+}
+
+/// What marking `changes` in turn leaves behind; `None` for a stretch without any.
+fn block_changes(changes: &[(u64, Change)]) -> Option<BlockChanges> {
+    let (&(first_ns, first), rest) = changes.split_first()?;
+    let (mut longest_ns, mut longest) = (0, first);
+    let mut before = (first_ns, first);
+    let mut before_last_ns = first_ns;
+    for &(ns, change) in rest {
+        if ns - before.0 > longest_ns {
+            (longest_ns, longest) = (ns - before.0, change);
+        }
+        before_last_ns = before.0;
+        before = (ns, change);
+    }
+    Some(BlockChanges {
+        first_ns,
+        first,
+        longest_ns,
+        longest,
+        before_last_ns,
+        last_ns: before.0,
+        last: before.1,
+    })
 }
 
 /// How many operations (a leaf call's counted) of stretches outside loops are compiled at
@@ -311,7 +462,7 @@ fn find(plain: &[Op], leaf: &dyn Fn(Op) -> Option<Leaf>) -> Vec<Found> {
     let weight = |range: std::ops::Range<usize>| -> usize {
         plain[range]
             .iter()
-            .map(|op| leaf(*op).map_or(1, |leaf| 1 + leaf.ops))
+            .map(|op| leaf(*op).map_or(1, |leaf| 1 + leaf.runs))
             .sum()
     };
     let mut close = |start: usize, end: usize| {
@@ -622,6 +773,27 @@ mod tests {
             .map(|(found, _)| found.start)
             .collect();
         assert_eq!(starts, [10_000, 20_000, 40_000]);
+    }
+
+    #[test]
+    fn block_changes_leave_what_marking_each_in_turn_leaves() {
+        let at = |pc| Change { block: Some(7), pc };
+        let changes = [
+            (5, at(0)),
+            (12, at(1)),
+            (20, at(2)),
+            (27, at(3)),
+            (30, at(4)),
+        ];
+        let marked = block_changes(&changes).expect("changes");
+        assert_eq!((marked.first_ns, marked.first), (5, at(0)));
+        // 7, 8, 7, 3 ns between them: the first of the longest.
+        assert_eq!((marked.longest_ns, marked.longest), (8, at(2)));
+        assert_eq!(
+            (marked.before_last_ns, marked.last_ns, marked.last),
+            (27, 30, at(4))
+        );
+        assert!(block_changes(&[]).is_none());
     }
 
     #[test]

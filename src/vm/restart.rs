@@ -17,7 +17,11 @@ impl Cpu {
     /// flags, timers, counters and data blocks back as loaded. The input modules are the
     /// process's and stay as they are.
     pub fn prepare_restart(&mut self, cold: bool) {
-        let fresh = Cpu::new(self.program.clone(), self.sources.clone());
+        let fresh = Cpu::with_native(
+            self.program.clone(),
+            self.sources.clone(),
+            self.native.clone(),
+        );
         self.level = fresh.level;
         self.frames = fresh.frames;
         self.levels.clear();

@@ -19,7 +19,7 @@ use super::native::NativeCode;
 use super::probe::Flow;
 use super::status::Status;
 use super::stop::{StopCause, StopDetail};
-use super::{Cpu, Exit, Frame, LastStretch, Point, StretchKind};
+use super::{BlockChanges, Change, Cpu, Exit, Frame, LastStretch, Point, StretchKind};
 
 /// How the loop ended: small and `Copy`, so leaving it carries no STOP report.
 #[derive(Clone, Copy)]
@@ -184,6 +184,7 @@ impl Cpu {
         &mut self,
     ) -> Exit {
         let program = Arc::clone(&self.program);
+        let native_code = if NATIVE { self.native.clone() } else { None };
         let arena = &program.arena;
         // A STEP 7 program's calls also move the L stack and save the DB and DI registers.
         let step7 = STEP7;
@@ -193,15 +194,11 @@ impl Cpu {
         // with operation points a pair runs as one only when no point falls between its ops.
         let plain = &arena.plain[..];
         // Straight-line stretches run as native code where there is any (see `native`).
-        let native = if NATIVE {
-            program.native_code.get().and_then(Option::as_deref)
-        } else {
-            None
-        };
+        let native = native_code.as_deref();
         let code = match native {
             _ if STEPPING => plain,
-            // Leaf calls run inside stretches only where a block change is no point or event.
-            Some(native) => native.code(OPERATION_POINTS && !TRACING),
+            // Leaf calls run inside stretches only where a block change is no event.
+            Some(native) => native.code(OPERATION_POINTS, TRACING),
             None => &arena.ops[..],
         };
         let times = &arena.times[..];
@@ -662,8 +659,10 @@ impl Cpu {
                     Op::Native(index) if NATIVE => {
                         let first = pc - 1;
                         let registers = (status, accu1, accu2);
-                        match self.run_stretch(native, index, time_base, first, deadline, registers)
-                        {
+                        let from = (first, (first - start) as u32, deadline);
+                        match self.run_stretch::<OPERATION_POINTS>(
+                            native, index, time_base, from, registers,
+                        ) {
                             Stretched::Ran(ran) => {
                                 (status, accu1, accu2) = ran.registers;
                                 if let Some(landed) = ran.landed {
@@ -676,16 +675,10 @@ impl Cpu {
                                 }
                                 pc = ran.resume;
                             }
-                            Stretched::OpByOp(first_op) if OPERATION_POINTS => {
+                            Stretched::OpByOp(first_op) => {
                                 resolved = first_op;
                                 op = &resolved;
                                 continue 'dispatch;
-                            }
-                            // With block points a stretch always runs: its code comes with the
-                            // code that holds `Native`.
-                            Stretched::OpByOp(_) => {
-                                detail = StopDetail::Text("a stretch without native code".into());
-                                break 'run Leave::Stop(StopCause::Bcf, at!());
                             }
                         }
                     }
@@ -825,20 +818,21 @@ struct StretchRan {
 impl Cpu {
     /// The native code of the program's stretches, if it has any.
     fn native_code(&self) -> Option<&NativeCode> {
-        self.program.native_code.get().and_then(Option::as_deref)
+        self.native.as_deref()
     }
 
-    /// Runs the native stretch `index` starting at `first`, for the loop's arm: a loop's whole
-    /// passes while no point falls due in one or at its end, else the stretch once.
-    /// `deadline` is the attention time on the scale of `times` (`u64::MAX` with block points).
-    #[inline(always)]
-    fn run_stretch(
+    /// Runs the native stretch `index` starting at `first`, op `first_pc` of the running block,
+    /// for the loop's arm: a loop's whole passes while no point falls due in one or at its end,
+    /// else the stretch once. `deadline` is the attention time on the scale of `times`
+    /// (`u64::MAX` with block points). Out of line: it runs once a stretch, and inlined its
+    /// loads of the CPU's fields went to every op's dispatch (callgrind, `programs/bench/fb_params`).
+    #[inline(never)]
+    fn run_stretch<const OPERATION_POINTS: bool>(
         &mut self,
         native: Option<&NativeCode>,
         index: u32,
         time_base: u64,
-        first: usize,
-        deadline: u64,
+        (first, first_pc, deadline): (usize, u32, u64),
         (status, accu1, accu2): (Status, u32, u32),
     ) -> Stretched {
         let Some((native, stretch)) = native.and_then(|code| Some((code, code.stretch(index)?)))
@@ -851,15 +845,26 @@ impl Cpu {
             return Stretched::OpByOp(stretch.first);
         }
         // A leaf call that would find no room on the block stack stops the CPU, op by op.
-        if stretch.called_ops > 0
-            && (self.frames.len() >= self.level.frame_limit || !self.frames.has_room())
+        let depth = stretch.depth as usize;
+        if depth > 0
+            && (self.frames.len() + depth > self.level.frame_limit
+                || !self.frames.has_room_for(depth))
         {
+            return Stretched::OpByOp(stretch.first);
+        }
+        let clock = time_base.wrapping_add(times[first]);
+        // With block points, its block changes are points: none may fall due.
+        let changes = if OPERATION_POINTS {
+            None
+        } else {
+            stretch.changes
+        };
+        if changes.is_some() && clock.saturating_add(stretch.span_ns) >= self.attention_at {
             return Stretched::OpByOp(stretch.first);
         }
         let most = if stretch.pass_ns == 0 {
             0
         } else {
-            let clock = time_base.wrapping_add(times[first]);
             full_passes(self.attention_at, clock, stretch.pass_ns)
         };
         let mut status = status;
@@ -870,6 +875,9 @@ impl Cpu {
         };
         [_, _, self.level.accu3, self.level.accu4] = accus;
         let registers = (status, accus[0], accus[1]);
+        if let Some(changes) = changes {
+            self.mark_changes(clock, first_pc, &changes);
+        }
         if ran.passes == 0 && !ran.left_loop {
             return Stretched::Ran(StretchRan {
                 registers,
@@ -893,9 +901,33 @@ impl Cpu {
             registers,
             shift_ops: passes * pass_ops + once_ops,
             shift_ns: passes_ns + once_ns,
-            landed: (passes > 0).then(|| time_base.wrapping_add(passes_ns + times[first])),
+            landed: (passes > 0).then(|| clock.wrapping_add(passes_ns)),
             resume,
         })
+    }
+}
+
+impl Cpu {
+    /// Marks the block changes of a stretch that started at `clock` with op `first_pc` of the
+    /// running block, as marking each in turn would (see `mark_point`). Out of line: inlined,
+    /// it costs the loop's other paths registers.
+    #[inline(never)]
+    fn mark_changes(&mut self, clock: u64, first_pc: u32, changes: &BlockChanges) {
+        let kind = |change: Change| StretchKind::Block {
+            block: change.block.unwrap_or(self.level.block),
+            end_pc: change.block.map_or(first_pc + change.pc, |_| change.pc),
+        };
+        let first_at = clock + changes.first_ns;
+        self.longest_block
+            .record(first_at - self.last_point_at, kind(changes.first));
+        self.longest_block
+            .record(changes.longest_ns, kind(changes.longest));
+        self.last_stretch = LastStretch {
+            kind: kind(changes.last),
+            start_ns: clock + changes.before_last_ns,
+            end_ns: clock + changes.last_ns,
+        };
+        self.last_point_at = clock + changes.last_ns;
     }
 }
 

@@ -56,7 +56,7 @@ impl Emitter {
     }
 }
 
-fn width_of(width: AccessWidth) -> Width {
+pub(crate) fn width_of(width: AccessWidth) -> Width {
     match width {
         AccessWidth::Bit | AccessWidth::Byte => Width::Byte,
         AccessWidth::Word => Width::Word,

@@ -8,7 +8,7 @@ mod data;
 pub(crate) mod interrupt_sfcs;
 pub(crate) use crate::step7::layout;
 mod library;
-mod lower;
+pub(super) mod lower;
 mod operand;
 mod pointers;
 mod symbols;
