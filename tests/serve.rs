@@ -332,7 +332,7 @@ fn on_a_terminal_one_status_line_shows_the_mode_and_ctrl_c_ends_the_serve() {
     session.exp_string("RUN  cycle ").expect("the status line");
     session.exp_string("0 clients").expect("the clients");
     session
-        .exp_string("requests/s  (Ctrl-C ends)")
+        .exp_string("requests/s  (s Enter: snapshot, Ctrl-C ends)")
         .expect("the requests");
     session.send_control('c').expect("Ctrl-C");
     session

@@ -13,6 +13,7 @@ mod snapshot_key;
 mod source;
 mod status;
 mod terminal;
+mod test;
 mod watch;
 
 use std::path::PathBuf;
@@ -163,7 +164,7 @@ Neovim and Helix, the settings (`cpu`, `symbols`) and what the server offers."
     )]
     Lsp,
     /// Run scenario files and check their [expect] and [[check]] tables
-    Test(run::TestArgs),
+    Test(test::TestArgs),
     /// Run awlsim's test files (STEP 7 STL with `__ASSERT…`) as awlsim's harness does: PASS or
     /// FAIL per file
     Conformance(conformance::ConformanceArgs),
@@ -188,7 +189,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Run(args) => run::run(&args, &mut console),
         Command::Status(args) => status::status(&args, &mut console),
         Command::Debug(args) => debug::debug(&args, &mut console),
-        Command::Test(args) => run::test(&args, &mut console),
+        Command::Test(args) => test::test(&args, &mut console),
         Command::Serve(args) => serve::serve(&args, &mut console),
         Command::Lsp => lsp(&mut console),
         Command::Conformance(args) => conformance::conformance(&args, &mut console),
