@@ -117,8 +117,11 @@ pub fn prepare(
         .discovery_urls(vec!["/".to_string()])
         .max_sessions(settings.max_connections)
         .diagnostics_enabled(false)
+        .subscription_poll_interval_ms(FASTEST_SAMPLING_MS as u64)
         .with_node_manager(InMemoryNodeManagerBuilder::new(make_nodes));
-    builder.limits_mut().subscriptions.min_sampling_interval_ms = FASTEST_SAMPLING_MS;
+    let subscriptions = &mut builder.limits_mut().subscriptions;
+    subscriptions.min_sampling_interval_ms = FASTEST_SAMPLING_MS;
+    subscriptions.min_publishing_interval_ms = FASTEST_SAMPLING_MS;
     let builder = endpoints(builder, address, &settings.users);
     let (server, handle) = builder.build().map_err(failed)?;
     Ok(Prepared {
