@@ -90,7 +90,7 @@ impl Served {
     }
 
     /// Ends the serve with SIGTERM; its exit code, standard output and error.
-    fn terminate(mut self) -> (Option<i32>, String, String) {
+    fn terminate(self) -> (Option<i32>, String, String) {
         let pid = self.child.id().to_string();
         let sent = Command::new("kill").args(["-TERM", &pid]).status();
         assert!(sent.is_ok_and(|status| status.success()), "kill -TERM");
@@ -256,4 +256,18 @@ fn malformed_messages_are_answered_and_the_cpu_keeps_its_cycle() {
     }
     let said = served.python("opcua_load.py", &["1", "2", "1"]);
     assert!(said.contains("1 clients x 2 items"), "{said}");
+}
+
+#[test]
+fn the_readme_s_opc_ua_snippet_runs_as_printed() {
+    let served = serve(&["--scenario", "programs/s7/tank_hmi_serve.toml"]);
+    // The README serves on port 4840; here the system picked the port.
+    let snippet = common::readme_snippet("opcua").replace("4840", &served.port.to_string());
+    let python = common::python::with("asyncua");
+    let output = common::python::command(&python)
+        .args(["-c", &snippet])
+        .output()
+        .expect("python runs");
+    let stdout = succeeded("the README's snippet", &output);
+    assert_eq!(stdout, "500\nthe pump runs\nSTOP\n");
 }

@@ -282,22 +282,13 @@ fn a_port_in_use_is_one_error_that_names_a_free_alternative() {
     assert!(output.stdout.is_empty(), "no listening line");
 }
 
-/// The code block after `<!-- serve-snippet: NAME -->` in the README.
-fn readme_snippet(name: &str) -> String {
-    let readme = std::fs::read_to_string(repo("README.md")).expect("the README");
-    let marker = format!("<!-- serve-snippet: {name} -->\n```python\n");
-    let start = readme.find(&marker).expect("the snippet's marker") + marker.len();
-    let end = readme[start..].find("```").expect("the snippet's end") + start;
-    readme[start..end].to_string()
-}
-
 #[test]
 fn the_readme_s_snippets_run_as_printed() {
     let python = python();
     let served = serve(&["--scenario", "programs/s7/tank_hmi_serve.toml"]);
     for (name, printed) in [("s7", "300\n1\n0\n1\nTrue\n"), ("modbus", "[300]\nFalse\n")] {
         // The README serves on ports 1102 and 1502; here the system picked them.
-        let snippet = readme_snippet(name)
+        let snippet = common::readme_snippet(name)
             .replace("1102", &served.s7.to_string())
             .replace("1502", &served.modbus.to_string());
         let output = common::python::command(&python)

@@ -261,3 +261,13 @@ pub fn next_line(
         panic!("awl serve printed no {what}: {stderr}");
     })
 }
+
+/// The code block after `<!-- serve-snippet: NAME -->` in the README.
+pub fn readme_snippet(name: &str) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
+    let readme = std::fs::read_to_string(path).expect("the README");
+    let marker = format!("<!-- serve-snippet: {name} -->\n```python\n");
+    let start = readme.find(&marker).expect("the snippet's marker") + marker.len();
+    let end = readme[start..].find("```").expect("the snippet's end") + start;
+    readme[start..end].to_string()
+}
