@@ -271,3 +271,22 @@ fn the_readme_s_opc_ua_snippet_runs_as_printed() {
     let stdout = succeeded("the README's snippet", &output);
     assert_eq!(stdout, "500\nthe pump runs\nSTOP\n");
 }
+
+#[test]
+fn a_users_file_without_users_is_refused_before_the_serve_starts() {
+    let users = std::env::temp_dir().join(format!("awl-no-users-{}.toml", std::process::id()));
+    fs::write(&users, "[users]\n").expect("the users file");
+    let output = Command::new(AWL)
+        .args(["serve", "tests/inputs/serve/opcua.awl", "--opcua", "127.0.0.1:0"])
+        .arg("--opcua-users")
+        .arg(&users)
+        .current_dir(repo("."))
+        .output()
+        .expect("awl runs");
+    let _ = fs::remove_file(&users);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("awl::serve::opcua_users"), "{stderr}");
+    assert!(stderr.contains("names no user"), "{stderr}");
+    assert!(output.stdout.is_empty(), "no listening line");
+}

@@ -48,7 +48,7 @@ impl Kind {
             Format::Real => Kind::Float,
             Format::Time => Kind::Time,
             Format::String(_) => Kind::String,
-            Format::Bytes(count) => Kind::by_width(u8::try_from(count).unwrap_or(4)),
+            Format::Bytes(count) => Kind::by_width(count.min(4)),
         }
     }
 
