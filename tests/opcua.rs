@@ -197,15 +197,7 @@ fn an_input_written_over_opc_ua_raises_ob_40_and_is_traced() {
     let (code, _, stderr) = served.terminate();
     assert_eq!(code, Some(0), "{stderr}");
     let trace = fs::read_to_string(&trace).expect("the trace is written");
-    let write = trace
-        .lines()
-        .position(|line| line.contains("\"client_write\"") && line.contains("\"I 8.0\""))
-        .expect("the client's write of I 8.0 is traced");
-    let request = trace
-        .lines()
-        .position(|line| line.contains("\"irq_request\"") && line.contains("\"ob\":40"))
-        .expect("OB 40 is requested");
-    assert!(write < request, "the write comes first");
+    common::assert_write_raises(&trace, "I 8.0", 40);
     assert!(
         trace.contains("\"client\":\"opcua #"),
         "named by its client"
@@ -277,7 +269,12 @@ fn a_users_file_without_users_is_refused_before_the_serve_starts() {
     let users = std::env::temp_dir().join(format!("awl-no-users-{}.toml", std::process::id()));
     fs::write(&users, "[users]\n").expect("the users file");
     let output = Command::new(AWL)
-        .args(["serve", "tests/inputs/serve/opcua.awl", "--opcua", "127.0.0.1:0"])
+        .args([
+            "serve",
+            "tests/inputs/serve/opcua.awl",
+            "--opcua",
+            "127.0.0.1:0",
+        ])
         .arg("--opcua-users")
         .arg(&users)
         .current_dir(repo("."))

@@ -210,15 +210,7 @@ fn a_client_s_input_write_raises_ob_40_and_the_trace_shows_both() {
     let (code, _, stderr) = served.terminate();
     assert_eq!(code, Some(0), "{stderr}");
     let trace = std::fs::read_to_string(&trace).expect("the trace is written");
-    let write = trace
-        .lines()
-        .position(|line| line.contains("\"client_write\"") && line.contains("\"IB 8\""))
-        .expect("the client's write of IB 8 is traced");
-    let request = trace
-        .lines()
-        .position(|line| line.contains("\"irq_request\"") && line.contains("\"ob\":40"))
-        .expect("OB 40 is requested");
-    assert!(write < request, "the write comes first");
+    common::assert_write_raises(&trace, "IB 8", 40);
     let picture = std::fs::read_to_string(&timeline).expect("the timeline is drawn");
     assert!(
         picture.contains("class=\"client-write\""),

@@ -271,3 +271,19 @@ pub fn readme_snippet(name: &str) -> String {
     let end = readme[start..].find("```").expect("the snippet's end") + start;
     readme[start..end].to_string()
 }
+
+/// Asserts that a JSON-lines trace has a client's write of `operand` and, after it, the request
+/// of OB `ob` it raised.
+pub fn assert_write_raises(trace: &str, operand: &str, ob: u8) {
+    let write = trace
+        .lines()
+        .position(|line| {
+            line.contains("\"client_write\"") && line.contains(&format!("\"{operand}\""))
+        })
+        .unwrap_or_else(|| panic!("the client's write of {operand} is traced"));
+    let request = trace
+        .lines()
+        .position(|line| line.contains("\"irq_request\"") && line.contains(&format!("\"ob\":{ob}")))
+        .unwrap_or_else(|| panic!("OB {ob} is requested"));
+    assert!(write < request, "the write comes first");
+}
