@@ -73,7 +73,7 @@ pub const TOPICS: &[Topic] = &[
     },
     Topic {
         name: "serve",
-        summary: "`awl serve`: the virtual PLC on the network (S7comm, Modbus TCP), its areas and maps",
+        summary: "`awl serve`: the virtual PLC on the network (S7comm, Modbus TCP, OPC UA), its areas and maps",
         body: Body::Section(PROGRAMS, "## The virtual PLC (`awl serve`)"),
     },
     Topic {

@@ -1,5 +1,5 @@
 //! `awl serve`: the CPU as a virtual PLC on the network, paced to the wall clock. The protocol
-//! servers (S7comm, Modbus TCP, the online page's HTTP) sit here at the edge; they reach the
+//! servers (S7comm, Modbus TCP, the online page's HTTP, OPC UA) sit here at the edge; they reach the
 //! CPU only through the requests of [`request`], served at the cycle control point by
 //! [`station`] (the online page's by [`online`]).
 
@@ -11,6 +11,7 @@ pub mod modbus;
 pub mod network;
 pub mod notation;
 pub mod online;
+pub mod opcua;
 pub mod pacing;
 pub mod plc;
 pub mod request;

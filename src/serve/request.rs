@@ -143,6 +143,8 @@ pub enum Protocol {
     Http,
     /// The terminal `awl serve` runs in (its snapshot key).
     Terminal,
+    /// OPC UA (`--opcua`).
+    OpcUa,
 }
 
 impl Protocol {
@@ -152,6 +154,7 @@ impl Protocol {
             Protocol::Modbus => "modbus",
             Protocol::Http => "http",
             Protocol::Terminal => "terminal",
+            Protocol::OpcUa => "opcua",
         }
     }
 }
@@ -182,6 +185,39 @@ pub enum Request {
         client: Client,
         ask: Ask,
     },
+    /// Operands' values and the CPU's figures at one control point, for the OPC UA server's
+    /// reads and monitored items (`--opcua`).
+    Sample {
+        probes: Vec<Probe>,
+        reply: oneshot::Sender<Sample>,
+    },
+}
+
+/// What a sample reads: an operand as the command line resolves it, or a run of bytes (a
+/// STRING).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Probe {
+    Operand(crate::address::Target),
+    Bytes(Range),
+}
+
+/// What a probe read: the operand's raw value (`None`: not there), or the bytes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Reading {
+    Operand(Option<Raw>),
+    Bytes(ItemResult),
+}
+
+/// The values of a [`Request::Sample`] and the CPU at that control point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sample {
+    pub readings: Vec<Reading>,
+    pub mode: CpuMode,
+    pub cycles: u64,
+    /// The last cycle's time.
+    pub cycle_time_ms: f64,
+    /// The simulated date and time, as [`CpuStatus::clock_ms`].
+    pub clock_ms: i64,
 }
 
 /// What the online page asks of the CPU: operands as the command line takes them, resolved and

@@ -6,11 +6,13 @@ use std::time::{Duration, Instant};
 
 use crate::vm::{Cpu, Mode};
 
-use super::access::serve_items;
+use super::access::{probe as probe_one, serve_items};
 use super::network::Network;
 use super::online::Online;
 use super::pacing::Pacer;
-use super::request::{Client, Control, ControlError, CpuMode, CpuStatus, Protocol, Request};
+use super::request::{
+    Client, Control, ControlError, CpuMode, CpuStatus, Protocol, Request, Sample,
+};
 
 /// How often the status is reported and a halt looked for while the CPU waits.
 const LOOK_EVERY: Duration = Duration::from_millis(100);
@@ -197,6 +199,9 @@ impl<'a> Station<'a> {
             } => {
                 let _ = reply.send(self.control(cpu, client, command));
             }
+            Request::Sample { probes, reply } => {
+                let _ = reply.send(sample(cpu, &probes));
+            }
             Request::Online { client, ask } => {
                 self.online.serve(cpu, client, ask, self.open_clients);
             }
@@ -228,7 +233,7 @@ impl<'a> Station<'a> {
                 // The trace names the online page's STOP apart from an HMI's.
                 let cause = match client.protocol {
                     Protocol::Http | Protocol::Terminal => "online",
-                    Protocol::S7 | Protocol::Modbus => "client",
+                    Protocol::S7 | Protocol::Modbus | Protocol::OpcUa => "client",
                 };
                 if !stopped {
                     let text = format!("STOP, asked for by {}", client.name());
@@ -269,14 +274,29 @@ impl<'a> Station<'a> {
     }
 }
 
+/// The operands' values and the CPU's figures at this control point.
+fn sample(cpu: &mut Cpu, probes: &[super::request::Probe]) -> Sample {
+    Sample {
+        readings: probes.iter().map(|probe| probe_one(cpu, *probe)).collect(),
+        mode: mode(cpu),
+        cycles: cpu.cycle,
+        cycle_time_ms: cpu.cycle_times.last_ns as f64 / 1e6,
+        clock_ms: cpu.clock_ms() as i64,
+    }
+}
+
+fn mode(cpu: &Cpu) -> CpuMode {
+    match cpu.mode {
+        Mode::Run => CpuMode::Run,
+        Mode::Stop => CpuMode::Stop,
+        Mode::Startup => CpuMode::Startup,
+    }
+}
+
 /// What the CPU reports of itself.
 fn status(cpu: &Cpu, read_only: bool) -> CpuStatus {
     CpuStatus {
-        mode: match cpu.mode {
-            Mode::Run => CpuMode::Run,
-            Mode::Stop => CpuMode::Stop,
-            Mode::Startup => CpuMode::Startup,
-        },
+        mode: mode(cpu),
         profile: cpu.profile.name,
         order_code: super::identity::order_code(cpu.profile),
         clock_ms: cpu.clock_ms() as i64,
