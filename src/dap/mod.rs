@@ -65,7 +65,7 @@ enum Next {
 }
 
 /// The messages from the editor, taken in by a reader thread.
-pub struct Messages {
+struct Messages {
     receiver: Receiver<Incoming>,
     /// Set when a message has come (or the input ended): the running CPU looks at it.
     arrived: Arc<AtomicBool>,
@@ -73,7 +73,7 @@ pub struct Messages {
 
 impl Messages {
     /// Reads `input` on a thread of its own.
-    pub fn read(input: impl std::io::Read + Send + 'static) -> Messages {
+    fn read(input: impl std::io::Read + Send + 'static) -> Messages {
         let (sender, receiver) = channel();
         let arrived = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&arrived);
@@ -110,9 +110,17 @@ pub struct Adapter {
 
 /// Runs the adapter on stdin and stdout until the editor disconnects or goes away.
 pub fn serve_stdio() {
-    let messages = Messages::read(std::io::stdin());
-    let adapter = Adapter::new(messages, Box::new(std::io::stdout()), Files::Disk);
-    adapter.serve();
+    session(std::io::stdin(), Box::new(std::io::stdout()), Files::Disk);
+}
+
+/// A whole session on any input and output, its program read from `files` (the fuzz target
+/// keeps them in memory).
+pub fn session(
+    input: impl std::io::Read + Send + 'static,
+    out: Box<dyn std::io::Write>,
+    files: Files,
+) {
+    Adapter::new(Messages::read(input), out, files).serve();
 }
 
 /// The text of a launch that cannot run: every diagnostic, as `awl run` prints them.
@@ -191,7 +199,7 @@ fn capabilities() -> Value {
 }
 
 impl Adapter {
-    pub fn new(messages: Messages, out: Box<dyn std::io::Write>, files: Files) -> Adapter {
+    fn new(messages: Messages, out: Box<dyn std::io::Write>, files: Files) -> Adapter {
         Adapter {
             messages,
             out: Outgoing::new(out),
@@ -217,7 +225,7 @@ impl Adapter {
     }
 
     /// The whole session: setup, the run, after the run.
-    pub fn serve(mut self) {
+    fn serve(mut self) {
         let Some(prepared) = self.setup() else { return };
         self.run(prepared);
     }
