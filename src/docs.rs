@@ -82,6 +82,11 @@ pub const TOPICS: &[Topic] = &[
         body: Body::Section(PROGRAMS, "## The online page (`awl serve --http`)"),
     },
     Topic {
+        name: "retain",
+        summary: "retentive memory kept across restarts (`--retain`) and snapshots to continue from (`--from`)",
+        body: Body::Section(PROGRAMS, "## Retentive memory and snapshots"),
+    },
+    Topic {
         name: "lsp",
         summary: "`awl lsp` in an editor: what the language server offers, its settings, the setup of VS Code, Neovim and Helix",
         body: Body::File(EDITORS),

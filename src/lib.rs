@@ -34,6 +34,7 @@ pub mod program_files;
 pub mod program_status;
 pub mod project;
 pub mod report;
+pub mod retain;
 pub mod rules;
 pub mod runner;
 pub mod s5_float;

@@ -1,6 +1,7 @@
 //! CPU profiles: operand ranges, limits, per-operation execution times and interrupt rules of the
 //! three CPUs the manuals describe. `awl cpus` prints them with where each figure comes from.
 
+mod retentive;
 mod s5_115u;
 mod s5_135u;
 mod s5_155u;
@@ -10,6 +11,8 @@ mod s5_small;
 use std::sync::{Mutex, OnceLock, PoisonError};
 
 use crate::dialect::Dialect;
+
+pub use retentive::{Preset, Retentive};
 
 /// The CPUs whose interrupt rules differ; each has its rules in `vm::interrupts`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -91,6 +91,14 @@ pub fn cpus() -> String {
             p.bracket_depth,
             p.watchdog_ns / 1_000_000
         );
+        let retentive = p.retentive();
+        let flag = if p.runs_step7() { "M" } else { "F" };
+        let _ = writeln!(
+            out,
+            "  retentive by default: {} (from: {}); the scenario's [retentive] sets others",
+            retentive.ranges.describe(flag),
+            retentive.source
+        );
         let t = &p.timings;
         let _ = writeln!(
             out,
@@ -287,6 +295,9 @@ pub fn summary(ran: &crate::runner::Ran) -> String {
     } else {
         0.0
     };
+    if let Some((start, path)) = &ran.retain_start {
+        let _ = writeln!(out, "{}", start.describe(path));
+    }
     let _ = writeln!(
         out,
         "instructions: {}   wall: {wall:.4} s   rate: {rate:.1} M instr/s",

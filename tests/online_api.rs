@@ -5,145 +5,17 @@
 
 mod common;
 
+use common::online::Online;
+
 use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::path::Path;
-use std::process::{Child, Command, Stdio};
+use std::process::Command;
 use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
 
 const AWL: &str = env!("CARGO_BIN_EXE_awl");
-
-/// A running `awl serve … --http 127.0.0.1:0` and the port it printed.
-struct Online {
-    child: Child,
-    port: u16,
-    agent: ureq::Agent,
-}
-
-impl Online {
-    fn start(args: &[&str]) -> Online {
-        let mut child = Command::new(AWL)
-            .arg("serve")
-            .args(args)
-            .args(["--http", "127.0.0.1:0"])
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("awl starts");
-        let lines = common::lines(child.stdout.take().expect("piped"));
-        let deadline = Instant::now() + Duration::from_secs(60);
-        let port = loop {
-            let line = common::next_line(&mut child, &lines, deadline, "online line");
-            if let Some(rest) = line.strip_prefix("Online page at http://127.0.0.1:") {
-                break rest.trim_end_matches('/').parse().expect("a port");
-            }
-        };
-        let agent = ureq::Agent::config_builder()
-            .http_status_as_error(false)
-            .build()
-            .into();
-        Online { child, port, agent }
-    }
-
-    fn url(&self, path: &str) -> String {
-        format!("http://127.0.0.1:{}{path}", self.port)
-    }
-
-    fn answer(response: Result<ureq::http::Response<ureq::Body>, ureq::Error>) -> (u16, Value) {
-        let mut response = response.expect("the server answers");
-        let status = response.status().as_u16();
-        let text = response.body_mut().read_to_string().expect("a body");
-        let value = serde_json::from_str(&text).unwrap_or(Value::String(text));
-        (status, value)
-    }
-
-    fn get(&self, path: &str) -> (u16, Value) {
-        Online::answer(self.agent.get(&self.url(path)).call())
-    }
-
-    fn post(&self, path: &str, body: &Value) -> (u16, Value) {
-        let request = self
-            .agent
-            .post(&self.url(path))
-            .header("Content-Type", "application/json");
-        Online::answer(request.send(body.to_string()))
-    }
-
-    /// The values of `operands` (`MW 10,Q 4.0`) in `formats`.
-    fn values(&self, operands: &str, formats: &str) -> Vec<Value> {
-        let query = format!(
-            "/api/values?operands={}&formats={formats}",
-            operands.replace(' ', "%20")
-        );
-        let (status, answer) = self.get(&query);
-        assert_eq!(status, 200, "{answer}");
-        answer["values"].as_array().expect("values").clone()
-    }
-
-    /// Waits until `operand` shows `value` (the CPU takes a write at its next control point).
-    fn wait_for(&self, operand: &str, value: &str) -> Value {
-        let deadline = Instant::now() + Duration::from_secs(10);
-        loop {
-            let row = self.values(operand, "").remove(0);
-            if row["value"] == value || Instant::now() > deadline {
-                assert_eq!(row["value"], value, "{operand}");
-                return row;
-            }
-            std::thread::sleep(Duration::from_millis(20));
-        }
-    }
-
-    /// A request as it is written, over a socket of its own; the status and the body. The
-    /// server may answer (and close) before the request is all sent.
-    fn raw(&self, request: &str) -> (u16, String) {
-        let mut stream = TcpStream::connect(("127.0.0.1", self.port)).expect("connects");
-        let _ = stream.write_all(request.as_bytes());
-        let mut answer = String::new();
-        let _ = stream.read_to_string(&mut answer);
-        let status = answer
-            .split_whitespace()
-            .nth(1)
-            .and_then(|code| code.parse().ok())
-            .unwrap_or(0);
-        let body = answer.split("\r\n\r\n").nth(1).unwrap_or("").to_string();
-        (status, body)
-    }
-}
-
-impl Online {
-    fn delete(&self, path: &str) -> (u16, Value) {
-        Online::answer(self.agent.delete(&self.url(path)).call())
-    }
-
-    /// Ends the serve as a service manager does (SIGTERM), so it writes its trace; its stdout.
-    fn terminate(mut self) -> String {
-        let pid = self.child.id().to_string();
-        let sent = Command::new("kill").args(["-TERM", &pid]).status();
-        assert!(sent.is_ok_and(|status| status.success()), "kill -TERM");
-        let deadline = Instant::now() + Duration::from_secs(30);
-        while self.child.try_wait().expect("waits").is_none() {
-            assert!(Instant::now() < deadline, "awl serve did not end");
-            std::thread::sleep(Duration::from_millis(20));
-        }
-        let mut stderr = String::new();
-        let _ = self
-            .child
-            .stderr
-            .take()
-            .map(|mut err| err.read_to_string(&mut stderr));
-        stderr
-    }
-}
-
-impl Drop for Online {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
 
 #[test]
 fn a_step7_program_on_speed7_is_watched_modified_stopped_and_restarted() {

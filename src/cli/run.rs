@@ -10,6 +10,7 @@ use crate::state::State;
 use crate::trace::{Kind, TraceFormat};
 use crate::vm::cycle::RunLimit;
 
+use super::memory::MemoryArgs;
 use super::watch::{EXIT_HALTED, Watch};
 use super::{
     Console, EXIT_EXPECTATION, EXIT_OK, EXIT_SOURCE_ERRORS, EXIT_STOP, EXIT_USAGE, LanguageArgs,
@@ -181,10 +182,11 @@ pub struct RunArgs {
     /// [default: no timeline]
     #[arg(long, value_name = "FILE")]
     pub timeline: Option<PathBuf>,
-    /// The trace and the timeline start at this simulated time, e.g. 10ms [default: 0, the
-    /// run's start]
-    #[arg(long, value_name = "TIME", value_parser = parse_time_arg, requires = "outputs")]
-    pub from: Option<u64>,
+    /// A time (e.g. 10ms): the trace and the timeline start there. A snapshot file: the run
+    /// continues from it, to the scenario's or the command line's end. Both may be given
+    /// [default: the run's start, from the program as loaded]
+    #[arg(long, value_name = "TIME|SNAPSHOT", value_parser = parse_from_arg)]
+    pub from: Vec<From>,
     /// The trace and the timeline end at this simulated time, e.g. 20ms [default: the run's
     /// end]
     #[arg(long, value_name = "TIME", value_parser = parse_time_arg, requires = "outputs")]
@@ -211,7 +213,39 @@ pub struct RunArgs {
     #[arg(long, value_name = "DURATION", value_parser = parse_duration_arg)]
     pub watch_every: Option<u64>,
     #[command(flatten)]
+    pub memory: MemoryArgs,
+    /// Write a snapshot of the whole CPU to FILE (at the run's end, or at the first cycle end
+    /// at --snapshot-at); continue from it with `--from FILE` [default: none]
+    #[arg(long, value_name = "FILE")]
+    pub snapshot: Option<PathBuf>,
+    /// The simulated time the snapshot is taken at (the next cycle end), e.g. 1.5s [default:
+    /// the run's end]
+    #[arg(long, value_name = "TIME", requires = "snapshot", value_parser = parse_time_arg)]
+    pub snapshot_at: Option<u64>,
+    #[command(flatten)]
     pub output: OutputArgs,
+}
+
+/// What `--from` names: where the trace starts, or the snapshot the run continues from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum From {
+    /// The time, and as it was written.
+    Time(u64, String),
+    Snapshot(PathBuf),
+}
+
+/// A time, else an existing file (a snapshot).
+fn parse_from_arg(text: &str) -> Result<From, String> {
+    if let Ok(ns) = parse_time_arg(text) {
+        return Ok(From::Time(ns, text.to_string()));
+    }
+    let path = PathBuf::from(text);
+    if path.is_file() {
+        return Ok(From::Snapshot(path));
+    }
+    Err(format!(
+        "`{text}` is neither a time (0, 250us, 10ms, 2s) nor a snapshot file"
+    ))
 }
 
 #[derive(Debug, clap::Args)]
@@ -267,12 +301,37 @@ pub(super) fn program_options(args: &ProgramArgs) -> RunOptions {
     }
 }
 
-fn run_options(args: &RunArgs) -> RunOptions {
-    RunOptions {
+fn run_options(args: &RunArgs) -> Result<RunOptions, NotRun> {
+    let mut window_from: Option<(u64, &str)> = None;
+    let mut from_snapshot = None;
+    for from in &args.from {
+        let twice = match from {
+            From::Time(ns, text) => window_from.replace((*ns, text)).is_some(),
+            From::Snapshot(path) => from_snapshot.replace(path.clone()).is_some(),
+        };
+        if twice {
+            let error = runner::RunError::FromTwice;
+            return Err(NotRun::Usage(miette::Report::new(error)));
+        }
+    }
+    if let Some((_, text)) = window_from
+        && args.trace.is_none()
+        && args.timeline.is_none()
+    {
+        let error = runner::RunError::WindowNeedsOutput {
+            from: text.to_string(),
+        };
+        return Err(NotRun::Usage(miette::Report::new(error)));
+    }
+    Ok(RunOptions {
         trace: args.trace.clone(),
         trace_format: args.trace_format.map(Format::trace_format),
         trace_filter: trace_kinds(&args.trace_filter),
-        from_ns: args.from,
+        from_ns: window_from.map(|(ns, _)| ns),
+        from_snapshot,
+        retain: args.memory.retain_options(),
+        what_fits: args.memory.retain_what_fits,
+        snapshot_to: args.snapshot.clone().map(|path| (path, args.snapshot_at)),
         to_ns: args.to,
         timeline: args.timeline.clone(),
         watch: args
@@ -284,7 +343,7 @@ fn run_options(args: &RunArgs) -> RunOptions {
         watch_every_ns: args.watch_every,
         limit: args.length.limit(),
         ..program_options(&args.program)
-    }
+    })
 }
 
 /// The kinds `--trace-filter` names (none, or `all` among them: every kind).
@@ -371,7 +430,11 @@ pub fn run(args: &RunArgs, console: &mut Console) -> u8 {
         let error = runner::RunError::StdoutTwice { other, instead };
         return not_run("run", NotRun::Usage(miette::Report::new(error)), console);
     }
-    let (ran, halted) = match watched_run(&run_options(args), console) {
+    let options = match run_options(args) {
+        Ok(options) => options,
+        Err(reason) => return not_run("run", reason, console),
+    };
+    let (ran, halted) = match watched_run(&options, console) {
         (Ok(ran), halted) => (ran, halted),
         (Err(reason), _) => return not_run("run", reason, console),
     };

@@ -10,6 +10,7 @@ use crate::serve::plc::{self, Listening, ServeOptions, ServedRun};
 use crate::serve::station::Snapshot;
 use crate::trace::format_ms;
 
+use super::memory::MemoryArgs;
 use super::run::{
     Format, ProgramArgs, RunLength, StateFormat, not_run, print_state, program_options,
 };
@@ -75,6 +76,12 @@ pub struct ServeArgs {
     /// The state as text, or as JSON; implies --state [default: text]
     #[arg(long, value_enum)]
     pub state_format: Option<StateFormat>,
+    #[command(flatten)]
+    pub memory: MemoryArgs,
+    /// Continue from a snapshot (`awl run --snapshot`, the online API's POST /api/snapshot,
+    /// or `s` and Enter on the terminal) [default: the program as loaded]
+    #[arg(long, value_name = "SNAPSHOT")]
+    pub from: Option<PathBuf>,
 }
 
 fn parse_speed(text: &str) -> Result<f64, String> {
@@ -111,6 +118,9 @@ fn options(args: &ServeArgs) -> ServeOptions {
     run.trace = args.trace.clone();
     run.trace_format = args.trace_format.map(Format::trace_format);
     run.timeline = args.timeline.clone();
+    run.retain = args.memory.retain_options();
+    run.what_fits = args.memory.retain_what_fits;
+    run.from_snapshot = args.from.clone();
     ServeOptions {
         run,
         speed: args.speed,
@@ -131,9 +141,10 @@ pub fn serve(args: &ServeArgs, console: &mut Console) -> u8 {
     let served = plc::serve(
         &options,
         &watch::halt_requested,
-        &mut |listening, warnings| {
+        &mut |listening, warnings, requests| {
             console.reports(&warnings);
             announce(listening, &mut std::io::stdout().lock());
+            super::snapshot_key::listen(requests.clone(), snapshot_home(args));
         },
         &mut |snapshot| status.show(snapshot),
     );
@@ -143,6 +154,16 @@ pub fn serve(args: &ServeArgs, console: &mut Console) -> u8 {
         Err(reason) => return not_run("serve", reason, console),
     };
     finish(args, &options, &served, console)
+}
+
+/// Where the terminal's snapshots go: beside the first program file, else the scenario.
+fn snapshot_home(args: &ServeArgs) -> PathBuf {
+    args.program
+        .files
+        .first()
+        .or(args.program.scenario.as_ref())
+        .cloned()
+        .unwrap_or_else(|| PathBuf::from("awl"))
 }
 
 /// The listening lines, which a script waits for, flushed at once.
@@ -232,7 +253,7 @@ impl StatusLine {
             bar
         });
         bar.set_message(format!(
-            "{}  cycle {}  cycle time {}–{}  {}  {:.0} requests/s  (Ctrl-C ends)",
+            "{}  cycle {}  cycle time {}–{}  {}  {:.0} requests/s  (s Enter: snapshot, Ctrl-C ends)",
             snapshot.mode.name(),
             snapshot.cycle,
             format_ms(snapshot.min_cycle_ns),

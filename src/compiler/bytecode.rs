@@ -62,7 +62,7 @@ pub enum DataPart {
     Double,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum TimerKind {
     Pulse,
     ExtendedPulse,

@@ -30,7 +30,7 @@ const STA: u8 = 128;
 const WORD_ORDER: [u8; 8] = [FIRST_CHECK_DONE, RLO, STA, OR_BIT, OS, OV, CC0, CC1];
 const WORD_BR: u16 = 1 << 8;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Status {
     bits: u8,
 }

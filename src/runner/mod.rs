@@ -1,6 +1,7 @@
 //! One run, as `awl run` and `awl test` do it: scenario, front end, CPU, trace, expectations.
 //! Nothing is printed here: every diagnostic comes back as a report for the caller to show.
 
+pub mod memory;
 mod stop_report;
 pub mod warnings;
 
@@ -20,6 +21,7 @@ use crate::mnemonics::MnemonicSet;
 use crate::profile::{Family, InterruptPoints, Profile};
 use crate::program_files::{ProgramFiles, read_program};
 use crate::project::Project;
+use crate::retain::RetainOptions;
 use crate::scenario::check::{CheckOutcome, Checker};
 use crate::scenario::expect::{self, Mismatch};
 use crate::scenario::modify::Modifier;
@@ -33,6 +35,7 @@ use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
 use crate::vm::interrupts::{Engine, EngineConfig};
 
+pub use memory::Persistence;
 pub use stop_report::{cpu_stop_report, stop_report};
 pub use warnings::RunWarning;
 
@@ -72,10 +75,35 @@ pub struct RunOptions {
     pub watch_file: Option<PathBuf>,
     /// A watch row every this much simulated time instead of one per change.
     pub watch_every_ns: Option<u64>,
+    /// Retentive memory kept in a file (`--retain`).
+    pub retain: Option<RetainOptions>,
+    /// A snapshot to continue from (`--from SNAPSHOT`).
+    pub from_snapshot: Option<PathBuf>,
+    /// Load what still fits of a retentive memory file or snapshot (`--retain-what-fits`).
+    pub what_fits: bool,
+    /// Write a snapshot (`--snapshot FILE`), at the first cycle end at or after the time given
+    /// (`--snapshot-at`), else at the run's end.
+    pub snapshot_to: Option<(PathBuf, Option<u64>)>,
 }
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum RunError {
+    #[error("`--from {from}` sets where the trace and the timeline start, and neither is written")]
+    #[diagnostic(
+        code(awl::cli::window_needs_output),
+        help(
+            "add `--trace FILE` or `--timeline FILE`; to continue from a snapshot, name its file"
+        )
+    )]
+    WindowNeedsOutput { from: String },
+    #[error("`--from` names two times or two snapshots")]
+    #[diagnostic(
+        code(awl::cli::from_twice),
+        help(
+            "give `--from` at most once with a time (the trace's start) and once with a snapshot file"
+        )
+    )]
+    FromTwice,
     #[error("no program files")]
     #[diagnostic(
         code(awl::cli::no_program),
@@ -145,6 +173,8 @@ pub enum RunError {
 /// Everything a finished run has to say.
 pub struct Ran {
     pub frontend: Frontend,
+    /// How the memory began with `--retain`, and its file.
+    pub retain_start: Option<(crate::retain::keeper::Start, PathBuf)>,
     pub cpu: Cpu,
     pub outcome: RunOutcome,
     pub mismatches: Vec<Mismatch>,
@@ -318,6 +348,8 @@ pub struct Prepared {
     timeline: Option<PathBuf>,
     trace_to_stdout: bool,
     warnings: Vec<Report>,
+    /// The snapshot continued from, the retentive memory kept, the snapshot to write.
+    pub persistence: Persistence,
 }
 
 /// Reads the scenario and the program and sets up the CPU; every error found on the way is
@@ -511,6 +543,17 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         .as_ref()
         .is_some_and(|path| path.as_os_str() == "-");
     add_outputs(&mut cpu, options, levels, caption)?;
+    let ranges = scenario
+        .as_ref()
+        .and_then(|s| s.retentive)
+        .unwrap_or(profile.retentive().ranges);
+    let persistence = Persistence::begin(options, &mut cpu, ranges)?;
+    let mut checker = Checker::new(checks);
+    let mut modifier = Modifier::new(plan.writes);
+    if options.from_snapshot.is_some() {
+        checker.skip_until(cpu.clock);
+        modifier.skip_until(cpu.clock);
+    }
     Ok(Prepared {
         frontend: built,
         cpu,
@@ -519,8 +562,9 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
         mnemonics: set,
         scenario,
         expectations,
-        checker: Checker::new(checks),
-        modifier: Modifier::new(plan.writes),
+        checker,
+        modifier,
+        persistence,
         watch,
         points,
         timeline: options.timeline.clone(),
@@ -567,6 +611,7 @@ impl Prepared {
             timeline,
             trace_to_stdout,
             mut warnings,
+            mut persistence,
             ..
         } = self;
         // The cycle end is seen as it is; a data block write comes after, before the next cycle.
@@ -574,8 +619,10 @@ impl Prepared {
             watch.observe(cpu);
             checker.observe(cpu);
             modifier.observe(cpu);
+            persistence.at_control_point(cpu);
             true
         });
+        warnings.extend(persistence.finish(&cpu));
         watch.observe(&mut cpu);
         // The run's end is a cycle end unless it went to STOP or was halted inside a cycle.
         if outcome.stop.is_none() && !outcome.halted {
@@ -615,6 +662,7 @@ impl Prepared {
         let mismatches = expect::check(&cpu, &outcome, &expectations);
         Ran {
             frontend,
+            retain_start: persistence.start,
             cpu,
             outcome,
             mismatches,

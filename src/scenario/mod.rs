@@ -88,6 +88,8 @@ pub struct Scenario {
     pub ob13: Option<Ob13Timing>,
     /// The OB 35 interval `[ob35]` gives.
     pub ob35_interval_ns: Option<u64>,
+    /// The retentive ranges `[retentive]` sets (else the profile's preset).
+    pub retentive: Option<crate::profile::Retentive>,
     pub hw_modules: Vec<(u16, u8)>,
     /// The logical base addresses `[[hw_module]]` gives (module, address).
     pub hw_addresses: Vec<(u16, u16)>,
@@ -246,6 +248,7 @@ impl Scenario {
         self.special_mode = errors.check(&keys.mode, |mode| check_mode(mode, profile));
         self.ob13 = errors.check(&keys.ob13, |ob13| check_ob13(ob13, profile));
         self.ob35_interval_ns = errors.check(&keys.ob35, |ob35| check_ob35(ob35, profile));
+        self.retentive = errors.check(&keys.retentive, |table| check_retentive(table, profile));
         (self.hw_modules, self.hw_addresses) = check_modules(&keys.hw_module, profile, &mut errors);
         self.clock_memory =
             errors.check(&keys.clock_memory, |byte| check_clock_memory(byte, profile));
@@ -290,6 +293,7 @@ impl Scenario {
             special_mode: None,
             ob13: None,
             ob35_interval_ns: None,
+            retentive: None,
             hw_modules: Vec::new(),
             hw_addresses: Vec::new(),
             clock_memory: None,
@@ -1335,6 +1339,42 @@ fn check_ob35(ob35: &Spanned<raw::RawOb35>, profile: &Profile) -> Result<u64, Sc
         ));
     }
     Ok(interval)
+}
+
+/// The retentive ranges of `[retentive]`: what it leaves out is the profile's preset; each count
+/// within the CPU's operand range.
+fn check_retentive(
+    table: &Spanned<raw::RawRetentive>,
+    profile: &Profile,
+) -> Result<crate::profile::Retentive, ScenarioError> {
+    let raw = table.get_ref();
+    let preset = profile.retentive().ranges;
+    let within = |given: &Option<Spanned<u16>>, preset: u16, size: u16, what: &str| match given {
+        None => Ok(preset),
+        Some(count) if *count.get_ref() <= size => Ok(*count.get_ref()),
+        Some(count) => Err(invalid(
+            format!(
+                "{} retentive {what}, but {} has {size}",
+                count.get_ref(),
+                profile.name
+            ),
+            span(count),
+            "more than the CPU has",
+            Some(format!("give 0 to {size}")),
+        )),
+    };
+    let sizes = profile.sizes;
+    Ok(crate::profile::Retentive {
+        flag_bytes: within(
+            &raw.flag_bytes,
+            preset.flag_bytes,
+            sizes.flag_bytes,
+            "flag bytes",
+        )?,
+        timers: within(&raw.timers, preset.timers, sizes.timers, "timers")?,
+        counters: within(&raw.counters, preset.counters, sizes.counters, "counters")?,
+        data_blocks: raw.data_blocks.unwrap_or(preset.data_blocks),
+    })
 }
 
 /// The logical base addresses `[[hw_module]]` gives: (module, address).

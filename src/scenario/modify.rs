@@ -29,6 +29,12 @@ impl Modifier {
         Modifier { writes }
     }
 
+    /// Drops the writes due by `clock_ns`: a run continued from a snapshot taken then has made
+    /// them.
+    pub fn skip_until(&mut self, clock_ns: u64) {
+        self.writes.retain(|write| write.at_ns > clock_ns);
+    }
+
     /// At a cycle boundary: makes every write whose moment has come, in time order. A write to
     /// a data block the program no longer has (deleted at run time) is skipped.
     pub fn observe(&mut self, cpu: &mut Cpu) {

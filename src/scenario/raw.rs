@@ -159,6 +159,12 @@ pub const SCENARIO: Table = Table {
         )
         .meant_by(&["cyclic_interrupt"]),
         key(
+            "retentive",
+            "a table `[retentive]` with `flag_bytes`, `timers`, `counters`, `data_blocks`",
+            "`[retentive]` with `flag_bytes = 16`",
+        )
+        .meant_by(&["retain", "retentivity", "remanent", "remanence"]),
+        key(
             "hw_module",
             "`[[hw_module]]` tables with `module` and `ob`",
             "`[[hw_module]]` with `module = 4` and `ob = 40`",
@@ -247,6 +253,34 @@ const OB13: Table = Table {
 const OB35: Table = Table {
     name: "[ob35]",
     keys: &[key("interval", DURATION, "`interval = \"100ms\"`")],
+};
+
+const RETENTIVE: Table = Table {
+    name: "[retentive]",
+    keys: &[
+        key(
+            "flag_bytes",
+            "the number of retentive flag bytes from FB 0 / MB 0",
+            "`flag_bytes = 16`",
+        )
+        .meant_by(&["flags", "memory_bytes", "merker", "markers"]),
+        key(
+            "timers",
+            "the number of retentive timers from T 0",
+            "`timers = 0`",
+        ),
+        key(
+            "counters",
+            "the number of retentive counters from C 0",
+            "`counters = 8`",
+        ),
+        key(
+            "data_blocks",
+            "whether the data blocks are retentive",
+            "`data_blocks = true`",
+        )
+        .meant_by(&["dbs", "db"]),
+    ],
 };
 
 const HW_MODULE: Table = Table {
@@ -387,6 +421,7 @@ pub struct CpuKeys {
     pub mode: Option<Spanned<String>>,
     pub ob13: Option<Spanned<RawOb13>>,
     pub ob35: Option<Spanned<RawOb35>>,
+    pub retentive: Option<Spanned<RawRetentive>>,
     pub hw_module: Vec<Spanned<RawHwModule>>,
     /// S7: the minimum cycle time.
     pub min_cycle: Option<Spanned<String>>,
@@ -421,6 +456,15 @@ pub struct RawOb13 {
     pub interval: Spanned<String>,
     pub delay: Option<Spanned<String>>,
     pub max_delay: Option<Spanned<String>>,
+}
+
+/// `[retentive]`: the memory kept through a power cycle, as a hardware configuration sets it.
+#[derive(Debug)]
+pub struct RawRetentive {
+    pub flag_bytes: Option<Spanned<u16>>,
+    pub timers: Option<Spanned<u16>>,
+    pub counters: Option<Spanned<u16>>,
+    pub data_blocks: Option<bool>,
 }
 
 /// `[ob35]`: the cyclic interrupt OB 35 of an S7 CPU.
@@ -702,6 +746,21 @@ fn ob13(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option
     })
 }
 
+fn retentive(
+    value: &Spanned<DeValue<'_>>,
+    errors: &mut Vec<ScenarioError>,
+) -> Option<RawRetentive> {
+    unless_reported(errors, |errors| {
+        let entries = RETENTIVE.entries(&SCENARIO, "retentive", value, errors)?;
+        Some(RawRetentive {
+            flag_bytes: entries.get("flag_bytes", errors),
+            timers: entries.get("timers", errors),
+            counters: entries.get("counters", errors),
+            data_blocks: entries.get("data_blocks", errors),
+        })
+    })
+}
+
 fn ob35(value: &Spanned<DeValue<'_>>, errors: &mut Vec<ScenarioError>) -> Option<RawOb35> {
     unless_reported(errors, |errors| {
         let entries = OB35.entries(&SCENARIO, "ob35", value, errors)?;
@@ -826,6 +885,10 @@ pub fn parse(text: &str) -> (RawScenario, Vec<ScenarioError>) {
             }
             "ob35" => {
                 raw.cpu_keys.ob35 = ob35(value, errors).map(|ob35| Spanned::new(value.span(), ob35))
+            }
+            "retentive" => {
+                raw.cpu_keys.retentive =
+                    retentive(value, errors).map(|table| Spanned::new(value.span(), table))
             }
             "hw_module" => raw.cpu_keys.hw_module = read_each(name, value, errors, hw_module),
             "interrupt_input" => {

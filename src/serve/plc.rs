@@ -7,7 +7,7 @@ use std::net::{SocketAddr, TcpListener};
 use miette::{Diagnostic, Report};
 use thiserror::Error;
 
-use crate::runner::{self, NotRun, Ran, RunOptions};
+use crate::runner::{self, NotRun, Persistence, Ran, RunOptions};
 use crate::vm::Cpu;
 use crate::vm::cycle::{RunLimit, RunOutcome};
 
@@ -112,10 +112,13 @@ fn free_port_help(server: &str, address: SocketAddr) -> String {
 pub fn serve(
     options: &ServeOptions,
     halted: &dyn Fn() -> bool,
-    listening: &mut dyn FnMut(&Listening, Vec<Report>),
+    listening: &mut dyn FnMut(&Listening, Vec<Report>, &Requests),
     report: &mut dyn FnMut(&Snapshot),
 ) -> Result<ServedRun, NotRun> {
     let mut prepared = runner::prepare(&options.run)?;
+    // The station writes retentive memory itself: at its control points, at every STOP and
+    // after a cold restart.
+    let mut persistence = std::mem::take(&mut prepared.persistence);
     let modbus_map = prepared.modbus_map().map_err(NotRun::Failed)?;
     let s7 = options.s7.map(|address| bind("S7", address)).transpose()?;
     let modbus = options
@@ -147,14 +150,14 @@ pub fn serve(
         modbus,
         http,
         modbus_map,
-        requests,
+        requests: requests.clone(),
         max_connections: options.max_connections,
         read_only: options.read_only,
     };
     servers
         .start(&runtime)
         .map_err(|error| runtime_error(&error))?;
-    listening(&bound, prepared.take_warnings());
+    listening(&bound, prepared.take_warnings(), &requests);
     let limit = if prepared.limit_given {
         prepared.limit
     } else {
@@ -165,12 +168,14 @@ pub fn serve(
     let network = Network::new(runtime, received);
     let online = Online::new(prepared.mnemonics, options.read_only);
     let mut station = Station::new(network, options.read_only, pacer, online, halted, report);
-    let ran = prepared.run_driven(&mut |cpu, limit, observe| {
-        let outcome = drive(cpu, limit, observe, &mut station);
+    let mut ran = prepared.run_driven(&mut |cpu, limit, observe| {
+        let outcome = drive(cpu, limit, observe, &mut station, &mut persistence);
         // What the page watched leaves the CPU before the run's outputs are finished.
         station.online.leave(cpu);
         outcome
     });
+    ran.warnings.extend(persistence.finish(&ran.cpu));
+    drop(requests);
     let served = station.served;
     let lateness = station.pacer.lateness();
     // The servers' tasks end with their runtime, in the station.
@@ -195,10 +200,12 @@ fn drive(
     limit: RunLimit,
     observe: &mut dyn FnMut(&mut Cpu) -> bool,
     station: &mut Station,
+    persistence: &mut Persistence,
 ) -> RunOutcome {
     let started = std::time::Instant::now();
     loop {
         let mut outcome = cpu.run_watched(limit, &mut |cpu| {
+            persistence.at_control_point(cpu);
             observe(cpu) && station.at_control_point(cpu)
         });
         outcome.wall = started.elapsed();
@@ -209,9 +216,13 @@ fn drive(
         if let Some(stop) = &outcome.stop {
             station.online.stopped(cpu, stop);
         }
+        persistence.write_retained(cpu);
         match station.while_stopped(cpu) {
             Some(cold) => {
                 cpu.prepare_restart(cold);
+                if cold {
+                    persistence.write_retained(cpu);
+                }
                 station.pacer.rebase(cpu.clock);
                 let restart = if cold { "cold" } else { "warm" };
                 station

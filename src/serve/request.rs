@@ -141,6 +141,8 @@ pub enum Protocol {
     Modbus,
     /// The online page and its JSON API (`--http`).
     Http,
+    /// The terminal `awl serve` runs in (its snapshot key).
+    Terminal,
 }
 
 impl Protocol {
@@ -149,6 +151,7 @@ impl Protocol {
             Protocol::S7 => "s7",
             Protocol::Modbus => "modbus",
             Protocol::Http => "http",
+            Protocol::Terminal => "terminal",
         }
     }
 }
@@ -221,6 +224,8 @@ pub enum Ask {
     Diagnostics {
         reply: oneshot::Sender<Vec<DiagnosticEntry>>,
     },
+    /// A snapshot of the whole CPU, as the file `--from` continues from.
+    Snapshot { reply: oneshot::Sender<String> },
     /// The last `seconds` of simulated time as the timeline draws them (an SVG).
     Timeline {
         seconds: f64,

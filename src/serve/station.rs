@@ -227,7 +227,7 @@ impl<'a> Station<'a> {
             Control::Stop => {
                 // The trace names the online page's STOP apart from an HMI's.
                 let cause = match client.protocol {
-                    Protocol::Http => "online",
+                    Protocol::Http | Protocol::Terminal => "online",
                     Protocol::S7 | Protocol::Modbus => "client",
                 };
                 if !stopped {

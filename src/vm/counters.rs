@@ -2,7 +2,7 @@
 
 use crate::rules::bcd;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Counter {
     pub value: u16,
     up_edge: bool,

@@ -24,7 +24,7 @@ pub enum RunLimit {
 }
 
 /// The cycle times of the completed cycles.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct CycleTimes {
     pub count: u64,
     pub min_ns: u64,

@@ -23,6 +23,7 @@ pub mod pulse;
 mod restart;
 mod run_loop;
 pub mod s7;
+pub mod saved;
 pub mod start_info;
 pub mod stop;
 pub mod system_ops;
@@ -198,7 +199,8 @@ pub struct LevelState {
 }
 
 /// The operating mode.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "UPPERCASE")]
 pub enum Mode {
     Stop,
     Startup,

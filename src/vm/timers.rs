@@ -10,7 +10,7 @@ use crate::rules::bcd;
 /// Nanoseconds of the time bases 0…3: 10 ms, 100 ms, 1 s, 10 s.
 pub const BASE_NS: [u64; 4] = [10_000_000, 100_000_000, 1_000_000_000, 10_000_000_000];
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Timer {
     pub kind: TimerKind,
     pub running: bool,
@@ -128,6 +128,22 @@ impl Timer {
             }
         }
         self.settle(now);
+    }
+
+    /// The timer as it stands at `from_ns`, carried to a clock that reads `to_ns` (a start
+    /// from retentive memory): a running timer keeps the time it has left, as time does not
+    /// pass while the CPU is off.
+    pub fn carried(mut self, from_ns: u64, to_ns: u64) -> Timer {
+        self.settle(from_ns);
+        if self.running {
+            let left = (self.start_ns + self.duration_ns).saturating_sub(from_ns);
+            let elapsed = from_ns.saturating_sub(self.start_ns);
+            // The start moves with the clock; where the new clock is too early for the time
+            // already run, the duration shrinks so that the time left stays.
+            self.start_ns = to_ns.saturating_sub(elapsed);
+            self.duration_ns = to_ns - self.start_ns + left;
+        }
+        self
     }
 
     /// `R T n`: with RLO 1 the timer stops, its value and bit are cleared.

@@ -3,6 +3,7 @@
 
 pub mod browser;
 pub mod fake_memory;
+pub mod online;
 pub mod python;
 pub mod serve;
 pub mod step7;
@@ -260,4 +261,39 @@ pub fn next_line(
             .map(|mut err| err.read_to_string(&mut stderr));
         panic!("awl serve printed no {what}: {stderr}");
     })
+}
+
+/// A fresh folder `target/test-files/GROUP/NAME` for a test's files.
+pub fn scratch(group: &str, name: &str) -> PathBuf {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("target/test-files")
+        .join(group)
+        .join(name);
+    let _ = std::fs::remove_dir_all(&folder);
+    std::fs::create_dir_all(&folder).unwrap();
+    folder
+}
+
+/// `awl run ARGS` in the repository.
+pub fn awl_run(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_awl"))
+        .arg("run")
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("awl runs")
+}
+
+/// Sends `signal` (`-TERM`, `-KILL`) to `child` and waits until it has ended.
+pub fn end_with(child: &mut Child, signal: &str) {
+    let pid = child.id().to_string();
+    let sent = std::process::Command::new("kill")
+        .args([signal, &pid])
+        .status();
+    assert!(sent.is_ok_and(|status| status.success()), "kill {signal}");
+    let deadline = Instant::now() + std::time::Duration::from_secs(30);
+    while child.try_wait().expect("waits").is_none() {
+        assert!(Instant::now() < deadline, "the child did not end");
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
 }

@@ -34,6 +34,8 @@ pub enum Call {
         level: Option<String>,
     },
     Diagnostics,
+    /// A snapshot of the whole CPU (the file `--from` continues from).
+    Snapshot,
     /// The last seconds of the timeline.
     Timeline(f64),
     /// The WebSocket of the live view.
@@ -57,7 +59,7 @@ struct Route {
     example: &'static str,
 }
 
-const ROUTES: [Route; 11] = [
+const ROUTES: [Route; 12] = [
     Route {
         path: "/",
         methods: "GET",
@@ -101,6 +103,11 @@ const ROUTES: [Route; 11] = [
     Route {
         path: "/api/diagnostics",
         methods: "GET",
+        example: "",
+    },
+    Route {
+        path: "/api/snapshot",
+        methods: "POST",
         example: "",
     },
     Route {
@@ -167,6 +174,7 @@ pub fn decode(
             })
         }
         ("/api/diagnostics", "GET") => Ok(Call::Diagnostics),
+        ("/api/snapshot", "POST") => Ok(Call::Snapshot),
         ("/api/timeline", "GET") => match query.get("seconds").map(str::trim) {
             None | Some("") => Ok(Call::Timeline(TIMELINE_SECONDS)),
             Some(text) => match text.parse::<f64>() {

@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 use axum::body::Body;
 use axum::extract::FromRequestParts;
 use axum::extract::ws::WebSocketUpgrade;
-use axum::http::header::{CONTENT_LENGTH, CONTENT_TYPE, HOST, ORIGIN};
+use axum::http::header::{CONTENT_DISPOSITION, CONTENT_LENGTH, CONTENT_TYPE, HOST, ORIGIN};
 use axum::http::{HeaderMap, HeaderValue, Method, Response, StatusCode};
 use hyper::body::Incoming;
 use hyper_util::rt::{TokioIo, TokioTimer};
@@ -192,6 +192,15 @@ async fn answer(
         Call::Diagnostics => {
             let entries = ask_for(shared, client, |reply| Ask::Diagnostics { reply }).await?;
             ok(&Entries { entries })
+        }
+        Call::Snapshot => {
+            let file = ask_for(shared, client, |reply| Ask::Snapshot { reply }).await?;
+            let mut answer = response(StatusCode::OK, "application/json", file.into());
+            answer.headers_mut().insert(
+                CONTENT_DISPOSITION,
+                HeaderValue::from_static("attachment; filename=\"awl-snapshot.json\""),
+            );
+            answer
         }
         Call::Timeline(seconds) => {
             let svg = ask_for(shared, client, |reply| Ask::Timeline { seconds, reply }).await?;

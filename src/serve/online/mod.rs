@@ -100,6 +100,9 @@ impl Online {
             Ask::Diagnostics { reply } => {
                 let _ = reply.send(self.diagnostics.entries());
             }
+            Ask::Snapshot { reply } => {
+                let _ = reply.send(crate::retain::Snapshot::of(cpu).encode());
+            }
             Ask::Timeline { seconds, reply } => {
                 LiveTimeline::ask(&mut self.timeline, cpu, seconds, reply);
             }

@@ -45,6 +45,20 @@ const LAST: u8 = 88;
 pub struct Disabled([u128; 2]);
 
 impl Disabled {
+    /// The OBs disabled, by number.
+    pub fn obs(&self) -> Vec<u8> {
+        (0..=u8::MAX).filter(|ob| self.has(*ob)).collect()
+    }
+
+    /// The OBs `obs` disabled.
+    pub fn of(obs: &[u8]) -> Disabled {
+        let mut disabled = Disabled::default();
+        for ob in obs {
+            disabled.set(*ob..=*ob, true);
+        }
+        disabled
+    }
+
     pub fn has(&self, ob: u8) -> bool {
         self.0[usize::from(ob / 128)] >> (ob % 128) & 1 == 1
     }

@@ -22,6 +22,7 @@ pub mod control;
 pub mod inputs;
 pub mod s5;
 pub mod s5_95f;
+mod saved;
 pub mod sinumerik840c;
 pub mod speed7;
 
@@ -36,6 +37,7 @@ use super::{Cpu, IDLE, Mode, Point, StretchKind};
 use inputs::InterruptInput;
 use s5::S5;
 use s5_95f::S595f;
+pub use saved::{EngineState, RulesState};
 use sinumerik840c::Sinumerik840c;
 use speed7::Speed7;
 
@@ -160,7 +162,7 @@ impl Default for EngineConfig {
 
 /// Why a serviced request waited longer than the response bound allows for: reasons the
 /// manuals give, so the bound does not apply to it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Wait {
     /// A level of the same or a higher priority ran, or was serviced first (SINUMERIK 840C
     /// PLC manual, 5.3.2).
@@ -202,7 +204,7 @@ impl Wait {
 }
 
 /// Counts and latencies of one interrupt OB.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub struct ObStats {
     pub requested: u64,
     pub serviced: u64,
@@ -220,7 +222,7 @@ pub struct ObStats {
 }
 
 /// Where a hardware request came from, for the acknowledgement.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct HardwareSource {
     pub module: u16,
     pub channel: u16,
@@ -228,7 +230,7 @@ pub struct HardwareSource {
 }
 
 /// Why the operating system requested an error OB, for its start information.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum Cause {
     #[default]
     None,
@@ -250,7 +252,7 @@ pub enum Cause {
     Station { station: u8, failed: bool },
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Request {
     pub id: u64,
     pub ob: u8,
@@ -325,7 +327,21 @@ pub trait Rules {
     fn untraced_since(&self) -> u64 {
         u64::MAX
     }
+    /// What these rules keep between two cycles, for a snapshot.
+    fn saved(&self) -> RulesState {
+        RulesState::Plain
+    }
+    /// Takes up what [`Rules::saved`] gave; a state of another family does not fit.
+    fn restore(&mut self, state: &RulesState) -> Result<(), &'static str> {
+        match state {
+            RulesState::Plain => Ok(()),
+            _ => Err(FOREIGN_RULES),
+        }
+    }
 }
+
+/// A snapshot's interrupt state is another CPU family's.
+pub const FOREIGN_RULES: &str = "the snapshot's interrupt state belongs to another CPU family";
 
 /// The rules of the running CPU's family, with their state.
 #[derive(Debug, Default)]

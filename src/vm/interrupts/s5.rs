@@ -7,7 +7,7 @@
 use crate::profile::Profile;
 
 use super::super::stop::Stop;
-use super::{Cpu, Rules};
+use super::{Cpu, FOREIGN_RULES, Rules, RulesState};
 
 /// One time-controlled OB the program has: its interval and next call, in ns.
 #[derive(Debug)]
@@ -44,6 +44,27 @@ impl S5 {
 }
 
 impl Rules for S5 {
+    fn saved(&self) -> RulesState {
+        RulesState::S5 {
+            next_calls: self
+                .timed
+                .iter()
+                .map(|timed| (timed.ob, timed.next))
+                .collect(),
+        }
+    }
+
+    fn restore(&mut self, state: &RulesState) -> Result<(), &'static str> {
+        let RulesState::S5 { next_calls } = state else {
+            return Err(FOREIGN_RULES);
+        };
+        for (ob, next) in next_calls {
+            let timed = self.timed.iter_mut().find(|timed| timed.ob == *ob);
+            timed.ok_or(FOREIGN_RULES)?.next = *next;
+        }
+        Ok(())
+    }
+
     fn next_due(&self) -> u64 {
         self.timed
             .iter()

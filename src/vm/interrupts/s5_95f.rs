@@ -24,7 +24,7 @@ use crate::profile::Profile;
 use super::super::bytes::{read_bytes, write_bytes};
 use super::super::io_trace::Modules;
 use super::super::stop::{Stop, StopCause, StopDetail};
-use super::{Cpu, EngineConfig, Ob13Timing, Request, Rules};
+use super::{Cpu, EngineConfig, FOREIGN_RULES, Ob13Timing, Request, Rules, RulesState};
 
 #[derive(Debug, Default)]
 pub struct S595f {
@@ -77,6 +77,37 @@ impl S595f {
 }
 
 impl Rules for S595f {
+    fn saved(&self) -> RulesState {
+        RulesState::S595f {
+            next_call: self.next_call,
+            completed_at: self.completed_at,
+            interrupt_pii: self.interrupt_pii.clone(),
+            interrupt_piq: self.interrupt_piq.clone(),
+        }
+    }
+
+    fn restore(&mut self, state: &RulesState) -> Result<(), &'static str> {
+        let RulesState::S595f {
+            next_call,
+            completed_at,
+            interrupt_pii,
+            interrupt_piq,
+        } = state
+        else {
+            return Err(FOREIGN_RULES);
+        };
+        if interrupt_pii.len() != self.interrupt_pii.len()
+            || interrupt_piq.len() != self.interrupt_piq.len()
+        {
+            return Err(FOREIGN_RULES);
+        }
+        self.next_call = *next_call;
+        self.completed_at = *completed_at;
+        self.interrupt_pii.copy_from_slice(interrupt_pii);
+        self.interrupt_piq.copy_from_slice(interrupt_piq);
+        Ok(())
+    }
+
     fn next_due(&self) -> u64 {
         self.next_call
     }

@@ -42,7 +42,9 @@ use super::Cause;
 use super::inputs::WHILE_INPUT_HOLDS;
 
 use super::super::stop::{Stop, StopCause, StopDetail};
-use super::{Cpu, EngineConfig, HardwareSource, Request, Rules, Scheduled, Wait};
+use super::{
+    Cpu, EngineConfig, FOREIGN_RULES, HardwareSource, Request, Rules, RulesState, Scheduled, Wait,
+};
 
 /// A hardware event held until an acknowledgement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -241,6 +243,39 @@ impl Speed7 {
 }
 
 impl Rules for Speed7 {
+    fn saved(&self) -> RulesState {
+        RulesState::Speed7 {
+            busy: self.busy.clone(),
+            held: self
+                .held
+                .iter()
+                .map(|held| (held.request, held.released_by))
+                .collect(),
+            ob35_next: self.ob35_next,
+        }
+    }
+
+    fn restore(&mut self, state: &RulesState) -> Result<(), &'static str> {
+        let RulesState::Speed7 {
+            busy,
+            held,
+            ob35_next,
+        } = state
+        else {
+            return Err(FOREIGN_RULES);
+        };
+        self.busy.clear();
+        self.busy.extend_from_slice(busy);
+        self.held.clear();
+        self.held
+            .extend(held.iter().map(|(request, released_by)| Held {
+                request: *request,
+                released_by: *released_by,
+            }));
+        self.ob35_next = *ob35_next;
+        Ok(())
+    }
+
     /// Events an input raised on the channel are no longer active: one held until an
     /// acknowledgement is then lost, one of STARTUP is no request at the transition to RUN.
     fn hardware_ended(&mut self, _cpu: &mut Cpu, module: u16, channel: u16, at: u64) {
