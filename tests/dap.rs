@@ -490,6 +490,26 @@ fn a_stop_pauses_with_its_cause() {
 }
 
 #[test]
+fn a_stop_inside_a_block_pauses_before_the_cpu_leaves_it() {
+    let dir = std::env::temp_dir().join(format!("awl-dap-stop-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let program = dir.join("stop.awl");
+    std::fs::write(&program, "OB 1\n      L  KF +1\n      C  DB 99\n      BE\n").unwrap();
+    let arguments = json!({ "program": program.display().to_string() });
+    let mut client = Client::launched(arguments, &["stop"], |_| {});
+    let stopped = client.stopped();
+    assert_eq!(stopped["description"], "STOP: LZF");
+    assert!(stopped["text"].as_str().unwrap().contains("DB 99"));
+    // Before the STOP: OB 1 is still on the block stack, at the faulting line.
+    let (block, line, _) = client.top(stopped["threadId"].as_i64().unwrap());
+    assert_eq!((block.as_str(), line), ("OB 1", 3));
+    client.ok("continue", json!({ "threadId": 1 }));
+    client.event("terminated");
+    client.finish();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn launch_errors_are_the_diagnostics() {
     let mut client = Client::start();
     let missing = client.launch(json!({ "program": "programs/no_such_file.awl" }));

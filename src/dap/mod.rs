@@ -281,7 +281,7 @@ impl Adapter {
         }
     }
 
-    /// Runs the program with the engine's probe, then lets the editor look at the end.
+    /// Runs the program with the engine's probe, then ends the session.
     fn run(self, mut prepared: runner::Prepared) {
         let stop_on_entry = self.stop_on_entry;
         let adapter = std::rc::Rc::new(std::cell::RefCell::new(self));
@@ -294,40 +294,49 @@ impl Adapter {
         prepared.cpu.probe = Some(Box::new(probe));
         let mut ran = prepared.run(&mut |_| true);
         ran.cpu.probe = None;
-        let mut adapter = adapter.borrow_mut();
-        adapter.after_run(&mut ran.cpu, ran.outcome.stop.as_ref());
+        adapter.borrow_mut().end();
     }
 
-    /// The run has ended: a STOP pauses once more (the `stop` filter), then the session ends.
-    fn after_run(&mut self, cpu: &mut Cpu, stop: Option<&Stop>) {
-        if self.quit {
-            return self.end();
+    /// The CPU is about to go to STOP: its report in the console, and with the `stop` filter
+    /// a pause with the cause as the exception's text; whether the editor is told of it.
+    pub(crate) fn stop_reached(&mut self, cpu: &mut Cpu, stop: &Stop) -> bool {
+        // The loop has left the level past the faulting operation; the editor shows that
+        // operation (the level is cleared at the next start anyway).
+        if stop.block == Some(cpu.level.block) {
+            cpu.level.pc = stop.pc;
         }
-        if let Some(stop) = stop {
-            let report = runner::cpu_stop_report(cpu, stop);
-            self.out
-                .output("stderr", &crate::diagnostics::render_plain(&report));
-            if self.stop_filter {
-                let text = report.to_string();
-                self.out.event(
-                    "stopped",
-                    json!({
-                        "reason": "exception",
-                        "description": format!("STOP: {}", stop.cause.code()),
-                        "text": text,
-                        "threadId": inspect::running_thread(cpu),
-                        "allThreadsStopped": true,
-                    }),
-                );
-                while let Some(message) = self.next_message() {
-                    match self.take(Some(cpu), Phase::Ended, message) {
-                        Next::Resume(_) | Next::Quit => break,
-                        _ => {}
-                    }
+        let report = runner::cpu_stop_report(cpu, stop);
+        self.out
+            .output("stderr", &crate::diagnostics::render_plain(&report));
+        if !self.stop_filter || self.quit {
+            return false;
+        }
+        self.out.event(
+            "stopped",
+            json!({
+                "reason": "exception",
+                "description": format!("STOP: {}", stop.cause.code()),
+                "text": report.to_string(),
+                "threadId": inspect::running_thread(cpu),
+                "allThreadsStopped": true,
+            }),
+        );
+        true
+    }
+
+    /// Answers the editor while the CPU pauses, until it lets the CPU go on (`true`) or leaves.
+    fn paused(&mut self, cpu: &mut Cpu) -> bool {
+        while let Some(message) = self.next_message() {
+            match self.take(Some(cpu), Phase::Paused, message) {
+                Next::Resume(resume) => {
+                    self.engine.resume = resume;
+                    return true;
                 }
+                Next::Quit => break,
+                _ => {}
             }
         }
-        self.end();
+        false
     }
 
     /// Tells the editor the session is over, then answers until it disconnects or goes.
@@ -602,17 +611,17 @@ impl Front for Adapter {
             return Flow::Halt;
         }
         self.stopped(cpu, pause);
-        while let Some(message) = self.next_message() {
-            match self.take(Some(cpu), Phase::Paused, message) {
-                Next::Resume(resume) => {
-                    self.engine.resume = resume;
-                    return Flow::Go;
-                }
-                Next::Quit => break,
-                _ => {}
-            }
+        if self.paused(cpu) {
+            Flow::Go
+        } else {
+            Flow::Halt
         }
-        Flow::Halt
+    }
+
+    fn stopping(&mut self, cpu: &mut Cpu, stop: &Stop) {
+        if self.stop_reached(cpu, stop) {
+            self.paused(cpu);
+        }
     }
 
     fn log(&mut self, text: &str) {

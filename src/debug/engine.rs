@@ -11,6 +11,7 @@ use crate::ast::BlockId;
 use crate::compiler::Op;
 use crate::trace::format_ms;
 use crate::vm::probe::{Flow, Probe};
+use crate::vm::stop::Stop;
 use crate::vm::{Cpu, Mode};
 
 use super::command::{self, BreakAt, Command, CommandError, Until};
@@ -353,6 +354,9 @@ pub trait Front {
 
     /// What a log point said.
     fn log(&mut self, text: &str);
+
+    /// The CPU is about to go to STOP: a front end may pause there (the `stop` filter).
+    fn stopping(&mut self, _cpu: &mut Cpu, _stop: &Stop) {}
 }
 
 /// The probe the CPU holds; the front end is kept outside too, for after the run.
@@ -382,5 +386,9 @@ impl<F: Front> Probe for Debugger<F> {
 
     fn serviced(&mut self, cpu: &Cpu, ob: u8) {
         self.0.borrow_mut().engine().serviced(cpu, ob);
+    }
+
+    fn stopping(&mut self, cpu: &mut Cpu, stop: &Stop) {
+        self.0.borrow_mut().stopping(cpu, stop);
     }
 }
