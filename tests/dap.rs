@@ -580,3 +580,151 @@ fn a_vanished_client_ends_the_adapter() {
         std::thread::sleep(Duration::from_millis(20));
     }
 }
+
+/// OB 1 counts its cycles in FW 4 and shows the count in QW 0.
+const COUNTER: &str =
+    "OB 1\n      L  FW 4\n      L  KF +1\n      +F\n      T  FW 4\n      T  QW 0\n      BE\n";
+
+/// `GET` on the online API of `awl serve --http` at `port`: the answer's JSON.
+fn online(port: u16, path: &str) -> Value {
+    let mut answer = ureq::get(&format!("http://127.0.0.1:{port}{path}"))
+        .call()
+        .expect("the online API answers");
+    serde_json::from_str(&answer.body_mut().read_to_string().unwrap()).unwrap()
+}
+
+/// The value of `operand` as the online page shows it.
+fn online_value(port: u16, operand: &str) -> String {
+    let path = format!("/api/values?operands={}", operand.replace(' ', "%20"));
+    online(port, &path)["values"][0]["value"]
+        .as_str()
+        .unwrap()
+        .to_string()
+}
+
+/// SZL 0x0424's mode byte and QW 0, read by python-snap7.
+fn s7_mode_and_outputs(port: u16) -> (u8, u16) {
+    let python = common::python::with("snap7");
+    let clients = format!("{}/tests/clients", env!("CARGO_MANIFEST_DIR"));
+    let output = common::python::command(&python)
+        .arg(format!("{clients}/dap_hold.py"))
+        .arg(port.to_string())
+        .current_dir(&clients)
+        .output()
+        .expect("python runs");
+    let printed = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{printed}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let mut numbers = printed
+        .split_whitespace()
+        .map(|n| n.parse::<u16>().unwrap());
+    (numbers.next().unwrap() as u8, numbers.next().unwrap())
+}
+
+/// Waits until the online API shows the CPU in `mode`.
+fn wait_for_mode(port: u16, mode: &str) -> Value {
+    let deadline = Instant::now() + Duration::from_secs(20);
+    loop {
+        let cpu = online(port, "/api/cpu");
+        if cpu["mode"] == mode || Instant::now() > deadline {
+            assert_eq!(cpu["mode"], mode, "{cpu:#}");
+            return cpu;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+#[test]
+fn attach_holds_the_served_cpu_at_a_breakpoint() {
+    let dir = std::env::temp_dir().join(format!("awl-dap-attach-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let program = dir.join("counter.awl");
+    std::fs::write(&program, COUNTER).unwrap();
+    let program = program.display().to_string();
+    let args = [
+        program.as_str(),
+        "--s7",
+        "127.0.0.1:0",
+        "--http",
+        "127.0.0.1:0",
+    ];
+    let (_serving, ports) =
+        common::serve::Serving::start(&args, &["S7 server listening on ", "Online page at "]);
+    let (s7, http) = (ports[0], ports[1]);
+    wait_for_mode(http, "RUN");
+    let mut client = Client::start();
+    client.ok("initialize", json!({ "adapterID": "awl" }));
+    client.ok("attach", json!({ "connect": format!("127.0.0.1:{http}") }));
+    client.event("initialized");
+    let source = json!({ "path": program });
+    let breakpoint = |line: i64| json!({ "source": source, "breakpoints": [{ "line": line }] });
+    let set = client.ok("setBreakpoints", breakpoint(5));
+    assert_eq!(set["breakpoints"][0]["verified"], true, "{set:#}");
+    client.ok("setExceptionBreakpoints", json!({ "filters": ["stop"] }));
+    client.ok("configurationDone", json!({}));
+    let stopped = client.stopped();
+    assert_eq!(stopped["reason"], "breakpoint");
+    assert_eq!(client.top(stopped["threadId"].as_i64().unwrap()).1, 5);
+
+    // HOLD: the online API and an S7 client see it; no cycle runs, the outputs keep their
+    // values, simulated time stands still, and the clients are served.
+    let held = wait_for_mode(http, "HOLD");
+    let outputs = online_value(http, "QW 0");
+    let (mode, s7_outputs) = s7_mode_and_outputs(s7);
+    assert_eq!(mode, 0x0A, "SZL 0x0424 shows HOLD");
+    std::thread::sleep(Duration::from_millis(300));
+    let still = online(http, "/api/cpu");
+    assert_eq!(still["mode"], "HOLD");
+    assert_eq!(still["cycle"], held["cycle"]);
+    assert_eq!(still["simulated_ms"], held["simulated_ms"]);
+    assert_eq!(online_value(http, "QW 0"), outputs);
+    assert_eq!(s7_mode_and_outputs(s7).1, s7_outputs);
+    let count = client.ok("evaluate", json!({ "expression": "FW 4" }));
+    assert!(!count["result"].as_str().unwrap().is_empty());
+
+    // Without the breakpoint, continue returns the CPU to RUN; the clock follows on.
+    let cleared = client.ok(
+        "setBreakpoints",
+        json!({ "source": source, "breakpoints": [] }),
+    );
+    assert_eq!(cleared["breakpoints"], json!([]));
+    client.ok("continue", json!({ "threadId": 1 }));
+    let running = wait_for_mode(http, "RUN");
+    assert_eq!(s7_mode_and_outputs(s7).0, 0x08, "SZL 0x0424 shows RUN");
+    let jump = running["simulated_ms"].as_f64().unwrap() - held["simulated_ms"].as_f64().unwrap();
+    assert!(
+        jump < 250.0,
+        "the clock did not jump by the hold: {jump} ms"
+    );
+    assert_ne!(online_value(http, "QW 0"), outputs);
+
+    // Held again, the debugger leaves: its breakpoints go and the CPU runs on.
+    client.ok("setBreakpoints", breakpoint(5));
+    client.stopped();
+    wait_for_mode(http, "HOLD");
+    client.ok("disconnect", json!({}));
+    wait_for_mode(http, "RUN");
+    std::thread::sleep(Duration::from_millis(200));
+    assert_eq!(online(http, "/api/cpu")["mode"], "RUN");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn attach_errors_are_told() {
+    let mut client = Client::start();
+    client.ok("initialize", json!({ "adapterID": "awl" }));
+    let missing = client.refused("attach", json!({}));
+    assert!(missing.contains("connect"), "{missing}");
+    // A port nobody listens on: the one a listener just gave back.
+    let port = std::net::TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
+    let gone = client.refused("attach", json!({ "connect": format!("127.0.0.1:{port}") }));
+    assert!(gone.contains("cannot attach"), "{gone}");
+    client.finish();
+}

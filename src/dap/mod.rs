@@ -92,8 +92,20 @@ impl Messages {
     }
 }
 
+/// What a served debugger's message did (`awl dap` attached to `awl serve`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Told {
+    Stay,
+    /// A held CPU goes on (continue, a step).
+    GoOn,
+    /// The debugger leaves: its breakpoints go with it.
+    Detach,
+}
+
 pub struct Adapter {
-    messages: Messages,
+    /// The editor's messages; `None` for a served session, whose messages come over the
+    /// online API.
+    messages: Option<Messages>,
     pub(crate) out: Outgoing,
     files: Files,
     pub(crate) engine: Engine,
@@ -120,7 +132,7 @@ pub fn session(
     out: Box<dyn std::io::Write>,
     files: Files,
 ) {
-    Adapter::new(Messages::read(input), out, files).serve();
+    Adapter::new(Some(Messages::read(input)), Outgoing::new(out), files).serve();
 }
 
 /// The text of a launch that cannot run: every diagnostic, as `awl run` prints them.
@@ -199,10 +211,10 @@ fn capabilities() -> Value {
 }
 
 impl Adapter {
-    fn new(messages: Messages, out: Box<dyn std::io::Write>, files: Files) -> Adapter {
+    fn new(messages: Option<Messages>, out: Outgoing, files: Files) -> Adapter {
         Adapter {
             messages,
-            out: Outgoing::new(out),
+            out,
             files,
             engine: Engine::default(),
             mnemonics: MnemonicSet::English,
@@ -214,14 +226,78 @@ impl Adapter {
         }
     }
 
+    /// The session of a debugger attached to `awl serve`: its messages come, and its answers
+    /// go, over the online API.
+    pub(crate) fn served(mnemonics: MnemonicSet) -> Adapter {
+        let mut adapter = Adapter::new(None, Outgoing::queued(), Files::Disk);
+        adapter.mnemonics = mnemonics;
+        adapter.engine.resume = Resume::Continue;
+        adapter
+    }
+
+    /// Answers the served session's `attach`.
+    pub(crate) fn attached(&mut self, seq: i64, cpu: &Cpu) {
+        self.out.respond(seq, "attach", json!({}));
+        self.out.event("initialized", json!({}));
+        let text = format!(
+            "attached to the {} in {}\n",
+            cpu.profile.name,
+            cpu.mode.name()
+        );
+        self.out.output("console", &text);
+    }
+
+    /// Answers a served session's message; `held`: a breakpoint holds the CPU.
+    pub(crate) fn served_message(&mut self, cpu: &mut Cpu, held: bool, message: Incoming) -> Told {
+        let phase = if held { Phase::Paused } else { Phase::Running };
+        match self.take(Some(cpu), phase, message) {
+            Next::Resume(resume) => {
+                self.engine.resume = resume;
+                Told::GoOn
+            }
+            Next::Quit => Told::Detach,
+            _ => Told::Stay,
+        }
+    }
+
+    /// What the served session has to send.
+    pub(crate) fn take_queued(&mut self) -> Vec<Value> {
+        self.out.take_queued()
+    }
+
+    /// Why the CPU pauses before its next operation, if it does (the editor's pause, a
+    /// breakpoint, a step's end); what log points said goes to the console.
+    pub(crate) fn pause_here(&mut self, cpu: &Cpu) -> Option<Pause> {
+        let interrupted = std::mem::take(&mut self.pause_asked);
+        let pause = self.engine.pause_reason(cpu, interrupted);
+        for text in self.engine.take_logged() {
+            self.log(&text);
+        }
+        pause
+    }
+
     /// The next message, waiting for it; `None` once the client is gone.
     fn next_message(&mut self) -> Option<Incoming> {
-        let message = self.messages.receiver.recv().ok();
+        let message = self
+            .messages
+            .as_ref()
+            .and_then(|messages| messages.receiver.recv().ok());
         if message.is_none() || self.out.broken {
             self.quit = true;
             return None;
         }
         message
+    }
+
+    /// The next message, waiting at most `longest` for it.
+    fn next_message_within(
+        &mut self,
+        longest: std::time::Duration,
+    ) -> Result<Incoming, std::sync::mpsc::RecvTimeoutError> {
+        let Some(messages) = &self.messages else {
+            return Err(std::sync::mpsc::RecvTimeoutError::Disconnected);
+        };
+        messages.receiver.recv_timeout(longest)
     }
 
     /// The whole session: setup, the run, after the run.
@@ -246,8 +322,15 @@ impl Adapter {
                         .refuse(seq, "launch", "the program is launched already");
                 }
                 Next::Attach { seq, arguments } => {
-                    attach::attach(self, seq, &arguments);
-                    return None;
+                    let command = "attach".to_string();
+                    let request = Request {
+                        seq,
+                        command,
+                        arguments,
+                    };
+                    if attach::attach(self, request) {
+                        return None;
+                    }
                 }
                 Next::Run if launched.is_some() => return launched,
                 Next::Quit => return None,
@@ -550,7 +633,7 @@ impl Adapter {
     }
 
     /// Tells the editor why the CPU paused.
-    fn stopped(&mut self, cpu: &Cpu, pause: &Pause) {
+    pub(crate) fn stopped(&mut self, cpu: &Cpu, pause: &Pause) {
         let mut body = json!({
             "threadId": inspect::running_thread(cpu),
             "allThreadsStopped": true,
@@ -586,11 +669,17 @@ impl Front for Adapter {
 
     /// Answers what came while the CPU ran; whether the editor asked for a pause (or left).
     fn interrupted(&mut self, cpu: &mut Cpu) -> bool {
-        if !self.messages.arrived.swap(false, Ordering::Acquire) {
+        let Some(messages) = &self.messages else {
+            return std::mem::take(&mut self.pause_asked);
+        };
+        if !messages.arrived.swap(false, Ordering::Acquire) {
             return false;
         }
         loop {
-            match self.messages.receiver.try_recv() {
+            let Some(messages) = &self.messages else {
+                break;
+            };
+            match messages.receiver.try_recv() {
                 Ok(message) => {
                     if self.take(Some(cpu), Phase::Running, message) == Next::Quit {
                         break;

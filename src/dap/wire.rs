@@ -90,9 +90,11 @@ pub fn parse(body: &[u8]) -> Incoming {
     })
 }
 
-/// The adapter's side: numbers what it sends.
+/// The adapter's side: numbers what it sends, and writes it out or (a served session's)
+/// queues it until the debugger asks.
 pub struct Outgoing {
-    out: Box<dyn Write>,
+    out: Option<Box<dyn Write>>,
+    queued: Vec<Value>,
     seq: i64,
     /// The client is gone: writing failed.
     pub broken: bool,
@@ -101,18 +103,43 @@ pub struct Outgoing {
 impl Outgoing {
     pub fn new(out: Box<dyn Write>) -> Self {
         Outgoing {
-            out,
+            out: Some(out),
+            queued: Vec::new(),
             seq: 0,
             broken: false,
         }
     }
 
+    /// Messages kept until [`Outgoing::take_queued`].
+    pub fn queued() -> Self {
+        Outgoing {
+            out: None,
+            queued: Vec::new(),
+            seq: 0,
+            broken: false,
+        }
+    }
+
+    pub fn take_queued(&mut self) -> Vec<Value> {
+        std::mem::take(&mut self.queued)
+    }
+
+    /// Sends on a message another adapter made (an attached `awl serve`'s), numbered as this
+    /// one's.
+    pub fn forward(&mut self, message: Value) {
+        self.send(message);
+    }
+
     fn send(&mut self, mut message: Value) {
         self.seq += 1;
         message["seq"] = json!(self.seq);
+        let Some(out) = self.out.as_mut() else {
+            self.queued.push(message);
+            return;
+        };
         let body = message.to_string();
-        let written = write!(self.out, "Content-Length: {}\r\n\r\n{body}", body.len())
-            .and_then(|()| self.out.flush());
+        let written =
+            write!(out, "Content-Length: {}\r\n\r\n{body}", body.len()).and_then(|()| out.flush());
         self.broken |= written.is_err();
     }
 
