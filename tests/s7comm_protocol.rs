@@ -86,6 +86,9 @@ impl Memory {
             Request::Online { ask, .. } => {
                 panic!("the S7 server asked what the page asks: {ask:?}")
             }
+            Request::Debug { message, .. } => {
+                panic!("the S7 server asked what a debugger asks: {message:?}")
+            }
         }
     }
 }

@@ -675,10 +675,7 @@ impl Front for Adapter {
         if !messages.arrived.swap(false, Ordering::Acquire) {
             return false;
         }
-        loop {
-            let Some(messages) = &self.messages else {
-                break;
-            };
+        while let Some(messages) = &self.messages {
             match messages.receiver.try_recv() {
                 Ok(message) => {
                     if self.take(Some(cpu), Phase::Running, message) == Next::Quit {
