@@ -728,3 +728,51 @@ fn attach_errors_are_told() {
     assert!(gone.contains("cannot attach"), "{gone}");
     client.finish();
 }
+
+#[test]
+fn step7_conditions_and_function_breakpoints() {
+    let program = path("programs/s7/traffic_light.awl");
+    let arguments = json!({ "scenario": "programs/s7/traffic_light.toml" });
+    let mut client = Client::launched(arguments, &[], |client| {
+        // FC 1 loads "Step" on line 30; the condition holds once the crossing left step 0.
+        let lines = json!({
+            "source": { "path": program },
+            "breakpoints": [{ "line": 30, "condition": "MW 10 > 0" }],
+        });
+        let set = client.ok("setBreakpoints", lines);
+        assert_eq!(set["breakpoints"][0]["verified"], true, "{set:#}");
+        let refused = client.ok(
+            "setBreakpoints",
+            json!({ "source": { "path": program }, "breakpoints": [{ "line": 30, "condition": "MX 10 > 0" }] }),
+        );
+        assert_eq!(refused["breakpoints"][0]["verified"], false, "{refused:#}");
+        let lines = json!({
+            "source": { "path": program },
+            "breakpoints": [{ "line": 30, "condition": "MW 10 > 0" }],
+        });
+        client.ok("setBreakpoints", lines);
+    });
+    let stopped = client.stopped();
+    assert_eq!(stopped["reason"], "breakpoint");
+    let (block, line, _) = client.top(stopped["threadId"].as_i64().unwrap());
+    assert_eq!((block.as_str(), line), ("FC 1", 30));
+    let step = client.ok("evaluate", json!({ "expression": "MW 10" }));
+    assert_ne!(step["result"], "0", "{step:#}");
+    // A function breakpoint on FC 2 (an FC's formals are not among its Locals yet).
+    let set = client.ok(
+        "setFunctionBreakpoints",
+        json!({ "breakpoints": [{ "name": "FC 2" }] }),
+    );
+    assert_eq!(set["breakpoints"][0]["verified"], true, "{set:#}");
+    client.ok(
+        "setBreakpoints",
+        json!({ "source": { "path": program }, "breakpoints": [] }),
+    );
+    client.ok("continue", json!({ "threadId": 1 }));
+    let stopped = client.stopped();
+    assert_eq!(stopped["reason"], "function breakpoint");
+    let (block, _, frame) = client.top(stopped["threadId"].as_i64().unwrap());
+    assert_eq!(block, "FC 2");
+    client.variables(frame, "Locals");
+    client.ok("disconnect", json!({}));
+}
