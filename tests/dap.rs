@@ -604,20 +604,7 @@ fn online_value(port: u16, operand: &str) -> String {
 
 /// SZL 0x0424's mode byte and QW 0, read by python-snap7.
 fn s7_mode_and_outputs(port: u16) -> (u8, u16) {
-    let python = common::python::with("snap7");
-    let clients = format!("{}/tests/clients", env!("CARGO_MANIFEST_DIR"));
-    let output = common::python::command(&python)
-        .arg(format!("{clients}/dap_hold.py"))
-        .arg(port.to_string())
-        .current_dir(&clients)
-        .output()
-        .expect("python runs");
-    let printed = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{printed}{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    let printed = common::python::client("snap7", "dap_hold.py", &[&port.to_string()]);
     let mut numbers = printed
         .split_whitespace()
         .map(|n| n.parse::<u16>().unwrap());
