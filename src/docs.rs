@@ -92,6 +92,11 @@ pub const TOPICS: &[Topic] = &[
         body: Body::File(EDITORS),
     },
     Topic {
+        name: "dap",
+        summary: "`awl dap` in an editor: launching, breakpoints, stepping, OB levels as threads, scopes, the setup of VS Code, Neovim (nvim-dap) and Helix",
+        body: Body::Section(EDITORS, "## Debugging: awl dap"),
+    },
+    Topic {
         name: "exit-codes",
         summary: "what each command's exit codes mean",
         body: Body::Section(PROGRAMS, "## Exit codes"),

@@ -89,6 +89,9 @@ impl Memory {
             Request::Sample { probes, .. } => {
                 panic!("the S7 server asked for an OPC UA sample: {probes:?}")
             }
+            Request::Debug { message, .. } => {
+                panic!("the S7 server asked what a debugger asks: {message:?}")
+            }
         }
     }
 }

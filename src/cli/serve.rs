@@ -154,7 +154,7 @@ pub fn serve(args: &ServeArgs, console: &mut Console) -> u8 {
     let mut status = StatusLine::default();
     let served = plc::serve(
         &options,
-        &watch::halt_requested,
+        watch::halt_requested,
         &mut |listening, warnings, requests| {
             console.reports(&warnings);
             announce(listening, &mut std::io::stdout().lock());

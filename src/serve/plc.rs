@@ -124,7 +124,7 @@ fn free_port_help(server: &str, address: SocketAddr) -> String {
 /// the setup's warnings; `report` gets the status now and then.
 pub fn serve(
     options: &ServeOptions,
-    halted: &dyn Fn() -> bool,
+    halted: fn() -> bool,
     listening: &mut dyn FnMut(&Listening, Vec<Report>, &Requests),
     report: &mut dyn FnMut(&Snapshot),
 ) -> Result<ServedRun, NotRun> {
@@ -212,12 +212,12 @@ pub fn serve(
     let mut ran = prepared.run_driven(&mut |cpu, limit, observe| {
         let outcome = drive(cpu, limit, observe, &mut station, &mut persistence);
         // What the page watched leaves the CPU before the run's outputs are finished.
-        station.online.leave(cpu);
+        station.desk.borrow_mut().online.leave(cpu);
         outcome
     });
     ran.warnings.extend(persistence.finish(&ran.cpu));
     drop(requests);
-    let served = station.served;
+    let served = station.desk.borrow().served;
     let lateness = station.pacer.lateness();
     // The servers' tasks end with their runtime, in the station.
     drop(station);
@@ -255,7 +255,7 @@ fn drive(
             return outcome;
         }
         if let Some(stop) = &outcome.stop {
-            station.online.stopped(cpu, stop);
+            station.desk.borrow_mut().online.stopped(cpu, stop);
         }
         persistence.write_retained(cpu);
         match station.while_stopped(cpu) {
@@ -267,6 +267,8 @@ fn drive(
                 station.pacer.rebase(cpu.clock);
                 let restart = if cold { "cold" } else { "warm" };
                 station
+                    .desk
+                    .borrow_mut()
                     .online
                     .mode_changed(cpu, format!("STARTUP: {restart} restart"));
             }

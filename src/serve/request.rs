@@ -83,6 +83,8 @@ pub enum CpuMode {
     Run,
     Stop,
     Startup,
+    /// A debugger's breakpoint holds the CPU (an S7 CPU's test operation): no cycle runs.
+    Hold,
 }
 
 /// What the CPU reports of itself (CPU state, order code, CPU info, its clock).
@@ -190,6 +192,13 @@ pub enum Request {
     Sample {
         probes: Vec<Probe>,
         reply: oneshot::Sender<Sample>,
+    },
+    /// A debugger's message (`awl dap` attached, `POST /api/debug`): a Debug Adapter Protocol
+    /// request, answered with the messages it brings (its response and events); `None` asks
+    /// only for the events that came since (`GET /api/debug/events`).
+    Debug {
+        message: Option<Vec<u8>>,
+        reply: oneshot::Sender<Vec<serde_json::Value>>,
     },
 }
 

@@ -249,6 +249,7 @@ fn mode_name(mode: CpuMode) -> &'static str {
         CpuMode::Run => "RUN",
         CpuMode::Stop => "STOP",
         CpuMode::Startup => "STARTUP",
+        CpuMode::Hold => "HOLD",
     }
 }
 
