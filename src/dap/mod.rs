@@ -480,26 +480,22 @@ impl Adapter {
                 self.stop_filter = filters.stop;
                 ok(self, json!({ "breakpoints": filters.verified }));
             }
-            ("setBreakpoints", cpu) => {
+            (command @ ("setBreakpoints" | "setFunctionBreakpoints"), cpu) => {
                 let body = match cpu {
-                    Some(cpu) => self.breakpoints.set_lines(
-                        &mut self.engine,
-                        cpu,
-                        &arguments,
-                        self.mnemonics,
-                    ),
-                    None => breakpoints::before_launch(&arguments["breakpoints"]),
-                };
-                ok(self, body);
-            }
-            ("setFunctionBreakpoints", cpu) => {
-                let body = match cpu {
-                    Some(cpu) => self.breakpoints.set_functions(
-                        &mut self.engine,
-                        cpu,
-                        &arguments,
-                        self.mnemonics,
-                    ),
+                    Some(cpu) => {
+                        let set = if command == "setBreakpoints" {
+                            breakpoints::Set::set_lines
+                        } else {
+                            breakpoints::Set::set_functions
+                        };
+                        set(
+                            &mut self.breakpoints,
+                            &mut self.engine,
+                            cpu,
+                            &arguments,
+                            self.mnemonics,
+                        )
+                    }
                     None => breakpoints::before_launch(&arguments["breakpoints"]),
                 };
                 ok(self, body);
