@@ -6,6 +6,8 @@
 //! without that form is weighed by the words only one dialect writes ([`word_evidence`]), and a
 //! STEP 5 parse error on a STEP 7 word is said as such ([`step7_word_on_line`]).
 
+use std::borrow::Cow;
+
 use crate::lexer::{Token, TokenKind};
 use crate::mnemonics::{self, BlockKind, MnemonicSet, OpCode};
 use crate::source::{FileId, Span};
@@ -75,11 +77,18 @@ fn step7_in_line(source: &str, line: &[Token]) -> Option<Evidence> {
     let first = line[0];
     let word = |token: Token| (token.kind == TokenKind::Word).then(|| token.text(source));
     if let Some(text) = word(first) {
-        let upper = text.to_ascii_uppercase();
-        if STEP7_LINE_WORDS.contains(&upper.as_str()) || upper.starts_with("END_") {
+        let keyword = STEP7_LINE_WORDS
+            .iter()
+            .any(|keyword| keyword.eq_ignore_ascii_case(text));
+        let end = text
+            .get(..4)
+            .is_some_and(|start| start.eq_ignore_ascii_case("END_"));
+        if keyword || end {
             return Some(evidence(first, first, "a STEP 7 block keyword"));
         }
-        if upper == "TITLE" && line.get(1).is_some_and(|t| t.kind == TokenKind::Equals) {
+        if text.eq_ignore_ascii_case("TITLE")
+            && line.get(1).is_some_and(|t| t.kind == TokenKind::Equals)
+        {
             return Some(evidence(first, line[1], "a STEP 7 title line"));
         }
     }
@@ -230,9 +239,18 @@ fn without_label(line: &[S7Token]) -> &[S7Token] {
 
 /// The operation word of a statement as the tables spell it (`A(`, `RND+`, `+I`, `==I`,
 /// STEP 5's `X F`), and the tokens after it.
-fn operation_word<'t>(source: &str, line: &'t [S7Token]) -> Option<(String, &'t [S7Token])> {
+fn operation_word<'s, 't>(
+    source: &'s str,
+    line: &'t [S7Token],
+) -> Option<(Cow<'s, str>, &'t [S7Token])> {
     let (first, rest) = line.split_first()?;
-    let upper = first.text(source).to_ascii_uppercase();
+    let text = first.text(source);
+    // Most listings write their operations in capitals: those are taken as they are.
+    let upper = if text.bytes().any(|byte| byte.is_ascii_lowercase()) {
+        Cow::Owned(text.to_ascii_uppercase())
+    } else {
+        Cow::Borrowed(text)
+    };
     match first.kind {
         S7Kind::Word => {
             // STEP 5's `X F` (fixed-point multiply), not STEP 7's `X` (XOR).
@@ -241,7 +259,7 @@ fn operation_word<'t>(source: &str, line: &'t [S7Token]) -> Option<(String, &'t 
             {
                 let multiply = format!("X {}", next.text(source).to_ascii_uppercase());
                 if mnemonics::operation(MnemonicSet::English, &multiply).is_some() {
-                    return Some((multiply, &rest[1..]));
+                    return Some((Cow::Owned(multiply), &rest[1..]));
                 }
             }
             match rest.first() {
@@ -249,7 +267,10 @@ fn operation_word<'t>(source: &str, line: &'t [S7Token]) -> Option<(String, &'t 
                     if first.touches(*next)
                         && matches!(next.kind, S7Kind::LParen | S7Kind::Plus | S7Kind::Minus) =>
                 {
-                    Some((format!("{upper}{}", next.text(source)), &rest[1..]))
+                    Some((
+                        Cow::Owned(format!("{upper}{}", next.text(source))),
+                        &rest[1..],
+                    ))
                 }
                 _ => Some((upper, rest)),
             }
@@ -307,17 +328,21 @@ fn step5_line(source: &str, line: &[S7Token]) -> Option<Evidence> {
     if first.kind != S7Kind::Word {
         return None;
     }
-    let word = first.text(source).to_ascii_uppercase();
+    let word = first.text(source);
     let declaration = [
         mnemonics::NAME_WORD,
         mnemonics::DECLARATION_EN,
         mnemonics::DECLARATION_DE,
     ];
-    if colon.is_some() && declaration.contains(&word.as_str()) {
+    if colon.is_some()
+        && declaration
+            .iter()
+            .any(|known| known.eq_ignore_ascii_case(word))
+    {
         return step5(first, "a STEP 5 block's `NAME` or `DES` line");
     }
     match line {
-        [_, number] if number.kind == S7Kind::Number && BlockKind::from_word(&word).is_some() => {
+        [_, number] if number.kind == S7Kind::Number && BlockKind::from_word(word).is_some() => {
             step5(*number, "a STEP 5 block header")
         }
         _ => None,

@@ -73,7 +73,7 @@ pub const TOPICS: &[Topic] = &[
     },
     Topic {
         name: "serve",
-        summary: "`awl serve`: the virtual PLC on the network (S7comm, Modbus TCP), its areas and maps",
+        summary: "`awl serve`: the virtual PLC on the network (S7comm, Modbus TCP, OPC UA), its areas and maps",
         body: Body::Section(PROGRAMS, "## The virtual PLC (`awl serve`)"),
     },
     Topic {
@@ -90,6 +90,11 @@ pub const TOPICS: &[Topic] = &[
         name: "lsp",
         summary: "`awl lsp` in an editor: what the language server offers, its settings, the setup of VS Code, Neovim and Helix",
         body: Body::File(EDITORS),
+    },
+    Topic {
+        name: "dap",
+        summary: "`awl dap` in an editor: launching, breakpoints, stepping, OB levels as threads, scopes, the setup of VS Code, Neovim (nvim-dap) and Helix",
+        body: Body::Section(EDITORS, "## Debugging: awl dap"),
     },
     Topic {
         name: "exit-codes",

@@ -50,6 +50,8 @@ pub struct Frontend {
     /// The parsed STEP 7 files (empty for a STEP 5 program): what each STEP 7 statement was
     /// written as, for the tools that show S7 operations (`awl dump`, program status).
     pub s7_units: Vec<crate::step7::ast::S7Unit>,
+    /// The dialect the program was read in, as `--dialect` named it or the text showed it.
+    pub dialect: Dialect,
 }
 
 impl Frontend {
@@ -61,6 +63,7 @@ impl Frontend {
         mnemonics: Vec<MnemonicSet>,
         units: Vec<SourceUnit>,
         s7_units: Vec<crate::step7::ast::S7Unit>,
+        dialect: Dialect,
     ) -> Frontend {
         diagnostics.sort_by_key(|diagnostic| {
             let span = diagnostic.span();
@@ -73,6 +76,7 @@ impl Frontend {
             mnemonics,
             units,
             s7_units,
+            dialect,
         }
     }
 
@@ -97,7 +101,19 @@ pub fn build_with_symbols(
     language: Language,
     profile: &'static Profile,
 ) -> Frontend {
+    build_for_dialect(sources, symbol_files, language, |_| profile)
+}
+
+/// [`build_with_symbols`] on the profile `profile_of` gives for the dialect the program is
+/// read in, which is decided once.
+pub fn build_for_dialect(
+    sources: SourceSet,
+    symbol_files: Vec<SourceFile>,
+    language: Language,
+    profile_of: impl FnOnce(Dialect) -> &'static Profile,
+) -> Frontend {
     let decision = decide(&sources, language);
+    let profile = profile_of(decision.dialect);
     match decision.dialect {
         Dialect::Step7 => build_step7(sources, symbol_files, language, profile, decision.note),
         Dialect::Step5 => build_step5(sources, symbol_files, language, profile),
@@ -174,7 +190,15 @@ fn build_step5(
     let mut compiled = compiled;
     compiled.program.symbols = symbols;
     let mnemonics = units.iter().map(|unit| unit.mnemonics).collect();
-    Frontend::new(sources, compiled, diagnostics, mnemonics, units, Vec::new())
+    Frontend::new(
+        sources,
+        compiled,
+        diagnostics,
+        mnemonics,
+        units,
+        Vec::new(),
+        Dialect::Step5,
+    )
 }
 
 /// The CPU profile a program runs on when none is chosen: its dialect's
@@ -344,7 +368,15 @@ fn build_step7(
     }
     diagnostics.extend(note.map(SourceDiagnostic::Step7));
     let mnemonics = units.iter().map(|unit| unit.mnemonics).collect();
-    Frontend::new(sources, compiled, diagnostics, mnemonics, Vec::new(), units)
+    Frontend::new(
+        sources,
+        compiled,
+        diagnostics,
+        mnemonics,
+        Vec::new(),
+        units,
+        Dialect::Step7,
+    )
 }
 
 /// The profiles on which the program compiles without errors, as each `--cpu` would check it;
@@ -359,7 +391,7 @@ pub fn profiles_without_errors(
     language: Language,
 ) -> Vec<&'static str> {
     let language = Language {
-        dialect: Some(decide(sources, language).dialect),
+        dialect: Some(built.dialect),
         ..language
     };
     if !built.s7_units.is_empty() {

@@ -15,6 +15,8 @@ pub mod cli;
 pub mod compiler;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod conformance;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod dap;
 pub mod debug;
 pub mod diagnostics;
 pub mod dialect;

@@ -1262,8 +1262,9 @@ pub fn key(word: &str) -> Option<u64> {
 }
 
 /// Words of one kind: per set, an open-addressing hash table of packed words (the front end
-/// looks up every word of every line, so this is on its hot path).
-struct Table<V> {
+/// looks up every word of every line, so this is on its hot path). Both dialects' mnemonic
+/// tables are made of it.
+pub(crate) struct Table<V> {
     english: Slots<V>,
     german: Slots<V>,
 }
@@ -1314,7 +1315,7 @@ impl<V: Copy> Slots<V> {
 }
 
 impl<V: Copy> Table<V> {
-    fn new<T>(
+    pub(crate) fn new<T>(
         rows: &[T],
         words: impl Fn(&T) -> (&'static str, &'static str),
         value: impl Fn(&T) -> V,
@@ -1332,7 +1333,7 @@ impl<V: Copy> Table<V> {
         }
     }
 
-    fn get(&self, set: MnemonicSet, word: &str) -> Option<V> {
+    pub(crate) fn get(&self, set: MnemonicSet, word: &str) -> Option<V> {
         let slots = match set {
             MnemonicSet::English => &self.english,
             MnemonicSet::German => &self.german,
@@ -1432,6 +1433,16 @@ pub fn operation_words(set: MnemonicSet) -> impl Iterator<Item = &'static str> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn packed_words_are_upper_case_as_one_byte_at_a_time_makes_them() {
+        for byte in 0u8..0x80 {
+            let word = String::from_utf8(vec![byte; 8]).unwrap();
+            let one_by_one = u64::from_le_bytes([byte.to_ascii_uppercase(); 8]);
+            assert_eq!(super::key(&word), Some(one_by_one), "{byte:#x}");
+        }
+        assert_eq!(super::key("spa"), super::key("SPA"));
+    }
+
     use super::*;
 
     #[test]

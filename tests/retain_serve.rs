@@ -27,20 +27,11 @@ fn end(serving: &mut Serving, signal: &str) {
 
 /// The S7 client's answer: DB 1's setpoint after `action`.
 fn s7(port: u16, action: &[&str]) -> i64 {
-    let python = common::python::with("snap7");
-    let output = common::python::command(&python)
-        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/clients/retain_s7.py"))
-        .arg(port.to_string())
-        .args(action)
-        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/clients"))
-        .output()
-        .expect("python runs");
-    let printed = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{printed}{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    let port = port.to_string();
+    let args: Vec<&str> = std::iter::once(port.as_str())
+        .chain(action.iter().copied())
+        .collect();
+    let printed = common::python::client("snap7", "retain_s7.py", &args);
     printed.lines().next().unwrap().trim().parse().unwrap()
 }
 

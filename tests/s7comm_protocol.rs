@@ -86,6 +86,12 @@ impl Memory {
             Request::Online { ask, .. } => {
                 panic!("the S7 server asked what the page asks: {ask:?}")
             }
+            Request::Sample { probes, .. } => {
+                panic!("the S7 server asked for an OPC UA sample: {probes:?}")
+            }
+            Request::Debug { message, .. } => {
+                panic!("the S7 server asked what a debugger asks: {message:?}")
+            }
         }
     }
 }

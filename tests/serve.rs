@@ -210,15 +210,7 @@ fn a_client_s_input_write_raises_ob_40_and_the_trace_shows_both() {
     let (code, _, stderr) = served.terminate();
     assert_eq!(code, Some(0), "{stderr}");
     let trace = std::fs::read_to_string(&trace).expect("the trace is written");
-    let write = trace
-        .lines()
-        .position(|line| line.contains("\"client_write\"") && line.contains("\"IB 8\""))
-        .expect("the client's write of IB 8 is traced");
-    let request = trace
-        .lines()
-        .position(|line| line.contains("\"irq_request\"") && line.contains("\"ob\":40"))
-        .expect("OB 40 is requested");
-    assert!(write < request, "the write comes first");
+    common::assert_write_raises(&trace, "IB 8", 40);
     let picture = std::fs::read_to_string(&timeline).expect("the timeline is drawn");
     assert!(
         picture.contains("class=\"client-write\""),
@@ -282,22 +274,13 @@ fn a_port_in_use_is_one_error_that_names_a_free_alternative() {
     assert!(output.stdout.is_empty(), "no listening line");
 }
 
-/// The code block after `<!-- serve-snippet: NAME -->` in the README.
-fn readme_snippet(name: &str) -> String {
-    let readme = std::fs::read_to_string(repo("README.md")).expect("the README");
-    let marker = format!("<!-- serve-snippet: {name} -->\n```python\n");
-    let start = readme.find(&marker).expect("the snippet's marker") + marker.len();
-    let end = readme[start..].find("```").expect("the snippet's end") + start;
-    readme[start..end].to_string()
-}
-
 #[test]
 fn the_readme_s_snippets_run_as_printed() {
     let python = python();
     let served = serve(&["--scenario", "programs/s7/tank_hmi_serve.toml"]);
     for (name, printed) in [("s7", "300\n1\n0\n1\nTrue\n"), ("modbus", "[300]\nFalse\n")] {
         // The README serves on ports 1102 and 1502; here the system picked them.
-        let snippet = readme_snippet(name)
+        let snippet = common::readme_snippet(name)
             .replace("1102", &served.s7.to_string())
             .replace("1502", &served.modbus.to_string());
         let output = common::python::command(&python)
@@ -332,7 +315,7 @@ fn on_a_terminal_one_status_line_shows_the_mode_and_ctrl_c_ends_the_serve() {
     session.exp_string("RUN  cycle ").expect("the status line");
     session.exp_string("0 clients").expect("the clients");
     session
-        .exp_string("requests/s  (Ctrl-C ends)")
+        .exp_string("requests/s  (s Enter: snapshot, Ctrl-C ends)")
         .expect("the requests");
     session.send_control('c').expect("Ctrl-C");
     session

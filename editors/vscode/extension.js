@@ -1,4 +1,5 @@
-// Starts `awl lsp` for STL files and connects VS Code to it.
+// Starts `awl lsp` for STL files and connects VS Code to it, and runs `awl dap` for the
+// debugger type `awl`.
 const vscode = require("vscode");
 const { LanguageClient } = require("vscode-languageclient/node");
 
@@ -19,6 +20,13 @@ function activate(context) {
     },
   );
   context.subscriptions.push(client);
+  context.subscriptions.push(
+    vscode.debug.registerDebugAdapterDescriptorFactory("awl", {
+      createDebugAdapterDescriptor() {
+        return new vscode.DebugAdapterExecutable(command, ["dap"]);
+      },
+    }),
+  );
   return client.start();
 }
 

@@ -8,6 +8,7 @@
 
 mod bounds;
 mod checks;
+mod dap;
 mod editor;
 mod run;
 
@@ -16,6 +17,7 @@ pub use bounds::{
     renders_in_full, watchdog_ns,
 };
 pub use checks::{check_diagnostics, check_report, quiet_reports};
+pub use dap::debug_session;
 pub use editor::edit_session;
 pub use run::{Setup, run};
 

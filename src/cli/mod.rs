@@ -13,6 +13,7 @@ mod snapshot_key;
 mod source;
 mod status;
 mod terminal;
+mod test;
 mod watch;
 
 use std::path::PathBuf;
@@ -162,8 +163,15 @@ pub enum Command {
 Neovim and Helix, the settings (`cpu`, `symbols`) and what the server offers."
     )]
     Lsp,
+    /// A debug adapter over stdio for editors (the Debug Adapter Protocol): launch a program
+    /// or attach to `awl serve --http`, breakpoints, stepping, OB levels as threads, registers
+    #[command(
+        after_long_help = "The editor starts it. `awl help dap` gives the setup of VS Code, \
+Neovim (nvim-dap) and Helix, the launch and attach settings, and what the adapter offers."
+    )]
+    Dap,
     /// Run scenario files and check their [expect] and [[check]] tables
-    Test(run::TestArgs),
+    Test(test::TestArgs),
     /// Run awlsim's test files (STEP 7 STL with `__ASSERT…`) as awlsim's harness does: PASS or
     /// FAIL per file
     Conformance(conformance::ConformanceArgs),
@@ -188,9 +196,13 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Run(args) => run::run(&args, &mut console),
         Command::Status(args) => status::status(&args, &mut console),
         Command::Debug(args) => debug::debug(&args, &mut console),
-        Command::Test(args) => run::test(&args, &mut console),
+        Command::Test(args) => test::test(&args, &mut console),
         Command::Serve(args) => serve::serve(&args, &mut console),
         Command::Lsp => lsp(&mut console),
+        Command::Dap => {
+            crate::dap::serve_stdio();
+            EXIT_OK
+        }
         Command::Conformance(args) => conformance::conformance(&args, &mut console),
         Command::Analyze(args) => analyze::analyze(&args, &mut console),
         Command::Help(args) => help::help(&args, &mut console),

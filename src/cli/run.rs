@@ -1,6 +1,6 @@
 //! `awl run` and `awl test`: runs, their reports, and their exit codes.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::ValueEnum;
 
@@ -248,23 +248,6 @@ fn parse_from_arg(text: &str) -> Result<From, String> {
     ))
 }
 
-#[derive(Debug, clap::Args)]
-#[command(
-    after_long_help = "Each scenario runs its program as `awl run --scenario FILE` \
-would: its [[event]]s set inputs and request interrupts at their times (`every` repeats one), \
-and it passes when its [expect] table holds at the run's end and each [[check]] table at its \
-time (`at`). `awl test` prints PASS or FAIL per scenario; the watch table of a scenario's \
-`watch` list is what `awl run --scenario FILE` prints. `awl help scenario` describes every key."
-)]
-pub struct TestArgs {
-    /// Scenario files (TOML): each with its program, events, [expect] table and [[check]]
-    /// tables
-    #[arg(required = true)]
-    pub scenarios: Vec<PathBuf>,
-    #[command(flatten)]
-    pub output: OutputArgs,
-}
-
 pub(super) fn parse_duration_arg(text: &str) -> Result<u64, String> {
     match crate::scenario::parse_duration(text) {
         Some(0) => Err("a run of no time: give a duration above zero".into()),
@@ -500,7 +483,7 @@ pub(super) fn print_state(ran: &Ran, format: StateFormat, console: &mut Console)
 }
 
 /// What did not hold: `[expect]` entries, then `[[check]]` operands with their time.
-fn failures(ran: &Ran) -> Vec<String> {
+pub(super) fn failures(ran: &Ran) -> Vec<String> {
     let symbols = &ran.cpu.program.symbols;
     let mut failures: Vec<String> = ran
         .mismatches
@@ -525,70 +508,4 @@ fn failures(ran: &Ran) -> Vec<String> {
         }
     }
     failures
-}
-
-/// One scenario's line: PASS (left out when quiet), or FAIL with the reason.
-fn verdict(path: &Path, result: Result<Ran, NotRun>, console: &mut Console) -> bool {
-    let failure = match result {
-        Ok(ran) => {
-            console.reports(&ran.warnings);
-            if !ran.failed() {
-                if !console.is_quiet() {
-                    console.out_text(&format!(
-                        "PASS {}  ({}, {}, mode {})\n",
-                        path.display(),
-                        super::plural(ran.expectation_count() as u64, "expectation"),
-                        super::plural(ran.outcome.cycles, "cycle"),
-                        ran.outcome.mode.name()
-                    ));
-                }
-                return true;
-            }
-            failures(&ran).join("; ")
-        }
-        Err(NotRun::SourceErrors(reports, totals)) => {
-            console.reports(&reports);
-            console.totals("test", totals);
-            "the program has errors".to_string()
-        }
-        Err(NotRun::Usage(report)) => {
-            console.report(&report);
-            "the scenario could not run".to_string()
-        }
-        Err(NotRun::Failed(reports)) => {
-            console.reports(&reports);
-            "the scenario could not run".to_string()
-        }
-    };
-    console.out_text(&format!("FAIL {}  {failure}\n", path.display()));
-    false
-}
-
-pub fn test(args: &TestArgs, console: &mut Console) -> u8 {
-    args.output.apply(console);
-    let (mut passed, mut failed) = (0u64, 0u64);
-    for path in &args.scenarios {
-        let options = RunOptions {
-            scenario: Some(path.clone()),
-            ..RunOptions::default()
-        };
-        let (result, halted) = watched_run(&options, console);
-        if halted {
-            console.err("awl test: halted\n");
-            return EXIT_HALTED;
-        }
-        if verdict(path, result, console) {
-            passed += 1;
-        } else {
-            failed += 1;
-        }
-    }
-    if !console.is_quiet() {
-        console.out_text(&format!("{passed} passed, {failed} failed\n"));
-    }
-    if failed == 0 {
-        EXIT_OK
-    } else {
-        EXIT_EXPECTATION
-    }
 }

@@ -24,13 +24,16 @@ const MODBUS_DEFAULT: &str = "127.0.0.1:502";
 /// Where the online page is served without an address: the loopback, on a port no other
 /// common service claims.
 const HTTP_DEFAULT: &str = "127.0.0.1:8102";
+/// Where the OPC UA server listens without an address: the protocol's registered port.
+const OPCUA_DEFAULT: &str = "127.0.0.1:4840";
 
 #[derive(Debug, clap::Args)]
 #[command(
-    after_long_help = "Without --s7, --modbus and --http the S7 and Modbus servers start, on \
-127.0.0.1:102 and 127.0.0.1:502; with any of them, only those named. `awl help serve` \
-describes the area maps, what a client's write does, and how HMIs, Node-RED and plant \
-simulations connect; `awl help online` the online page and its JSON API.",
+    after_long_help = "Without --s7, --modbus, --http and --opcua the S7 and Modbus servers \
+start, on 127.0.0.1:102 and 127.0.0.1:502; with any of them, only those named. `awl help serve` \
+describes the area maps, what a client's write does, the OPC UA address space and its \
+security, and how HMIs, Node-RED and plant simulations connect; `awl help online` the online \
+page and its JSON API.",
     mut_arg("cycles", |arg| arg.help("Serve this many cycles (at least 1), then end \
 [default: the scenario's run, else until stopped]")),
     mut_arg("duration", |arg| arg.help("Serve for this much simulated time, e.g. 10s (ends at \
@@ -55,6 +58,14 @@ pub struct ServeArgs {
     /// JSON API on HOST:PORT; port 0 picks a free one [default: 127.0.0.1:8102]
     #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = HTTP_DEFAULT, value_parser = parse_address)]
     pub http: Option<SocketAddr>,
+    /// Serve OPC UA on HOST:PORT: the program's data by name (namespace urn:awl:plc), with
+    /// subscriptions; port 0 picks a free one [default: 127.0.0.1:4840]
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = OPCUA_DEFAULT, value_parser = parse_address)]
+    pub opcua: Option<SocketAddr>,
+    /// Take the OPC UA users and passwords from FILE (TOML: `[users]`, then `name =
+    /// "password"`) and refuse anonymous clients [default: anonymous clients]
+    #[arg(long, value_name = "FILE", requires = "opcua")]
+    pub opcua_users: Option<PathBuf>,
     /// Refuse every write and every STOP or start request [default: off]
     #[arg(long)]
     pub read_only: bool,
@@ -111,7 +122,8 @@ fn parse_address(text: &str) -> Result<SocketAddr, String> {
 }
 
 fn options(args: &ServeArgs) -> ServeOptions {
-    let both = args.s7.is_none() && args.modbus.is_none() && args.http.is_none();
+    let both =
+        args.s7.is_none() && args.modbus.is_none() && args.http.is_none() && args.opcua.is_none();
     let default = |text: &str| text.parse().ok();
     let mut run = program_options(&args.program);
     run.limit = args.length.limit();
@@ -129,6 +141,8 @@ fn options(args: &ServeArgs) -> ServeOptions {
             .modbus
             .or(if both { default(MODBUS_DEFAULT) } else { None }),
         http: args.http,
+        opcua: args.opcua,
+        opcua_users: args.opcua_users.clone(),
         read_only: args.read_only,
         max_connections: usize::from(args.max_connections),
     }
@@ -140,7 +154,7 @@ pub fn serve(args: &ServeArgs, console: &mut Console) -> u8 {
     let mut status = StatusLine::default();
     let served = plc::serve(
         &options,
-        &watch::halt_requested,
+        watch::halt_requested,
         &mut |listening, warnings, requests| {
             console.reports(&warnings);
             announce(listening, &mut std::io::stdout().lock());
@@ -176,6 +190,9 @@ fn announce(listening: &Listening, out: &mut dyn std::io::Write) {
     }
     if let Some(address) = listening.http {
         let _ = writeln!(out, "Online page at http://{address}/");
+    }
+    if let Some(address) = listening.opcua {
+        let _ = writeln!(out, "OPC UA server listening on opc.tcp://{address}");
     }
     let _ = out.flush();
 }

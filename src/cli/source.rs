@@ -38,10 +38,11 @@ fn build(
     if let Some(project) = &project {
         language = project.language(language);
     }
-    let profile = match options.cpu.as_deref() {
-        Some(name) => selected_profile(name),
+    let chosen = options.cpu.as_deref().map(selected_profile);
+    let profile_of = |dialect| match chosen {
+        Some(profile) => profile,
         None => {
-            let profile = frontend::default_profile(&sources, language);
+            let profile = crate::profile::default_for(dialect);
             project
                 .as_ref()
                 .map_or(profile, |project| project.cpu(profile))
@@ -50,7 +51,7 @@ fn build(
     // A project sets its CPU itself: which profiles would do instead is not asked.
     let inputs = (with_profiles && options.cpu.is_none() && project.is_none())
         .then(|| (sources.clone(), symbol_files.clone()));
-    let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
+    let built = frontend::build_for_dialect(sources, symbol_files, language, profile_of);
     let runs_on = inputs.map(|(sources, symbol_files)| {
         frontend::profiles_without_errors(&built, &sources, &symbol_files, language)
     });

@@ -265,11 +265,8 @@ fn parse_set(words: &[&str]) -> Result<Command, CommandError> {
     else {
         return Err(usage("set", "give an operand and a value"));
     };
-    let parsed = match value.strip_prefix("0x").or(value.strip_prefix("16#")) {
-        Some(hex) => i64::from_str_radix(hex, 16).ok(),
-        None => value.parse().ok(),
-    };
-    let value = parsed.ok_or_else(|| usage("set", format!("`{value}` is not a number")))?;
+    let value = super::condition::parse_number(value)
+        .ok_or_else(|| usage("set", format!("`{value}` is not a number")))?;
     Ok(Command::Set {
         operand: operand.join(" "),
         value,

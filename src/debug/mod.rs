@@ -4,56 +4,27 @@
 //! CPU can still be inspected.
 
 pub mod command;
+pub mod condition;
+pub mod engine;
 pub mod input;
-mod show;
+pub mod show;
 
 pub use show::{force, write};
 
-use std::cell::RefCell;
 use std::io::Write;
-use std::rc::Rc;
 
 use miette::Report;
 
-use crate::compiler::Op;
 use crate::mnemonics::MnemonicSet;
 use crate::state::{self, State};
 use crate::trace::format_ms;
-use crate::vm::probe::{Flow, Probe};
+use crate::vm::Cpu;
+use crate::vm::probe::Flow;
 use crate::vm::stop::Stop;
-use crate::vm::{Cpu, Mode};
 
-use command::{BreakAt, COMMANDS, Command, CommandError, Until};
+use command::{BreakAt, COMMANDS, Command, CommandError};
+pub use engine::{Debugger, Engine, Front, Pause, Resume, describe, named_block};
 use input::{Input, Line};
-
-/// When the CPU pauses next, apart from breakpoints.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Resume {
-    /// Before the first operation of OB 1 (or of any block, without one).
-    Start,
-    Step,
-    /// At the next operation on this level at this depth or above.
-    Next {
-        levels: usize,
-        frames: usize,
-    },
-    /// Once the running block has returned (or its level, or OB 1's cycle, has ended).
-    Finish {
-        levels: usize,
-        frames: usize,
-        cycle: u64,
-    },
-    Continue,
-    /// At the first operation at or after this simulated time.
-    Until(u64),
-}
-
-#[derive(Debug, Clone, Copy)]
-struct Breakpoint {
-    at: BreakAt,
-    /// A block breakpoint's block and op.
-    place: Option<(u16, u32)>,
-}
 
 /// Whether a Ctrl-C asked to pause (the command line's handler).
 pub type Interrupted = fn() -> bool;
@@ -61,10 +32,7 @@ pub type Interrupted = fn() -> bool;
 pub struct Session {
     input: Input,
     mnemonics: MnemonicSet,
-    breakpoints: Vec<Option<Breakpoint>>,
-    resume: Resume,
-    /// Why the next operation pauses, from request and service breakpoints.
-    events: Vec<String>,
+    engine: Engine,
     interrupted: Interrupted,
     /// The last command that ran the CPU on: an empty line at the prompt repeats it.
     last_resume: Option<Command>,
@@ -88,9 +56,7 @@ impl Session {
         Session {
             input,
             mnemonics,
-            breakpoints: Vec::new(),
-            resume: Resume::Start,
-            events: Vec::new(),
+            engine: Engine::default(),
             interrupted,
             last_resume: None,
             failed_commands: 0,
@@ -138,55 +104,6 @@ impl Session {
         }
     }
 
-    /// The number of the first breakpoint that `hits`, counted from 1 as the user counts them.
-    fn breakpoint(&self, hits: impl Fn(&Breakpoint) -> bool) -> Option<usize> {
-        let index = self
-            .breakpoints
-            .iter()
-            .position(|b| b.is_some_and(|b| hits(&b)));
-        index.map(|index| index + 1)
-    }
-
-    /// Why the CPU pauses before the operation it is at, if it does.
-    fn pause_reason(&mut self, cpu: &Cpu) -> Option<String> {
-        if (self.interrupted)() {
-            return Some("interrupted".into());
-        }
-        if !self.events.is_empty() {
-            return Some(std::mem::take(&mut self.events).join("; "));
-        }
-        let here = (cpu.level.block, cpu.level.pc);
-        if let Some(n) = self.breakpoint(|b| b.place == Some(here)) {
-            return Some(format!("breakpoint {n}"));
-        }
-        let (levels, frames) = (cpu.levels.len(), cpu.frames.len());
-        let pause = match self.resume {
-            Resume::Start => cpu.program.ob(1).is_none_or(|ob1| {
-                cpu.mode == Mode::Run && cpu.level.block == ob1 && cpu.level.pc == 0
-            }),
-            Resume::Step => true,
-            Resume::Next {
-                levels: l,
-                frames: f,
-            } => levels < l || (levels == l && frames <= f),
-            Resume::Finish {
-                levels: l,
-                frames: f,
-                cycle,
-            } => levels < l || (levels == l && (frames < f || cpu.cycle != cycle)),
-            Resume::Continue => false,
-            Resume::Until(ns) => cpu.clock >= ns,
-        };
-        pause.then(|| match self.resume {
-            Resume::Start => "start".to_string(),
-            Resume::Step => "step".to_string(),
-            Resume::Next { .. } => "next".to_string(),
-            Resume::Finish { .. } => "finish".to_string(),
-            Resume::Continue => "continue".to_string(),
-            Resume::Until(ns) => format!("until {}", format_ms(ns)),
-        })
-    }
-
     /// Reads and runs commands until one lets the CPU run on.
     fn pause(&mut self, cpu: &mut Cpu, reason: &str) -> Flow {
         self.out(&format!("[{reason}] {}", show::location(cpu)));
@@ -198,7 +115,7 @@ impl Session {
             match command {
                 Command::Quit => self.quit = true,
                 command if command.resumes() => {
-                    self.resume = self.resume_for(cpu, &command);
+                    self.engine.resume = Resume::after(cpu, &command);
                     self.last_resume = Some(command);
                     return Flow::Go;
                 }
@@ -250,22 +167,6 @@ impl Session {
         }
     }
 
-    fn resume_for(&self, cpu: &Cpu, command: &Command) -> Resume {
-        let (levels, frames) = (cpu.levels.len(), cpu.frames.len());
-        match command {
-            Command::Step => Resume::Step,
-            Command::Next => Resume::Next { levels, frames },
-            Command::Finish => Resume::Finish {
-                levels,
-                frames,
-                cycle: cpu.cycle,
-            },
-            Command::Until(Until::At(ns)) => Resume::Until(*ns),
-            Command::Until(Until::After(ns)) => Resume::Until(cpu.clock.saturating_add(*ns)),
-            _ => Resume::Continue,
-        }
-    }
-
     fn fire(&mut self, cpu: &mut Cpu, ob: u8) {
         if cpu.profile.interrupt_ob(ob).is_none() {
             let reason = format!("OB {ob} is no interrupt OB of the {}", cpu.profile.name);
@@ -285,38 +186,15 @@ impl Session {
     }
 
     fn add_breakpoint(&mut self, cpu: &Cpu, at: BreakAt) {
-        let place = match at {
-            BreakAt::Block { block, line } => {
-                let Some(index) = cpu.program.block_index(block) else {
-                    let reason = format!("the program has no {block}");
-                    return self.fail(command::usage("break", reason));
-                };
-                let lines = cpu.program.blocks[usize::from(index)].spans.len() as u32;
-                let pc = match line {
-                    None => Some(0),
-                    Some(line) => (0..lines).find(|pc| cpu.line_of(index, *pc) == line),
-                };
-                let Some(pc) = pc.filter(|_| lines > 0) else {
-                    let (first, last) = (cpu.line_of(index, 0), cpu.line_of(index, lines - 1));
-                    let reason = format!(
-                        "{block} has no operation on line {}; its operations are on lines {first}–{last}",
-                        line.unwrap_or(0)
-                    );
-                    return self.fail(command::usage("break", reason));
-                };
-                Some((index, pc))
+        match self.engine.add(cpu, at) {
+            Ok(n) => {
+                let place = self.engine.breakpoints[n - 1]
+                    .as_ref()
+                    .and_then(|b| b.place);
+                self.out(&format!("breakpoint {n}: {}\n", describe(cpu, at, place)));
             }
-            BreakAt::Request(ob) | BreakAt::Service(ob) => {
-                if cpu.profile.interrupt_ob(ob).is_none() {
-                    let reason = format!("OB {ob} is no interrupt OB of the {}", cpu.profile.name);
-                    return self.fail(command::usage("break", reason));
-                }
-                None
-            }
-        };
-        self.breakpoints.push(Some(Breakpoint { at, place }));
-        let n = self.breakpoints.len();
-        self.out(&format!("breakpoint {n}: {}\n", describe(cpu, at, place)));
+            Err(error) => self.fail(error),
+        }
     }
 
     /// The commands that only look (and those on breakpoints), live or after the run.
@@ -324,10 +202,11 @@ impl Session {
         let text = match command {
             Command::Breakpoints => {
                 let listed: Vec<String> = self
+                    .engine
                     .breakpoints
                     .iter()
                     .enumerate()
-                    .filter_map(|(n, b)| b.map(|b| (n, b)))
+                    .filter_map(|(n, b)| b.as_ref().map(|b| (n, b)))
                     .map(|(n, b)| format!("{}: {}\n", n + 1, describe(cpu, b.at, b.place)))
                     .collect();
                 if listed.is_empty() {
@@ -337,14 +216,15 @@ impl Session {
                 }
             }
             Command::Delete(None) => {
-                let count = self.breakpoints.iter().flatten().count() as u64;
-                self.breakpoints.iter_mut().for_each(|b| *b = None);
+                let breakpoints = &mut self.engine.breakpoints;
+                let count = breakpoints.iter().flatten().count() as u64;
+                breakpoints.iter_mut().for_each(|b| *b = None);
                 format!(
                     "deleted {}\n",
                     crate::diagnostics::plural(count, "breakpoint")
                 )
             }
-            Command::Delete(Some(n)) => match self.breakpoints.get_mut(n.wrapping_sub(1)) {
+            Command::Delete(Some(n)) => match self.engine.breakpoints.get_mut(n.wrapping_sub(1)) {
                 Some(slot @ Some(_)) => {
                     *slot = None;
                     format!("deleted breakpoint {n}\n")
@@ -415,64 +295,20 @@ impl Session {
     }
 }
 
-/// The block `symbol` (`"Valve"`, `-FILL`) names in the program's symbols; the close block
-/// names when it names none.
-fn named_block(cpu: &Cpu, symbol: &str) -> Result<crate::ast::BlockId, CommandError> {
-    let symbols = &cpu.program.symbols;
-    symbols.block_of(symbol).ok_or_else(|| {
-        let reason = match symbols.suggest_block(symbol) {
-            Some(hint) => format!("no block is named {symbol}; {hint}"),
-            None => format!("no block is named {symbol}"),
-        };
-        command::usage("break", reason)
-    })
-}
-
-fn describe(cpu: &Cpu, at: BreakAt, place: Option<(u16, u32)>) -> String {
-    match (at, place) {
-        (BreakAt::Request(ob), _) => format!("requests for OB {ob}"),
-        (BreakAt::Service(ob), _) => format!("OB {ob} being serviced"),
-        (BreakAt::Block { block, .. }, Some((index, pc))) => {
-            format!("{block} line {}", cpu.line_of(index, pc))
-        }
-        (BreakAt::Block { block, .. }, None) => block.to_string(),
-    }
-}
-
-/// The probe the CPU holds; the command line keeps the session for after the run.
-pub struct Debugger(pub Rc<RefCell<Session>>);
-
-impl Probe for Debugger {
-    fn before(&mut self, cpu: &mut Cpu) -> Flow {
-        let mut session = self.0.borrow_mut();
-        match session.pause_reason(cpu) {
-            Some(reason) => session.pause(cpu, &reason),
-            None => Flow::Go,
-        }
+impl Front for Session {
+    fn engine(&mut self) -> &mut Engine {
+        &mut self.engine
     }
 
-    fn after(&mut self, _cpu: &Cpu, _block: u16, _pc: u32, _op: Op) -> Flow {
-        Flow::Go
+    fn interrupted(&mut self, _cpu: &mut Cpu) -> bool {
+        (self.interrupted)()
     }
 
-    fn requested(&mut self, cpu: &Cpu, ob: u8, at_ns: u64) {
-        let mut session = self.0.borrow_mut();
-        if let Some(n) = session.breakpoint(|b| b.at == BreakAt::Request(ob)) {
-            session.events.push(format!(
-                "breakpoint {n}: request for OB {ob}, made at {}, taken in at {}",
-                format_ms(at_ns),
-                format_ms(cpu.clock)
-            ));
-        }
+    fn pause(&mut self, cpu: &mut Cpu, pause: &Pause) -> Flow {
+        Session::pause(self, cpu, &pause.to_string())
     }
 
-    fn serviced(&mut self, cpu: &Cpu, ob: u8) {
-        let mut session = self.0.borrow_mut();
-        if let Some(n) = session.breakpoint(|b| b.at == BreakAt::Service(ob)) {
-            session.events.push(format!(
-                "breakpoint {n}: OB {ob} serviced at {}",
-                format_ms(cpu.clock)
-            ));
-        }
+    fn log(&mut self, text: &str) {
+        self.out(&format!("{text}\n"));
     }
 }

@@ -96,7 +96,8 @@ pub fn levels(levels: &[LevelView]) -> String {
     format!("{}\n", state::istack_text(levels))
 }
 
-fn target(cpu: &Cpu, operand: &str, set: MnemonicSet) -> Result<Target, String> {
+/// The operand `operand` names in the program, or why none.
+pub fn target(cpu: &Cpu, operand: &str, set: MnemonicSet) -> Result<Target, String> {
     parse_target(operand, (0, 0).into(), set, &cpu.program).map_err(|error| error.reason())
 }
 

@@ -273,9 +273,13 @@ impl Workspace {
                 paths.push(list.clone());
             }
         }
-        let profile = cpu.unwrap_or_else(|| frontend::default_profile(&sources, language));
-        let built =
-            frontend::build_with_symbols(sources.clone(), symbol_files.clone(), language, profile);
+        let built = frontend::build_for_dialect(
+            sources.clone(),
+            symbol_files.clone(),
+            language,
+            |dialect| cpu.unwrap_or_else(|| crate::profile::default_for(dialect)),
+        );
+        let profile = built.compiled.program.profile;
         Analysis {
             built,
             paths,

@@ -408,12 +408,16 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     // A CPU the command line or the scenario names is taken as it is; else the program's
     // dialect's, set as the project asks.
     let named = options.cpu.or(scenario.as_ref().and_then(|s| s.cpu));
-    let profile = named.unwrap_or_else(|| {
-        let default = frontend::default_profile(&sources, language);
-        project
-            .as_ref()
-            .map_or(default, |project| project.cpu(default))
-    });
+    let profile_of = |dialect| {
+        named.unwrap_or_else(|| {
+            let default = crate::profile::default_for(dialect);
+            project
+                .as_ref()
+                .map_or(default, |project| project.cpu(default))
+        })
+    };
+    let built = frontend::build_for_dialect(sources, symbol_files, language, profile_of);
+    let profile = built.compiled.program.profile;
     if options.special_mode.is_some() && profile.family != Family::Sinumerik840c {
         return Err(NotRun::Usage(Report::new(RunError::ModeNotForCpu {
             cpu: profile.name,
@@ -422,7 +426,6 @@ pub fn prepare(options: &RunOptions) -> Result<Prepared, NotRun> {
     if let Some(scenario) = &mut scenario {
         scenario_errors.extend(scenario.settle_cpu(profile));
     }
-    let built = frontend::build_with_symbols(sources, symbol_files, language, profile);
     let mut warnings: Vec<Report> = built
         .diagnostics
         .iter()

@@ -7,7 +7,7 @@ use crate::vm::Cpu;
 use crate::vm::bytes::read_bytes;
 use crate::vm::interrupts::{InputChange, InputTarget};
 
-use super::request::{Area, Client, Item, ItemError, ItemResult, Range};
+use super::request::{Area, Client, Item, ItemError, ItemResult, Probe, Range, Reading};
 
 /// Serves the items of one request in order, each on its own: a failed item leaves the others.
 pub fn serve_items(
@@ -20,6 +20,15 @@ pub fn serve_items(
         .iter()
         .map(|item| serve_item(cpu, client, item, read_only))
         .collect()
+}
+
+/// What one probe of a sample reads: an operand as a watch row shows it raw, or bytes as a
+/// client's read gets them.
+pub fn probe(cpu: &mut Cpu, probe: Probe) -> Reading {
+    match probe {
+        Probe::Operand(target) => Reading::Operand(crate::state::watch::raw(cpu, target)),
+        Probe::Bytes(range) => Reading::Bytes(read(cpu, range)),
+    }
 }
 
 fn serve_item(cpu: &mut Cpu, client: Client, item: &Item, read_only: bool) -> ItemResult {

@@ -3,6 +3,7 @@
 //! scenario's run length, or for ever; a client may stop and restart it on the way.
 
 use std::net::{SocketAddr, TcpListener};
+use std::sync::Arc;
 
 use miette::{Diagnostic, Report};
 use thiserror::Error;
@@ -13,6 +14,7 @@ use crate::vm::cycle::{RunLimit, RunOutcome};
 
 use super::network::Network;
 use super::online::Online;
+use super::opcua::catalog::Catalog;
 use super::pacing::{Lateness, Pacer};
 use super::request::Requests;
 use super::station::{Served, Snapshot, Station};
@@ -27,6 +29,10 @@ pub struct ServeOptions {
     pub modbus: Option<SocketAddr>,
     /// The online page and its API.
     pub http: Option<SocketAddr>,
+    /// The OPC UA server.
+    pub opcua: Option<SocketAddr>,
+    /// The OPC UA server's users and passwords (`--opcua-users`); anonymous clients without.
+    pub opcua_users: Option<std::path::PathBuf>,
     /// Every write and control request is refused.
     pub read_only: bool,
     pub max_connections: usize,
@@ -38,6 +44,7 @@ pub struct Listening {
     pub s7: Option<SocketAddr>,
     pub modbus: Option<SocketAddr>,
     pub http: Option<SocketAddr>,
+    pub opcua: Option<SocketAddr>,
 }
 
 /// A finished serve: the run as `awl run` reports it, and what was served.
@@ -95,6 +102,12 @@ fn free_port_help(server: &str, address: SocketAddr) -> String {
             "serve on another port, e.g. `--s7 {host}:1102`, and give the client that port \
              (python-snap7: `client.connect(\"{host}\", 0, 1, tcp_port=1102)`)"
         ),
+        "OPC UA" => format!(
+            "serve on another port, e.g. `--opcua {}`, and give the client that address \
+             (asyncua: `Client(\"opc.tcp://{}/\")`)",
+            SocketAddr::new(host, 4841),
+            SocketAddr::new(host, 4841)
+        ),
         "HTTP" => format!(
             "serve on another port, e.g. `--http {}`, and open the page there",
             SocketAddr::new(host, 8103)
@@ -111,7 +124,7 @@ fn free_port_help(server: &str, address: SocketAddr) -> String {
 /// the setup's warnings; `report` gets the status now and then.
 pub fn serve(
     options: &ServeOptions,
-    halted: &dyn Fn() -> bool,
+    halted: fn() -> bool,
     listening: &mut dyn FnMut(&Listening, Vec<Report>, &Requests),
     report: &mut dyn FnMut(&Snapshot),
 ) -> Result<ServedRun, NotRun> {
@@ -129,6 +142,17 @@ pub fn serve(
         .http
         .map(|address| bind("HTTP", address))
         .transpose()?;
+    let opcua = options
+        .opcua
+        .map(|address| bind("OPC UA", address))
+        .transpose()?;
+    let opcua_users = options
+        .opcua_users
+        .as_deref()
+        .map(super::opcua::users::read)
+        .transpose()
+        .map_err(|error| NotRun::Usage(Report::new(error)))?
+        .unwrap_or_default();
     let address = |listener: &Option<TcpListener>| {
         listener
             .as_ref()
@@ -138,6 +162,7 @@ pub fn serve(
         s7: address(&s7),
         modbus: address(&modbus),
         http: address(&http),
+        opcua: address(&opcua),
     };
     let (requests, received) = super::request::channel();
     // The servers run on the CPU's own thread, at its control point (see [`Network`]).
@@ -145,10 +170,26 @@ pub fn serve(
         .enable_all()
         .build()
         .map_err(|error| runtime_error(&error))?;
+    let opcua = match opcua {
+        Some(listener) => {
+            let _entered = runtime.enter();
+            let catalog = Catalog::new(Arc::clone(&prepared.cpu.program), prepared.mnemonics);
+            let settings = super::opcua::Settings {
+                max_connections: options.max_connections,
+                read_only: options.read_only,
+                users: opcua_users,
+            };
+            let server = super::opcua::prepare(listener, catalog, requests.clone(), settings)
+                .map_err(|error| NotRun::Failed(vec![Report::new(error)]))?;
+            Some(server)
+        }
+        None => None,
+    };
     let servers = Servers {
         s7,
         modbus,
         http,
+        opcua,
         modbus_map,
         requests: requests.clone(),
         max_connections: options.max_connections,
@@ -171,12 +212,12 @@ pub fn serve(
     let mut ran = prepared.run_driven(&mut |cpu, limit, observe| {
         let outcome = drive(cpu, limit, observe, &mut station, &mut persistence);
         // What the page watched leaves the CPU before the run's outputs are finished.
-        station.online.leave(cpu);
+        station.desk.borrow_mut().online.leave(cpu);
         outcome
     });
     ran.warnings.extend(persistence.finish(&ran.cpu));
     drop(requests);
-    let served = station.served;
+    let served = station.desk.borrow().served;
     let lateness = station.pacer.lateness();
     // The servers' tasks end with their runtime, in the station.
     drop(station);
@@ -214,7 +255,7 @@ fn drive(
             return outcome;
         }
         if let Some(stop) = &outcome.stop {
-            station.online.stopped(cpu, stop);
+            station.desk.borrow_mut().online.stopped(cpu, stop);
         }
         persistence.write_retained(cpu);
         match station.while_stopped(cpu) {
@@ -226,6 +267,8 @@ fn drive(
                 station.pacer.rebase(cpu.clock);
                 let restart = if cold { "cold" } else { "warm" };
                 station
+                    .desk
+                    .borrow_mut()
                     .online
                     .mode_changed(cpu, format!("STARTUP: {restart} restart"));
             }
@@ -243,6 +286,7 @@ struct Servers {
     s7: Option<TcpListener>,
     modbus: Option<TcpListener>,
     http: Option<TcpListener>,
+    opcua: Option<super::opcua::Prepared>,
     modbus_map: super::modbus::Map,
     requests: Requests,
     max_connections: usize,
@@ -280,6 +324,9 @@ impl Servers {
                 self.requests.clone(),
                 settings,
             ));
+        }
+        if let Some(server) = self.opcua {
+            runtime.spawn(super::opcua::serve(server, self.requests.clone()));
         }
         Ok(())
     }

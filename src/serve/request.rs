@@ -83,6 +83,8 @@ pub enum CpuMode {
     Run,
     Stop,
     Startup,
+    /// A debugger's breakpoint holds the CPU (an S7 CPU's test operation): no cycle runs.
+    Hold,
 }
 
 /// What the CPU reports of itself (CPU state, order code, CPU info, its clock).
@@ -143,6 +145,8 @@ pub enum Protocol {
     Http,
     /// The terminal `awl serve` runs in (its snapshot key).
     Terminal,
+    /// OPC UA (`--opcua`).
+    OpcUa,
 }
 
 impl Protocol {
@@ -152,6 +156,7 @@ impl Protocol {
             Protocol::Modbus => "modbus",
             Protocol::Http => "http",
             Protocol::Terminal => "terminal",
+            Protocol::OpcUa => "opcua",
         }
     }
 }
@@ -182,6 +187,46 @@ pub enum Request {
         client: Client,
         ask: Ask,
     },
+    /// Operands' values and the CPU's figures at one control point, for the OPC UA server's
+    /// reads and monitored items (`--opcua`).
+    Sample {
+        probes: Vec<Probe>,
+        reply: oneshot::Sender<Sample>,
+    },
+    /// A debugger's message (`awl dap` attached, `POST /api/debug`): a Debug Adapter Protocol
+    /// request, answered with the messages it brings (its response and events); `None` asks
+    /// only for the events that came since (`GET /api/debug/events`).
+    Debug {
+        message: Option<Vec<u8>>,
+        reply: oneshot::Sender<Vec<serde_json::Value>>,
+    },
+}
+
+/// What a sample reads: an operand as the command line resolves it, or a run of bytes (a
+/// STRING).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Probe {
+    Operand(crate::address::Target),
+    Bytes(Range),
+}
+
+/// What a probe read: the operand's raw value (`None`: not there), or the bytes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Reading {
+    Operand(Option<Raw>),
+    Bytes(ItemResult),
+}
+
+/// The values of a [`Request::Sample`] and the CPU at that control point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sample {
+    pub readings: Vec<Reading>,
+    pub mode: CpuMode,
+    pub cycles: u64,
+    /// The last cycle's time.
+    pub cycle_time_ms: f64,
+    /// The simulated date and time, as [`CpuStatus::clock_ms`].
+    pub clock_ms: i64,
 }
 
 /// What the online page asks of the CPU: operands as the command line takes them, resolved and

@@ -259,7 +259,7 @@ fn declared_value(cpu: &Cpu, target: Target) -> Option<String> {
 }
 
 /// A value as a number, for a counter track: timers and counters their value, words signed.
-fn number(cpu: &Cpu, target: Target) -> i64 {
+pub fn number(cpu: &Cpu, target: Target) -> i64 {
     match target {
         Target::TimerBit(n) => i64::from(cpu.timers[usize::from(n)].value(cpu.clock)),
         Target::CounterValue(n) => i64::from(cpu.counters[usize::from(n)].value),

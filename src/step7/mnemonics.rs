@@ -4,10 +4,9 @@
 //! (STL) for S7-300 and S7-400 Programming" reference manual (appendix A, "All STL
 //! Instructions").
 
-use std::collections::HashMap;
 use std::sync::OnceLock;
 
-use crate::mnemonics::MnemonicSet;
+use crate::mnemonics::{MnemonicSet, Table};
 
 use super::ast::{AccessWidth, Cmp, Combination, Condition, Function, S7Area, S7Op};
 
@@ -292,41 +291,30 @@ fn word(set: MnemonicSet, en: &'static str, de: &'static str) -> &'static str {
     }
 }
 
-type Lookup<T> = HashMap<(MnemonicSet, String), T>;
-
-fn operation_table() -> &'static Lookup<S7Op> {
-    static TABLE: OnceLock<Lookup<S7Op>> = OnceLock::new();
-    TABLE.get_or_init(|| {
-        let mut table = HashMap::new();
-        for words in OPERATIONS {
-            table.insert((MnemonicSet::English, words.en.to_string()), words.op);
-            table.insert((MnemonicSet::German, words.de.to_string()), words.op);
-        }
-        table
-    })
+fn operation_table() -> &'static Table<S7Op> {
+    static TABLE: OnceLock<Table<S7Op>> = OnceLock::new();
+    TABLE.get_or_init(|| Table::new(OPERATIONS, |words| (words.en, words.de), |words| words.op))
 }
 
-fn area_table() -> &'static Lookup<(S7Area, AccessWidth)> {
-    static TABLE: OnceLock<Lookup<(S7Area, AccessWidth)>> = OnceLock::new();
+fn area_table() -> &'static Table<(S7Area, AccessWidth)> {
+    static TABLE: OnceLock<Table<(S7Area, AccessWidth)>> = OnceLock::new();
     TABLE.get_or_init(|| {
-        let mut table = HashMap::new();
-        for words in AREAS {
-            let meaning = (words.area, words.width);
-            table.insert((MnemonicSet::English, words.en.to_string()), meaning);
-            table.insert((MnemonicSet::German, words.de.to_string()), meaning);
-        }
-        table
+        Table::new(
+            AREAS,
+            |words| (words.en, words.de),
+            |words| (words.area, words.width),
+        )
     })
 }
 
 /// The operation a word (already upper case) names in `set`.
 pub fn operation(set: MnemonicSet, upper: &str) -> Option<S7Op> {
-    operation_table().get(&(set, upper.to_string())).copied()
+    operation_table().get(set, upper)
 }
 
 /// The area and width an area word (upper case) names in `set`.
 pub fn area(set: MnemonicSet, upper: &str) -> Option<(S7Area, AccessWidth)> {
-    area_table().get(&(set, upper.to_string())).copied()
+    area_table().get(set, upper)
 }
 
 pub fn condition(set: MnemonicSet, upper: &str) -> Option<Condition> {

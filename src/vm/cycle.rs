@@ -373,6 +373,7 @@ impl Cpu {
             halted = true;
         }
         if let Some(stop) = &stop {
+            self.with_probe((), |probe, cpu| probe.stopping(cpu, stop));
             self.set_mode(Mode::Stop, Some(stop.cause.code()));
             if self.tracer.enabled {
                 let (block, line, segment) = match stop.block {

@@ -652,19 +652,30 @@ impl Cpu {
     /// The block stack, innermost first: the running block, then each return point.
     /// Interrupted levels follow, each with its own return points.
     pub fn block_stack(&self, pc: u32) -> Vec<(u16, u32)> {
+        self.level_stacks(pc)
+            .into_iter()
+            .flat_map(|(_, stack)| stack)
+            .collect()
+    }
+
+    /// Each level's registers and block stack, innermost first: the running level (at `pc`),
+    /// then the levels it interrupted (the ISTACK).
+    pub fn level_stacks(&self, pc: u32) -> Vec<(&LevelState, Vec<(u16, u32)>)> {
         let mut stack = vec![(self.level.block, pc)];
         let (mut base, mut top) = (self.level.level_base, self.frames.len());
         stack.extend(self.return_points(base..top));
+        let mut levels = vec![(&self.level, stack)];
         for level in self.levels.iter().rev() {
             if level.block == IDLE {
                 break;
             }
-            stack.push((level.block, level.pc));
+            let mut stack = vec![(level.block, level.pc)];
             top = base;
             base = level.level_base;
             stack.extend(self.return_points(base..top));
+            levels.push((level, stack));
         }
-        stack
+        levels
     }
 
     /// A STOP at the running block's op `pc`, with the block stack. Between cycles it is placed

@@ -6,6 +6,7 @@
 use crate::compiler::Op;
 
 use super::Cpu;
+use super::stop::Stop;
 
 /// Whether the run goes on after a probe looked.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -30,6 +31,10 @@ pub trait Probe {
 
     /// The engine starts servicing `ob`: its first op comes next.
     fn serviced(&mut self, _cpu: &Cpu, _ob: u8) {}
+
+    /// The CPU is about to go to STOP for `stop` (still in its mode, its registers and block
+    /// stack as the fault left them): the debugger's `stop` exception filter pauses here.
+    fn stopping(&mut self, _cpu: &mut Cpu, _stop: &Stop) {}
 
     /// The probe has seen what it looked for and leaves the CPU: the next stretch of the run
     /// takes the plain loop again (the online page's program status).

@@ -297,3 +297,29 @@ pub fn end_with(child: &mut Child, signal: &str) {
         std::thread::sleep(std::time::Duration::from_millis(10));
     }
 }
+
+/// The code block after `<!-- serve-snippet: NAME -->` in the README.
+pub fn readme_snippet(name: &str) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
+    let readme = std::fs::read_to_string(path).expect("the README");
+    let marker = format!("<!-- serve-snippet: {name} -->\n```python\n");
+    let start = readme.find(&marker).expect("the snippet's marker") + marker.len();
+    let end = readme[start..].find("```").expect("the snippet's end") + start;
+    readme[start..end].to_string()
+}
+
+/// Asserts that a JSON-lines trace has a client's write of `operand` and, after it, the request
+/// of OB `ob` it raised.
+pub fn assert_write_raises(trace: &str, operand: &str, ob: u8) {
+    let write = trace
+        .lines()
+        .position(|line| {
+            line.contains("\"client_write\"") && line.contains(&format!("\"{operand}\""))
+        })
+        .unwrap_or_else(|| panic!("the client's write of {operand} is traced"));
+    let request = trace
+        .lines()
+        .position(|line| line.contains("\"irq_request\"") && line.contains(&format!("\"ob\":{ob}")))
+        .unwrap_or_else(|| panic!("OB {ob} is requested"));
+    assert!(write < request, "the write comes first");
+}

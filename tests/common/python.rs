@@ -41,6 +41,25 @@ pub fn command(python: &Path) -> Command {
     command
 }
 
+/// Runs the client script `tests/clients/SCRIPT` with `args` on the Python that imports
+/// `modules`; what it printed (it must succeed).
+pub fn client(modules: &str, script: &str, args: &[&str]) -> String {
+    let clients = repo().join("tests/clients");
+    let output = command(&with(modules))
+        .arg(clients.join(script))
+        .args(args)
+        .current_dir(&clients)
+        .output()
+        .expect("python runs");
+    let printed = String::from_utf8_lossy(&output.stdout).into_owned();
+    assert!(
+        output.status.success(),
+        "{printed}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    printed
+}
+
 fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }

@@ -40,6 +40,10 @@ pub enum Call {
     Timeline(f64),
     /// The WebSocket of the live view.
     Live,
+    /// A debugger's Debug Adapter Protocol request (`awl dap` attached).
+    Debug(Vec<u8>),
+    /// The debugger's events since it last asked.
+    DebugEvents,
 }
 
 impl Call {
@@ -47,7 +51,11 @@ impl Call {
     pub fn changes(&self) -> bool {
         matches!(
             self,
-            Call::Mode(_) | Call::Modify { .. } | Call::Force { .. } | Call::Unforce(_)
+            Call::Mode(_)
+                | Call::Modify { .. }
+                | Call::Force { .. }
+                | Call::Unforce(_)
+                | Call::Debug(_)
         )
     }
 }
@@ -59,7 +67,7 @@ struct Route {
     example: &'static str,
 }
 
-const ROUTES: [Route; 12] = [
+const ROUTES: [Route; 14] = [
     Route {
         path: "/",
         methods: "GET",
@@ -114,6 +122,16 @@ const ROUTES: [Route; 12] = [
         path: "/api/timeline",
         methods: "GET",
         example: "/api/timeline?seconds=5",
+    },
+    Route {
+        path: "/api/debug",
+        methods: "POST",
+        example: r#"{"seq": 1, "type": "request", "command": "attach", "arguments": {}}"#,
+    },
+    Route {
+        path: "/api/debug/events",
+        methods: "GET",
+        example: "",
     },
     Route {
         path: "/api/live",
@@ -187,6 +205,8 @@ pub fn decode(
             },
         },
         ("/api/live", "GET") => Ok(Call::Live),
+        ("/api/debug", "POST") => Ok(Call::Debug(body.to_vec())),
+        ("/api/debug/events", "GET") => Ok(Call::DebugEvents),
         _ => Err(OnlineError::Method {
             method: method.to_string(),
             path: route.path,

@@ -206,6 +206,12 @@ async fn answer(
             let svg = ask_for(shared, client, |reply| Ask::Timeline { seconds, reply }).await?;
             ok(&Timeline { svg })
         }
+        Call::Debug(message) => ok(&DebugMessages {
+            messages: debug(shared, Some(message)).await?,
+        }),
+        Call::DebugEvents => ok(&DebugMessages {
+            messages: debug(shared, None).await?,
+        }),
     })
 }
 
@@ -240,6 +246,11 @@ struct Timeline {
 }
 
 #[derive(Serialize)]
+struct DebugMessages {
+    messages: Vec<serde_json::Value>,
+}
+
+#[derive(Serialize)]
 struct ModeView {
     mode: &'static str,
 }
@@ -271,6 +282,19 @@ async fn ask_for<T>(
             client,
             ask: make(reply),
         })
+        .map_err(|_| Refusal::from(OnlineError::Gone))?;
+    answer.await.map_err(|_| OnlineError::Gone.into())
+}
+
+/// Hands the CPU a debugger's message (or asks for its events) and waits for what it brings.
+async fn debug(
+    shared: &Shared,
+    message: Option<Vec<u8>>,
+) -> Result<Vec<serde_json::Value>, Refusal> {
+    let (reply, answer) = oneshot::channel();
+    shared
+        .requests
+        .send(Request::Debug { message, reply })
         .map_err(|_| Refusal::from(OnlineError::Gone))?;
     answer.await.map_err(|_| OnlineError::Gone.into())
 }

@@ -34,6 +34,8 @@ pub struct Online {
     /// The program's STOP, while the CPU stays in STOP.
     stop: Option<StopView>,
     forces: ForceTable,
+    /// A debugger's breakpoint holds the CPU (HOLD).
+    pub held: bool,
     /// Program status of the block the page watches.
     status: Option<StatusWatch>,
     /// The live timeline's recording, while the page watches it.
@@ -52,9 +54,15 @@ impl Online {
             diagnostics: Diagnostics::default(),
             stop: None,
             forces: ForceTable::default(),
+            held: false,
             status: None,
             timeline: None,
         }
+    }
+
+    /// The set the program's operands are written in.
+    pub fn mnemonics(&self) -> MnemonicSet {
+        self.mnemonics
     }
 
     /// Serves one request of the page; `clients` are the connections open.
@@ -112,7 +120,7 @@ impl Online {
     fn cpu_view(&self, cpu: &Cpu, clients: usize) -> CpuView {
         let times = &cpu.cycle_times;
         CpuView {
-            mode: cpu.mode.name(),
+            mode: if self.held { "HOLD" } else { cpu.mode.name() },
             cycle: cpu.cycle,
             simulated_ms: ms(cpu.clock),
             cycle_time_ms: CycleTimesView {

@@ -69,6 +69,7 @@ pub struct Communication {
 const MODE_STOP: u8 = 0x04;
 const MODE_STARTUP: u8 = 0x05;
 const MODE_RUN: u8 = 0x08;
+const MODE_HOLD: u8 = 0x0A;
 
 /// The partial list `id` with `index` (both echoed first), or `None` when awl has no such list.
 pub fn partial_list(
@@ -208,12 +209,13 @@ fn padded(text: &str, length: usize, fill: u8) -> Vec<u8> {
 }
 
 /// The one record of SZL 0x0424: event id, an unused byte, the mode (a whole byte, as clients
-/// compare it: 0x08 RUN, 0x04 STOP), four reserved bytes, then the time of the CPU's clock.
+/// compare it: 0x08 RUN, 0x04 STOP, 0x0A HOLD), four reserved bytes, then the time of the CPU's clock.
 fn mode(status: &CpuStatus) -> Vec<u8> {
     let mode = match status.mode {
         CpuMode::Run => MODE_RUN,
         CpuMode::Stop => MODE_STOP,
         CpuMode::Startup => MODE_STARTUP,
+        CpuMode::Hold => MODE_HOLD,
     };
     let mut record = vec![0, 0, 0, mode, 0, 0, 0, 0, 0, 0, 0, 0];
     record.extend_from_slice(&date_and_time_of_instant(status.clock_ms));
