@@ -12,7 +12,8 @@
 //! flags and timer bits, loads and transfers of words and constants, integer arithmetic,
 //! comparisons, forward jumps of every condition, counted loops (backward jumps; now and then
 //! one that never ends and meets the watchdog), block calls (STEP 5 `JU`/`JC` of PBs and of FBs
-//! with formal operands; STEP 7 `UC`/`CC`/`CALL` of FCs, with and without parameters), and
+//! with formal operands; STEP 7 `UC`/`CC`/`CALL` of FCs, with and without parameters, and
+//! `CALL FB n, DB n` with parameters, image and constant actuals and a static variable), and
 //! timers. Blocks call blocks after them, so calls nest without recursion, but for a rare block
 //! that calls itself until the nesting limit stops the CPU.
 
@@ -246,6 +247,26 @@ trait Dialect {
     fn block(&self, which: Block, body: String) -> String;
     /// The text after every block: data blocks.
     fn trailer(&self) -> String;
+    /// Whether called block `index` runs, in every other program, only the straight-line
+    /// steps of its body: a leaf block, which a native stretch may call.
+    fn straight_now_and_then(&self, _index: usize) -> bool {
+        false
+    }
+}
+
+/// The straight-line steps of `steps` that a native stretch runs: no jump, call or timer, no
+/// timer bit, data word or multiplication.
+fn straight_steps(steps: &[Step]) -> Vec<Step> {
+    steps
+        .iter()
+        .flat_map(|step| match step {
+            Step::Skip(_, body) | Step::Loop(_, body) => straight_steps(body),
+            Step::Call(..) | Step::Timer(..) | Step::Forever | Step::Arithmetic(2) => Vec::new(),
+            Step::Logic(_, Bit::Timer(_)) => Vec::new(),
+            Step::Load(Word::Data(_)) | Step::Transfer(Word::Data(_)) => Vec::new(),
+            other => vec![other.clone()],
+        })
+        .collect()
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -373,7 +394,12 @@ fn source(dialect: &dyn Dialect, plan: &Plan, cpu: &Profile) -> String {
     };
     let mut text = dialect.block(Block::Cyclic, render(None, &plan.cyclic));
     for (index, steps) in plan.called.iter().enumerate() {
-        text += &dialect.block(Block::Called(index), render(Some(index), steps));
+        let steps = if dialect.straight_now_and_then(index) && steps.len() % 2 == 0 {
+            straight_steps(steps)
+        } else {
+            steps.clone()
+        };
+        text += &dialect.block(Block::Called(index), render(Some(index), &steps));
     }
     if let Some(&ob) = cpu.startup_obs.first() {
         text += &dialect.block(Block::Startup(ob), render(None, &plan.startup));
@@ -531,12 +557,20 @@ impl Dialect for Step5 {
     }
 }
 
-/// STEP 7 on the SPEED7, English mnemonics. Odd called FCs have parameters.
+/// STEP 7 on the SPEED7, English mnemonics. Of every three called blocks, the first is an FC
+/// without parameters (`UC`, `CC`), the second an FC with parameters, the third an FB with
+/// parameters and a static variable, called on an instance DB of its own.
 struct Step7;
+
+impl Step7 {
+    fn instance(index: usize) -> bool {
+        index % 3 == 2
+    }
+}
 
 impl Dialect for Step7 {
     fn formal(&self, index: usize) -> bool {
-        index % 2 == 1
+        index % 3 != 0
     }
 
     fn jumps(&self, _: Option<usize>) -> bool {
@@ -617,17 +651,32 @@ impl Dialect for Step7 {
             return self.line(None, &format!("{op} FC {number}"));
         }
         let n = index as u8;
-        self.line(
+        let (block, in_word) = if Self::instance(index) {
+            // Now and then a constant, which the call copies into the instance DB.
+            let in_word = if n % 2 == 0 {
+                format!("{}", 100 * u16::from(n))
+            } else {
+                format!("MW {}", 2 * n)
+            };
+            (format!("FB {number}, DB {number}"), in_word)
+        } else {
+            (format!("FC {number}"), format!("MW {}", 2 * n))
+        };
+        let call = self.line(
             None,
             &format!(
-                "CALL FC {number} (in_bit := I {}.{n}, in_word := MW {}, out_bit := Q {}.{n}, \
+                "CALL {block} (in_bit := I {}.{n}, in_word := {in_word}, out_bit := Q {}.{n}, \
              out_word := MW {})",
                 n % 2,
-                2 * n,
                 4 + n % 2,
                 2 + 2 * n,
             ),
-        )
+        );
+        if !Self::instance(index) {
+            return call;
+        }
+        // After `CALL FB n, DB n` the DB register holds the instance DB.
+        call + &self.line(None, "L  DBW 2") + &self.line(None, "T  MW 34")
     }
 
     fn counted(&self, passes: u8, counter: &str, label: &str, body: String) -> String {
@@ -659,13 +708,17 @@ impl Dialect for Step7 {
 
     fn block(&self, which: Block, body: String) -> String {
         match which {
+            Block::Called(index) if Self::instance(index) => {
+                let number = 10 + index;
+                format!(
+                    "FUNCTION_BLOCK FB {number}\n{PARAMETERS}VAR\n  count : INT;\nEND_VAR\nBEGIN\n\
+                     {body}      L #count;\n      L 1;\n      +I;\n      T #count;\n\
+                     END_FUNCTION_BLOCK\n\nDATA_BLOCK DB {number}\nFB {number}\nBEGIN\n\
+                     END_DATA_BLOCK\n\n"
+                )
+            }
             Block::Called(index) => {
-                let interface = if self.formal(index) {
-                    "VAR_INPUT\n  in_bit : BOOL;\n  in_word : INT;\nEND_VAR\n\
-                     VAR_OUTPUT\n  out_bit : BOOL;\n  out_word : INT;\nEND_VAR\n"
-                } else {
-                    ""
-                };
+                let interface = if self.formal(index) { PARAMETERS } else { "" };
                 format!(
                     "FUNCTION FC {} : VOID\n{interface}BEGIN\n{body}      NOP 0;\nEND_FUNCTION\n\n",
                     10 + index
@@ -676,12 +729,20 @@ impl Dialect for Step7 {
         }
     }
 
+    fn straight_now_and_then(&self, index: usize) -> bool {
+        self.formal(index)
+    }
+
     fn trailer(&self) -> String {
         "DATA_BLOCK DB 9\nSTRUCT\n  words : ARRAY [0..7] OF INT;\nEND_STRUCT;\nBEGIN\n\
          END_DATA_BLOCK\n"
             .into()
     }
 }
+
+/// The parameters of STEP 7's called blocks that have any.
+const PARAMETERS: &str = "VAR_INPUT\n  in_bit : BOOL;\n  in_word : INT;\nEND_VAR\n\
+                          VAR_OUTPUT\n  out_bit : BOOL;\n  out_word : INT;\nEND_VAR\n";
 
 fn ob(number: u8, body: String) -> String {
     format!("ORGANIZATION_BLOCK OB {number}\nBEGIN\n{body}      NOP 0;\nEND_ORGANIZATION_BLOCK\n\n")

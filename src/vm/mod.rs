@@ -60,6 +60,9 @@ pub struct NativeStretch {
     pub span_ns: u64,
     /// Its block changes, where it has any: the interrupt points it crosses with block points.
     pub changes: Option<BlockChanges>,
+    /// The slot of the instance DB its STEP 7 FB calls work on: the data it is run on, and the
+    /// DB register after it (as after `CALL FB n, DB m`).
+    pub instance: Option<u16>,
 }
 
 /// The block changes inside a stretch that calls leaf blocks, which are interrupt points with
@@ -99,11 +102,7 @@ pub mod native {
     pub enum NativeCode {}
 
     impl NativeCode {
-        pub fn holds_stretches(&self, _: bool) -> bool {
-            match *self {}
-        }
-
-        pub fn code(&self, _: bool, _: bool) -> &[Op] {
+        pub fn code(&self, _: bool) -> &[Op] {
             match *self {}
         }
 
@@ -117,7 +116,7 @@ pub mod native {
             _: u32,
             _: &mut Status,
             _: &mut [u32; 4],
-            _: &mut [u8],
+            _: (&mut [u8], &mut [u8]),
         ) -> Option<NativeRun> {
             match *self {}
         }

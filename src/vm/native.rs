@@ -13,12 +13,19 @@
 //! nothing falls due before it ends, so no point inside it is taken; it marks the points it
 //! crossed as the loop would have (see [`BlockChanges`]).
 //!
+//! So may a STEP 7 call of a leaf block with parameters, its three ops run whole: `CALL FC`
+//! whose actuals the FC reaches itself (nothing copied), and `CALL FB n, DB m` whose actuals
+//! are image addresses or constants, copied into and out of the instance DB as moves the call
+//! prepared when compiled; the FB's body works on DB m's bytes, which the stretch is run on
+//! ("Programming with STEP 7", calling an FB: the instance DB opened as DI, its data at AR2's
+//! offset, 0 for an instance DB of its own).
+//!
 //! The stretches are marked in copies of the arena's code: [`Op::Native`] at a stretch's first
 //! position; every other position keeps its op, so a jump into a stretch runs on from there.
 
 use std::sync::OnceLock;
 
-use awl_jit::{BitAction, Compiler, LoopBack, Registers, Step};
+use awl_jit::{BitAction, Compiler, LoopBack, Memory, Registers, Spot, Step};
 
 use super::status::Status;
 use super::{BlockChanges, Change, IMAGE_MEMORY, NativeRun, NativeStretch};
@@ -26,7 +33,8 @@ use crate::compiler::Program;
 use crate::compiler::bytecode::{
     Arith, Comparison, ImageBit, JumpCondition, Logic, Op, Width, Write,
 };
-use crate::step7::bytecode::S7Code;
+use crate::step7::ast::AccessWidth;
+use crate::step7::bytecode::{MemOp, ParamCopy, Place, S7Code, Target};
 
 /// The shortest stretch that runs as native code: the call into it costs about what the
 /// interpreter spends on eight ops, so `programs/bench/fb_params`' FB body of eight gains a
@@ -46,36 +54,21 @@ pub struct NativeCode {
     /// The arena's code with [`Op::Native`] at each stretch's start: for traced runs, where a
     /// block change is an event.
     traced_code: Box<[Op]>,
-    /// The same where a stretch may also run calls of leaf blocks (see [`leaf`]): for untraced
-    /// runs with operation points, where a block change is no point…
-    operation_code: Box<[Op]>,
-    /// …and with block points, where the stretch marks the points it crosses; a loop's stretch
-    /// that calls runs op by op there (each pass would cross points of its own).
-    block_code: Box<[Op]>,
-    /// Whether `operation_code` and `block_code` hold any stretch (else the plain loops run).
-    in_operation_code: bool,
-    in_block_code: bool,
+    /// The same where a stretch may also run calls of leaf blocks (see [`Leaf`]): for untraced
+    /// runs, where a block change is no event (with block points, the stretch marks the points
+    /// it crosses, a loop's in each pass).
+    untraced_code: Box<[Op]>,
     stretches: Box<[NativeStretch]>,
     jit: awl_jit::Code,
 }
 
 impl NativeCode {
-    /// Whether the code for these points (`operation_points`) holds any stretch.
-    /// Whether the untraced code for these points holds any stretch.
-    pub fn holds_stretches(&self, operation_points: bool) -> bool {
-        if operation_points {
-            self.in_operation_code
+    /// The code with the stretches marked, for a traced run or an untraced one.
+    pub fn code(&self, traced: bool) -> &[Op] {
+        if traced {
+            &self.traced_code
         } else {
-            self.in_block_code
-        }
-    }
-
-    /// The code with the stretches marked for these points, traced or not.
-    pub fn code(&self, operation_points: bool, traced: bool) -> &[Op] {
-        match (traced, operation_points) {
-            (true, _) => &self.traced_code,
-            (false, true) => &self.operation_code,
-            (false, false) => &self.block_code,
+            &self.untraced_code
         }
     }
 
@@ -83,8 +76,9 @@ impl NativeCode {
         self.stretches.get(index as usize)
     }
 
-    /// Runs stretch `index` on the registers and the image: up to `most` passes of a loop, or
-    /// the stretch once (see [`awl_jit::Code::run`]); `None` if it could not run.
+    /// Runs stretch `index` on the registers, the image and the instance data its FB calls
+    /// work on (empty for a stretch without any): up to `most` passes of a loop, or the
+    /// stretch once (see [`awl_jit::Code::run`]); `None` if it could not run.
     #[inline(always)]
     pub fn run(
         &self,
@@ -92,7 +86,7 @@ impl NativeCode {
         most: u32,
         status: &mut Status,
         accus: &mut [u32; 4],
-        image: &mut [u8],
+        memories: (&mut [u8], &mut [u8]),
     ) -> Option<NativeRun> {
         let [accu1, accu2, accu3, accu4] = *accus;
         let mut registers = Registers {
@@ -102,7 +96,9 @@ impl NativeCode {
             accu4,
             status: u32::from(status.bits()),
         };
-        let passes = self.jit.run(index as usize, &mut registers, image, most)?;
+        let passes = self
+            .jit
+            .run(index as usize, &mut registers, memories, most)?;
         *accus = [
             registers.accu1,
             registers.accu2,
@@ -126,16 +122,15 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
     let plain = &program.arena.plain;
     let mut compiler = Compiler::new(status_bits(), IMAGE_MEMORY).ok()?;
     let mut traced_code = program.arena.ops.to_vec();
-    let mut operation_code = traced_code.clone();
-    let mut block_code = traced_code.clone();
+    let mut untraced_code = traced_code.clone();
     let mut stretches = Vec::new();
-    let call_free = find(plain, &|_| None);
+    let call_free = find(plain, &|at| step(plain[at], None).map(|_| Unit::op(1)));
     let leaves = Leaves::new(program);
-    let with_calls = find(plain, &|op| leaves.leaf(op));
+    let with_calls = find(plain, &|at| leaves.unit(at));
     let mut compiled = std::collections::HashMap::new();
     for (found, calls) in chosen(call_free, with_calls) {
         let range = found.start..found.start + found.len;
-        let calls = calls && plain[range].iter().any(|op| step(*op).is_none());
+        let calls = calls && plain[range].iter().any(|op| step(*op, None).is_none());
         let key = (found.start, found.len, calls);
         let index = match compiled.get(&key) {
             Some(index) => *index,
@@ -158,30 +153,24 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
                     depth: flat.depth,
                     span_ns: flat.span_ns,
                     changes: block_changes(&flat.changes),
+                    instance: found.instance,
                 });
                 compiled.insert(key, index);
                 index
             }
         };
         let marker = Op::Native(index as u32);
-        operation_code[found.start] = marker;
+        untraced_code[found.start] = marker;
         if !calls {
             traced_code[found.start] = marker;
-        }
-        if !calls || found.loop_back.is_none() {
-            block_code[found.start] = marker;
         }
     }
     if stretches.is_empty() {
         return None;
     }
-    let holds_stretch = |code: &[Op]| code.iter().any(|op| matches!(op, Op::Native(_)));
     Some(NativeCode {
-        in_operation_code: holds_stretch(&operation_code),
-        in_block_code: holds_stretch(&block_code),
         traced_code: traced_code.into_boxed_slice(),
-        operation_code: operation_code.into_boxed_slice(),
-        block_code: block_code.into_boxed_slice(),
+        untraced_code: untraced_code.into_boxed_slice(),
         stretches: stretches.into_boxed_slice(),
         jit: compiler.finish().ok()?,
     })
@@ -203,11 +192,42 @@ struct Leaf {
     depth: u32,
 }
 
+/// A STEP 7 call a stretch runs whole: `FbEnter`/`FcEnter`, the call of a leaf block, then
+/// `FbLeave`/`FcLeave`.
+struct S7Call {
+    leaf: Leaf,
+    /// An FB's instance DB (its slot), whose bytes the stretch is run on.
+    instance: Option<u16>,
+    /// The parameter copies before and after the call.
+    enter: Vec<Step>,
+    leave: Vec<Step>,
+}
+
+/// What a stretch runs at one place of the arena: how many ops, how many with those of the
+/// leaf blocks they call, and the instance DB they work on.
+#[derive(Debug, Clone, Copy)]
+struct Unit {
+    len: usize,
+    weight: usize,
+    instance: Option<u16>,
+}
+
+impl Unit {
+    /// An op that runs `weight` ops: its own step, or a call of a leaf block.
+    fn op(weight: usize) -> Self {
+        Unit {
+            len: 1,
+            weight,
+            instance: None,
+        }
+    }
+}
+
 /// The leaf blocks of a program, each found once.
 struct Leaves<'a> {
     program: &'a Program,
-    /// By (block, actual-parameter list, nesting left).
-    found: std::cell::RefCell<std::collections::HashMap<(u16, u16, u32), Option<Leaf>>>,
+    /// By (block, actual-parameter list, nesting left, on instance data).
+    found: std::cell::RefCell<std::collections::HashMap<(u16, u16, u32, bool), Option<Leaf>>>,
 }
 
 impl<'a> Leaves<'a> {
@@ -218,12 +238,80 @@ impl<'a> Leaves<'a> {
         }
     }
 
-    /// The leaf block `op` calls, if it calls one.
-    fn leaf(&self, op: Op) -> Option<Leaf> {
-        self.within(op, DEEPEST)
+    /// The leaf block `op` calls, if it calls one (`instance`: an FB on the instance data the
+    /// stretch is run on).
+    fn leaf(&self, op: Op, instance: bool) -> Option<Leaf> {
+        self.within(op, DEEPEST, instance)
     }
 
-    fn within(&self, op: Op, depth_left: u32) -> Option<Leaf> {
+    /// What a stretch with calls runs at `at`: the op's step, a leaf call, or a STEP 7 call.
+    fn unit(&self, at: usize) -> Option<Unit> {
+        let op = self.program.arena.plain[at];
+        if step(op, None).is_some() {
+            return Some(Unit::op(1));
+        }
+        if let Some(leaf) = self.leaf(op, false) {
+            return Some(Unit::op(1 + leaf.runs));
+        }
+        let call = self.s7_call(at)?;
+        Some(Unit {
+            len: 3,
+            weight: 3 + call.leaf.runs,
+            instance: call.instance,
+        })
+    }
+
+    /// The STEP 7 call starting at `at` that a stretch runs whole: a `CALL FC` that copies
+    /// nothing, or a `CALL FB n, DB m` whose actuals are image addresses or constants.
+    fn s7_call(&self, at: usize) -> Option<S7Call> {
+        let plain = &self.program.arena.plain;
+        let s7 = &self.program.s7;
+        let [Op::S7(enter), call, Op::S7(leave)] = *plain.get(at..at + 3)? else {
+            return None;
+        };
+        match (enter, leave) {
+            (S7Code::FcEnter { call: entered }, S7Code::FcLeave { call: left })
+                if entered == left =>
+            {
+                let fc = s7.fc_calls.get(usize::from(entered))?;
+                let copies = fc.inputs.len() + fc.outputs.len();
+                if copies + fc.constants.len() + fc.pointers.len() > 0 {
+                    return None;
+                }
+                Some(S7Call {
+                    leaf: self.leaf(call, false)?,
+                    instance: None,
+                    enter: Vec::new(),
+                    leave: Vec::new(),
+                })
+            }
+            (S7Code::FbEnter { call: entered }, S7Code::FbLeave { call: left })
+                if entered == left =>
+            {
+                let fb = s7.fb_calls.get(usize::from(entered))?;
+                let moved_whole = fb.blocks_in.len() + fb.blocks_out.len() + fb.pointers.len();
+                if fb.multi_instance.is_some() || fb.system.is_some() || moved_whole > 0 {
+                    return None;
+                }
+                let places = &s7.places[..];
+                let copies = |copies: &[ParamCopy], into: bool| -> Option<Vec<Step>> {
+                    copies
+                        .iter()
+                        .map(|copy| parameter_copy(copy, places, into))
+                        .collect()
+                };
+                Some(S7Call {
+                    enter: copies(&fb.inputs, true)?,
+                    leave: copies(&fb.outputs, false)?,
+                    leaf: self.leaf(call, true)?,
+                    instance: Some(fb.instance_slot),
+                })
+            }
+            _ => None,
+        }
+    }
+
+    fn within(&self, op: Op, depth_left: u32, instance: bool) -> Option<Leaf> {
         let Op::Call {
             block,
             conditional: false,
@@ -235,25 +323,26 @@ impl<'a> Leaves<'a> {
         if depth_left == 0 || self.program.local_bytes(block) != 0 {
             return None;
         }
-        let key = (block, params, depth_left);
+        let key = (block, params, depth_left, instance);
         if let Some(known) = self.found.borrow().get(&key) {
             return *known;
         }
-        let leaf = self.body(block, params, depth_left);
+        let leaf = self.body(block, params, depth_left, instance);
         self.found.borrow_mut().insert(key, leaf);
         leaf
     }
 
-    fn body(&self, block: u16, params: u16, depth_left: u32) -> Option<Leaf> {
+    fn body(&self, block: u16, params: u16, depth_left: u32, instance: bool) -> Option<Leaf> {
         let entry = self.program.arena.start(block, params);
         let body = self.program.arena.plain.get(entry..)?;
+        let places = instance.then_some(&self.program.s7.places[..]);
         let (mut runs, mut depth) = (0, 1);
         for (at, op) in body.iter().enumerate() {
             runs += 1;
-            if step(*op).is_some() {
+            if step(*op, places).is_some() {
                 continue;
             }
-            if let Some(inner) = self.within(*op, depth_left - 1) {
+            if let Some(inner) = self.within(*op, depth_left - 1, instance) {
                 runs += inner.runs;
                 depth = depth.max(inner.depth + 1);
                 continue;
@@ -273,7 +362,9 @@ impl<'a> Leaves<'a> {
 }
 
 /// A stretch as the steps it runs, with the leaf blocks it calls laid in.
-struct Flat {
+struct Flat<'a> {
+    program: &'a Program,
+    leaves: &'a Leaves<'a>,
     steps: Vec<Step>,
     /// The time of the op it runs last.
     last_ns: u64,
@@ -286,10 +377,12 @@ struct Flat {
     changes: Vec<(u64, Change)>,
 }
 
-fn flatten(program: &Program, leaves: &Leaves, found: &Found, calls: bool) -> Flat {
+fn flatten<'a>(program: &'a Program, leaves: &'a Leaves, found: &Found, calls: bool) -> Flat<'a> {
     let plain = &program.arena.plain;
     let times = &program.arena.times;
     let mut flat = Flat {
+        program,
+        leaves,
         steps: Vec::new(),
         last_ns: 0,
         until_last: 0,
@@ -299,23 +392,33 @@ fn flatten(program: &Program, leaves: &Leaves, found: &Found, calls: bool) -> Fl
         span_ns: 0,
         changes: Vec::new(),
     };
-    for at in found.start..found.start + found.len {
+    let cost = |at: usize| times[at + 1] - times[at];
+    let mut at = found.start;
+    while at < found.start + found.len {
         let pc = (at - found.start) as u32;
-        flat.op(
-            program,
-            leaves,
-            plain[at],
-            times[at + 1] - times[at],
-            calls,
-            None,
-            pc,
-        );
+        if let Some(call) = leaves.s7_call(at).filter(|_| calls) {
+            flat.spend(cost(at));
+            flat.steps.extend(call.enter);
+            flat.call(
+                call.leaf,
+                cost(at + 1),
+                None,
+                pc + 1,
+                call.instance.is_some(),
+            );
+            flat.spend(cost(at + 2));
+            flat.steps.extend(call.leave);
+            at += 3;
+            continue;
+        }
+        flat.op(plain[at], cost(at), calls, None, pc, false);
+        at += 1;
     }
     flat.until_last = flat.span_ns - flat.last_ns;
     flat
 }
 
-impl Flat {
+impl Flat<'_> {
     /// The next op it runs takes `cost`.
     fn spend(&mut self, cost: u64) {
         self.last_ns = cost;
@@ -323,26 +426,24 @@ impl Flat {
     }
 
     /// Lays in op `pc` of `block` (`None`: of the stretch), which takes `cost`: its step, or the
-    /// leaf block it calls.
-    #[allow(clippy::too_many_arguments)]
-    fn op(
-        &mut self,
-        program: &Program,
-        leaves: &Leaves,
-        op: Op,
-        cost: u64,
-        calls: bool,
-        block: Option<u16>,
-        pc: u32,
-    ) {
-        self.spend(cost);
-        if let Some(step) = step(op) {
+    /// leaf block it calls (`instance`: on the instance data the stretch is run on).
+    fn op(&mut self, op: Op, cost: u64, calls: bool, block: Option<u16>, pc: u32, instance: bool) {
+        let places = instance.then_some(&self.program.s7.places[..]);
+        if let Some(step) = step(op, places) {
+            self.spend(cost);
             self.steps.push(step);
             return;
         }
-        let Some(leaf) = leaves.leaf(op).filter(|_| calls) else {
-            return;
-        };
+        match self.leaves.leaf(op, instance).filter(|_| calls) {
+            Some(leaf) => self.call(leaf, cost, block, pc, instance),
+            None => self.spend(cost),
+        }
+    }
+
+    /// Lays in the call of `leaf` by op `pc` of `block`, which takes `cost`, and its body.
+    fn call(&mut self, leaf: Leaf, cost: u64, block: Option<u16>, pc: u32, instance: bool) {
+        let program = self.program;
+        self.spend(cost);
         self.depth = self.depth.max(leaf.depth);
         self.changes.push((self.span_ns, Change { block, pc }));
         let step7 = program.s7.step7;
@@ -361,7 +462,7 @@ impl Flat {
                 };
                 self.changes.push((self.span_ns, end));
             } else {
-                self.op(program, leaves, op, cost, true, Some(leaf.block), body_pc);
+                self.op(op, cost, true, Some(leaf.block), body_pc, instance);
             }
         }
         self.called_ops += leaf.ops as u64;
@@ -437,11 +538,14 @@ struct Found {
     weight: usize,
     /// The condition of the jump right after it, when that jump goes back to its start.
     loop_back: Option<JumpCondition>,
+    /// The instance DB its FB calls work on.
+    instance: Option<u16>,
 }
 
-/// The stretches of the arena's code: maximal runs of ops with a native step, broken where a
-/// jump lands (so a loop's body starts one), at least [`SHORTEST`] long.
-fn find(plain: &[Op], leaf: &dyn Fn(Op) -> Option<Leaf>) -> Vec<Found> {
+/// The stretches of the arena's code: maximal runs of the units `unit` finds at a place
+/// (ops with a native step, leaf calls, STEP 7 calls), broken where a jump lands (so a loop's
+/// body starts one) and where the instance DB changes, at least [`SHORTEST`] long.
+fn find(plain: &[Op], unit: &dyn Fn(usize) -> Option<Unit>) -> Vec<Found> {
     let mut landings = vec![false; plain.len()];
     let mut body_starts = vec![0; plain.len()];
     let mut body_start = 0;
@@ -457,22 +561,13 @@ fn find(plain: &[Op], leaf: &dyn Fn(Op) -> Option<Leaf>) -> Vec<Found> {
         }
     }
     let mut found = Vec::new();
-    let mut run_start = 0;
-    // A leaf call weighs as the ops it runs.
-    let weight = |range: std::ops::Range<usize>| -> usize {
-        plain[range]
-            .iter()
-            .map(|op| leaf(*op).map_or(1, |leaf| 1 + leaf.runs))
-            .sum()
-    };
-    let mut close = |start: usize, end: usize| {
+    let mut close = |start: usize, end: usize, weight: usize, instance: Option<u16>| {
         let loop_back = match plain.get(end) {
             Some(Op::Jump(condition, target)) if body_starts[end] + *target as usize == start => {
                 Some(*condition)
             }
             _ => None,
         };
-        let weight = weight(start..end);
         let shortest = if loop_back.is_some() || weight > end - start {
             SHORTEST_LOOP
         } else {
@@ -486,20 +581,32 @@ fn find(plain: &[Op], leaf: &dyn Fn(Op) -> Option<Leaf>) -> Vec<Found> {
             len: end - start,
             weight,
             loop_back,
+            instance,
         });
     };
-    for (at, op) in plain.iter().enumerate() {
+    // The run being gathered: its start, weight and instance DB.
+    let (mut run_start, mut weight, mut instance) = (0, 0, None);
+    let mut at = 0;
+    while at < plain.len() {
         // `DO` runs the op after it with its own operand: that op never starts a stretch.
         let after_indirect = at > 0 && matches!(plain[at - 1], Op::Indirect { .. });
-        if (step(*op).is_none() && leaf(*op).is_none()) || after_indirect {
-            close(run_start, at);
-            run_start = at + 1;
-        } else if landings[at] {
-            close(run_start, at);
-            run_start = at;
+        let Some(next) = unit(at).filter(|_| !after_indirect) else {
+            close(run_start, at, weight, instance);
+            (run_start, weight, instance) = (at + 1, 0, None);
+            at += 1;
+            continue;
+        };
+        let other_instance =
+            next.instance.is_some() && instance.is_some_and(|db| Some(db) != next.instance);
+        if landings[at] || other_instance {
+            close(run_start, at, weight, instance);
+            (run_start, weight, instance) = (at, 0, None);
         }
+        weight += next.weight;
+        instance = instance.or(next.instance);
+        at += next.len;
     }
-    close(run_start, plain.len());
+    close(run_start, plain.len(), weight, instance);
     found
 }
 
@@ -514,25 +621,28 @@ fn jump_target(op: Op) -> Option<usize> {
     Some(target as usize)
 }
 
-/// The native step of an op, where it has one.
-fn step(op: Op) -> Option<Step> {
+/// The native step of an op, where it has one; `instance`: the places of a STEP 7 program
+/// whose instance data the stretch is run on, where an FB's body runs on them.
+fn step(op: Op, instance: Option<&[Place]>) -> Option<Step> {
+    const IMAGE: Memory = Memory::Image;
     Some(match op {
-        Op::And(bit) => scan(bit, Status::scan_table(Logic::And)),
-        Op::AndNot(bit) => scan(bit, Status::scan_table(Logic::AndNot)),
-        Op::Or(bit) => scan(bit, Status::scan_table(Logic::Or)),
-        Op::OrNot(bit) => scan(bit, Status::scan_table(Logic::OrNot)),
-        Op::S7Scan(combination, bit) => scan(bit, Status::step7_scan_table(combination)),
-        Op::Assign(bit) => write(Write::Assign, bit, string_ended()),
-        Op::Set(bit) => write(Write::Set, bit, string_ended()),
-        Op::Reset(bit) => write(Write::Reset, bit, string_ended()),
-        Op::S7Write(kind, bit) => write(kind, bit, step7_assigned()),
+        Op::And(bit) => scan(IMAGE, bit, Status::scan_table(Logic::And)),
+        Op::AndNot(bit) => scan(IMAGE, bit, Status::scan_table(Logic::AndNot)),
+        Op::Or(bit) => scan(IMAGE, bit, Status::scan_table(Logic::Or)),
+        Op::OrNot(bit) => scan(IMAGE, bit, Status::scan_table(Logic::OrNot)),
+        Op::S7Scan(combination, bit) => scan(IMAGE, bit, Status::step7_scan_table(combination)),
+        Op::Assign(bit) => write(Write::Assign, IMAGE, bit, string_ended()),
+        Op::Set(bit) => write(Write::Set, IMAGE, bit, string_ended()),
+        Op::Reset(bit) => write(Write::Reset, IMAGE, bit, string_ended()),
+        Op::S7Write(kind, bit) => write(kind, IMAGE, bit, step7_assigned()),
+        Op::S7(S7Code::Mem { op, place }) => instance_step(op, place, instance?)?,
         Op::OrAlone => Step::Status(or_alone()),
-        Op::LoadImageByte(byte) => load(Width::Byte, byte),
-        Op::LoadImageWord(byte) => load(Width::Word, byte),
-        Op::LoadImageDouble(byte) => load(Width::Double, byte),
-        Op::TransferImageByte(byte) => transfer(Width::Byte, byte),
-        Op::TransferImageWord(byte) => transfer(Width::Word, byte),
-        Op::TransferImageDouble(byte) => transfer(Width::Double, byte),
+        Op::LoadImageByte(byte) => load(IMAGE, Width::Byte, byte),
+        Op::LoadImageWord(byte) => load(IMAGE, Width::Word, byte),
+        Op::LoadImageDouble(byte) => load(IMAGE, Width::Double, byte),
+        Op::TransferImageByte(byte) => transfer(IMAGE, Width::Byte, byte),
+        Op::TransferImageWord(byte) => transfer(IMAGE, Width::Word, byte),
+        Op::TransferImageDouble(byte) => transfer(IMAGE, Width::Double, byte),
         Op::LoadConstant(value) => Step::LoadConstant(value),
         Op::Arithmetic(kind) => add_sub(kind, false)?,
         Op::ArithmeticStack(kind) => add_sub(kind, true)?,
@@ -542,21 +652,100 @@ fn step(op: Op) -> Option<Step> {
     })
 }
 
-fn scan(bit: ImageBit, table: &'static [u8; 512]) -> Step {
+/// A STEP 7 operation `op` on place `place` of `places`, where that is the running FB's
+/// instance data: the step on the data the stretch is run on (AR2's offset is 0 there). The
+/// bit logic and loads and transfers the inline ops on the image run, with their rules.
+fn instance_step(op: MemOp, place: u16, places: &[Place]) -> Option<Step> {
+    let place = places.get(usize::from(place))?;
+    let Target::Instance { byte, bit } = place.target else {
+        return None;
+    };
+    let bit = ImageBit {
+        byte: u16::try_from(byte).ok()?,
+        bit,
+    };
+    const DATA: Memory = Memory::Data;
+    match (native_access(place.width), op) {
+        (None, MemOp::Scan(combination)) => {
+            Some(scan(DATA, bit, Status::step7_scan_table(combination)))
+        }
+        (None, MemOp::Assign) => Some(write(Write::Assign, DATA, bit, step7_assigned())),
+        (None, MemOp::Set) => Some(write(Write::Set, DATA, bit, step7_assigned())),
+        (None, MemOp::Reset) => Some(write(Write::Reset, DATA, bit, step7_assigned())),
+        (Some(width), MemOp::Load) => Some(Step::Load {
+            memory: DATA,
+            width,
+            byte: bit.byte,
+        }),
+        (Some(width), MemOp::Transfer) => Some(Step::Transfer {
+            memory: DATA,
+            width,
+            byte: bit.byte,
+        }),
+        _ => None,
+    }
+}
+
+/// A STEP 7 access width as the native code's: `None` for a bit.
+fn native_access(width: AccessWidth) -> Option<awl_jit::Width> {
+    match width {
+        AccessWidth::Bit => None,
+        AccessWidth::Byte => Some(awl_jit::Width::Byte),
+        AccessWidth::Word => Some(awl_jit::Width::Word),
+        AccessWidth::Double => Some(awl_jit::Width::Double),
+    }
+}
+
+/// An FB call's parameter copy as a move between its actual, an image address or (`into`
+/// the instance data) a constant, and the instance data the stretch is run on.
+fn parameter_copy(copy: &ParamCopy, places: &[Place], into: bool) -> Option<Step> {
+    let actual = places.get(usize::from(copy.actual))?;
+    let width = native_access(copy.width);
+    let instance = Spot {
+        memory: Memory::Data,
+        byte: u16::try_from(copy.byte).ok()?,
+        bit: copy.bit,
+    };
+    match actual.target {
+        Target::Image { byte, bit } => {
+            let image = Spot {
+                memory: Memory::Image,
+                byte,
+                bit,
+            };
+            let (from, to) = if into {
+                (image, instance)
+            } else {
+                (instance, image)
+            };
+            Some(Step::Copy { width, from, to })
+        }
+        Target::Constant(value) if into => Some(Step::Put {
+            width,
+            to: instance,
+            value,
+        }),
+        _ => None,
+    }
+}
+
+fn scan(memory: Memory, bit: ImageBit, table: &'static [u8; 512]) -> Step {
     Step::Scan {
+        memory,
         byte: bit.byte,
         bit: bit.bit,
         table,
     }
 }
 
-fn write(kind: Write, bit: ImageBit, after: &'static [u8; 256]) -> Step {
+fn write(kind: Write, memory: Memory, bit: ImageBit, after: &'static [u8; 256]) -> Step {
     let (rlo_0, rlo_1) = match kind {
         Write::Assign => (BitAction::Clear, BitAction::Set),
         Write::Set => (BitAction::Keep, BitAction::Set),
         Write::Reset => (BitAction::Keep, BitAction::Clear),
     };
     Step::Write {
+        memory,
         byte: bit.byte,
         bit: bit.bit,
         rlo_0,
@@ -565,15 +754,17 @@ fn write(kind: Write, bit: ImageBit, after: &'static [u8; 256]) -> Step {
     }
 }
 
-fn load(width: Width, byte: u16) -> Step {
+fn load(memory: Memory, width: Width, byte: u16) -> Step {
     Step::Load {
+        memory,
         width: native_width(width),
         byte,
     }
 }
 
-fn transfer(width: Width, byte: u16) -> Step {
+fn transfer(memory: Memory, width: Width, byte: u16) -> Step {
     Step::Transfer {
+        memory,
         width: native_width(width),
         byte,
     }
@@ -725,6 +916,7 @@ mod tests {
             len,
             weight: len,
             loop_back,
+            instance: None,
         }
     }
 
@@ -753,7 +945,7 @@ mod tests {
         ];
         let jump_back = Some(crate::compiler::bytecode::JumpCondition::Rlo);
         assert_eq!(
-            find(&code, &|_| None),
+            find(&code, &|at| step(code[at], None).map(|_| Unit::op(1))),
             [found(0, 9, None), found(9, 3, jump_back)]
         );
     }
@@ -796,11 +988,83 @@ mod tests {
         assert!(block_changes(&[]).is_none());
     }
 
+    /// The native code of a STEP 7 program for the SPEED7.
+    fn compiled_step7(source: &str) -> NativeCode {
+        let profile = crate::profile::find("speed7").expect("the SPEED7");
+        let built = crate::frontend::build_text("calls.awl", source, profile);
+        assert!(!built.has_errors(), "{:#?}", built.diagnostics);
+        compile(&built.compiled.program).expect("stretches")
+    }
+
+    #[test]
+    fn calls_with_parameters_run_whole_in_stretches() {
+        let source = "FUNCTION_BLOCK FB 1\nVAR_INPUT\n  start : BOOL;\n  speed : INT;\nEND_VAR\n\
+            VAR_OUTPUT\n  level : INT;\nEND_VAR\nVAR\n  passes : INT;\nEND_VAR\nBEGIN\n\
+            L #speed;\nL #passes;\n+I;\nT #level;\nA #start;\n= M 1.0;\nEND_FUNCTION_BLOCK\n\
+            FUNCTION FC 2 : VOID\nVAR_INPUT\n  on : BOOL;\nEND_VAR\nBEGIN\nA #on;\n= M 2.0;\n\
+            END_FUNCTION\n\
+            DATA_BLOCK DB 1\nFB 1\nBEGIN\nEND_DATA_BLOCK\n\
+            DATA_BLOCK DB 2\nFB 1\nBEGIN\nEND_DATA_BLOCK\n\
+            ORGANIZATION_BLOCK OB 1\nBEGIN\n\
+            CALL FB 1, DB 1 (start := I 0.0, speed := 7, level := MW 10);\n\
+            CALL FB 1, DB 1 (start := I 0.1, speed := MW 2, level := MW 12);\n\
+            CALL FB 1, DB 2 (start := I 0.0, speed := MW 4, level := MW 14);\n\
+            CALL FC 2 (on := I 0.2);\nCALL FC 2 (on := M 3.0);\nEND_ORGANIZATION_BLOCK\n";
+        let native = compiled_step7(source);
+        let instances: Vec<Option<u16>> = native
+            .stretches
+            .iter()
+            .filter(|stretch| stretch.called_ops > 0)
+            .map(|stretch| stretch.instance)
+            .collect();
+        // The two calls on DB 1 in one stretch, then DB 2's with the FC calls after it.
+        assert_eq!(instances.len(), 2, "{instances:?}");
+        assert!(instances.iter().all(Option::is_some));
+        assert_ne!(instances[0], instances[1]);
+        assert_eq!(native.stretches[1].len, 3 + 3 + 3);
+    }
+
     #[test]
     fn multiplication_and_data_blocks_end_a_stretch() {
-        assert!(step(Op::Arithmetic(Arith::Mul)).is_none());
+        assert!(step(Op::Arithmetic(Arith::Mul), None).is_none());
         let data = Op::LoadData(crate::compiler::bytecode::DataPart::Word, 3);
-        assert!(step(data).is_none());
-        assert!(step(Op::S7Scan(Combination::Xor, ImageBit { byte: 0, bit: 7 })).is_some());
+        assert!(step(data, None).is_none());
+        let xor = Op::S7Scan(Combination::Xor, ImageBit { byte: 0, bit: 7 });
+        assert!(step(xor, None).is_some());
+    }
+
+    #[test]
+    fn instance_data_are_steps_only_on_the_data_a_stretch_is_run_on() {
+        let places = [
+            Place {
+                target: Target::Instance { byte: 4, bit: 0 },
+                width: AccessWidth::Word,
+            },
+            Place {
+                target: Target::Data {
+                    instance: true,
+                    byte: 4,
+                    bit: 0,
+                },
+                width: AccessWidth::Word,
+            },
+        ];
+        let load = |place| {
+            Op::S7(S7Code::Mem {
+                op: MemOp::Load,
+                place,
+            })
+        };
+        assert!(step(load(0), None).is_none());
+        assert!(matches!(
+            step(load(0), Some(&places)),
+            Some(Step::Load {
+                memory: Memory::Data,
+                byte: 4,
+                ..
+            })
+        ));
+        // `L DIW 4` reads whatever DI holds: no step.
+        assert!(step(load(1), Some(&places)).is_none());
     }
 }

@@ -37,11 +37,9 @@ impl Cpu {
         if self.probe.is_some() || self.tracer.enabled {
             return self.execute_watched(operation_points);
         }
-        // Code with native stretches for these points runs in loops of its own: the others keep
-        // the loop they had without the stretch's arm (callgrind, `programs/bench/calls`).
-        let native = self
-            .native_code()
-            .is_some_and(|native| native.holds_stretches(operation_points));
+        // Code with native stretches runs in loops of its own: the others keep the loop they
+        // had without the stretch's arm (callgrind, `programs/bench/calls`).
+        let native = self.native_code().is_some();
         match (self.program.s7.step7, operation_points, native) {
             (true, true, false) => self.run_step7::<true, false>(),
             (true, true, true) => self.run_step7::<true, true>(),
@@ -198,7 +196,7 @@ impl Cpu {
         let code = match native {
             _ if STEPPING => plain,
             // Leaf calls run inside stretches only where a block change is no event.
-            Some(native) => native.code(OPERATION_POINTS, TRACING),
+            Some(native) => native.code(TRACING),
             None => &arena.ops[..],
         };
         let times = &arena.times[..];
@@ -869,14 +867,27 @@ impl Cpu {
         };
         let mut status = status;
         let mut accus = [accu1, accu2, self.level.accu3, self.level.accu4];
-        let image = &mut self.image[..];
-        let Some(ran) = native.run(index, most, &mut status, &mut accus, image) else {
+        let data = match stretch.instance {
+            None => &mut [][..],
+            Some(slot) => match self.s7_data.get_mut(usize::from(slot)) {
+                Some(Some(bytes)) => &mut bytes[..],
+                // A missing instance DB stops the CPU, op by op.
+                _ => return Stretched::OpByOp(stretch.first),
+            },
+        };
+        let memories = (&mut self.image[..], data);
+        let Some(ran) = native.run(index, most, &mut status, &mut accus, memories) else {
             return Stretched::OpByOp(stretch.first);
         };
+        if let Some(slot) = stretch.instance {
+            self.level.db = slot;
+        }
         [_, _, self.level.accu3, self.level.accu4] = accus;
         let registers = (status, accus[0], accus[1]);
         if let Some(changes) = changes {
-            self.mark_changes(clock, first_pc, &changes);
+            // The body ran once per pass, and once more where the loop's jump was not taken.
+            let runs = ran.passes.max(1) + u32::from(ran.left_loop && ran.passes > 0);
+            self.mark_changes(clock, first_pc, &changes, (runs, stretch.pass_ns));
         }
         if ran.passes == 0 && !ran.left_loop {
             return Stretched::Ran(StretchRan {
@@ -909,10 +920,17 @@ impl Cpu {
 
 impl Cpu {
     /// Marks the block changes of a stretch that started at `clock` with op `first_pc` of the
-    /// running block, as marking each in turn would (see `mark_point`). Out of line: inlined,
-    /// it costs the loop's other paths registers.
+    /// running block and ran `runs` times, each `pass_ns` after the one before (a loop's
+    /// passes), as marking each in turn would (see `mark_point`). Out of line: inlined, it
+    /// costs the loop's other paths registers.
     #[inline(never)]
-    fn mark_changes(&mut self, clock: u64, first_pc: u32, changes: &BlockChanges) {
+    fn mark_changes(
+        &mut self,
+        clock: u64,
+        first_pc: u32,
+        changes: &BlockChanges,
+        (runs, pass_ns): (u32, u64),
+    ) {
         let kind = |change: Change| StretchKind::Block {
             block: change.block.unwrap_or(self.level.block),
             end_pc: change.block.map_or(first_pc + change.pc, |_| change.pc),
@@ -922,12 +940,18 @@ impl Cpu {
             .record(first_at - self.last_point_at, kind(changes.first));
         self.longest_block
             .record(changes.longest_ns, kind(changes.longest));
+        if runs > 1 {
+            // From a pass's last change to the next pass's first: after the first pass's own.
+            let across = pass_ns - changes.last_ns + changes.first_ns;
+            self.longest_block.record(across, kind(changes.first));
+        }
+        let last_run = clock + u64::from(runs - 1) * pass_ns;
         self.last_stretch = LastStretch {
             kind: kind(changes.last),
-            start_ns: clock + changes.before_last_ns,
-            end_ns: clock + changes.last_ns,
+            start_ns: last_run + changes.before_last_ns,
+            end_ns: last_run + changes.last_ns,
         };
-        self.last_point_at = clock + changes.last_ns;
+        self.last_point_at = last_run + changes.last_ns;
     }
 }
 

@@ -6,9 +6,10 @@ use cranelift_codegen::ir::{Function, InstBuilder, MemFlagsData, Type, Value, ty
 use cranelift_codegen::isa::TargetFrontendConfig;
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext, Variable};
 
-use super::{BitAction, Comparison, LoopBack, Registers, StatusBits, Step, Width};
+use super::{BitAction, Comparison, LoopBack, Memory, Registers, Spot, StatusBits, Step, Width};
 
-/// Image and register accesses: never trapping (offsets checked when compiling), unaligned.
+/// Memory and register accesses: never trapping (offsets checked when compiling and before a
+/// run), unaligned.
 const MEMORY: MemFlagsData = MemFlagsData::new().with_notrap();
 
 /// The byte offsets of the registers in [`Registers`].
@@ -48,10 +49,10 @@ pub fn build(
     let body = b.create_block();
     b.append_block_params_for_function_params(entry);
     b.switch_to_block(entry);
-    let [registers, image, most] = b.block_params(entry) else {
-        unreachable!("the signature has three parameters");
+    let [registers, image, data, most] = b.block_params(entry) else {
+        unreachable!("the signature has four parameters");
     };
-    let (registers, image, most) = (*registers, *image, *most);
+    let (registers, image, data, most) = (*registers, *image, *data, *most);
     let variables = OFFSETS.map(|offset| {
         let variable = b.declare_var(types::I32);
         let value = b.ins().load(types::I32, MEMORY, registers, offset);
@@ -71,6 +72,7 @@ pub fn build(
         b: &mut b,
         pointer,
         image,
+        data,
         bits,
         state: &mut state,
     };
@@ -122,6 +124,7 @@ struct Emitter<'a, 'b> {
     b: &'a mut FunctionBuilder<'b>,
     pointer: Type,
     image: Value,
+    data: Value,
     bits: StatusBits,
     state: &'a mut State,
 }
@@ -149,8 +152,13 @@ impl Emitter<'_, '_> {
 
     fn step(&mut self, step: Step) {
         match step {
-            Step::Scan { byte, bit, table } => {
-                let signal = self.image_bit(byte, bit);
+            Step::Scan {
+                memory,
+                byte,
+                bit,
+                table,
+            } => {
+                let signal = self.bit(Spot { memory, byte, bit });
                 let status = self.get(ST);
                 let shifted = self.b.ins().ishl_imm_u(status, 1);
                 let index = self.b.ins().bor(shifted, signal);
@@ -158,6 +166,7 @@ impl Emitter<'_, '_> {
                 self.set(ST, next);
             }
             Step::Write {
+                memory,
                 byte,
                 bit,
                 rlo_0,
@@ -165,17 +174,16 @@ impl Emitter<'_, '_> {
                 after,
             } => {
                 let status = self.get(ST);
+                let base = self.base(memory);
                 let old = self
                     .b
                     .ins()
-                    .uload8(types::I32, MEMORY, self.image, i32::from(byte));
+                    .uload8(types::I32, MEMORY, base, i32::from(byte));
                 let when_0 = self.apply(rlo_0, old, bit);
                 let when_1 = self.apply(rlo_1, old, bit);
                 let rlo = self.b.ins().band_imm_u(status, i64::from(self.bits.rlo));
                 let new = self.b.ins().select(rlo, when_1, when_0);
-                self.b
-                    .ins()
-                    .istore8(MEMORY, new, self.image, i32::from(byte));
+                self.b.ins().istore8(MEMORY, new, base, i32::from(byte));
                 let next = self.lookup(after.as_ptr(), status);
                 self.set(ST, next);
             }
@@ -184,8 +192,12 @@ impl Emitter<'_, '_> {
                 let next = self.lookup(table.as_ptr(), status_now);
                 self.set(ST, next);
             }
-            Step::Load { width, byte } => {
-                let value = self.load(width, byte);
+            Step::Load {
+                memory,
+                width,
+                byte,
+            } => {
+                let value = self.load(memory, width, byte);
                 let moved = self.get(A1);
                 self.set(A2, moved);
                 self.set(A1, value);
@@ -196,9 +208,51 @@ impl Emitter<'_, '_> {
                 self.set(A2, moved);
                 self.set(A1, value);
             }
-            Step::Transfer { width, byte } => {
+            Step::Transfer {
+                memory,
+                width,
+                byte,
+            } => {
                 let accu1 = self.get(A1);
-                self.store(width, byte, accu1);
+                self.store(memory, width, byte, accu1);
+            }
+            Step::Copy {
+                width: None,
+                from,
+                to,
+            } => {
+                let signal = self.bit(from);
+                self.put_bit(to, signal);
+            }
+            Step::Copy {
+                width: Some(width),
+                from,
+                to,
+            } => {
+                // Bytes as they are: big-endian on both sides.
+                let kind = match width {
+                    Width::Byte => types::I8,
+                    Width::Word => types::I16,
+                    Width::Double => types::I32,
+                };
+                let (from_base, to_base) = (self.base(from.memory), self.base(to.memory));
+                let value = self
+                    .b
+                    .ins()
+                    .load(kind, MEMORY, from_base, i32::from(from.byte));
+                self.b
+                    .ins()
+                    .store(MEMORY, value, to_base, i32::from(to.byte));
+            }
+            Step::Put { width, to, value } => {
+                let constant = self.b.ins().iconst(types::I32, i64::from(value));
+                match width {
+                    None => {
+                        let signal = self.b.ins().band_imm_u(constant, 1);
+                        self.put_bit(to, signal);
+                    }
+                    Some(width) => self.store(to.memory, width, to.byte, constant),
+                }
             }
             Step::AddSub { subtract, stack } => self.add_sub(subtract, stack),
             Step::Compare(comparison) => self.compare(comparison),
@@ -206,14 +260,33 @@ impl Emitter<'_, '_> {
         }
     }
 
-    /// The signal state of an image bit, 0 or 1.
-    fn image_bit(&mut self, byte: u16, bit: u8) -> Value {
+    fn base(&self, memory: Memory) -> Value {
+        match memory {
+            Memory::Image => self.image,
+            Memory::Data => self.data,
+        }
+    }
+
+    /// The signal state of a bit, 0 or 1.
+    fn bit(&mut self, spot: Spot) -> Value {
+        let base = self.base(spot.memory);
         let value = self
             .b
             .ins()
-            .uload8(types::I32, MEMORY, self.image, i32::from(byte));
-        let shifted = self.b.ins().ushr_imm_u(value, i64::from(bit));
+            .uload8(types::I32, MEMORY, base, i32::from(spot.byte));
+        let shifted = self.b.ins().ushr_imm_u(value, i64::from(spot.bit));
         self.b.ins().band_imm_u(shifted, 1)
+    }
+
+    /// Writes `signal` (0 or 1) to the bit at `spot`.
+    fn put_bit(&mut self, spot: Spot, signal: Value) {
+        let base = self.base(spot.memory);
+        let at = i32::from(spot.byte);
+        let old = self.b.ins().uload8(types::I32, MEMORY, base, at);
+        let cleared = self.b.ins().band_imm_u(old, i64::from(!(1u8 << spot.bit)));
+        let moved = self.b.ins().ishl_imm_u(signal, i64::from(spot.bit));
+        let new = self.b.ins().bor(cleared, moved);
+        self.b.ins().istore8(MEMORY, new, base, at);
     }
 
     fn apply(&mut self, action: BitAction, byte: Value, bit: u8) -> Value {
@@ -232,36 +305,36 @@ impl Emitter<'_, '_> {
         self.b.ins().uload8(types::I32, MEMORY, address, 0)
     }
 
-    fn load(&mut self, width: Width, byte: u16) -> Value {
-        let at = i32::from(byte);
+    fn load(&mut self, memory: Memory, width: Width, byte: u16) -> Value {
+        let (base, at) = (self.base(memory), i32::from(byte));
         match width {
-            Width::Byte => self.b.ins().uload8(types::I32, MEMORY, self.image, at),
+            Width::Byte => self.b.ins().uload8(types::I32, MEMORY, base, at),
             Width::Word => {
-                let raw = self.b.ins().load(types::I16, MEMORY, self.image, at);
+                let raw = self.b.ins().load(types::I16, MEMORY, base, at);
                 let swapped = self.b.ins().bswap(raw);
                 self.b.ins().uextend(types::I32, swapped)
             }
             Width::Double => {
-                let raw = self.b.ins().load(types::I32, MEMORY, self.image, at);
+                let raw = self.b.ins().load(types::I32, MEMORY, base, at);
                 self.b.ins().bswap(raw)
             }
         }
     }
 
-    fn store(&mut self, width: Width, byte: u16, value: Value) {
-        let at = i32::from(byte);
+    fn store(&mut self, memory: Memory, width: Width, byte: u16, value: Value) {
+        let (base, at) = (self.base(memory), i32::from(byte));
         match width {
             Width::Byte => {
-                self.b.ins().istore8(MEMORY, value, self.image, at);
+                self.b.ins().istore8(MEMORY, value, base, at);
             }
             Width::Word => {
                 let low = self.b.ins().ireduce(types::I16, value);
                 let swapped = self.b.ins().bswap(low);
-                self.b.ins().store(MEMORY, swapped, self.image, at);
+                self.b.ins().store(MEMORY, swapped, base, at);
             }
             Width::Double => {
                 let swapped = self.b.ins().bswap(value);
-                self.b.ins().store(MEMORY, swapped, self.image, at);
+                self.b.ins().store(MEMORY, swapped, base, at);
             }
         }
     }

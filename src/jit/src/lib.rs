@@ -1,6 +1,6 @@
 //! Native code for awl's straight-line stretches: a run of STL operations without a jump, call
 //! or block end, compiled with Cranelift into one host function that runs them all on a
-//! register file and the CPU's image memory.
+//! register file, the CPU's image memory and the data it is given (an instance DB).
 //!
 //! The crate knows the operations only as [`Step`]s over a status byte whose bits the caller
 //! names ([`StatusBits`]) and whose bit-logic rules it passes as tables, so the rules stay where
@@ -73,17 +73,34 @@ pub enum Comparison {
     LessOrEqual,
 }
 
-/// One operation of a stretch. Image offsets are bytes; multi-byte values are big-endian.
+/// Which memory a step reaches: the image, or the data the stretch is run on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Memory {
+    Image,
+    Data,
+}
+
+/// A place in one of the memories: a byte, and a bit in it for a bit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Spot {
+    pub memory: Memory,
+    pub byte: u16,
+    pub bit: u8,
+}
+
+/// One operation of a stretch. Offsets are bytes; multi-byte values are big-endian.
 #[derive(Debug, Clone, Copy)]
 pub enum Step {
     /// A bit scan: the status becomes `table[status << 1 | signal state]`.
     Scan {
+        memory: Memory,
         byte: u16,
         bit: u8,
         table: &'static [u8; 512],
     },
     /// A bit write driven by the RLO, then the status becomes `after[status]`.
     Write {
+        memory: Memory,
         byte: u16,
         bit: u8,
         rlo_0: BitAction,
@@ -93,11 +110,32 @@ pub enum Step {
     /// The status becomes `table[status]`.
     Status(&'static [u8; 256]),
     /// ACCU 1 moves to ACCU 2, the value at `byte` is loaded into ACCU 1.
-    Load { width: Width, byte: u16 },
+    Load {
+        memory: Memory,
+        width: Width,
+        byte: u16,
+    },
     /// ACCU 1 moves to ACCU 2, the constant is loaded into ACCU 1.
     LoadConstant(u32),
     /// ACCU 1's low `width` bytes are stored at `byte`.
-    Transfer { width: Width, byte: u16 },
+    Transfer {
+        memory: Memory,
+        width: Width,
+        byte: u16,
+    },
+    /// The value at `from` copied to `to`, the registers untouched (a call's parameter copy);
+    /// `width` `None`: a bit.
+    Copy {
+        width: Option<Width>,
+        from: Spot,
+        to: Spot,
+    },
+    /// A constant's low `width` bytes (`None`: its lowest bit) written to `to`.
+    Put {
+        width: Option<Width>,
+        to: Spot,
+        value: u32,
+    },
     /// ACCU 2 plus (or minus) ACCU 1 as 16-bit integers into ACCU 1's low word, wrapped; CC 1
     /// and CC 0 by the wrapped result (positive, negative), OV (with OS) on overflow. `stack`:
     /// then ACCU 3 moves to ACCU 2 and ACCU 4 to ACCU 3.
@@ -146,6 +184,8 @@ pub struct Compiler {
     bits: StatusBits,
     image_len: usize,
     functions: Vec<FuncId>,
+    /// How many bytes of data each stretch reaches.
+    data_lens: Vec<usize>,
     context: cranelift_codegen::Context,
     builder: cranelift_frontend::FunctionBuilderContext,
 }
@@ -171,6 +211,7 @@ impl Compiler {
             bits,
             image_len,
             functions: Vec::new(),
+            data_lens: Vec::new(),
             context,
             builder: cranelift_frontend::FunctionBuilderContext::new(),
         })
@@ -178,17 +219,27 @@ impl Compiler {
 
     /// Adds a stretch, and with `loop_back` the jump after it back to its start; its index in
     /// [`Code::run`] is the number of stretches added before it. An image offset beyond the
-    /// image is an error.
+    /// image is an error; the data it is run on must reach as far as its steps do.
     pub fn add(&mut self, steps: &[Step], loop_back: Option<LoopBack>) -> Result<usize, Error> {
-        if let Some(step) = steps.iter().find(|step| !fits(step, self.image_len)) {
-            return Err(Error(format!("{step:?} reaches past the image")));
+        let spots = || steps.iter().flat_map(spots);
+        if let Some((memory, end)) =
+            spots().find(|&(memory, end)| memory == Memory::Image && end > self.image_len)
+        {
+            return Err(Error(format!(
+                "{memory:?} up to byte {end} is past the image"
+            )));
         }
+        let data_len = spots()
+            .filter(|(memory, _)| *memory == Memory::Data)
+            .map(|(_, end)| end)
+            .max()
+            .unwrap_or(0);
         let pointer = self.module.target_config().pointer_type();
         let mut signature = self.module.make_signature();
-        // (registers, image, most passes) -> passes: see `Entry`.
+        // (registers, image, data, most passes) -> passes: see `Entry`.
         let int = cranelift_codegen::ir::types::I32;
         let param = cranelift_codegen::ir::AbiParam::new;
-        signature.params = vec![param(pointer), param(pointer), param(int)];
+        signature.params = vec![param(pointer), param(pointer), param(pointer), param(int)];
         signature.returns = vec![param(int)];
         let name = format!("stretch{}", self.functions.len());
         let id = self
@@ -209,6 +260,7 @@ impl Compiler {
             .map_err(fail)?;
         self.module.clear_context(&mut self.context);
         self.functions.push(id);
+        self.data_lens.push(data_len);
         Ok(self.functions.len() - 1)
     }
 
@@ -220,8 +272,8 @@ impl Compiler {
             .iter()
             .map(|&id| {
                 let address = self.module.get_finalized_function(id);
-                // SAFETY: `codegen::build` gave every function this signature: two pointers and
-                // a 32-bit count in, a 32-bit result, the target's default calling convention
+                // SAFETY: `codegen::build` gave every function this signature: three pointers
+                // and a 32-bit count in, a 32-bit result, the target's default calling convention
                 // (`extern "C"`).
                 unsafe { std::mem::transmute::<*const u8, Entry>(address) }
             })
@@ -230,49 +282,79 @@ impl Compiler {
             module: Some(self.module),
             entries,
             image_len: self.image_len,
+            data_lens: self.data_lens,
         })
     }
 }
 
-fn fits(step: &Step, image_len: usize) -> bool {
-    let end = |byte: u16, width: Width| usize::from(byte) + width.bytes() <= image_len;
+/// The memories a step reaches, each with the end of what it reaches there (a bit past its
+/// byte's 8 reaches past any memory).
+fn spots(step: &Step) -> Vec<(Memory, usize)> {
+    let end = |byte: u16, width: Option<Width>, bit: u8| match width {
+        Some(width) => usize::from(byte) + width.bytes(),
+        None if bit < 8 => usize::from(byte) + 1,
+        None => usize::MAX,
+    };
+    let spot = |spot: Spot, width| (spot.memory, end(spot.byte, width, spot.bit));
     match *step {
-        Step::Scan { byte, bit, .. } | Step::Write { byte, bit, .. } => {
-            bit < 8 && end(byte, Width::Byte)
+        Step::Scan {
+            memory, byte, bit, ..
         }
-        Step::Load { width, byte } | Step::Transfer { width, byte } => end(byte, width),
-        _ => true,
+        | Step::Write {
+            memory, byte, bit, ..
+        } => vec![(memory, end(byte, None, bit))],
+        Step::Load {
+            memory,
+            width,
+            byte,
+        }
+        | Step::Transfer {
+            memory,
+            width,
+            byte,
+        } => vec![(memory, end(byte, Some(width), 0))],
+        Step::Copy { width, from, to } => vec![spot(from, width), spot(to, width)],
+        Step::Put { width, to, .. } => vec![spot(to, width)],
+        _ => Vec::new(),
     }
 }
 
-type Entry = extern "C" fn(*mut Registers, *mut u8, u32) -> u32;
+type Entry = extern "C" fn(*mut Registers, *mut u8, *mut u8, u32) -> u32;
 
 /// Compiled stretches. The code lives as long as this value.
 pub struct Code {
     module: Option<JITModule>,
     entries: Vec<Entry>,
     image_len: usize,
+    data_lens: Vec<usize>,
 }
 
 impl Code {
-    /// Runs stretch `index` on `registers` and `image`: a loop's stretch with its jump back
-    /// for up to `most` passes, or (`most` 0, or a stretch without a loop) the stretch once.
-    /// The image must be as long as the one the stretches were compiled for; an unknown index
-    /// or a shorter image runs nothing (`None`).
+    /// Runs stretch `index` on `registers`, `image` and `data`: a loop's stretch with its jump
+    /// back for up to `most` passes, or (`most` 0, or a stretch without a loop) the stretch
+    /// once. The image must be as long as the one the stretches were compiled for, the data as
+    /// long as the stretch reaches; an unknown index or shorter memory runs nothing (`None`).
     #[inline(always)]
     pub fn run(
         &self,
         index: usize,
         registers: &mut Registers,
-        image: &mut [u8],
+        (image, data): (&mut [u8], &mut [u8]),
         most: u32,
     ) -> Option<Passes> {
         let entry = self.entries.get(index)?;
-        if image.len() < self.image_len {
+        if image.len() < self.image_len || data.len() < self.data_lens[index] {
             return None;
         }
-        // Every offset the code uses was checked against `image_len` when it was compiled.
-        let result = entry(registers, image.as_mut_ptr(), most.min(!codegen::NOT_TAKEN));
+        // Every offset the code uses was checked against `image_len` when it was compiled, and
+        // against the data's length just above.
+        let memories = (image.as_mut_ptr(), data.as_mut_ptr());
+        let result = entry(
+            registers,
+            memories.0,
+            memories.1,
+            most.min(!codegen::NOT_TAKEN),
+        );
         Some(Passes {
             done: result & !codegen::NOT_TAKEN,
             left_loop: result & codegen::NOT_TAKEN != 0,
@@ -337,6 +419,7 @@ mod tests {
         let code = compile(
             &[
                 Step::Load {
+                    memory: Memory::Image,
                     width: Width::Word,
                     byte: 0,
                 },
@@ -346,6 +429,7 @@ mod tests {
                     stack: false,
                 },
                 Step::Transfer {
+                    memory: Memory::Image,
                     width: Width::Word,
                     byte: 2,
                 },
@@ -355,7 +439,7 @@ mod tests {
         let mut image = [0u8; 16];
         image[..2].copy_from_slice(&0x7FFFu16.to_be_bytes());
         let mut registers = Registers::default();
-        let ran = code.run(0, &mut registers, &mut image, 0);
+        let ran = code.run(0, &mut registers, (&mut image, &mut []), 0);
         assert_eq!(ran.map(|passes| passes.done), Some(0));
         // 32767 + 1 overflows to -32768: negative, OV and OS.
         assert_eq!(image[2..4], 0x8000u16.to_be_bytes());
@@ -386,6 +470,7 @@ mod tests {
         };
         let steps = [
             Step::Load {
+                memory: Memory::Image,
                 width: Width::Word,
                 byte: 0,
             },
@@ -395,6 +480,7 @@ mod tests {
                 stack: false,
             },
             Step::Transfer {
+                memory: Memory::Image,
                 width: Width::Word,
                 byte: 0,
             },
@@ -407,7 +493,7 @@ mod tests {
         let mut image = [0u8; 16];
         image[1] = 10;
         let mut registers = Registers::default();
-        let passes = code.run(0, &mut registers, &mut image, 4);
+        let passes = code.run(0, &mut registers, (&mut image, &mut []), 4);
         assert_eq!(
             passes,
             Some(Passes {
@@ -416,7 +502,7 @@ mod tests {
             })
         );
         assert_eq!(image[1], 6);
-        let passes = code.run(0, &mut registers, &mut image, 100);
+        let passes = code.run(0, &mut registers, (&mut image, &mut []), 100);
         // Five passes down to 1, then the body once more to 0 and the jump not taken.
         assert_eq!(
             passes,
@@ -426,7 +512,86 @@ mod tests {
             })
         );
         assert_eq!(image[1], 0);
-        assert!(code.run(1, &mut registers, &mut image, 1).is_none());
-        assert!(code.run(0, &mut registers, &mut image[..8], 1).is_none());
+        assert!(
+            code.run(1, &mut registers, (&mut image, &mut []), 1)
+                .is_none()
+        );
+        assert!(
+            code.run(0, &mut registers, (&mut image[..8], &mut []), 1)
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn copies_and_data_steps_reach_the_data_and_the_image_without_the_registers() {
+        let image_bit = Spot {
+            memory: Memory::Image,
+            byte: 1,
+            bit: 3,
+        };
+        let data_bit = Spot {
+            memory: Memory::Data,
+            byte: 0,
+            bit: 6,
+        };
+        let data_word = Spot {
+            memory: Memory::Data,
+            byte: 2,
+            bit: 0,
+        };
+        let code = compile(
+            &[
+                Step::Copy {
+                    width: None,
+                    from: image_bit,
+                    to: data_bit,
+                },
+                Step::Copy {
+                    width: Some(Width::Word),
+                    from: Spot {
+                        memory: Memory::Image,
+                        byte: 4,
+                        bit: 0,
+                    },
+                    to: data_word,
+                },
+                Step::Put {
+                    width: Some(Width::Byte),
+                    to: Spot {
+                        memory: Memory::Data,
+                        byte: 4,
+                        bit: 0,
+                    },
+                    value: 0x1FF,
+                },
+                Step::Load {
+                    memory: Memory::Data,
+                    width: Width::Word,
+                    byte: 2,
+                },
+                Step::Transfer {
+                    memory: Memory::Image,
+                    width: Width::Word,
+                    byte: 8,
+                },
+            ],
+            None,
+        );
+        let mut image = [0u8; 16];
+        image[1] = 1 << 3;
+        image[4..6].copy_from_slice(&0x1234u16.to_be_bytes());
+        let mut data = [0u8; 5];
+        let mut registers = Registers::default();
+        assert!(
+            code.run(0, &mut registers, (&mut image, &mut data[..4]), 0)
+                .is_none()
+        );
+        assert!(
+            code.run(0, &mut registers, (&mut image, &mut data), 0)
+                .is_some()
+        );
+        assert_eq!(data, [1 << 6, 0, 0x12, 0x34, 0xFF]);
+        assert_eq!(image[8..10], 0x1234u16.to_be_bytes());
+        assert_eq!(registers.accu1, 0x1234);
     }
 }
