@@ -13,7 +13,8 @@
 //! comparisons, forward jumps of every condition, counted loops (backward jumps; now and then
 //! one that never ends and meets the watchdog), block calls (STEP 5 `JU`/`JC` of PBs and of FBs
 //! with formal operands; STEP 7 `UC`/`CC`/`CALL` of FCs, with and without parameters, and
-//! `CALL FB n, DB n` with parameters, image and constant actuals and a static variable), and
+//! `CALL FB n, DB n` with parameters, image and constant actuals, a static variable and a
+//! multi-instance), and
 //! timers. Blocks call blocks after them, so calls nest without recursion, but for a rare block
 //! that calls itself until the nesting limit stops the CPU.
 
@@ -394,7 +395,7 @@ fn source(dialect: &dyn Dialect, plan: &Plan, cpu: &Profile) -> String {
     };
     let mut text = dialect.block(Block::Cyclic, render(None, &plan.cyclic));
     for (index, steps) in plan.called.iter().enumerate() {
-        let steps = if dialect.straight_now_and_then(index) && steps.len() % 2 == 0 {
+        let steps = if dialect.straight_now_and_then(index) && steps.len().is_multiple_of(2) {
             straight_steps(steps)
         } else {
             steps.clone()
@@ -570,7 +571,7 @@ impl Step7 {
 
 impl Dialect for Step7 {
     fn formal(&self, index: usize) -> bool {
-        index % 3 != 0
+        !index.is_multiple_of(3)
     }
 
     fn jumps(&self, _: Option<usize>) -> bool {
@@ -653,7 +654,7 @@ impl Dialect for Step7 {
         let n = index as u8;
         let (block, in_word) = if Self::instance(index) {
             // Now and then a constant, which the call copies into the instance DB.
-            let in_word = if n % 2 == 0 {
+            let in_word = if n.is_multiple_of(2) {
                 format!("{}", 100 * u16::from(n))
             } else {
                 format!("MW {}", 2 * n)
@@ -710,9 +711,19 @@ impl Dialect for Step7 {
         match which {
             Block::Called(index) if Self::instance(index) => {
                 let number = 10 + index;
+                // Now and then it calls a multi-instance of FB 90 at its end.
+                let (inner, call) = if body.len().is_multiple_of(2) {
+                    (
+                        "  inner : FB 90;\n",
+                        "      CALL #inner (in_bit := M 5.0, in_word := MW 8, out_bit := M 5.1, \
+                         out_word := MW 36);\n",
+                    )
+                } else {
+                    ("", "")
+                };
                 format!(
-                    "FUNCTION_BLOCK FB {number}\n{PARAMETERS}VAR\n  count : INT;\nEND_VAR\nBEGIN\n\
-                     {body}      L #count;\n      L 1;\n      +I;\n      T #count;\n\
+                    "FUNCTION_BLOCK FB {number}\n{PARAMETERS}VAR\n  count : INT;\n{inner}END_VAR\n\
+                     BEGIN\n{body}      L #count;\n      L 1;\n      +I;\n      T #count;\n{call}\
                      END_FUNCTION_BLOCK\n\nDATA_BLOCK DB {number}\nFB {number}\nBEGIN\n\
                      END_DATA_BLOCK\n\n"
                 )
@@ -734,9 +745,14 @@ impl Dialect for Step7 {
     }
 
     fn trailer(&self) -> String {
-        "DATA_BLOCK DB 9\nSTRUCT\n  words : ARRAY [0..7] OF INT;\nEND_STRUCT;\nBEGIN\n\
-         END_DATA_BLOCK\n"
-            .into()
+        // FB 90: the multi-instance the called FBs hold, a leaf on its instance data.
+        format!(
+            "FUNCTION_BLOCK FB 90\n{PARAMETERS}VAR\n  count : INT;\nEND_VAR\nBEGIN\n\
+             A #in_bit;\n= #out_bit;\nL #in_word;\nL #count;\n+I;\nT #count;\nT #out_word;\n\
+             END_FUNCTION_BLOCK\n\n\
+             DATA_BLOCK DB 9\nSTRUCT\n  words : ARRAY [0..7] OF INT;\nEND_STRUCT;\nBEGIN\n\
+             END_DATA_BLOCK\n"
+        )
     }
 }
 

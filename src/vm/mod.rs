@@ -60,9 +60,19 @@ pub struct NativeStretch {
     pub span_ns: u64,
     /// Its block changes, where it has any: the interrupt points it crosses with block points.
     pub changes: Option<BlockChanges>,
-    /// The slot of the instance DB its STEP 7 FB calls work on: the data it is run on, and the
-    /// DB register after it (as after `CALL FB n, DB m`).
-    pub instance: Option<u16>,
+    /// The instance data it works on: the data it is run on.
+    pub instance: Option<InstanceData>,
+    /// Whether it calls STEP 7 FBs, which leave their instance DB in the DB register.
+    pub calls_fb: bool,
+}
+
+/// The STEP 7 instance data a native stretch works on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InstanceData {
+    /// `CALL FB n, DB m`'s instance DB (its slot), from its start.
+    Db(u16),
+    /// The running FB's: DI's data block from AR2's offset, where its multi-instances' lie too.
+    Running,
 }
 
 /// The block changes inside a stretch that calls leaf blocks, which are interrupt points with

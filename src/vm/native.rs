@@ -18,7 +18,9 @@
 //! are image addresses or constants, copied into and out of the instance DB as moves the call
 //! prepared when compiled; the FB's body works on DB m's bytes, which the stretch is run on
 //! ("Programming with STEP 7", calling an FB: the instance DB opened as DI, its data at AR2's
-//! offset, 0 for an instance DB of its own).
+//! offset, 0 for an instance DB of its own). In an FB's own code a stretch works on the running
+//! FB's instance data (DI's DB from AR2's offset), and runs the calls of its multi-instances,
+//! whose data lie there at offsets known when compiled.
 //!
 //! The stretches are marked in copies of the arena's code: [`Op::Native`] at a stretch's first
 //! position; every other position keeps its op, so a jump into a stretch runs on from there.
@@ -28,7 +30,7 @@ use std::sync::OnceLock;
 use awl_jit::{BitAction, Compiler, LoopBack, Memory, Registers, Spot, Step};
 
 use super::status::Status;
-use super::{BlockChanges, Change, IMAGE_MEMORY, NativeRun, NativeStretch};
+use super::{BlockChanges, Change, IMAGE_MEMORY, InstanceData, NativeRun, NativeStretch};
 use crate::compiler::Program;
 use crate::compiler::bytecode::{
     Arith, Comparison, ImageBit, JumpCondition, Logic, Op, Width, Write,
@@ -124,13 +126,13 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
     let mut traced_code = program.arena.ops.to_vec();
     let mut untraced_code = traced_code.clone();
     let mut stretches = Vec::new();
-    let call_free = find(plain, &|at| step(plain[at], None).map(|_| Unit::op(1)));
     let leaves = Leaves::new(program);
+    let call_free = find(plain, &|at| leaves.own(plain[at]));
     let with_calls = find(plain, &|at| leaves.unit(at));
     let mut compiled = std::collections::HashMap::new();
     for (found, calls) in chosen(call_free, with_calls) {
         let range = found.start..found.start + found.len;
-        let calls = calls && plain[range].iter().any(|op| step(*op, None).is_none());
+        let calls = calls && plain[range].iter().any(|op| leaves.own(*op).is_none());
         let key = (found.start, found.len, calls);
         let index = match compiled.get(&key) {
             Some(index) => *index,
@@ -154,6 +156,7 @@ pub fn compile(program: &Program) -> Option<NativeCode> {
                     span_ns: flat.span_ns,
                     changes: block_changes(&flat.changes),
                     instance: found.instance,
+                    calls_fb: flat.calls_fb,
                 });
                 compiled.insert(key, index);
                 index
@@ -196,20 +199,20 @@ struct Leaf {
 /// `FbLeave`/`FcLeave`.
 struct S7Call {
     leaf: Leaf,
-    /// An FB's instance DB (its slot), whose bytes the stretch is run on.
-    instance: Option<u16>,
+    /// An FB's instance data, which the stretch is run on, and where the FB's lie in them.
+    instance: Option<(InstanceData, u32)>,
     /// The parameter copies before and after the call.
     enter: Vec<Step>,
     leave: Vec<Step>,
 }
 
 /// What a stretch runs at one place of the arena: how many ops, how many with those of the
-/// leaf blocks they call, and the instance DB they work on.
+/// leaf blocks they call, and the instance data they work on.
 #[derive(Debug, Clone, Copy)]
 struct Unit {
     len: usize,
     weight: usize,
-    instance: Option<u16>,
+    instance: Option<InstanceData>,
 }
 
 impl Unit {
@@ -226,9 +229,11 @@ impl Unit {
 /// The leaf blocks of a program, each found once.
 struct Leaves<'a> {
     program: &'a Program,
-    /// By (block, actual-parameter list, nesting left, on instance data).
-    found: std::cell::RefCell<std::collections::HashMap<(u16, u16, u32, bool), Option<Leaf>>>,
+    /// By (block, actual-parameter list, nesting left, where its instance data lie).
+    found: std::cell::RefCell<LeafMap>,
 }
+
+type LeafMap = std::collections::HashMap<(u16, u16, u32, Option<u32>), Option<Leaf>>;
 
 impl<'a> Leaves<'a> {
     fn new(program: &'a Program) -> Self {
@@ -238,31 +243,54 @@ impl<'a> Leaves<'a> {
         }
     }
 
-    /// The leaf block `op` calls, if it calls one (`instance`: an FB on the instance data the
-    /// stretch is run on).
-    fn leaf(&self, op: Op, instance: bool) -> Option<Leaf> {
+    /// The leaf block `op` calls, if it calls one (`instance`: an FB whose instance data lie
+    /// this many bytes into the data the stretch is run on).
+    fn leaf(&self, op: Op, instance: Option<u32>) -> Option<Leaf> {
         self.within(op, DEEPEST, instance)
+    }
+
+    /// The native step of an op of a block's own code: on the running FB's instance data, if
+    /// it works on them.
+    fn own_step(&self, op: Op) -> Option<Step> {
+        step(op, Some((&self.program.s7.places, 0)))
+    }
+
+    /// What an op of a block's own code is in a stretch, if it has a step.
+    fn own(&self, op: Op) -> Option<Unit> {
+        let step = self.own_step(op)?;
+        let on_data = match step {
+            Step::Scan { memory, .. }
+            | Step::Write { memory, .. }
+            | Step::Load { memory, .. }
+            | Step::Transfer { memory, .. } => memory == Memory::Data,
+            _ => false,
+        };
+        Some(Unit {
+            instance: on_data.then_some(InstanceData::Running),
+            ..Unit::op(1)
+        })
     }
 
     /// What a stretch with calls runs at `at`: the op's step, a leaf call, or a STEP 7 call.
     fn unit(&self, at: usize) -> Option<Unit> {
         let op = self.program.arena.plain[at];
-        if step(op, None).is_some() {
-            return Some(Unit::op(1));
+        if let Some(own) = self.own(op) {
+            return Some(own);
         }
-        if let Some(leaf) = self.leaf(op, false) {
+        if let Some(leaf) = self.leaf(op, None) {
             return Some(Unit::op(1 + leaf.runs));
         }
         let call = self.s7_call(at)?;
         Some(Unit {
             len: 3,
             weight: 3 + call.leaf.runs,
-            instance: call.instance,
+            instance: call.instance.map(|(data, _)| data),
         })
     }
 
     /// The STEP 7 call starting at `at` that a stretch runs whole: a `CALL FC` that copies
-    /// nothing, or a `CALL FB n, DB m` whose actuals are image addresses or constants.
+    /// nothing, or a `CALL FB n, DB m` or of a multi-instance whose actuals are image addresses
+    /// or constants.
     fn s7_call(&self, at: usize) -> Option<S7Call> {
         let plain = &self.program.arena.plain;
         let s7 = &self.program.s7;
@@ -279,7 +307,7 @@ impl<'a> Leaves<'a> {
                     return None;
                 }
                 Some(S7Call {
-                    leaf: self.leaf(call, false)?,
+                    leaf: self.leaf(call, None)?,
                     instance: None,
                     enter: Vec::new(),
                     leave: Vec::new(),
@@ -290,28 +318,34 @@ impl<'a> Leaves<'a> {
             {
                 let fb = s7.fb_calls.get(usize::from(entered))?;
                 let moved_whole = fb.blocks_in.len() + fb.blocks_out.len() + fb.pointers.len();
-                if fb.multi_instance.is_some() || fb.system.is_some() || moved_whole > 0 {
+                if fb.system.is_some() || moved_whole > 0 {
                     return None;
                 }
+                // A multi-instance's data lie in the running FB's, whole bytes after its start.
+                let instance = match fb.multi_instance {
+                    None => (InstanceData::Db(fb.instance_slot), 0),
+                    Some(bits) if bits.is_multiple_of(8) => (InstanceData::Running, bits / 8),
+                    Some(_) => return None,
+                };
                 let places = &s7.places[..];
                 let copies = |copies: &[ParamCopy], into: bool| -> Option<Vec<Step>> {
                     copies
                         .iter()
-                        .map(|copy| parameter_copy(copy, places, into))
+                        .map(|copy| parameter_copy(copy, places, into, instance.1))
                         .collect()
                 };
                 Some(S7Call {
                     enter: copies(&fb.inputs, true)?,
                     leave: copies(&fb.outputs, false)?,
-                    leaf: self.leaf(call, true)?,
-                    instance: Some(fb.instance_slot),
+                    leaf: self.leaf(call, Some(instance.1))?,
+                    instance: Some(instance),
                 })
             }
             _ => None,
         }
     }
 
-    fn within(&self, op: Op, depth_left: u32, instance: bool) -> Option<Leaf> {
+    fn within(&self, op: Op, depth_left: u32, instance: Option<u32>) -> Option<Leaf> {
         let Op::Call {
             block,
             conditional: false,
@@ -332,10 +366,16 @@ impl<'a> Leaves<'a> {
         leaf
     }
 
-    fn body(&self, block: u16, params: u16, depth_left: u32, instance: bool) -> Option<Leaf> {
+    fn body(
+        &self,
+        block: u16,
+        params: u16,
+        depth_left: u32,
+        instance: Option<u32>,
+    ) -> Option<Leaf> {
         let entry = self.program.arena.start(block, params);
         let body = self.program.arena.plain.get(entry..)?;
-        let places = instance.then_some(&self.program.s7.places[..]);
+        let places = instance.map(|shift| (&self.program.s7.places[..], shift));
         let (mut runs, mut depth) = (0, 1);
         for (at, op) in body.iter().enumerate() {
             runs += 1;
@@ -366,6 +406,8 @@ struct Flat<'a> {
     program: &'a Program,
     leaves: &'a Leaves<'a>,
     steps: Vec<Step>,
+    /// Whether it runs an FB's call, which leaves the instance DB in the DB register.
+    calls_fb: bool,
     /// The time of the op it runs last.
     last_ns: u64,
     until_last: u64,
@@ -384,6 +426,7 @@ fn flatten<'a>(program: &'a Program, leaves: &'a Leaves, found: &Found, calls: b
         program,
         leaves,
         steps: Vec::new(),
+        calls_fb: false,
         last_ns: 0,
         until_last: 0,
         called_ops: 0,
@@ -397,21 +440,23 @@ fn flatten<'a>(program: &'a Program, leaves: &'a Leaves, found: &Found, calls: b
     while at < found.start + found.len {
         let pc = (at - found.start) as u32;
         if let Some(call) = leaves.s7_call(at).filter(|_| calls) {
+            let shift = call.instance.map(|(_, shift)| shift);
+            flat.calls_fb |= shift.is_some();
             flat.spend(cost(at));
             flat.steps.extend(call.enter);
-            flat.call(
-                call.leaf,
-                cost(at + 1),
-                None,
-                pc + 1,
-                call.instance.is_some(),
-            );
+            flat.call(call.leaf, cost(at + 1), None, pc + 1, shift);
             flat.spend(cost(at + 2));
             flat.steps.extend(call.leave);
             at += 3;
             continue;
         }
-        flat.op(plain[at], cost(at), calls, None, pc, false);
+        match leaves.own_step(plain[at]) {
+            Some(step) => {
+                flat.spend(cost(at));
+                flat.steps.push(step);
+            }
+            None => flat.op(plain[at], cost(at), calls, None, pc, None),
+        }
         at += 1;
     }
     flat.until_last = flat.span_ns - flat.last_ns;
@@ -426,9 +471,17 @@ impl Flat<'_> {
     }
 
     /// Lays in op `pc` of `block` (`None`: of the stretch), which takes `cost`: its step, or the
-    /// leaf block it calls (`instance`: on the instance data the stretch is run on).
-    fn op(&mut self, op: Op, cost: u64, calls: bool, block: Option<u16>, pc: u32, instance: bool) {
-        let places = instance.then_some(&self.program.s7.places[..]);
+    /// leaf block it calls (`instance`: where its instance data lie in the stretch's data).
+    fn op(
+        &mut self,
+        op: Op,
+        cost: u64,
+        calls: bool,
+        block: Option<u16>,
+        pc: u32,
+        instance: Option<u32>,
+    ) {
+        let places = instance.map(|shift| (&self.program.s7.places[..], shift));
         if let Some(step) = step(op, places) {
             self.spend(cost);
             self.steps.push(step);
@@ -441,7 +494,7 @@ impl Flat<'_> {
     }
 
     /// Lays in the call of `leaf` by op `pc` of `block`, which takes `cost`, and its body.
-    fn call(&mut self, leaf: Leaf, cost: u64, block: Option<u16>, pc: u32, instance: bool) {
+    fn call(&mut self, leaf: Leaf, cost: u64, block: Option<u16>, pc: u32, instance: Option<u32>) {
         let program = self.program;
         self.spend(cost);
         self.depth = self.depth.max(leaf.depth);
@@ -538,13 +591,13 @@ struct Found {
     weight: usize,
     /// The condition of the jump right after it, when that jump goes back to its start.
     loop_back: Option<JumpCondition>,
-    /// The instance DB its FB calls work on.
-    instance: Option<u16>,
+    /// The instance data it works on.
+    instance: Option<InstanceData>,
 }
 
 /// The stretches of the arena's code: maximal runs of the units `unit` finds at a place
 /// (ops with a native step, leaf calls, STEP 7 calls), broken where a jump lands (so a loop's
-/// body starts one) and where the instance DB changes, at least [`SHORTEST`] long.
+/// body starts one) and where the instance data change, at least [`SHORTEST`] long.
 fn find(plain: &[Op], unit: &dyn Fn(usize) -> Option<Unit>) -> Vec<Found> {
     let mut landings = vec![false; plain.len()];
     let mut body_starts = vec![0; plain.len()];
@@ -561,7 +614,7 @@ fn find(plain: &[Op], unit: &dyn Fn(usize) -> Option<Unit>) -> Vec<Found> {
         }
     }
     let mut found = Vec::new();
-    let mut close = |start: usize, end: usize, weight: usize, instance: Option<u16>| {
+    let mut close = |start: usize, end: usize, weight: usize, instance: Option<InstanceData>| {
         let loop_back = match plain.get(end) {
             Some(Op::Jump(condition, target)) if body_starts[end] + *target as usize == start => {
                 Some(*condition)
@@ -584,7 +637,7 @@ fn find(plain: &[Op], unit: &dyn Fn(usize) -> Option<Unit>) -> Vec<Found> {
             instance,
         });
     };
-    // The run being gathered: its start, weight and instance DB.
+    // The run being gathered: its start, weight and instance data.
     let (mut run_start, mut weight, mut instance) = (0, 0, None);
     let mut at = 0;
     while at < plain.len() {
@@ -597,7 +650,7 @@ fn find(plain: &[Op], unit: &dyn Fn(usize) -> Option<Unit>) -> Vec<Found> {
             continue;
         };
         let other_instance =
-            next.instance.is_some() && instance.is_some_and(|db| Some(db) != next.instance);
+            next.instance.is_some() && instance.is_some_and(|data| Some(data) != next.instance);
         if landings[at] || other_instance {
             close(run_start, at, weight, instance);
             (run_start, weight, instance) = (at, 0, None);
@@ -621,9 +674,9 @@ fn jump_target(op: Op) -> Option<usize> {
     Some(target as usize)
 }
 
-/// The native step of an op, where it has one; `instance`: the places of a STEP 7 program
-/// whose instance data the stretch is run on, where an FB's body runs on them.
-fn step(op: Op, instance: Option<&[Place]>) -> Option<Step> {
+/// The native step of an op, where it has one; `instance`: the places of a STEP 7 program and
+/// how many bytes into the data the stretch is run on the running FB's instance data lie.
+fn step(op: Op, instance: Option<(&[Place], u32)>) -> Option<Step> {
     const IMAGE: Memory = Memory::Image;
     Some(match op {
         Op::And(bit) => scan(IMAGE, bit, Status::scan_table(Logic::And)),
@@ -635,7 +688,10 @@ fn step(op: Op, instance: Option<&[Place]>) -> Option<Step> {
         Op::Set(bit) => write(Write::Set, IMAGE, bit, string_ended()),
         Op::Reset(bit) => write(Write::Reset, IMAGE, bit, string_ended()),
         Op::S7Write(kind, bit) => write(kind, IMAGE, bit, step7_assigned()),
-        Op::S7(S7Code::Mem { op, place }) => instance_step(op, place, instance?)?,
+        Op::S7(S7Code::Mem { op, place }) => {
+            let (places, shift) = instance?;
+            instance_step(op, place, places, shift)?
+        }
         Op::OrAlone => Step::Status(or_alone()),
         Op::LoadImageByte(byte) => load(IMAGE, Width::Byte, byte),
         Op::LoadImageWord(byte) => load(IMAGE, Width::Word, byte),
@@ -653,15 +709,15 @@ fn step(op: Op, instance: Option<&[Place]>) -> Option<Step> {
 }
 
 /// A STEP 7 operation `op` on place `place` of `places`, where that is the running FB's
-/// instance data: the step on the data the stretch is run on (AR2's offset is 0 there). The
-/// bit logic and loads and transfers the inline ops on the image run, with their rules.
-fn instance_step(op: MemOp, place: u16, places: &[Place]) -> Option<Step> {
+/// instance data, `shift` bytes into the data the stretch is run on: the step on them. The bit
+/// logic and loads and transfers the inline ops on the image run, with their rules.
+fn instance_step(op: MemOp, place: u16, places: &[Place], shift: u32) -> Option<Step> {
     let place = places.get(usize::from(place))?;
     let Target::Instance { byte, bit } = place.target else {
         return None;
     };
     let bit = ImageBit {
-        byte: u16::try_from(byte).ok()?,
+        byte: u16::try_from(byte.checked_add(shift)?).ok()?,
         bit,
     };
     const DATA: Memory = Memory::Data;
@@ -697,13 +753,14 @@ fn native_access(width: AccessWidth) -> Option<awl_jit::Width> {
 }
 
 /// An FB call's parameter copy as a move between its actual, an image address or (`into`
-/// the instance data) a constant, and the instance data the stretch is run on.
-fn parameter_copy(copy: &ParamCopy, places: &[Place], into: bool) -> Option<Step> {
+/// the instance data) a constant, and its instance data, `shift` bytes into the data the
+/// stretch is run on.
+fn parameter_copy(copy: &ParamCopy, places: &[Place], into: bool, shift: u32) -> Option<Step> {
     let actual = places.get(usize::from(copy.actual))?;
     let width = native_access(copy.width);
     let instance = Spot {
         memory: Memory::Data,
-        byte: u16::try_from(copy.byte).ok()?,
+        byte: u16::try_from(copy.byte.checked_add(shift)?).ok()?,
         bit: copy.bit,
     };
     match actual.target {
@@ -1011,7 +1068,7 @@ mod tests {
             CALL FB 1, DB 2 (start := I 0.0, speed := MW 4, level := MW 14);\n\
             CALL FC 2 (on := I 0.2);\nCALL FC 2 (on := M 3.0);\nEND_ORGANIZATION_BLOCK\n";
         let native = compiled_step7(source);
-        let instances: Vec<Option<u16>> = native
+        let instances: Vec<Option<InstanceData>> = native
             .stretches
             .iter()
             .filter(|stretch| stretch.called_ops > 0)
@@ -1022,6 +1079,28 @@ mod tests {
         assert!(instances.iter().all(Option::is_some));
         assert_ne!(instances[0], instances[1]);
         assert_eq!(native.stretches[1].len, 3 + 3 + 3);
+    }
+
+    #[test]
+    fn an_fb_runs_its_own_operations_and_its_multi_instances_calls_on_its_instance_data() {
+        let source = "FUNCTION_BLOCK FB 1\nVAR_INPUT\n  speed : INT;\nEND_VAR\n\
+            VAR_OUTPUT\n  level : INT;\nEND_VAR\nBEGIN\nL #speed;\nT #level;\n\
+            END_FUNCTION_BLOCK\n\
+            FUNCTION_BLOCK FB 2\nVAR\n  passes : INT;\n  inner : FB 1;\nEND_VAR\nBEGIN\n\
+            L #passes;\nL 1;\n+I;\nT #passes;\n\
+            CALL #inner (speed := MW 2, level := MW 4);\nL #passes;\nT MW 6;\n\
+            END_FUNCTION_BLOCK\n\
+            DATA_BLOCK DB 2\nFB 2\nBEGIN\nEND_DATA_BLOCK\n\
+            ORGANIZATION_BLOCK OB 1\nBEGIN\nCALL FB 2, DB 2;\nEND_ORGANIZATION_BLOCK\n";
+        let native = compiled_step7(source);
+        let running: Vec<(u32, bool)> = native
+            .stretches
+            .iter()
+            .filter(|stretch| stretch.instance == Some(InstanceData::Running))
+            .map(|stretch| (stretch.len, stretch.calls_fb))
+            .collect();
+        // FB 2's body whole (4 ops, the call's 3, 2), and the part without the call (4 ops).
+        assert!(running.contains(&(9, true)), "{running:?}");
     }
 
     #[test]
@@ -1057,14 +1136,14 @@ mod tests {
         };
         assert!(step(load(0), None).is_none());
         assert!(matches!(
-            step(load(0), Some(&places)),
+            step(load(0), Some((&places, 6))),
             Some(Step::Load {
                 memory: Memory::Data,
-                byte: 4,
+                byte: 10,
                 ..
             })
         ));
         // `L DIW 4` reads whatever DI holds: no step.
-        assert!(step(load(1), Some(&places)).is_none());
+        assert!(step(load(1), Some((&places, 0))).is_none());
     }
 }

@@ -19,7 +19,9 @@ use super::native::NativeCode;
 use super::probe::Flow;
 use super::status::Status;
 use super::stop::{StopCause, StopDetail};
-use super::{BlockChanges, Change, Cpu, Exit, Frame, LastStretch, Point, StretchKind};
+use super::{
+    BlockChanges, Change, Cpu, Exit, Frame, InstanceData, LastStretch, Point, StretchKind,
+};
 
 /// How the loop ended: small and `Copy`, so leaving it carries no STOP report.
 #[derive(Clone, Copy)]
@@ -867,11 +869,23 @@ impl Cpu {
         };
         let mut status = status;
         let mut accus = [accu1, accu2, self.level.accu3, self.level.accu4];
-        let data = match stretch.instance {
+        // The instance data, where it works on any: a missing or short instance DB, or AR2 on
+        // a bit, stops the CPU or runs on, op by op.
+        let (instance_db, start) = match stretch.instance {
+            None => (None, 0),
+            Some(InstanceData::Db(slot)) => (Some(slot), 0),
+            Some(InstanceData::Running) => {
+                let offset = self.level.ar2 & 0x0007_FFFF;
+                if !offset.is_multiple_of(8) {
+                    return Stretched::OpByOp(stretch.first);
+                }
+                (Some(self.level.di), (offset / 8) as usize)
+            }
+        };
+        let data = match instance_db {
             None => &mut [][..],
             Some(slot) => match self.s7_data.get_mut(usize::from(slot)) {
-                Some(Some(bytes)) => &mut bytes[..],
-                // A missing instance DB stops the CPU, op by op.
+                Some(Some(bytes)) if start <= bytes.len() => &mut bytes[start..],
                 _ => return Stretched::OpByOp(stretch.first),
             },
         };
@@ -879,7 +893,7 @@ impl Cpu {
         let Some(ran) = native.run(index, most, &mut status, &mut accus, memories) else {
             return Stretched::OpByOp(stretch.first);
         };
-        if let Some(slot) = stretch.instance {
+        if let Some(slot) = instance_db.filter(|_| stretch.calls_fb) {
             self.level.db = slot;
         }
         [_, _, self.level.accu3, self.level.accu4] = accus;
