@@ -14,8 +14,10 @@ if [ "$which" != cython ] && [ ! -x target/awlsim-venv/bin/awlsim-test ]; then
     target/awlsim-venv/bin/pip install --quiet "awlsim==$awlsim_version"
 fi
 
+# Through awlsim's loader, as benches/awlsim/driver.py imports it: `import awlsim.core.main`
+# succeeds without the Cython modules too.
 cython_built() {
-    AWLSIM_CYTHON=2 target/awlsim-cython-venv/bin/python3 -c "import awlsim.core.main" 2>/dev/null
+    AWLSIM_CYTHON=2 target/awlsim-cython-venv/bin/python3 -c "import awlsim_loader.core" 2>/dev/null
 }
 if [ "$which" != pip ] && ! cython_built; then
     python3 -m venv target/awlsim-cython-venv
