@@ -745,7 +745,7 @@ fn step7_conditions_and_function_breakpoints() {
     assert_eq!((block.as_str(), line), ("FC 1", 30));
     let step = client.ok("evaluate", json!({ "expression": "MW 10" }));
     assert_ne!(step["result"], "0", "{step:#}");
-    // A function breakpoint on FC 2 (an FC's formals are not among its Locals yet).
+    // A function breakpoint on FC 2: its formals among its Locals, with their actuals' values.
     let set = client.ok(
         "setFunctionBreakpoints",
         json!({ "breakpoints": [{ "name": "FC 2" }] }),
@@ -760,6 +760,109 @@ fn step7_conditions_and_function_breakpoints() {
     assert_eq!(stopped["reason"], "function breakpoint");
     let (block, _, frame) = client.top(stopped["threadId"].as_i64().unwrap());
     assert_eq!(block, "FC 2");
-    client.variables(frame, "Locals");
+    let locals = client.variables(frame, "Locals");
+    let names: Vec<&str> = locals.iter().map(|(name, _)| name.as_str()).collect();
+    assert_eq!(
+        names[..6],
+        [
+            "step",
+            "car_red",
+            "car_amber",
+            "car_green",
+            "ped_red",
+            "ped_green"
+        ],
+        "{locals:?}"
+    );
     client.ok("disconnect", json!({}));
+}
+
+/// An FC with inputs from a flag word, a constant and a flag bit, an output, and temporaries;
+/// OB 1 with temporaries of its own.
+const FC_WITH_LOCALS: &str = "\
+FUNCTION FC 3 : VOID
+VAR_INPUT
+  speed : INT;
+  limit : INT;
+  enable : BOOL;
+END_VAR
+VAR_OUTPUT
+  running : BOOL;
+END_VAR
+VAR_TEMP
+  doubled : INT;
+  flag : BOOL;
+END_VAR
+BEGIN
+NETWORK
+      L     #speed;
+      L     2;
+      *I    ;
+      T     #doubled;
+      A     #enable;
+      =     #flag;
+      A     #flag;
+      =     #running;
+END_FUNCTION
+
+ORGANIZATION_BLOCK OB 1
+VAR_TEMP
+  info : ARRAY [1..20] OF BYTE;
+  count : INT;
+END_VAR
+BEGIN
+NETWORK
+      L     21;
+      T     MW    20;
+      SET   ;
+      =     M      1.0;
+      L     7;
+      T     #count;
+      CALL  FC     3 (
+           speed                    := MW    20,
+           limit                    := 300,
+           enable                   := M      1.0,
+           running                  := Q      4.0);
+END_ORGANIZATION_BLOCK
+";
+
+#[test]
+fn step7_locals_name_an_fc_s_formals_and_temporaries() {
+    let folder = common::scratch("dap", "fc_locals");
+    let program = folder.join("fc_locals.awl");
+    std::fs::write(&program, FC_WITH_LOCALS).unwrap();
+    let program = program.display().to_string();
+    let arguments = json!({ "program": program });
+    let mut client = Client::launched(arguments, &[], |client| {
+        let lines = json!({ "source": { "path": program }, "breakpoints": [{ "line": 23 }] });
+        let set = client.ok("setBreakpoints", lines);
+        assert_eq!(set["breakpoints"][0]["verified"], true, "{set:#}");
+    });
+    assert_eq!(client.stopped_at(), ("FC 3".to_string(), 23));
+    let (_, _, frame) = client.top(1);
+    let locals = client.variables(frame, "Locals");
+    let expected = [
+        ("speed", "21"),
+        ("limit", "300"),
+        ("enable", "TRUE"),
+        ("running", "FALSE"),
+        ("doubled", "42"),
+        ("flag", "TRUE"),
+    ];
+    let shown: Vec<(&str, &str)> = locals
+        .iter()
+        .map(|(name, value)| (name.as_str(), value.as_str()))
+        .collect();
+    assert_eq!(shown, expected, "{locals:?}");
+    // The caller's frame: OB 1's temporaries by name.
+    let caller = client.variables(frame + 1, "Locals");
+    assert!(
+        caller.contains(&("count".to_string(), "7".to_string())),
+        "{caller:?}"
+    );
+    assert!(
+        caller.iter().any(|(name, _)| name == "info[20]"),
+        "{caller:?}"
+    );
+    client.finish();
 }

@@ -29,10 +29,10 @@ out=target/web/awl-playground.html
 mkdir -p target/web
 while IFS= read -r line; do
     case "$line" in
-        "{{STYLE}}") cat web/page.css ;;
+        "{{STYLE}}") cat web/common.css web/page.css ;;
         "{{GLUE}}") cat "$build/bindgen/awl_playground.js" ;;
         "{{WORKER}}") cat web/worker.js ;;
-        "{{SCRIPT}}") cat web/page.js ;;
+        "{{SCRIPT}}") cat web/common.js web/page.js ;;
         *"{{WASM}}"*)
             printf '%s' "${line%%\{\{WASM\}\}*}"
             gzip -9 --no-name --stdout "$build/bindgen/awl_playground_bg.wasm" | base64 -w0

@@ -1,16 +1,8 @@
 // The playground page: editors, the examples menu, runs, the debugger and live mode. Every
 // answer comes from awl's WebAssembly module (JSON in, JSON out); this script only shows it.
 // Runs and debugger sessions go to a worker (web/worker.js), so the page never freezes.
-"use strict";
+// web/common.js comes before it.
 
-window.addEventListener("error", function (event) {
-  document.body.setAttribute("data-error", String(event.message));
-});
-window.addEventListener("unhandledrejection", function (event) {
-  document.body.setAttribute("data-error", String(event.reason));
-});
-
-const $ = (id) => document.getElementById(id);
 const LINE_HEIGHT = 18;
 const MS = 1e6;
 

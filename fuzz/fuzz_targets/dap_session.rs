@@ -1,5 +1,5 @@
 //! A debug session against `awl dap`: the bytes before the first NUL are the program, the
-//! bytes after it a script of requests and broken messages (see `src/dap.rs`). Without a NUL
+//! bytes after it a script of requests and broken messages (see `awl_fuzz::debug_session`). Without a NUL
 //! the program gets a fixed script that launches, sets breakpoints, steps and looks around.
 #![no_main]
 

@@ -68,6 +68,7 @@ pub fn run(built: Frontend, setup: Setup) {
         watch: awl::state::watch::WatchTable::default(),
         checks: Vec::new(),
         written: Vec::new(),
+        retain_start: None,
     };
     assert!(!awl::report::summary(&ran).is_empty());
     if let Some(stop) = &ran.outcome.stop {

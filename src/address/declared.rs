@@ -16,7 +16,7 @@ use crate::address::notation;
 use crate::rules::bcd;
 
 /// What the compiler lays out for the state to show: the plain types live with its tables.
-pub use crate::step7::bytecode::{DeclaredValue, Format};
+pub use crate::step7::bytecode::{BlockLocals, DeclaredParameter, DeclaredValue, Format};
 
 impl Format {
     /// The type's name as STEP 7 writes it.
@@ -49,7 +49,7 @@ impl Format {
         }
     }
 
-    fn bytes(self) -> usize {
+    pub(crate) fn bytes(self) -> usize {
         match self {
             Format::Bool | Format::Byte | Format::Char => 1,
             Format::Word | Format::Int | Format::S5Time | Format::Date => 2,
@@ -76,13 +76,49 @@ pub struct ValueView {
 /// The elementary values of a data block laid out as `interface` (a global DB's statics or
 /// an instance DB's FB interface), in address order; empty when nothing is declared.
 pub fn values(interface: &Interface, types: &Types) -> Vec<DeclaredValue> {
+    homed(interface, types, |home| match home {
+        Home::Instance(at) => Some(at),
+        Home::Local(_) | Home::Parameter(_) => None,
+    })
+}
+
+/// A logic block's parameters (an FC's, by their place in the call's list) and its temporaries
+/// (by their offset from the block's local data), as the debugger lists them.
+pub fn locals(interface: &Interface, types: &Types) -> BlockLocals {
+    let parameters = interface
+        .parameters
+        .iter()
+        .enumerate()
+        .filter_map(|(place, upper)| {
+            let variable = interface.variables.get(upper)?;
+            Some(DeclaredParameter {
+                name: variable.declaration.name.text.clone(),
+                place: u8::try_from(place).ok()?,
+                // A STRING, DATE_AND_TIME, POINTER or ANY reaches an FC as a pointer, too.
+                format: elementary(&variable.ty).filter(|_| !is_complex(&variable.ty)),
+            })
+        })
+        .collect();
+    let temporaries = homed(interface, types, |home| match home {
+        Home::Local(at) => Some(at),
+        Home::Instance(_) | Home::Parameter(_) => None,
+    });
+    BlockLocals {
+        parameters,
+        temporaries,
+    }
+}
+
+/// The elementary values of the variables `pick` places, in address order.
+fn homed(
+    interface: &Interface,
+    types: &Types,
+    pick: impl Fn(Home) -> Option<BitOffset>,
+) -> Vec<DeclaredValue> {
     let mut variables: Vec<(BitOffset, &VarDecl, VarKind)> = interface
         .variables
         .values()
-        .filter_map(|variable| match variable.home {
-            Home::Instance(at) => Some((at, &variable.declaration, variable.kind)),
-            Home::Local(_) | Home::Parameter(_) => None,
-        })
+        .filter_map(|variable| Some((pick(variable.home)?, &variable.declaration, variable.kind)))
         .collect();
     variables.sort_by_key(|(at, _, _)| at.0);
     let mut out = Vec::new();
@@ -107,15 +143,10 @@ fn value_at(name: String, at: BitOffset, format: Format) -> DeclaredValue {
     }
 }
 
-/// `ty` at `at` named `name`, element by element.
-fn flatten(
-    out: &mut Vec<DeclaredValue>,
-    name: String,
-    at: BitOffset,
-    ty: &DataType,
-    types: &Types,
-) {
-    let format = match ty {
+/// How a value of an elementary type (or a STRING, DATE_AND_TIME, POINTER or ANY) reads;
+/// `None` for arrays, structures and instances, which hold several.
+fn elementary(ty: &DataType) -> Option<Format> {
+    Some(match ty {
         DataType::Bool => Format::Bool,
         DataType::Byte => Format::Byte,
         DataType::Char => Format::Char,
@@ -137,6 +168,23 @@ fn flatten(
         DataType::DateAndTime => Format::Bytes(8),
         DataType::Pointer => Format::Bytes(6),
         DataType::Any => Format::Bytes(10),
+        DataType::Array { .. }
+        | DataType::Struct(_)
+        | DataType::Udt(_)
+        | DataType::Instance(..)
+        | DataType::Named(_) => return None,
+    })
+}
+
+/// `ty` at `at` named `name`, element by element.
+fn flatten(
+    out: &mut Vec<DeclaredValue>,
+    name: String,
+    at: BitOffset,
+    ty: &DataType,
+    types: &Types,
+) {
+    let format = match ty {
         DataType::Array { dims, element } => {
             let stride = element_stride(element, types);
             for (n, index) in indices(dims).into_iter().enumerate() {
@@ -153,7 +201,10 @@ fn flatten(
             return;
         }
         DataType::Instance(kind, number) => return instance(out, &name, at, *kind, *number, types),
-        DataType::Named(_) => return,
+        other => match elementary(other) {
+            Some(format) => format,
+            None => return,
+        },
     };
     out.push(value_at(name, at, format));
 }

@@ -4,9 +4,14 @@
 
 use serde_json::{Value, json};
 
+use crate::address::declared::{self, DeclaredParameter, DeclaredValue, Format};
 use crate::debug::show::{self, target};
 use crate::mnemonics::{BlockKind, MnemonicSet};
+use crate::program_status::operand as status;
 use crate::state::{self, StatusBits};
+use crate::step7::ast::AccessWidth;
+use crate::step7::bytecode::{Place, Target};
+use crate::vm::s7::memory::{Context, Located};
 use crate::vm::{Cpu, IDLE, LevelState};
 
 /// Frame ids: a thread's frames are numbered from its index times this.
@@ -37,6 +42,8 @@ pub struct Thread<'a> {
     pub id: i64,
     pub name: String,
     pub level: &'a LevelState,
+    /// Where this level's frames end on the block stack.
+    pub frames: usize,
     /// Innermost first.
     pub stack: Vec<(u16, u32)>,
 }
@@ -49,6 +56,7 @@ pub fn threads(cpu: &Cpu) -> Vec<Thread<'_>> {
             id: 1,
             name: "OB 1".to_string(),
             level: &cpu.level,
+            frames: cpu.frames.len(),
             stack: Vec::new(),
         }];
     }
@@ -60,6 +68,10 @@ pub fn threads(cpu: &Cpu) -> Vec<Thread<'_>> {
                 .last()
                 .map_or(String::new(), |(b, _)| cpu.block_id(*b).to_string())
         })
+        .collect();
+    // A level's frames end where the level above begins.
+    let ends: Vec<usize> = std::iter::once(cpu.frames.len())
+        .chain(levels.iter().map(|(level, _)| level.level_base))
         .collect();
     levels
         .into_iter()
@@ -76,6 +88,7 @@ pub fn threads(cpu: &Cpu) -> Vec<Thread<'_>> {
                 id: i64::from(ob),
                 name,
                 level,
+                frames: ends[n],
                 stack,
             }
         })
@@ -190,7 +203,7 @@ pub fn variables(cpu: &Cpu, reference: i64, set: MnemonicSet) -> Option<Vec<Vari
         (_, None) => Vec::new(),
         (Scope::Locals, Some((block, _))) => {
             let caller = thread.stack.get(depth + 1).copied();
-            locals(cpu, thread.level, block, depth, caller, set)
+            locals(cpu, thread, block, depth, caller, set)
         }
         (Scope::TimersAndCounters, Some((block, _))) => timers_and_counters(cpu, block, set),
     })
@@ -262,14 +275,18 @@ fn operand(cpu: &Cpu, name: &str, operand: &str, set: MnemonicSet) -> Variable {
 
 fn locals(
     cpu: &Cpu,
-    level: &LevelState,
+    thread: &Thread,
     block: u16,
     depth: usize,
     caller: Option<(u16, u32)>,
     set: MnemonicSet,
 ) -> Vec<Variable> {
     if cpu.program.s7.step7 {
-        return step7_locals(cpu, level, block, depth, set);
+        let context = (0..depth).try_fold(
+            cpu.level_context(thread.level, thread.frames),
+            |context, _| cpu.caller_context(context),
+        );
+        return context.map_or_else(Vec::new, |context| step7_locals(cpu, context, block, set));
     }
     let compiled = &cpu.program.blocks[usize::from(block)];
     let Some((caller, pc)) = caller else {
@@ -308,22 +325,23 @@ fn locals(
         .collect()
 }
 
-/// A STEP 7 FB's parameters and statics in its instance DB (of the running block), and the
-/// block's temporaries on the L stack by address.
-fn step7_locals(
-    cpu: &Cpu,
-    level: &LevelState,
-    block: u16,
-    depth: usize,
-    set: MnemonicSet,
-) -> Vec<Variable> {
-    if depth > 0 {
-        return Vec::new();
-    }
-    let mut out = Vec::new();
+/// A STEP 7 block's locals in `context` (its registers at the frame shown): an FC's parameters
+/// (the values of their actuals), an FB's instance data, and the temporaries by name; the
+/// local data no declaration names (written absolutely, `T LB 0`) as words.
+fn step7_locals(cpu: &Cpu, context: Context, block: u16, set: MnemonicSet) -> Vec<Variable> {
     let tables = &cpu.program.s7;
-    if cpu.block_id(block).kind == BlockKind::Fb && level.di != 0 {
-        let instance = tables.db_number(level.di);
+    let declared = tables
+        .block_locals
+        .iter()
+        .find(|(index, _)| *index == block)
+        .map(|(_, locals)| locals);
+    let mut out: Vec<Variable> = declared
+        .iter()
+        .flat_map(|locals| &locals.parameters)
+        .map(|parameter| fc_parameter(cpu, context, parameter, set))
+        .collect();
+    if cpu.block_id(block).kind == BlockKind::Fb && context.di != 0 {
+        let instance = tables.db_number(context.di);
         if let Some((_, values)) = tables.declared_dbs.iter().find(|(n, _)| *n == instance) {
             for value in values {
                 let name = format!("DB{instance}.{}", value.name);
@@ -331,11 +349,28 @@ fn step7_locals(
             }
         }
     }
+    let end = context.local_base + cpu.program.local_bytes(block);
     let local = cpu
         .local
-        .get(level.local_base as usize..level.local_end as usize)
+        .get(context.local_base as usize..end as usize)
         .unwrap_or(&[]);
+    let temporaries = declared.map_or(&[][..], |locals| &locals.temporaries);
+    out.extend(
+        temporaries
+            .iter()
+            .map(|temporary| variable(temporary.name.as_str(), declared::text(temporary, local))),
+    );
+    // Words no temporary covers: the block's absolutely addressed local data.
+    let covered = |byte: usize| {
+        temporaries.iter().any(|temporary| {
+            let start = temporary.byte as usize;
+            (start..start + temporary.format.bytes().max(1)).contains(&byte)
+        })
+    };
     for (n, pair) in local.chunks(2).enumerate() {
+        if covered(n * 2) || covered(n * 2 + 1) {
+            continue;
+        }
         let word = pair
             .iter()
             .fold(0u16, |word, byte| word << 8 | u16::from(*byte));
@@ -345,6 +380,67 @@ fn step7_locals(
         ));
     }
     out
+}
+
+/// An FC parameter's value: its actual's, read where the caller passed it.
+fn fc_parameter(
+    cpu: &Cpu,
+    context: Context,
+    parameter: &DeclaredParameter,
+    set: MnemonicSet,
+) -> Variable {
+    let name = parameter.name.as_str();
+    let Some(format) = parameter.format else {
+        return variable(name, "(passed as a pointer)");
+    };
+    let width = match format.operand_bytes() {
+        Some(0) => AccessWidth::Bit,
+        Some(1) => AccessWidth::Byte,
+        Some(2) => AccessWidth::Word,
+        _ => AccessWidth::Double,
+    };
+    let place = Place {
+        target: Target::Parameter {
+            param: parameter.place,
+            byte: 0,
+            bit: 0,
+        },
+        width,
+    };
+    let value = match status::locate(cpu, place, context) {
+        Some(Located::Constant(value)) => constant(value, format),
+        Some(Located::Timer(n)) => format!("T {n}"),
+        Some(Located::Counter(n)) => {
+            format!("{} {n}", if set == MnemonicSet::German { "Z" } else { "C" })
+        }
+        Some(located) => match status::memory_at(cpu, located) {
+            Some((bytes, bit)) => declared::text(
+                &DeclaredValue {
+                    name: String::new(),
+                    byte: 0,
+                    bit,
+                    format,
+                },
+                bytes,
+            ),
+            None => "(in the peripherals)".to_string(),
+        },
+        None => "?".to_string(),
+    };
+    variable(name, value)
+}
+
+/// A constant actual in its parameter's type.
+fn constant(value: u32, format: Format) -> String {
+    let bytes = value.to_be_bytes();
+    let width = format.operand_bytes().map_or(4, usize::from).max(1);
+    let value = DeclaredValue {
+        name: String::new(),
+        byte: 0,
+        bit: 0,
+        format,
+    };
+    declared::text(&value, &bytes[4 - width..])
 }
 
 /// The timers and counters the block's statements name, in the dialect's notation.

@@ -3,7 +3,7 @@
 //! stepping loop. A loop body keeps its last pass and a count.
 
 pub mod block;
-mod operand;
+pub(crate) mod operand;
 mod text;
 
 use std::cell::RefCell;

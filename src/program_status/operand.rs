@@ -171,7 +171,7 @@ fn s5_time(kt: &str) -> Option<String> {
 
 /// Where `place` is in `context`; `None` for what status does not show (indirect
 /// addresses, test operands).
-fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
+pub(crate) fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
     if let Some(located) = context.locate(place.target) {
         return Some(located);
     }
@@ -185,6 +185,24 @@ fn locate(cpu: &Cpu, place: Place, context: Context) -> Option<Located> {
             _ => return None,
         },
         _ => return None,
+    })
+}
+
+/// The bytes of the CPU's memory from `located` on, and its bit; `None` for what is not in
+/// the CPU's memory (constants, timers, counters, the peripherals).
+pub(crate) fn memory_at(cpu: &Cpu, located: Located) -> Option<(&[u8], u8)> {
+    Some(match located {
+        Located::Image { byte, bit } => (cpu.image.get(byte..)?, bit),
+        Located::Local { byte, bit } => (cpu.local.get(byte..)?, bit),
+        Located::Data { slot, byte, bit } => (
+            cpu.s7_data.get(usize::from(slot))?.as_ref()?.get(byte..)?,
+            bit,
+        ),
+        Located::Constant(_)
+        | Located::Timer(_)
+        | Located::Counter(_)
+        | Located::Peripheral { .. }
+        | Located::Special(_) => return None,
     })
 }
 
@@ -205,13 +223,7 @@ fn read(cpu: &Cpu, located: Located, width: AccessWidth) -> Option<String> {
             let counter = cpu.counters.get(usize::from(n))?;
             return Some(format!("C#{} ({})", counter.value, u8::from(counter.bit())));
         }
-        Located::Image { byte, bit } => (cpu.image.get(byte..)?, bit),
-        Located::Local { byte, bit } => (cpu.local.get(byte..)?, bit),
-        Located::Data { slot, byte, bit } => (
-            cpu.s7_data.get(usize::from(slot))?.as_ref()?.get(byte..)?,
-            bit,
-        ),
-        Located::Peripheral { .. } | Located::Special(_) => return None,
+        memory => memory_at(cpu, memory)?,
     };
     let take = |count: usize| {
         bytes.get(..count).map(|bytes| {

@@ -470,6 +470,8 @@ pub struct S7Tables {
     pub defined_dbs: usize,
     /// The data blocks with declarations, by number: their values as the state shows them.
     pub declared_dbs: Vec<(u16, Vec<DeclaredValue>)>,
+    /// Each logic block's parameters and temporaries by name, by block index (the debugger's).
+    pub block_locals: Vec<(u16, BlockLocals)>,
     /// The awlsim test instructions may run (`awl conformance`, `--extended`).
     pub extensions: bool,
     /// The program is a STEP 7 program (it has an L stack and byte-addressed DBs).
@@ -506,6 +508,24 @@ pub struct DeclaredValue {
     pub byte: u32,
     pub bit: u8,
     pub format: Format,
+}
+
+/// A logic block's declared parameters and temporaries, kept for the debugger's Locals.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct BlockLocals {
+    /// An FC's parameters in the order of its call's list.
+    pub parameters: Vec<DeclaredParameter>,
+    /// The temporaries, each at its offset from the block's local data.
+    pub temporaries: Vec<DeclaredValue>,
+}
+
+/// An FC parameter: its name, its place in the call's list, and how its value reads (`None`
+/// for an array, a structure or a UDT, which the call passes as a pointer).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DeclaredParameter {
+    pub name: String,
+    pub place: u8,
+    pub format: Option<Format>,
 }
 
 impl S7Tables {

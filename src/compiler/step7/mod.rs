@@ -103,6 +103,14 @@ pub fn compile(
         .iter()
         .map(|(block, id, set)| compiler.compile_block(block, *id, *set))
         .collect();
+    compiler.tables.block_locals = logic
+        .iter()
+        .filter_map(|(_, id, _)| {
+            let interface = compiler.interfaces.get(id)?;
+            let index = *compiler.index.get(id)?;
+            Some((index, declared::locals(interface, &compiler.types)))
+        })
+        .collect();
     compiler.errors.sort_by_key(|error| {
         let span = error.span();
         (span.file, span.start)

@@ -10,8 +10,8 @@ mod live;
 
 use std::convert::Infallible;
 use std::net::SocketAddr;
-use std::sync::Arc;
 use std::sync::atomic::AtomicUsize;
+use std::sync::{Arc, LazyLock};
 use std::time::{Duration, Instant};
 
 use axum::body::Body;
@@ -33,8 +33,19 @@ use api::Call;
 /// The live view's path.
 const LIVE: &str = "/api/live";
 
-/// The page: one file, nothing fetched from the network.
-const PAGE: &str = include_str!("../../../web/online/index.html");
+/// The page: one file, with the look and the script it shares with the playground put in
+/// once; nothing fetched from the network.
+static PAGE: LazyLock<String> = LazyLock::new(|| {
+    include_str!("../../../web/online/index.html")
+        .replace(
+            "/* {{COMMON_STYLE}} */\n",
+            include_str!("../../../web/common.css"),
+        )
+        .replace(
+            "// {{COMMON_SCRIPT}}\n",
+            include_str!("../../../web/common.js"),
+        )
+});
 
 /// The largest body a request may have.
 pub const BODY_LIMIT: usize = 64 * 1024;
@@ -347,7 +358,11 @@ async fn live(
 }
 
 fn page() -> Response<Body> {
-    response(StatusCode::OK, "text/html; charset=utf-8", PAGE.into())
+    response(
+        StatusCode::OK,
+        "text/html; charset=utf-8",
+        PAGE.as_str().into(),
+    )
 }
 
 fn ok(value: &impl Serialize) -> Response<Body> {

@@ -6,8 +6,8 @@
 use crate::compiler::Resolved;
 use crate::step7::ast::{AccessWidth, S7Area};
 use crate::step7::bytecode::{Place, Target};
-use crate::vm::Cpu;
 use crate::vm::stop::{StopCause, StopDetail};
+use crate::vm::{Cpu, LevelState};
 
 pub type Fault = (StopCause, StopDetail);
 
@@ -85,6 +85,8 @@ pub struct Context {
     pub params: u16,
     /// Frames on the block stack below this context's block.
     pub frames: usize,
+    /// Where the frames of this context's processing level begin on the block stack.
+    pub level_base: usize,
 }
 
 impl Context {
@@ -209,30 +211,36 @@ impl Cpu {
 
     /// The registers of the running block.
     pub fn running_context(&self) -> Context {
-        let frames = self.frames.len();
-        let previous_local = (frames > self.level.level_base)
+        self.level_context(&self.level, self.frames.len())
+    }
+
+    /// The registers of the block `level` runs (the running level or an interrupted one),
+    /// whose frames end at `frames` on the block stack.
+    pub fn level_context(&self, level: &LevelState, frames: usize) -> Context {
+        let previous_local = (frames > level.level_base)
             .then(|| self.s7_frames.get(frames - 1).map(|frame| frame.local_base))
             .flatten();
         Context {
-            local_base: self.level.local_base,
+            local_base: level.local_base,
             previous_local,
-            db: self.level.db,
-            di: self.level.di,
-            ar2: self.level.ar2,
-            params: self.level.params,
+            db: level.db,
+            di: level.di,
+            ar2: level.ar2,
+            params: level.params,
             frames,
+            level_base: level.level_base,
         }
     }
 
     /// The registers of the block that called the block of `context`.
     pub(crate) fn caller_context(&self, context: Context) -> Option<Context> {
-        if context.frames <= self.level.level_base {
+        if context.frames <= context.level_base {
             return None;
         }
         let frame = self.frames.get(context.frames - 1)?;
         let saved = self.s7_frames.get(context.frames - 1)?;
         let below = context.frames - 1;
-        let previous_local = (below > self.level.level_base)
+        let previous_local = (below > context.level_base)
             .then(|| self.s7_frames.get(below - 1).map(|frame| frame.local_base))
             .flatten();
         Some(Context {
@@ -242,9 +250,10 @@ impl Cpu {
             di: saved.di,
             // A caller's instance variables reach an FC as copies on the caller's L stack
             // (see `FcCall`), so no caller's AR2 is needed; AR2 as it is stands in.
-            ar2: self.level.ar2,
+            ar2: context.ar2,
             params: frame.params,
             frames: below,
+            level_base: context.level_base,
         })
     }
 
