@@ -871,7 +871,8 @@ fn run(
 }
 
 /// The state a run left: what a PG shows (with the processing levels at a STOP), every byte of
-/// the images and flags, the time, the operation count, and the STOP with its place.
+/// the images and flags, the time, the operation count, the STOP with its place, and the
+/// longest stretch between block points.
 fn end_state(cpu: &Cpu, outcome: &RunOutcome) -> Value {
     json!({
         "state": State::capture(cpu, outcome.stop.as_ref()),
@@ -882,6 +883,9 @@ fn end_state(cpu: &Cpu, outcome: &RunOutcome) -> Value {
         "instructions": outcome.instructions,
         "image": cpu.image[..].to_vec(),
         "outputs": cpu.outputs,
+        // The longest stretch between two block points, which the bound is made of: native
+        // stretches that call mark the points they cross.
+        "longest_block": format!("{:?}", cpu.longest_block),
     })
 }
 
