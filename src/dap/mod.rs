@@ -19,6 +19,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use std::thread::JoinHandle;
 
 use miette::Report;
 use serde_json::{Value, json};
@@ -72,12 +73,12 @@ struct Messages {
 }
 
 impl Messages {
-    /// Reads `input` on a thread of its own.
-    fn read(input: impl std::io::Read + Send + 'static) -> Messages {
+    /// Reads `input` on a thread of its own, whose handle comes with the messages.
+    fn read(input: impl std::io::Read + Send + 'static) -> (Messages, JoinHandle<()>) {
         let (sender, receiver) = channel();
         let arrived = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&arrived);
-        std::thread::spawn(move || {
+        let reader = std::thread::spawn(move || {
             let mut input = BufReader::new(input);
             while let Some(message) = wire::read(&mut input) {
                 if sender.send(message).is_err() {
@@ -88,7 +89,7 @@ impl Messages {
             drop(sender);
             flag.store(true, Ordering::Release);
         });
-        Messages { receiver, arrived }
+        (Messages { receiver, arrived }, reader)
     }
 }
 
@@ -122,17 +123,24 @@ pub struct Adapter {
 
 /// Runs the adapter on stdin and stdout until the editor disconnects or goes away.
 pub fn serve_stdio() {
-    session(std::io::stdin(), Box::new(std::io::stdout()), Files::Disk);
+    let (messages, _reader) = Messages::read(std::io::stdin());
+    // An editor may keep stdin open after its disconnect: the reader ends with the process.
+    let out = Outgoing::new(Box::new(std::io::stdout()));
+    Adapter::new(Some(messages), out, Files::Disk).serve();
 }
 
-/// A whole session on any input and output, its program read from `files` (the fuzz target
-/// keeps them in memory).
+/// A whole session on an input that ends (bytes in memory, a file) and any output, its program
+/// read from `files` (the fuzz target keeps them in memory); returns when the session is over
+/// and the input's reader has stopped.
 pub fn session(
     input: impl std::io::Read + Send + 'static,
     out: Box<dyn std::io::Write>,
     files: Files,
 ) {
-    Adapter::new(Some(Messages::read(input)), Outgoing::new(out), files).serve();
+    let (messages, reader) = Messages::read(input);
+    Adapter::new(Some(messages), Outgoing::new(out), files).serve();
+    // The adapter and its receiver are gone: the reader stops at its next message or the end.
+    let _ = reader.join();
 }
 
 /// The text of a launch that cannot run: every diagnostic, as `awl run` prints them.
