@@ -17,11 +17,21 @@ fn repo(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
 }
 
-/// A running `awl serve --opcua 127.0.0.1:0` and the port it printed.
+/// A running `awl serve --opcua 127.0.0.1:0` and the port it printed; killed when dropped
+/// unless it was terminated.
 struct Served {
-    child: Child,
+    child: Option<Child>,
     port: u16,
     stdout: mpsc::Receiver<String>,
+}
+
+impl Drop for Served {
+    fn drop(&mut self) {
+        if let Some(mut child) = self.child.take() {
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+    }
 }
 
 /// Starts `awl serve ARGS --opcua 127.0.0.1:0` with the tests' data folder. One start at a
@@ -56,7 +66,7 @@ fn serve(args: &[&str]) -> Served {
     };
     drop(lock);
     Served {
-        child,
+        child: Some(child),
         port,
         stdout,
     }
@@ -90,11 +100,12 @@ impl Served {
     }
 
     /// Ends the serve with SIGTERM; its exit code, standard output and error.
-    fn terminate(self) -> (Option<i32>, String, String) {
-        let pid = self.child.id().to_string();
+    fn terminate(mut self) -> (Option<i32>, String, String) {
+        let child = self.child.take().expect("not yet terminated");
+        let pid = child.id().to_string();
         let sent = Command::new("kill").args(["-TERM", &pid]).status();
         assert!(sent.is_ok_and(|status| status.success()), "kill -TERM");
-        let output = self.child.wait_with_output().expect("awl ends");
+        let output = child.wait_with_output().expect("awl ends");
         let stdout: Vec<String> = self.stdout.iter().collect();
         (
             output.status.code(),

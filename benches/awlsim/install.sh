@@ -22,7 +22,8 @@ cython_built() {
 if [ "$which" != pip ] && ! cython_built; then
     python3 -m venv target/awlsim-cython-venv
     target/awlsim-cython-venv/bin/pip install --quiet "cython<3" setuptools wheel
-    AWLSIM_CYTHON_BUILD=1 target/awlsim-cython-venv/bin/pip install --quiet \
+    # Not from pip's wheel cache: a wheel built there before without Cython would be taken.
+    AWLSIM_CYTHON_BUILD=1 target/awlsim-cython-venv/bin/pip install --quiet --no-cache-dir \
         --no-build-isolation --no-binary awlsim "awlsim==$awlsim_version"
 fi
 echo "awlsim $awlsim_version ready under target/ ($which)"
