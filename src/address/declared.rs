@@ -7,7 +7,7 @@
 
 use serde::Serialize;
 
-use crate::step7::ast::{DataType, S7BlockKind, VarDecl, VarKind};
+use crate::step7::ast::{AccessWidth, DataType, S7BlockKind, VarDecl, VarKind};
 use crate::step7::layout::{
     BitOffset, Home, Interface, Types, element_stride, is_complex, struct_layout,
 };
@@ -47,6 +47,16 @@ impl Format {
             Format::String(_) | Format::Bytes(_) => None,
             other => u8::try_from(other.bytes()).ok(),
         }
+    }
+
+    /// The width of the operand that reads a value of this type whole; `None` where none does.
+    pub(crate) fn access_width(self) -> Option<AccessWidth> {
+        Some(match self.operand_bytes()? {
+            0 => AccessWidth::Bit,
+            1 => AccessWidth::Byte,
+            2 => AccessWidth::Word,
+            _ => AccessWidth::Double,
+        })
     }
 
     pub(crate) fn bytes(self) -> usize {

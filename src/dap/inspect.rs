@@ -9,7 +9,6 @@ use crate::debug::show::{self, target};
 use crate::mnemonics::{BlockKind, MnemonicSet};
 use crate::program_status::operand as status;
 use crate::state::{self, StatusBits};
-use crate::step7::ast::AccessWidth;
 use crate::step7::bytecode::{Place, Target};
 use crate::vm::s7::memory::{Context, Located};
 use crate::vm::{Cpu, IDLE, LevelState};
@@ -364,7 +363,7 @@ fn step7_locals(cpu: &Cpu, context: Context, block: u16, set: MnemonicSet) -> Ve
     let covered = |byte: usize| {
         temporaries.iter().any(|temporary| {
             let start = temporary.byte as usize;
-            (start..start + temporary.format.bytes().max(1)).contains(&byte)
+            (start..start + temporary.format.bytes()).contains(&byte)
         })
     };
     for (n, pair) in local.chunks(2).enumerate() {
@@ -393,11 +392,8 @@ fn fc_parameter(
     let Some(format) = parameter.format else {
         return variable(name, "(passed as a pointer)");
     };
-    let width = match format.operand_bytes() {
-        Some(0) => AccessWidth::Bit,
-        Some(1) => AccessWidth::Byte,
-        Some(2) => AccessWidth::Word,
-        _ => AccessWidth::Double,
+    let Some(width) = format.access_width() else {
+        return variable(name, "(passed as a pointer)");
     };
     let place = Place {
         target: Target::Parameter {
@@ -433,7 +429,7 @@ fn fc_parameter(
 /// A constant actual in its parameter's type.
 fn constant(value: u32, format: Format) -> String {
     let bytes = value.to_be_bytes();
-    let width = format.operand_bytes().map_or(4, usize::from).max(1);
+    let width = format.bytes().min(4);
     let value = DeclaredValue {
         name: String::new(),
         byte: 0,
